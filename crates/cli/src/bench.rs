@@ -1,0 +1,124 @@
+//! `gearshock bench`: the solver's speed figures, as medians over repeats.
+//!
+//! Timing lives here, not in the solver (which has no clock). Every figure
+//! is the median of `repeats` runs on the default model; the README quotes
+//! them.
+
+use serde_json::{json, Value};
+use solver::dynamics::MeshOde;
+use solver::ode::Ode;
+use solver::params::ModelParams;
+use solver::steady::{steady_state, Model, SteadyOptions};
+use solver::sweep::{BifurcationSweep, SweepSpec};
+use solver::SolverError;
+use std::time::Instant;
+
+fn median(mut xs: Vec<f64>) -> f64 {
+    xs.sort_by(f64::total_cmp);
+    let n = xs.len();
+    if n == 0 {
+        return f64::NAN;
+    }
+    if n % 2 == 1 {
+        xs[n / 2]
+    } else {
+        0.5 * (xs[n / 2 - 1] + xs[n / 2])
+    }
+}
+
+/// Runs every benchmark and returns the figures.
+pub fn run(repeats: u32, quick: bool) -> Result<Value, SolverError> {
+    let model = Model::new(&ModelParams::default())?;
+    let omega = 0.5;
+
+    // Right-hand side evaluations per second, on states along a real orbit.
+    let mut opts = SteadyOptions::new(omega);
+    opts.transient_periods = 20;
+    opts.record_periods = 1;
+    opts.early_settle = false;
+    let ss = steady_state(&model, &opts, None)?;
+    let mut ode = MeshOde::new(&model.system, ss.omega_rad_s);
+    let y = ss.end_state.clone();
+    let mut dy = vec![0.0; y.len()];
+    let evals: u32 = if quick { 20_000 } else { 1_000_000 };
+    let mut rhs_rates = Vec::new();
+    for _ in 0..repeats {
+        let start = Instant::now();
+        let mut acc = 0.0;
+        for k in 0..evals {
+            ode.rhs(f64::from(k) * 1e-7, &y, &mut dy);
+            acc += dy[12];
+        }
+        let dt = start.elapsed().as_secs_f64();
+        std::hint::black_box(acc);
+        rhs_rates.push(f64::from(evals) / dt);
+    }
+
+    // One simulate of 300 + 100 periods at Omega = 0.5, as the CLI runs it.
+    let (transient, record) = if quick { (30, 10) } else { (300, 100) };
+    let mut sim_ms = Vec::new();
+    let mut period_rates = Vec::new();
+    let mut sim_stats = None;
+    for _ in 0..repeats {
+        let mut o = SteadyOptions::new(omega);
+        o.transient_periods = transient;
+        o.record_periods = record;
+        o.history_meshes = vec![0];
+        let start = Instant::now();
+        let r = steady_state(&model, &o, None)?;
+        let dt = start.elapsed().as_secs_f64();
+        sim_ms.push(dt * 1e3);
+        period_rates.push(f64::from(r.stats.transient_periods_run + record) / dt);
+        sim_stats = Some(r.stats);
+    }
+    let sim_stats = sim_stats.unwrap_or_default();
+
+    // A bifurcation sweep of 300 + 100 periods per point, single-threaded.
+    let points = if quick { 4 } else { 200 };
+    let sweep_repeats = if quick { 1 } else { repeats.min(3) };
+    let mut sweep_s = Vec::new();
+    let mut settled_points = 0;
+    for _ in 0..sweep_repeats {
+        let mut spec = SweepSpec::new(0.05, 2.0, points);
+        spec.steady.transient_periods = transient;
+        spec.steady.record_periods = record;
+        let mut sweep = BifurcationSweep::new(model.clone(), spec)?;
+        let start = Instant::now();
+        let pts = sweep.advance(points as usize);
+        sweep_s.push(start.elapsed().as_secs_f64());
+        settled_points = pts.iter().filter(|p| p.stats.settled).count();
+    }
+    let sweep_median = median(sweep_s.clone());
+
+    Ok(json!({
+        "machine_threads": std::thread::available_parallelism().map_or(1, |n| n.get()),
+        "repeats": repeats,
+        "quick": quick,
+        "rhs": {
+            "evaluations_per_s": median(rhs_rates),
+        },
+        "simulate": {
+            "omega": omega,
+            "transient_periods": transient,
+            "record_periods": record,
+            "median_ms": median(sim_ms),
+            "mesh_periods_per_s": median(period_rates),
+            "transient_periods_run": sim_stats.transient_periods_run,
+            "steps": sim_stats.integrator.steps,
+            "rejected_steps": sim_stats.integrator.rejected_steps,
+            "event_retakes": sim_stats.integrator.event_retakes,
+            "rhs_evaluations": sim_stats.integrator.rhs_evaluations,
+            "contact_switches": sim_stats.integrator.events,
+        },
+        "bifurcation": {
+            "omega_from": 0.05,
+            "omega_to": 2.0,
+            "points": points,
+            "transient_periods": transient,
+            "record_periods": record,
+            "median_s": sweep_median,
+            "points_per_s": f64::from(points) / sweep_median,
+            "points_settled_early": settled_points,
+        },
+    }))
+}

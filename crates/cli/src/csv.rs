@@ -1,0 +1,166 @@
+//! Plain-text tables: `--format csv` outputs and the key listing.
+
+use serde_json::Value;
+use solver::keys::{self, KEYS};
+use solver::params::ModelParams;
+use solver::report::{display_shape, num};
+use solver::steady::{Model, SteadyState};
+use std::fmt::Write;
+
+fn cell(v: &Value) -> String {
+    match v {
+        Value::Null => String::new(),
+        Value::String(s) => s.clone(),
+        other => other.to_string(),
+    }
+}
+
+/// `params --format csv`: key, value, unit.
+pub fn params(p: &ModelParams) -> String {
+    let mut s = String::from("key,value,unit\n");
+    for spec in keys::primary_keys(p.kind()) {
+        if let Some(v) = keys::get(p, spec.name) {
+            let _ = writeln!(
+                s,
+                "{},{},{}",
+                spec.name,
+                cell(&keys::value_to_json(&v)),
+                spec.unit
+            );
+        }
+    }
+    s
+}
+
+/// `keys`: an aligned text listing.
+pub fn keys_text() -> String {
+    let mut s = String::new();
+    for k in KEYS.iter() {
+        let models = match k.applies {
+            keys::Applies::Both => "both",
+            keys::Applies::Ravigneaux => "ravigneaux",
+            keys::Applies::GearPair => "gear-pair",
+        };
+        let _ = writeln!(
+            s,
+            "{:<24} {:<7} {:<11} {:<28} {}",
+            k.name,
+            k.unit,
+            models,
+            k.ty.allowed(),
+            k.description
+        );
+    }
+    s
+}
+
+/// `keys --markdown`: the README's table.
+pub fn keys_markdown() -> String {
+    let mut s =
+        String::from("| key | unit | models | allowed | meaning |\n|---|---|---|---|---|\n");
+    for k in KEYS.iter() {
+        let models = match k.applies {
+            keys::Applies::Both => "both",
+            keys::Applies::Ravigneaux => "ravigneaux",
+            keys::Applies::GearPair => "gear-pair",
+        };
+        let _ = writeln!(
+            s,
+            "| `{}` | {} | {} | {} | {} |",
+            k.name,
+            k.unit,
+            models,
+            k.ty.allowed(),
+            k.description
+        );
+    }
+    s
+}
+
+/// `modes --format csv`: one row per mode, the shape in coordinate columns.
+pub fn modes(model: &Model) -> String {
+    let mut s = String::from("frequency_hz,omega,kind,multiplicity");
+    for n in &model.system.dof_names {
+        let _ = write!(s, ",{n}");
+    }
+    s.push('\n');
+    for m in &model.modes.modes {
+        let _ = write!(
+            s,
+            "{},{},{},{}",
+            m.frequency_hz,
+            m.omega,
+            m.kind.name(),
+            m.multiplicity
+        );
+        for x in display_shape(m) {
+            let _ = write!(s, ",{x}");
+        }
+        s.push('\n');
+    }
+    s
+}
+
+/// `simulate --format csv`: the recorded time history of the mesh.
+pub fn history(ss: &SteadyState, mesh: usize) -> String {
+    let mut s = String::from("t_s,delta_m,velocity_m_s,relative_m,force_n\n");
+    if let Some(h) = ss.histories.iter().find(|h| h.mesh == mesh) {
+        for (i, t) in ss.sample_times_s.iter().enumerate() {
+            let _ = writeln!(
+                s,
+                "{},{},{},{},{}",
+                cell(&num(*t)),
+                cell(&num(h.delta_m[i])),
+                cell(&num(h.velocity_m_s[i])),
+                cell(&num(h.rel_m[i])),
+                cell(&num(h.force_n[i]))
+            );
+        }
+    }
+    s
+}
+
+/// `bifurcation --format csv`: one row per Poincaré sample.
+pub fn sweep(v: &Value) -> String {
+    let mut s = String::from("omega,direction,mesh,sample,delta_m,velocity_m_s,impact,period\n");
+    let mesh_names: Vec<String> = v["spec"]["meshes"]
+        .as_array()
+        .map(|a| a.iter().map(cell).collect())
+        .unwrap_or_default();
+    let Some(points) = v["points"].as_array() else {
+        return s;
+    };
+    for p in points {
+        let omega = cell(&p["omega"]);
+        let dir = cell(&p["direction"]);
+        let period = cell(&p["period"]);
+        let rows: Vec<(String, &Value)> = if mesh_names.len() == 1 {
+            vec![(mesh_names[0].clone(), p)]
+        } else {
+            mesh_names
+                .iter()
+                .map(|n| (n.clone(), &p["meshes"][n]))
+                .collect()
+        };
+        for (name, m) in rows {
+            let d = m["poincare_delta_m"]
+                .as_array()
+                .cloned()
+                .unwrap_or_default();
+            let vel = m["poincare_velocity_m_s"]
+                .as_array()
+                .cloned()
+                .unwrap_or_default();
+            for (k, (dk, vk)) in d.iter().zip(&vel).enumerate() {
+                let _ = writeln!(
+                    s,
+                    "{omega},{dir},{name},{k},{},{},{},{period}",
+                    cell(dk),
+                    cell(vk),
+                    cell(&m["impact"])
+                );
+            }
+        }
+    }
+    s
+}

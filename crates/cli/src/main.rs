@@ -1,0 +1,426 @@
+//! `gearshock`: the native command line of the gearshock solver, for batch
+//! sweeps on a workstation or a cluster and for checking results.
+//!
+//! JSON goes to stdout (or CSV with `--format csv`), a progress bar to stderr
+//! when stderr is a terminal. Bad input exits with code 2 and one line that
+//! names the offending flag, key or value; a solver failure exits with 1.
+
+mod bench;
+mod csv;
+mod progress;
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use serde_json::Value;
+use solver::keys;
+use solver::params::{ModelKind, ModelParams};
+use solver::steady::{steady_state, Model, SteadyOptions};
+use solver::sweep::{canonical_order, BifurcationSweep, Directions, SweepSpec};
+use solver::{report, SolverError};
+use std::io::Write;
+use std::process::ExitCode;
+
+/// Vibration and tooth impacts of a compound planetary gear set with backlash.
+#[derive(Debug, Parser)]
+#[command(name = "gearshock", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Clone, Copy, ValueEnum)]
+enum Format {
+    Json,
+    Csv,
+}
+
+#[derive(Debug, Clone, Copy, ValueEnum)]
+enum ModelArg {
+    Ravigneaux,
+    GearPair,
+}
+
+/// Parameter selection shared by every subcommand.
+#[derive(Debug, Args)]
+struct ParamArgs {
+    /// Built-in model.
+    #[arg(long, value_enum)]
+    model: Option<ModelArg>,
+    /// A JSON file with a flat object of parameter keys (see `gearshock keys`).
+    #[arg(long, value_name = "FILE.json")]
+    params: Option<std::path::PathBuf>,
+    /// Set one parameter, e.g. `--set backlash_um=200` (repeatable).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    set: Vec<String>,
+    /// Output format.
+    #[arg(long, value_enum, default_value = "json")]
+    format: Format,
+}
+
+/// Options of a steady-state run.
+#[derive(Debug, Args)]
+struct RunArgs {
+    /// Maximum transient mesh periods (the transient ends early once the
+    /// Poincaré samples have settled, unless --full-transient).
+    #[arg(long, default_value_t = 300)]
+    transient_periods: u32,
+    /// Recorded mesh periods.
+    #[arg(long, default_value_t = 100)]
+    record_periods: u32,
+    /// Always integrate every transient period.
+    #[arg(long)]
+    full_transient: bool,
+    /// Relative tolerance of the integrator.
+    #[arg(long, default_value_t = 1e-8)]
+    rtol: f64,
+    /// Absolute tolerance as a mesh deflection (m).
+    #[arg(long, default_value_t = 1e-11)]
+    atol: f64,
+}
+
+impl RunArgs {
+    fn apply(&self, opts: &mut SteadyOptions) {
+        opts.transient_periods = self.transient_periods;
+        opts.record_periods = self.record_periods;
+        opts.early_settle = !self.full_transient;
+        opts.rtol = self.rtol;
+        opts.atol_m = self.atol;
+    }
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Print the full parameter set (defaults plus --params/--set) as JSON.
+    Params {
+        #[command(flatten)]
+        p: ParamArgs,
+    },
+    /// List every parameter key with unit, range and meaning.
+    Keys {
+        /// Print a Markdown table (as in the README).
+        #[arg(long)]
+        markdown: bool,
+    },
+    /// Static equilibrium, mesh forces and natural modes.
+    Modes {
+        #[command(flatten)]
+        p: ParamArgs,
+    },
+    /// Steady-state response at one dimensionless mesh frequency.
+    Simulate {
+        #[command(flatten)]
+        p: ParamArgs,
+        /// Dimensionless mesh frequency Omega = omega / omega_ref.
+        #[arg(long)]
+        omega: f64,
+        #[command(flatten)]
+        run: RunArgs,
+        /// Mesh to report (e.g. s1a1, s2b2, a1b1, rb3; pg for the gear pair).
+        #[arg(long)]
+        mesh: Option<String>,
+        /// Highest harmonic order in the spectrum.
+        #[arg(long, default_value_t = 8.0)]
+        max_order: f64,
+    },
+    /// Bifurcation diagram: Poincaré samples over a sweep of Omega.
+    Bifurcation {
+        #[command(flatten)]
+        p: ParamArgs,
+        /// First Omega.
+        #[arg(long)]
+        omega_from: f64,
+        /// Last Omega.
+        #[arg(long)]
+        omega_to: f64,
+        /// Number of Omega points.
+        #[arg(long, default_value_t = 200)]
+        points: u32,
+        /// Sweep direction: up, down or both (up then down).
+        #[arg(long, default_value = "up")]
+        direction: String,
+        #[command(flatten)]
+        run: RunArgs,
+        /// Mesh to report, or `all`.
+        #[arg(long)]
+        mesh: Option<String>,
+        /// Number of interleaved continuation chains (see the README).
+        #[arg(long)]
+        chains: Option<u32>,
+        /// Compute only shard i of n (every n-th point from i; implies --chains n).
+        #[arg(long, value_name = "i/n")]
+        shard: Option<String>,
+    },
+    /// Join the JSON outputs of all shards of one sweep.
+    Merge {
+        /// Shard outputs (JSON files).
+        files: Vec<std::path::PathBuf>,
+    },
+    /// Measure the solver's speed (medians over repeats).
+    Bench {
+        /// Repeats per figure.
+        #[arg(long, default_value_t = 5)]
+        repeats: u32,
+        /// Fewer points and periods (for smoke tests).
+        #[arg(long)]
+        quick: bool,
+    },
+}
+
+/// A failure and its exit code.
+struct Failure {
+    code: u8,
+    message: String,
+}
+
+impl From<SolverError> for Failure {
+    fn from(e: SolverError) -> Self {
+        let code = match e {
+            SolverError::StepSizeTooSmall { .. }
+            | SolverError::NonFinite { .. }
+            | SolverError::TooManySteps { .. }
+            | SolverError::NotConverged { .. }
+            | SolverError::Singular { .. } => 1,
+            _ => 2,
+        };
+        Failure {
+            code,
+            message: e.to_string(),
+        }
+    }
+}
+
+fn usage(message: impl Into<String>) -> Failure {
+    Failure {
+        code: 2,
+        message: message.into(),
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            use clap::error::ErrorKind;
+            if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
+                print!("{e}");
+                return ExitCode::SUCCESS;
+            }
+            let text = e.render().to_string();
+            let first = text.lines().next().unwrap_or("invalid arguments");
+            eprintln!("gearshock: {}", first.trim_start_matches("error: "));
+            return ExitCode::from(2);
+        }
+    };
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(f) => {
+            eprintln!("gearshock: {}", f.message);
+            ExitCode::from(f.code)
+        }
+    }
+}
+
+fn load_params(p: &ParamArgs) -> Result<ModelParams, Failure> {
+    let mut params = match &p.params {
+        Some(path) => {
+            let text = std::fs::read_to_string(path)
+                .map_err(|e| usage(format!("--params {}: {e}", path.display())))?;
+            keys::from_json_str(&text)
+                .map_err(|e| usage(format!("--params {}: {e}", path.display())))?
+        }
+        None => ModelParams::default(),
+    };
+    if let Some(m) = p.model {
+        let kind = match m {
+            ModelArg::Ravigneaux => ModelKind::Ravigneaux,
+            ModelArg::GearPair => ModelKind::GearPair,
+        };
+        keys::set(&mut params, "model", keys::Value::Text(kind.name().into()))?;
+    }
+    for assignment in &p.set {
+        keys::set_assignment(&mut params, assignment).map_err(|e| usage(format!("--set {e}")))?;
+    }
+    Ok(params)
+}
+
+fn mesh_index(model: &Model, name: Option<&str>) -> Result<usize, Failure> {
+    match name {
+        None => Ok(0),
+        Some(n) => model.system.mesh_index(n).ok_or_else(|| {
+            let names: Vec<&str> = model
+                .system
+                .meshes
+                .iter()
+                .map(|m| m.name.as_str())
+                .collect();
+            usage(format!(
+                "--mesh {}: no such mesh; this model has {}",
+                keys::truncate(n, 40),
+                names.join(", ")
+            ))
+        }),
+    }
+}
+
+fn emit(value: &Value) -> Result<(), Failure> {
+    let text = serde_json::to_string_pretty(value).map_err(|e| Failure {
+        code: 1,
+        message: format!("cannot write JSON: {e}"),
+    })?;
+    let mut out = std::io::stdout().lock();
+    // A closed pipe (e.g. `| head`) is not an error worth reporting.
+    let _ = writeln!(out, "{text}");
+    Ok(())
+}
+
+fn emit_text(text: &str) {
+    let mut out = std::io::stdout().lock();
+    let _ = out.write_all(text.as_bytes());
+}
+
+fn run(cli: Cli) -> Result<(), Failure> {
+    match cli.command {
+        Command::Params { p } => {
+            let params = load_params(&p)?;
+            // Building checks cross-field rules (tooth counts, torque balance).
+            Model::new(&params)?;
+            match p.format {
+                Format::Json => emit(&Value::Object(keys::to_json(&params))),
+                Format::Csv => {
+                    emit_text(&csv::params(&params));
+                    Ok(())
+                }
+            }
+        }
+        Command::Keys { markdown } => {
+            emit_text(&if markdown {
+                csv::keys_markdown()
+            } else {
+                csv::keys_text()
+            });
+            Ok(())
+        }
+        Command::Modes { p } => {
+            let params = load_params(&p)?;
+            let model = Model::new(&params)?;
+            match p.format {
+                Format::Json => emit(&report::modes_json(&model)),
+                Format::Csv => {
+                    emit_text(&csv::modes(&model));
+                    Ok(())
+                }
+            }
+        }
+        Command::Simulate {
+            p,
+            omega,
+            run,
+            mesh,
+            max_order,
+        } => {
+            let params = load_params(&p)?;
+            let model = Model::new(&params)?;
+            let j = mesh_index(&model, mesh.as_deref())?;
+            let mut opts = SteadyOptions::new(omega);
+            run.apply(&mut opts);
+            opts.history_meshes = vec![j];
+            if !(max_order.is_finite() && max_order > 0.0) {
+                return Err(usage(format!(
+                    "--max-order {max_order}: must be a positive number"
+                )));
+            }
+            let ss = steady_state(&model, &opts, None)?;
+            match p.format {
+                Format::Json => emit(&report::simulate_json(&model, &ss, j, max_order)),
+                Format::Csv => {
+                    emit_text(&csv::history(&ss, j));
+                    Ok(())
+                }
+            }
+        }
+        Command::Bifurcation {
+            p,
+            omega_from,
+            omega_to,
+            points,
+            direction,
+            run,
+            mesh,
+            chains,
+            shard,
+        } => {
+            let params = load_params(&p)?;
+            let model = Model::new(&params)?;
+            let mut spec = SweepSpec::new(omega_from, omega_to, points);
+            run.apply(&mut spec.steady);
+            spec.directions = Directions::from_name(&direction).ok_or_else(|| {
+                usage(format!(
+                    "--direction {}: allowed up, down, both",
+                    keys::truncate(&direction, 20)
+                ))
+            })?;
+            spec.meshes = match mesh.as_deref() {
+                Some("all") => (0..model.system.meshes.len()).collect(),
+                other => vec![mesh_index(&model, other)?],
+            };
+            if let Some(s) = &shard {
+                let (i, n) = s
+                    .split_once('/')
+                    .and_then(|(i, n)| Some((i.parse::<u32>().ok()?, n.parse::<u32>().ok()?)))
+                    .ok_or_else(|| {
+                        usage(format!(
+                            "--shard {}: expected i/n, e.g. 0/4",
+                            keys::truncate(s, 20)
+                        ))
+                    })?;
+                if let Some(c) = chains {
+                    if c != n {
+                        return Err(usage(format!(
+                            "--shard {s} needs --chains {n} (got --chains {c})"
+                        )));
+                    }
+                }
+                spec.chains = n;
+                spec.shard = Some(i);
+            } else if let Some(c) = chains {
+                spec.chains = c;
+            }
+            let mut sweep = BifurcationSweep::new(model.clone(), spec.clone())?;
+            let mut bar = progress::Progress::new(sweep.total(), "points");
+            let mut pts = Vec::with_capacity(sweep.total());
+            while !sweep.is_finished() {
+                pts.extend(sweep.advance(1));
+                bar.update(sweep.done());
+            }
+            bar.finish();
+            canonical_order(&mut pts);
+            let value = report::sweep_json(&model, &params, &spec, &pts);
+            match p.format {
+                Format::Json => emit(&value),
+                Format::Csv => {
+                    emit_text(&csv::sweep(&value));
+                    Ok(())
+                }
+            }
+        }
+        Command::Merge { files } => {
+            if files.is_empty() {
+                return Err(usage("merge: give the shard JSON files to join"));
+            }
+            let mut shards = Vec::new();
+            for f in &files {
+                let text = std::fs::read_to_string(f)
+                    .map_err(|e| usage(format!("merge: {}: {e}", f.display())))?;
+                let v: Value = serde_json::from_str(&text)
+                    .map_err(|e| usage(format!("merge: {}: not JSON: {e}", f.display())))?;
+                shards.push(v);
+            }
+            emit(&report::merge_shards(&shards)?)
+        }
+        Command::Bench { repeats, quick } => {
+            if repeats == 0 || repeats > 100 {
+                return Err(usage(format!("--repeats {repeats}: allowed 1 ..= 100")));
+            }
+            emit(&bench::run(repeats, quick)?)
+        }
+    }
+}

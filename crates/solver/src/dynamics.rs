@@ -1,0 +1,268 @@
+//! The equations of motion of a [`MeshSystem`] as a first-order ODE, with the
+//! contact switches as event functions.
+//!
+//! State `y = (q, q')`. The right-hand side exploits the sparse mesh vectors:
+//! each mesh touches two or three coordinates, so deflections, rates and the
+//! generalized mesh forces cost `O(nnz)`; one `sin_cos` serves all meshes and
+//! the inverse mass matrix is applied in compressed rows. For the default
+//! compound set (12 meshes, 10 coordinates, 33 mesh-vector entries, 52
+//! entries of `M^-1`) one evaluation is about 420 floating-point operations
+//! and one `sin_cos`.
+
+use crate::ode::Ode;
+use crate::system::{dead_zone, MeshSystem, SparseRows};
+
+/// Per-mesh data laid out for the hot loop.
+#[derive(Debug, Clone)]
+struct HotMesh {
+    start: usize,
+    end: usize,
+    k_mean: f64,
+    variation: f64,
+    backlash: f64,
+    te_mean: f64,
+    te_cos: f64,
+    te_sin: f64,
+    damping: f64,
+    cos_g: f64,
+    sin_g: f64,
+}
+
+/// The gear model's ODE at one mesh frequency.
+#[derive(Debug, Clone)]
+pub struct MeshOde {
+    n: usize,
+    omega_rad_s: f64,
+    meshes: Vec<HotMesh>,
+    w_cols: Vec<usize>,
+    w_vals: Vec<f64>,
+    load: Vec<f64>,
+    support: SparseRows,
+    mass_inv: SparseRows,
+    force: Vec<f64>,
+    /// The last `(t, sin wt, cos wt)`: DOPRI5's last two stages share a time.
+    phase_cache: (f64, f64, f64),
+    /// Event list: (mesh index, side) with `g = (delta - e) - side * b`.
+    events: Vec<(usize, f64)>,
+}
+
+/// Kinematic and force state of one mesh at an instant.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MeshInstant {
+    /// Deflection delta (m).
+    pub delta: f64,
+    /// Deflection rate delta' (m/s).
+    pub delta_dot: f64,
+    /// Relative displacement x = delta - e (m), which the backlash acts on.
+    pub rel: f64,
+    /// Its rate x' (m/s).
+    pub rel_dot: f64,
+    /// Mesh force F (N).
+    pub force: f64,
+}
+
+impl MeshOde {
+    /// The ODE of `sys` at mesh frequency `omega_rad_s`.
+    pub fn new(sys: &MeshSystem, omega_rad_s: f64) -> Self {
+        let mut w_cols = Vec::new();
+        let mut w_vals = Vec::new();
+        let mut meshes = Vec::with_capacity(sys.meshes.len());
+        let mut events = Vec::new();
+        for (j, m) in sys.meshes.iter().enumerate() {
+            let start = w_cols.len();
+            for &(i, wi) in &m.w {
+                w_cols.push(i);
+                w_vals.push(wi);
+            }
+            let (sin_g, cos_g) = m.phase_rad.sin_cos();
+            meshes.push(HotMesh {
+                start,
+                end: w_cols.len(),
+                k_mean: m.stiffness_mean_n_m,
+                variation: m.stiffness_variation,
+                backlash: m.backlash_m,
+                te_mean: m.te_mean_m,
+                te_cos: m.te_cos_m,
+                te_sin: m.te_sin_m,
+                damping: m.damping_n_s_m,
+                cos_g,
+                sin_g,
+            });
+            // With b = 0 the force law has no kink: no event needed.
+            if m.backlash_m > 0.0 {
+                events.push((j, 1.0));
+                events.push((j, -1.0));
+            }
+        }
+        MeshOde {
+            n: sys.dof(),
+            omega_rad_s,
+            meshes,
+            w_cols,
+            w_vals,
+            load: sys.load_nm.clone(),
+            support: sys.support.clone(),
+            mass_inv: sys.mass_inv.clone(),
+            force: vec![0.0; sys.dof()],
+            phase_cache: (f64::NAN, 0.0, 1.0),
+            events,
+        }
+    }
+
+    /// Mesh frequency (rad/s).
+    pub fn omega_rad_s(&self) -> f64 {
+        self.omega_rad_s
+    }
+
+    /// Number of generalized coordinates.
+    pub fn dof(&self) -> usize {
+        self.n
+    }
+
+    /// The event list: (mesh, side) pairs.
+    pub fn event_list(&self) -> &[(usize, f64)] {
+        &self.events
+    }
+
+    #[inline]
+    fn dot(&self, m: &HotMesh, x: &[f64]) -> f64 {
+        let mut s = 0.0;
+        for k in m.start..m.end {
+            s += self.w_vals[k] * x[self.w_cols[k]];
+        }
+        s
+    }
+
+    /// Stiffness, TE and TE rate of mesh `m` at phase `(cos wt, sin wt)`.
+    #[inline]
+    fn excitation(&self, m: &HotMesh, c: f64, s: f64) -> (f64, f64, f64) {
+        let cc = c * m.cos_g - s * m.sin_g;
+        let ss = s * m.cos_g + c * m.sin_g;
+        let k = m.k_mean * (1.0 + m.variation * cc);
+        let e = m.te_mean + m.te_cos * cc + m.te_sin * ss;
+        let de = self.omega_rad_s * (m.te_sin * cc - m.te_cos * ss);
+        (k, e, de)
+    }
+
+    /// The state of mesh `j` at `(t, y)`.
+    pub fn mesh_instant(&self, j: usize, t: f64, y: &[f64]) -> MeshInstant {
+        let (s, c) = (self.omega_rad_s * t).sin_cos();
+        self.instant_at_phase(j, c, s, y)
+    }
+
+    #[inline]
+    fn instant_at_phase(&self, j: usize, c: f64, s: f64, y: &[f64]) -> MeshInstant {
+        let (q, v) = y.split_at(self.n);
+        let m = &self.meshes[j];
+        let delta = self.dot(m, q);
+        let delta_dot = self.dot(m, v);
+        let (k, e, de) = self.excitation(m, c, s);
+        let rel = delta - e;
+        let rel_dot = delta_dot - de;
+        MeshInstant {
+            delta,
+            delta_dot,
+            rel,
+            rel_dot,
+            force: k * dead_zone(rel, m.backlash) + m.damping * rel_dot,
+        }
+    }
+
+    /// All meshes' states at `(t, y)`, into `out`.
+    pub fn mesh_instants(&self, t: f64, y: &[f64], out: &mut Vec<MeshInstant>) {
+        let (s, c) = (self.omega_rad_s * t).sin_cos();
+        out.clear();
+        out.extend((0..self.meshes.len()).map(|j| self.instant_at_phase(j, c, s, y)));
+    }
+
+    /// All mesh deflections `w_j . q` for positions `q` (no excitation needed).
+    pub fn deflections(&self, q: &[f64], out: &mut [f64]) {
+        for (o, m) in out.iter_mut().zip(&self.meshes) {
+            *o = self.dot(m, q);
+        }
+    }
+
+    /// Number of meshes.
+    pub fn n_meshes(&self) -> usize {
+        self.meshes.len()
+    }
+
+    /// Backlash of mesh `j` (m).
+    pub fn backlash(&self, j: usize) -> f64 {
+        self.meshes[j].backlash
+    }
+}
+
+impl Ode for MeshOde {
+    fn dim(&self) -> usize {
+        2 * self.n
+    }
+
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
+        let n = self.n;
+        let (q, v) = y.split_at(n);
+        let (s, c) = if t == self.phase_cache.0 {
+            (self.phase_cache.1, self.phase_cache.2)
+        } else {
+            let (s, c) = (self.omega_rad_s * t).sin_cos();
+            self.phase_cache = (t, s, c);
+            (s, c)
+        };
+        let mut f = std::mem::take(&mut self.force);
+        f.copy_from_slice(&self.load);
+        for (i, fi) in f.iter_mut().enumerate() {
+            for k in self.support.row_start[i]..self.support.row_start[i + 1] {
+                *fi -= self.support.vals[k] * q[self.support.cols[k]];
+            }
+        }
+        for m in &self.meshes {
+            let mut delta = 0.0;
+            let mut delta_dot = 0.0;
+            for k in m.start..m.end {
+                let (col, w) = (self.w_cols[k], self.w_vals[k]);
+                delta += w * q[col];
+                delta_dot += w * v[col];
+            }
+            let (k, e, de) = self.excitation(m, c, s);
+            let force = k * dead_zone(delta - e, m.backlash) + m.damping * (delta_dot - de);
+            for k in m.start..m.end {
+                f[self.w_cols[k]] -= self.w_vals[k] * force;
+            }
+        }
+        let (dq, dv) = dy.split_at_mut(n);
+        dq.copy_from_slice(v);
+        self.mass_inv.mul(&f, dv);
+        self.force = f;
+    }
+
+    fn n_events(&self) -> usize {
+        self.events.len()
+    }
+
+    fn events(&mut self, t: f64, y: &[f64], _dy: &[f64], g: &mut [f64], dg: &mut [f64]) {
+        let (q, v) = y.split_at(self.n);
+        let (s, c) = (self.omega_rad_s * t).sin_cos();
+        let mut idx = 0;
+        while idx < self.events.len() {
+            let j = self.events[idx].0;
+            let m = &self.meshes[j];
+            let (_, e, de) = self.excitation(m, c, s);
+            let x = self.dot(m, q) - e;
+            let xd = self.dot(m, v) - de;
+            // Events come in (+1, -1) pairs per mesh.
+            g[idx] = x - m.backlash;
+            dg[idx] = xd;
+            g[idx + 1] = x + m.backlash;
+            dg[idx + 1] = xd;
+            idx += 2;
+        }
+    }
+
+    fn event(&mut self, i: usize, t: f64, y: &[f64]) -> f64 {
+        let (j, side) = self.events[i];
+        let m = &self.meshes[j];
+        let (s, c) = (self.omega_rad_s * t).sin_cos();
+        let (_, e, _) = self.excitation(m, c, s);
+        self.dot(m, &y[..self.n]) - e - side * m.backlash
+    }
+}

@@ -1,0 +1,122 @@
+//! The solver's one error type: every failure carries the values that explain it.
+//!
+//! Errors are created where they are detected and handled once, by the caller
+//! that can tell the user (the CLI prints one line and exits 2 or 1; the app
+//! shows a message and keeps its last good state).
+
+use thiserror::Error;
+
+/// Everything that can go wrong in the solver, with the data that explains it.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum SolverError {
+    /// A parameter value outside its allowed range (or not a finite number).
+    #[error("{key} = {value} is out of range: allowed {allowed}")]
+    OutOfRange {
+        /// The user-facing key, e.g. `backlash_um`.
+        key: String,
+        /// The offending value as the user wrote it.
+        value: String,
+        /// The allowed range or set, e.g. `0 ..= 1000`.
+        allowed: String,
+    },
+    /// A key that no model knows.
+    #[error("unknown parameter key `{key}`{hint}")]
+    UnknownKey {
+        /// The key as given.
+        key: String,
+        /// A "did you mean" suffix (may be empty).
+        hint: String,
+    },
+    /// A key that exists but does not apply to the chosen model.
+    #[error("parameter key `{key}` does not apply to model {model}")]
+    KeyNotForModel {
+        /// The key as given.
+        key: String,
+        /// The model's name.
+        model: String,
+    },
+    /// A value that is not of the key's type (not a number, not one of the choices).
+    #[error("{key} = {value}: {message}")]
+    InvalidValue {
+        /// The key.
+        key: String,
+        /// The value as given.
+        value: String,
+        /// What was expected.
+        message: String,
+    },
+    /// The external torques would accelerate the free rigid-body mode.
+    #[error(
+        "torques do not balance over the rigid-body mode: torque_s1_nm = {torque_s1_nm} N m needs \
+         torque_s2_nm = {balancing_s2_nm:.3} N m, got {torque_s2_nm} N m (leave torque_s2_nm as \
+         \"auto\" to use the balancing value)"
+    )]
+    UnbalancedTorque {
+        /// Input torque on the small sun.
+        torque_s1_nm: f64,
+        /// Torque on the large sun as given.
+        torque_s2_nm: f64,
+        /// The value that balances `torque_s1_nm`.
+        balancing_s2_nm: f64,
+    },
+    /// Tooth counts or geometry that cannot be built.
+    #[error("impossible geometry: {message}")]
+    Geometry {
+        /// What is wrong, naming the keys and values.
+        message: String,
+    },
+    /// An analysis option outside its allowed range.
+    #[error("option {option} = {value} is out of range: allowed {allowed}")]
+    BadOption {
+        /// The option's name (as the CLI spells it).
+        option: String,
+        /// The value given.
+        value: String,
+        /// The allowed range.
+        allowed: String,
+    },
+    /// The adaptive step size fell below its floor: the solution is not smooth enough to follow.
+    #[error("step size fell to {h_s:.3e} s at t = {t_s:.6e} s; the integration was stopped")]
+    StepSizeTooSmall {
+        /// Time at which the integrator gave up.
+        t_s: f64,
+        /// The step size it had reached.
+        h_s: f64,
+    },
+    /// The state became NaN or infinite (a blow-up).
+    #[error("the solution blew up (non-finite state) at t = {t_s:.6e} s")]
+    NonFinite {
+        /// Time of the blow-up.
+        t_s: f64,
+    },
+    /// The step budget was used up before the end time was reached.
+    #[error("more than {max_steps} steps needed by t = {t_s:.6e} s; the integration was stopped")]
+    TooManySteps {
+        /// The budget.
+        max_steps: u64,
+        /// Time reached.
+        t_s: f64,
+    },
+    /// Newton's method did not converge.
+    #[error("Newton did not converge at Omega = {omega:.6}: residual {residual:.3e} after {iterations} iterations")]
+    NotConverged {
+        /// Dimensionless mesh frequency.
+        omega: f64,
+        /// Final residual norm.
+        residual: f64,
+        /// Iterations spent.
+        iterations: usize,
+    },
+    /// A matrix that must be invertible (or positive definite) was not.
+    #[error("singular or indefinite matrix: {what}")]
+    Singular {
+        /// Which matrix.
+        what: String,
+    },
+    /// Malformed input data (JSON parameter file, shard file, link).
+    #[error("{0}")]
+    Parse(String),
+}
+
+/// Shorthand for the solver's results.
+pub type Result<T> = std::result::Result<T, SolverError>;

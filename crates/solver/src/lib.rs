@@ -1,0 +1,32 @@
+//! gearshock's solver: vibration and tooth impacts of a Ravigneaux compound
+//! planetary gear set (and of a single spur gear pair) with backlash,
+//! time-varying mesh stiffness and transmission error.
+//!
+//! The crate is pure computation: no web, UI, clock, thread or I/O
+//! dependency, so it builds unchanged for native targets and
+//! `wasm32-unknown-unknown`. The physics is `MODEL.md`'s; see the
+//! repository's `ARCHITECTURE.md` for the map.
+//!
+//! - [`params`] and [`keys`]: the parameter sets and their flat user-facing keys.
+//! - [`system`]: the compiled model (mass matrix, mesh vectors, loads).
+//! - [`modal`]: statics, natural modes, the linear receptance.
+//! - [`ode`]: the adaptive Dormand–Prince integrator with event location.
+//! - [`dynamics`]: the equations of motion as an ODE.
+//! - [`steady`]: steady-state runs, Poincaré samples, impact regimes, spectra.
+//! - [`sweep`]: bifurcation sweeps with bounded work per call.
+//! - [`report`]: results as JSON, shared by the CLI and the browser.
+
+pub mod dynamics;
+pub mod error;
+pub mod keys;
+pub mod modal;
+pub mod ode;
+pub mod params;
+pub mod report;
+pub mod steady;
+pub mod sweep;
+pub mod system;
+
+pub use error::{Result, SolverError};
+pub use params::{ModelKind, ModelParams};
+pub use steady::{Model, SteadyOptions, SteadyState};

@@ -1,0 +1,345 @@
+//! Parameter sets of the two built-in models, with the defaults of `MODEL.md`.
+//!
+//! The structs hold the user's physical inputs only; everything derivable
+//! (radii, the long planet's tooth count, equivalent masses, damping
+//! coefficients, the balancing torque) is derived in [`crate::system`], never
+//! typed in. Reading and writing them by flat user-facing keys lives in
+//! [`crate::keys`].
+
+/// Which built-in model a parameter set describes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ModelKind {
+    /// The Ravigneaux-type compound planetary gear set of the seed paper.
+    Ravigneaux,
+    /// A single spur gear pair (Kahraman & Singh, 1990), for teaching.
+    GearPair,
+}
+
+impl ModelKind {
+    /// The name used in keys, links and the CLI's `--model`.
+    pub fn name(self) -> &'static str {
+        match self {
+            ModelKind::Ravigneaux => "ravigneaux",
+            ModelKind::GearPair => "gear-pair",
+        }
+    }
+
+    /// Parses a model name as written by [`ModelKind::name`].
+    pub fn from_name(name: &str) -> Option<Self> {
+        match name {
+            "ravigneaux" => Some(ModelKind::Ravigneaux),
+            "gear-pair" => Some(ModelKind::GearPair),
+            _ => None,
+        }
+    }
+}
+
+/// How the planets' meshes are phased against each other.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Phasing {
+    /// All planets mesh in phase (`gamma_j = 0` plus the per-kind offset).
+    InPhase,
+    /// Each planet's mesh phase follows from its position angle and the tooth
+    /// counts (see [`crate::system`] for the formula).
+    Sequential,
+}
+
+impl Phasing {
+    /// The name used in keys.
+    pub fn name(self) -> &'static str {
+        match self {
+            Phasing::InPhase => "in-phase",
+            Phasing::Sequential => "sequential",
+        }
+    }
+}
+
+/// One value per mesh kind of the compound set: `s1a`, `s2b`, `ab`, `rb`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PerKind {
+    /// Small sun to short planet.
+    pub s1a: f64,
+    /// Large sun to long planet.
+    pub s2b: f64,
+    /// Short planet to long planet.
+    pub ab: f64,
+    /// Ring to long planet.
+    pub rb: f64,
+}
+
+impl PerKind {
+    /// The same value on every kind.
+    pub const fn all(x: f64) -> Self {
+        PerKind {
+            s1a: x,
+            s2b: x,
+            ab: x,
+            rb: x,
+        }
+    }
+
+    /// The value for a kind.
+    pub fn get(&self, kind: MeshKind) -> f64 {
+        match kind {
+            MeshKind::S1A => self.s1a,
+            MeshKind::S2B => self.s2b,
+            MeshKind::AB => self.ab,
+            MeshKind::RB => self.rb,
+            MeshKind::Pair => self.s1a,
+        }
+    }
+
+    /// A mutable reference to the value for a kind.
+    pub fn get_mut(&mut self, kind: MeshKind) -> &mut f64 {
+        match kind {
+            MeshKind::S1A | MeshKind::Pair => &mut self.s1a,
+            MeshKind::S2B => &mut self.s2b,
+            MeshKind::AB => &mut self.ab,
+            MeshKind::RB => &mut self.rb,
+        }
+    }
+}
+
+/// The kind of a mesh: which two bodies it joins.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum MeshKind {
+    /// Small sun `s1` to short planet `a_n`.
+    S1A,
+    /// Large sun `s2` to long planet `b_n`.
+    S2B,
+    /// Short planet `a_n` to long planet `b_n`.
+    AB,
+    /// Ring `r` to long planet `b_n`.
+    RB,
+    /// The single mesh of the gear pair model.
+    Pair,
+}
+
+impl MeshKind {
+    /// The four kinds of the compound set, in the order meshes are numbered.
+    pub const COMPOUND: [MeshKind; 4] = [MeshKind::S1A, MeshKind::S2B, MeshKind::AB, MeshKind::RB];
+
+    /// Short name used in keys (`backlash_s1a_um`).
+    pub fn key(self) -> &'static str {
+        match self {
+            MeshKind::S1A => "s1a",
+            MeshKind::S2B => "s2b",
+            MeshKind::AB => "ab",
+            MeshKind::RB => "rb",
+            MeshKind::Pair => "pair",
+        }
+    }
+}
+
+/// Transmission error components of one mesh kind, in micrometres:
+/// `e(t) = mean + cos * cos(omega t + gamma) + sin * sin(omega t + gamma)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TeUm {
+    /// Mean (static) part.
+    pub mean: f64,
+    /// Cosine amplitude.
+    pub cos: f64,
+    /// Sine amplitude.
+    pub sin: f64,
+}
+
+impl TeUm {
+    /// No transmission error.
+    pub const ZERO: TeUm = TeUm {
+        mean: 0.0,
+        cos: 0.0,
+        sin: 0.0,
+    };
+}
+
+/// Parameters of the Ravigneaux compound planetary gear set (`MODEL.md`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RavigneauxParams {
+    /// Number of planet pairs N (3..=6).
+    pub planets: u32,
+    /// Mesh phasing between planets.
+    pub phasing: Phasing,
+    /// Module m in millimetres.
+    pub module_mm: f64,
+    /// Pressure angle alpha in degrees.
+    pub pressure_angle_deg: f64,
+    /// Teeth of the small sun.
+    pub teeth_s1: u32,
+    /// Teeth of the large sun.
+    pub teeth_s2: u32,
+    /// Teeth of the short planet.
+    pub teeth_a: u32,
+    /// Teeth of the ring; the long planet has (teeth_r - teeth_s2)/2.
+    pub teeth_r: u32,
+    /// Moment of inertia of the small sun (kg m^2).
+    pub inertia_s1_kg_m2: f64,
+    /// Moment of inertia of the large sun (kg m^2).
+    pub inertia_s2_kg_m2: f64,
+    /// Moment of inertia of the ring (kg m^2).
+    pub inertia_r_kg_m2: f64,
+    /// Moment of inertia of the bare carrier (kg m^2).
+    pub inertia_c_kg_m2: f64,
+    /// Moment of inertia of a short planet about its own axis (kg m^2).
+    pub inertia_a_kg_m2: f64,
+    /// Moment of inertia of a long planet about its own axis (kg m^2).
+    pub inertia_b_kg_m2: f64,
+    /// Mass of a short planet (kg), carried by the carrier at radius r_ca.
+    pub mass_a_kg: f64,
+    /// Mass of a long planet (kg), carried by the carrier at radius r_cb.
+    pub mass_b_kg: f64,
+    /// Mean mesh stiffness per kind (N/m).
+    pub stiffness_n_m: PerKind,
+    /// Torsional support stiffness of the ring, on its base circle (N/m).
+    pub ring_support_n_m: f64,
+    /// Stiffness fluctuation coefficient v (all meshes).
+    pub stiffness_variation: f64,
+    /// Mesh damping ratio xi (all meshes).
+    pub damping_ratio: f64,
+    /// Backlash half-width b per kind (micrometres).
+    pub backlash_um: PerKind,
+    /// Transmission error per kind.
+    pub te_um: [TeUm; 4],
+    /// Common phase offset gamma per kind (degrees), added to the phasing.
+    pub phase_deg: PerKind,
+    /// Input torque on the small sun (N m).
+    pub torque_s1_nm: f64,
+    /// Torque on the large sun (N m); `None` = the balancing value.
+    pub torque_s2_nm: Option<f64>,
+}
+
+impl Default for RavigneauxParams {
+    /// The Table 1 reading of `MODEL.md`.
+    fn default() -> Self {
+        let mut te_um = [TeUm::ZERO; 4];
+        te_um[0].sin = 20.0;
+        RavigneauxParams {
+            planets: 3,
+            phasing: Phasing::InPhase,
+            module_mm: 4.0,
+            pressure_angle_deg: 20.0,
+            teeth_s1: 36,
+            teeth_s2: 48,
+            teeth_a: 21,
+            teeth_r: 84,
+            inertia_s1_kg_m2: 0.015,
+            inertia_s2_kg_m2: 0.059,
+            inertia_r_kg_m2: 0.152,
+            inertia_c_kg_m2: 0.08,
+            inertia_a_kg_m2: 0.0019,
+            inertia_b_kg_m2: 0.0022,
+            mass_a_kg: 1.997,
+            mass_b_kg: 3.139,
+            stiffness_n_m: PerKind::all(1e9),
+            ring_support_n_m: 1e9,
+            stiffness_variation: 0.3,
+            damping_ratio: 0.06,
+            backlash_um: PerKind::all(100.0),
+            te_um,
+            phase_deg: PerKind::all(0.0),
+            torque_s1_nm: 2000.0,
+            torque_s2_nm: None,
+        }
+    }
+}
+
+impl RavigneauxParams {
+    /// Index of a kind in [`RavigneauxParams::te_um`].
+    pub fn kind_index(kind: MeshKind) -> usize {
+        match kind {
+            MeshKind::S1A | MeshKind::Pair => 0,
+            MeshKind::S2B => 1,
+            MeshKind::AB => 2,
+            MeshKind::RB => 3,
+        }
+    }
+}
+
+/// Parameters of the single spur gear pair (Kahraman & Singh, 1990).
+#[derive(Debug, Clone, PartialEq)]
+pub struct GearPairParams {
+    /// Module m in millimetres.
+    pub module_mm: f64,
+    /// Pressure angle alpha in degrees.
+    pub pressure_angle_deg: f64,
+    /// Teeth of the pinion (driver).
+    pub teeth_pinion: u32,
+    /// Teeth of the gear (driven).
+    pub teeth_gear: u32,
+    /// Moment of inertia of the pinion (kg m^2).
+    pub inertia_pinion_kg_m2: f64,
+    /// Moment of inertia of the gear (kg m^2).
+    pub inertia_gear_kg_m2: f64,
+    /// Mean mesh stiffness (N/m).
+    pub stiffness_n_m: f64,
+    /// Stiffness fluctuation coefficient v.
+    pub stiffness_variation: f64,
+    /// Mesh damping ratio xi.
+    pub damping_ratio: f64,
+    /// Backlash half-width b (micrometres).
+    pub backlash_um: f64,
+    /// Transmission error.
+    pub te_um: TeUm,
+    /// Torque on the pinion (N m); the gear carries the balancing torque.
+    pub torque_pinion_nm: f64,
+}
+
+impl Default for GearPairParams {
+    /// A steel pair, module 4 mm, 30/45 teeth, 30 mm face width (inertias of
+    /// solid discs), loaded to a static deflection of 8.9 um against a 100 um
+    /// backlash half-width: the proportions of Kahraman & Singh's examples.
+    fn default() -> Self {
+        GearPairParams {
+            module_mm: 4.0,
+            pressure_angle_deg: 20.0,
+            teeth_pinion: 30,
+            teeth_gear: 45,
+            inertia_pinion_kg_m2: 0.0048,
+            inertia_gear_kg_m2: 0.0243,
+            stiffness_n_m: 1e9,
+            stiffness_variation: 0.2,
+            damping_ratio: 0.06,
+            backlash_um: 100.0,
+            te_um: TeUm {
+                mean: 0.0,
+                cos: 0.0,
+                sin: 20.0,
+            },
+            torque_pinion_nm: 500.0,
+        }
+    }
+}
+
+/// A parameter set of either built-in model.
+// Parameter sets are few and long-lived; boxing the larger one buys nothing.
+#[allow(clippy::large_enum_variant)]
+#[derive(Debug, Clone, PartialEq)]
+pub enum ModelParams {
+    /// The compound planetary gear set.
+    Ravigneaux(RavigneauxParams),
+    /// The single gear pair.
+    GearPair(GearPairParams),
+}
+
+impl Default for ModelParams {
+    fn default() -> Self {
+        ModelParams::Ravigneaux(RavigneauxParams::default())
+    }
+}
+
+impl ModelParams {
+    /// The defaults of a model.
+    pub fn defaults(kind: ModelKind) -> Self {
+        match kind {
+            ModelKind::Ravigneaux => ModelParams::Ravigneaux(RavigneauxParams::default()),
+            ModelKind::GearPair => ModelParams::GearPair(GearPairParams::default()),
+        }
+    }
+
+    /// Which model this is.
+    pub fn kind(&self) -> ModelKind {
+        match self {
+            ModelParams::Ravigneaux(_) => ModelKind::Ravigneaux,
+            ModelParams::GearPair(_) => ModelKind::GearPair,
+        }
+    }
+}

@@ -1,0 +1,357 @@
+//! Results as JSON, in one format shared by the CLI and the browser app.
+//!
+//! Field names carry SI units (`_m`, `_hz`, `_n`, `_nm`, `_s`, `_m_s`);
+//! dimensionless quantities (`omega`, `dynamic_factor`) carry none. Building
+//! JSON values is pure computation; writing them out is the caller's job.
+
+use crate::error::{Result, SolverError};
+use crate::keys;
+use crate::modal::Mode;
+use crate::params::{ModelKind, ModelParams};
+use crate::steady::{spectrum, Impact, Model, SteadyState, SteadyStats};
+use crate::sweep::{Direction, PointMesh, SweepPoint, SweepSpec};
+use serde_json::{json, Map, Value};
+
+/// `null` for non-finite numbers (JSON has no NaN).
+pub fn num(x: f64) -> Value {
+    serde_json::Number::from_f64(x).map_or(Value::Null, Value::Number)
+}
+
+fn nums(xs: &[f64]) -> Value {
+    Value::Array(xs.iter().map(|&x| num(x)).collect())
+}
+
+fn per_mesh(model: &Model, values: &[f64]) -> Value {
+    let mut m = Map::new();
+    for (mesh, &v) in model.system.meshes.iter().zip(values) {
+        m.insert(mesh.name.clone(), num(v));
+    }
+    Value::Object(m)
+}
+
+/// A mode shape scaled so its largest entry is +1.
+pub fn display_shape(mode: &Mode) -> Vec<f64> {
+    let vmax = mode.shape.iter().fold(
+        0.0_f64,
+        |best, &v| if v.abs() > best.abs() { v } else { best },
+    );
+    if vmax == 0.0 {
+        return mode.shape.clone();
+    }
+    mode.shape.iter().map(|v| v / vmax).collect()
+}
+
+/// `gearshock modes`: statics and natural modes.
+pub fn modes_json(model: &Model) -> Value {
+    let sys = &model.system;
+    let modes: Vec<Value> = model
+        .modes
+        .modes
+        .iter()
+        .map(|m| {
+            json!({
+                "frequency_hz": num(m.frequency_hz),
+                "omega": num(m.omega),
+                "kind": m.kind.name(),
+                "multiplicity": m.multiplicity,
+                "shape": nums(&display_shape(m)),
+            })
+        })
+        .collect();
+    let balancing_key = match sys.model {
+        ModelKind::Ravigneaux => "balancing_torque_s2_nm",
+        ModelKind::GearPair => "balancing_torque_gear_nm",
+    };
+    let u = &sys.rigid_mode;
+    let mut ratios = Map::new();
+    for (name, &ui) in sys.dof_names.iter().zip(u) {
+        ratios.insert(name.clone(), num(ui));
+    }
+    let eq: Vec<f64> = sys.meshes.iter().map(|m| m.equivalent_mass_kg).collect();
+    let damp: Vec<f64> = sys.meshes.iter().map(|m| m.damping_n_s_m).collect();
+    json!({
+        "model": sys.model.name(),
+        "coordinates": sys.dof_names,
+        "natural_frequencies_hz": nums(&model.modes.frequencies_hz()),
+        "modes": modes,
+        "static_mesh_force_n": per_mesh(model, &model.statics.mesh_force_n),
+        "static_mesh_deflection_m": per_mesh(model, &model.statics.mesh_deflection_m),
+        balancing_key: num(sys.balancing_torque_nm),
+        "rigid_body_mode": Value::Object(ratios),
+        "equivalent_mass_kg": per_mesh(model, &eq),
+        "damping_n_s_m": per_mesh(model, &damp),
+        "omega_ref_rad_s": num(sys.omega_ref_rad_s),
+        "omega_ref_hz": num(sys.omega_ref_rad_s / (2.0 * std::f64::consts::PI)),
+        "warnings": sys.warnings,
+    })
+}
+
+fn stats_json(s: &SteadyStats) -> Value {
+    json!({
+        "transient_periods_run": s.transient_periods_run,
+        "settled": s.settled,
+        "steps": s.integrator.steps,
+        "rejected_steps": s.integrator.rejected_steps,
+        "event_retakes": s.integrator.event_retakes,
+        "rhs_evaluations": s.integrator.rhs_evaluations,
+        "contact_switches": s.integrator.events,
+    })
+}
+
+/// `gearshock simulate`: one steady-state response, focused on mesh `mesh`.
+pub fn simulate_json(model: &Model, ss: &SteadyState, mesh: usize, max_order: f64) -> Value {
+    let sys = &model.system;
+    let m = &ss.meshes[mesh];
+    let spec = ss.histories.iter().find(|h| h.mesh == mesh).map(|h| {
+        let spp = if ss.sample_times_s.len() > 1 {
+            (ss.period_s / (ss.sample_times_s[1] - ss.sample_times_s[0])).round() as u32
+        } else {
+            0
+        };
+        let periods = (h.delta_m.len() as u32).checked_div(spp).unwrap_or(0);
+        spectrum(&h.delta_m, spp, periods, max_order)
+    });
+    let mut all = Map::new();
+    for (mesh_def, ms) in sys.meshes.iter().zip(&ss.meshes) {
+        all.insert(
+            mesh_def.name.clone(),
+            json!({
+                "delta_min_m": num(ms.delta_min_m),
+                "delta_max_m": num(ms.delta_max_m),
+                "impact": ms.impact.name(),
+                "dynamic_factor": ms.dynamic_factor.map_or(Value::Null, num),
+            }),
+        );
+    }
+    json!({
+        "model": sys.model.name(),
+        "omega": num(ss.omega),
+        "mesh_freq_hz": num(ss.mesh_freq_hz),
+        "input_speed_rpm": num(sys.speed.input_speed_rpm(ss.mesh_freq_hz)),
+        "mesh": sys.meshes[mesh].name,
+        "backlash_m": num(sys.meshes[mesh].backlash_m),
+        "delta_min_m": num(m.delta_min_m),
+        "delta_max_m": num(m.delta_max_m),
+        "delta_mean_m": num(m.delta_mean_m),
+        "delta_rms_m": num(m.delta_rms_m),
+        "relative_min_m": num(m.rel_min_m),
+        "relative_max_m": num(m.rel_max_m),
+        "force_max_n": num(m.force_max_n),
+        "force_min_n": num(m.force_min_n),
+        "static_force_n": num(m.static_force_n),
+        "dynamic_factor": m.dynamic_factor.map_or(Value::Null, num),
+        "impact": m.impact.name(),
+        "period": ss.period,
+        "contact_fraction": {
+            "drive": num(m.contact_fraction[0]),
+            "apart": num(m.contact_fraction[1]),
+            "back": num(m.contact_fraction[2]),
+        },
+        "poincare": {
+            "delta_m": nums(&m.poincare_delta_m),
+            "velocity_m_s": nums(&m.poincare_velocity_m_s),
+        },
+        "spectrum": spec.map_or(Value::Null, |s| json!({
+            "order": nums(&s.order),
+            "frequency_hz": nums(&s.order.iter().map(|o| o * ss.mesh_freq_hz).collect::<Vec<_>>()),
+            "amplitude_m": nums(&s.amplitude),
+        })),
+        "all_meshes": Value::Object(all),
+        "warnings": sys.warnings,
+        "stats": stats_json(&ss.stats),
+    })
+}
+
+/// The sweep specification as JSON (echoed in sweep output, checked by merge).
+pub fn sweep_spec_json(model: &Model, spec: &SweepSpec) -> Value {
+    let mesh_names: Vec<&str> = spec
+        .meshes
+        .iter()
+        .map(|&j| model.system.meshes[j].name.as_str())
+        .collect();
+    json!({
+        "omega_from": num(spec.omega_from),
+        "omega_to": num(spec.omega_to),
+        "points": spec.points,
+        "direction": spec.directions.name(),
+        "transient_periods": spec.steady.transient_periods,
+        "record_periods": spec.steady.record_periods,
+        "early_settle": spec.steady.early_settle,
+        "rtol": num(spec.steady.rtol),
+        "atol_m": num(spec.steady.atol_m),
+        "meshes": mesh_names,
+        "chains": spec.chains,
+        "shard": spec.shard.map_or(Value::Null, |s| json!(format!("{s}/{}", spec.chains))),
+    })
+}
+
+fn point_mesh_json(pm: &PointMesh) -> Map<String, Value> {
+    let mut m = Map::new();
+    m.insert("poincare_delta_m".into(), nums(&pm.poincare_delta_m));
+    m.insert(
+        "poincare_velocity_m_s".into(),
+        nums(&pm.poincare_velocity_m_s),
+    );
+    m.insert("delta_min_m".into(), num(pm.delta_min_m));
+    m.insert("delta_max_m".into(), num(pm.delta_max_m));
+    m.insert("impact".into(), Value::from(pm.impact.name()));
+    m.insert(
+        "dynamic_factor".into(),
+        pm.dynamic_factor.map_or(Value::Null, num),
+    );
+    m
+}
+
+/// One swept point. With one requested mesh its fields are inlined; with
+/// several they sit under `meshes` keyed by name.
+pub fn sweep_point_json(model: &Model, p: &SweepPoint) -> Value {
+    let mut o = Map::new();
+    o.insert("omega".into(), num(p.omega));
+    o.insert("index".into(), json!(p.index));
+    o.insert("direction".into(), json!(p.direction.name()));
+    if let Some(e) = &p.error {
+        o.insert("error".into(), json!(e));
+        return Value::Object(o);
+    }
+    if p.meshes.len() == 1 {
+        o.extend(point_mesh_json(&p.meshes[0]));
+    } else {
+        let mut ms = Map::new();
+        for pm in &p.meshes {
+            ms.insert(
+                model.system.meshes[pm.mesh].name.clone(),
+                Value::Object(point_mesh_json(pm)),
+            );
+        }
+        o.insert("meshes".into(), Value::Object(ms));
+    }
+    o.insert("impact_worst".into(), json!(p.impact_worst.name()));
+    o.insert(
+        "worst_mesh".into(),
+        json!(model.system.meshes[p.worst_mesh].name),
+    );
+    o.insert("period".into(), json!(p.period));
+    o.insert("stats".into(), stats_json(&p.stats));
+    Value::Object(o)
+}
+
+/// Totals of a sweep's work, summed over points.
+pub fn sweep_stats_json(points: &[Value]) -> Value {
+    let mut totals: Map<String, Value> = Map::new();
+    let mut failed = 0u64;
+    for p in points {
+        if p.get("error").is_some() {
+            failed += 1;
+        }
+        if let Some(Value::Object(s)) = p.get("stats") {
+            for (k, v) in s {
+                if let Some(x) = v.as_u64() {
+                    let cur = totals.get(k).and_then(Value::as_u64).unwrap_or(0);
+                    totals.insert(k.clone(), json!(cur + x));
+                }
+            }
+        }
+    }
+    totals.insert("points".into(), json!(points.len()));
+    totals.insert("failed_points".into(), json!(failed));
+    totals.remove("transient_periods_run");
+    Value::Object(totals)
+}
+
+/// `gearshock bifurcation`: the whole result.
+pub fn sweep_json(
+    model: &Model,
+    params: &ModelParams,
+    spec: &SweepSpec,
+    points: &[SweepPoint],
+) -> Value {
+    let pts: Vec<Value> = points.iter().map(|p| sweep_point_json(model, p)).collect();
+    json!({
+        "model": model.system.model.name(),
+        "params": Value::Object(keys::to_json(params)),
+        "spec": sweep_spec_json(model, spec),
+        "stats": sweep_stats_json(&pts),
+        "points": pts,
+    })
+}
+
+/// Merges the JSON outputs of the shards `0/n .. n-1/n` of one sweep into the
+/// JSON of the unsharded run with `chains = n`.
+pub fn merge_shards(shards: &[Value]) -> Result<Value> {
+    let bad = |m: String| SolverError::Parse(m);
+    let first = shards
+        .first()
+        .ok_or_else(|| bad("merge needs at least one shard".into()))?;
+    let spec_of = |v: &Value| -> Result<Map<String, Value>> {
+        match v.get("spec") {
+            Some(Value::Object(m)) => Ok(m.clone()),
+            _ => Err(bad(
+                "a shard has no `spec` object: is it gearshock bifurcation output?".into(),
+            )),
+        }
+    };
+    let chains = spec_of(first)?
+        .get("chains")
+        .and_then(Value::as_u64)
+        .ok_or_else(|| bad("shard spec has no `chains`".into()))?;
+    let mut seen = vec![false; chains as usize];
+    let mut points: Vec<Value> = Vec::new();
+    let mut base_spec = spec_of(first)?;
+    base_spec.insert("shard".into(), Value::Null);
+    for (k, sh) in shards.iter().enumerate() {
+        let mut spec = spec_of(sh)?;
+        let shard = spec
+            .get("shard")
+            .and_then(Value::as_str)
+            .and_then(|s| s.split_once('/'))
+            .and_then(|(i, _)| i.parse::<usize>().ok())
+            .ok_or_else(|| {
+                bad(format!(
+                    "input {} is not a shard (spec.shard is missing)",
+                    k + 1
+                ))
+            })?;
+        spec.insert("shard".into(), Value::Null);
+        if spec != base_spec || sh.get("params") != first.get("params") {
+            return Err(bad(format!(
+                "input {} belongs to a different sweep (its spec or params differ from the first input's)",
+                k + 1
+            )));
+        }
+        if shard >= seen.len() || seen[shard] {
+            return Err(bad(format!(
+                "shard {shard}/{chains} is given twice or out of range"
+            )));
+        }
+        seen[shard] = true;
+        if let Some(Value::Array(p)) = sh.get("points") {
+            points.extend(p.iter().cloned());
+        }
+    }
+    if let Some(missing) = seen.iter().position(|s| !s) {
+        return Err(bad(format!("shard {missing}/{chains} is missing")));
+    }
+    points.sort_by_key(|p| {
+        let idx = p.get("index").and_then(Value::as_i64).unwrap_or(0);
+        match p
+            .get("direction")
+            .and_then(Value::as_str)
+            .and_then(Direction::from_name)
+        {
+            Some(Direction::Down) => (1, -idx),
+            _ => (0, idx),
+        }
+    });
+    Ok(json!({
+        "model": first.get("model").cloned().unwrap_or(Value::Null),
+        "params": first.get("params").cloned().unwrap_or(Value::Null),
+        "spec": Value::Object(base_spec),
+        "stats": sweep_stats_json(&points),
+        "points": points,
+    }))
+}
+
+/// Parses an impact name in JSON (for readers of sweep output).
+pub fn impact_of(v: &Value) -> Option<Impact> {
+    v.as_str().and_then(Impact::from_name)
+}

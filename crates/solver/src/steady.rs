@@ -1,0 +1,776 @@
+//! Steady-state response by time integration: transient, then recorded periods.
+//!
+//! A run starts from the loaded static equilibrium at rest at `t = 0` (or
+//! from a given state, which sweeps use to carry the end state from one
+//! frequency to the next), integrates transient mesh periods, then records
+//! periods. Per mesh it reports the deflection's minimum, maximum, mean and
+//! RMS, the mesh force and dynamic factor, the impact regime, Poincaré
+//! samples once per mesh period, an optional time history and spectrum, and
+//! the period of the Poincaré orbit.
+//!
+//! Early end of the transient. The transient is a *maximum*. After each
+//! period the Poincaré point `P_n` (every mesh's deflection and rate over
+//! omega, in micrometres: the whole elastic state) is compared with `P_{n-p}`
+//! for `p = 1..=8`. With `d_n = |P_n - P_{n-p}|_inf` and the observed
+//! contraction `rho = d_n / d_{n-p}`, the transient ends when
+//! `d_n <= tol / 10`, or when `rho < 0.9` and the geometric bound on the
+//! remaining drift `d_n rho / (1 - rho)` is below `tol`, where
+//! `tol = 1e-4 um + 1e-5 * (the deflections' range)` (the settle tolerance).
+//! Orbits that converge slowly (near a bifurcation) or never (quasi-periodic,
+//! chaotic) run the full transient.
+//!
+//! Extremes are exact to the integrator's accuracy, not to a sampling grid:
+//! wherever a deflection's rate changes sign inside a step, the extremum is
+//! located on a cubic Hermite model and evaluated on the dense output.
+
+use crate::dynamics::{MeshInstant, MeshOde};
+use crate::error::{Result, SolverError};
+use crate::modal::{self, Modes, StaticSolution};
+use crate::ode::{Dopri5, IntegratorStats, StepInfo, Tolerances};
+use crate::params::ModelParams;
+use crate::system::MeshSystem;
+use std::f64::consts::PI;
+
+/// A compiled model with its modes and static equilibrium, computed once.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Model {
+    /// The system.
+    pub system: MeshSystem,
+    /// Natural modes of the mean-stiffness system.
+    pub modes: Modes,
+    /// The loaded static equilibrium.
+    pub statics: StaticSolution,
+}
+
+impl Model {
+    /// Validates the parameters and prepares the model.
+    pub fn new(params: &ModelParams) -> Result<Self> {
+        let system = MeshSystem::build(params)?;
+        let modes = modal::modes(&system)?;
+        let statics = modal::statics(&system, &modes)?;
+        Ok(Model {
+            system,
+            modes,
+            statics,
+        })
+    }
+
+    /// The static equilibrium as an ODE state (at rest).
+    pub fn static_state(&self) -> Vec<f64> {
+        let mut y = self.statics.q.clone();
+        y.extend(std::iter::repeat_n(0.0, self.system.dof()));
+        y
+    }
+}
+
+/// Impact regime of a steady response (Kahraman & Singh, 1990).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Impact {
+    /// The drive flanks never separate.
+    None,
+    /// They separate, but the back flanks never touch.
+    SingleSided,
+    /// The back flanks touch.
+    DoubleSided,
+    /// The teeth never touch at all (no load, no excitation large enough).
+    NoContact,
+}
+
+impl Impact {
+    /// Name for output.
+    pub fn name(self) -> &'static str {
+        match self {
+            Impact::None => "none",
+            Impact::SingleSided => "single-sided",
+            Impact::DoubleSided => "double-sided",
+            Impact::NoContact => "no-contact",
+        }
+    }
+
+    /// Parses a name written by [`Impact::name`].
+    pub fn from_name(s: &str) -> Option<Self> {
+        [
+            Impact::None,
+            Impact::SingleSided,
+            Impact::DoubleSided,
+            Impact::NoContact,
+        ]
+        .into_iter()
+        .find(|i| i.name() == s)
+    }
+
+    /// Classifies from the extremes of the relative displacement `x = delta - e`.
+    pub fn classify(rel_min: f64, rel_max: f64, backlash: f64) -> Self {
+        if rel_min > backlash {
+            Impact::None
+        } else if rel_min < -backlash {
+            Impact::DoubleSided
+        } else if rel_max > backlash {
+            Impact::SingleSided
+        } else {
+            Impact::NoContact
+        }
+    }
+}
+
+/// Options of a steady-state run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SteadyOptions {
+    /// Dimensionless mesh frequency Omega = omega / omega_ref.
+    pub omega: f64,
+    /// Maximum transient periods.
+    pub transient_periods: u32,
+    /// Recorded periods.
+    pub record_periods: u32,
+    /// End the transient once the Poincaré samples have settled.
+    pub early_settle: bool,
+    /// Uniform samples per period for RMS, history and spectrum (0 = none).
+    pub samples_per_period: u32,
+    /// Meshes whose time history (and spectrum) is kept.
+    pub history_meshes: Vec<usize>,
+    /// Relative tolerance of the integrator.
+    pub rtol: f64,
+    /// Absolute tolerance, as a mesh deflection (m).
+    pub atol_m: f64,
+    /// Step budget per mesh period (a blow-up guard).
+    pub max_steps_per_period: u64,
+}
+
+impl SteadyOptions {
+    /// Defaults at `omega`: 300 + 100 periods, early settle, 64 samples per period.
+    pub fn new(omega: f64) -> Self {
+        SteadyOptions {
+            omega,
+            transient_periods: 300,
+            record_periods: 100,
+            early_settle: true,
+            samples_per_period: 64,
+            history_meshes: Vec::new(),
+            rtol: 1e-8,
+            atol_m: 1e-11,
+            max_steps_per_period: 200_000,
+        }
+    }
+
+    /// Checks the options' ranges.
+    pub fn validate(&self) -> Result<()> {
+        let bad = |option: &str, value: String, allowed: &str| {
+            Err(SolverError::BadOption {
+                option: option.into(),
+                value,
+                allowed: allowed.into(),
+            })
+        };
+        if !(self.omega.is_finite() && self.omega >= 0.01 && self.omega <= 20.0) {
+            return bad("omega", format!("{}", self.omega), "0.01 ..= 20");
+        }
+        if self.transient_periods > 1_000_000 {
+            return bad(
+                "transient-periods",
+                self.transient_periods.to_string(),
+                "0 ..= 1000000",
+            );
+        }
+        if self.record_periods == 0 || self.record_periods > 100_000 {
+            return bad(
+                "record-periods",
+                self.record_periods.to_string(),
+                "1 ..= 100000",
+            );
+        }
+        if self.samples_per_period > 4096 {
+            return bad(
+                "samples-per-period",
+                self.samples_per_period.to_string(),
+                "0 ..= 4096",
+            );
+        }
+        if !(self.rtol.is_finite() && self.rtol >= 1e-13 && self.rtol <= 1e-3) {
+            return bad("rtol", format!("{}", self.rtol), "1e-13 ..= 1e-3");
+        }
+        if !(self.atol_m.is_finite() && self.atol_m > 0.0 && self.atol_m <= 1e-6) {
+            return bad("atol", format!("{}", self.atol_m), "0 < atol <= 1e-6 m");
+        }
+        Ok(())
+    }
+}
+
+/// Per-mesh results of a steady run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeshSteady {
+    /// Smallest deflection delta (m).
+    pub delta_min_m: f64,
+    /// Largest deflection delta (m).
+    pub delta_max_m: f64,
+    /// Mean deflection (m), from the uniform samples (NaN without samples).
+    pub delta_mean_m: f64,
+    /// RMS of delta about zero (m), from the uniform samples (NaN without samples).
+    pub delta_rms_m: f64,
+    /// Smallest relative displacement x = delta - e (m).
+    pub rel_min_m: f64,
+    /// Largest relative displacement x = delta - e (m).
+    pub rel_max_m: f64,
+    /// Largest mesh force (N).
+    pub force_max_n: f64,
+    /// Smallest mesh force (N).
+    pub force_min_n: f64,
+    /// Static mesh force (N).
+    pub static_force_n: f64,
+    /// max F / F_static, if the static force is non-zero.
+    pub dynamic_factor: Option<f64>,
+    /// Impact regime.
+    pub impact: Impact,
+    /// Poincaré samples of delta (m), one per recorded period.
+    pub poincare_delta_m: Vec<f64>,
+    /// Poincaré samples of delta' (m/s).
+    pub poincare_velocity_m_s: Vec<f64>,
+    /// Fraction of the recorded time in drive contact, apart and in back contact
+    /// (from the uniform samples; zeros without samples).
+    pub contact_fraction: [f64; 3],
+}
+
+/// Time history of one mesh over the recorded periods.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeshHistory {
+    /// Mesh index.
+    pub mesh: usize,
+    /// delta (m) at the sample times.
+    pub delta_m: Vec<f64>,
+    /// delta' (m/s).
+    pub velocity_m_s: Vec<f64>,
+    /// x = delta - e (m).
+    pub rel_m: Vec<f64>,
+    /// Mesh force (N).
+    pub force_n: Vec<f64>,
+}
+
+/// Work and convergence figures of a run.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct SteadyStats {
+    /// Transient periods actually integrated.
+    pub transient_periods_run: u32,
+    /// Whether the early-settle criterion ended the transient.
+    pub settled: bool,
+    /// Integrator counters.
+    pub integrator: IntegratorStats,
+}
+
+/// A steady-state response.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SteadyState {
+    /// Dimensionless frequency.
+    pub omega: f64,
+    /// Mesh frequency (rad/s).
+    pub omega_rad_s: f64,
+    /// Mesh frequency (Hz).
+    pub mesh_freq_hz: f64,
+    /// Mesh period (s).
+    pub period_s: f64,
+    /// Time at which recording started (s).
+    pub record_start_s: f64,
+    /// Per-mesh results, in the system's mesh order.
+    pub meshes: Vec<MeshSteady>,
+    /// Sample times (s) of the histories, from `record_start_s`.
+    pub sample_times_s: Vec<f64>,
+    /// Histories of the requested meshes.
+    pub histories: Vec<MeshHistory>,
+    /// Full state at the end (phase 0 of the excitation), for continuation.
+    pub end_state: Vec<f64>,
+    /// Period of the Poincaré orbit in mesh periods, `None` if not periodic
+    /// within the recorded window.
+    pub period: Option<u32>,
+    /// Work figures.
+    pub stats: SteadyStats,
+}
+
+/// Largest orbit period tested.
+pub const MAX_PERIOD: usize = 32;
+
+/// Settle tolerance (um) for deflections spanning `span_um`.
+pub fn settle_tol_um(span_um: f64) -> f64 {
+    1e-4 + 1e-5 * span_um
+}
+
+/// Runs one steady-state response from `start` (or the static equilibrium).
+pub fn steady_state(
+    model: &Model,
+    opts: &SteadyOptions,
+    start: Option<&[f64]>,
+) -> Result<SteadyState> {
+    opts.validate()?;
+    let sys = &model.system;
+    let omega_rad_s = opts.omega * sys.omega_ref_rad_s;
+    let period = 2.0 * PI / omega_rad_s;
+    let mut ode = MeshOde::new(sys, omega_rad_s);
+    let y0 = match start {
+        Some(y) if y.len() == 2 * sys.dof() && y.iter().all(|v| v.is_finite()) => y.to_vec(),
+        _ => model.static_state(),
+    };
+    let lengths = sys.dof_length_m();
+    let v_scale = sys.omega_ref_rad_s * opts.omega.max(1.0);
+    let mut atol: Vec<f64> = lengths.iter().map(|l| opts.atol_m / l).collect();
+    atol.extend(lengths.iter().map(|l| opts.atol_m / l * v_scale));
+    let tol = Tolerances {
+        rtol: opts.rtol,
+        atol,
+        h_min: period * 1e-13,
+        h_max: period / 8.0,
+    };
+    let mut int = Dopri5::new(&mut ode, 0.0, &y0, period / 200.0, tol);
+    let n_mesh = sys.meshes.len();
+    let budget = opts
+        .max_steps_per_period
+        .saturating_mul(u64::from(opts.transient_periods) + u64::from(opts.record_periods) + 1);
+
+    // Transient.
+    let mut poincare_hist: Vec<Vec<f64>> = Vec::new();
+    let mut span = SpanTracker::new(n_mesh);
+    let mut deflections = vec![0.0; n_mesh];
+    let mut periods_run = 0;
+    let mut settled = false;
+    for p in 1..=opts.transient_periods {
+        let t_end = f64::from(p) * period;
+        while int.t() < t_end {
+            int.step(&mut ode, t_end)?;
+            guard(&int, budget)?;
+            if opts.early_settle {
+                ode.deflections(&int.y()[..sys.dof()], &mut deflections);
+                span.add(&deflections);
+            }
+        }
+        periods_run = p;
+        if opts.early_settle {
+            poincare_hist.push(poincare_point(&ode, int.t(), int.y(), omega_rad_s));
+            if poincare_hist.len() > 2 * 8 + 1 {
+                poincare_hist.remove(0);
+            }
+            if p >= 5 && has_settled(&poincare_hist, settle_tol_um(span.span_um())) {
+                settled = true;
+                break;
+            }
+            span.reset_keep_last();
+        }
+    }
+
+    // Recording.
+    let t_rec = f64::from(periods_run) * period;
+    let mut rec = Recorder::new(model, &ode, opts, t_rec, period, int.y());
+    for r in 1..=opts.record_periods {
+        let t_end = t_rec + f64::from(r) * period;
+        while int.t() < t_end {
+            let info = int.step(&mut ode, t_end)?;
+            guard(&int, budget)?;
+            rec.on_step(&ode, &int, info);
+        }
+        rec.on_period(&ode, int.t(), int.y(), omega_rad_s);
+    }
+    let end_state = int.y().to_vec();
+    let (meshes, histories, times, pc_points) = rec.finish(model);
+    let span_um = meshes
+        .iter()
+        .map(|m| (m.delta_max_m - m.delta_min_m) * 1e6)
+        .fold(0.0, f64::max);
+    let period_detected = detect_period(&pc_points, 10.0 * settle_tol_um(span_um));
+    Ok(SteadyState {
+        omega: opts.omega,
+        omega_rad_s,
+        mesh_freq_hz: omega_rad_s / (2.0 * PI),
+        period_s: period,
+        record_start_s: t_rec,
+        meshes,
+        sample_times_s: times,
+        histories,
+        end_state,
+        period: period_detected,
+        stats: SteadyStats {
+            transient_periods_run: periods_run,
+            settled,
+            integrator: int.stats,
+        },
+    })
+}
+
+fn guard(int: &Dopri5, budget: u64) -> Result<()> {
+    if int.stats.steps > budget {
+        return Err(SolverError::TooManySteps {
+            max_steps: budget,
+            t_s: int.t(),
+        });
+    }
+    Ok(())
+}
+
+/// The Poincaré point in mesh space: each mesh's delta and delta'/omega in um.
+fn poincare_point(ode: &MeshOde, t: f64, y: &[f64], omega_rad_s: f64) -> Vec<f64> {
+    let mut p = Vec::with_capacity(2 * ode.n_meshes());
+    for j in 0..ode.n_meshes() {
+        let mi = ode.mesh_instant(j, t, y);
+        p.push(mi.delta * 1e6);
+        p.push(mi.delta_dot / omega_rad_s * 1e6);
+    }
+    p
+}
+
+fn dist_inf(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}
+
+/// The early-settle test on the last Poincaré points (newest last).
+fn has_settled(hist: &[Vec<f64>], tol: f64) -> bool {
+    let n = hist.len();
+    (1..=8).any(|p| {
+        if n < 2 * p + 1 {
+            return false;
+        }
+        let d_now = dist_inf(&hist[n - 1], &hist[n - 1 - p]);
+        let d_before = dist_inf(&hist[n - 1 - p], &hist[n - 1 - 2 * p]);
+        if d_now <= 0.1 * tol {
+            return true;
+        }
+        if d_now > tol || d_before <= 0.0 {
+            return false;
+        }
+        let rho = d_now / d_before;
+        rho < 0.9 && d_now * rho / (1.0 - rho) <= tol
+    })
+}
+
+/// Smallest `p` such that every recorded Poincaré point repeats after `p`
+/// periods within `tol` (um); at least three repetitions must be seen.
+pub fn detect_period(points: &[Vec<f64>], tol: f64) -> Option<u32> {
+    let n = points.len();
+    (1..=MAX_PERIOD.min(n / 3))
+        .find(|&p| (0..n - p).all(|i| dist_inf(&points[i], &points[i + p]) <= tol))
+        .map(|p| p as u32)
+}
+
+/// Running range of all mesh deflections (for the settle tolerance).
+struct SpanTracker {
+    lo: Vec<f64>,
+    hi: Vec<f64>,
+}
+
+impl SpanTracker {
+    fn new(n: usize) -> Self {
+        SpanTracker {
+            lo: vec![f64::INFINITY; n],
+            hi: vec![f64::NEG_INFINITY; n],
+        }
+    }
+    fn add(&mut self, deflections: &[f64]) {
+        for (j, &d) in deflections.iter().enumerate() {
+            self.lo[j] = self.lo[j].min(d);
+            self.hi[j] = self.hi[j].max(d);
+        }
+    }
+    fn span_um(&self) -> f64 {
+        self.lo
+            .iter()
+            .zip(&self.hi)
+            .map(|(l, h)| h - l)
+            .filter(|d| d.is_finite())
+            .fold(0.0, f64::max)
+            * 1e6
+    }
+    fn reset_keep_last(&mut self) {
+        // The span of the latest period only: the transient's start must not
+        // inflate the tolerance.
+        self.lo.fill(f64::INFINITY);
+        self.hi.fill(f64::NEG_INFINITY);
+    }
+}
+
+/// Accumulates the recorded window.
+struct Recorder {
+    n_mesh: usize,
+    t_rec: f64,
+    period: f64,
+    samples_per_period: u32,
+    total_samples: u64,
+    next_sample: u64,
+    prev: Vec<MeshInstant>,
+    cur: Vec<MeshInstant>,
+    d_min: Vec<f64>,
+    d_max: Vec<f64>,
+    x_min: Vec<f64>,
+    x_max: Vec<f64>,
+    f_min: Vec<f64>,
+    f_max: Vec<f64>,
+    sum: Vec<f64>,
+    sum_sq: Vec<f64>,
+    contact: Vec<[u64; 3]>,
+    n_samples: u64,
+    pc_delta: Vec<Vec<f64>>,
+    pc_vel: Vec<Vec<f64>>,
+    pc_points: Vec<Vec<f64>>,
+    history_meshes: Vec<usize>,
+    histories: Vec<MeshHistory>,
+    times: Vec<f64>,
+    ybuf: Vec<f64>,
+}
+
+impl Recorder {
+    fn new(
+        model: &Model,
+        ode: &MeshOde,
+        opts: &SteadyOptions,
+        t_rec: f64,
+        period: f64,
+        y: &[f64],
+    ) -> Self {
+        let n_mesh = model.system.meshes.len();
+        let history_meshes: Vec<usize> = opts
+            .history_meshes
+            .iter()
+            .copied()
+            .filter(|&j| j < n_mesh)
+            .collect();
+        let mut cur = Vec::with_capacity(n_mesh);
+        ode.mesh_instants(t_rec, y, &mut cur);
+        let total = if opts.samples_per_period > 0 {
+            u64::from(opts.samples_per_period) * u64::from(opts.record_periods)
+        } else {
+            0
+        };
+        let mut r = Recorder {
+            n_mesh,
+            t_rec,
+            period,
+            samples_per_period: opts.samples_per_period,
+            total_samples: total,
+            next_sample: 0,
+            prev: cur.clone(),
+            d_min: cur.iter().map(|m| m.delta).collect(),
+            d_max: cur.iter().map(|m| m.delta).collect(),
+            x_min: cur.iter().map(|m| m.rel).collect(),
+            x_max: cur.iter().map(|m| m.rel).collect(),
+            f_min: cur.iter().map(|m| m.force).collect(),
+            f_max: cur.iter().map(|m| m.force).collect(),
+            cur,
+            sum: vec![0.0; n_mesh],
+            sum_sq: vec![0.0; n_mesh],
+            contact: vec![[0; 3]; n_mesh],
+            n_samples: 0,
+            pc_delta: vec![Vec::new(); n_mesh],
+            pc_vel: vec![Vec::new(); n_mesh],
+            pc_points: Vec::new(),
+            histories: history_meshes
+                .iter()
+                .map(|&mesh| MeshHistory {
+                    mesh,
+                    delta_m: Vec::new(),
+                    velocity_m_s: Vec::new(),
+                    rel_m: Vec::new(),
+                    force_n: Vec::new(),
+                })
+                .collect(),
+            history_meshes,
+            times: Vec::new(),
+            ybuf: vec![0.0; y.len()],
+        };
+        if r.total_samples > 0 {
+            let inst = r.cur.clone();
+            r.sample(ode, t_rec, &inst);
+        }
+        r
+    }
+
+    fn sample(&mut self, ode: &MeshOde, t: f64, inst: &[MeshInstant]) {
+        for (j, mi) in inst.iter().enumerate() {
+            self.sum[j] += mi.delta;
+            self.sum_sq[j] += mi.delta * mi.delta;
+            let b = ode.backlash(j);
+            let c = if mi.rel > b {
+                0
+            } else if mi.rel < -b {
+                2
+            } else {
+                1
+            };
+            self.contact[j][c] += 1;
+            self.f_min[j] = self.f_min[j].min(mi.force);
+            self.f_max[j] = self.f_max[j].max(mi.force);
+        }
+        for h in &mut self.histories {
+            let mi = inst[h.mesh];
+            h.delta_m.push(mi.delta);
+            h.velocity_m_s.push(mi.delta_dot);
+            h.rel_m.push(mi.rel);
+            h.force_n.push(mi.force);
+        }
+        if !self.history_meshes.is_empty() {
+            self.times.push(t);
+        }
+        self.n_samples += 1;
+        self.next_sample += 1;
+    }
+
+    fn sample_time(&self, k: u64) -> f64 {
+        self.t_rec + self.period * (k as f64) / f64::from(self.samples_per_period)
+    }
+
+    fn on_step(&mut self, ode: &MeshOde, int: &Dopri5, info: StepInfo) {
+        std::mem::swap(&mut self.prev, &mut self.cur);
+        ode.mesh_instants(info.t1, int.y(), &mut self.cur);
+        let h = info.t1 - info.t0;
+        let mut ybuf = std::mem::take(&mut self.ybuf);
+        for j in 0..self.n_mesh {
+            let (a, b) = (self.prev[j], self.cur[j]);
+            self.d_min[j] = self.d_min[j].min(b.delta);
+            self.d_max[j] = self.d_max[j].max(b.delta);
+            self.x_min[j] = self.x_min[j].min(b.rel);
+            self.x_max[j] = self.x_max[j].max(b.rel);
+            self.f_min[j] = self.f_min[j].min(b.force);
+            self.f_max[j] = self.f_max[j].max(b.force);
+            // Interior extremum of delta or of x: the rate changes sign.
+            for rel in [false, true] {
+                let (v0, v1, r0, r1) = if rel {
+                    (a.rel, b.rel, a.rel_dot, b.rel_dot)
+                } else {
+                    (a.delta, b.delta, a.delta_dot, b.delta_dot)
+                };
+                if r0 * r1 < 0.0 {
+                    if let Some(theta) = hermite_extremum(v0, v1, r0 * h, r1 * h) {
+                        let t = info.t0 + theta * h;
+                        int.dense(t, &mut ybuf);
+                        let mi = ode.mesh_instant(j, t, &ybuf);
+                        let v = if rel { mi.rel } else { mi.delta };
+                        let (lo, hi) = if rel {
+                            (&mut self.x_min[j], &mut self.x_max[j])
+                        } else {
+                            (&mut self.d_min[j], &mut self.d_max[j])
+                        };
+                        *lo = lo.min(v);
+                        *hi = hi.max(v);
+                        self.f_min[j] = self.f_min[j].min(mi.force);
+                        self.f_max[j] = self.f_max[j].max(mi.force);
+                    }
+                }
+            }
+        }
+        let mut inst = Vec::new();
+        while self.next_sample < self.total_samples {
+            let ts = self.sample_time(self.next_sample);
+            if ts > info.t1 {
+                break;
+            }
+            int.dense(ts, &mut ybuf);
+            ode.mesh_instants(ts, &ybuf, &mut inst);
+            self.sample(ode, ts, &inst);
+        }
+        self.ybuf = ybuf;
+    }
+
+    fn on_period(&mut self, ode: &MeshOde, t: f64, y: &[f64], omega_rad_s: f64) {
+        for j in 0..self.n_mesh {
+            let mi = ode.mesh_instant(j, t, y);
+            self.pc_delta[j].push(mi.delta);
+            self.pc_vel[j].push(mi.delta_dot);
+        }
+        self.pc_points.push(poincare_point(ode, t, y, omega_rad_s));
+    }
+
+    fn finish(self, model: &Model) -> (Vec<MeshSteady>, Vec<MeshHistory>, Vec<f64>, Vec<Vec<f64>>) {
+        let ns = self.n_samples as f64;
+        let meshes = (0..self.n_mesh)
+            .map(|j| {
+                let fs = model.statics.mesh_force_n[j];
+                let b = model.system.meshes[j].backlash_m;
+                MeshSteady {
+                    delta_min_m: self.d_min[j],
+                    delta_max_m: self.d_max[j],
+                    delta_mean_m: if ns > 0.0 { self.sum[j] / ns } else { f64::NAN },
+                    delta_rms_m: if ns > 0.0 {
+                        (self.sum_sq[j] / ns).sqrt()
+                    } else {
+                        f64::NAN
+                    },
+                    rel_min_m: self.x_min[j],
+                    rel_max_m: self.x_max[j],
+                    force_max_n: self.f_max[j],
+                    force_min_n: self.f_min[j],
+                    static_force_n: fs,
+                    dynamic_factor: (fs.abs() > 1e-9).then(|| self.f_max[j] / fs),
+                    impact: Impact::classify(self.x_min[j], self.x_max[j], b),
+                    poincare_delta_m: self.pc_delta[j].clone(),
+                    poincare_velocity_m_s: self.pc_vel[j].clone(),
+                    contact_fraction: if ns > 0.0 {
+                        let c = self.contact[j];
+                        [c[0] as f64 / ns, c[1] as f64 / ns, c[2] as f64 / ns]
+                    } else {
+                        [0.0; 3]
+                    },
+                }
+            })
+            .collect();
+        (meshes, self.histories, self.times, self.pc_points)
+    }
+}
+
+/// Position in `(0, 1)` of the extremum of the cubic Hermite model with end
+/// values `v0`, `v1` and end slopes `s0`, `s1` (already times `h`) whose slopes
+/// have opposite signs: the root of the quadratic `p'` inside the step.
+fn hermite_extremum(v0: f64, v1: f64, s0: f64, s1: f64) -> Option<f64> {
+    let a = 6.0 * (v0 - v1) + 3.0 * (s0 + s1);
+    let b = -6.0 * (v0 - v1) - 4.0 * s0 - 2.0 * s1;
+    let c = s0;
+    let roots = if a.abs() <= 1e-14 * (b.abs() + c.abs()) {
+        [-c / b, f64::NAN]
+    } else {
+        let disc = (b * b - 4.0 * a * c).max(0.0);
+        let q = -0.5 * (b + b.signum() * disc.sqrt());
+        [q / a, if q != 0.0 { c / q } else { f64::NAN }]
+    };
+    // p' changes sign on [0, 1], so exactly one root (or three, counted
+    // with multiplicity) lies inside; take the one nearest the middle.
+    roots
+        .into_iter()
+        .filter(|t| t.is_finite() && (0.0..=1.0).contains(t))
+        .min_by(|x, y| (x - 0.5).abs().total_cmp(&(y - 0.5).abs()))
+}
+
+/// Amplitude spectrum of a signal sampled uniformly over whole periods.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Spectrum {
+    /// Frequency of each line in mesh orders (multiples of the mesh frequency).
+    pub order: Vec<f64>,
+    /// One-sided amplitude (a sinusoid of amplitude A gives A; the mean gives its value).
+    pub amplitude: Vec<f64>,
+}
+
+/// One-sided amplitude spectrum (rustfft) of `samples`, taken at
+/// `samples_per_period` per mesh period over `periods` periods, up to `max_order`.
+pub fn spectrum(
+    samples: &[f64],
+    samples_per_period: u32,
+    periods: u32,
+    max_order: f64,
+) -> Spectrum {
+    use rustfft::{num_complex::Complex, FftPlanner};
+    let n = samples.len();
+    if n < 2 {
+        return Spectrum {
+            order: Vec::new(),
+            amplitude: Vec::new(),
+        };
+    }
+    let mut buf: Vec<Complex<f64>> = samples.iter().map(|&x| Complex::new(x, 0.0)).collect();
+    FftPlanner::new().plan_fft_forward(n).process(&mut buf);
+    let per = f64::from(periods.max(1));
+    let nyquist = f64::from(samples_per_period) / 2.0;
+    let mut order = Vec::new();
+    let mut amplitude = Vec::new();
+    for (k, c) in buf.iter().enumerate().take(n / 2 + 1) {
+        let o = k as f64 / per;
+        if o > max_order.min(nyquist) {
+            break;
+        }
+        let scale = if k == 0 || 2 * k == n { 1.0 } else { 2.0 };
+        order.push(o);
+        amplitude.push(scale * c.norm() / n as f64);
+    }
+    Spectrum { order, amplitude }
+}
