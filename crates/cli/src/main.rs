@@ -70,7 +70,7 @@ struct RunArgs {
     #[arg(long)]
     full_transient: bool,
     /// Relative tolerance of the integrator.
-    #[arg(long, default_value_t = 1e-8)]
+    #[arg(long, default_value_t = 1e-7)]
     rtol: f64,
     /// Absolute tolerance as a mesh deflection (m).
     #[arg(long, default_value_t = 1e-11)]
@@ -204,9 +204,16 @@ fn main() -> ExitCode {
                 print!("{e}");
                 return ExitCode::SUCCESS;
             }
+            // One line: clap's message up to its usage block, joined.
             let text = e.render().to_string();
-            let first = text.lines().next().unwrap_or("invalid arguments");
-            eprintln!("gearshock: {}", first.trim_start_matches("error: "));
+            let message: Vec<&str> = text
+                .lines()
+                .take_while(|l| !l.starts_with("Usage:") && !l.starts_with("For more information"))
+                .map(str::trim)
+                .filter(|l| !l.is_empty() && !l.starts_with("tip:"))
+                .collect();
+            let line = message.join(" ");
+            eprintln!("gearshock: {}", line.trim_start_matches("error: "));
             return ExitCode::from(2);
         }
     };

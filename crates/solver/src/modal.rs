@@ -50,6 +50,10 @@ pub struct Mode {
     pub kind: ModeKind,
     /// How many modes share this frequency (relative gap below 1e-6).
     pub multiplicity: usize,
+    /// Modal damping ratio `phi^T C phi / (2 omega_n)` of the mesh dampers
+    /// (the diagonal of the non-proportional damping in modal coordinates);
+    /// 0 for the rigid-body mode.
+    pub damping_ratio: f64,
     /// Mode shape in the generalized coordinates, mass-normalized (phi^T M phi = 1).
     pub shape: Vec<f64>,
 }
@@ -70,6 +74,14 @@ impl Modes {
     /// The elastic modes only.
     pub fn elastic(&self) -> impl Iterator<Item = &Mode> {
         self.modes.iter().filter(|m| m.kind != ModeKind::RigidBody)
+    }
+
+    /// The slowest modal decay rate `min_k zeta_k omega_k` (1/s) of the
+    /// elastic modes: how fast the most lightly damped transient dies.
+    pub fn slowest_decay_rate(&self, omega_ref_rad_s: f64) -> f64 {
+        self.elastic()
+            .map(|m| m.damping_ratio * m.omega * omega_ref_rad_s)
+            .fold(f64::INFINITY, f64::min)
     }
 }
 
@@ -100,6 +112,7 @@ pub fn modes(sys: &MeshSystem) -> Result<Modes> {
     let u = DVector::from_column_slice(&sys.rigid_mode);
     let mu = &sys.mass * &u;
     let unorm = u.dot(&mu).sqrt();
+    let damping = sys.damping_matrix();
 
     let mut out: Vec<Mode> = Vec::with_capacity(n);
     for &i in &order {
@@ -120,11 +133,17 @@ pub fn modes(sys: &MeshSystem) -> Result<Modes> {
         } else {
             classify(sys, phi.as_slice())
         };
+        let damping_ratio = if omega_rad_s > 0.0 {
+            phi.dot(&(&damping * &phi)) / (2.0 * omega_rad_s)
+        } else {
+            0.0
+        };
         out.push(Mode {
             frequency_hz: omega_rad_s / (2.0 * PI),
             omega: omega_rad_s / sys.omega_ref_rad_s,
             kind,
             multiplicity: 1,
+            damping_ratio,
             shape: phi.iter().copied().collect(),
         });
     }
@@ -237,11 +256,11 @@ pub fn statics(sys: &MeshSystem, modes: &Modes) -> Result<StaticSolution> {
 }
 
 /// The steady response of the linear system (b = 0 on every mesh, v = 0) to
-/// its transmission errors: complex amplitude of each mesh deflection,
-/// `delta_j(t) = mean_j + Re(amp_j e^{i omega t})`, with
-/// `amp = w_j^T (K - omega^2 M + i omega C)^-1 sum_l w_l (k_l + i omega c_l) E_l`.
+/// its transmission errors, in the generalized coordinates:
+/// `q(t) = q_static + Re(q_hat e^{i omega t})` with
+/// `q_hat = (K - omega^2 M + i omega C)^-1 sum_l w_l (k_l + i omega c_l) E_l`.
 /// Backlash and stiffness fluctuation are ignored: the caller checks they are zero.
-pub fn linear_receptance(sys: &MeshSystem, omega_rad_s: f64) -> Result<Vec<Complex<f64>>> {
+pub fn linear_response(sys: &MeshSystem, omega_rad_s: f64) -> Result<Vec<Complex<f64>>> {
     let n = sys.dof();
     let k = sys.mean_stiffness();
     let c = sys.damping_matrix();
@@ -270,9 +289,16 @@ pub fn linear_receptance(sys: &MeshSystem, omega_rad_s: f64) -> Result<Vec<Compl
         .ok_or_else(|| SolverError::Singular {
             what: format!("dynamic stiffness at omega = {omega_rad_s} rad/s"),
         })?;
+    Ok(sol.iter().copied().collect())
+}
+
+/// The complex amplitude of each mesh deflection in the linear steady
+/// response ([`linear_response`]): `delta_j(t) = mean_j + Re(amp_j e^{i omega t})`.
+pub fn linear_receptance(sys: &MeshSystem, omega_rad_s: f64) -> Result<Vec<Complex<f64>>> {
+    let q = linear_response(sys, omega_rad_s)?;
     Ok(sys
         .meshes
         .iter()
-        .map(|m| m.w.iter().map(|&(i, wi)| sol[i] * wi).sum())
+        .map(|m| m.w.iter().map(|&(i, wi)| q[i] * wi).sum())
         .collect())
 }

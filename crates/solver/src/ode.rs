@@ -141,8 +141,9 @@ pub struct StepInfo {
     pub t0: f64,
     /// End of the step.
     pub t1: f64,
-    /// The event located at the step's end, if the step was aimed at one.
-    pub event: Option<usize>,
+    /// Number of event crossings inside the step; their events and times are
+    /// in [`Dopri5::last_events`].
+    pub events: usize,
 }
 
 /// The DOPRI5 integrator's state.
@@ -166,8 +167,14 @@ pub struct Dopri5 {
     n_events: usize,
     g0: Vec<f64>,
     dg0: Vec<f64>,
+    /// Event rates at the start of the previous step and its length, for a
+    /// finite-difference second derivative used to predict crossings.
+    dg_prev: Vec<f64>,
+    h_prev: f64,
     g1: Vec<f64>,
     dg1: Vec<f64>,
+    /// Crossings inside the last accepted step: (event, time).
+    last_events: Vec<(usize, f64)>,
     /// Counters.
     pub stats: IntegratorStats,
 }
@@ -195,6 +202,9 @@ impl Dopri5 {
             n_events: ne,
             g0: vec![0.0; ne],
             dg0: vec![0.0; ne],
+            dg_prev: vec![0.0; ne],
+            h_prev: 0.0,
+            last_events: Vec::new(),
             g1: vec![0.0; ne],
             dg1: vec![0.0; ne],
             stats: IntegratorStats::default(),
@@ -205,6 +215,11 @@ impl Dopri5 {
             ode.events(t0, &s.y, &s.k[0], &mut s.g0, &mut s.dg0);
         }
         s
+    }
+
+    /// The event crossings inside the last accepted step, as (event, time), in time order.
+    pub fn last_events(&self) -> &[(usize, f64)] {
+        &self.last_events
     }
 
     /// Current time.
@@ -243,42 +258,53 @@ impl Dopri5 {
     fn trial<O: Ode>(&mut self, ode: &mut O, h: f64) -> f64 {
         let n = self.n;
         let t = self.t;
-        let (y, yt) = (&self.y, &mut self.ytmp);
+        let y = &self.y[..n];
+        let yt = &mut self.ytmp[..n];
         let [k1, k2, k3, k4, k5, k6, k7] = &mut self.k;
+        // Slices of exactly n entries let the compiler drop bounds checks.
+        let k1 = &k1[..n];
         for i in 0..n {
             yt[i] = y[i] + h * A21 * k1[i];
         }
         ode.rhs(t + C2 * h, yt, k2);
+        let k2 = &k2[..n];
         for i in 0..n {
             yt[i] = y[i] + h * (A31 * k1[i] + A32 * k2[i]);
         }
         ode.rhs(t + C3 * h, yt, k3);
+        let k3 = &k3[..n];
         for i in 0..n {
             yt[i] = y[i] + h * (A41 * k1[i] + A42 * k2[i] + A43 * k3[i]);
         }
         ode.rhs(t + C4 * h, yt, k4);
+        let k4 = &k4[..n];
         for i in 0..n {
             yt[i] = y[i] + h * (A51 * k1[i] + A52 * k2[i] + A53 * k3[i] + A54 * k4[i]);
         }
         ode.rhs(t + C5 * h, yt, k5);
+        let k5 = &k5[..n];
         for i in 0..n {
             yt[i] =
                 y[i] + h * (A61 * k1[i] + A62 * k2[i] + A63 * k3[i] + A64 * k4[i] + A65 * k5[i]);
         }
         ode.rhs(t + h, yt, k6);
-        let y1 = &mut self.y1;
+        let k6 = &k6[..n];
+        let y1 = &mut self.y1[..n];
         for i in 0..n {
             y1[i] =
                 y[i] + h * (A71 * k1[i] + A73 * k3[i] + A74 * k4[i] + A75 * k5[i] + A76 * k6[i]);
         }
         ode.rhs(t + h, y1, k7);
+        let k7 = &k7[..n];
         self.stats.rhs_evaluations += 6;
+        let atol = &self.tol.atol[..n];
+        let err = &mut self.err[..n];
         let mut sum = 0.0;
         for i in 0..n {
             let e =
                 h * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i] + E7 * k7[i]);
-            self.err[i] = e;
-            let sk = self.tol.atol[i] + self.tol.rtol * y[i].abs().max(y1[i].abs());
+            err[i] = e;
+            let sk = atol[i] + self.tol.rtol * y[i].abs().max(y1[i].abs());
             sum += (e / sk) * (e / sk);
         }
         (sum / n as f64).sqrt()
@@ -286,15 +312,26 @@ impl Dopri5 {
 
     /// Fills the dense-output coefficients for the trial step of size `h`.
     fn build_dense(&mut self, h: f64) {
+        let n = self.n;
         let [k1, _k2, k3, k4, k5, k6, k7] = &self.k;
-        for i in 0..self.n {
-            let ydiff = self.y1[i] - self.y[i];
+        let (k1, k3, k4, k5, k6, k7) = (&k1[..n], &k3[..n], &k4[..n], &k5[..n], &k6[..n], &k7[..n]);
+        let (y, y1) = (&self.y[..n], &self.y1[..n]);
+        let [r0, r1, r2, r3, r4] = &mut self.r;
+        let (r0, r1, r2, r3, r4) = (
+            &mut r0[..n],
+            &mut r1[..n],
+            &mut r2[..n],
+            &mut r3[..n],
+            &mut r4[..n],
+        );
+        for i in 0..n {
+            let ydiff = y1[i] - y[i];
             let bspl = h * k1[i] - ydiff;
-            self.r[0][i] = self.y[i];
-            self.r[1][i] = ydiff;
-            self.r[2][i] = bspl;
-            self.r[3][i] = ydiff - h * k7[i] - bspl;
-            self.r[4][i] =
+            r0[i] = y[i];
+            r1[i] = ydiff;
+            r2[i] = bspl;
+            r3[i] = ydiff - h * k7[i] - bspl;
+            r4[i] =
                 h * (D1 * k1[i] + D3 * k3[i] + D4 * k4[i] + D5 * k5[i] + D6 * k6[i] + D7 * k7[i]);
         }
         self.dense_t0 = self.t;
@@ -307,6 +344,14 @@ impl Dopri5 {
         // The step the controller wanted before any retake aimed at an event.
         let mut h_proposal: Option<f64> = None;
         let mut aimed: Option<usize> = None;
+        // A crossing predicted inside the step: end the first trial just past
+        // it, so that it neither fails the error test across the kink nor needs
+        // a second retake (the located crossing is then checked as usual).
+        if let Some((i, tau)) = self.predict_event(h) {
+            h_proposal = Some(h);
+            aimed = Some(i);
+            h = (tau * (1.0 + 0.5 * EVENT_LANDING)).min(h);
+        }
         loop {
             if h < self.tol.h_min && self.t + h < t_limit {
                 return Err(SolverError::StepSizeTooSmall {
@@ -367,15 +412,32 @@ impl Dopri5 {
                 ode.events(t1, &self.y1, &self.k[6], &mut self.g1, &mut self.dg1);
                 if let Some((i, theta)) = self.first_event(ode, h) {
                     if theta < 1.0 - EVENT_LANDING {
-                        // Retake the step to end on the event.
+                        // Retake the step to end just past the event, so the
+                        // retaken step holds the crossing within its last
+                        // EVENT_LANDING / 2.
                         self.stats.event_retakes += 1;
                         h_proposal.get_or_insert(h);
                         aimed = Some(i);
-                        h *= theta;
+                        h *= (theta / (1.0 - 0.5 * EVENT_LANDING)).min(1.0);
                         continue;
                     }
-                    aimed = Some(i);
                 }
+            }
+            // Every crossing inside the accepted step (the one it was aimed
+            // at, and any that the landing tolerance let it straddle at its
+            // start), each located on the step's dense output.
+            self.last_events.clear();
+            if self.n_events > 0 {
+                let mut ybuf = std::mem::take(&mut self.ytmp);
+                for i in 0..self.n_events {
+                    let (g0, g1) = (self.g0[i], self.g1[i]);
+                    if g0 != 0.0 && (g0.signum() != g1.signum() || g1 == 0.0) {
+                        let theta = self.refine_precise(ode, i, h, g0, &mut ybuf);
+                        self.last_events.push((i, self.t + theta * h));
+                    }
+                }
+                self.ytmp = ybuf;
+                self.last_events.sort_by(|a, b| a.1.total_cmp(&b.1));
             }
             // Accept.
             let t0 = self.t;
@@ -386,11 +448,11 @@ impl Dopri5 {
             std::mem::swap(&mut self.y, &mut self.y1);
             self.k.swap(0, 6);
             std::mem::swap(&mut self.g0, &mut self.g1);
-            std::mem::swap(&mut self.dg0, &mut self.dg1);
+            std::mem::swap(&mut self.dg_prev, &mut self.dg1);
+            std::mem::swap(&mut self.dg0, &mut self.dg_prev);
+            self.h_prev = h;
             self.stats.steps += 1;
-            if aimed.is_some() {
-                self.stats.events += 1;
-            }
+            self.stats.events += self.last_events.len() as u64;
             // Step-size proposal (PI control).
             let fac = (fac11 / self.fac_old.powf(BETA) / SAFE).clamp(FAC_MAX_INV, FAC_MIN_INV);
             self.fac_old = err.max(1e-4);
@@ -403,9 +465,49 @@ impl Dopri5 {
             return Ok(StepInfo {
                 t0,
                 t1: self.t,
-                event: aimed,
+                events: self.last_events.len(),
             });
         }
+    }
+
+    /// The earliest crossing within `h` predicted by a quadratic Taylor model of
+    /// each event function (`g''` by a finite difference over the last step).
+    fn predict_event(&self, h: f64) -> Option<(usize, f64)> {
+        if self.n_events == 0 || self.h_prev <= 0.0 {
+            return None;
+        }
+        let mut best: Option<(usize, f64)> = None;
+        for i in 0..self.n_events {
+            let (g, d) = (self.g0[i], self.dg0[i]);
+            // Only surfaces being approached, and close enough to matter.
+            if g == 0.0 || g.signum() == d.signum() || g.abs() > 2.0 * h * d.abs() {
+                continue;
+            }
+            let dd = (d - self.dg_prev[i]) / self.h_prev;
+            // Smallest positive root of g + d tau + dd tau^2 / 2.
+            let (a, b, c) = (0.5 * dd, d, g);
+            let tau = if a.abs() * h <= 1e-3 * b.abs() {
+                -c / b
+            } else {
+                let disc = b * b - 4.0 * a * c;
+                if disc < 0.0 {
+                    continue;
+                }
+                let q = -0.5 * (b + b.signum() * disc.sqrt());
+                let r1 = q / a;
+                let r2 = c / q;
+                match (r1 > 0.0, r2 > 0.0) {
+                    (true, true) => r1.min(r2),
+                    (true, false) => r1,
+                    (false, true) => r2,
+                    (false, false) => continue,
+                }
+            };
+            if tau > EVENT_LANDING * h && tau < h && best.is_none_or(|b| tau < b.1) {
+                best = Some((i, tau));
+            }
+        }
+        best
     }
 
     /// The earliest event crossing in the trial step, as `(event, theta)`.
@@ -448,33 +550,46 @@ impl Dopri5 {
         best
     }
 
-    /// Illinois iteration for the root of event `i` in `theta` in `[0, hi]`
-    /// on the dense output, where `g(0) = g0` and `g(hi)` has the other sign.
-    fn refine<O: Ode>(
+    /// The crossing of event `i` inside the accepted trial step, to 1e-12 of
+    /// the step (Illinois iterations on the dense output).
+    fn refine_precise<O: Ode>(
         &self,
         ode: &mut O,
         i: usize,
         h: f64,
         g0: f64,
+        ybuf: &mut [f64],
+    ) -> f64 {
+        self.illinois(ode, i, h, (0.0, g0), 1.0, 1e-12, ybuf)
+    }
+
+    /// Illinois (modified regula falsi) on `[a, hi]` for event `i` on the
+    /// dense output, to a bracket of width `tol` (in units of the step);
+    /// returns the end of the final bracket that lies past the crossing.
+    #[allow(clippy::too_many_arguments)]
+    fn illinois<O: Ode>(
+        &self,
+        ode: &mut O,
+        i: usize,
+        h: f64,
+        (a0, ga): (f64, f64),
         hi: f64,
+        tol: f64,
         ybuf: &mut [f64],
     ) -> f64 {
         let eval = |theta: f64, ode: &mut O, buf: &mut [f64]| {
             dense_eval(&self.r, theta, buf);
             ode.event(i, self.t + theta * h, buf)
         };
-        let (mut a, mut fa) = (0.0, g0);
+        let (mut a, mut fa) = (a0, ga);
         let (mut b, mut fb) = (hi, eval(hi, ode, ybuf));
-        if fb == 0.0 {
-            return b;
-        }
-        if fa.signum() == fb.signum() {
-            // The dense output disagrees with the end values (round-off at a
-            // graze): take the bracket's end.
+        if fb == 0.0 || fa.signum() == fb.signum() {
+            // On the surface, or the dense output disagrees with the end
+            // values (round-off at a graze): take the bracket's end.
             return b;
         }
         let mut side = 0;
-        for _ in 0..60 {
+        for _ in 0..100 {
             let c = (a * fb - b * fa) / (fb - fa);
             let fc = eval(c, ode, ybuf);
             if fc == 0.0 {
@@ -495,21 +610,37 @@ impl Dopri5 {
                 }
                 side = 1;
             }
-            if (b - a) <= 0.05 * EVENT_LANDING {
+            if b - a <= tol {
                 break;
             }
         }
-        // The end just past the crossing, so a retaken step lands on or after it.
         b
+    }
+
+    /// The root of event `i` in `theta` in `[0, hi]` on the dense output,
+    /// where `g(0) = g0` and `g(hi)` has the other sign, to the landing
+    /// tolerance.
+    fn refine<O: Ode>(
+        &self,
+        ode: &mut O,
+        i: usize,
+        h: f64,
+        g0: f64,
+        hi: f64,
+        ybuf: &mut [f64],
+    ) -> f64 {
+        self.illinois(ode, i, h, (0.0, g0), hi, 0.05 * EVENT_LANDING, ybuf)
     }
 }
 
 /// Evaluates the DOPRI5 dense output at `theta` in `[0, 1]`.
 #[inline]
 fn dense_eval(r: &[Vec<f64>; 5], theta: f64, out: &mut [f64]) {
+    let n = out.len();
     let s1 = 1.0 - theta;
-    for (i, o) in out.iter_mut().enumerate() {
-        *o = r[0][i] + theta * (r[1][i] + s1 * (r[2][i] + theta * (r[3][i] + s1 * r[4][i])));
+    let (r0, r1, r2, r3, r4) = (&r[0][..n], &r[1][..n], &r[2][..n], &r[3][..n], &r[4][..n]);
+    for i in 0..n {
+        out[i] = r0[i] + theta * (r1[i] + s1 * (r2[i] + theta * (r3[i] + s1 * r4[i])));
     }
 }
 

@@ -54,6 +54,7 @@ pub fn modes_json(model: &Model) -> Value {
                 "omega": num(m.omega),
                 "kind": m.kind.name(),
                 "multiplicity": m.multiplicity,
+                "damping_ratio": num(m.damping_ratio),
                 "shape": nums(&display_shape(m)),
             })
         })

@@ -176,12 +176,10 @@ impl SparseRows {
     /// `out = A x`.
     #[inline]
     pub fn mul(&self, x: &[f64], out: &mut [f64]) {
-        for (i, o) in out.iter_mut().enumerate() {
-            let mut s = 0.0;
-            for k in self.row_start[i]..self.row_start[i + 1] {
-                s += self.vals[k] * x[self.cols[k]];
-            }
-            *o = s;
+        for (o, range) in out.iter_mut().zip(self.row_start.windows(2)) {
+            let cols = &self.cols[range[0]..range[1]];
+            let vals = &self.vals[range[0]..range[1]];
+            *o = cols.iter().zip(vals).map(|(&c, &v)| v * x[c]).sum();
         }
     }
 

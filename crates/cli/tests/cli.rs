@@ -1,0 +1,271 @@
+//! The `gearshock` binary end to end: each subcommand on the defaults, a
+//! sharded sweep merged equals the unsharded one, bad input exits 2 with one
+//! line.
+
+use serde_json::Value;
+use std::process::{Command, Output};
+
+fn gearshock(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_gearshock"))
+        .args(args)
+        .output()
+        .expect("run gearshock")
+}
+
+fn json(args: &[&str]) -> Value {
+    let out = gearshock(args);
+    assert!(
+        out.status.success(),
+        "{args:?} failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("JSON on stdout")
+}
+
+#[test]
+fn params_prints_the_defaults_as_flat_keys() {
+    let v = json(&["params"]);
+    assert_eq!(v["model"], "ravigneaux");
+    assert_eq!(v["backlash_s1a_um"], 100);
+    assert_eq!(v["te_sin_s1a_um"], 20);
+    assert_eq!(v["torque_s2_nm"], "auto");
+    // The printed set is a valid parameter file.
+    let dir = std::env::temp_dir().join(format!("gearshock-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    let file = dir.join("p.json");
+    std::fs::write(&file, v.to_string()).expect("write");
+    let again = json(&[
+        "params",
+        "--params",
+        file.to_str().expect("path"),
+        "--set",
+        "backlash_um=50",
+    ]);
+    assert_eq!(again["backlash_rb_um"], 50);
+    let pair = json(&["params", "--model", "gear-pair"]);
+    assert_eq!(pair["model"], "gear-pair");
+    assert!(pair.get("planets").is_none());
+}
+
+#[test]
+fn keys_lists_the_table() {
+    let out = gearshock(&["keys", "--markdown"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.starts_with("| key |"));
+    for k in [
+        "backlash_um",
+        "te_um",
+        "stiffness_variation",
+        "damping_ratio",
+        "torque_s1_nm",
+        "planets",
+        "phasing",
+    ] {
+        assert!(text.contains(&format!("`{k}`")), "{k}");
+    }
+}
+
+#[test]
+fn modes_reports_frequencies_forces_and_the_balancing_torque() {
+    let v = json(&["modes"]);
+    let f = v["natural_frequencies_hz"].as_array().expect("array");
+    assert_eq!(f.len(), 10);
+    assert_eq!(f[0], 0.0);
+    assert!(f.windows(2).all(|w| w[0].as_f64() <= w[1].as_f64()));
+    assert!((v["balancing_torque_s2_nm"].as_f64().expect("number") - 969.697).abs() < 1e-3);
+    assert!((v["static_mesh_force_n"]["s1a1"].as_f64().expect("force") - 9853.5).abs() < 0.1);
+    assert_eq!(v["modes"][0]["kind"], "rigid-body");
+    assert!((v["omega_ref_rad_s"].as_f64().expect("omega_ref") - 34068.0).abs() < 1.0);
+    let csv = gearshock(&["modes", "--format", "csv"]);
+    assert!(String::from_utf8_lossy(&csv.stdout).starts_with("frequency_hz,omega,kind"));
+}
+
+#[test]
+fn simulate_reports_one_mesh_with_si_units() {
+    let v = json(&[
+        "simulate",
+        "--omega",
+        "0.5",
+        "--transient-periods",
+        "20",
+        "--record-periods",
+        "10",
+        "--mesh",
+        "rb2",
+    ]);
+    assert_eq!(v["mesh"], "rb2");
+    for k in [
+        "omega",
+        "mesh_freq_hz",
+        "delta_min_m",
+        "delta_max_m",
+        "delta_rms_m",
+        "dynamic_factor",
+    ] {
+        assert!(v[k].is_number(), "{k}");
+    }
+    assert_eq!(
+        v["poincare"]["delta_m"].as_array().expect("samples").len(),
+        10
+    );
+    assert!(["none", "single-sided", "double-sided", "no-contact"]
+        .contains(&v["impact"].as_str().expect("impact")));
+    assert!(v["period"].is_null() || v["period"].is_u64());
+    assert!((v["mesh_freq_hz"].as_f64().expect("f") - 0.5 * 5422.1).abs() < 1.0);
+    assert!(
+        v["spectrum"]["amplitude_m"]
+            .as_array()
+            .expect("spectrum")
+            .len()
+            > 10
+    );
+    let csv = gearshock(&[
+        "simulate",
+        "--omega",
+        "0.5",
+        "--transient-periods",
+        "2",
+        "--record-periods",
+        "2",
+        "--format",
+        "csv",
+    ]);
+    let text = String::from_utf8_lossy(&csv.stdout);
+    assert!(text.starts_with("t_s,delta_m,velocity_m_s"));
+    assert_eq!(text.lines().count(), 1 + 2 * 64);
+}
+
+#[test]
+fn sharded_sweep_merged_equals_the_unsharded_run() {
+    let base = [
+        "bifurcation",
+        "--omega-from",
+        "0.4",
+        "--omega-to",
+        "1.4",
+        "--points",
+        "7",
+        "--direction",
+        "both",
+        "--transient-periods",
+        "30",
+        "--record-periods",
+        "6",
+    ];
+    let mut whole_args = base.to_vec();
+    whole_args.extend(["--chains", "2"]);
+    let whole = json(&whole_args);
+    assert_eq!(whole["points"].as_array().expect("points").len(), 14);
+    let dir = std::env::temp_dir().join(format!("gearshock-shards-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    let mut files = Vec::new();
+    for i in 0..2 {
+        let mut args = base.to_vec();
+        let shard = format!("{i}/2");
+        args.extend(["--shard", &shard]);
+        let v = json(&args);
+        let file = dir.join(format!("shard{i}.json"));
+        std::fs::write(&file, v.to_string()).expect("write");
+        files.push(file.to_str().expect("path").to_string());
+    }
+    let mut merge_args = vec!["merge"];
+    merge_args.extend(files.iter().map(String::as_str));
+    let merged = json(&merge_args);
+    assert_eq!(merged, whole);
+    // A missing shard is refused.
+    let out = gearshock(&["merge", &files[0]]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("shard 1/2 is missing"));
+}
+
+#[test]
+fn bad_input_exits_2_with_one_line_naming_it() {
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &["simulate", "--omega", "0.5", "--set", "backlash_um=-5"],
+            "backlash_um",
+        ),
+        (&["simulate", "--omega", "nan"], "omega"),
+        (
+            &["simulate", "--omega", "0.5", "--set", "nonsense=1"],
+            "nonsense",
+        ),
+        (&["simulate", "--omega", "0.5", "--mesh", "s9a9"], "s9a9"),
+        (
+            &["simulate", "--omega", "0.5", "--set", "torque_s2_nm=10"],
+            "969.697",
+        ),
+        (
+            &["simulate", "--omega", "0.5", "--set", "teeth_r=85"],
+            "teeth_r",
+        ),
+        (&["simulate", "--omega", "0.5", "--bogus"], "--bogus"),
+        (&["simulate"], "--omega"),
+        (
+            &["bifurcation", "--omega-from", "1", "--omega-to", "0.5"],
+            "omega-to",
+        ),
+        (
+            &[
+                "bifurcation",
+                "--omega-from",
+                "0.1",
+                "--omega-to",
+                "1",
+                "--points",
+                "99999999",
+            ],
+            "points",
+        ),
+        (
+            &[
+                "bifurcation",
+                "--omega-from",
+                "0.1",
+                "--omega-to",
+                "1",
+                "--shard",
+                "3/2",
+            ],
+            "shard",
+        ),
+        (
+            &[
+                "bifurcation",
+                "--omega-from",
+                "0.1",
+                "--omega-to",
+                "1",
+                "--direction",
+                "sideways",
+            ],
+            "direction",
+        ),
+        (
+            &["params", "--params", "/nonexistent/p.json"],
+            "/nonexistent/p.json",
+        ),
+        (&["frobnicate"], "frobnicate"),
+    ];
+    for (args, needle) in cases {
+        let out = gearshock(args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert_eq!(
+            err.trim_end().lines().count(),
+            1,
+            "{args:?}: one line, got {err}"
+        );
+        assert!(err.contains(needle), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+        assert!(out.stdout.is_empty(), "{args:?}: no partial output");
+    }
+}
+
+#[test]
+fn bench_quick_reports_medians() {
+    let v = json(&["bench", "--quick", "--repeats", "1"]);
+    assert!(v["rhs"]["evaluations_per_s"].as_f64().expect("rate") > 0.0);
+    assert!(v["simulate"]["median_ms"].as_f64().expect("ms") > 0.0);
+    assert!(v["bifurcation"]["points_per_s"].as_f64().expect("pts") > 0.0);
+}

@@ -1,0 +1,93 @@
+//! The single gear pair (Kahraman & Singh, 1990): its linear limit against
+//! the closed-form one-degree-of-freedom receptance and its impact regimes.
+
+use nalgebra::Complex;
+use solver::keys;
+use solver::params::ModelParams;
+use solver::steady::{steady_state, Impact, Model, SteadyOptions};
+
+fn pair(assignments: &[&str]) -> Model {
+    let mut p = ModelParams::default();
+    keys::set_assignment(&mut p, "model=gear-pair").expect("model");
+    for a in assignments {
+        keys::set_assignment(&mut p, a).expect(a);
+    }
+    Model::new(&p).expect("model")
+}
+
+#[test]
+fn linear_limit_is_the_single_degree_of_freedom_receptance() {
+    let m = pair(&["backlash_um=0", "stiffness_variation=0", "te_um=20"]);
+    let mesh = &m.system.meshes[0];
+    let (k, c, me) = (
+        mesh.stiffness_mean_n_m,
+        mesh.damping_n_s_m,
+        mesh.equivalent_mass_kg,
+    );
+    for omega in [0.3, 0.8, 1.0, 1.2, 2.5] {
+        let w = omega * m.system.omega_ref_rad_s;
+        // m x'' + c (x' - e') + k (x - e) = F, e = E sin(wt): |x_hat| = |k + i w c| E / |k - w^2 m + i w c|.
+        let amp =
+            Complex::new(k, w * c).norm() * 20e-6 / Complex::new(k - w * w * me, w * c).norm();
+        let mut opts = SteadyOptions::new(omega);
+        opts.transient_periods = 600;
+        opts.early_settle = false;
+        opts.record_periods = 10;
+        opts.rtol = 1e-10;
+        opts.atol_m = 1e-15;
+        let ss = steady_state(&m, &opts, None).expect("run");
+        let r = &ss.meshes[0];
+        let half_pp = 0.5 * (r.delta_max_m - r.delta_min_m);
+        assert!(
+            (half_pp - amp).abs() < 1e-6 * amp,
+            "Omega {omega}: {half_pp} vs {amp}"
+        );
+        assert_eq!(ss.period, Some(1));
+        // omega_ref of the pair is its own natural frequency: resonance at Omega = 1.
+        assert!((m.system.omega_ref_rad_s - (k / me).sqrt()).abs() < 1e-9 * (k / me).sqrt());
+    }
+}
+
+#[test]
+fn impacts_go_from_none_to_single_to_double_sided_as_te_grows() {
+    // Near resonance (Omega = 0.9), as in Kahraman & Singh's Fig. 7 sequence.
+    let expected = [
+        (0.5, Impact::None),
+        (3.0, Impact::SingleSided),
+        (10.0, Impact::SingleSided),
+        (40.0, Impact::DoubleSided),
+    ];
+    for (te, impact) in expected {
+        let m = pair(&[&format!("te_um={te}")]);
+        let ss = steady_state(&m, &SteadyOptions::new(0.9), None).expect("run");
+        let r = &ss.meshes[0];
+        assert_eq!(
+            r.impact,
+            impact,
+            "TE {te} um: x in [{}, {}] um",
+            r.rel_min_m * 1e6,
+            r.rel_max_m * 1e6
+        );
+        // The classification agrees with the relative displacement's range.
+        let b = m.system.meshes[0].backlash_m;
+        match impact {
+            Impact::None => assert!(r.rel_min_m > b),
+            Impact::SingleSided => assert!(r.rel_min_m <= b && r.rel_min_m >= -b),
+            Impact::DoubleSided => assert!(r.rel_min_m < -b),
+            Impact::NoContact => unreachable!(),
+        }
+    }
+}
+
+#[test]
+fn teeth_that_separate_carry_no_stiffness_force() {
+    // Single-sided impacts: while apart, the force is the damper's alone, so
+    // its minimum is far below the static load and may be negative.
+    let m = pair(&["te_um=10"]);
+    let ss = steady_state(&m, &SteadyOptions::new(0.9), None).expect("run");
+    let r = &ss.meshes[0];
+    assert_eq!(r.impact, Impact::SingleSided);
+    assert!(r.contact_fraction[1] > 0.0 && r.contact_fraction[2] == 0.0);
+    assert!(r.force_min_n < 0.2 * r.static_force_n);
+    assert!(r.dynamic_factor.expect("loaded") > 1.5);
+}
