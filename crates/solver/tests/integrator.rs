@@ -1,6 +1,9 @@
 //! The integrator on cases with known solutions: its convergence order, its
 //! tolerance proportionality and the timing of located contact switches.
 
+// Tests may panic: that is how they fail.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
 use solver::dynamics::MeshOde;
 use solver::keys;
 use solver::ode::{Dopri5, Ode, Tolerances};

@@ -1,6 +1,9 @@
 //! The flat key table: every key round-trips, JSON round-trips, and hostile
 //! input never panics.
 
+// Tests may panic: that is how they fail.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
 use proptest::prelude::*;
 use solver::keys::{self, KeyType, Value, KEYS};
 use solver::params::{ModelKind, ModelParams};

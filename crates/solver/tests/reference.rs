@@ -4,6 +4,9 @@
 //! samples of `delta_s1a1` over 40 periods from the static equilibrium are
 //! stored in `fixtures/reference.json`.
 
+// Tests may panic: that is how they fail.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
 use solver::keys::{self, Value as KeyValue};
 use solver::params::ModelParams;
 use solver::steady::{steady_state, Model, SteadyOptions};

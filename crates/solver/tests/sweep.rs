@@ -1,6 +1,9 @@
 //! Bifurcation sweeps: bounded work per call, continuation, and shards that
 //! reproduce an unsharded run bit for bit.
 
+// Tests may panic: that is how they fail.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
 use solver::params::ModelParams;
 use solver::steady::Model;
 use solver::sweep::{canonical_order, BifurcationSweep, Directions, SweepPoint, SweepSpec};
