@@ -1,0 +1,829 @@
+//! The page's controller: settings, jobs and worker replies, as a plain
+//! state machine that the web layer drives and the native tests exercise.
+//!
+//! Every user action returns the messages to post to the workers; the
+//! controller queues messages for a worker until it has said "ready".
+//! Jobs are restarted by what a change affects: a model parameter restarts
+//! everything, the frequency range the two sweeps, the selected Omega or
+//! plotted mesh only the selected-Omega job. The web layer redraws the views
+//! whose `dirty` flag is set, once per animation frame.
+
+use crate::link;
+use crate::presets;
+use crate::protocol::{
+    encode, FromWorker, JobId, JobKind, JobSpec, OmegaResult, RunOptions, ToWorker,
+};
+use crate::settings::{mesh_names, view_key, MeshSel, Settings};
+use crate::views::{natural_in_range, BifStore, BifView, FrStore, FrView, ViewContext};
+use solver::keys;
+use solver::steady::Model;
+
+/// Number of Web Workers the page runs.
+pub const WORKERS: usize = 2;
+/// Samples per mesh period of the selected-Omega history.
+pub const SAMPLES_PER_PERIOD: u32 = 64;
+/// Highest mesh order of the spectrum.
+pub const MAX_ORDER: f64 = 8.0;
+/// Jobs shorter than this show no progress indicator (ms).
+pub const PROGRESS_AFTER_MS: f64 = 200.0;
+
+/// Something the web layer must do.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Effect {
+    /// Post a message to a worker.
+    Post {
+        /// Worker index.
+        worker: usize,
+        /// JSON text.
+        text: String,
+    },
+    /// Offer a file for download.
+    Download {
+        /// File name.
+        name: String,
+        /// MIME type.
+        mime: String,
+        /// Contents.
+        text: String,
+    },
+}
+
+/// Progress and timing of the current job of one kind.
+#[derive(Debug, Clone, PartialEq, Default, serde::Serialize)]
+pub struct JobStatus {
+    /// Current job id (0: none yet).
+    pub id: JobId,
+    /// When it was started (ms, the page's clock).
+    pub started_ms: f64,
+    /// When its first data arrived.
+    pub first_data_ms: Option<f64>,
+    /// When it finished.
+    pub finished_ms: Option<f64>,
+    /// Units done.
+    pub done: usize,
+    /// Units in all.
+    pub total: usize,
+    /// Why it failed, if it did.
+    pub error: Option<String>,
+}
+
+impl JobStatus {
+    /// Whether it is still running.
+    pub fn running(&self) -> bool {
+        self.id != 0 && self.finished_ms.is_none() && self.error.is_none()
+    }
+
+    /// Progress to show at time `now_ms` (`None` for quick or finished jobs).
+    pub fn progress(&self, now_ms: f64) -> Option<(usize, usize)> {
+        (self.running() && now_ms - self.started_ms > PROGRESS_AFTER_MS)
+            .then_some((self.done, self.total))
+    }
+
+    fn start(id: JobId, now_ms: f64, total: usize) -> Self {
+        JobStatus {
+            id,
+            started_ms: now_ms,
+            total,
+            ..JobStatus::default()
+        }
+    }
+}
+
+/// Which views need drawing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Dirty {
+    /// Frequency response.
+    pub fr: bool,
+    /// Bifurcation diagram.
+    pub bif: bool,
+    /// Views 3–6 and the summary.
+    pub omega: bool,
+    /// Control values (after a link, preset or reset).
+    pub controls: bool,
+    /// The URL.
+    pub url: bool,
+    /// The messages area.
+    pub messages: bool,
+}
+
+#[derive(Debug, Clone, Default)]
+struct WorkerSlot {
+    ready: bool,
+    queue: Vec<String>,
+}
+
+/// A bifurcation export being assembled from the shards.
+#[derive(Debug, Clone, PartialEq)]
+struct PendingExport {
+    id: JobId,
+    mesh: Option<usize>,
+}
+
+/// The page's state.
+pub struct Controller {
+    /// What a link restores.
+    pub settings: Settings,
+    /// The model built from the parameters, or why it cannot be.
+    pub model: Result<Model, String>,
+    /// Messages for the user (link problems, rejected input, job failures).
+    pub issues: Vec<String>,
+    /// The note of the preset last loaded.
+    pub preset_note: Option<String>,
+    /// Frequency-response points of the current job.
+    pub fr: FrStore,
+    /// The last complete frequency response, shown faded while a new one computes.
+    pub fr_previous: Option<FrStore>,
+    /// Bifurcation points of the current job.
+    pub bif: BifStore,
+    /// The latest selected-Omega result (possibly from an older job while a new one runs).
+    pub omega: Option<OmegaResult>,
+    /// Job statuses.
+    pub fr_status: JobStatus,
+    /// Bifurcation job status.
+    pub bif_status: JobStatus,
+    /// Selected-Omega job status.
+    pub omega_status: JobStatus,
+    /// Views to redraw.
+    pub dirty: Dirty,
+    workers: [WorkerSlot; WORKERS],
+    next_id: JobId,
+    export: Option<PendingExport>,
+}
+
+/// What a change restarts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Restart {
+    fr: bool,
+    bif: bool,
+    omega: bool,
+}
+
+const ALL: Restart = Restart {
+    fr: true,
+    bif: true,
+    omega: true,
+};
+
+impl Controller {
+    /// Starts from a link's query string (all jobs queued until the workers are ready).
+    pub fn new(query: &str, now_ms: f64) -> (Self, Vec<Effect>) {
+        let decoded = link::decode(query);
+        let mut c = Controller {
+            model: Err("not built yet".into()),
+            settings: decoded.settings,
+            issues: decoded.issues,
+            preset_note: None,
+            fr: FrStore::default(),
+            fr_previous: None,
+            bif: BifStore::default(),
+            omega: None,
+            fr_status: JobStatus::default(),
+            bif_status: JobStatus::default(),
+            omega_status: JobStatus::default(),
+            dirty: Dirty::default(),
+            workers: Default::default(),
+            next_id: 0,
+            export: None,
+        };
+        c.rebuild_model();
+        let fx = c.restart(ALL, now_ms);
+        c.dirty = Dirty {
+            fr: true,
+            bif: true,
+            omega: true,
+            controls: true,
+            url: true,
+            messages: true,
+        };
+        (c, fx)
+    }
+
+    fn rebuild_model(&mut self) {
+        self.model = Model::new(&self.settings.params).map_err(|e| e.to_string());
+    }
+
+    /// The current link query (without `?`).
+    pub fn query(&self) -> String {
+        link::encode(&self.settings)
+    }
+
+    /// The mesh names of the current model.
+    pub fn mesh_names(&self) -> Vec<String> {
+        mesh_names(&self.settings.params)
+    }
+
+    fn post(&mut self, worker: usize, msg: &ToWorker) -> Vec<Effect> {
+        let text = encode(msg);
+        match self.workers.get_mut(worker) {
+            Some(slot) if slot.ready => vec![Effect::Post { worker, text }],
+            Some(slot) => {
+                slot.queue.push(text);
+                Vec::new()
+            }
+            None => Vec::new(),
+        }
+    }
+
+    fn run_options(&self, record: u32) -> RunOptions {
+        RunOptions {
+            transient_periods: self.settings.view.transient_periods,
+            record_periods: record,
+        }
+    }
+
+    fn restart(&mut self, what: Restart, now_ms: f64) -> Vec<Effect> {
+        let mut fx = Vec::new();
+        let model = match &self.model {
+            Ok(m) => m.clone(),
+            Err(e) => {
+                // No jobs on an invalid model: say why on every view.
+                let e = e.clone();
+                for (flag, st) in [
+                    (what.fr, &mut self.fr_status),
+                    (what.bif, &mut self.bif_status),
+                    (what.omega, &mut self.omega_status),
+                ] {
+                    if flag {
+                        st.error = Some(e.clone());
+                    }
+                }
+                for kind in JobKind::ALL {
+                    for w in 0..WORKERS {
+                        fx.extend(self.post(w, &ToWorker::Cancel { kind }));
+                    }
+                }
+                self.dirty.fr = true;
+                self.dirty.bif = true;
+                self.dirty.omega = true;
+                return fx;
+            }
+        };
+        let params = keys::to_json(&self.settings.params);
+        let v = self.settings.view.clone();
+        if what.omega {
+            self.next_id += 1;
+            let id = self.next_id;
+            self.omega_status = JobStatus::start(id, now_ms, 1);
+            let job = JobSpec::Omega {
+                omega: v.omega,
+                mesh: self.settings.mesh_index(&model),
+                run: self.run_options(v.record_periods),
+                samples_per_period: SAMPLES_PER_PERIOD,
+                max_order: MAX_ORDER,
+            };
+            fx.extend(self.post(
+                0,
+                &ToWorker::Run {
+                    id,
+                    params: params.clone(),
+                    job,
+                },
+            ));
+            self.dirty.omega = true;
+        }
+        if what.fr {
+            self.next_id += 1;
+            let id = self.next_id;
+            if self.fr.done() == self.fr.points.len() && !self.fr.points.is_empty() {
+                self.fr_previous = Some(std::mem::take(&mut self.fr));
+            }
+            self.fr = FrStore::new(id, v.fr_points, v.transient_periods, v.fr_record_periods);
+            self.fr_status = JobStatus::start(id, now_ms, v.fr_points as usize);
+            let chains = (WORKERS as u32).min(v.fr_points);
+            for w in 0..chains {
+                let job = JobSpec::Fr {
+                    omega_from: v.omega_from,
+                    omega_to: v.omega_to,
+                    points: v.fr_points,
+                    chains,
+                    shard: w,
+                    run: self.run_options(v.fr_record_periods),
+                };
+                fx.extend(self.post(
+                    w as usize,
+                    &ToWorker::Run {
+                        id,
+                        params: params.clone(),
+                        job,
+                    },
+                ));
+            }
+            self.dirty.fr = true;
+        }
+        if what.bif {
+            self.next_id += 1;
+            let id = self.next_id;
+            let per_dir = if v.bif_dir == solver::sweep::Directions::Both {
+                2
+            } else {
+                1
+            };
+            let total = v.bif_points as usize * per_dir;
+            self.bif = BifStore::new(id, total);
+            self.bif_status = JobStatus::start(id, now_ms, total);
+            self.export = None;
+            let chains = (WORKERS as u32).min(v.bif_points);
+            for w in 0..chains {
+                let job = JobSpec::Bif {
+                    omega_from: v.omega_from,
+                    omega_to: v.omega_to,
+                    points: v.bif_points,
+                    directions: v.bif_dir.name().to_string(),
+                    chains,
+                    shard: w,
+                    run: self.run_options(v.record_periods),
+                };
+                fx.extend(self.post(
+                    w as usize,
+                    &ToWorker::Run {
+                        id,
+                        params: params.clone(),
+                        job,
+                    },
+                ));
+            }
+            self.dirty.bif = true;
+        }
+        self.dirty.url = true;
+        fx
+    }
+
+    /// Handles a message from worker `worker`.
+    pub fn worker_message(&mut self, worker: usize, text: &str, now_ms: f64) -> Vec<Effect> {
+        let msg: FromWorker = match serde_json::from_str(text) {
+            Ok(m) => m,
+            Err(e) => {
+                self.issue(format!("unreadable worker message: {e}"));
+                return Vec::new();
+            }
+        };
+        match msg {
+            FromWorker::Ready => {
+                let Some(slot) = self.workers.get_mut(worker) else {
+                    return Vec::new();
+                };
+                slot.ready = true;
+                std::mem::take(&mut slot.queue)
+                    .into_iter()
+                    .map(|text| Effect::Post { worker, text })
+                    .collect()
+            }
+            FromWorker::FrPoints { id, points } if id == self.fr.id => {
+                self.fr.add(points);
+                self.fr_status.done = self.fr.done();
+                self.fr_status.first_data_ms.get_or_insert(now_ms);
+                if self.fr_status.done >= self.fr_status.total {
+                    self.fr_status.finished_ms = Some(now_ms);
+                    self.fr_previous = None;
+                }
+                self.dirty.fr = true;
+                Vec::new()
+            }
+            FromWorker::BifPoints { id, points } if id == self.bif.id => {
+                self.bif.samples.extend(points);
+                self.bif_status.done = self.bif.samples.len();
+                self.bif_status.first_data_ms.get_or_insert(now_ms);
+                if self.bif_status.done >= self.bif_status.total {
+                    self.bif_status.finished_ms = Some(now_ms);
+                }
+                self.dirty.bif = true;
+                Vec::new()
+            }
+            FromWorker::Omega { id, result } if id == self.omega_status.id => {
+                self.omega = Some(*result);
+                self.omega_status.done = 1;
+                self.omega_status.first_data_ms = Some(now_ms);
+                self.omega_status.finished_ms = Some(now_ms);
+                self.dirty.omega = true;
+                Vec::new()
+            }
+            FromWorker::Failed { id, message } => {
+                for st in [
+                    &mut self.fr_status,
+                    &mut self.bif_status,
+                    &mut self.omega_status,
+                ] {
+                    if st.id == id && id != 0 {
+                        st.error = Some(message.clone());
+                    }
+                }
+                self.dirty.fr = true;
+                self.dirty.bif = true;
+                self.dirty.omega = true;
+                if self.export.as_ref().is_some_and(|e| e.id == id) {
+                    self.export = None;
+                }
+                self.issue(message);
+                Vec::new()
+            }
+            FromWorker::Export { id, text } => self.export_reply(worker, id, text),
+            // Progress and Done of current jobs are implied by the data; stale replies are dropped.
+            _ => Vec::new(),
+        }
+    }
+
+    fn issue(&mut self, message: String) {
+        if !self.issues.contains(&message) {
+            self.issues.push(message);
+            if self.issues.len() > 12 {
+                self.issues.remove(0);
+            }
+        }
+        self.dirty.messages = true;
+    }
+
+    /// Clears the messages.
+    pub fn clear_issues(&mut self) {
+        self.issues.clear();
+        self.dirty.messages = true;
+    }
+
+    /// Sets a control's key from its text. Out-of-range or impossible values
+    /// are refused with a message naming the key and its allowed range.
+    pub fn set_key(&mut self, key: &str, text: &str, now_ms: f64) -> Result<Vec<Effect>, String> {
+        if view_key(key).is_some() {
+            let before = self.settings.view.clone();
+            let meshes = self.mesh_names();
+            self.settings.view.set(key, text, &meshes)?;
+            if let Some(msg) = self.settings.view.check_range() {
+                self.settings.view = before;
+                return Err(msg);
+            }
+            let what = match key {
+                "omega" | "mesh" => Restart {
+                    fr: false,
+                    bif: false,
+                    omega: true,
+                },
+                "omega_from" | "omega_to" | "transient_periods" => ALL,
+                "fr_points" | "fr_record_periods" => Restart {
+                    fr: true,
+                    bif: false,
+                    omega: false,
+                },
+                "bif_points" | "bif_dir" => Restart {
+                    fr: false,
+                    bif: true,
+                    omega: false,
+                },
+                "record_periods" => Restart {
+                    fr: false,
+                    bif: true,
+                    omega: true,
+                },
+                // HBM harmonics: nothing to recompute until the HBM engine lands.
+                _ => Restart {
+                    fr: false,
+                    bif: false,
+                    omega: false,
+                },
+            };
+            // The views share the mesh and range: redraw them even without new data.
+            self.dirty.fr = true;
+            self.dirty.bif = true;
+            self.dirty.url = true;
+            return Ok(self.restart(what, now_ms));
+        }
+        let value = keys::parse_value(key, text).map_err(|e| e.to_string())?;
+        let mut params = self.settings.params.clone();
+        keys::set(&mut params, key, value).map_err(|e| e.to_string())?;
+        if params == self.settings.params {
+            return Ok(Vec::new());
+        }
+        let model = Model::new(&params).map_err(|e| e.to_string())?;
+        let model_changed = params.kind() != self.settings.params.kind();
+        self.settings.params = params;
+        self.model = Ok(model);
+        if model_changed {
+            // A new model: its own default mesh, and fresh controls.
+            if let Some(first) = self.mesh_names().first() {
+                self.settings.view.mesh = MeshSel::Named(first.clone());
+            }
+            self.dirty.controls = true;
+        }
+        self.preset_note = None;
+        Ok(self.restart(ALL, now_ms))
+    }
+
+    /// Moves the selected Omega (clicks and drags on the Omega axes).
+    pub fn select_omega(&mut self, omega: f64, now_ms: f64) -> Vec<Effect> {
+        let omega = (omega * 1e4).round() / 1e4;
+        let text = crate::settings::fmt_exact(omega);
+        match self.set_key("omega", &text, now_ms) {
+            Ok(fx) => {
+                self.dirty.controls = true;
+                fx
+            }
+            Err(e) => {
+                self.issue(e);
+                Vec::new()
+            }
+        }
+    }
+
+    /// Replaces the whole state by a link's (or preset's) query.
+    pub fn load_query(&mut self, query: &str, now_ms: f64) -> Vec<Effect> {
+        let d = link::decode(query);
+        self.settings = d.settings;
+        self.issues = d.issues;
+        self.preset_note = None;
+        self.rebuild_model();
+        self.fr_previous = None;
+        self.dirty = Dirty {
+            fr: true,
+            bif: true,
+            omega: true,
+            controls: true,
+            url: true,
+            messages: true,
+        };
+        self.restart(ALL, now_ms)
+    }
+
+    /// Loads a preset by id.
+    pub fn apply_preset(&mut self, id: &str, now_ms: f64) -> Vec<Effect> {
+        let Some(p) = presets::preset(id) else {
+            self.issue(format!("no preset `{}`", keys::truncate(id, 30)));
+            return Vec::new();
+        };
+        let fx = self.load_query(p.query, now_ms);
+        self.preset_note = Some(presets::note(p));
+        fx
+    }
+
+    /// What every view shares.
+    pub fn view_context(&self) -> ViewContext {
+        let v = &self.settings.view;
+        ViewContext {
+            omega_from: v.omega_from,
+            omega_to: v.omega_to,
+            selected_omega: v.omega,
+            mesh_label: match &v.mesh {
+                MeshSel::Named(n) => n.clone(),
+                MeshSel::Worst => "worst (largest dynamic factor)".into(),
+            },
+            natural: self
+                .model
+                .as_ref()
+                .map(|m| natural_in_range(m, v.omega_from, v.omega_to))
+                .unwrap_or_default(),
+        }
+    }
+
+    fn mesh_and_backlash(&self) -> (Option<usize>, Vec<f64>) {
+        match &self.model {
+            Ok(m) => (
+                self.settings.mesh_index(m),
+                m.system
+                    .meshes
+                    .iter()
+                    .map(|x| (x.backlash_m * 1e12).round() / 1e6)
+                    .collect(),
+            ),
+            Err(_) => (Some(0), Vec::new()),
+        }
+    }
+
+    /// The frequency-response view (with the previous result faded while a new one computes).
+    pub fn fr_view(&self) -> FrView {
+        let (mesh, b) = self.mesh_and_backlash();
+        let ctx = self.view_context();
+        let mut v = self.fr.view(mesh, &b, &ctx);
+        if let Some(prev) = &self.fr_previous {
+            let mut p = prev.view(mesh, &b, &ctx).branches;
+            for br in &mut p {
+                br.label = "previous settings".into();
+                br.faded = true;
+            }
+            p.extend(v.branches);
+            v.branches = p;
+        }
+        v
+    }
+
+    /// The bifurcation view.
+    pub fn bif_view(&self) -> BifView {
+        let (mesh, b) = self.mesh_and_backlash();
+        self.bif.view(mesh, &b, &self.view_context())
+    }
+
+    /// Starts assembling the bifurcation JSON in the CLI's format: the last
+    /// shard exports first, then worker 0 merges the others into its own.
+    pub fn request_bif_export(&mut self) -> Result<Vec<Effect>, String> {
+        if self.bif_status.finished_ms.is_none() {
+            return Err("the bifurcation sweep has not finished yet".into());
+        }
+        let (mesh, _) = self.mesh_and_backlash();
+        let id = self.bif.id;
+        self.export = Some(PendingExport { id, mesh });
+        let chains = (WORKERS as u32).min(self.settings.view.bif_points) as usize;
+        let msg = ToWorker::ExportBif {
+            id,
+            mesh,
+            other: Vec::new(),
+        };
+        Ok(self.post(chains - 1, &msg))
+    }
+
+    fn export_reply(&mut self, worker: usize, id: JobId, text: String) -> Vec<Effect> {
+        let Some(pending) = self.export.clone().filter(|e| e.id == id) else {
+            return Vec::new();
+        };
+        if worker == 0 {
+            self.export = None;
+            return vec![Effect::Download {
+                name: format!("gearshock-bifurcation-{}.json", self.mesh_file_label()),
+                mime: "application/json".into(),
+                text,
+            }];
+        }
+        let msg = ToWorker::ExportBif {
+            id,
+            mesh: pending.mesh,
+            other: vec![text],
+        };
+        self.post(0, &msg)
+    }
+
+    /// The plotted mesh for file names.
+    pub fn mesh_file_label(&self) -> String {
+        self.settings.view.mesh.text().to_string()
+    }
+
+    /// The CLI commands that reproduce the current views natively.
+    pub fn cli_commands(&self) -> String {
+        let v = &self.settings.view;
+        let mesh = match (&self.model, &v.mesh) {
+            (_, MeshSel::Named(n)) => n.clone(),
+            (Ok(m), MeshSel::Worst) => self
+                .omega
+                .as_ref()
+                .map_or_else(|| m.system.meshes[0].name.clone(), |r| r.mesh_name.clone()),
+            (Err(_), MeshSel::Worst) => "s1a1".into(),
+        };
+        let chains = (WORKERS as u32).min(v.bif_points);
+        format!(
+            "gearshock simulate --params gearshock-params.json --omega {} --mesh {mesh} --transient-periods {} --record-periods {}\n\
+             gearshock bifurcation --params gearshock-params.json --omega-from {} --omega-to {} --points {} --direction {} --transient-periods {} --record-periods {} --mesh {} --chains {chains}",
+            v.omega,
+            v.transient_periods,
+            v.record_periods,
+            v.omega_from,
+            v.omega_to,
+            v.bif_points,
+            v.bif_dir.name(),
+            v.transient_periods,
+            v.record_periods,
+            match &v.mesh {
+                MeshSel::Named(n) => n.as_str(),
+                MeshSel::Worst => "all",
+            }
+        )
+    }
+
+    /// The parameters as the CLI's `--params` JSON.
+    pub fn params_json(&self) -> String {
+        serde_json::to_string_pretty(&keys::to_json(&self.settings.params))
+            .unwrap_or_else(|_| "{}".into())
+    }
+
+    /// Everything the tests and the benchmark read (JSON).
+    pub fn status_json(&self, now_ms: f64) -> String {
+        let v = serde_json::json!({
+            "query": self.query(),
+            "issues": self.issues,
+            "omega": self.settings.view.omega,
+            "fr": self.fr_status,
+            "bif": self.bif_status,
+            "omega_job": self.omega_status,
+            "fr_progress": self.fr_status.progress(now_ms),
+            "bif_progress": self.bif_status.progress(now_ms),
+            "omega_progress": self.omega_status.progress(now_ms),
+            "workers_ready": self.workers.iter().filter(|w| w.ready).count(),
+            "omega_result": self.omega.as_ref().map(|r| serde_json::json!({
+                "omega": r.omega, "mesh": r.mesh_name, "impact": r.regime.solver_name(), "period": r.period,
+            })),
+        });
+        v.to_string()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::protocol::FrSample;
+
+    fn posts(fx: &[Effect]) -> Vec<(usize, ToWorker)> {
+        fx.iter()
+            .filter_map(|e| match e {
+                Effect::Post { worker, text } => {
+                    Some((*worker, serde_json::from_str(text).unwrap()))
+                }
+                Effect::Download { .. } => None,
+            })
+            .collect()
+    }
+
+    fn ready(c: &mut Controller) -> Vec<(usize, ToWorker)> {
+        let mut fx = c.worker_message(0, r#"{"type":"ready"}"#, 1.0);
+        fx.extend(c.worker_message(1, r#"{"type":"ready"}"#, 1.0));
+        posts(&fx)
+    }
+
+    #[test]
+    fn jobs_queue_until_ready_then_split_over_two_workers() {
+        let (mut c, fx) = Controller::new("", 0.0);
+        assert!(fx.is_empty(), "nothing may be posted before ready");
+        let p = ready(&mut c);
+        // Omega on worker 0, FR and bifurcation shards on both.
+        assert_eq!(p.iter().filter(|(w, _)| *w == 0).count(), 3);
+        assert_eq!(p.iter().filter(|(w, _)| *w == 1).count(), 2);
+        let shards: Vec<u32> = p
+            .iter()
+            .filter_map(|(_, m)| match m {
+                ToWorker::Run {
+                    job: JobSpec::Bif { shard, chains, .. },
+                    ..
+                } => {
+                    assert_eq!(*chains, 2);
+                    Some(*shard)
+                }
+                _ => None,
+            })
+            .collect();
+        assert_eq!(shards, vec![0, 1]);
+    }
+
+    #[test]
+    fn slider_change_restarts_and_stale_replies_are_ignored() {
+        let (mut c, _) = Controller::new("", 0.0);
+        ready(&mut c);
+        let old = c.fr.id;
+        let fx = c.set_key("backlash_um", "150", 10.0).unwrap();
+        assert_eq!(posts(&fx).len(), 5);
+        assert_ne!(c.fr.id, old);
+        assert!(c.query().contains("backlash_um=150"));
+        let stale = encode(&FromWorker::FrPoints {
+            id: old,
+            points: vec![FrSample {
+                index: 0,
+                omega: 0.1,
+                meshes: vec![],
+                period: None,
+                error: None,
+            }],
+        });
+        c.worker_message(0, &stale, 11.0);
+        assert_eq!(c.fr.done(), 0);
+        // Out of range: refused with the key and range named; nothing restarts.
+        let e = c.set_key("backlash_um", "5000", 12.0).unwrap_err();
+        assert!(e.contains("backlash_um") && e.contains("1000"), "{e}");
+        // The selected Omega restarts only the Omega job.
+        let fx = c.select_omega(1.23456, 13.0);
+        let p = posts(&fx);
+        assert_eq!(p.len(), 1);
+        assert!(
+            matches!(&p[0].1, ToWorker::Run { job: JobSpec::Omega { omega, .. }, .. } if (*omega - 1.2346).abs() < 1e-12)
+        );
+        assert!(c.query().contains("omega=1.2346"));
+    }
+
+    #[test]
+    fn progress_shows_only_for_long_jobs() {
+        let (mut c, _) = Controller::new("fr_points=4", 0.0);
+        ready(&mut c);
+        assert_eq!(c.fr_status.progress(100.0), None);
+        assert_eq!(c.fr_status.progress(300.0), Some((0, 4)));
+        let id = c.fr.id;
+        let pts = (0..4)
+            .map(|i| FrSample {
+                index: i,
+                omega: 0.1 * f64::from(i + 1),
+                meshes: vec![],
+                period: None,
+                error: Some("x".into()),
+            })
+            .collect();
+        c.worker_message(1, &encode(&FromWorker::FrPoints { id, points: pts }), 400.0);
+        assert_eq!(c.fr_status.finished_ms, Some(400.0));
+        assert_eq!(c.fr_status.progress(500.0), None);
+    }
+
+    #[test]
+    fn presets_links_and_model_switch() {
+        let (mut c, _) = Controller::new("backlash_um=oops&te_um=25", 0.0);
+        assert!(c.issues.iter().any(|i| i.contains("backlash_um")));
+        assert!(c.query().contains("te_um=25"));
+        c.apply_preset("pair", 1.0);
+        assert!(c.preset_note.is_some());
+        assert_eq!(c.mesh_names(), vec!["pg".to_string()]);
+        c.set_key("model", "ravigneaux", 2.0).unwrap();
+        assert_eq!(c.settings.view.mesh, MeshSel::Named("s1a1".into()));
+        assert!(c.set_key("nonsense", "1", 3.0).is_err());
+        assert!(c.cli_commands().contains("--mesh s1a1"));
+        let _ = c.fr_view();
+        let _ = c.bif_view();
+        let s: serde_json::Value = serde_json::from_str(&c.status_json(5.0)).unwrap();
+        assert!(s["query"].as_str().unwrap().starts_with("model=ravigneaux"));
+    }
+}

@@ -1,0 +1,25 @@
+//! gearshock's browser explorer as a plain Rust library, testable natively.
+//!
+//! The page is split like egui/eframe: everything here is pure logic
+//! (settings and their link codec, presets, control specs, the worker
+//! protocol and job runner, the views' data and plots, the page controller),
+//! and one boundary module, `web`, compiled only for wasm32, touches
+//! `wasm_bindgen` and `web_sys`. Two binaries start it: `app` on the page's
+//! main thread and `worker` in each Web Worker.
+//!
+//! Architecture invariant: heavy work (steady states, sweeps) runs only in
+//! the workers ([`worker_core`]); the main thread builds the small model for
+//! validation and natural frequencies, draws, and never blocks for long.
+
+pub mod controller;
+pub mod controls;
+pub mod link;
+pub mod plots;
+pub mod presets;
+pub mod protocol;
+pub mod settings;
+pub mod views;
+pub mod worker_core;
+
+#[cfg(target_arch = "wasm32")]
+pub mod web;

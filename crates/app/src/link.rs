@@ -1,0 +1,441 @@
+//! Shareable links: the whole [`Settings`] as a URL query string, and back.
+//!
+//! Parameters use the solver's flat keys (`solver::keys`), exactly as the
+//! CLI's `--set KEY=VALUE` and JSON parameter files do; view options use
+//! [`crate::settings::VIEW_KEYS`]. A link writes `model`, the parameters that
+//! differ from that model's defaults (the backlash and TE shortcuts when they
+//! say the same thing more briefly) and every view option. Numbers are
+//! written in Rust's shortest round-trip form, so opening a link restores
+//! every value exactly.
+//!
+//! Decoding never fails and never panics: a malformed or out-of-range value
+//! yields a message naming the key and its allowed range, and that key keeps
+//! its default while the others apply. The text of a link is untrusted: the
+//! page shows these messages with `textContent` only.
+
+use crate::settings::{fmt_exact, mesh_names, view_key, Settings, ViewOptions};
+use solver::keys::{self, Value};
+use solver::params::{ModelKind, ModelParams};
+use solver::steady::Model;
+
+/// At most this many `key=value` pairs are read from one link.
+pub const MAX_PAIRS: usize = 400;
+/// Links longer than this (characters) are cut before decoding.
+pub const MAX_LINK_CHARS: usize = 64 * 1024;
+
+/// The result of decoding a link.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Decoded {
+    /// The settings: the link's valid values over the defaults.
+    pub settings: Settings,
+    /// One message per rejected key or pair, naming it and what is allowed.
+    pub issues: Vec<String>,
+}
+
+/// Percent-decodes a query component (`+` is a space). Invalid escapes stay
+/// as written; invalid UTF-8 becomes U+FFFD.
+pub fn percent_decode(s: &str) -> String {
+    let bytes = s.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        match bytes[i] {
+            b'+' => out.push(b' '),
+            b'%' if i + 2 < bytes.len() => {
+                let hex = |b: u8| (b as char).to_digit(16);
+                match (hex(bytes[i + 1]), hex(bytes[i + 2])) {
+                    (Some(h), Some(l)) => {
+                        out.push((h * 16 + l) as u8);
+                        i += 2;
+                    }
+                    _ => out.push(b'%'),
+                }
+            }
+            b => out.push(b),
+        }
+        i += 1;
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
+/// Percent-encodes a query component: everything but `A-Z a-z 0-9 - _ . ~`.
+pub fn percent_encode(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for b in s.bytes() {
+        if b.is_ascii_alphanumeric() || matches!(b, b'-' | b'_' | b'.' | b'~') {
+            out.push(b as char);
+        } else {
+            out.push_str(&format!("%{b:02X}"));
+        }
+    }
+    out
+}
+
+/// Splits a query string (with or without the leading `?`) into decoded pairs.
+fn pairs(query: &str, issues: &mut Vec<String>) -> Vec<(String, String)> {
+    let mut query = query.strip_prefix('?').unwrap_or(query);
+    if query.len() > MAX_LINK_CHARS {
+        let mut cut = MAX_LINK_CHARS;
+        while !query.is_char_boundary(cut) {
+            cut -= 1;
+        }
+        query = &query[..cut];
+        issues.push(format!(
+            "the link is longer than {MAX_LINK_CHARS} characters; the rest was ignored"
+        ));
+    }
+    let mut out = Vec::new();
+    for (n, part) in query.split('&').filter(|p| !p.is_empty()).enumerate() {
+        if n >= MAX_PAIRS {
+            issues.push(format!(
+                "the link has more than {MAX_PAIRS} settings; the rest were ignored"
+            ));
+            break;
+        }
+        match part.split_once('=') {
+            Some((k, v)) => out.push((percent_decode(k), percent_decode(v))),
+            None => issues.push(format!(
+                "`{}` is not of the form key=value; ignored",
+                keys::truncate(&percent_decode(part), 40)
+            )),
+        }
+    }
+    out
+}
+
+fn value_text(v: &Value) -> String {
+    match v {
+        Value::Num(x) => fmt_exact(*x),
+        Value::Text(t) => t.clone(),
+    }
+}
+
+/// Applies one parameter key; the error names the key and the allowed range.
+fn apply_param(params: &mut ModelParams, key: &str, text: &str) -> Result<(), String> {
+    let value = keys::parse_value(key, text).map_err(|e| e.to_string())?;
+    keys::set(params, key, value).map_err(|e| e.to_string())
+}
+
+/// Decodes a query string into settings plus messages. Never panics.
+pub fn decode(query: &str) -> Decoded {
+    let mut issues = Vec::new();
+    let all = pairs(query, &mut issues);
+    let mut settings = Settings::default();
+
+    // The model first: it resets the parameters to that model's defaults.
+    if let Some((_, v)) = all.iter().rev().find(|(k, _)| k == "model") {
+        if let Err(e) = apply_param(&mut settings.params, "model", v) {
+            issues.push(e);
+        }
+    }
+    let model = settings.params.kind();
+    let is_param = |k: &str| k != "model" && view_key(k).is_none();
+    // Then shortcuts, then the rest, so a per-kind key beats `backlash_um`.
+    let mut param_pairs: Vec<&(String, String)> = all.iter().filter(|(k, _)| is_param(k)).collect();
+    param_pairs.sort_by_key(|(k, _)| !keys::is_shortcut(k, model));
+    let mut applied: Vec<&(String, String)> = Vec::new();
+    for pair in param_pairs {
+        match apply_param(&mut settings.params, &pair.0, &pair.1) {
+            Ok(()) => applied.push(pair),
+            Err(e) => issues.push(e),
+        }
+    }
+    // Cross-key rules (tooth counts, torque balance): if the combination
+    // cannot be built, re-apply key by key and drop those that break it.
+    if Model::new(&settings.params).is_err() {
+        let mut params = ModelParams::defaults(model);
+        for (k, v) in applied {
+            let mut candidate = params.clone();
+            if apply_param(&mut candidate, k, v).is_ok() {
+                match Model::new(&candidate) {
+                    Ok(_) => params = candidate,
+                    Err(e) => issues.push(format!(
+                        "{} = {} was not applied: {e}",
+                        keys::truncate(k, 40),
+                        keys::truncate(v, 40)
+                    )),
+                }
+            }
+        }
+        settings.params = params;
+    }
+
+    let meshes = mesh_names(&settings.params);
+    if let Some(first) = meshes.first() {
+        // The default plotted mesh must exist in the chosen model.
+        if !meshes.contains(&settings.view.mesh.text().to_string()) {
+            settings.view.mesh = crate::settings::MeshSel::Named(first.clone());
+        }
+    }
+    for (k, v) in all.iter().filter(|(k, _)| view_key(k).is_some()) {
+        if let Err(e) = settings.view.set(k, v, &meshes) {
+            issues.push(e);
+        }
+    }
+    if let Some(e) = settings.view.check_range() {
+        issues.push(e);
+    }
+    Decoded { settings, issues }
+}
+
+/// The parameter assignments that differ from the model's defaults, in key
+/// table order, with the backlash and TE shortcuts used where they apply.
+pub fn param_diff(params: &ModelParams) -> Vec<(String, String)> {
+    let kind = params.kind();
+    let defaults = ModelParams::defaults(kind);
+    let mut out = Vec::new();
+    let mut skip: Vec<&str> = Vec::new();
+    if kind == ModelKind::Ravigneaux {
+        for (shortcut, covers) in [
+            (
+                "backlash_um",
+                &[
+                    "backlash_s1a_um",
+                    "backlash_s2b_um",
+                    "backlash_ab_um",
+                    "backlash_rb_um",
+                ][..],
+            ),
+            ("te_um", &["te_sin_s1a_um"][..]),
+        ] {
+            let now = keys::get(params, shortcut);
+            let was = keys::get(&defaults, shortcut);
+            if let Some(Value::Num(x)) = now {
+                if x.is_finite() {
+                    skip.extend_from_slice(covers);
+                    if now != was {
+                        out.push((shortcut.to_string(), fmt_exact(x)));
+                    }
+                }
+            }
+        }
+    }
+    for spec in keys::primary_keys(kind) {
+        if spec.name == "model" || skip.contains(&spec.name) {
+            continue;
+        }
+        let now = keys::get(params, spec.name);
+        if now != keys::get(&defaults, spec.name) {
+            if let Some(v) = now {
+                out.push((spec.name.to_string(), value_text(&v)));
+            }
+        }
+    }
+    out
+}
+
+/// Encodes settings as a query string (without the `?`).
+pub fn encode(settings: &Settings) -> String {
+    let mut parts = vec![format!("model={}", settings.params.kind().name())];
+    for (k, v) in param_diff(&settings.params) {
+        parts.push(format!("{}={}", percent_encode(&k), percent_encode(&v)));
+    }
+    for key in crate::settings::VIEW_KEYS {
+        if let Some(v) = settings.view.get(key.name) {
+            parts.push(format!("{}={}", key.name, percent_encode(&v)));
+        }
+    }
+    parts.join("&")
+}
+
+/// The view options' defaults, for callers that reset them.
+pub fn default_view() -> ViewOptions {
+    ViewOptions::default()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::settings::MeshSel;
+    use proptest::prelude::*;
+
+    #[test]
+    fn defaults_round_trip() {
+        let s = Settings::default();
+        let q = encode(&s);
+        assert!(
+            q.starts_with("model=ravigneaux&omega=0.84&mesh=s1a1"),
+            "{q}"
+        );
+        let d = decode(&q);
+        assert!(d.issues.is_empty(), "{:?}", d.issues);
+        assert_eq!(d.settings, s);
+    }
+
+    #[test]
+    fn changed_values_restore_exactly() {
+        let mut s = Settings::default();
+        keys::set_assignment(&mut s.params, "backlash_um=123.456789012345").unwrap();
+        keys::set_assignment(&mut s.params, "te_um=0.1").unwrap();
+        keys::set_assignment(&mut s.params, "te_cos_rb_um=-7.25").unwrap();
+        keys::set_assignment(&mut s.params, "phasing=sequential").unwrap();
+        keys::set_assignment(&mut s.params, "planets=5").unwrap();
+        keys::set_assignment(&mut s.params, "damping_ratio=0.0333333333333333").unwrap();
+        s.view.omega = 1.0 / 3.0;
+        s.view.mesh = MeshSel::Worst;
+        s.view.bif_dir = solver::sweep::Directions::Down;
+        let q = encode(&s);
+        assert!(q.contains("backlash_um=123.456789012345"), "{q}");
+        assert!(
+            q.contains("te_um=0.1") && !q.contains("te_sin_s1a_um"),
+            "{q}"
+        );
+        let d = decode(&q);
+        assert!(d.issues.is_empty(), "{:?}", d.issues);
+        assert_eq!(d.settings, s);
+        // Per-kind backlash that differ are written per kind.
+        keys::set_assignment(&mut s.params, "backlash_ab_um=40").unwrap();
+        let q = encode(&s);
+        assert!(
+            q.contains("backlash_ab_um=40") && !q.contains("backlash_um="),
+            "{q}"
+        );
+        assert_eq!(decode(&q).settings, s);
+    }
+
+    #[test]
+    fn gear_pair_round_trips() {
+        let mut s = Settings::default();
+        keys::set_assignment(&mut s.params, "model=gear-pair").unwrap();
+        keys::set_assignment(&mut s.params, "backlash_um=55").unwrap();
+        s.view.mesh = MeshSel::Named("pg".into());
+        let d = decode(&encode(&s));
+        assert!(d.issues.is_empty(), "{:?}", d.issues);
+        assert_eq!(d.settings, s);
+        // A compound-only key on the gear pair is named, the rest applies.
+        let d = decode("model=gear-pair&planets=4&backlash_um=20");
+        assert_eq!(d.issues.len(), 1, "{:?}", d.issues);
+        assert!(d.issues[0].contains("planets"));
+        assert_eq!(
+            keys::get(&d.settings.params, "backlash_um"),
+            Some(Value::Num(20.0))
+        );
+        assert_eq!(d.settings.view.mesh, MeshSel::Named("pg".into()));
+    }
+
+    #[test]
+    fn bad_values_are_named_with_their_range_and_others_kept() {
+        let d = decode("?backlash_um=5000&te_um=30&omega=abc&bif_points=100000000&damping_ratio=NaN&foo=1&oops");
+        let all = d.issues.join("\n");
+        assert!(
+            all.contains("backlash_um") && all.contains("0 ..= 1000"),
+            "{all}"
+        );
+        assert!(
+            all.contains("omega") && all.contains("0.01 ..= 20"),
+            "{all}"
+        );
+        assert!(all.contains("bif_points") && all.contains("1000"), "{all}");
+        assert!(all.contains("damping_ratio"), "{all}");
+        assert!(all.contains("foo"), "{all}");
+        assert!(all.contains("oops"), "{all}");
+        assert_eq!(
+            keys::get(&d.settings.params, "te_um"),
+            Some(Value::Num(30.0))
+        );
+        assert_eq!(
+            keys::get(&d.settings.params, "backlash_um"),
+            Some(Value::Num(100.0))
+        );
+        assert_eq!(
+            d.settings.view.bif_points,
+            ViewOptions::default().bif_points
+        );
+    }
+
+    #[test]
+    fn combinations_that_cannot_be_built_drop_the_breaking_key() {
+        // An explicit s2 torque that does not balance s1: the model refuses it.
+        let d = decode("torque_s2_nm=5&backlash_um=150");
+        assert!(
+            d.issues.iter().any(|i| i.contains("torque_s2_nm")),
+            "{:?}",
+            d.issues
+        );
+        assert_eq!(
+            keys::get(&d.settings.params, "backlash_um"),
+            Some(Value::Num(150.0))
+        );
+        assert!(Model::new(&d.settings.params).is_ok());
+    }
+
+    #[test]
+    fn percent_codec_round_trips_and_tolerates_garbage() {
+        for s in ["a b&c=d", "µm Ω 漢字", "%%%", "100%"] {
+            assert_eq!(percent_decode(&percent_encode(s)), s);
+        }
+        assert_eq!(percent_decode("%zz%4"), "%zz%4");
+        assert_eq!(percent_decode("%C3"), "\u{FFFD}");
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+
+        #[test]
+        fn decode_never_panics_on_random_text(s in "\\PC{0,300}") {
+            let d = decode(&s);
+            prop_assert!(d.settings.view.bif_points <= crate::settings::MAX_BIF_POINTS);
+        }
+
+        #[test]
+        fn decode_never_panics_on_hostile_pairs(
+            pairs in proptest::collection::vec(
+                (
+                    prop_oneof![
+                        Just("backlash_um".to_string()),
+                        Just("te_um".to_string()),
+                        Just("model".to_string()),
+                        Just("planets".to_string()),
+                        Just("omega".to_string()),
+                        Just("mesh".to_string()),
+                        Just("bif_points".to_string()),
+                        Just("torque_s2_nm".to_string()),
+                        Just("teeth_r".to_string()),
+                        "[a-z_%0-9]{0,12}",
+                        "\\PC{0,8}",
+                    ],
+                    prop_oneof![
+                        Just("NaN".to_string()),
+                        Just("inf".to_string()),
+                        Just("-inf".to_string()),
+                        Just("1e308".to_string()),
+                        Just("1e309".to_string()),
+                        Just("-0".to_string()),
+                        Just("auto".to_string()),
+                        Just("gear-pair".to_string()),
+                        Just("%FF%FE".to_string()),
+                        Just("worst".to_string()),
+                        any::<f64>().prop_map(|x| x.to_string()),
+                        any::<i64>().prop_map(|x| x.to_string()),
+                        "\\PC{0,20}",
+                    ],
+                ),
+                0..40,
+            )
+        ) {
+            let q: Vec<String> = pairs.iter().map(|(k, v)| format!("{k}={v}")).collect();
+            let d = decode(&q.join("&"));
+            // Whatever the link said, the result is a buildable model with capped jobs.
+            prop_assert!(Model::new(&d.settings.params).is_ok());
+            let v = &d.settings.view;
+            prop_assert!(v.omega_from < v.omega_to);
+            prop_assert!(v.fr_points <= crate::settings::MAX_FR_POINTS);
+            prop_assert!(v.transient_periods <= crate::settings::MAX_TRANSIENT);
+            prop_assert!(v.record_periods <= crate::settings::MAX_RECORD);
+            // And it round-trips.
+            let again = decode(&encode(&d.settings));
+            prop_assert!(again.issues.is_empty(), "{:?}", again.issues);
+            prop_assert_eq!(again.settings, d.settings);
+        }
+
+        #[test]
+        fn decode_survives_100_kb(c in "\\PC", v in "[0-9eE.+-]{1,30}") {
+            let big = format!("backlash_um={v}&{}", c.repeat(100_000 / c.len().max(1)));
+            let d = decode(&big);
+            prop_assert!(d.issues.len() <= 4);
+            let huge = "x=1&".repeat(30_000);
+            let d = decode(&huge);
+            prop_assert!(d.issues.len() <= MAX_PAIRS + 2);
+        }
+    }
+}

@@ -1,0 +1,923 @@
+//! The six plots, drawn with plotters on any backend: a canvas in the
+//! browser (`plotters-canvas`), an SVG string in the native tests.
+//!
+//! Every plot labels its axes with units, draws the ±b contact lines where
+//! contact matters, the natural frequencies and the selected-Omega cursor on
+//! the Omega axes, and a legend. Axis ranges never shrink below a sensible
+//! span, so numerical noise is never magnified into structure.
+//!
+//! Dense point clouds (the bifurcation diagram) are returned as pixel
+//! positions grouped by colour, for the caller to draw in a batch: plotters
+//! would set a fill style per pixel, which is slow on a canvas.
+
+use crate::protocol::{OmegaResult, Regime};
+use crate::views::{BifView, FrMarkerKind, FrView, NaturalFreq};
+use glam::DVec2;
+use plotters::coord::{CoordTranslate, Shift};
+use plotters::prelude::*;
+
+/// Plot size in pixels (the canvases' width and height attributes).
+pub const WIDTH: u32 = 760;
+/// Plot height in pixels.
+pub const HEIGHT: u32 = 400;
+
+type Res<T> = Result<T, String>;
+type Chart<'a, DB> = ChartContext<
+    'a,
+    DB,
+    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+>;
+
+fn err<E: std::fmt::Display>(e: E) -> String {
+    format!("drawing failed: {e}")
+}
+
+/// Colour of an impact regime.
+pub fn regime_color(r: Regime) -> RGBColor {
+    match r {
+        Regime::NoImpact => RGBColor(31, 119, 180),
+        Regime::SingleSided => RGBColor(230, 120, 0),
+        Regime::DoubleSided => RGBColor(200, 30, 40),
+        Regime::NoContact => RGBColor(40, 150, 60),
+    }
+}
+
+const GRID: RGBColor = RGBColor(225, 229, 235);
+const CONTACT: RGBColor = RGBColor(90, 90, 90);
+const NATURAL: RGBColor = RGBColor(150, 110, 200);
+const CURSOR: RGBColor = RGBColor(220, 20, 60);
+const MAX_COLOR: RGBColor = RGBColor(25, 70, 150);
+const MIN_COLOR: RGBColor = RGBColor(20, 140, 130);
+const ORBIT: RGBColor = RGBColor(70, 110, 170);
+const FADED: RGBColor = RGBColor(200, 200, 205);
+
+/// Where the data lie on the canvas, to map clicks back to Omega.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlotFrame {
+    /// Top-left corner of the plotting area (pixels).
+    pub top_left: DVec2,
+    /// Bottom-right corner (pixels).
+    pub bottom_right: DVec2,
+    /// Data x range.
+    pub x_range: (f64, f64),
+    /// Data y range.
+    pub y_range: (f64, f64),
+}
+
+impl PlotFrame {
+    /// The data x (Omega) under pixel column `px`, clamped to the range;
+    /// `None` if the click is well outside the plotting area.
+    pub fn x_at(&self, px: f64) -> Option<f64> {
+        let (l, r) = (self.top_left.x, self.bottom_right.x);
+        if !(px.is_finite() && px >= l - 8.0 && px <= r + 8.0 && r > l) {
+            return None;
+        }
+        let t = ((px - l) / (r - l)).clamp(0.0, 1.0);
+        Some(self.x_range.0 + t * (self.x_range.1 - self.x_range.0))
+    }
+
+    /// The pixel of a data point.
+    pub fn to_px(&self, x: f64, y: f64) -> DVec2 {
+        let tx = (x - self.x_range.0) / (self.x_range.1 - self.x_range.0);
+        let ty = (y - self.y_range.0) / (self.y_range.1 - self.y_range.0);
+        DVec2::new(
+            self.top_left.x + tx * (self.bottom_right.x - self.top_left.x),
+            self.bottom_right.y - ty * (self.bottom_right.y - self.top_left.y),
+        )
+    }
+}
+
+/// Points of one colour and shape, in pixels.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PointGroup {
+    /// Colour.
+    pub color: RGBColor,
+    /// Filled dot (upward sweep) or open square (downward sweep).
+    pub filled: bool,
+    /// Pixel positions.
+    pub px: Vec<(f32, f32)>,
+}
+
+/// Extends a range upwards to leave room for the legend above the data.
+pub fn with_headroom(r: (f64, f64), fraction: f64) -> (f64, f64) {
+    (r.0, r.1 + fraction * (r.1 - r.0))
+}
+
+/// A range that contains `values` and `extra`, padded, at least `min_span` wide.
+pub fn padded_range(values: impl Iterator<Item = f64>, extra: &[f64], min_span: f64) -> (f64, f64) {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for v in values
+        .chain(extra.iter().copied())
+        .filter(|v| v.is_finite())
+    {
+        lo = lo.min(v);
+        hi = hi.max(v);
+    }
+    if !lo.is_finite() {
+        return (-1.0, 1.0);
+    }
+    let span = (hi - lo).max(min_span.max(1e-12));
+    let mid = 0.5 * (hi + lo);
+    let half = 0.5 * span * 1.08;
+    (mid - half, mid + half)
+}
+
+fn frame_of<DB: DrawingBackend, X, Y>(
+    chart: &ChartContext<DB, Cartesian2d<X, Y>>,
+    x_range: (f64, f64),
+    y_range: (f64, f64),
+) -> PlotFrame
+where
+    X: plotters::coord::ranged1d::Ranged<ValueType = f64>,
+    Y: plotters::coord::ranged1d::Ranged<ValueType = f64>,
+{
+    let (xr, yr) = chart.plotting_area().get_pixel_range();
+    PlotFrame {
+        top_left: DVec2::new(f64::from(xr.start), f64::from(yr.start)),
+        bottom_right: DVec2::new(f64::from(xr.end), f64::from(yr.end)),
+        x_range,
+        y_range,
+    }
+}
+
+fn caption_font() -> TextStyle<'static> {
+    ("sans-serif", 15).into_font().color(&BLACK)
+}
+
+fn small() -> TextStyle<'static> {
+    ("sans-serif", 11).into_font().color(&RGBColor(60, 60, 60))
+}
+
+/// A plot with nothing to show yet: a frame and a message (never blank).
+pub fn draw_message<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    title: &str,
+    message: &str,
+) -> Res<()> {
+    root.fill(&WHITE).map_err(err)?;
+    let (w, h) = root.dim_in_pixel();
+    root.draw(&Rectangle::new(
+        [(1, 1), (w as i32 - 2, h as i32 - 2)],
+        ShapeStyle::from(&GRID).stroke_width(1),
+    ))
+    .map_err(err)?;
+    root.draw(&Text::new(title.to_string(), (12, 10), caption_font()))
+        .map_err(err)?;
+    for (k, line) in wrap(message, 80).iter().enumerate() {
+        root.draw(&Text::new(
+            line.clone(),
+            (24, h as i32 / 2 - 10 + 18 * k as i32),
+            ("sans-serif", 14).into_font().color(&RGBColor(90, 90, 90)),
+        ))
+        .map_err(err)?;
+    }
+    root.present().map_err(err)
+}
+
+/// Breaks text into lines of at most `width` characters (at spaces).
+pub fn wrap(text: &str, width: usize) -> Vec<String> {
+    let mut lines = Vec::new();
+    let mut cur = String::new();
+    for word in text.split_whitespace() {
+        if !cur.is_empty() && cur.chars().count() + 1 + word.chars().count() > width {
+            lines.push(std::mem::take(&mut cur));
+        }
+        if !cur.is_empty() {
+            cur.push(' ');
+        }
+        cur.push_str(word);
+    }
+    if !cur.is_empty() {
+        lines.push(cur);
+    }
+    lines.truncate(6);
+    lines
+}
+
+/// Draws the Omega-axis decorations: natural frequencies and the cursor.
+fn omega_decorations<'a, DB: DrawingBackend + 'a>(
+    chart: &mut Chart<'a, DB>,
+    natural: &[NaturalFreq],
+    selected: f64,
+    y: (f64, f64),
+) -> Res<()> {
+    let nat_style = ShapeStyle::from(&NATURAL.mix(0.55)).stroke_width(1);
+    let mut first = true;
+    for n in natural {
+        let s = chart
+            .draw_series(std::iter::once(PathElement::new(
+                vec![(n.omega, y.0), (n.omega, y.1)],
+                nat_style,
+            )))
+            .map_err(err)?;
+        if first {
+            s.label("natural frequencies (linear, mean k)")
+                .legend(move |(x, yy)| PathElement::new(vec![(x, yy), (x + 16, yy)], nat_style));
+            first = false;
+        }
+    }
+    chart
+        .draw_series(std::iter::once(PathElement::new(
+            vec![(selected, y.0), (selected, y.1)],
+            ShapeStyle::from(&CURSOR).stroke_width(2),
+        )))
+        .map_err(err)?
+        .label(format!("selected Omega = {selected:.3}"))
+        .legend(|(x, yy)| {
+            PathElement::new(
+                vec![(x, yy), (x + 16, yy)],
+                ShapeStyle::from(&CURSOR).stroke_width(2),
+            )
+        });
+    Ok(())
+}
+
+/// Draws the ±b contact lines across the x range.
+fn contact_lines<'a, DB: DrawingBackend + 'a>(
+    chart: &mut Chart<'a, DB>,
+    backlash_um: &[f64],
+    x: (f64, f64),
+    horizontal: bool,
+) -> Res<()> {
+    let style = ShapeStyle::from(&CONTACT).stroke_width(1);
+    let mut first = true;
+    for &b in backlash_um {
+        for v in [b, -b] {
+            let pts = if horizontal {
+                vec![(x.0, v), (x.1, v)]
+            } else {
+                vec![(v, x.0), (v, x.1)]
+            };
+            let s = chart
+                .draw_series(DashedLineSeries::new(pts, 6, 4, style))
+                .map_err(err)?;
+            if first {
+                s.label(format!("±b contact lines (b = {b} µm)"))
+                    .legend(move |(xx, yy)| {
+                        PathElement::new(
+                            vec![(xx, yy), (xx + 6, yy), (xx + 10, yy), (xx + 16, yy)],
+                            style,
+                        )
+                    });
+                first = false;
+            }
+        }
+    }
+    Ok(())
+}
+
+fn legend<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    pos: SeriesLabelPosition,
+) -> Res<()> {
+    chart
+        .configure_series_labels()
+        .position(pos)
+        .background_style(WHITE.mix(0.8))
+        .border_style(GRID)
+        .margin(6)
+        .legend_area_size(22)
+        .label_font(("sans-serif", 11))
+        .draw()
+        .map_err(err)
+}
+
+/// View 1: the frequency response.
+pub fn draw_fr<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    v: &FrView,
+    status: &str,
+) -> Res<PlotFrame> {
+    root.fill(&WHITE).map_err(err)?;
+    let x = (v.omega_from, v.omega_to);
+    let all = v
+        .branches
+        .iter()
+        .flat_map(|b| b.points.iter().flat_map(|p| [p.max_um, p.min_um]));
+    let mut extra: Vec<f64> = v.backlash_um.iter().flat_map(|b| [*b, -*b]).collect();
+    extra.push(0.0);
+    let y = with_headroom(padded_range(all, &extra, 20.0), 0.3);
+    let method = match v.source {
+        crate::views::FrSource::TimeIntegration { .. } => {
+            "fallback: time-integration steady states"
+        }
+        crate::views::FrSource::Hbm { .. } => "harmonic balance",
+    };
+    let mut chart = ChartBuilder::on(root)
+        .caption(
+            format!(
+                "Frequency response, mesh {} ({method}){status}",
+                v.mesh_label
+            ),
+            caption_font(),
+        )
+        .margin(8)
+        .x_label_area_size(38)
+        .y_label_area_size(58)
+        .build_cartesian_2d(x.0..x.1, y.0..y.1)
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .light_line_style(GRID.mix(0.5))
+        .bold_line_style(GRID)
+        .x_desc("Ω = ω / ω_ref (dimensionless mesh frequency)")
+        .y_desc("x = δ − e (µm)")
+        .label_style(small())
+        .draw()
+        .map_err(err)?;
+    contact_lines(&mut chart, &v.backlash_um, x, true)?;
+    omega_decorations(&mut chart, &v.natural, v.selected_omega, y)?;
+    for br in &v.branches {
+        for (which, color, label) in [(true, MAX_COLOR, "max x"), (false, MIN_COLOR, "min x")] {
+            let color = if br.faded { FADED } else { color };
+            let val = |p: &crate::views::FrCurvePoint| if which { p.max_um } else { p.min_um };
+            // Split into runs of equal stability: stable (or unknown) solid, unstable dashed.
+            let mut runs: Vec<(bool, Vec<(f64, f64)>)> = Vec::new();
+            for p in &br.points {
+                let unstable = p.stable == Some(false);
+                match runs.last_mut() {
+                    Some((u, pts)) if *u == unstable => pts.push((p.omega, val(p))),
+                    _ => {
+                        let mut pts = Vec::new();
+                        if let Some((_, prev)) = runs.last() {
+                            if let Some(&last) = prev.last() {
+                                pts.push(last);
+                            }
+                        }
+                        pts.push((p.omega, val(p)));
+                        runs.push((unstable, pts));
+                    }
+                }
+            }
+            let style = ShapeStyle::from(&color).stroke_width(2);
+            // The faded branch is labelled once, not per extreme.
+            let mut labelled = br.faded && !which;
+            for (unstable, pts) in runs {
+                let s = if unstable {
+                    chart
+                        .draw_series(DashedLineSeries::new(pts, 5, 4, style))
+                        .map_err(err)?
+                } else {
+                    chart
+                        .draw_series(LineSeries::new(pts, style))
+                        .map_err(err)?
+                };
+                if !labelled {
+                    let text = if br.faded {
+                        "previous settings (updating)".to_string()
+                    } else {
+                        format!("{label} ({})", br.label)
+                    };
+                    s.label(text).legend(move |(xx, yy)| {
+                        PathElement::new(vec![(xx, yy), (xx + 16, yy)], style)
+                    });
+                    labelled = true;
+                }
+            }
+            if br.faded {
+                continue;
+            }
+            chart
+                .draw_series(br.points.iter().map(|p| {
+                    let c = p.regime.map_or(color, regime_color);
+                    Circle::new((p.omega, val(p)), 3, c.filled())
+                }))
+                .map_err(err)?;
+        }
+    }
+    for m in &v.markers {
+        let c = RGBColor(0, 0, 0);
+        match m.kind {
+            FrMarkerKind::Fold => chart
+                .draw_series(std::iter::once(TriangleMarker::new(
+                    (m.omega, m.value_um),
+                    6,
+                    c.filled(),
+                )))
+                .map_err(err)?,
+            FrMarkerKind::PeriodDoubling => chart
+                .draw_series(std::iter::once(Cross::new(
+                    (m.omega, m.value_um),
+                    6,
+                    c.stroke_width(2),
+                )))
+                .map_err(err)?,
+            FrMarkerKind::NeimarkSacker => chart
+                .draw_series(std::iter::once(Circle::new(
+                    (m.omega, m.value_um),
+                    6,
+                    c.stroke_width(2),
+                )))
+                .map_err(err)?,
+        };
+    }
+    regime_legend(
+        &mut chart,
+        v.branches
+            .iter()
+            .flat_map(|b| b.points.iter().filter_map(|p| p.regime)),
+    )?;
+    legend(&mut chart, SeriesLabelPosition::UpperRight)?;
+    let frame = frame_of(&chart, x, y);
+    if !v.failed.is_empty() {
+        root.draw(&Text::new(
+            format!("{} point(s) failed: not plotted", v.failed.len()),
+            (70, HEIGHT as i32 - 52),
+            small(),
+        ))
+        .map_err(err)?;
+    }
+    root.present().map_err(err)?;
+    Ok(frame)
+}
+
+/// Legend entries for the regimes present.
+fn regime_legend<'a, DB: DrawingBackend + 'a>(
+    chart: &mut Chart<'a, DB>,
+    present: impl Iterator<Item = Regime>,
+) -> Res<()> {
+    let mut seen = [false; 4];
+    for r in present {
+        if let Some(i) = Regime::ALL.iter().position(|&x| x == r) {
+            seen[i] = true;
+        }
+    }
+    for (i, r) in Regime::ALL.iter().enumerate() {
+        if seen[i] {
+            let c = regime_color(*r);
+            chart
+                .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
+                .map_err(err)?
+                .label(r.label())
+                .legend(move |(x, y)| Circle::new((x + 8, y), 4, c.filled()));
+        }
+    }
+    Ok(())
+}
+
+/// View 2: the bifurcation diagram. Returns the frame and the dots (in
+/// pixels, grouped by colour and sweep direction) for the caller to draw.
+pub fn draw_bif<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    v: &BifView,
+    natural: &[NaturalFreq],
+    status: &str,
+) -> Res<(PlotFrame, Vec<PointGroup>)> {
+    root.fill(&WHITE).map_err(err)?;
+    let x = (v.omega_from, v.omega_to);
+    let mut extra: Vec<f64> = v.backlash_um.iter().flat_map(|b| [*b, -*b]).collect();
+    extra.push(0.0);
+    let y = with_headroom(
+        padded_range(v.points.iter().map(|p| p.x_um), &extra, 20.0),
+        0.3,
+    );
+    let mut chart = ChartBuilder::on(root)
+        .caption(
+            format!("Bifurcation diagram, mesh {}{status}", v.mesh_label),
+            caption_font(),
+        )
+        .margin(8)
+        .x_label_area_size(38)
+        .y_label_area_size(58)
+        .build_cartesian_2d(x.0..x.1, y.0..y.1)
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .light_line_style(GRID.mix(0.5))
+        .bold_line_style(GRID)
+        .x_desc("Ω = ω / ω_ref (dimensionless mesh frequency)")
+        .y_desc("Poincaré samples of x = δ − e (µm)")
+        .label_style(small())
+        .draw()
+        .map_err(err)?;
+    contact_lines(&mut chart, &v.backlash_um, x, true)?;
+    omega_decorations(&mut chart, natural, v.selected_omega, y)?;
+    let frame = frame_of(&chart, x, y);
+    let mut groups: Vec<PointGroup> = Vec::new();
+    for p in &v.points {
+        let color = regime_color(p.regime);
+        let q = frame.to_px(p.omega, p.x_um);
+        let px = (q.x as f32, q.y as f32);
+        match groups
+            .iter_mut()
+            .find(|g| g.color == color && g.filled == p.up)
+        {
+            Some(g) => g.px.push(px),
+            None => groups.push(PointGroup {
+                color,
+                filled: p.up,
+                px: vec![px],
+            }),
+        }
+    }
+    regime_legend(&mut chart, v.points.iter().map(|p| p.regime))?;
+    let dark = RGBColor(60, 60, 60);
+    if v.points.iter().any(|p| p.up) {
+        chart
+            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
+            .map_err(err)?
+            .label("upward sweep")
+            .legend(move |(x, y)| Circle::new((x + 8, y), 2, dark.filled()));
+    }
+    if v.points.iter().any(|p| !p.up) {
+        chart
+            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
+            .map_err(err)?
+            .label("downward sweep")
+            .legend(move |(x, y)| {
+                Rectangle::new([(x + 6, y - 2), (x + 10, y + 2)], dark.stroke_width(1))
+            });
+    }
+    legend(&mut chart, SeriesLabelPosition::UpperRight)?;
+    if !v.failed.is_empty() {
+        root.draw(&Text::new(
+            format!("{} point(s) failed: not plotted", v.failed.len()),
+            (70, HEIGHT as i32 - 52),
+            small(),
+        ))
+        .map_err(err)?;
+    }
+    root.present().map_err(err)?;
+    Ok((frame, groups))
+}
+
+/// Draws point groups with plotters (for backends without a fast path).
+pub fn draw_groups<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    groups: &[PointGroup],
+) -> Res<()> {
+    for g in groups {
+        for &(x, y) in &g.px {
+            let (x, y) = (x.round() as i32, y.round() as i32);
+            if g.filled {
+                root.draw(&Rectangle::new(
+                    [(x - 1, y - 1), (x + 1, y + 1)],
+                    g.color.filled(),
+                ))
+                .map_err(err)?;
+            } else {
+                root.draw(&Rectangle::new(
+                    [(x - 2, y - 2), (x + 2, y + 2)],
+                    g.color.stroke_width(1),
+                ))
+                .map_err(err)?;
+            }
+        }
+    }
+    root.present().map_err(err)
+}
+
+fn phase_ranges(r: &OmegaResult) -> ((f64, f64), (f64, f64)) {
+    let b = r.backlash_um;
+    let x = padded_range(r.x_um.iter().copied(), &[b, -b], 20.0);
+    let vmax = r.xdot_m_s.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let y = padded_range(r.xdot_m_s.iter().copied(), &[], (vmax * 0.2).max(1e-3));
+    (x, with_headroom(y, 0.25))
+}
+
+fn omega_caption(what: &str, r: &OmegaResult, status: &str) -> String {
+    format!("{what}, mesh {}, Ω = {:.4}{status}", r.mesh_name, r.omega)
+}
+
+/// View 3: the phase portrait with its Poincaré points.
+pub fn draw_phase<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    r: &OmegaResult,
+    status: &str,
+) -> Res<()> {
+    root.fill(&WHITE).map_err(err)?;
+    let (x, y) = phase_ranges(r);
+    let mut chart = ChartBuilder::on(root)
+        .caption(omega_caption("Phase portrait", r, status), caption_font())
+        .margin(8)
+        .x_label_area_size(38)
+        .y_label_area_size(58)
+        .build_cartesian_2d(x.0..x.1, y.0..y.1)
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .light_line_style(GRID.mix(0.5))
+        .bold_line_style(GRID)
+        .x_desc("x = δ − e (µm)")
+        .y_desc("ẋ (m/s)")
+        .label_style(small())
+        .draw()
+        .map_err(err)?;
+    contact_lines(&mut chart, &[r.backlash_um], y, false)?;
+    let orbit = ShapeStyle::from(&ORBIT.mix(0.7)).stroke_width(1);
+    chart
+        .draw_series(LineSeries::new(
+            r.x_um.iter().copied().zip(r.xdot_m_s.iter().copied()),
+            orbit,
+        ))
+        .map_err(err)?
+        .label(format!("orbit over {} recorded periods", r.record_periods))
+        .legend(move |(xx, yy)| PathElement::new(vec![(xx, yy), (xx + 16, yy)], orbit));
+    chart
+        .draw_series(
+            r.poincare_x_um
+                .iter()
+                .zip(&r.poincare_xdot_m_s)
+                .map(|(&a, &b)| Circle::new((a, b), 4, CURSOR.filled())),
+        )
+        .map_err(err)?
+        .label("Poincaré points (once per mesh period)")
+        .legend(|(xx, yy)| Circle::new((xx + 8, yy), 4, CURSOR.filled()));
+    legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
+    root.present().map_err(err)
+}
+
+/// View 4: the Poincaré section, on the orbit's axes so that one point reads as one point.
+pub fn draw_poincare<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    r: &OmegaResult,
+    status: &str,
+) -> Res<()> {
+    root.fill(&WHITE).map_err(err)?;
+    let (x, y) = phase_ranges(r);
+    let mut chart = ChartBuilder::on(root)
+        .caption(omega_caption("Poincaré section", r, status), caption_font())
+        .margin(8)
+        .x_label_area_size(38)
+        .y_label_area_size(58)
+        .build_cartesian_2d(x.0..x.1, y.0..y.1)
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .light_line_style(GRID.mix(0.5))
+        .bold_line_style(GRID)
+        .x_desc("x = δ − e (µm), sampled once per mesh period")
+        .y_desc("ẋ (m/s)")
+        .label_style(small())
+        .draw()
+        .map_err(err)?;
+    contact_lines(&mut chart, &[r.backlash_um], y, false)?;
+    let period = match r.period {
+        Some(p) => format!("period {p}"),
+        None => "not periodic".into(),
+    };
+    chart
+        .draw_series(
+            r.poincare_x_um
+                .iter()
+                .zip(&r.poincare_xdot_m_s)
+                .map(|(&a, &b)| Circle::new((a, b), 3, CURSOR.filled())),
+        )
+        .map_err(err)?
+        .label(format!(
+            "{} Poincaré points ({period})",
+            r.poincare_x_um.len()
+        ))
+        .legend(|(xx, yy)| Circle::new((xx + 8, yy), 3, CURSOR.filled()));
+    legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
+    root.present().map_err(err)
+}
+
+/// Periods shown in the time history.
+pub const HISTORY_PERIODS: u32 = 12;
+
+/// View 5a: the time history of the last recorded periods.
+pub fn draw_time<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    r: &OmegaResult,
+    status: &str,
+) -> Res<()> {
+    root.fill(&WHITE).map_err(err)?;
+    let spp = r.samples_per_period.max(1) as usize;
+    let shown = HISTORY_PERIODS.min(r.record_periods) as usize;
+    let start = r.x_um.len().saturating_sub(shown * spp);
+    let t0 = start as f64 / spp as f64;
+    let t1 = (r.x_um.len().max(1) - 1) as f64 / spp as f64;
+    let x = (t0, t1.max(t0 + 1e-9));
+    let b = r.backlash_um;
+    let y = with_headroom(
+        padded_range(r.x_um[start..].iter().copied(), &[b, -b], 20.0),
+        0.2,
+    );
+    let mut chart = ChartBuilder::on(root)
+        .caption(omega_caption("Time history", r, status), caption_font())
+        .margin(8)
+        .x_label_area_size(38)
+        .y_label_area_size(58)
+        .build_cartesian_2d(x.0..x.1, y.0..y.1)
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .light_line_style(GRID.mix(0.5))
+        .bold_line_style(GRID)
+        .x_desc(format!(
+            "time (mesh periods since the recording began; last {shown} of {})",
+            r.record_periods
+        ))
+        .y_desc("x = δ − e (µm)")
+        .label_style(small())
+        .draw()
+        .map_err(err)?;
+    contact_lines(&mut chart, &[b], x, true)?;
+    let style = ShapeStyle::from(&ORBIT).stroke_width(2);
+    chart
+        .draw_series(LineSeries::new(
+            r.x_um[start..]
+                .iter()
+                .enumerate()
+                .map(|(k, &v)| ((start + k) as f64 / spp as f64, v)),
+            style,
+        ))
+        .map_err(err)?
+        .label("x(t)")
+        .legend(move |(xx, yy)| PathElement::new(vec![(xx, yy), (xx + 16, yy)], style));
+    legend(&mut chart, SeriesLabelPosition::UpperRight)?;
+    root.present().map_err(err)
+}
+
+/// View 5b: the amplitude spectrum of x (without the mean), log scale.
+pub fn draw_spectrum<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    r: &OmegaResult,
+    status: &str,
+) -> Res<()> {
+    root.fill(&WHITE).map_err(err)?;
+    let lines: Vec<(f64, f64)> = r
+        .spectrum_order
+        .iter()
+        .zip(&r.spectrum_um)
+        .filter(|(o, _)| **o > 0.0)
+        .map(|(&o, &a)| (o, a))
+        .collect();
+    let mean = r
+        .spectrum_order
+        .first()
+        .filter(|o| **o == 0.0)
+        .and_then(|_| r.spectrum_um.first().copied());
+    let amax = lines.iter().fold(1e-3_f64, |m, l| m.max(l.1));
+    let floor = amax * 1e-5;
+    let omax = lines.last().map_or(1.0, |l| l.0).max(1.0);
+    let mut chart = ChartBuilder::on(root)
+        .caption(omega_caption("Spectrum of x", r, status), caption_font())
+        .margin(8)
+        .x_label_area_size(38)
+        .y_label_area_size(58)
+        .build_cartesian_2d(0.0..omax * 1.02, (floor..amax * 20.0).log_scale())
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .light_line_style(GRID.mix(0.5))
+        .bold_line_style(GRID)
+        .x_desc("frequency (mesh orders: multiples of the mesh frequency)")
+        .y_desc("amplitude of x (µm, log)")
+        .label_style(small())
+        .draw()
+        .map_err(err)?;
+    let style = ShapeStyle::from(&MAX_COLOR).stroke_width(2);
+    chart
+        .draw_series(
+            lines
+                .iter()
+                .map(|&(o, a)| PathElement::new(vec![(o, floor), (o, a.max(floor))], style)),
+        )
+        .map_err(err)?
+        .label(match mean {
+            Some(m) => format!("amplitude (mean x = {m:.2} µm not shown)"),
+            None => "amplitude".into(),
+        })
+        .legend(move |(xx, yy)| PathElement::new(vec![(xx, yy), (xx + 16, yy)], style));
+    legend(&mut chart, SeriesLabelPosition::UpperRight)?;
+    root.present().map_err(err)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::views::{FrBranch, FrCurvePoint, FrSource};
+
+    fn svg<F: FnOnce(&DrawingArea<SVGBackend, Shift>) -> Res<()>>(f: F) -> String {
+        let mut s = String::new();
+        {
+            let root = SVGBackend::with_string(&mut s, (WIDTH, HEIGHT)).into_drawing_area();
+            f(&root).unwrap();
+        }
+        s
+    }
+
+    fn result() -> OmegaResult {
+        let n = 64 * 20;
+        let x: Vec<f64> = (0..n)
+            .map(|k| 110.0 + 30.0 * (k as f64 / 64.0 * std::f64::consts::TAU).sin())
+            .collect();
+        let v: Vec<f64> = (0..n)
+            .map(|k| 0.5 * (k as f64 / 64.0 * std::f64::consts::TAU).cos())
+            .collect();
+        OmegaResult {
+            omega: 0.84,
+            mesh: 0,
+            mesh_name: "s1a1".into(),
+            backlash_um: 100.0,
+            regime: Regime::SingleSided,
+            period: Some(1),
+            dynamic_factor: Some(1.4),
+            mesh_freq_hz: 4500.0,
+            transient_periods_run: 100,
+            settled: true,
+            samples_per_period: 64,
+            record_periods: 20,
+            x_um: x,
+            xdot_m_s: v,
+            poincare_x_um: vec![110.0; 20],
+            poincare_xdot_m_s: vec![0.5; 20],
+            spectrum_order: vec![0.0, 1.0, 2.0],
+            spectrum_um: vec![110.0, 30.0, 0.1],
+            all_meshes: vec![],
+            steps: 1,
+            cli_json: "{}".into(),
+        }
+    }
+
+    #[test]
+    fn frame_maps_pixels_to_omega_and_back() {
+        let f = PlotFrame {
+            top_left: DVec2::new(60.0, 30.0),
+            bottom_right: DVec2::new(760.0, 360.0),
+            x_range: (0.1, 2.0),
+            y_range: (-100.0, 100.0),
+        };
+        let p = f.to_px(1.05, 0.0);
+        assert!((f.x_at(p.x).unwrap() - 1.05).abs() < 1e-12);
+        assert_eq!(f.x_at(0.0), None);
+        assert_eq!(f.x_at(f64::NAN), None);
+        assert_eq!(f.x_at(55.0), Some(0.1));
+    }
+
+    #[test]
+    fn ranges_never_magnify_noise() {
+        let (lo, hi) = padded_range([5.0, 5.0 + 1e-9].into_iter(), &[], 20.0);
+        assert!(hi - lo >= 20.0);
+        assert_eq!(padded_range(std::iter::empty(), &[], 1.0), (-1.0, 1.0));
+    }
+
+    #[test]
+    fn every_plot_draws_labels_units_and_legends() {
+        let fr = FrView {
+            source: FrSource::TimeIntegration {
+                transient_periods: 300,
+                record_periods: 30,
+            },
+            mesh_label: "s1a1".into(),
+            backlash_um: vec![100.0],
+            branches: vec![FrBranch {
+                label: "time integration".into(),
+                points: (0..10)
+                    .map(|k| FrCurvePoint {
+                        omega: 0.1 + 0.2 * f64::from(k),
+                        max_um: 120.0 + f64::from(k),
+                        min_um: 90.0 - f64::from(k),
+                        stable: if k > 6 { Some(false) } else { None },
+                        regime: Some(Regime::NoImpact),
+                        period: Some(1),
+                    })
+                    .collect(),
+                faded: false,
+            }],
+            markers: vec![],
+            natural: vec![NaturalFreq {
+                omega: 0.5,
+                frequency_hz: 3000.0,
+                kind: "rotational".into(),
+                multiplicity: 1,
+            }],
+            omega_from: 0.1,
+            omega_to: 2.0,
+            selected_omega: 0.84,
+            failed: vec![],
+            done: 10,
+            total: 10,
+        };
+        let mut frame = None;
+        let s = svg(|root| {
+            frame = Some(draw_fr(root, &fr, "")?);
+            Ok(())
+        });
+        assert!(
+            s.contains("µm") && s.contains("Ω") && s.contains("±b"),
+            "{s}"
+        );
+        assert!(s.contains("fallback"));
+        let f = frame.unwrap();
+        assert!(f.bottom_right.x > f.top_left.x);
+        let r = result();
+        for s in [
+            svg(|root| draw_phase(root, &r, "")),
+            svg(|root| draw_poincare(root, &r, "")),
+            svg(|root| draw_time(root, &r, "")),
+            svg(|root| draw_spectrum(root, &r, "")),
+        ] {
+            assert!(s.contains("µm") && s.contains("s1a1"), "{s}");
+        }
+        let s = svg(|root| draw_message(root, "Bifurcation diagram", "waiting for the workers"));
+        assert!(s.contains("waiting"));
+    }
+
+    #[test]
+    fn wrap_breaks_at_spaces() {
+        assert_eq!(wrap("aa bb cc", 5), vec!["aa bb", "cc"]);
+    }
+}

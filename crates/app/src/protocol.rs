@@ -1,0 +1,428 @@
+//! The messages between the page and its Web Workers, carried as JSON text.
+//!
+//! Protocol. A worker posts [`FromWorker::Ready`] once its wasm has loaded;
+//! the page queues jobs until then (messages posted earlier would be lost).
+//! Every job carries an id. A worker holds at most one job of each
+//! [`JobKind`]: a newer job of a kind replaces (cancels) the older one, and the
+//! page ignores replies whose id is not the current one of that kind. Workers
+//! compute in bounded chunks (one steady state per chunk) and yield to their
+//! event loop between chunks, so a newer job or a cancel arrives within one
+//! chunk. Bifurcation sweeps and frequency-response grids are split over two
+//! workers as interleaved continuation chains (`chains = 2`, `shard = w`);
+//! the merged result equals an unsharded run with two chains.
+//!
+//! These are the serializable DTOs of the boundary; solver types stay inside
+//! the worker.
+
+use serde::{Deserialize, Serialize};
+use serde_json::{Map, Value};
+use solver::steady::Impact;
+
+/// Identifies one job; increases monotonically on the page.
+pub type JobId = u64;
+
+/// The three kinds of job, in the order a worker serves them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum JobKind {
+    /// One steady state at the selected Omega (views 3–6): served first.
+    Omega,
+    /// The frequency-response grid (view 1).
+    Fr,
+    /// The bifurcation sweep (view 2): served last.
+    Bif,
+}
+
+impl JobKind {
+    /// All kinds in priority order.
+    pub const ALL: [JobKind; 3] = [JobKind::Omega, JobKind::Fr, JobKind::Bif];
+}
+
+/// Transient and recorded mesh periods of each steady state.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct RunOptions {
+    /// Maximum transient periods (the transient ends early once settled).
+    pub transient_periods: u32,
+    /// Recorded periods.
+    pub record_periods: u32,
+}
+
+/// What a job computes.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum JobSpec {
+    /// One steady state with the time history of one mesh.
+    Omega {
+        /// Dimensionless mesh frequency.
+        omega: f64,
+        /// Mesh index, or `None` for the worst mesh (largest dynamic factor).
+        mesh: Option<usize>,
+        /// Periods.
+        run: RunOptions,
+        /// Uniform samples per mesh period of the history.
+        samples_per_period: u32,
+        /// Highest mesh order of the spectrum.
+        max_order: f64,
+    },
+    /// Steady-state extremes of every mesh over an Omega grid (upward
+    /// continuation along interleaved chains; this worker does `shard`).
+    Fr {
+        /// First grid Omega.
+        omega_from: f64,
+        /// Last grid Omega.
+        omega_to: f64,
+        /// Grid points.
+        points: u32,
+        /// Interleaved chains.
+        chains: u32,
+        /// The chain this worker computes.
+        shard: u32,
+        /// Periods.
+        run: RunOptions,
+    },
+    /// One shard of a bifurcation sweep (`solver::sweep`), all meshes recorded.
+    Bif {
+        /// First grid Omega.
+        omega_from: f64,
+        /// Last grid Omega.
+        omega_to: f64,
+        /// Grid points.
+        points: u32,
+        /// `up`, `down` or `both`.
+        directions: String,
+        /// Interleaved chains.
+        chains: u32,
+        /// The chain this worker computes.
+        shard: u32,
+        /// Periods.
+        run: RunOptions,
+    },
+}
+
+impl JobSpec {
+    /// The kind of this job.
+    pub fn kind(&self) -> JobKind {
+        match self {
+            JobSpec::Omega { .. } => JobKind::Omega,
+            JobSpec::Fr { .. } => JobKind::Fr,
+            JobSpec::Bif { .. } => JobKind::Bif,
+        }
+    }
+}
+
+/// A message from the page to a worker.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case")]
+pub enum ToWorker {
+    /// Start a job, replacing any job of the same kind.
+    Run {
+        /// Job id.
+        id: JobId,
+        /// The parameter set as the flat key object of `solver::keys::to_json`.
+        params: Map<String, Value>,
+        /// What to compute.
+        job: JobSpec,
+    },
+    /// Drop the current job of a kind.
+    Cancel {
+        /// Which kind.
+        kind: JobKind,
+    },
+    /// The finished bifurcation shard as the CLI's JSON (`gearshock
+    /// bifurcation`), restricted to one mesh (or all meshes if `None`). With
+    /// `other`, the other shard's JSON text is merged in (`report::merge_shards`).
+    ExportBif {
+        /// The sweep's job id.
+        id: JobId,
+        /// Mesh index, or all meshes.
+        mesh: Option<usize>,
+        /// The other shards' JSON texts to merge with this one.
+        other: Vec<String>,
+    },
+}
+
+/// Impact regime of a steady response, as the page shows it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Regime {
+    /// The drive flanks never separate.
+    NoImpact,
+    /// They separate, but the back flanks never touch.
+    SingleSided,
+    /// The back flanks touch.
+    DoubleSided,
+    /// The teeth never touch.
+    NoContact,
+}
+
+impl Regime {
+    /// All regimes, mildest first.
+    pub const ALL: [Regime; 4] = [
+        Regime::NoImpact,
+        Regime::SingleSided,
+        Regime::DoubleSided,
+        Regime::NoContact,
+    ];
+
+    /// Words for legends and the summary.
+    pub fn label(self) -> &'static str {
+        match self {
+            Regime::NoImpact => "no impact",
+            Regime::SingleSided => "single-sided impact",
+            Regime::DoubleSided => "double-sided impact",
+            Regime::NoContact => "no contact",
+        }
+    }
+
+    /// The solver's name (as in the CLI's JSON).
+    pub fn solver_name(self) -> &'static str {
+        Impact::from(self).name()
+    }
+}
+
+impl From<Impact> for Regime {
+    fn from(i: Impact) -> Self {
+        match i {
+            Impact::None => Regime::NoImpact,
+            Impact::SingleSided => Regime::SingleSided,
+            Impact::DoubleSided => Regime::DoubleSided,
+            Impact::NoContact => Regime::NoContact,
+        }
+    }
+}
+
+impl From<Regime> for Impact {
+    fn from(r: Regime) -> Self {
+        match r {
+            Regime::NoImpact => Impact::None,
+            Regime::SingleSided => Impact::SingleSided,
+            Regime::DoubleSided => Impact::DoubleSided,
+            Regime::NoContact => Impact::NoContact,
+        }
+    }
+}
+
+/// One mesh's steady-state extremes at one Omega.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MeshExtremes {
+    /// Smallest relative displacement x = delta - e (um).
+    pub rel_min_um: f64,
+    /// Largest relative displacement (um).
+    pub rel_max_um: f64,
+    /// Impact regime.
+    pub regime: Regime,
+    /// max F / F_static.
+    pub dynamic_factor: Option<f64>,
+}
+
+/// One computed point of the frequency-response grid.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FrSample {
+    /// Grid index.
+    pub index: u32,
+    /// Dimensionless frequency.
+    pub omega: f64,
+    /// Every mesh, in the model's order (empty if the point failed).
+    pub meshes: Vec<MeshExtremes>,
+    /// Period of the Poincaré orbit in mesh periods, if periodic.
+    pub period: Option<u32>,
+    /// Why the point failed.
+    pub error: Option<String>,
+}
+
+/// One mesh's Poincaré samples at a swept point.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct BifMesh {
+    /// Poincaré samples of x = delta - e (um), one per recorded period.
+    pub x_um: Vec<f64>,
+    /// Impact regime.
+    pub regime: Regime,
+}
+
+/// One computed point of a bifurcation sweep.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct BifSample {
+    /// Grid index.
+    pub index: u32,
+    /// Dimensionless frequency.
+    pub omega: f64,
+    /// Swept upwards (else downwards).
+    pub up: bool,
+    /// Every mesh, in the model's order (empty if the point failed).
+    pub meshes: Vec<BifMesh>,
+    /// The mesh with the largest dynamic factor.
+    pub worst_mesh: usize,
+    /// Period of the Poincaré orbit, if periodic.
+    pub period: Option<u32>,
+    /// Why the point failed.
+    pub error: Option<String>,
+}
+
+/// Summary of one mesh at the selected Omega.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MeshSummary {
+    /// Mesh name.
+    pub name: String,
+    /// Impact regime.
+    pub regime: Regime,
+    /// max F / F_static.
+    pub dynamic_factor: Option<f64>,
+}
+
+/// The steady state at the selected Omega, for views 3–6.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct OmegaResult {
+    /// Dimensionless frequency.
+    pub omega: f64,
+    /// The plotted mesh (resolved if "worst" was asked).
+    pub mesh: usize,
+    /// Its name.
+    pub mesh_name: String,
+    /// Its backlash half-width (um).
+    pub backlash_um: f64,
+    /// Impact regime of the plotted mesh.
+    pub regime: Regime,
+    /// Period in mesh periods, `None` if not periodic within the record.
+    pub period: Option<u32>,
+    /// Dynamic factor of the plotted mesh.
+    pub dynamic_factor: Option<f64>,
+    /// Mesh frequency (Hz).
+    pub mesh_freq_hz: f64,
+    /// Transient periods actually run.
+    pub transient_periods_run: u32,
+    /// Whether the early-settle test ended the transient.
+    pub settled: bool,
+    /// Samples per mesh period of the history.
+    pub samples_per_period: u32,
+    /// Recorded periods.
+    pub record_periods: u32,
+    /// x = delta - e (um) at uniform samples over the recorded periods.
+    pub x_um: Vec<f64>,
+    /// dx/dt (m/s) at the same samples.
+    pub xdot_m_s: Vec<f64>,
+    /// Poincaré samples of x (um).
+    pub poincare_x_um: Vec<f64>,
+    /// Poincaré samples of dx/dt (m/s).
+    pub poincare_xdot_m_s: Vec<f64>,
+    /// Spectrum lines (mesh orders).
+    pub spectrum_order: Vec<f64>,
+    /// Spectrum amplitudes of x (um).
+    pub spectrum_um: Vec<f64>,
+    /// Every mesh's regime and dynamic factor.
+    pub all_meshes: Vec<MeshSummary>,
+    /// Integrator steps taken.
+    pub steps: u64,
+    /// `gearshock simulate` JSON of this run (the CLI's format).
+    pub cli_json: String,
+}
+
+/// A message from a worker to the page.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case")]
+pub enum FromWorker {
+    /// The worker's wasm is loaded; jobs may be posted.
+    Ready,
+    /// New points of a frequency-response job.
+    FrPoints {
+        /// Job id.
+        id: JobId,
+        /// The points.
+        points: Vec<FrSample>,
+    },
+    /// New points of a bifurcation job.
+    BifPoints {
+        /// Job id.
+        id: JobId,
+        /// The points.
+        points: Vec<BifSample>,
+    },
+    /// The result of an Omega job.
+    Omega {
+        /// Job id.
+        id: JobId,
+        /// The steady state.
+        result: Box<OmegaResult>,
+    },
+    /// Work done so far on a job.
+    Progress {
+        /// Job id.
+        id: JobId,
+        /// Units done.
+        done: usize,
+        /// Units in all.
+        total: usize,
+    },
+    /// A job finished.
+    Done {
+        /// Job id.
+        id: JobId,
+    },
+    /// A job could not run (bad parameters or a solver failure).
+    Failed {
+        /// Job id (0 if the message itself was unreadable).
+        id: JobId,
+        /// What went wrong, for the user.
+        message: String,
+    },
+    /// Exported JSON text.
+    Export {
+        /// The job id it belongs to.
+        id: JobId,
+        /// The JSON text.
+        text: String,
+    },
+}
+
+/// Serializes a message; serialization of these plain types cannot fail,
+/// but a failure would still come back as text rather than a panic.
+pub fn encode<T: Serialize>(msg: &T) -> String {
+    serde_json::to_string(msg).unwrap_or_else(|e| {
+        format!("{{\"type\":\"failed\",\"id\":0,\"message\":\"cannot encode a message: {e}\"}}")
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn messages_round_trip_as_json() {
+        let msgs = vec![
+            FromWorker::Ready,
+            FromWorker::Progress {
+                id: 3,
+                done: 1,
+                total: 9,
+            },
+            FromWorker::FrPoints {
+                id: 4,
+                points: vec![FrSample {
+                    index: 2,
+                    omega: 0.5,
+                    meshes: vec![MeshExtremes {
+                        rel_min_um: -3.5,
+                        rel_max_um: 120.25,
+                        regime: Regime::DoubleSided,
+                        dynamic_factor: Some(1.5),
+                    }],
+                    period: Some(2),
+                    error: None,
+                }],
+            },
+        ];
+        for m in msgs {
+            let text = encode(&m);
+            let back: FromWorker = serde_json::from_str(&text).unwrap();
+            assert_eq!(back, m);
+        }
+        assert_eq!(encode(&FromWorker::Ready), r#"{"type":"ready"}"#);
+    }
+
+    #[test]
+    fn regimes_map_to_solver_impacts_and_back() {
+        for r in Regime::ALL {
+            assert_eq!(Regime::from(Impact::from(r)), r);
+            assert!(Impact::from_name(r.solver_name()).is_some());
+        }
+    }
+}

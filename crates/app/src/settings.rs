@@ -1,0 +1,414 @@
+//! Everything a link restores: the model parameters (the solver's flat keys,
+//! as on the CLI) and the page's own view options (frequency range, grid
+//! sizes, periods, harmonics, plotted mesh, selected Omega).
+//!
+//! View options have their own small key table, [`VIEW_KEYS`], with ranges
+//! that cap every job: no link can start an unbounded computation.
+
+use solver::params::ModelParams;
+use solver::steady::Model;
+use solver::sweep::Directions;
+
+/// The type and range of a view option.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ViewType {
+    /// A finite number in `min ..= max`.
+    Float {
+        /// Smallest allowed value.
+        min: f64,
+        /// Largest allowed value.
+        max: f64,
+    },
+    /// An integer in `min ..= max`.
+    Int {
+        /// Smallest allowed value.
+        min: u32,
+        /// Largest allowed value.
+        max: u32,
+    },
+    /// One of some words.
+    Choice(&'static [&'static str]),
+    /// A mesh name of the current model, or `worst`.
+    Mesh,
+}
+
+impl ViewType {
+    /// The allowed values in words.
+    pub fn allowed(&self) -> String {
+        match self {
+            ViewType::Float { min, max } => format!("{min} ..= {max}"),
+            ViewType::Int { min, max } => format!("integer {min} ..= {max}"),
+            ViewType::Choice(w) => format!("one of {}", w.join(", ")),
+            ViewType::Mesh => "a mesh name of the model (e.g. s1a1, s2b2, a3b3, rb1; pg for the gear pair) or worst".into(),
+        }
+    }
+}
+
+/// One view option key.
+#[derive(Debug, Clone, Copy)]
+pub struct ViewKey {
+    /// The key in links.
+    pub name: &'static str,
+    /// Unit, `-` if none.
+    pub unit: &'static str,
+    /// Type and range.
+    pub ty: ViewType,
+    /// One line for tooltips.
+    pub description: &'static str,
+}
+
+/// Largest Omega grid of the frequency response.
+pub const MAX_FR_POINTS: u32 = 400;
+/// Largest Omega grid of the bifurcation diagram.
+pub const MAX_BIF_POINTS: u32 = 1000;
+/// Largest transient of one steady state (mesh periods).
+pub const MAX_TRANSIENT: u32 = 3000;
+/// Largest record of one steady state (mesh periods).
+pub const MAX_RECORD: u32 = 1000;
+
+const OMEGA: ViewType = ViewType::Float {
+    min: 0.01,
+    max: 20.0,
+};
+
+/// The view option keys, in link order.
+pub const VIEW_KEYS: &[ViewKey] = &[
+    ViewKey {
+        name: "omega",
+        unit: "-",
+        ty: OMEGA,
+        description: "selected dimensionless mesh frequency Omega for the phase portrait, Poincaré section, history and spectrum",
+    },
+    ViewKey {
+        name: "mesh",
+        unit: "-",
+        ty: ViewType::Mesh,
+        description: "which mesh to plot, or the worst (largest dynamic factor)",
+    },
+    ViewKey {
+        name: "omega_from",
+        unit: "-",
+        ty: OMEGA,
+        description: "lowest Omega of the frequency response and bifurcation diagram",
+    },
+    ViewKey {
+        name: "omega_to",
+        unit: "-",
+        ty: OMEGA,
+        description: "highest Omega of the frequency response and bifurcation diagram",
+    },
+    ViewKey {
+        name: "fr_points",
+        unit: "-",
+        ty: ViewType::Int {
+            min: 2,
+            max: MAX_FR_POINTS,
+        },
+        description: "Omega points of the frequency response",
+    },
+    ViewKey {
+        name: "fr_record_periods",
+        unit: "periods",
+        ty: ViewType::Int { min: 1, max: 200 },
+        description: "recorded mesh periods per frequency-response point (time-integration fallback)",
+    },
+    ViewKey {
+        name: "bif_points",
+        unit: "-",
+        ty: ViewType::Int {
+            min: 2,
+            max: MAX_BIF_POINTS,
+        },
+        description: "Omega points of the bifurcation diagram",
+    },
+    ViewKey {
+        name: "bif_dir",
+        unit: "-",
+        ty: ViewType::Choice(&["up", "down", "both"]),
+        description: "bifurcation sweep direction: up, down, or up then down",
+    },
+    ViewKey {
+        name: "transient_periods",
+        unit: "periods",
+        ty: ViewType::Int {
+            min: 0,
+            max: MAX_TRANSIENT,
+        },
+        description: "maximum transient mesh periods per steady state (ends early once settled)",
+    },
+    ViewKey {
+        name: "record_periods",
+        unit: "periods",
+        ty: ViewType::Int {
+            min: 1,
+            max: MAX_RECORD,
+        },
+        description: "recorded mesh periods per steady state (Poincaré samples, history)",
+    },
+    ViewKey {
+        name: "harmonics",
+        unit: "-",
+        ty: ViewType::Int { min: 1, max: 64 },
+        description: "harmonics of the harmonic-balance frequency response",
+    },
+];
+
+/// Looks up a view key.
+pub fn view_key(name: &str) -> Option<&'static ViewKey> {
+    VIEW_KEYS.iter().find(|k| k.name == name)
+}
+
+/// Which mesh the views plot.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum MeshSel {
+    /// A mesh by name (e.g. `s1a1`).
+    Named(String),
+    /// The mesh with the largest dynamic factor.
+    Worst,
+}
+
+impl MeshSel {
+    /// The link text.
+    pub fn text(&self) -> &str {
+        match self {
+            MeshSel::Named(n) => n,
+            MeshSel::Worst => "worst",
+        }
+    }
+}
+
+/// The page's view options.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ViewOptions {
+    /// Selected Omega.
+    pub omega: f64,
+    /// Plotted mesh.
+    pub mesh: MeshSel,
+    /// Lowest Omega of the sweeps.
+    pub omega_from: f64,
+    /// Highest Omega of the sweeps.
+    pub omega_to: f64,
+    /// Frequency-response grid points.
+    pub fr_points: u32,
+    /// Recorded periods per frequency-response point.
+    pub fr_record_periods: u32,
+    /// Bifurcation grid points.
+    pub bif_points: u32,
+    /// Bifurcation sweep directions.
+    pub bif_dir: Directions,
+    /// Maximum transient periods.
+    pub transient_periods: u32,
+    /// Recorded periods.
+    pub record_periods: u32,
+    /// HBM harmonics.
+    pub harmonics: u32,
+}
+
+impl Default for ViewOptions {
+    fn default() -> Self {
+        ViewOptions {
+            omega: 0.84,
+            mesh: MeshSel::Named("s1a1".into()),
+            omega_from: 0.1,
+            omega_to: 2.0,
+            fr_points: 60,
+            fr_record_periods: 30,
+            bif_points: 100,
+            bif_dir: Directions::Both,
+            transient_periods: 300,
+            record_periods: 100,
+            harmonics: 8,
+        }
+    }
+}
+
+/// Formats a number so that parsing it gives the same `f64` back (Rust's
+/// shortest round-trip form).
+pub fn fmt_exact(x: f64) -> String {
+    format!("{x}")
+}
+
+impl ViewOptions {
+    /// The value of a view key as link text.
+    pub fn get(&self, name: &str) -> Option<String> {
+        Some(match name {
+            "omega" => fmt_exact(self.omega),
+            "mesh" => self.mesh.text().to_string(),
+            "omega_from" => fmt_exact(self.omega_from),
+            "omega_to" => fmt_exact(self.omega_to),
+            "fr_points" => self.fr_points.to_string(),
+            "fr_record_periods" => self.fr_record_periods.to_string(),
+            "bif_points" => self.bif_points.to_string(),
+            "bif_dir" => self.bif_dir.name().to_string(),
+            "transient_periods" => self.transient_periods.to_string(),
+            "record_periods" => self.record_periods.to_string(),
+            "harmonics" => self.harmonics.to_string(),
+            _ => return None,
+        })
+    }
+
+    /// The value of a numeric view key.
+    pub fn get_num(&self, name: &str) -> Option<f64> {
+        match name {
+            "mesh" | "bif_dir" => None,
+            _ => self.get(name)?.parse().ok(),
+        }
+    }
+
+    /// Sets a view key from text, checking its type and range. `meshes`
+    /// lists the mesh names of the current model. The error names the key,
+    /// the value and the allowed range.
+    pub fn set(&mut self, name: &str, text: &str, meshes: &[String]) -> Result<(), String> {
+        let key = view_key(name)
+            .ok_or_else(|| format!("unknown key `{}`", solver::keys::truncate(name, 40)))?;
+        let text = text.trim();
+        let shown = solver::keys::truncate(text, 40);
+        let bad = || {
+            format!(
+                "{name} = {shown} is out of range: allowed {}",
+                key.ty.allowed()
+            )
+        };
+        match key.ty {
+            ViewType::Float { min, max } => {
+                let x: f64 = text.parse().map_err(|_| bad())?;
+                if !(x.is_finite() && x >= min && x <= max) {
+                    return Err(bad());
+                }
+                match name {
+                    "omega" => self.omega = x,
+                    "omega_from" => self.omega_from = x,
+                    "omega_to" => self.omega_to = x,
+                    _ => return Err(bad()),
+                }
+            }
+            ViewType::Int { min, max } => {
+                let x: f64 = text.parse().map_err(|_| bad())?;
+                if !(x.is_finite()
+                    && x.fract() == 0.0
+                    && x >= f64::from(min)
+                    && x <= f64::from(max))
+                {
+                    return Err(bad());
+                }
+                let n = x as u32;
+                match name {
+                    "fr_points" => self.fr_points = n,
+                    "fr_record_periods" => self.fr_record_periods = n,
+                    "bif_points" => self.bif_points = n,
+                    "transient_periods" => self.transient_periods = n,
+                    "record_periods" => self.record_periods = n,
+                    "harmonics" => self.harmonics = n,
+                    _ => return Err(bad()),
+                }
+            }
+            ViewType::Choice(_) => {
+                self.bif_dir = Directions::from_name(text).ok_or_else(bad)?;
+            }
+            ViewType::Mesh => {
+                if text == "worst" {
+                    self.mesh = MeshSel::Worst;
+                } else if meshes.iter().any(|m| m == text) {
+                    self.mesh = MeshSel::Named(text.to_string());
+                } else {
+                    return Err(format!(
+                        "mesh = {shown} is not a mesh of this model: allowed {}, worst",
+                        meshes.join(", ")
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Cross-key rules: the range must be increasing. Returns a message and
+    /// restores the defaults of the range if not.
+    pub fn check_range(&mut self) -> Option<String> {
+        if self.omega_to <= self.omega_from {
+            let msg = format!(
+                "omega_from = {} must be below omega_to = {}; the range was reset to {} ..= {}",
+                self.omega_from,
+                self.omega_to,
+                ViewOptions::default().omega_from,
+                ViewOptions::default().omega_to
+            );
+            let d = ViewOptions::default();
+            self.omega_from = d.omega_from;
+            self.omega_to = d.omega_to;
+            return Some(msg);
+        }
+        None
+    }
+}
+
+/// The whole state a link carries.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Settings {
+    /// Model parameters.
+    pub params: ModelParams,
+    /// View options.
+    pub view: ViewOptions,
+}
+
+/// The mesh names of a parameter set's model (empty if it cannot be built).
+pub fn mesh_names(params: &ModelParams) -> Vec<String> {
+    match solver::system::MeshSystem::build(params) {
+        Ok(sys) => sys.meshes.iter().map(|m| m.name.clone()).collect(),
+        Err(_) => Vec::new(),
+    }
+}
+
+impl Settings {
+    /// The plotted mesh as an index into the model's meshes (`None` = worst).
+    /// An unknown name falls back to the first mesh.
+    pub fn mesh_index(&self, model: &Model) -> Option<usize> {
+        match &self.view.mesh {
+            MeshSel::Worst => None,
+            MeshSel::Named(n) => Some(model.system.mesh_index(n).unwrap_or(0)),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_view_key_reads_back_what_it_sets() {
+        let meshes = vec!["s1a1".to_string(), "rb3".to_string()];
+        let mut v = ViewOptions::default();
+        for (k, t) in [
+            ("omega", "1.25"),
+            ("mesh", "rb3"),
+            ("omega_from", "0.3"),
+            ("omega_to", "1.7"),
+            ("fr_points", "80"),
+            ("fr_record_periods", "12"),
+            ("bif_points", "150"),
+            ("bif_dir", "down"),
+            ("transient_periods", "500"),
+            ("record_periods", "64"),
+            ("harmonics", "12"),
+        ] {
+            v.set(k, t, &meshes).unwrap();
+            assert_eq!(v.get(k).unwrap(), t, "{k}");
+        }
+        assert!(VIEW_KEYS.iter().all(|k| v.get(k.name).is_some()));
+    }
+
+    #[test]
+    fn out_of_range_values_name_key_and_range() {
+        let mut v = ViewOptions::default();
+        let e = v.set("bif_points", "1e9", &[]).unwrap_err();
+        assert!(e.contains("bif_points") && e.contains("1000"), "{e}");
+        let e = v.set("omega", "NaN", &[]).unwrap_err();
+        assert!(e.contains("omega") && e.contains("0.01 ..= 20"), "{e}");
+        assert!(v.set("fr_points", "2.5", &[]).is_err());
+        assert!(v.set("mesh", "rb9", &["s1a1".into()]).is_err());
+        assert_eq!(v, ViewOptions::default());
+        v.omega_from = 1.5;
+        v.omega_to = 1.0;
+        assert!(v.check_range().is_some());
+        assert!(v.omega_from < v.omega_to);
+    }
+}

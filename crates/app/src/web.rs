@@ -1,0 +1,1209 @@
+//! The one module that touches the browser (`wasm_bindgen`, `web_sys`): it
+//! builds the control panel, runs the two Web Workers, turns DOM events into
+//! [`Controller`] calls, and draws the views with `plotters-canvas`.
+//!
+//! Main-thread rules: input events only queue work; the queued slider
+//! values, Omega selections and redraws are applied once per animation
+//! frame, so a fast drag costs one job restart and one redraw per frame.
+//! Text from links and workers reaches the page only through `textContent`
+//! and attribute setters, never `innerHTML`.
+
+use crate::controller::{Controller, Effect, WORKERS};
+use crate::controls::{controls, field_text, shown_for, Group, Target, Widget};
+use crate::plots::{self, PlotFrame, PointGroup};
+use crate::presets::PRESETS;
+use crate::views::{self, OmegaView};
+use crate::worker_core::{ready_message, WorkerCore};
+use plotters::prelude::IntoDrawingArea;
+use plotters_canvas::CanvasBackend;
+use std::cell::{Cell, RefCell};
+use std::rc::Rc;
+use wasm_bindgen::prelude::*;
+use wasm_bindgen::JsCast;
+use web_sys::{
+    Blob, BlobPropertyBag, CanvasRenderingContext2d, DedicatedWorkerGlobalScope, Document, Element,
+    Event, HtmlAnchorElement, HtmlCanvasElement, HtmlElement, HtmlInputElement, HtmlSelectElement,
+    KeyboardEvent, MessageChannel, MessageEvent, MouseEvent, Url, Window, Worker,
+};
+
+// ---------------------------------------------------------------- worker
+
+/// Runs a Web Worker: posts "ready", then serves jobs in bounded chunks,
+/// yielding to the event loop (through a `MessageChannel`, which, unlike
+/// `setTimeout`, is not clamped) so that newer jobs and cancels arrive.
+pub fn start_worker() {
+    let scope: DedicatedWorkerGlobalScope = js_sys::global().unchecked_into();
+    let core = Rc::new(RefCell::new(WorkerCore::new()));
+    let scheduled = Rc::new(Cell::new(false));
+    let Ok(channel) = MessageChannel::new() else {
+        return;
+    };
+    let port = channel.port2();
+
+    let post = {
+        let scope = scope.clone();
+        move |msgs: Vec<crate::protocol::FromWorker>| {
+            for m in msgs {
+                let _ = scope.post_message(&JsValue::from_str(&crate::protocol::encode(&m)));
+            }
+        }
+    };
+
+    let schedule = {
+        let scheduled = scheduled.clone();
+        let port = port.clone();
+        move || {
+            if !scheduled.get() {
+                scheduled.set(true);
+                let _ = port.post_message(&JsValue::NULL);
+            }
+        }
+    };
+
+    let tick = {
+        let core = core.clone();
+        let scheduled = scheduled.clone();
+        let post = post.clone();
+        let schedule = schedule.clone();
+        Closure::<dyn FnMut(MessageEvent)>::new(move |_e: MessageEvent| {
+            scheduled.set(false);
+            let start = js_sys::Date::now();
+            // A time slice of about 25 ms, then yield; one step is one steady state.
+            loop {
+                let msgs = core.borrow_mut().step();
+                post(msgs);
+                if !core.borrow().has_work() || js_sys::Date::now() - start > 25.0 {
+                    break;
+                }
+            }
+            if core.borrow().has_work() {
+                schedule();
+            }
+        })
+    };
+    channel
+        .port1()
+        .set_onmessage(Some(tick.as_ref().unchecked_ref()));
+    tick.forget();
+
+    let onmessage = {
+        let core = core.clone();
+        Closure::<dyn FnMut(MessageEvent)>::new(move |e: MessageEvent| {
+            let text = e.data().as_string().unwrap_or_default();
+            let replies = core.borrow_mut().handle(&text);
+            post(replies);
+            if core.borrow().has_work() {
+                schedule();
+            }
+        })
+    };
+    scope.set_onmessage(Some(onmessage.as_ref().unchecked_ref()));
+    onmessage.forget();
+    let _ = scope.post_message(&JsValue::from_str(&ready_message()));
+}
+
+// ---------------------------------------------------------------- page
+
+const VIEWS: [&str; 6] = ["fr", "bif", "phase", "poincare", "time", "spectrum"];
+
+struct Page {
+    ctl: Controller,
+    window: Window,
+    doc: Document,
+    workers: Vec<Worker>,
+    fr_frame: Option<PlotFrame>,
+    bif_frame: Option<PlotFrame>,
+    pending: Vec<(String, String)>,
+    pending_omega: Option<f64>,
+    frame_requested: bool,
+    last_query: String,
+    draws: [u32; 6],
+    last_draw_ms: [f64; 6],
+    max_draw_ms: [f64; 6],
+    last_input_ms: f64,
+    dragging: bool,
+}
+
+type Shared = Rc<RefCell<Page>>;
+
+fn now(window: &Window) -> f64 {
+    window.performance().map_or(0.0, |p| p.now())
+}
+
+fn by_id<T: JsCast>(doc: &Document, id: &str) -> Option<T> {
+    doc.get_element_by_id(id)?.dyn_into::<T>().ok()
+}
+
+fn set_text(doc: &Document, id: &str, text: &str) {
+    if let Some(e) = doc.get_element_by_id(id) {
+        e.set_text_content(Some(text));
+    }
+}
+
+fn el(doc: &Document, tag: &str) -> Option<Element> {
+    doc.create_element(tag).ok()
+}
+
+fn listen<E: JsCast + 'static>(
+    target: &web_sys::EventTarget,
+    kind: &str,
+    f: impl FnMut(E) + 'static,
+) {
+    let mut f = f;
+    let cb = Closure::<dyn FnMut(Event)>::new(move |e: Event| {
+        if let Ok(e) = e.dyn_into::<E>() {
+            f(e);
+        }
+    });
+    let _ = target.add_event_listener_with_callback(kind, cb.as_ref().unchecked_ref());
+    cb.forget();
+}
+
+/// Starts the page: controls, workers, events, first frame.
+pub fn start_app() {
+    let Some(window) = web_sys::window() else {
+        return;
+    };
+    let Some(doc) = window.document() else {
+        return;
+    };
+    let query = window.location().search().unwrap_or_default();
+    let t = now(&window);
+    let (ctl, effects) = Controller::new(&query, t);
+    let page = Rc::new(RefCell::new(Page {
+        ctl,
+        window: window.clone(),
+        doc: doc.clone(),
+        workers: Vec::new(),
+        fr_frame: None,
+        bif_frame: None,
+        pending: Vec::new(),
+        pending_omega: None,
+        frame_requested: false,
+        last_query: String::new(),
+        draws: [0; 6],
+        last_draw_ms: [0.0; 6],
+        max_draw_ms: [0.0; 6],
+        last_input_ms: 0.0,
+        dragging: false,
+    }));
+    build_controls(&page);
+    build_toolbar(&page);
+    build_exports(&page);
+    build_canvas_events(&page);
+    start_workers(&page);
+    run_effects(&page, effects);
+    expose_status(&page);
+    // Progress indicators are time-based: refresh them ten times a second.
+    let tick = {
+        let page = page.clone();
+        Closure::<dyn FnMut()>::new(move || update_progress(&page))
+    };
+    let _ = window
+        .set_interval_with_callback_and_timeout_and_arguments_0(tick.as_ref().unchecked_ref(), 100);
+    tick.forget();
+    request_frame(&page);
+}
+
+fn start_workers(page: &Shared) {
+    for w in 0..WORKERS {
+        let worker = match Worker::new("./worker_loader.js") {
+            Ok(worker) => worker,
+            Err(_) => {
+                let mut p = page.borrow_mut();
+                p.ctl
+                    .issues
+                    .push("could not start a Web Worker; the views cannot be computed".into());
+                p.ctl.dirty.messages = true;
+                continue;
+            }
+        };
+        let onmessage = {
+            let page = page.clone();
+            Closure::<dyn FnMut(MessageEvent)>::new(move |e: MessageEvent| {
+                let text = e.data().as_string().unwrap_or_default();
+                let fx = {
+                    let mut p = page.borrow_mut();
+                    let t = now(&p.window);
+                    p.ctl.worker_message(w, &text, t)
+                };
+                run_effects(&page, fx);
+                request_frame(&page);
+            })
+        };
+        worker.set_onmessage(Some(onmessage.as_ref().unchecked_ref()));
+        onmessage.forget();
+        let onerror = {
+            let page = page.clone();
+            Closure::<dyn FnMut(Event)>::new(move |_e: Event| {
+                let mut p = page.borrow_mut();
+                p.ctl
+                    .issues
+                    .push(format!("Web Worker {w} failed to load or crashed"));
+                p.ctl.dirty.messages = true;
+            })
+        };
+        worker.set_onerror(Some(onerror.as_ref().unchecked_ref()));
+        onerror.forget();
+        page.borrow_mut().workers.push(worker);
+    }
+}
+
+fn run_effects(page: &Shared, effects: Vec<Effect>) {
+    for e in effects {
+        match e {
+            Effect::Post { worker, text } => {
+                let p = page.borrow();
+                if let Some(w) = p.workers.get(worker) {
+                    let _ = w.post_message(&JsValue::from_str(&text));
+                }
+            }
+            Effect::Download { name, mime, text } => {
+                let doc = page.borrow().doc.clone();
+                download_text(&doc, &name, &mime, &text);
+            }
+        }
+    }
+}
+
+fn request_frame(page: &Shared) {
+    let window = {
+        let mut p = page.borrow_mut();
+        if p.frame_requested {
+            return;
+        }
+        p.frame_requested = true;
+        p.window.clone()
+    };
+    let page2 = page.clone();
+    let cb = Closure::once_into_js(move |_t: f64| frame(&page2));
+    let _ = window.request_animation_frame(cb.unchecked_ref());
+}
+
+/// Once per animation frame: apply queued input, then redraw what changed.
+fn frame(page: &Shared) {
+    let effects = {
+        let mut p = page.borrow_mut();
+        p.frame_requested = false;
+        let t = now(&p.window);
+        let mut fx = Vec::new();
+        let pending = std::mem::take(&mut p.pending);
+        for (key, value) in pending {
+            match p.ctl.set_key(&key, &value, t) {
+                Ok(more) => {
+                    fx.extend(more);
+                    mark_invalid(&p.doc, &key, false);
+                }
+                Err(msg) => {
+                    p.ctl.issues.retain(|i| !i.starts_with(&key));
+                    p.ctl.issues.push(msg);
+                    p.ctl.dirty.messages = true;
+                    p.ctl.dirty.controls = true;
+                    mark_invalid(&p.doc, &key, true);
+                }
+            }
+        }
+        if let Some(o) = p.pending_omega.take() {
+            fx.extend(p.ctl.select_omega(o, t));
+        }
+        fx
+    };
+    run_effects(page, effects);
+    let mut p = page.borrow_mut();
+    draw_dirty(page, &mut p);
+}
+
+fn mark_invalid(doc: &Document, key: &str, invalid: bool) {
+    if let Some(e) = doc.get_element_by_id(&format!("control-{key}")) {
+        let _ = e.class_list().toggle_with_force("invalid", invalid);
+    }
+}
+
+fn status_suffix(st: &crate::controller::JobStatus) -> String {
+    if let Some(e) = &st.error {
+        let _ = e;
+        " (failed)".into()
+    } else if st.running() {
+        format!(" (computing {}/{})", st.done, st.total)
+    } else {
+        String::new()
+    }
+}
+
+/// Main-thread time a frame may spend drawing (ms); views left over stay
+/// dirty and are drawn in the next frame, so no frame blocks for long.
+const FRAME_BUDGET_MS: f64 = 24.0;
+
+fn draw_dirty(page: &Shared, p: &mut Page) {
+    let t0 = now(&p.window);
+    let d = p.ctl.dirty;
+    p.ctl.dirty.controls = false;
+    p.ctl.dirty.messages = false;
+    p.ctl.dirty.url = false;
+    if d.controls {
+        refresh_controls(p);
+    }
+    if d.messages {
+        refresh_messages(p);
+    }
+    // Views in order of interest; stop when the budget is used.
+    for k in 0..3 {
+        let dirty = match k {
+            0 => p.ctl.dirty.fr,
+            1 => p.ctl.dirty.bif,
+            _ => p.ctl.dirty.omega,
+        };
+        if !dirty {
+            continue;
+        }
+        if now(&p.window) - t0 > FRAME_BUDGET_MS {
+            break;
+        }
+        let start = now(&p.window);
+        match k {
+            0 => {
+                p.ctl.dirty.fr = false;
+                draw_fr(p);
+            }
+            1 => {
+                p.ctl.dirty.bif = false;
+                draw_bif(p);
+            }
+            _ => {
+                p.ctl.dirty.omega = false;
+                draw_omega_views(p);
+                refresh_summary(p);
+            }
+        }
+        let end = now(&p.window);
+        let slots: &[usize] = match k {
+            0 => &[0],
+            1 => &[1],
+            _ => &[2, 3, 4, 5],
+        };
+        for &s in slots {
+            p.draws[s] += 1;
+            p.last_draw_ms[s] = end;
+            p.max_draw_ms[s] = p.max_draw_ms[s].max(end - start);
+        }
+    }
+    if d.url || d.controls {
+        let q = p.ctl.query();
+        if q != p.last_query {
+            if let Ok(h) = p.window.history() {
+                let _ = h.replace_state_with_url(&JsValue::NULL, "", Some(&format!("?{q}")));
+            }
+            p.last_query = q;
+        }
+        set_text(&p.doc, "cli-command", &p.ctl.cli_commands());
+    }
+    highlight_mesh(p);
+    if p.ctl.dirty.fr || p.ctl.dirty.bif || p.ctl.dirty.omega {
+        p.frame_requested = false;
+        let page2 = page.clone();
+        let cb = Closure::once_into_js(move |_t: f64| frame(&page2));
+        p.frame_requested = p.window.request_animation_frame(cb.unchecked_ref()).is_ok();
+    }
+}
+
+fn canvas(doc: &Document, view: &str) -> Option<HtmlCanvasElement> {
+    by_id(doc, &format!("canvas-{view}"))
+}
+
+fn backend(doc: &Document, view: &str) -> Option<CanvasBackend> {
+    CanvasBackend::with_canvas_object(canvas(doc, view)?)
+}
+
+fn report_draw_error(p: &mut Page, r: Result<(), String>) {
+    if let Err(e) = r {
+        if !p.ctl.issues.contains(&e) {
+            p.ctl.issues.push(e);
+            refresh_messages(p);
+        }
+    }
+}
+
+fn draw_fr(p: &mut Page) {
+    let Some(b) = backend(&p.doc, "fr") else {
+        return;
+    };
+    let root = b.into_drawing_area();
+    let st = p.ctl.fr_status.clone();
+    let r = if let (Some(e), true) = (&st.error, p.ctl.fr.done() == 0) {
+        plots::draw_message(&root, "Frequency response", &format!("Not computed: {e}"))
+    } else {
+        let v = p.ctl.fr_view();
+        plots::draw_fr(&root, &v, &status_suffix(&st)).map(|f| {
+            p.fr_frame = Some(f);
+        })
+    };
+    set_text(
+        &p.doc,
+        "note-fr",
+        "Fallback until the harmonic-balance engine lands: max and min of time-integration steady states (upward sweep), not an HBM branch. The harmonics setting applies to HBM only.",
+    );
+    report_draw_error(p, r);
+}
+
+fn fill_groups(ctx: &CanvasRenderingContext2d, groups: &[PointGroup]) {
+    for g in groups {
+        let c = format!("rgb({},{},{})", g.color.0, g.color.1, g.color.2);
+        ctx.begin_path();
+        for &(x, y) in &g.px {
+            if g.filled {
+                ctx.rect(f64::from(x) - 1.25, f64::from(y) - 1.25, 2.5, 2.5);
+            } else {
+                ctx.rect(f64::from(x) - 2.5, f64::from(y) - 2.5, 5.0, 5.0);
+            }
+        }
+        if g.filled {
+            ctx.set_fill_style_str(&c);
+            ctx.fill();
+        } else {
+            ctx.set_stroke_style_str(&c);
+            ctx.set_line_width(1.0);
+            ctx.stroke();
+        }
+    }
+}
+
+fn draw_bif(p: &mut Page) {
+    let Some(cv) = canvas(&p.doc, "bif") else {
+        return;
+    };
+    let Some(b) = CanvasBackend::with_canvas_object(cv.clone()) else {
+        return;
+    };
+    let root = b.into_drawing_area();
+    let st = p.ctl.bif_status.clone();
+    let r = if let (Some(e), true) = (&st.error, p.ctl.bif.samples.is_empty()) {
+        plots::draw_message(&root, "Bifurcation diagram", &format!("Not computed: {e}"))
+    } else {
+        let v = p.ctl.bif_view();
+        let natural = p.ctl.view_context().natural;
+        match plots::draw_bif(&root, &v, &natural, &status_suffix(&st)) {
+            Ok((frame, groups)) => {
+                p.bif_frame = Some(frame);
+                if let Some(ctx) = cv
+                    .get_context("2d")
+                    .ok()
+                    .flatten()
+                    .and_then(|c| c.dyn_into::<CanvasRenderingContext2d>().ok())
+                {
+                    fill_groups(&ctx, &groups);
+                }
+                Ok(())
+            }
+            Err(e) => Err(e),
+        }
+    };
+    report_draw_error(p, r);
+}
+
+fn draw_omega_views(p: &mut Page) {
+    let st = p.ctl.omega_status.clone();
+    let titles = [
+        "Phase portrait",
+        "Poincaré section",
+        "Time history",
+        "Spectrum",
+    ];
+    for (k, view) in ["phase", "poincare", "time", "spectrum"].iter().enumerate() {
+        let Some(b) = backend(&p.doc, view) else {
+            continue;
+        };
+        let root = b.into_drawing_area();
+        let r = match (&p.ctl.omega, &st.error) {
+            (_, Some(e)) => plots::draw_message(&root, titles[k], &format!("Not computed: {e}")),
+            (Some(res), None) => {
+                let stale = if st.running() { " (updating…)" } else { "" };
+                match k {
+                    0 => plots::draw_phase(&root, res, stale),
+                    1 => plots::draw_poincare(&root, res, stale),
+                    2 => plots::draw_time(&root, res, stale),
+                    _ => plots::draw_spectrum(&root, res, stale),
+                }
+            }
+            (None, None) => plots::draw_message(
+                &root,
+                titles[k],
+                &format!(
+                    "Computing the steady state at Ω = {} in a Web Worker…",
+                    p.ctl.settings.view.omega
+                ),
+            ),
+        };
+        report_draw_error(p, r);
+    }
+}
+
+fn refresh_summary(p: &Page) {
+    let natural = p.ctl.view_context().natural;
+    let text = match (&p.ctl.omega, &p.ctl.omega_status.error) {
+        (_, Some(e)) => format!("Not computed: {e}"),
+        (Some(r), None) => {
+            let mut s = views::summary_line(r, &natural);
+            if p.ctl.omega_status.running() {
+                s.push_str(" Updating…");
+            }
+            s
+        }
+        (None, None) => "Computing the steady state at the selected Omega…".into(),
+    };
+    set_text(&p.doc, "summary", &text);
+}
+
+fn refresh_messages(p: &Page) {
+    let Some(box_) = by_id::<HtmlElement>(&p.doc, "messages") else {
+        return;
+    };
+    let issues = &p.ctl.issues;
+    box_.set_hidden(issues.is_empty());
+    let shown: Vec<&str> = issues.iter().take(8).map(String::as_str).collect();
+    let mut text = shown.join("\n");
+    if issues.len() > 8 {
+        text.push_str(&format!("\n… and {} more", issues.len() - 8));
+    }
+    if !issues.is_empty() {
+        text.push_str("\n(click to dismiss)");
+    }
+    box_.set_text_content(Some(&text));
+    if let Some(note) = by_id::<HtmlElement>(&p.doc, "preset-note") {
+        note.set_hidden(p.ctl.preset_note.is_none());
+        note.set_text_content(p.ctl.preset_note.as_deref());
+    }
+}
+
+fn highlight_mesh(p: &Page) {
+    let name = match (&p.ctl.settings.view.mesh, &p.ctl.omega) {
+        (crate::settings::MeshSel::Named(n), _) => n.clone(),
+        (crate::settings::MeshSel::Worst, Some(r)) => r.mesh_name.clone(),
+        _ => String::new(),
+    };
+    if let Ok(list) = p.doc.query_selector_all("#schematic .mesh") {
+        for i in 0..list.length() {
+            if let Some(e) = list.get(i).and_then(|n| n.dyn_into::<Element>().ok()) {
+                let on = e.id() == format!("mesh-{name}");
+                let _ = e.class_list().toggle_with_force("selected", on);
+            }
+        }
+    }
+    let pair = p.ctl.settings.params.kind() == solver::ModelKind::GearPair;
+    for (id, show) in [("schem-ravigneaux", !pair), ("schem-pair", pair)] {
+        if let Some(e) = p.doc.get_element_by_id(id) {
+            let _ = e.set_attribute("style", if show { "" } else { "display:none" });
+        }
+    }
+}
+
+fn update_progress(page: &Shared) {
+    let p = page.borrow();
+    let t = now(&p.window);
+    let fr = p.ctl.fr_status.progress(t);
+    let bif = p.ctl.bif_status.progress(t);
+    let om = p.ctl.omega_status.progress(t);
+    for (view, prog) in [
+        ("fr", fr),
+        ("bif", bif),
+        ("phase", om),
+        ("poincare", om),
+        ("time", om),
+        ("spectrum", om),
+    ] {
+        let Some(el) = by_id::<HtmlElement>(&p.doc, &format!("progress-{view}")) else {
+            continue;
+        };
+        match prog {
+            Some((done, total)) => {
+                el.set_hidden(false);
+                let frac = if total > 0 {
+                    done as f64 / total as f64
+                } else {
+                    0.0
+                };
+                if let Ok(Some(bar)) = el.query_selector(".bar") {
+                    let _ = bar.set_attribute("style", &format!("width:{:.1}%", 100.0 * frac));
+                }
+                if let Ok(Some(label)) = el.query_selector(".label") {
+                    let text = if view == "fr" || view == "bif" {
+                        format!("computing {done}/{total} points")
+                    } else {
+                        "computing…".into()
+                    };
+                    label.set_text_content(Some(&text));
+                }
+            }
+            None => el.set_hidden(true),
+        }
+    }
+    let busy = [fr, bif, om].iter().any(Option::is_some);
+    set_text(
+        &p.doc,
+        "status",
+        if busy {
+            "Computing in Web Workers…"
+        } else {
+            ""
+        },
+    );
+}
+
+// ---------------------------------------------------------------- controls
+
+fn build_controls(page: &Shared) {
+    let doc = page.borrow().doc.clone();
+    let Some(panel) = doc.get_element_by_id("controls") else {
+        return;
+    };
+    let mut advanced: Option<Element> = None;
+    for group in Group::ALL {
+        let Some(fs) = el(&doc, "fieldset") else {
+            continue;
+        };
+        let container: Element = if group == Group::Advanced {
+            let Some(det) = el(&doc, "details") else {
+                continue;
+            };
+            det.set_class_name("advanced");
+            if let Some(sum) = el(&doc, "summary") {
+                sum.set_text_content(Some(group.title()));
+                let _ = det.append_child(&sum);
+            }
+            let _ = det.append_child(&fs);
+            let _ = panel.append_child(&det);
+            advanced = Some(det);
+            fs
+        } else {
+            if let Some(lg) = el(&doc, "legend") {
+                lg.set_text_content(Some(group.title()));
+                let _ = fs.append_child(&lg);
+            }
+            let _ = panel.append_child(&fs);
+            fs
+        };
+        for c in controls().into_iter().filter(|c| c.group == group) {
+            let Some(div) = el(&doc, "div") else { continue };
+            div.set_class_name("control");
+            div.set_id(&format!("control-{}", c.key));
+            let _ = div.set_attribute("title", &c.tooltip);
+            let _ = div.set_attribute(
+                "data-applies",
+                match c.applies {
+                    solver::keys::Applies::Both => "both",
+                    solver::keys::Applies::Ravigneaux => "ravigneaux",
+                    solver::keys::Applies::GearPair => "gear-pair",
+                },
+            );
+            let Some(label) = el(&doc, "label") else {
+                continue;
+            };
+            label.set_text_content(Some(&c.label));
+            let _ = div.append_child(&label);
+            match &c.widget {
+                Widget::Slider {
+                    min,
+                    max,
+                    step,
+                    field_min,
+                    field_max,
+                } => {
+                    let _ = label.set_attribute("for", &format!("num-{}", c.key));
+                    let (Some(range), Some(num), Some(unit)) =
+                        (el(&doc, "input"), el(&doc, "input"), el(&doc, "span"))
+                    else {
+                        continue;
+                    };
+                    let (Ok(range), Ok(num)) = (
+                        range.dyn_into::<HtmlInputElement>(),
+                        num.dyn_into::<HtmlInputElement>(),
+                    ) else {
+                        continue;
+                    };
+                    range.set_type("range");
+                    range.set_id(&format!("slider-{}", c.key));
+                    range.set_min(&min.to_string());
+                    range.set_max(&max.to_string());
+                    range.set_step(&step.to_string());
+                    let _ = range.set_attribute("aria-label", &format!("{} slider", c.label));
+                    num.set_type("number");
+                    num.set_id(&format!("num-{}", c.key));
+                    num.set_min(&field_min.to_string());
+                    num.set_max(&field_max.to_string());
+                    num.set_step("any");
+                    unit.set_class_name("unit");
+                    unit.set_text_content(Some(&c.unit));
+                    let _ = div.append_child(&range);
+                    let _ = div.append_child(&num);
+                    let _ = div.append_child(&unit);
+                    let key = c.key.to_string();
+                    let p2 = page.clone();
+                    let num2 = num.clone();
+                    listen(&range.clone().into(), "input", move |_e: Event| {
+                        let v = range.value();
+                        num2.set_value(&v);
+                        queue_input(&p2, &key, &v);
+                    });
+                    let key = c.key.to_string();
+                    let p2 = page.clone();
+                    let num3 = num.clone();
+                    listen(&num.into(), "change", move |_e: Event| {
+                        queue_input(&p2, &key, &num3.value());
+                    });
+                }
+                Widget::Select(options) => {
+                    let _ = label.set_attribute("for", &format!("sel-{}", c.key));
+                    let Some(sel) =
+                        el(&doc, "select").and_then(|s| s.dyn_into::<HtmlSelectElement>().ok())
+                    else {
+                        continue;
+                    };
+                    sel.set_id(&format!("sel-{}", c.key));
+                    for (value, text) in options {
+                        add_option(&doc, &sel, value, text);
+                    }
+                    let _ = div.append_child(&sel);
+                    let key = c.key.to_string();
+                    let p2 = page.clone();
+                    let sel2 = sel.clone();
+                    listen(&sel.into(), "change", move |_e: Event| {
+                        queue_input(&p2, &key, &sel2.value());
+                    });
+                }
+            }
+            let _ = container.append_child(&div);
+        }
+    }
+    let _ = advanced;
+}
+
+fn add_option(doc: &Document, sel: &HtmlSelectElement, value: &str, text: &str) {
+    if let Some(o) = el(doc, "option") {
+        let _ = o.set_attribute("value", value);
+        o.set_text_content(Some(text));
+        let _ = sel.append_child(&o);
+    }
+}
+
+fn queue_input(page: &Shared, key: &str, value: &str) {
+    {
+        let mut p = page.borrow_mut();
+        p.last_input_ms = now(&p.window);
+        // Coalesce: only the latest value of a key per frame.
+        p.pending.retain(|(k, _)| k != key);
+        p.pending.push((key.to_string(), value.to_string()));
+    }
+    request_frame(page);
+}
+
+fn refresh_controls(p: &Page) {
+    let params = &p.ctl.settings.params;
+    let model = params.kind();
+    // The mesh list depends on the model.
+    if let Some(sel) = by_id::<HtmlSelectElement>(&p.doc, "sel-mesh") {
+        let names = p.ctl.mesh_names();
+        let wanted: Vec<String> = names.iter().cloned().chain(["worst".to_string()]).collect();
+        let current: Vec<String> = (0..sel.length())
+            .filter_map(|i| sel.item(i))
+            .filter_map(|o| o.get_attribute("value"))
+            .collect();
+        if current != wanted {
+            sel.set_text_content(None);
+            for n in &names {
+                add_option(&p.doc, &sel, n, n);
+            }
+            add_option(&p.doc, &sel, "worst", "worst (largest dynamic factor)");
+        }
+    }
+    for c in controls() {
+        if let Some(div) = by_id::<HtmlElement>(&p.doc, &format!("control-{}", c.key)) {
+            div.set_hidden(!shown_for(&c, model));
+        }
+        let text = match c.target {
+            Target::Param => match solver::keys::get(params, c.key) {
+                Some(solver::keys::Value::Num(x)) => field_text(x),
+                Some(solver::keys::Value::Text(t)) => t,
+                None => continue,
+            },
+            Target::View => match p.ctl.settings.view.get(c.key) {
+                Some(t) => t,
+                None => continue,
+            },
+        };
+        match c.widget {
+            Widget::Slider { .. } => {
+                if let Some(n) = by_id::<HtmlInputElement>(&p.doc, &format!("num-{}", c.key)) {
+                    n.set_value(&text);
+                    n.set_placeholder(if text.is_empty() { "mixed" } else { "" });
+                }
+                if let Some(s) = by_id::<HtmlInputElement>(&p.doc, &format!("slider-{}", c.key)) {
+                    if !text.is_empty() {
+                        s.set_value(&text);
+                    }
+                }
+            }
+            Widget::Select(_) => {
+                if let Some(s) = by_id::<HtmlSelectElement>(&p.doc, &format!("sel-{}", c.key)) {
+                    s.set_value(&text);
+                }
+            }
+        }
+    }
+}
+
+fn build_toolbar(page: &Shared) {
+    let doc = page.borrow().doc.clone();
+    if let Some(sel) = by_id::<HtmlSelectElement>(&doc, "preset") {
+        add_option(&doc, &sel, "", "Choose a preset…");
+        for p in PRESETS {
+            add_option(&doc, &sel, p.id, p.title);
+        }
+        let page2 = page.clone();
+        let sel2 = sel.clone();
+        listen(&sel.into(), "change", move |_e: Event| {
+            let id = sel2.value();
+            if id.is_empty() {
+                return;
+            }
+            let fx = {
+                let mut p = page2.borrow_mut();
+                let t = now(&p.window);
+                p.ctl.apply_preset(&id, t)
+            };
+            run_effects(&page2, fx);
+            request_frame(&page2);
+        });
+    }
+    if let Some(btn) = doc.get_element_by_id("reset") {
+        let page2 = page.clone();
+        listen(&btn.into(), "click", move |_e: Event| {
+            let fx = {
+                let mut p = page2.borrow_mut();
+                let t = now(&p.window);
+                p.ctl.load_query("", t)
+            };
+            run_effects(&page2, fx);
+            request_frame(&page2);
+        });
+    }
+    if let Some(btn) = doc.get_element_by_id("copy-link") {
+        let page2 = page.clone();
+        listen(&btn.into(), "click", move |_e: Event| copy_link(&page2));
+    }
+    if let Some(m) = doc.get_element_by_id("messages") {
+        let page2 = page.clone();
+        listen(&m.into(), "click", move |_e: Event| {
+            let mut p = page2.borrow_mut();
+            p.ctl.clear_issues();
+            refresh_messages(&p);
+        });
+    }
+}
+
+fn copy_link(page: &Shared) {
+    let (window, doc) = {
+        let p = page.borrow();
+        (p.window.clone(), p.doc.clone())
+    };
+    let href = window.location().href().unwrap_or_default();
+    let clipboard = window.navigator().clipboard();
+    let ok_doc = doc.clone();
+    let ok = Closure::<dyn FnMut(JsValue)>::new(move |_v: JsValue| {
+        set_text(&ok_doc, "status", "Link copied to the clipboard.");
+    });
+    let fail_doc = doc.clone();
+    let fail = Closure::<dyn FnMut(JsValue)>::new(move |_v: JsValue| {
+        set_text(
+            &fail_doc,
+            "status",
+            "Could not copy; the link is in the address bar.",
+        );
+    });
+    let _ = clipboard.write_text(&href).then2(&ok, &fail);
+    // One pair per click; small and rare, so they are leaked rather than tracked.
+    ok.forget();
+    fail.forget();
+    if let Some(b) = doc.get_element_by_id("copy-link") {
+        let _ = b.set_attribute("data-link", &href);
+    }
+}
+
+// ---------------------------------------------------------------- exports
+
+fn download_text(doc: &Document, name: &str, mime: &str, text: &str) {
+    let parts = js_sys::Array::of1(&JsValue::from_str(text));
+    let opts = BlobPropertyBag::new();
+    opts.set_type(mime);
+    let Ok(blob) = Blob::new_with_str_sequence_and_options(&parts, &opts) else {
+        return;
+    };
+    let Ok(url) = Url::create_object_url_with_blob(&blob) else {
+        return;
+    };
+    download_url(doc, name, &url);
+}
+
+fn download_url(doc: &Document, name: &str, url: &str) {
+    let Some(a) = el(doc, "a").and_then(|a| a.dyn_into::<HtmlAnchorElement>().ok()) else {
+        return;
+    };
+    a.set_href(url);
+    a.set_download(name);
+    a.click();
+}
+
+fn add_button(doc: &Document, parent: &Element, text: &str, title: &str) -> Option<Element> {
+    let b = el(doc, "button")?;
+    let _ = b.set_attribute("type", "button");
+    let _ = b.set_attribute("title", title);
+    b.set_text_content(Some(text));
+    let _ = parent.append_child(&b);
+    Some(b)
+}
+
+fn build_exports(page: &Shared) {
+    let doc = page.borrow().doc.clone();
+    for view in VIEWS {
+        let Some(bar) = doc.get_element_by_id(&format!("exports-{view}")) else {
+            continue;
+        };
+        if let Some(b) = add_button(&doc, &bar, "PNG", "Save this plot as a PNG image") {
+            let page2 = page.clone();
+            listen(&b.into(), "click", move |_e: Event| {
+                let doc = page2.borrow().doc.clone();
+                if let Some(cv) = canvas(&doc, view) {
+                    if let Ok(url) = cv.to_data_url() {
+                        download_url(&doc, &format!("gearshock-{view}.png"), &url);
+                    }
+                }
+            });
+        }
+        for fmt in ["CSV", "JSON"] {
+            if let Some(b) = add_button(
+                &doc,
+                &bar,
+                fmt,
+                &format!("Download the data behind this plot as {fmt}"),
+            ) {
+                let page2 = page.clone();
+                listen(&b.into(), "click", move |_e: Event| {
+                    export_view(&page2, view, fmt)
+                });
+            }
+        }
+        let cli_title = match view {
+            "bif" => Some("The sweep as `gearshock bifurcation` JSON (the CLI's format)"),
+            "phase" | "poincare" | "time" | "spectrum" => {
+                Some("This run as `gearshock simulate` JSON (the CLI's format)")
+            }
+            _ => None,
+        };
+        if let Some(title) = cli_title {
+            if let Some(b) = add_button(&doc, &bar, "CLI JSON", title) {
+                let page2 = page.clone();
+                listen(&b.into(), "click", move |_e: Event| {
+                    export_cli(&page2, view)
+                });
+            }
+        }
+    }
+    if let Some(sec) = doc.get_element_by_id("export-cli") {
+        if let Some(b) = add_button(
+            &doc,
+            &sec,
+            "Download gearshock-params.json",
+            "The parameters as the CLI's --params file",
+        ) {
+            let page2 = page.clone();
+            listen(&b.into(), "click", move |_e: Event| {
+                let p = page2.borrow();
+                download_text(
+                    &p.doc,
+                    "gearshock-params.json",
+                    "application/json",
+                    &p.ctl.params_json(),
+                );
+            });
+        }
+    }
+}
+
+fn export_view(page: &Shared, view: &str, fmt: &str) {
+    let p = page.borrow();
+    let mesh = p.ctl.mesh_file_label();
+    let (text, ok) = match view {
+        "fr" => {
+            let v = p.ctl.fr_view();
+            if fmt == "CSV" {
+                (views::fr_csv(&v), true)
+            } else {
+                (serde_json::to_string_pretty(&v).unwrap_or_default(), true)
+            }
+        }
+        "bif" => {
+            let v = p.ctl.bif_view();
+            if fmt == "CSV" {
+                (views::bif_csv(&v), true)
+            } else {
+                (serde_json::to_string(&v).unwrap_or_default(), true)
+            }
+        }
+        _ => {
+            let which = match view {
+                "phase" => OmegaView::Phase,
+                "poincare" => OmegaView::Poincare,
+                "time" => OmegaView::Time,
+                _ => OmegaView::Spectrum,
+            };
+            match &p.ctl.omega {
+                Some(r) if fmt == "CSV" => (views::omega_csv(r, which), true),
+                Some(r) => (views::omega_json(r, which).to_string(), true),
+                None => (String::new(), false),
+            }
+        }
+    };
+    if ok {
+        let (ext, mime) = if fmt == "CSV" {
+            ("csv", "text/csv")
+        } else {
+            ("json", "application/json")
+        };
+        download_text(
+            &p.doc,
+            &format!("gearshock-{view}-{mesh}.{ext}"),
+            mime,
+            &text,
+        );
+    }
+}
+
+fn export_cli(page: &Shared, view: &str) {
+    if view == "bif" {
+        let fx = {
+            let mut p = page.borrow_mut();
+            match p.ctl.request_bif_export() {
+                Ok(fx) => fx,
+                Err(e) => {
+                    set_text(&p.doc, "status", &e);
+                    Vec::new()
+                }
+            }
+        };
+        run_effects(page, fx);
+        return;
+    }
+    let p = page.borrow();
+    if let Some(r) = &p.ctl.omega {
+        download_text(
+            &p.doc,
+            &format!("gearshock-simulate-{}-{}.json", r.mesh_name, r.omega),
+            "application/json",
+            &r.cli_json,
+        );
+    }
+}
+
+// ---------------------------------------------------------------- canvases
+
+fn canvas_px(cv: &HtmlCanvasElement, e: &MouseEvent) -> f64 {
+    let css = f64::from(cv.client_width().max(1));
+    f64::from(e.offset_x()) * f64::from(cv.width()) / css
+}
+
+fn build_canvas_events(page: &Shared) {
+    let doc = page.borrow().doc.clone();
+    for view in ["fr", "bif"] {
+        let Some(cv) = canvas(&doc, view) else {
+            continue;
+        };
+        let pick = {
+            let page = page.clone();
+            let cv = cv.clone();
+            move |e: &MouseEvent| {
+                let x = canvas_px(&cv, e);
+                let omega = {
+                    let p = page.borrow();
+                    let frame = if view == "fr" {
+                        p.fr_frame
+                    } else {
+                        p.bif_frame
+                    };
+                    frame.and_then(|f| f.x_at(x))
+                };
+                if let Some(o) = omega {
+                    page.borrow_mut().pending_omega = Some(o);
+                    request_frame(&page);
+                }
+            }
+        };
+        let down = pick.clone();
+        let p2 = page.clone();
+        listen(&cv.clone().into(), "pointerdown", move |e: MouseEvent| {
+            p2.borrow_mut().dragging = true;
+            down(&e);
+        });
+        let mv = pick.clone();
+        let p2 = page.clone();
+        listen(&cv.clone().into(), "pointermove", move |e: MouseEvent| {
+            if p2.borrow().dragging && e.buttons() & 1 == 1 {
+                mv(&e);
+            }
+        });
+        let p2 = page.clone();
+        listen(&cv.clone().into(), "pointerup", move |_e: MouseEvent| {
+            p2.borrow_mut().dragging = false;
+        });
+        // Keyboard: arrows move the selected Omega by 1 % of the range (10 % with Shift).
+        let p2 = page.clone();
+        listen(&cv.into(), "keydown", move |e: KeyboardEvent| {
+            let dir = match e.key().as_str() {
+                "ArrowLeft" | "ArrowDown" => -1.0,
+                "ArrowRight" | "ArrowUp" => 1.0,
+                _ => return,
+            };
+            e.prevent_default();
+            {
+                let mut p = p2.borrow_mut();
+                let v = &p.ctl.settings.view;
+                let step = (v.omega_to - v.omega_from) * if e.shift_key() { 0.1 } else { 0.01 };
+                let o = (v.omega + dir * step).clamp(v.omega_from, v.omega_to);
+                p.pending_omega = Some(o);
+            }
+            request_frame(&p2);
+        });
+    }
+}
+
+// ---------------------------------------------------------------- tests' hook
+
+/// `window.gearshockStatus()` returns the controller's status as JSON (job
+/// progress and timings, the link, messages, draw counts): the browser tests
+/// and the benchmark read it instead of guessing from pixels.
+fn expose_status(page: &Shared) {
+    let window = page.borrow().window.clone();
+    let page2 = page.clone();
+    let f = Closure::<dyn FnMut() -> String>::new(move || {
+        let p = page2.borrow();
+        let t = now(&p.window);
+        let mut v: serde_json::Value =
+            serde_json::from_str(&p.ctl.status_json(t)).unwrap_or(serde_json::Value::Null);
+        if let Some(o) = v.as_object_mut() {
+            o.insert("draws".into(), serde_json::json!(p.draws));
+            o.insert("last_draw_ms".into(), serde_json::json!(p.last_draw_ms));
+            o.insert("max_draw_ms".into(), serde_json::json!(p.max_draw_ms));
+            o.insert("last_input_ms".into(), serde_json::json!(p.last_input_ms));
+            o.insert("now_ms".into(), serde_json::json!(t));
+            o.insert(
+                "fr_frame".into(),
+                serde_json::json!(p.fr_frame.map(|f| [
+                    f.top_left.x,
+                    f.top_left.y,
+                    f.bottom_right.x,
+                    f.bottom_right.y
+                ])),
+            );
+        }
+        v.to_string()
+    });
+    let _ = js_sys::Reflect::set(&window, &JsValue::from_str("gearshockStatus"), f.as_ref());
+    f.forget();
+}

@@ -1,0 +1,703 @@
+//! The Web Worker's job runner, as plain Rust: no browser types, so it is
+//! tested natively.
+//!
+//! The worker's thin shell (`web.rs`) feeds every incoming message to
+//! [`WorkerCore::handle`] and, while [`WorkerCore::has_work`], calls
+//! [`WorkerCore::step`] in a loop for a few milliseconds, posts the replies,
+//! and yields to the event loop so that newer jobs and cancels arrive. One
+//! step computes one steady state: the bounded chunk of work.
+//!
+//! Jobs are served by priority (`Omega`, then `Fr`, then `Bif`), so the
+//! views at the selected Omega update even while a long sweep runs.
+
+use crate::protocol::{
+    encode, BifMesh, BifSample, FrSample, FromWorker, JobId, JobKind, JobSpec, MeshExtremes,
+    MeshSummary, OmegaResult, Regime, RunOptions, ToWorker,
+};
+use serde_json::{Map, Value};
+use solver::keys;
+use solver::params::ModelParams;
+use solver::report;
+use solver::steady::{spectrum, steady_state, Model, SteadyOptions, SteadyState};
+use solver::sweep::{canonical_order, BifurcationSweep, Directions, SweepPoint, SweepSpec};
+
+/// An Omega job waiting for its one step.
+struct OmegaJob {
+    id: JobId,
+    model: Model,
+    omega: f64,
+    mesh: Option<usize>,
+    run: RunOptions,
+    samples_per_period: u32,
+    max_order: f64,
+}
+
+/// A frequency-response grid in progress: one continuation chain.
+struct FrJob {
+    id: JobId,
+    model: Model,
+    omegas: Vec<(u32, f64)>,
+    next: usize,
+    run: RunOptions,
+    state: Option<Vec<f64>>,
+}
+
+/// A bifurcation shard in progress (or finished, kept for export).
+struct BifJob {
+    id: JobId,
+    params: ModelParams,
+    sweep: BifurcationSweep,
+    points: Vec<SweepPoint>,
+}
+
+/// The worker's state: at most one job of each kind.
+#[derive(Default)]
+pub struct WorkerCore {
+    omega: Option<OmegaJob>,
+    fr: Option<FrJob>,
+    bif: Option<BifJob>,
+    finished_bif: Option<BifJob>,
+}
+
+fn failed(id: JobId, message: impl Into<String>) -> FromWorker {
+    FromWorker::Failed {
+        id,
+        message: message.into(),
+    }
+}
+
+fn model_from(params: &Map<String, Value>) -> Result<(ModelParams, Model), String> {
+    let p = keys::from_json(params).map_err(|e| e.to_string())?;
+    let model = Model::new(&p).map_err(|e| e.to_string())?;
+    Ok((p, model))
+}
+
+/// Rounds to 1e-6 um: plenty for plots, and it keeps messages short.
+fn round_um(x: f64) -> f64 {
+    (x * 1e6).round() / 1e6
+}
+
+impl WorkerCore {
+    /// A worker with no jobs.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Whether a job waits for [`Self::step`].
+    pub fn has_work(&self) -> bool {
+        self.omega.is_some() || self.fr.is_some() || self.bif.is_some()
+    }
+
+    /// Handles one message from the page (JSON text).
+    pub fn handle(&mut self, text: &str) -> Vec<FromWorker> {
+        let msg: ToWorker = match serde_json::from_str(text) {
+            Ok(m) => m,
+            Err(e) => return vec![failed(0, format!("unreadable message: {e}"))],
+        };
+        match msg {
+            ToWorker::Run { id, params, job } => self.start(id, &params, job),
+            ToWorker::Cancel { kind } => {
+                match kind {
+                    JobKind::Omega => self.omega = None,
+                    JobKind::Fr => self.fr = None,
+                    JobKind::Bif => self.bif = None,
+                }
+                Vec::new()
+            }
+            ToWorker::ExportBif { id, mesh, other } => vec![self.export_bif(id, mesh, &other)],
+        }
+    }
+
+    fn start(&mut self, id: JobId, params: &Map<String, Value>, job: JobSpec) -> Vec<FromWorker> {
+        // A new job replaces the old one of its kind, even if it fails.
+        match job.kind() {
+            JobKind::Omega => self.omega = None,
+            JobKind::Fr => self.fr = None,
+            JobKind::Bif => self.bif = None,
+        }
+        let (params, model) = match model_from(params) {
+            Ok(x) => x,
+            Err(e) => return vec![failed(id, e)],
+        };
+        match job {
+            JobSpec::Omega {
+                omega,
+                mesh,
+                run,
+                samples_per_period,
+                max_order,
+            } => {
+                self.omega = Some(OmegaJob {
+                    id,
+                    model,
+                    omega,
+                    mesh,
+                    run,
+                    samples_per_period,
+                    max_order,
+                });
+                Vec::new()
+            }
+            JobSpec::Fr {
+                omega_from,
+                omega_to,
+                points,
+                chains,
+                shard,
+                run,
+            } => {
+                let mut spec = SweepSpec::new(omega_from, omega_to, points);
+                spec.chains = chains;
+                spec.shard = Some(shard);
+                spec.steady.transient_periods = run.transient_periods;
+                spec.steady.record_periods = run.record_periods;
+                if let Err(e) = spec.validate(model.system.meshes.len()) {
+                    return vec![failed(id, e.to_string())];
+                }
+                let omegas: Vec<(u32, f64)> = (shard..points)
+                    .step_by(chains.max(1) as usize)
+                    .map(|i| (i, spec.omega(i)))
+                    .collect();
+                let total = omegas.len();
+                self.fr = Some(FrJob {
+                    id,
+                    model,
+                    omegas,
+                    next: 0,
+                    run,
+                    state: None,
+                });
+                vec![FromWorker::Progress { id, done: 0, total }]
+            }
+            JobSpec::Bif {
+                omega_from,
+                omega_to,
+                points,
+                directions,
+                chains,
+                shard,
+                run,
+            } => {
+                let mut spec = SweepSpec::new(omega_from, omega_to, points);
+                spec.chains = chains;
+                spec.shard = Some(shard);
+                spec.directions = match Directions::from_name(&directions) {
+                    Some(d) => d,
+                    None => return vec![failed(id, "directions: allowed up, down, both")],
+                };
+                spec.steady.transient_periods = run.transient_periods;
+                spec.steady.record_periods = run.record_periods;
+                spec.meshes = (0..model.system.meshes.len()).collect();
+                match BifurcationSweep::new(model, spec) {
+                    Ok(sweep) => {
+                        let total = sweep.total();
+                        self.bif = Some(BifJob {
+                            id,
+                            params,
+                            sweep,
+                            points: Vec::new(),
+                        });
+                        vec![FromWorker::Progress { id, done: 0, total }]
+                    }
+                    Err(e) => vec![failed(id, e.to_string())],
+                }
+            }
+        }
+    }
+
+    /// Does one bounded chunk of the most urgent job.
+    pub fn step(&mut self) -> Vec<FromWorker> {
+        if let Some(job) = self.omega.take() {
+            return vec![run_omega(&job), FromWorker::Done { id: job.id }];
+        }
+        if let Some(job) = self.fr.as_mut() {
+            let mut out = Vec::new();
+            if let Some(&(index, omega)) = job.omegas.get(job.next) {
+                job.next += 1;
+                let sample = fr_point(job, index, omega);
+                out.push(FromWorker::FrPoints {
+                    id: job.id,
+                    points: vec![sample],
+                });
+                out.push(FromWorker::Progress {
+                    id: job.id,
+                    done: job.next,
+                    total: job.omegas.len(),
+                });
+            }
+            if job.next >= job.omegas.len() {
+                out.push(FromWorker::Done { id: job.id });
+                self.fr = None;
+            }
+            return out;
+        }
+        if let Some(job) = self.bif.as_mut() {
+            let mut out = Vec::new();
+            let pts = job.sweep.advance(1);
+            let samples: Vec<BifSample> = pts.iter().map(|p| bif_sample(&job.sweep, p)).collect();
+            job.points.extend(pts);
+            if !samples.is_empty() {
+                out.push(FromWorker::BifPoints {
+                    id: job.id,
+                    points: samples,
+                });
+            }
+            out.push(FromWorker::Progress {
+                id: job.id,
+                done: job.sweep.done(),
+                total: job.sweep.total(),
+            });
+            if job.sweep.is_finished() {
+                out.push(FromWorker::Done { id: job.id });
+                self.finished_bif = self.bif.take();
+            }
+            return out;
+        }
+        Vec::new()
+    }
+
+    fn export_bif(&self, id: JobId, mesh: Option<usize>, other: &[String]) -> FromWorker {
+        let Some(job) = self.finished_bif.as_ref().filter(|j| j.id == id) else {
+            return failed(id, "the bifurcation sweep has not finished yet");
+        };
+        let mut spec = job.sweep.spec().clone();
+        let model = job.sweep.model();
+        let mut points = job.points.clone();
+        if let Some(j) = mesh {
+            if j >= model.system.meshes.len() {
+                return failed(id, format!("no mesh {j}"));
+            }
+            spec.meshes = vec![j];
+            for p in &mut points {
+                p.meshes.retain(|m| m.mesh == j);
+            }
+        }
+        canonical_order(&mut points);
+        let mine = report::sweep_json(model, &job.params, &spec, &points);
+        if other.is_empty() {
+            return FromWorker::Export {
+                id,
+                text: mine.to_string(),
+            };
+        }
+        let mut shards = vec![mine];
+        for text in other {
+            match serde_json::from_str::<Value>(text) {
+                Ok(v) => shards.push(v),
+                Err(e) => return failed(id, format!("cannot read the other shard: {e}")),
+            }
+        }
+        match report::merge_shards(&shards) {
+            Ok(v) => FromWorker::Export {
+                id,
+                text: v.to_string(),
+            },
+            Err(e) => failed(id, e.to_string()),
+        }
+    }
+}
+
+/// TE and its rate of mesh `j` at phase 0 of the excitation (the Poincaré phase).
+fn excitation_at(model: &Model, j: usize, omega_rad_s: f64, t_s: f64) -> (f64, f64) {
+    let (s, c) = (omega_rad_s * t_s).sin_cos();
+    let (_, e, de) = model.system.meshes[j].excitation(omega_rad_s, c, s);
+    (e, de)
+}
+
+fn fr_point(job: &mut FrJob, index: u32, omega: f64) -> FrSample {
+    let mut opts = SteadyOptions::new(omega);
+    opts.transient_periods = job.run.transient_periods;
+    opts.record_periods = job.run.record_periods;
+    opts.samples_per_period = 0;
+    match steady_state(&job.model, &opts, job.state.as_deref()) {
+        Ok(ss) => {
+            job.state = Some(ss.end_state.clone());
+            FrSample {
+                index,
+                omega,
+                meshes: ss
+                    .meshes
+                    .iter()
+                    .map(|m| MeshExtremes {
+                        rel_min_um: round_um(m.rel_min_m * 1e6),
+                        rel_max_um: round_um(m.rel_max_m * 1e6),
+                        regime: m.impact.into(),
+                        dynamic_factor: m.dynamic_factor,
+                    })
+                    .collect(),
+                period: ss.period,
+                error: None,
+            }
+        }
+        Err(e) => {
+            // The chain restarts from the static equilibrium, like the solver's sweeps.
+            job.state = None;
+            FrSample {
+                index,
+                omega,
+                meshes: Vec::new(),
+                period: None,
+                error: Some(e.to_string()),
+            }
+        }
+    }
+}
+
+fn bif_sample(sweep: &BifurcationSweep, p: &SweepPoint) -> BifSample {
+    let model = sweep.model();
+    let omega_rad_s = p.omega * model.system.omega_ref_rad_s;
+    BifSample {
+        index: p.index,
+        omega: p.omega,
+        up: p.direction == solver::sweep::Direction::Up,
+        meshes: p
+            .meshes
+            .iter()
+            .map(|m| {
+                let (e0, _) = excitation_at(model, m.mesh, omega_rad_s, 0.0);
+                BifMesh {
+                    x_um: m
+                        .poincare_delta_m
+                        .iter()
+                        .map(|d| round_um((d - e0) * 1e6))
+                        .collect(),
+                    regime: m.impact.into(),
+                }
+            })
+            .collect(),
+        worst_mesh: p.worst_mesh,
+        period: p.period,
+        error: p.error.clone(),
+    }
+}
+
+/// The mesh with the largest dynamic factor (as the solver's sweeps define "worst").
+pub fn worst_mesh(ss: &SteadyState) -> usize {
+    ss.meshes
+        .iter()
+        .enumerate()
+        .max_by(|a, b| {
+            let da = a.1.dynamic_factor.unwrap_or(0.0);
+            let db = b.1.dynamic_factor.unwrap_or(0.0);
+            da.total_cmp(&db)
+        })
+        .map_or(0, |(j, _)| j)
+}
+
+fn run_omega(job: &OmegaJob) -> FromWorker {
+    let model = &job.model;
+    let n_mesh = model.system.meshes.len();
+    if let Some(j) = job.mesh.filter(|&j| j >= n_mesh) {
+        return failed(job.id, format!("mesh {j} does not exist in this model"));
+    }
+    let mut opts = SteadyOptions::new(job.omega);
+    opts.transient_periods = job.run.transient_periods;
+    opts.record_periods = job.run.record_periods;
+    opts.samples_per_period = job.samples_per_period.clamp(8, 256);
+    opts.history_meshes = match job.mesh {
+        Some(j) => vec![j],
+        None => (0..n_mesh).collect(),
+    };
+    let ss = match steady_state(model, &opts, None) {
+        Ok(ss) => ss,
+        Err(e) => return failed(job.id, format!("Omega = {}: {e}", job.omega)),
+    };
+    let j = job.mesh.unwrap_or_else(|| worst_mesh(&ss));
+    let Some(h) = ss.histories.iter().find(|h| h.mesh == j) else {
+        return failed(job.id, "the run kept no history of the plotted mesh");
+    };
+    let m = &ss.meshes[j];
+    let w = ss.omega_rad_s;
+    let xdot_m_s: Vec<f64> = h
+        .velocity_m_s
+        .iter()
+        .zip(&ss.sample_times_s)
+        .map(|(v, &t)| v - excitation_at(model, j, w, t).1)
+        .collect();
+    let (e0, de0) = excitation_at(model, j, w, 0.0);
+    let spec = spectrum(
+        &h.rel_m,
+        opts.samples_per_period,
+        opts.record_periods,
+        job.max_order,
+    );
+    let cli = report::simulate_json(model, &ss, j, job.max_order);
+    let result = OmegaResult {
+        omega: ss.omega,
+        mesh: j,
+        mesh_name: model.system.meshes[j].name.clone(),
+        backlash_um: round_um(model.system.meshes[j].backlash_m * 1e6),
+        regime: m.impact.into(),
+        period: ss.period,
+        dynamic_factor: m.dynamic_factor,
+        mesh_freq_hz: ss.mesh_freq_hz,
+        transient_periods_run: ss.stats.transient_periods_run,
+        settled: ss.stats.settled,
+        samples_per_period: opts.samples_per_period,
+        record_periods: opts.record_periods,
+        x_um: h.rel_m.iter().map(|x| round_um(x * 1e6)).collect(),
+        xdot_m_s: xdot_m_s.iter().map(|v| (v * 1e9).round() / 1e9).collect(),
+        poincare_x_um: m
+            .poincare_delta_m
+            .iter()
+            .map(|d| round_um((d - e0) * 1e6))
+            .collect(),
+        poincare_xdot_m_s: m.poincare_velocity_m_s.iter().map(|v| v - de0).collect(),
+        spectrum_order: spec.order,
+        spectrum_um: spec.amplitude.iter().map(|a| a * 1e6).collect(),
+        all_meshes: model
+            .system
+            .meshes
+            .iter()
+            .zip(&ss.meshes)
+            .map(|(d, ms)| MeshSummary {
+                name: d.name.clone(),
+                regime: ms.impact.into(),
+                dynamic_factor: ms.dynamic_factor,
+            })
+            .collect(),
+        steps: ss.stats.integrator.steps,
+        cli_json: cli.to_string(),
+    };
+    FromWorker::Omega {
+        id: job.id,
+        result: Box::new(result),
+    }
+}
+
+/// The message a worker posts first.
+pub fn ready_message() -> String {
+    encode(&FromWorker::Ready)
+}
+
+/// Which regime the worst meshes of a sample show, for colouring: the most severe.
+pub fn severity(r: Regime) -> u8 {
+    match r {
+        Regime::NoContact => 0,
+        Regime::NoImpact => 1,
+        Regime::SingleSided => 2,
+        Regime::DoubleSided => 3,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::protocol::encode;
+
+    fn params(p: &ModelParams) -> Map<String, Value> {
+        keys::to_json(p)
+    }
+
+    fn run_msg(id: JobId, p: &ModelParams, job: JobSpec) -> String {
+        encode(&ToWorker::Run {
+            id,
+            params: params(p),
+            job,
+        })
+    }
+
+    fn quick() -> RunOptions {
+        RunOptions {
+            transient_periods: 20,
+            record_periods: 8,
+        }
+    }
+
+    fn drain(core: &mut WorkerCore) -> Vec<FromWorker> {
+        let mut out = Vec::new();
+        let mut guard = 0;
+        while core.has_work() && guard < 10_000 {
+            out.extend(core.step());
+            guard += 1;
+        }
+        out
+    }
+
+    #[test]
+    fn omega_job_returns_history_poincare_and_cli_json() {
+        let mut core = WorkerCore::new();
+        let p = ModelParams::defaults(solver::ModelKind::GearPair);
+        let out = core.handle(&run_msg(
+            7,
+            &p,
+            JobSpec::Omega {
+                omega: 0.8,
+                mesh: None,
+                run: quick(),
+                samples_per_period: 32,
+                max_order: 4.0,
+            },
+        ));
+        assert!(out.is_empty());
+        let out = drain(&mut core);
+        let FromWorker::Omega { id, result } = &out[0] else {
+            panic!("expected an Omega result, got {out:?}");
+        };
+        assert_eq!(*id, 7);
+        assert_eq!(result.mesh_name, "pg");
+        assert_eq!(result.x_um.len(), result.xdot_m_s.len());
+        assert_eq!(result.poincare_x_um.len(), 8);
+        assert!(!result.spectrum_order.is_empty());
+        let cli: Value = serde_json::from_str(&result.cli_json).unwrap();
+        assert_eq!(cli["mesh"], "pg");
+        assert_eq!(out[1], FromWorker::Done { id: 7 });
+    }
+
+    #[test]
+    fn sharded_fr_grid_covers_every_point_once() {
+        let p = ModelParams::defaults(solver::ModelKind::GearPair);
+        let mut seen = Vec::new();
+        for shard in 0..2 {
+            let mut core = WorkerCore::new();
+            let out = core.handle(&run_msg(
+                1,
+                &p,
+                JobSpec::Fr {
+                    omega_from: 0.5,
+                    omega_to: 1.5,
+                    points: 5,
+                    chains: 2,
+                    shard,
+                    run: quick(),
+                },
+            ));
+            assert!(
+                matches!(out[0], FromWorker::Progress { total, .. } if total == if shard == 0 { 3 } else { 2 })
+            );
+            for m in drain(&mut core) {
+                if let FromWorker::FrPoints { points, .. } = m {
+                    for s in points {
+                        assert_eq!(s.meshes.len(), 1);
+                        assert!(s.meshes[0].rel_max_um >= s.meshes[0].rel_min_um);
+                        seen.push(s.index);
+                    }
+                }
+            }
+        }
+        seen.sort_unstable();
+        assert_eq!(seen, vec![0, 1, 2, 3, 4]);
+    }
+
+    #[test]
+    fn newer_job_replaces_older_and_bad_params_fail_cleanly() {
+        let mut core = WorkerCore::new();
+        let p = ModelParams::defaults(solver::ModelKind::GearPair);
+        let bif = |id| {
+            run_msg(
+                id,
+                &p,
+                JobSpec::Bif {
+                    omega_from: 0.5,
+                    omega_to: 1.5,
+                    points: 4,
+                    directions: "both".into(),
+                    chains: 2,
+                    shard: 1,
+                    run: quick(),
+                },
+            )
+        };
+        core.handle(&bif(1));
+        core.step();
+        core.handle(&bif(2));
+        let out = drain(&mut core);
+        assert!(out.iter().all(|m| match m {
+            FromWorker::BifPoints { id, .. }
+            | FromWorker::Progress { id, .. }
+            | FromWorker::Done { id } => *id == 2,
+            _ => false,
+        }));
+        // Shard 1 of 2 chains over 4 points: indices 1 and 3, up and down.
+        let n: usize = out
+            .iter()
+            .map(|m| match m {
+                FromWorker::BifPoints { points, .. } => points.len(),
+                _ => 0,
+            })
+            .sum();
+        assert_eq!(n, 4);
+
+        let mut bad = params(&p);
+        bad.insert("backlash_um".into(), Value::from(-5));
+        let msg = encode(&ToWorker::Run {
+            id: 9,
+            params: bad,
+            job: JobSpec::Omega {
+                omega: 1.0,
+                mesh: Some(0),
+                run: quick(),
+                samples_per_period: 16,
+                max_order: 4.0,
+            },
+        });
+        let out = core.handle(&msg);
+        assert!(
+            matches!(&out[0], FromWorker::Failed { id: 9, message } if message.contains("backlash_um"))
+        );
+        assert!(matches!(
+            core.handle("{not json")[0],
+            FromWorker::Failed { id: 0, .. }
+        ));
+    }
+
+    #[test]
+    fn exported_shards_merge_into_the_cli_format() {
+        let p = ModelParams::defaults(solver::ModelKind::GearPair);
+        let mut cores = [WorkerCore::new(), WorkerCore::new()];
+        for (w, core) in cores.iter_mut().enumerate() {
+            core.handle(&run_msg(
+                5,
+                &p,
+                JobSpec::Bif {
+                    omega_from: 0.6,
+                    omega_to: 1.2,
+                    points: 4,
+                    directions: "up".into(),
+                    chains: 2,
+                    shard: w as u32,
+                    run: quick(),
+                },
+            ));
+            drain(core);
+        }
+        let FromWorker::Export { text: shard1, .. } =
+            cores[1].handle(&encode(&ToWorker::ExportBif {
+                id: 5,
+                mesh: Some(0),
+                other: vec![],
+            }))[0]
+                .clone()
+        else {
+            panic!("no export");
+        };
+        let FromWorker::Export { text, .. } = cores[0].handle(&encode(&ToWorker::ExportBif {
+            id: 5,
+            mesh: Some(0),
+            other: vec![shard1],
+        }))[0]
+            .clone()
+        else {
+            panic!("no merged export");
+        };
+        let v: Value = serde_json::from_str(&text).unwrap();
+        assert_eq!(v["spec"]["chains"], 2);
+        assert_eq!(v["spec"]["shard"], Value::Null);
+        let idx: Vec<i64> = v["points"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| p["index"].as_i64().unwrap())
+            .collect();
+        assert_eq!(idx, vec![0, 1, 2, 3]);
+        // An export of an unknown or unfinished sweep is an error, not a panic.
+        assert!(matches!(
+            cores[0].handle(&encode(&ToWorker::ExportBif {
+                id: 99,
+                mesh: None,
+                other: vec![]
+            }))[0],
+            FromWorker::Failed { .. }
+        ));
+    }
+}

@@ -1,0 +1,194 @@
+// Browser tests of the explorer page: the release build in dist/, served on
+// 127.0.0.1, driven in Debian's headless chromium through playwright-core.
+// Run by scripts/test.sh (`node --test tests/browser/`). Screenshots go to
+// tests/browser/screenshots/ (git-ignored) for a human to look at.
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { start, open, status, waitStatus, canvasStats, shot } from './harness.mjs';
+
+// Small grids keep the suite quick; the bifurcation test uses full periods.
+const QUICK = 'fr_points=16&fr_record_periods=20&bif_points=16&transient_periods=120&record_periods=40';
+const CANVASES = ['fr', 'bif', 'phase', 'poincare', 'time', 'spectrum'];
+
+let h;
+before(async () => {
+  h = await start();
+});
+after(async () => {
+  await h?.close();
+});
+
+const allDone = (s) => s.fr.finished_ms && s.bif.finished_ms && s.omega_job.finished_ms;
+
+test('the page loads without console errors and draws every canvas', async () => {
+  const { page, errors } = await open(h.browser, h.url, QUICK);
+  const s = await waitStatus(page, allDone, 90000, 'all jobs');
+  assert.equal(s.workers_ready, 2);
+  assert.deepEqual(s.issues, []);
+  for (const id of CANVASES) {
+    const st = await canvasStats(page, `canvas-${id}`);
+    assert.ok(st.ink > st.total * 0.02, `canvas-${id} looks blank (${st.ink} of ${st.total} pixels drawn)`);
+  }
+  // The summary names the regime and period; the schematic marks the plotted mesh.
+  const summary = await page.textContent('#summary');
+  assert.match(summary, /impact|no contact/);
+  assert.match(summary, /Natural frequencies in range/);
+  assert.equal(await page.getAttribute('#mesh-s1a1', 'class'), 'mesh selected');
+  await shot(page, '01-loaded');
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('moving the backlash slider with the keyboard changes the frequency response and the URL', async () => {
+  const { page, errors } = await open(h.browser, h.url, QUICK);
+  await waitStatus(page, allDone, 90000, 'all jobs');
+  const before = await canvasStats(page, 'canvas-fr');
+  const frId = (await status(page)).fr.id;
+  await page.focus('#slider-backlash_um');
+  for (let i = 0; i < 20; i++) await page.keyboard.press('ArrowRight');
+  await page.waitForFunction(() => location.search.includes('backlash_um=120'));
+  assert.equal(await page.inputValue('#num-backlash_um'), '120');
+  const s = await waitStatus(page, (s) => s.fr.id > frId && s.fr.finished_ms, 90000, 'new frequency response');
+  assert.ok(s.fr.id > frId);
+  const afterStats = await canvasStats(page, 'canvas-fr');
+  assert.notEqual(afterStats.hash, before.hash, 'the frequency response did not change');
+  await shot(page.locator('#view-fr'), '02-backlash-120-fr');
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('a saved link restores slider values, the mesh and the selected Omega', async () => {
+  const link = `backlash_um=150&te_um=35.5&damping_ratio=0.045&omega=1.2345&mesh=s2b2&bif_dir=up&${QUICK}`;
+  const { page, errors } = await open(h.browser, h.url, link);
+  assert.equal(await page.inputValue('#num-backlash_um'), '150');
+  assert.equal(await page.inputValue('#slider-backlash_um'), '150');
+  assert.equal(await page.inputValue('#num-te_um'), '35.5');
+  assert.equal(await page.inputValue('#num-damping_ratio'), '0.045');
+  assert.equal(await page.inputValue('#num-omega'), '1.2345');
+  assert.equal(await page.inputValue('#sel-mesh'), 's2b2');
+  assert.equal(await page.inputValue('#sel-bif_dir'), 'up');
+  const s = await waitStatus(page, (s) => s.omega_job.finished_ms, 60000, 'the Omega job');
+  assert.equal(s.omega, 1.2345);
+  assert.equal(s.omega_result.omega, 1.2345);
+  assert.equal(s.omega_result.mesh, 's2b2');
+  // The URL the page writes back carries the same values.
+  const search = await page.evaluate(() => location.search);
+  for (const kv of ['backlash_um=150', 'te_um=35.5', 'omega=1.2345', 'mesh=s2b2', 'damping_ratio=0.045']) {
+    assert.ok(search.includes(kv), `${kv} missing from ${search}`);
+  }
+  // Re-opening the page's own link gives the same state.
+  const again = await open(h.browser, h.url, search.slice(1));
+  assert.equal((await status(again.page)).query, s.query);
+  await again.page.close();
+  await shot(page, '03-restored-link');
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('clicking the frequency response moves the selected Omega', async () => {
+  const { page, errors } = await open(h.browser, h.url, QUICK);
+  const s0 = await waitStatus(page, (s) => s.fr.finished_ms && s.fr_frame, 90000, 'frequency response');
+  const [l, t, r, b] = s0.fr_frame;
+  const box = await page.locator('#canvas-fr').boundingBox();
+  const width = await page.evaluate(() => document.getElementById('canvas-fr').width);
+  const scale = box.width / width;
+  const x = l + 0.75 * (r - l);
+  await page.mouse.click(box.x + x * scale, box.y + ((t + b) / 2) * scale);
+  const expected = 0.1 + 0.75 * (2.0 - 0.1);
+  const s = await waitStatus(page, (s) => Math.abs(s.omega - expected) < 0.02 && s.omega_result && s.omega_result.omega === s.omega, 60000, 'the new Omega');
+  assert.ok(Math.abs(s.omega - expected) < 0.02, `omega ${s.omega} vs ${expected}`);
+  assert.equal(await page.inputValue('#num-omega'), String(s.omega));
+  assert.ok((await page.evaluate(() => location.search)).includes(`omega=${s.omega}`));
+  // Dragging moves it too.
+  await page.mouse.move(box.x + (l + 0.3 * (r - l)) * scale, box.y + 100 * scale);
+  await page.mouse.down();
+  await page.mouse.move(box.x + (l + 0.4 * (r - l)) * scale, box.y + 100 * scale, { steps: 5 });
+  await page.mouse.up();
+  const s2 = await waitStatus(page, (s) => Math.abs(s.omega - (0.1 + 0.4 * 1.9)) < 0.02, 30000, 'dragged Omega');
+  assert.ok(s2.omega < expected);
+  await shot(page, '04-clicked-omega');
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('a malformed link shows a message naming the key and range, and the page still works', async () => {
+  const link = 'backlash_um=5000&omega=NaN&bif_points=999999999&te_um=25&%3Cimg%20src%3Dx%20onerror%3Dalert(1)%3E=1&mesh=%3Cb%3Ebold%3C%2Fb%3E&' + QUICK.replace('bif_points=16&', '');
+  const { page, errors } = await open(h.browser, h.url, link);
+  const msg = page.locator('#messages');
+  await msg.waitFor({ state: 'visible' });
+  const text = await msg.textContent();
+  assert.match(text, /backlash_um = 5000 is out of range: allowed 0 \.\.= 1000/);
+  assert.match(text, /omega = NaN is out of range: allowed 0\.01 \.\.= 20/);
+  assert.match(text, /bif_points/);
+  assert.match(text, /<img src=x onerror=alert\(1\)>/, 'the hostile key is shown as text');
+  // Nothing from the link became markup.
+  assert.equal(await page.locator('#messages img, #messages b').count(), 0);
+  // The valid keys applied, the bad ones kept their defaults and jobs stay capped.
+  assert.equal(await page.inputValue('#num-te_um'), '25');
+  assert.equal(await page.inputValue('#num-backlash_um'), '100');
+  const s = await waitStatus(page, allDone, 90000, 'all jobs');
+  assert.equal(s.bif.total, 200, 'default bifurcation grid (100 points, both directions)');
+  await shot(page, '05-malformed-link');
+  // And the page still responds to input.
+  await page.fill('#num-backlash_um', '80');
+  await page.press('#num-backlash_um', 'Enter');
+  await page.waitForFunction(() => location.search.includes('backlash_um=80'));
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('a preset loads its settings and says what the seed states', async () => {
+  const { page, errors } = await open(h.browser, h.url, QUICK);
+  await page.selectOption('#preset', 'fig8a');
+  await page.waitForFunction(() => location.search.includes('backlash_um=50'));
+  const note = await page.textContent('#preset-note');
+  assert.match(note, /The seed states/);
+  assert.match(note, /Assumed/);
+  assert.equal(await page.inputValue('#num-backlash_um'), '50');
+  assert.equal(await page.inputValue('#num-te_um'), '20');
+  await page.selectOption('#preset', 'pair');
+  await page.waitForFunction(() => location.search.includes('model=gear-pair'));
+  assert.equal(await page.inputValue('#sel-mesh'), 'pg');
+  assert.ok(await page.locator('#control-planets').isHidden());
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('the bifurcation diagram completes progressively while the main thread stays responsive', async () => {
+  // 40 points up and down at the full 300 + 100 periods: about 80 steady states.
+  const { page, errors } = await open(h.browser, h.url, 'bif_points=40&fr_points=12&fr_record_periods=10&omega_from=0.3&omega_to=1.8');
+  await page.evaluate(() => {
+    window.__beat = { maxGap: 0, last: performance.now(), long: 0, longs: [] };
+    const loop = () => {
+      const t = performance.now();
+      window.__beat.maxGap = Math.max(window.__beat.maxGap, t - window.__beat.last);
+      window.__beat.last = t;
+      if (!window.__beat.stop) setTimeout(loop, 10);
+    };
+    setTimeout(loop, 10);
+    new PerformanceObserver((list) => {
+      for (const e of list.getEntries()) {
+        window.__beat.long = Math.max(window.__beat.long, e.duration);
+        window.__beat.longs.push(Math.round(e.duration));
+      }
+    }).observe({ entryTypes: ['longtask'] });
+  });
+  const partial = await waitStatus(page, (s) => s.bif.done > 0 && !s.bif.finished_ms, 60000, 'first bifurcation points');
+  assert.ok(partial.draws[1] >= 1);
+  await shot(page.locator('#view-bif'), '06-bifurcation-partial');
+  const s = await waitStatus(page, (s) => s.bif.finished_ms, 240000, 'the bifurcation sweep');
+  const beat = await page.evaluate(() => {
+    window.__beat.stop = true;
+    return window.__beat;
+  });
+  console.log(`# bifurcation: 80 points in ${Math.round(s.bif.finished_ms - s.bif.started_ms)} ms, first points after ${Math.round(s.bif.first_data_ms - s.bif.started_ms)} ms; heartbeat max gap ${Math.round(beat.maxGap)} ms; longest main-thread task ${Math.round(beat.long)} ms (${beat.longs.length} tasks over 50 ms: ${beat.longs}); slowest draws (ms) ${s.max_draw_ms.map(Math.round)}`);
+  assert.equal(s.bif.done, 80);
+  assert.ok(s.draws[1] > 2, 'drawn progressively');
+  assert.ok(beat.long < 100, `a main-thread task took ${beat.long} ms`);
+  assert.ok(beat.maxGap < 250, `the main thread missed its heartbeat for ${beat.maxGap} ms`);
+  const st = await canvasStats(page, 'canvas-bif');
+  assert.ok(st.ink > st.total * 0.03);
+  await shot(page.locator('#view-bif'), '07-bifurcation-complete');
+  assert.deepEqual(errors, []);
+  await page.close();
+});
