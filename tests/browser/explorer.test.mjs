@@ -137,6 +137,39 @@ test('a malformed link shows a message naming the key and range, and the page st
   await page.close();
 });
 
+test('exports: CSV and JSON of the views, and the CLI formats of simulate and bifurcation', async () => {
+  const { page, errors } = await open(h.browser, h.url, QUICK);
+  await waitStatus(page, allDone, 90000, 'all jobs');
+  const grab = async (view, label) => {
+    const [dl] = await Promise.all([
+      page.waitForEvent('download', { timeout: 30000 }),
+      page.locator(`#exports-${view} button`, { hasText: new RegExp(`^${label}$`) }).click(),
+    ]);
+    const file = await dl.path();
+    const fs = await import('node:fs');
+    return { name: dl.suggestedFilename(), text: fs.readFileSync(file, 'utf8') };
+  };
+  const csv = await grab('fr', 'CSV');
+  assert.equal(csv.name, 'gearshock-fr-s1a1.csv');
+  assert.match(csv.text, /^branch,omega,x_max_um,x_min_um,stable,regime,period\n0,0\.1,/);
+  assert.equal(csv.text.trim().split('\n').length, 17);
+  const frJson = JSON.parse((await grab('fr', 'JSON')).text);
+  assert.equal(frJson.source.method, 'time_integration');
+  const sim = JSON.parse((await grab('phase', 'CLI JSON')).text);
+  assert.equal(sim.mesh, 's1a1');
+  assert.equal(sim.omega, 0.84);
+  assert.ok(Array.isArray(sim.poincare.delta_m) && sim.poincare.delta_m.length === 40);
+  const bif = JSON.parse((await grab('bif', 'CLI JSON')).text);
+  assert.equal(bif.spec.chains, 2);
+  assert.equal(bif.spec.shard, null);
+  assert.equal(bif.points.length, 32);
+  assert.deepEqual(bif.points.slice(0, 3).map((p) => p.index), [0, 1, 2]);
+  const png = await grab('spectrum', 'PNG');
+  assert.equal(png.name, 'gearshock-spectrum.png');
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
 test('a preset loads its settings and says what the seed states', async () => {
   const { page, errors } = await open(h.browser, h.url, QUICK);
   await page.selectOption('#preset', 'fig8a');
@@ -175,6 +208,9 @@ test('the bifurcation diagram completes progressively while the main thread stay
   });
   const partial = await waitStatus(page, (s) => s.bif.done > 0 && !s.bif.finished_ms, 60000, 'first bifurcation points');
   assert.ok(partial.draws[1] >= 1);
+  // A job this long shows its progress.
+  await page.locator('#progress-bif').waitFor({ state: 'visible', timeout: 5000 });
+  assert.match(await page.textContent('#progress-bif'), /computing \d+\/80 points/);
   await shot(page.locator('#view-bif'), '06-bifurcation-partial');
   const s = await waitStatus(page, (s) => s.bif.finished_ms, 240000, 'the bifurcation sweep');
   const beat = await page.evaluate(() => {

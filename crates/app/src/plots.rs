@@ -141,11 +141,11 @@ where
 }
 
 fn caption_font() -> TextStyle<'static> {
-    ("sans-serif", 15).into_font().color(&BLACK)
+    ("sans-serif", 17).into_font().color(&BLACK)
 }
 
 fn small() -> TextStyle<'static> {
-    ("sans-serif", 11).into_font().color(&RGBColor(60, 60, 60))
+    ("sans-serif", 13).into_font().color(&RGBColor(50, 50, 50))
 }
 
 /// A plot with nothing to show yet: a frame and a message (never blank).
@@ -277,7 +277,7 @@ fn legend<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(
         .border_style(GRID)
         .margin(6)
         .legend_area_size(22)
-        .label_font(("sans-serif", 11))
+        .label_font(("sans-serif", 12))
         .draw()
         .map_err(err)
 }
@@ -296,7 +296,7 @@ pub fn draw_fr<DB: DrawingBackend>(
         .flat_map(|b| b.points.iter().flat_map(|p| [p.max_um, p.min_um]));
     let mut extra: Vec<f64> = v.backlash_um.iter().flat_map(|b| [*b, -*b]).collect();
     extra.push(0.0);
-    let y = with_headroom(padded_range(all, &extra, 20.0), 0.3);
+    let y = with_headroom(padded_range(all, &extra, 20.0), 0.55);
     let method = match v.source {
         crate::views::FrSource::TimeIntegration { .. } => {
             "fallback: time-integration steady states"
@@ -312,8 +312,8 @@ pub fn draw_fr<DB: DrawingBackend>(
             caption_font(),
         )
         .margin(8)
-        .x_label_area_size(38)
-        .y_label_area_size(58)
+        .x_label_area_size(44)
+        .y_label_area_size(64)
         .build_cartesian_2d(x.0..x.1, y.0..y.1)
         .map_err(err)?;
     chart
@@ -323,6 +323,7 @@ pub fn draw_fr<DB: DrawingBackend>(
         .x_desc("Ω = ω / ω_ref (dimensionless mesh frequency)")
         .y_desc("x = δ − e (µm)")
         .label_style(small())
+        .axis_desc_style(small())
         .draw()
         .map_err(err)?;
     contact_lines(&mut chart, &v.backlash_um, x, true)?;
@@ -469,7 +470,7 @@ pub fn draw_bif<DB: DrawingBackend>(
     extra.push(0.0);
     let y = with_headroom(
         padded_range(v.points.iter().map(|p| p.x_um), &extra, 20.0),
-        0.3,
+        0.55,
     );
     let mut chart = ChartBuilder::on(root)
         .caption(
@@ -477,8 +478,8 @@ pub fn draw_bif<DB: DrawingBackend>(
             caption_font(),
         )
         .margin(8)
-        .x_label_area_size(38)
-        .y_label_area_size(58)
+        .x_label_area_size(44)
+        .y_label_area_size(64)
         .build_cartesian_2d(x.0..x.1, y.0..y.1)
         .map_err(err)?;
     chart
@@ -488,6 +489,7 @@ pub fn draw_bif<DB: DrawingBackend>(
         .x_desc("Ω = ω / ω_ref (dimensionless mesh frequency)")
         .y_desc("Poincaré samples of x = δ − e (µm)")
         .label_style(small())
+        .axis_desc_style(small())
         .draw()
         .map_err(err)?;
     contact_lines(&mut chart, &v.backlash_um, x, true)?;
@@ -590,8 +592,8 @@ pub fn draw_phase<DB: DrawingBackend>(
     let mut chart = ChartBuilder::on(root)
         .caption(omega_caption("Phase portrait", r, status), caption_font())
         .margin(8)
-        .x_label_area_size(38)
-        .y_label_area_size(58)
+        .x_label_area_size(44)
+        .y_label_area_size(64)
         .build_cartesian_2d(x.0..x.1, y.0..y.1)
         .map_err(err)?;
     chart
@@ -601,6 +603,7 @@ pub fn draw_phase<DB: DrawingBackend>(
         .x_desc("x = δ − e (µm)")
         .y_desc("ẋ (m/s)")
         .label_style(small())
+        .axis_desc_style(small())
         .draw()
         .map_err(err)?;
     contact_lines(&mut chart, &[r.backlash_um], y, false)?;
@@ -638,8 +641,8 @@ pub fn draw_poincare<DB: DrawingBackend>(
     let mut chart = ChartBuilder::on(root)
         .caption(omega_caption("Poincaré section", r, status), caption_font())
         .margin(8)
-        .x_label_area_size(38)
-        .y_label_area_size(58)
+        .x_label_area_size(44)
+        .y_label_area_size(64)
         .build_cartesian_2d(x.0..x.1, y.0..y.1)
         .map_err(err)?;
     chart
@@ -649,6 +652,7 @@ pub fn draw_poincare<DB: DrawingBackend>(
         .x_desc("x = δ − e (µm), sampled once per mesh period")
         .y_desc("ẋ (m/s)")
         .label_style(small())
+        .axis_desc_style(small())
         .draw()
         .map_err(err)?;
     contact_lines(&mut chart, &[r.backlash_um], y, false)?;
@@ -697,8 +701,8 @@ pub fn draw_time<DB: DrawingBackend>(
     let mut chart = ChartBuilder::on(root)
         .caption(omega_caption("Time history", r, status), caption_font())
         .margin(8)
-        .x_label_area_size(38)
-        .y_label_area_size(58)
+        .x_label_area_size(44)
+        .y_label_area_size(64)
         .build_cartesian_2d(x.0..x.1, y.0..y.1)
         .map_err(err)?;
     chart
@@ -711,6 +715,7 @@ pub fn draw_time<DB: DrawingBackend>(
         ))
         .y_desc("x = δ − e (µm)")
         .label_style(small())
+        .axis_desc_style(small())
         .draw()
         .map_err(err)?;
     contact_lines(&mut chart, &[b], x, true)?;
@@ -755,8 +760,8 @@ pub fn draw_spectrum<DB: DrawingBackend>(
     let mut chart = ChartBuilder::on(root)
         .caption(omega_caption("Spectrum of x", r, status), caption_font())
         .margin(8)
-        .x_label_area_size(38)
-        .y_label_area_size(58)
+        .x_label_area_size(44)
+        .y_label_area_size(64)
         .build_cartesian_2d(0.0..omax * 1.02, (floor..amax * 20.0).log_scale())
         .map_err(err)?;
     chart
@@ -766,6 +771,7 @@ pub fn draw_spectrum<DB: DrawingBackend>(
         .x_desc("frequency (mesh orders: multiples of the mesh frequency)")
         .y_desc("amplitude of x (µm, log)")
         .label_style(small())
+        .axis_desc_style(small())
         .draw()
         .map_err(err)?;
     let style = ShapeStyle::from(&MAX_COLOR).stroke_width(2);

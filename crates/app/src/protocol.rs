@@ -21,20 +21,20 @@ use solver::steady::Impact;
 /// Identifies one job; increases monotonically on the page.
 pub type JobId = u64;
 
-/// The three kinds of job, in the order a worker serves them.
+/// The three kinds of job: `Omega` is served first, `Fr` and `Bif` take turns.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum JobKind {
-    /// One steady state at the selected Omega (views 3–6): served first.
+    /// One steady state at the selected Omega (views 3–6).
     Omega,
     /// The frequency-response grid (view 1).
     Fr,
-    /// The bifurcation sweep (view 2): served last.
+    /// The bifurcation sweep (view 2).
     Bif,
 }
 
 impl JobKind {
-    /// All kinds in priority order.
+    /// All kinds.
     pub const ALL: [JobKind; 3] = [JobKind::Omega, JobKind::Fr, JobKind::Bif];
 }
 

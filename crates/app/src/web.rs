@@ -120,6 +120,8 @@ struct Page {
     draws: [u32; 6],
     last_draw_ms: [f64; 6],
     max_draw_ms: [f64; 6],
+    first_draw_ms: [f64; 6],
+    need: [bool; 6],
     last_input_ms: f64,
     dragging: bool,
 }
@@ -184,6 +186,8 @@ pub fn start_app() {
         draws: [0; 6],
         last_draw_ms: [0.0; 6],
         max_draw_ms: [0.0; 6],
+        first_draw_ms: [0.0; 6],
+        need: [false; 6],
         last_input_ms: 0.0,
         dragging: false,
     }));
@@ -330,61 +334,66 @@ fn status_suffix(st: &crate::controller::JobStatus) -> String {
     }
 }
 
-/// Main-thread time a frame may spend drawing (ms); views left over stay
-/// dirty and are drawn in the next frame, so no frame blocks for long.
-const FRAME_BUDGET_MS: f64 = 24.0;
+/// Main-thread time after which a frame starts no further view (ms): a
+/// full refresh spreads over a few frames instead of blocking one.
+const FRAME_BUDGET_MS: f64 = 8.0;
+/// While a sweep is still running its view is redrawn at most this often (ms).
+const RUNNING_REDRAW_MS: f64 = 150.0;
+/// The order in which dirty views are drawn: the views a slider drag
+/// watches first.
+const DRAW_ORDER: [usize; 6] = [0, 2, 1, 3, 4, 5];
 
 fn draw_dirty(page: &Shared, p: &mut Page) {
     let t0 = now(&p.window);
     let d = p.ctl.dirty;
-    p.ctl.dirty.controls = false;
-    p.ctl.dirty.messages = false;
-    p.ctl.dirty.url = false;
+    p.ctl.dirty = Default::default();
     if d.controls {
         refresh_controls(p);
     }
     if d.messages {
         refresh_messages(p);
     }
-    // Views in order of interest; stop when the budget is used.
-    for k in 0..3 {
-        let dirty = match k {
-            0 => p.ctl.dirty.fr,
-            1 => p.ctl.dirty.bif,
-            _ => p.ctl.dirty.omega,
-        };
-        if !dirty {
+    if d.fr {
+        p.need[0] = true;
+    }
+    if d.bif {
+        p.need[1] = true;
+    }
+    if d.omega {
+        for k in 2..6 {
+            p.need[k] = true;
+        }
+        refresh_summary(p);
+    }
+    for k in DRAW_ORDER {
+        if !p.need[k] {
             continue;
         }
-        if now(&p.window) - t0 > FRAME_BUDGET_MS {
+        let start = now(&p.window);
+        if start - t0 > FRAME_BUDGET_MS {
             break;
         }
-        let start = now(&p.window);
+        let running = match k {
+            0 => p.ctl.fr_status.running(),
+            1 => p.ctl.bif_status.running(),
+            _ => false,
+        };
+        // Progressive views: throttle redraws while points stream in.
+        if running && p.draws[k] > 0 && start - p.last_draw_ms[k] < RUNNING_REDRAW_MS {
+            continue;
+        }
+        p.need[k] = false;
         match k {
-            0 => {
-                p.ctl.dirty.fr = false;
-                draw_fr(p);
-            }
-            1 => {
-                p.ctl.dirty.bif = false;
-                draw_bif(p);
-            }
-            _ => {
-                p.ctl.dirty.omega = false;
-                draw_omega_views(p);
-                refresh_summary(p);
-            }
+            0 => draw_fr(p),
+            1 => draw_bif(p),
+            _ => draw_omega_view(p, k - 2),
         }
         let end = now(&p.window);
-        let slots: &[usize] = match k {
-            0 => &[0],
-            1 => &[1],
-            _ => &[2, 3, 4, 5],
-        };
-        for &s in slots {
-            p.draws[s] += 1;
-            p.last_draw_ms[s] = end;
-            p.max_draw_ms[s] = p.max_draw_ms[s].max(end - start);
+        p.draws[k] += 1;
+        p.last_draw_ms[k] = end;
+        p.max_draw_ms[k] = p.max_draw_ms[k].max(end - start);
+        if p.first_draw_ms[k] == 0.0 {
+            p.first_draw_ms[k] = end;
         }
     }
     if d.url || d.controls {
@@ -398,7 +407,7 @@ fn draw_dirty(page: &Shared, p: &mut Page) {
         set_text(&p.doc, "cli-command", &p.ctl.cli_commands());
     }
     highlight_mesh(p);
-    if p.ctl.dirty.fr || p.ctl.dirty.bif || p.ctl.dirty.omega {
+    if p.need.iter().any(|&n| n) {
         p.frame_requested = false;
         let page2 = page.clone();
         let cb = Closure::once_into_js(move |_t: f64| frame(&page2));
@@ -500,7 +509,7 @@ fn draw_bif(p: &mut Page) {
     report_draw_error(p, r);
 }
 
-fn draw_omega_views(p: &mut Page) {
+fn draw_omega_view(p: &mut Page, only: usize) {
     let st = p.ctl.omega_status.clone();
     let titles = [
         "Phase portrait",
@@ -509,6 +518,9 @@ fn draw_omega_views(p: &mut Page) {
         "Spectrum",
     ];
     for (k, view) in ["phase", "poincare", "time", "spectrum"].iter().enumerate() {
+        if k != only {
+            continue;
+        }
         let Some(b) = backend(&p.doc, view) else {
             continue;
         };
@@ -1190,6 +1202,7 @@ fn expose_status(page: &Shared) {
             o.insert("draws".into(), serde_json::json!(p.draws));
             o.insert("last_draw_ms".into(), serde_json::json!(p.last_draw_ms));
             o.insert("max_draw_ms".into(), serde_json::json!(p.max_draw_ms));
+            o.insert("first_draw_ms".into(), serde_json::json!(p.first_draw_ms));
             o.insert("last_input_ms".into(), serde_json::json!(p.last_input_ms));
             o.insert("now_ms".into(), serde_json::json!(t));
             o.insert(

@@ -7,8 +7,9 @@
 //! and yields to the event loop so that newer jobs and cancels arrive. One
 //! step computes one steady state: the bounded chunk of work.
 //!
-//! Jobs are served by priority (`Omega`, then `Fr`, then `Bif`), so the
-//! views at the selected Omega update even while a long sweep runs.
+//! The selected-Omega job is served first, so the views at the selected
+//! Omega update even while a long sweep runs; the frequency-response grid and
+//! the bifurcation sweep then take turns, one steady state each.
 
 use crate::protocol::{
     encode, BifMesh, BifSample, FrSample, FromWorker, JobId, JobKind, JobSpec, MeshExtremes,
@@ -57,6 +58,7 @@ pub struct WorkerCore {
     fr: Option<FrJob>,
     bif: Option<BifJob>,
     finished_bif: Option<BifJob>,
+    bif_turn: bool,
 }
 
 fn failed(id: JobId, message: impl Into<String>) -> FromWorker {
@@ -210,7 +212,11 @@ impl WorkerCore {
         if let Some(job) = self.omega.take() {
             return vec![run_omega(&job), FromWorker::Done { id: job.id }];
         }
-        if let Some(job) = self.fr.as_mut() {
+        // The two sweeps take turns, so both diagrams fill in together and
+        // the bifurcation diagram's first points come early.
+        self.bif_turn = !self.bif_turn;
+        let fr_first = !(self.bif_turn && self.bif.is_some());
+        if let Some(job) = self.fr.as_mut().filter(|_| fr_first) {
             let mut out = Vec::new();
             if let Some(&(index, omega)) = job.omegas.get(job.next) {
                 job.next += 1;

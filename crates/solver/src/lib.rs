@@ -14,10 +14,12 @@
 //! - [`dynamics`]: the equations of motion as an ODE.
 //! - [`steady`]: steady-state runs, Poincaré samples, impact regimes, spectra.
 //! - [`sweep`]: bifurcation sweeps with bounded work per call.
+//! - [`hbm`]: harmonic balance, continuation, Floquet stability.
 //! - [`report`]: results as JSON, shared by the CLI and the browser.
 
 pub mod dynamics;
 pub mod error;
+pub mod hbm;
 pub mod keys;
 pub mod modal;
 pub mod ode;

@@ -1,0 +1,224 @@
+//! The harmonic-balance residual `R(X, Omega)`, its Jacobian `dR/dX` and
+//! its derivative `dR/dOmega`, assembled from the linear part (block
+//! diagonal over harmonics) and the channels (AFT or describing function).
+//!
+//! Unknowns are laid out coefficient by coefficient: `X[c * m + i]` is
+//! coefficient `c` (mean, cos 1, sin 1, cos 2, ...) of coordinate `i`.
+
+use super::harmonic::{
+    channel_aft, channel_df, mult_operator, n_coef, ChannelTables, Grid, Scratch,
+};
+use super::model::HbmModel;
+use nalgebra::Complex;
+use nalgebra::DMatrix;
+
+/// How the nonlinear forces are balanced.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Method {
+    /// Alternating frequency–time on a time grid, any number of harmonics.
+    Aft,
+    /// The seed paper's closed-form one-harmonic describing function (`H = 1`).
+    DescribingFunction,
+}
+
+impl Method {
+    /// Name for output and the CLI.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Aft => "aft",
+            Method::DescribingFunction => "describing-function",
+        }
+    }
+
+    /// Parses a name written by [`Method::name`].
+    pub fn from_name(s: &str) -> Option<Self> {
+        match s {
+            "aft" => Some(Method::Aft),
+            "describing-function" | "df" => Some(Method::DescribingFunction),
+            _ => None,
+        }
+    }
+}
+
+/// Residual evaluator with its tables and scratch space.
+#[derive(Debug, Clone)]
+pub struct Assembly {
+    /// The problem.
+    pub model: HbmModel,
+    /// Harmonics.
+    pub h: usize,
+    /// Method.
+    pub method: Method,
+    /// Time grid (AFT; also used to reconstruct orbits).
+    pub grid: Grid,
+    tables: Vec<ChannelTables>,
+    te_rate_cos: Vec<f64>,
+    te_rate_sin: Vec<f64>,
+    scratch: Scratch,
+    u_coef: Vec<f64>,
+    force: Vec<f64>,
+    slope: Vec<Complex<f64>>,
+    op: Vec<f64>,
+    /// Channel displacement coefficients of the last evaluation, channel after channel.
+    pub channel_coef: Vec<f64>,
+}
+
+impl Assembly {
+    /// An evaluator for `h` harmonics (`h = 1` for the describing function)
+    /// on a grid of `grid_n` points.
+    pub fn new(model: HbmModel, h: usize, method: Method, grid_n: usize) -> Self {
+        let h = if method == Method::DescribingFunction {
+            1
+        } else {
+            h
+        };
+        let grid = Grid::new(h, grid_n);
+        let tables = model
+            .channels
+            .iter()
+            .map(|c| ChannelTables::new(&c.law, &grid))
+            .collect();
+        let (te_rate_cos, te_rate_sin) = model.te_rate_forcing();
+        let nc = n_coef(h);
+        Assembly {
+            h,
+            method,
+            tables,
+            te_rate_cos,
+            te_rate_sin,
+            scratch: Scratch::default(),
+            u_coef: vec![0.0; nc],
+            force: vec![0.0; nc],
+            slope: vec![Complex::new(0.0, 0.0); 2 * h + 1],
+            op: vec![0.0; nc * nc],
+            channel_coef: vec![0.0; model.channels.len() * nc],
+            grid,
+            model,
+        }
+    }
+
+    /// Number of unknown coefficients.
+    pub fn n_x(&self) -> usize {
+        self.model.m * n_coef(self.h)
+    }
+
+    /// Evaluates `r = R(x, omega)`; with `jac`, also `dR/dX` into its first
+    /// `n_x` columns and `dR/dOmega` into column `n_x` (the matrix must be at
+    /// least `n_x x (n_x + 1)`).
+    pub fn evaluate(
+        &mut self,
+        x: &[f64],
+        omega: f64,
+        r: &mut [f64],
+        mut jac: Option<&mut DMatrix<f64>>,
+    ) {
+        let m = self.model.m;
+        let nc = n_coef(self.h);
+        let nx = m * nc;
+        if let Some(j) = jac.as_deref_mut() {
+            j.fill(0.0);
+        }
+        // Linear part.
+        let k = &self.model.stiffness;
+        let c = &self.model.damping;
+        for i in 0..m {
+            let mut s = -self.model.load[i];
+            for l in 0..m {
+                s += k[(i, l)] * x[l];
+            }
+            r[i] = s;
+        }
+        if let Some(j) = jac.as_deref_mut() {
+            for i in 0..m {
+                for l in 0..m {
+                    j[(i, l)] = k[(i, l)];
+                }
+            }
+        }
+        for hk in 1..=self.h {
+            let kf = hk as f64;
+            let (ic, is) = ((2 * hk - 1) * m, 2 * hk * m);
+            let w2 = kf * kf * omega * omega;
+            for i in 0..m {
+                let mut rc = -w2 * x[ic + i];
+                let mut rs = -w2 * x[is + i];
+                let mut dc = -2.0 * kf * kf * omega * x[ic + i];
+                let mut ds = -2.0 * kf * kf * omega * x[is + i];
+                for l in 0..m {
+                    rc += k[(i, l)] * x[ic + l] + kf * omega * c[(i, l)] * x[is + l];
+                    rs += k[(i, l)] * x[is + l] - kf * omega * c[(i, l)] * x[ic + l];
+                    dc += kf * c[(i, l)] * x[is + l];
+                    ds -= kf * c[(i, l)] * x[ic + l];
+                }
+                if hk == 1 {
+                    rc -= self.model.force_cos[i] + omega * self.te_rate_cos[i];
+                    rs -= self.model.force_sin[i] + omega * self.te_rate_sin[i];
+                    dc -= self.te_rate_cos[i];
+                    ds -= self.te_rate_sin[i];
+                }
+                r[ic + i] = rc;
+                r[is + i] = rs;
+                if let Some(j) = jac.as_deref_mut() {
+                    j[(ic + i, nx)] = dc;
+                    j[(is + i, nx)] = ds;
+                    for l in 0..m {
+                        let kv = k[(i, l)] - if i == l { w2 } else { 0.0 };
+                        j[(ic + i, ic + l)] = kv;
+                        j[(is + i, is + l)] = kv;
+                        j[(ic + i, is + l)] = kf * omega * c[(i, l)];
+                        j[(is + i, ic + l)] = -kf * omega * c[(i, l)];
+                    }
+                }
+            }
+        }
+        // Channels.
+        for (ch_idx, ch) in self.model.channels.iter().enumerate() {
+            for cc in 0..nc {
+                self.u_coef[cc] = (0..m).map(|i| ch.d[i] * x[cc * m + i]).sum();
+            }
+            self.channel_coef[ch_idx * nc..(ch_idx + 1) * nc].copy_from_slice(&self.u_coef);
+            match self.method {
+                Method::Aft => channel_aft(
+                    &self.grid,
+                    &ch.law,
+                    &self.tables[ch_idx],
+                    &self.u_coef,
+                    &mut self.scratch,
+                    &mut self.force,
+                    &mut self.slope,
+                ),
+                Method::DescribingFunction => {
+                    channel_df(&ch.law, &self.u_coef, &mut self.force, &mut self.slope)
+                }
+            }
+            let w = ch.multiplicity;
+            for cc in 0..nc {
+                let f = w * self.force[cc];
+                for i in 0..m {
+                    r[cc * m + i] += f * ch.d[i];
+                }
+            }
+            if let Some(j) = jac.as_deref_mut() {
+                mult_operator(&self.slope, self.h, &mut self.op);
+                for p in 0..nc {
+                    for q in 0..nc {
+                        let coef = w * self.op[p * nc + q];
+                        if coef == 0.0 {
+                            continue;
+                        }
+                        for a in 0..m {
+                            let ca = coef * ch.d[a];
+                            if ca == 0.0 {
+                                continue;
+                            }
+                            for b in 0..m {
+                                j[(p * m + a, q * m + b)] += ca * ch.d[b];
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        let _ = nx;
+    }
+}

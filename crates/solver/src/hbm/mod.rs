@@ -1,0 +1,826 @@
+//! Harmonic balance: periodic responses as truncated Fourier series, solved by
+//! Newton's method and followed in Omega by pseudo-arclength continuation,
+//! with Floquet stability and bifurcation points.
+//!
+//! - [`model`]: the problem in scaled modal coordinates (rigid mode removed),
+//!   full or reduced by the cyclic symmetry of in-phase planets.
+//! - [`harmonic`]: AFT, the seed's describing function, the multiplication operator.
+//! - [`assembly`]: residual and analytic Jacobian.
+//! - [`stability`]: monodromy matrix and Floquet multipliers.
+//!
+//! Newton. The corrector solves the bordered system `[R_X R_Omega; t^T]` by
+//! LU; a step that does not reduce the residual is halved (up to eight
+//! times). It has converged when both the residual and the last step are
+//! below `1e-9` of the solution's scale (micrometres), and fails with
+//! [`SolverError::NotConverged`] carrying Omega and the residual otherwise —
+//! never a silent last iterate.
+//!
+//! Continuation. Pseudo-arclength in `(X / (a sqrt(n)), Omega / range)` with
+//! `a` three times the largest RMS coefficient seen (at least 1 um); the
+//! step adapts to the corrector's iterations (grows by 1.4 after quick
+//! convergence, shrinks by 0.6 after a slow one, halves after a failure or
+//! when the tangent turns by more than ~25 degrees) between
+//! `ds_max = 1 / points` and `1e-5 ds_max`: flat stretches get about
+//! `points` points over the range, resonances more. A sign
+//! change of the tangent's Omega component marks a fold (the branch turns
+//! back: a jump). Stability changes between consecutive points are labelled
+//! by the multiplier that crossed the unit circle: real +1 without a turn
+//! (branch point), real -1 (period doubling), complex pair (Neimark–Sacker).
+
+pub mod assembly;
+pub mod harmonic;
+pub mod model;
+pub mod stability;
+
+use crate::error::{Result, SolverError};
+use crate::steady::{Impact, Model};
+use crate::sweep::Direction;
+pub use assembly::{Assembly, Method};
+pub use model::{HbmModel, Reduction};
+use nalgebra::Complex;
+use nalgebra::{DMatrix, DVector};
+pub use stability::Floquet;
+use stability::{eval_coef, floquet};
+use std::f64::consts::PI;
+
+/// A bifurcation detected between two branch points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Bifurcation {
+    /// The branch turns back in Omega (a jump in a sweep).
+    Fold,
+    /// A real multiplier crosses -1.
+    PeriodDoubling,
+    /// A complex pair crosses the unit circle.
+    NeimarkSacker,
+    /// A real multiplier crosses +1 without a turn (symmetry breaking or transcritical).
+    BranchPoint,
+}
+
+impl Bifurcation {
+    /// Name for output.
+    pub fn name(self) -> &'static str {
+        match self {
+            Bifurcation::Fold => "fold",
+            Bifurcation::PeriodDoubling => "period-doubling",
+            Bifurcation::NeimarkSacker => "neimark-sacker",
+            Bifurcation::BranchPoint => "branch-point",
+        }
+    }
+}
+
+/// Options of a frequency-response computation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FrfSpec {
+    /// Start of the Omega range.
+    pub omega_from: f64,
+    /// End of the Omega range.
+    pub omega_to: f64,
+    /// Nominal number of points: the largest arclength step is `range / points`.
+    pub points: u32,
+    /// Continue upward from `omega_from` or downward from `omega_to`.
+    pub direction: Direction,
+    /// Number of harmonics H.
+    pub harmonics: usize,
+    /// AFT or the seed's describing function.
+    pub method: Method,
+    /// AFT grid size (default [`harmonic::Grid::default_size`]).
+    pub grid: Option<usize>,
+    /// Compute Floquet stability at every point.
+    pub stability: bool,
+    /// Use the cyclic-symmetry reduction when the planets allow it.
+    pub symmetric: bool,
+}
+
+impl FrfSpec {
+    /// Defaults: H = 5 with AFT, stability on, symmetric reduction on, up.
+    pub fn new(omega_from: f64, omega_to: f64, points: u32) -> Self {
+        FrfSpec {
+            omega_from,
+            omega_to,
+            points,
+            direction: Direction::Up,
+            harmonics: 5,
+            method: Method::Aft,
+            grid: None,
+            stability: true,
+            symmetric: true,
+        }
+    }
+
+    /// Checks the options.
+    pub fn validate(&self) -> Result<()> {
+        let bad = |option: &str, value: String, allowed: &str| {
+            Err(SolverError::BadOption {
+                option: option.into(),
+                value,
+                allowed: allowed.into(),
+            })
+        };
+        for (name, v) in [("omega-from", self.omega_from), ("omega-to", self.omega_to)] {
+            if !(v.is_finite() && (0.01..=20.0).contains(&v)) {
+                return bad(name, format!("{v}"), "0.01 ..= 20");
+            }
+        }
+        if self.omega_to <= self.omega_from {
+            return bad("omega-to", format!("{}", self.omega_to), "> omega-from");
+        }
+        if self.points < 2 || self.points > 100_000 {
+            return bad("points", self.points.to_string(), "2 ..= 100000");
+        }
+        if self.harmonics == 0 || self.harmonics > 40 {
+            return bad("harmonics", self.harmonics.to_string(), "1 ..= 40");
+        }
+        if self.method == Method::DescribingFunction && self.harmonics != 1 {
+            return bad(
+                "harmonics",
+                self.harmonics.to_string(),
+                "1 with the describing-function method",
+            );
+        }
+        if let Some(n) = self.grid {
+            if n <= 4 * self.harmonics || n > 1 << 16 {
+                return bad("grid", n.to_string(), "4 H + 1 ..= 65536");
+            }
+        }
+        Ok(())
+    }
+}
+
+/// One mesh on a branch point, reconstructed from the harmonics.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BranchMesh {
+    /// Largest deflection delta (m).
+    pub delta_max_m: f64,
+    /// Smallest deflection delta (m).
+    pub delta_min_m: f64,
+    /// Half the peak-to-peak deflection (m).
+    pub delta_amplitude_m: f64,
+    /// Mean (index 0) and amplitude of harmonics 1..=H of delta (m).
+    pub harmonics_m: Vec<f64>,
+    /// Smallest relative displacement delta - e (m).
+    pub rel_min_m: f64,
+    /// Largest relative displacement delta - e (m).
+    pub rel_max_m: f64,
+    /// Contact regime of the reconstructed orbit.
+    pub impact: Impact,
+}
+
+/// One point of a branch.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BranchPoint {
+    /// Dimensionless frequency.
+    pub omega: f64,
+    /// Every physical mesh, in the system's order.
+    pub meshes: Vec<BranchMesh>,
+    /// Stability (None if not computed or the eigenvalues failed).
+    pub stable: Option<bool>,
+    /// Floquet multipliers (empty if not computed).
+    pub multipliers: Vec<Complex<f64>>,
+    /// A bifurcation detected between the previous point and this one.
+    pub bifurcation: Option<Bifurcation>,
+    /// Newton iterations spent on this point.
+    pub newton_iterations: usize,
+    /// The solution's coefficients (scaled units; for continuation and checks).
+    pub coefficients: Vec<f64>,
+}
+
+/// Work counters of a continuation.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct FrfStats {
+    /// Points on the branch.
+    pub points: u64,
+    /// Newton iterations.
+    pub newton_iterations: u64,
+    /// Rejected continuation steps.
+    pub rejected_steps: u64,
+    /// Residual and Jacobian evaluations.
+    pub jacobians: u64,
+}
+
+/// A continuation in progress; [`FrfContinuation::advance`] computes a bounded
+/// number of points per call.
+#[derive(Debug, Clone)]
+pub struct FrfContinuation {
+    asm: Assembly,
+    spec: FrfSpec,
+    y: Vec<f64>,
+    tangent: Vec<f64>,
+    ds: f64,
+    ds_max: f64,
+    scale: f64,
+    started: bool,
+    finished: bool,
+    prev_stable: Option<bool>,
+    prev_multipliers: Vec<Complex<f64>>,
+    since_fold: u32,
+    max_points: u64,
+    /// Work so far.
+    pub stats: FrfStats,
+    x0: Vec<f64>,
+    transform: Option<DMatrix<f64>>,
+    mesh_to_channel: Vec<usize>,
+    recon: Vec<f64>,
+}
+
+const NEWTON_MAX: usize = 12;
+const NEWTON_TOL: f64 = 1e-9;
+
+impl FrfContinuation {
+    /// Prepares the frequency response of a gear model.
+    pub fn new(model: &Model, spec: FrfSpec) -> Result<Self> {
+        spec.validate()?;
+        let hbm = HbmModel::from_system(&model.system, spec.symmetric)?;
+        // Start from the static equilibrium, projected on the HBM coordinates.
+        let t = hbm.transform.clone().ok_or_else(|| SolverError::Singular {
+            what: "harmonic-balance model without a coordinate map".into(),
+        })?;
+        let q = DVector::from_column_slice(&model.statics.q);
+        let x_static = (t.transpose() * &model.system.mass * q) * 1e6;
+        let mut x0 = vec![0.0; hbm.m * harmonic::n_coef(spec.harmonics)];
+        x0[..hbm.m].copy_from_slice(x_static.as_slice());
+        let mut mesh_to_channel = vec![0; model.system.meshes.len()];
+        for (c, ch) in hbm.channels.iter().enumerate() {
+            for &j in &ch.meshes {
+                mesh_to_channel[j] = c;
+            }
+        }
+        Self::with_model(hbm, spec, x0, Some(t), mesh_to_channel)
+    }
+
+    /// Prepares the frequency response of any harmonic-balance problem
+    /// (test models), starting from zero.
+    pub fn for_model(hbm: HbmModel, spec: FrfSpec) -> Result<Self> {
+        spec.validate()?;
+        let x0 = vec![0.0; hbm.m * harmonic::n_coef(spec.harmonics)];
+        let map = (0..hbm.n_meshes).collect();
+        Self::with_model(hbm, spec, x0, None, map)
+    }
+
+    fn with_model(
+        hbm: HbmModel,
+        spec: FrfSpec,
+        x0: Vec<f64>,
+        transform: Option<DMatrix<f64>>,
+        mesh_to_channel: Vec<usize>,
+    ) -> Result<Self> {
+        let h = if spec.method == Method::DescribingFunction {
+            1
+        } else {
+            spec.harmonics
+        };
+        let grid = spec.grid.unwrap_or_else(|| harmonic::Grid::default_size(h));
+        let asm = Assembly::new(hbm, h, spec.method, grid);
+        // Arclength is measured with Omega in units of the range.
+        let ds_max = 1.0 / f64::from(spec.points);
+        Ok(FrfContinuation {
+            max_points: 20 * u64::from(spec.points) + 200,
+            asm,
+            y: Vec::new(),
+            tangent: Vec::new(),
+            ds: ds_max,
+            ds_max,
+            scale: 1.0,
+            started: false,
+            finished: false,
+            prev_stable: None,
+            prev_multipliers: Vec::new(),
+            since_fold: u32::MAX,
+            stats: FrfStats::default(),
+            x0,
+            transform,
+            mesh_to_channel,
+            recon: recon_table(h),
+            spec,
+        })
+    }
+
+    /// The evaluator (model, grid, harmonics).
+    pub fn assembly(&self) -> &Assembly {
+        &self.asm
+    }
+
+    /// The specification.
+    pub fn spec(&self) -> &FrfSpec {
+        &self.spec
+    }
+
+    /// Whether the branch has left the Omega range (or failed).
+    pub fn is_finished(&self) -> bool {
+        self.finished
+    }
+
+    /// Fraction of the Omega range covered so far, for progress bars.
+    pub fn progress(&self) -> f64 {
+        if !self.started {
+            return 0.0;
+        }
+        let omega = self.y[self.y.len() - 1];
+        let range = self.spec.omega_to - self.spec.omega_from;
+        let done = match self.spec.direction {
+            Direction::Up => omega - self.spec.omega_from,
+            Direction::Down => self.spec.omega_to - omega,
+        };
+        (done / range).clamp(0.0, 1.0)
+    }
+
+    /// Physical generalized coordinates `q(theta)` are `transform x 1e-6`.
+    pub fn transform(&self) -> Option<&DMatrix<f64>> {
+        self.transform.as_ref()
+    }
+
+    /// Computes up to `k` further points. On a solver failure the branch ends
+    /// and the error is returned (the points already returned stay valid).
+    pub fn advance(&mut self, k: usize) -> Result<Vec<BranchPoint>> {
+        let mut out = Vec::new();
+        while out.len() < k && !self.finished {
+            if self.stats.points >= self.max_points {
+                self.finished = true;
+                break;
+            }
+            let point = if self.started {
+                self.step()?
+            } else {
+                self.start()?
+            };
+            if let Some(p) = point {
+                self.stats.points += 1;
+                out.push(p);
+            }
+        }
+        Ok(out)
+    }
+
+    fn n_x(&self) -> usize {
+        self.asm.n_x()
+    }
+
+    /// The first point: Newton at fixed Omega, continued in the number of
+    /// harmonics (1, 2, ..., H, each solution padded with zeros as the next
+    /// guess) because a many-harmonic Newton from the static guess can wander
+    /// into the dead zone and stall.
+    fn start(&mut self) -> Result<Option<BranchPoint>> {
+        let omega = match self.spec.direction {
+            Direction::Up => self.spec.omega_from,
+            Direction::Down => self.spec.omega_to,
+        };
+        let nx = self.n_x();
+        let m = self.asm.model.m;
+        let mut x: Vec<f64> = self.x0[..m].to_vec();
+        let mut iterations = 0;
+        for hh in 1..=self.asm.h {
+            x.resize(m * harmonic::n_coef(hh), 0.0);
+            if hh == self.asm.h {
+                iterations += newton_fixed(&mut self.asm, &mut x, omega, &mut self.stats)?;
+            } else {
+                let grid = harmonic::Grid::default_size(hh).max(self.asm.grid.n.min(1 << 12));
+                let mut coarse = Assembly::new(self.asm.model.clone(), hh, self.asm.method, grid);
+                iterations += newton_fixed(&mut coarse, &mut x, omega, &mut self.stats)?;
+            }
+        }
+        let mut r = vec![0.0; nx];
+        let mut jac = DMatrix::zeros(nx, nx + 1);
+        self.scale = (3.0 * rms(&x[self.asm.model.m..])).max(1.0);
+        self.y = x;
+        self.y.push(omega);
+        // First tangent: [R_X R_Omega] t = 0 with t_Omega = +-1.
+        self.asm
+            .evaluate(&self.y[..nx], omega, &mut r, Some(&mut jac));
+        let lu = jac.columns(0, nx).into_owned().lu();
+        let rhs = DVector::from_iterator(nx, (0..nx).map(|i| -jac[(i, nx)]));
+        let tx = lu.solve(&rhs).ok_or_else(|| SolverError::Singular {
+            what: format!("harmonic-balance Jacobian at Omega = {omega}"),
+        })?;
+        let sign = if self.spec.direction == Direction::Up {
+            1.0
+        } else {
+            -1.0
+        };
+        self.tangent = tx.iter().map(|v| v * sign).collect();
+        self.tangent.push(sign);
+        self.normalize_tangent();
+        self.started = true;
+        Ok(Some(self.point(iterations, None)))
+    }
+
+    /// Weights of the arclength metric: Omega in units of the range, the
+    /// coefficients in units of `scale` (RMS over coefficients).
+    fn metric(&self, i: usize) -> f64 {
+        if i == self.n_x() {
+            let range = self.spec.omega_to - self.spec.omega_from;
+            1.0 / (range * range)
+        } else {
+            1.0 / (self.scale * self.scale * self.n_x() as f64)
+        }
+    }
+
+    /// Grows the amplitude scale of the metric with the largest response seen
+    /// (three times its RMS harmonic coefficient, at least 1 um), so that a
+    /// resonance peak costs a bounded number of steps whatever its height.
+    fn update_scale(&mut self) {
+        let m = self.asm.model.m;
+        let nx = self.n_x();
+        let amp = 3.0 * rms(&self.y[m..nx]);
+        if amp > self.scale {
+            self.scale = amp;
+            self.normalize_tangent();
+        }
+    }
+
+    fn normalize_tangent(&mut self) {
+        let norm: f64 = (0..self.tangent.len())
+            .map(|i| self.metric(i) * self.tangent[i] * self.tangent[i])
+            .sum::<f64>()
+            .sqrt();
+        for t in &mut self.tangent {
+            *t /= norm;
+        }
+    }
+
+    /// One predictor-corrector step; `None` when the branch has left the range.
+    fn step(&mut self) -> Result<Option<BranchPoint>> {
+        let nx = self.n_x();
+        let n = nx + 1;
+        let omega_now = self.y[nx];
+        let ds_min = 1e-5 * self.ds_max;
+        loop {
+            // Land on the end of the range instead of overshooting it.
+            let t_om = self.tangent[nx];
+            let end = match self.spec.direction {
+                Direction::Up => self.spec.omega_to,
+                Direction::Down => self.spec.omega_from,
+            };
+            let mut ds = self.ds;
+            let mut landing = false;
+            if t_om != 0.0 {
+                let to_end = (end - omega_now) / t_om;
+                if to_end > 0.0 && to_end <= ds {
+                    ds = to_end;
+                    landing = true;
+                }
+            }
+            let pred: Vec<f64> = (0..n).map(|i| self.y[i] + ds * self.tangent[i]).collect();
+            match self.correct(&pred) {
+                Ok((y_new, t_new, iterations)) => {
+                    let turn: f64 = (0..n)
+                        .map(|i| self.metric(i) * t_new[i] * self.tangent[i])
+                        .sum();
+                    if turn < 0.9 && ds > ds_min {
+                        self.stats.rejected_steps += 1;
+                        self.ds = ds * 0.5;
+                        continue;
+                    }
+                    let fold = t_new[nx].signum() != self.tangent[nx].signum();
+                    self.y = y_new;
+                    self.tangent = t_new;
+                    self.update_scale();
+                    self.ds = if iterations <= 2 {
+                        (ds * 1.4).min(self.ds_max)
+                    } else if iterations >= 5 {
+                        ds * 0.6
+                    } else {
+                        ds
+                    }
+                    .max(ds_min);
+                    let omega = self.y[nx];
+                    if landing
+                        || omega > self.spec.omega_to + 1e-12
+                        || omega < self.spec.omega_from - 1e-12
+                    {
+                        self.finished = true;
+                    }
+                    return Ok(Some(
+                        self.point(iterations, fold.then_some(Bifurcation::Fold)),
+                    ));
+                }
+                Err(e) => {
+                    self.stats.rejected_steps += 1;
+                    if ds <= ds_min {
+                        self.finished = true;
+                        return Err(e);
+                    }
+                    self.ds = (ds * 0.5).max(ds_min);
+                }
+            }
+        }
+    }
+
+    /// Newton on the bordered system from the predictor `pred`; returns the
+    /// solution, its tangent and the iterations.
+    fn correct(&mut self, pred: &[f64]) -> Result<(Vec<f64>, Vec<f64>, usize)> {
+        let nx = self.n_x();
+        let n = nx + 1;
+        let mut y = pred.to_vec();
+        let mut r = vec![0.0; nx];
+        let mut jac = DMatrix::zeros(n, n);
+        let mut jx = DMatrix::zeros(nx, n);
+        let weighted_t: Vec<f64> = (0..n).map(|i| self.metric(i) * self.tangent[i]).collect();
+        for iteration in 1..=NEWTON_MAX {
+            self.asm.evaluate(&y[..nx], y[nx], &mut r, Some(&mut jx));
+            self.stats.jacobians += 1;
+            self.stats.newton_iterations += 1;
+            jac.rows_mut(0, nx).copy_from(&jx);
+            for i in 0..n {
+                jac[(nx, i)] = weighted_t[i];
+            }
+            let mut g = DVector::zeros(n);
+            for i in 0..nx {
+                g[i] = r[i];
+            }
+            g[nx] = (0..n).map(|i| weighted_t[i] * (y[i] - pred[i])).sum();
+            let res = inf_norm(&r);
+            if !res.is_finite() {
+                break;
+            }
+            let lu = jac.clone().lu();
+            let Some(dy) = lu.solve(&g) else { break };
+            for i in 0..n {
+                y[i] -= dy[i];
+            }
+            let scale = 1.0 + inf_norm(&y[..nx]);
+            let step = inf_norm(&dy.as_slice()[..nx]).max(dy[nx].abs() * scale);
+            if step <= NEWTON_TOL * scale {
+                // Converged: the tangent solves [R_X R_Omega; t^T] t_new = [0; 1].
+                self.asm.evaluate(&y[..nx], y[nx], &mut r, Some(&mut jx));
+                self.stats.jacobians += 1;
+                if inf_norm(&r) > 1e-6 * scale {
+                    break;
+                }
+                jac.rows_mut(0, nx).copy_from(&jx);
+                let mut e = DVector::zeros(n);
+                e[nx] = 1.0;
+                let t = jac.lu().solve(&e).ok_or_else(|| SolverError::Singular {
+                    what: format!("bordered Jacobian at Omega = {}", y[nx]),
+                })?;
+                let mut t: Vec<f64> = t.iter().copied().collect();
+                let norm: f64 = (0..n)
+                    .map(|i| self.metric(i) * t[i] * t[i])
+                    .sum::<f64>()
+                    .sqrt();
+                let dot: f64 = (0..n)
+                    .map(|i| self.metric(i) * t[i] * self.tangent[i])
+                    .sum();
+                let sign = if dot < 0.0 { -1.0 } else { 1.0 };
+                for v in &mut t {
+                    *v *= sign / norm;
+                }
+                return Ok((y, t, iteration));
+            }
+        }
+        self.asm.evaluate(&y[..nx], y[nx], &mut r, None);
+        Err(SolverError::NotConverged {
+            omega: y[nx],
+            residual: inf_norm(&r),
+            iterations: NEWTON_MAX,
+        })
+    }
+
+    /// Builds the output for the current solution.
+    fn point(&mut self, newton_iterations: usize, fold: Option<Bifurcation>) -> BranchPoint {
+        let nx = self.n_x();
+        let omega = self.y[nx];
+        let x = self.y[..nx].to_vec();
+        let meshes = self.meshes_of(&x);
+        let (stable, multipliers) = if self.spec.stability {
+            match floquet(&self.asm, &x, omega) {
+                Some(f) => {
+                    let n_planet = f.planet_multipliers.len();
+                    let mut all: Vec<Complex<f64>> = f.multipliers.clone();
+                    all.extend(f.planet_multipliers.iter().copied());
+                    let _ = n_planet;
+                    (Some(f.spectral_radius() <= 1.0 + 1e-6), all)
+                }
+                None => (None, Vec::new()),
+            }
+        } else {
+            (None, Vec::new())
+        };
+        let mut bifurcation = fold;
+        if fold.is_some() {
+            self.since_fold = 0;
+        } else {
+            self.since_fold = self.since_fold.saturating_add(1);
+        }
+        if bifurcation.is_none() {
+            if let (Some(a), Some(b)) = (self.prev_stable, stable) {
+                if a != b {
+                    let kind = classify_crossing(&self.prev_multipliers, &multipliers);
+                    // A real multiplier through +1 next to a turn is the fold
+                    // itself (the monodromy of the truncated orbit and the
+                    // truncated balance place it a point apart).
+                    if !(kind == Bifurcation::BranchPoint && self.since_fold <= 5) {
+                        bifurcation = Some(kind);
+                    }
+                }
+            }
+        }
+        self.prev_stable = stable;
+        self.prev_multipliers = multipliers.clone();
+        BranchPoint {
+            omega,
+            meshes,
+            stable,
+            multipliers,
+            bifurcation,
+            newton_iterations,
+            coefficients: x,
+        }
+    }
+
+    /// Reconstructs every physical mesh's orbit from the coefficients.
+    pub fn meshes_of(&self, x: &[f64]) -> Vec<BranchMesh> {
+        let h = self.asm.h;
+        let nc = harmonic::n_coef(h);
+        let m = self.asm.model.m;
+        let per_channel: Vec<BranchMesh> = self
+            .asm
+            .model
+            .channels
+            .iter()
+            .map(|ch| {
+                let coef: Vec<f64> = (0..nc)
+                    .map(|c| (0..m).map(|i| ch.d[i] * x[c * m + i]).sum())
+                    .collect();
+                // delta - e has the same series with the TE's mean and first
+                // harmonic subtracted.
+                let mut rel_coef = coef.clone();
+                let te = te_coefficients(&ch.law);
+                for (r, t) in rel_coef.iter_mut().zip(te) {
+                    *r -= t;
+                }
+                let (dmin, dmax) = extremes(&self.recon, &coef, h);
+                let (xmin, xmax) = extremes(&self.recon, &rel_coef, h);
+                let mut harmonics_m = vec![coef[0] * 1e-6];
+                for k in 1..=h {
+                    harmonics_m.push(coef[2 * k - 1].hypot(coef[2 * k]) * 1e-6);
+                }
+                let b = ch.law.backlash_um();
+                BranchMesh {
+                    delta_max_m: dmax * 1e-6,
+                    delta_min_m: dmin * 1e-6,
+                    delta_amplitude_m: 0.5 * (dmax - dmin) * 1e-6,
+                    harmonics_m,
+                    rel_min_m: xmin * 1e-6,
+                    rel_max_m: xmax * 1e-6,
+                    impact: Impact::classify(xmin, xmax, b),
+                }
+            })
+            .collect();
+        self.mesh_to_channel
+            .iter()
+            .map(|&c| per_channel[c].clone())
+            .collect()
+    }
+}
+
+/// The TE of a mesh law as Fourier coefficients `[mean, cos 1, sin 1]`.
+fn te_coefficients(law: &model::Law) -> [f64; 3] {
+    match *law {
+        model::Law::Mesh {
+            phase_rad,
+            te_mean_um,
+            te_cos_um,
+            te_sin_um,
+            ..
+        } => {
+            // c cos(t + p) + s sin(t + p) = (c cos p + s sin p) cos t + (s cos p - c sin p) sin t
+            let (sp, cp) = phase_rad.sin_cos();
+            [
+                te_mean_um,
+                te_cos_um * cp + te_sin_um * sp,
+                te_sin_um * cp - te_cos_um * sp,
+            ]
+        }
+        model::Law::Cubic { .. } => [0.0; 3],
+    }
+}
+
+/// Samples per period used to find the extremes of a reconstructed orbit.
+fn recon_samples(h: usize) -> usize {
+    256.max(16 * harmonic::n_coef(h))
+}
+
+/// Row `i` holds `[1, cos t_i, sin t_i, cos 2 t_i, ...]` at `t_i = 2 pi i / n`.
+fn recon_table(h: usize) -> Vec<f64> {
+    let n = recon_samples(h);
+    let nc = harmonic::n_coef(h);
+    let mut t = vec![0.0; n * nc];
+    for i in 0..n {
+        let theta = 2.0 * PI * i as f64 / n as f64;
+        t[i * nc] = 1.0;
+        for k in 1..=h {
+            let (s, c) = (k as f64 * theta).sin_cos();
+            t[i * nc + 2 * k - 1] = c;
+            t[i * nc + 2 * k] = s;
+        }
+    }
+    t
+}
+
+/// Damped Newton at fixed Omega: the step is halved (down to 1/128) while
+/// it does not reduce the residual. Converged when the step is below
+/// `NEWTON_TOL` of the solution's scale and the residual below `1e-6` of it.
+fn newton_fixed(
+    asm: &mut Assembly,
+    x: &mut [f64],
+    omega: f64,
+    stats: &mut FrfStats,
+) -> Result<usize> {
+    let nx = asm.n_x();
+    let mut r = vec![0.0; nx];
+    let mut jac = DMatrix::zeros(nx, nx + 1);
+    let mut trial = x.to_vec();
+    let mut r_trial = vec![0.0; nx];
+    let mut iterations = 0;
+    loop {
+        asm.evaluate(x, omega, &mut r, Some(&mut jac));
+        stats.jacobians += 1;
+        let res = inf_norm(&r);
+        let not_converged = |residual: f64, iterations: usize| SolverError::NotConverged {
+            omega,
+            residual,
+            iterations,
+        };
+        if !res.is_finite() {
+            return Err(not_converged(res, iterations));
+        }
+        let lu = jac.columns(0, nx).into_owned().lu();
+        let dx = lu
+            .solve(&DVector::from_column_slice(&r))
+            .ok_or_else(|| not_converged(res, iterations))?;
+        let mut lambda = 1.0;
+        for _ in 0..8 {
+            for i in 0..nx {
+                trial[i] = x[i] - lambda * dx[i];
+            }
+            asm.evaluate(&trial, omega, &mut r_trial, None);
+            if inf_norm(&r_trial) <= res || lambda < 1e-2 {
+                break;
+            }
+            lambda *= 0.5;
+        }
+        x.copy_from_slice(&trial);
+        iterations += 1;
+        stats.newton_iterations += 1;
+        let scale = 1.0 + inf_norm(x);
+        if inf_norm(dx.as_slice()) * lambda <= NEWTON_TOL * scale
+            && inf_norm(&r_trial) <= 1e-6 * scale
+        {
+            return Ok(iterations);
+        }
+        if iterations >= 4 * NEWTON_MAX {
+            return Err(not_converged(inf_norm(&r_trial), iterations));
+        }
+    }
+}
+
+/// Labels a stability change from the multipliers on either side.
+fn classify_crossing(before: &[Complex<f64>], after: &[Complex<f64>]) -> Bifurcation {
+    // The multiplier outside the unit circle on the unstable side.
+    let outside = |set: &[Complex<f64>]| -> Option<Complex<f64>> {
+        set.iter()
+            .copied()
+            .filter(|z| z.norm() > 1.0)
+            .max_by(|a, b| a.norm().total_cmp(&b.norm()))
+    };
+    let z = outside(after).or_else(|| outside(before));
+    match z {
+        Some(z) if z.im.abs() > 1e-6 * z.norm() => Bifurcation::NeimarkSacker,
+        Some(z) if z.re < 0.0 => Bifurcation::PeriodDoubling,
+        _ => Bifurcation::BranchPoint,
+    }
+}
+
+/// Min and max of a Fourier series: samples from the table, then a
+/// parabola through the best sample and its neighbours.
+fn extremes(table: &[f64], coef: &[f64], h: usize) -> (f64, f64) {
+    let nc = coef.len();
+    let n = table.len() / nc;
+    let dt = 2.0 * PI / n as f64;
+    let vals: Vec<f64> = table
+        .chunks_exact(nc)
+        .map(|row| row.iter().zip(coef).map(|(a, b)| a * b).sum())
+        .collect();
+    let refine = |i: usize| -> f64 {
+        let (a, b, c) = (vals[(i + n - 1) % n], vals[i], vals[(i + 1) % n]);
+        let den = a - 2.0 * b + c;
+        if den == 0.0 {
+            return b;
+        }
+        let off = (0.5 * (a - c) / den).clamp(-1.0, 1.0);
+        eval_coef(coef, h, (i as f64 + off) * dt)
+    };
+    let imax = (0..n).max_by(|&a, &b| vals[a].total_cmp(&vals[b])).unwrap_or(0);
+    let imin = (0..n).min_by(|&a, &b| vals[a].total_cmp(&vals[b])).unwrap_or(0);
+    (refine(imin).min(vals[imin]), refine(imax).max(vals[imax]))
+}
+
+fn inf_norm(v: &[f64]) -> f64 {
+    v.iter().fold(0.0, |m, x| m.max(x.abs()))
+}
+
+fn rms(v: &[f64]) -> f64 {
+    if v.is_empty() {
+        return 0.0;
+    }
+    (v.iter().map(|x| x * x).sum::<f64>() / v.len() as f64).sqrt()
+}

@@ -1,0 +1,114 @@
+// Benchmark of the explorer page in headless chromium (not part of the test
+// command): bundle sizes, first paint, slider-input-to-redraw latency and the
+// bifurcation sweep time with two workers. Prints medians as Markdown for
+// docs/browser-bench.md. Needs a release build in dist/:
+//
+//   scripts/setup.sh && source scripts/env.sh && trunk build --release --offline
+//   node tests/browser/bench.mjs [--repeats N] [--quick]
+import fs from 'node:fs';
+import path from 'node:path';
+import zlib from 'node:zlib';
+import { start, open, status, waitStatus, ROOT } from './harness.mjs';
+
+const args = process.argv.slice(2);
+const REPEATS = Number(args[args.indexOf('--repeats') + 1] || 5) || 5;
+const QUICK = args.includes('--quick');
+
+const median = (xs) => {
+  const s = [...xs].sort((a, b) => a - b);
+  const n = s.length;
+  return n === 0 ? NaN : n % 2 ? s[(n - 1) / 2] : (s[n / 2 - 1] + s[n / 2]) / 2;
+};
+const fmt = (x) => (Number.isFinite(x) ? Math.round(x).toString() : 'n/a');
+
+const results = [];
+const row = (what, values, unit, note = '') => {
+  results.push({ what, median: median(values), min: Math.min(...values), max: Math.max(...values), n: values.length, unit, note });
+  console.error(`${what}: median ${fmt(median(values))} ${unit} (n = ${values.length}; ${values.map(fmt).join(', ')})`);
+};
+
+// Bundle sizes.
+const dist = path.join(ROOT, 'dist');
+for (const f of fs.readdirSync(dist).filter((f) => f.endsWith('.wasm'))) {
+  const buf = fs.readFileSync(path.join(dist, f));
+  const gz = zlib.gzipSync(buf, { level: 9 }).length;
+  results.push({ what: `bundle ${f.replace(/-[0-9a-f]{16}/, '')}`, median: buf.length / 1024, unit: 'KiB', note: `gzip -9: ${Math.round(gz / 1024)} KiB`, n: 1 });
+  console.error(`${f}: ${Math.round(buf.length / 1024)} KiB (gzip ${Math.round(gz / 1024)} KiB)`);
+}
+
+const h = await start();
+try {
+  // First paint from a cold load: navigation start to the first drawn frame
+  // of the frequency-response axes, and to its first computed points.
+  const paint = [];
+  const firstFr = [];
+  for (let i = 0; i < REPEATS; i++) {
+    const { page } = await open(h.browser, h.url, 'fr_points=40&bif_points=20');
+    const s = await waitStatus(page, (s) => s.first_draw_ms.every((t) => t > 0) && s.fr.first_data_ms, 60000, 'first paint');
+    paint.push(Math.max(...s.first_draw_ms));
+    firstFr.push(s.fr.first_data_ms);
+    await page.close();
+  }
+  row('first paint: every canvas drawn (axes, contact lines, cursor)', paint, 'ms', 'from navigation start');
+  row('first frequency-response point received', firstFr, 'ms', 'from navigation start');
+
+  // Slider input to redraw. One page; each input moves the backlash slider.
+  {
+    const { page } = await open(h.browser, h.url, 'fr_points=30&fr_record_periods=20&bif_points=10&bif_dir=up');
+    await waitStatus(page, (s) => s.fr.finished_ms && s.omega_job.finished_ms && s.bif.finished_ms, 120000, 'initial jobs');
+    const frRedraw = [];
+    const phase = [];
+    const frDone = [];
+    const bifFirst = [];
+    const n = QUICK ? 3 : Math.max(REPEATS, 8);
+    for (let i = 0; i < n; i++) {
+      const value = String(90 + 7 * (i % 2 ? i : -i) + i);
+      const t0 = await page.evaluate((v) => {
+        const el = document.getElementById('slider-backlash_um');
+        el.value = v;
+        const t = performance.now();
+        el.dispatchEvent(new Event('input', { bubbles: true }));
+        return t;
+      }, value);
+      const s1 = await waitStatus(page, (s) => s.last_draw_ms[0] > t0, 10000, 'frequency-response redraw');
+      frRedraw.push(s1.last_draw_ms[0] - t0);
+      const s2 = await waitStatus(page, (s) => s.omega_job.finished_ms && s.omega_job.started_ms >= t0 && s.last_draw_ms[2] >= s.omega_job.finished_ms, 30000, 'phase portrait');
+      phase.push(s2.last_draw_ms[2] - t0);
+      const s3 = await waitStatus(page, (s) => s.fr.finished_ms && s.fr.started_ms >= t0, 120000, 'frequency response complete');
+      frDone.push(s3.fr.finished_ms - t0);
+      const s4 = await waitStatus(page, (s) => s.bif.finished_ms && s.bif.started_ms >= t0, 120000, 'bifurcation complete');
+      bifFirst.push(s4.bif.first_data_ms - t0);
+    }
+    row('slider input to redrawn frequency response (new ±b lines, previous curve faded)', frRedraw, 'ms');
+    row('slider input to redrawn phase portrait (new steady state, 300 + 100 periods)', phase, 'ms');
+    row('slider input to complete frequency response (30 points, 2 workers)', frDone, 'ms');
+    row('slider input to first bifurcation points (restarted sweep)', bifFirst, 'ms');
+    await page.close();
+  }
+
+  // Bifurcation: 200 Omega points x (300 + 100) periods, two workers.
+  {
+    const points = QUICK ? 20 : 200;
+    const total = [];
+    const first = [];
+    const reps = QUICK ? 1 : Math.min(REPEATS, 3);
+    for (let i = 0; i < reps; i++) {
+      const { page } = await open(h.browser, h.url, `bif_points=${points}&bif_dir=up&fr_points=2&fr_record_periods=1&transient_periods=300&record_periods=100&omega_from=0.1&omega_to=2`);
+      const s = await waitStatus(page, (s) => s.bif.finished_ms, 600000, 'bifurcation');
+      total.push(s.bif.finished_ms - s.bif.started_ms);
+      first.push(s.bif.first_data_ms - s.bif.started_ms);
+      await page.close();
+    }
+    row(`bifurcation: ${points} points x (300 + 100) periods, 2 workers`, total, 'ms', 'upward sweep, Omega 0.1..2, default model');
+    row('bifurcation: first partial frame', first, 'ms', 'from job start');
+  }
+} finally {
+  await h.close();
+}
+
+console.log('| measurement | median | unit | range (n) | note |');
+console.log('|---|---:|---|---|---|');
+for (const r of results) {
+  const range = r.n > 1 ? `${fmt(r.min)} .. ${fmt(r.max)} (${r.n})` : '';
+  console.log(`| ${r.what} | ${fmt(r.median)} | ${r.unit} | ${range} | ${r.note} |`);
+}
