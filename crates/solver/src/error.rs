@@ -107,6 +107,14 @@ pub enum SolverError {
         /// Iterations spent.
         iterations: usize,
     },
+    /// Continuation used its point budget without leaving the range.
+    #[error("continuation stalled at Omega = {omega:.6}: {points} points used without reaching the end of the range")]
+    ContinuationStalled {
+        /// Dimensionless mesh frequency reached.
+        omega: f64,
+        /// Points computed.
+        points: u64,
+    },
     /// A matrix that must be invertible (or positive definite) was not.
     #[error("singular or indefinite matrix: {what}")]
     Singular {

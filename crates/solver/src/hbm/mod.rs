@@ -223,7 +223,12 @@ pub struct FrfContinuation {
 }
 
 const NEWTON_MAX: usize = 12;
+/// Where the fallback start begins its upward continuation.
+const START_OMEGA: f64 = 0.05;
 const NEWTON_TOL: f64 = 1e-9;
+/// A residual this small (relative to the solution's scale) is converged
+/// even if the kinked force makes the last step stall above `NEWTON_TOL`.
+const RESIDUAL_FLOOR: f64 = 1e-7;
 
 impl FrfContinuation {
     /// Prepares the frequency response of a gear model.
@@ -335,7 +340,10 @@ impl FrfContinuation {
         while out.len() < k && !self.finished {
             if self.stats.points >= self.max_points {
                 self.finished = true;
-                break;
+                return Err(SolverError::ContinuationStalled {
+                    omega: self.y.last().copied().unwrap_or(f64::NAN),
+                    points: self.stats.points,
+                });
             }
             let point = if self.started {
                 self.step()?
@@ -364,19 +372,10 @@ impl FrfContinuation {
             Direction::Down => self.spec.omega_to,
         };
         let nx = self.n_x();
-        let m = self.asm.model.m;
-        let mut x: Vec<f64> = self.x0[..m].to_vec();
-        let mut iterations = 0;
-        for hh in 1..=self.asm.h {
-            x.resize(m * harmonic::n_coef(hh), 0.0);
-            if hh == self.asm.h {
-                iterations += newton_fixed(&mut self.asm, &mut x, omega, &mut self.stats)?;
-            } else {
-                let grid = harmonic::Grid::default_size(hh).max(self.asm.grid.n.min(1 << 12));
-                let mut coarse = Assembly::new(self.asm.model.clone(), hh, self.asm.method, grid);
-                iterations += newton_fixed(&mut coarse, &mut x, omega, &mut self.stats)?;
-            }
-        }
+        let (mut x, iterations) = match self.start_in_h(omega) {
+            Ok(found) => found,
+            Err(direct) => self.start_from_below(omega).map_err(|_| direct)?,
+        };
         let mut r = vec![0.0; nx];
         let mut jac = DMatrix::zeros(nx, nx + 1);
         self.scale = (3.0 * rms(&x[self.asm.model.m..])).max(1.0);
@@ -400,6 +399,70 @@ impl FrfContinuation {
         self.normalize_tangent();
         self.started = true;
         Ok(Some(self.point(iterations, None)))
+    }
+
+    /// Newton at `omega` continued in the number of harmonics.
+    fn start_in_h(&mut self, omega: f64) -> Result<(Vec<f64>, usize)> {
+        let m = self.asm.model.m;
+        let mut x: Vec<f64> = self.x0[..m].to_vec();
+        let mut iterations = 0;
+        for hh in 1..=self.asm.h {
+            x.resize(m * harmonic::n_coef(hh), 0.0);
+            if hh == self.asm.h {
+                iterations += newton_fixed(&mut self.asm, &mut x, omega, &mut self.stats)?;
+            } else {
+                let grid = harmonic::Grid::default_size(hh).max(self.asm.grid.n.min(1 << 12));
+                let mut coarse = Assembly::new(self.asm.model.clone(), hh, self.asm.method, grid);
+                iterations += newton_fixed(&mut coarse, &mut x, omega, &mut self.stats)?;
+            }
+        }
+        Ok((x, iterations))
+    }
+
+    /// Fallback start when Newton at `omega` fails from the static guess
+    /// (resonance zones, contact loss): continue upward from `START_OMEGA`,
+    /// where the response is quasi-static and Newton is reliable, to `omega`
+    /// and polish there. The branch reached is the one an upward sweep
+    /// follows. A one-time cost of up to one full continuation.
+    fn start_from_below(&mut self, omega: f64) -> Result<(Vec<f64>, usize)> {
+        if omega <= START_OMEGA * 1.5 {
+            return Err(SolverError::NotConverged {
+                omega,
+                residual: f64::NAN,
+                iterations: 0,
+            });
+        }
+        let mut spec = self.spec.clone();
+        spec.omega_from = START_OMEGA;
+        spec.omega_to = omega;
+        spec.direction = Direction::Up;
+        spec.stability = false;
+        spec.points = spec.points.max(200);
+        let mut inner = FrfContinuation::with_model(
+            self.asm.model.clone(),
+            spec,
+            self.x0.clone(),
+            None,
+            self.mesh_to_channel.clone(),
+        )?;
+        let mut last = None;
+        while !inner.is_finished() {
+            if let Some(p) = inner.advance(64)?.pop() {
+                last = Some(p);
+            }
+        }
+        self.stats.newton_iterations += inner.stats.newton_iterations;
+        self.stats.jacobians += inner.stats.jacobians;
+        let mut x = last
+            .filter(|p| (p.omega - omega).abs() < 0.05 * omega)
+            .map(|p| p.coefficients)
+            .ok_or(SolverError::NotConverged {
+                omega,
+                residual: f64::NAN,
+                iterations: 0,
+            })?;
+        let iterations = newton_fixed(&mut self.asm, &mut x, omega, &mut self.stats)?;
+        Ok((x, iterations))
     }
 
     /// Weights of the arclength metric: Omega in units of the range, the
@@ -459,6 +522,19 @@ impl FrfContinuation {
                 }
             }
             let pred: Vec<f64> = (0..n).map(|i| self.y[i] + ds * self.tangent[i]).collect();
+            if landing {
+                // The last point sits exactly on the end of the range: a
+                // natural-parameter Newton at Omega = end from the predictor.
+                let mut x = pred[..nx].to_vec();
+                let mut stats = self.stats;
+                if let Ok(iterations) = newton_fixed(&mut self.asm, &mut x, end, &mut stats) {
+                    self.stats = stats;
+                    self.y[..nx].copy_from_slice(&x);
+                    self.y[nx] = end;
+                    self.finished = true;
+                    return Ok(Some(self.point(iterations, None)));
+                }
+            }
             match self.correct(&pred) {
                 Ok((y_new, t_new, iterations)) => {
                     let turn: f64 = (0..n)
@@ -538,7 +614,11 @@ impl FrfContinuation {
             }
             let scale = 1.0 + inf_norm(&y[..nx]);
             let step = inf_norm(&dy.as_slice()[..nx]).max(dy[nx].abs() * scale);
-            if step <= NEWTON_TOL * scale {
+            // On a kinked residual Newton can stall bouncing between two
+            // linearizations with a tiny step; a residual at round-off level
+            // with a small step is accepted too.
+            if step <= NEWTON_TOL * scale || (res <= RESIDUAL_FLOOR * scale && step <= 1e-6 * scale)
+            {
                 // Converged: the tangent solves [R_X R_Omega; t^T] t_new = [0; 1].
                 self.asm.evaluate(&y[..nx], y[nx], &mut r, Some(&mut jx));
                 self.stats.jacobians += 1;
@@ -762,8 +842,10 @@ fn newton_fixed(
         iterations += 1;
         stats.newton_iterations += 1;
         let scale = 1.0 + inf_norm(x);
-        if inf_norm(dx.as_slice()) * lambda <= NEWTON_TOL * scale
-            && inf_norm(&r_trial) <= 1e-6 * scale
+        let step = inf_norm(dx.as_slice()) * lambda;
+        let res_new = inf_norm(&r_trial);
+        if (step <= NEWTON_TOL * scale && res_new <= 1e-6 * scale)
+            || (res_new <= RESIDUAL_FLOOR * scale && step <= 1e-6 * scale)
         {
             return Ok(iterations);
         }
@@ -809,8 +891,12 @@ fn extremes(table: &[f64], coef: &[f64], h: usize) -> (f64, f64) {
         let off = (0.5 * (a - c) / den).clamp(-1.0, 1.0);
         eval_coef(coef, h, (i as f64 + off) * dt)
     };
-    let imax = (0..n).max_by(|&a, &b| vals[a].total_cmp(&vals[b])).unwrap_or(0);
-    let imin = (0..n).min_by(|&a, &b| vals[a].total_cmp(&vals[b])).unwrap_or(0);
+    let imax = (0..n)
+        .max_by(|&a, &b| vals[a].total_cmp(&vals[b]))
+        .unwrap_or(0);
+    let imin = (0..n)
+        .min_by(|&a, &b| vals[a].total_cmp(&vals[b]))
+        .unwrap_or(0);
     (refine(imin).min(vals[imin]), refine(imax).max(vals[imax]))
 }
 

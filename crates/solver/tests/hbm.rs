@@ -1,0 +1,403 @@
+//! The harmonic-balance engine against independent answers: the exact linear
+//! receptance, the classical one-harmonic Duffing results, the time
+//! integration of the same model (agreement, stability and jumps), its own
+//! convergence in H, and the seed's describing function against AFT.
+
+// Tests may panic: that is how they fail.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+use solver::hbm::{Bifurcation, BranchPoint, FrfContinuation, FrfSpec, HbmModel, Method};
+use solver::keys;
+use solver::modal::linear_receptance;
+use solver::params::ModelParams;
+use solver::steady::{steady_state, Model, SteadyOptions, SteadyState};
+use solver::sweep::Direction;
+
+fn model(assignments: &[&str]) -> Model {
+    let mut p = ModelParams::default();
+    for a in assignments {
+        keys::set_assignment(&mut p, a).expect(a);
+    }
+    Model::new(&p).expect("model")
+}
+
+fn branch(c: &mut FrfContinuation) -> Vec<BranchPoint> {
+    let mut out = Vec::new();
+    while !c.is_finished() {
+        out.extend(c.advance(64).expect("continuation"));
+    }
+    out
+}
+
+/// The first point of a continuation: the periodic solution at `omega`.
+fn solve_at(m: &Model, omega: f64, h: usize, method: Method, grid: Option<usize>) -> BranchPoint {
+    let mut spec = FrfSpec::new(omega, omega + 0.01, 10);
+    spec.harmonics = h;
+    spec.method = method;
+    spec.grid = grid;
+    let mut c = FrfContinuation::new(m, spec).expect("spec");
+    c.advance(1).expect("Newton").remove(0)
+}
+
+fn time_integration(m: &Model, omega: f64) -> SteadyState {
+    let mut o = SteadyOptions::new(omega);
+    o.transient_periods = 800;
+    o.record_periods = 30;
+    steady_state(m, &o, None).expect("time integration")
+}
+
+#[test]
+fn linear_limit_equals_the_exact_receptance_for_h1_and_h5() {
+    let m = model(&["backlash_um=0", "stiffness_variation=0"]);
+    for h in [1, 5] {
+        let mut spec = FrfSpec::new(0.1, 2.0, 120);
+        spec.harmonics = h;
+        let mut c = FrfContinuation::new(&m, spec).expect("spec");
+        let pts = branch(&mut c);
+        assert!(pts.len() >= 120, "H = {h}: only {} points", pts.len());
+        let mut worst: f64 = 0.0;
+        for p in &pts {
+            let exact = linear_receptance(&m.system, p.omega * m.system.omega_ref_rad_s).unwrap();
+            for (mesh, x) in p.meshes.iter().zip(&exact) {
+                worst = worst.max((mesh.delta_amplitude_m - x.norm()).abs() / x.norm());
+                // A linear orbit has no higher harmonics.
+                for a in &mesh.harmonics_m[2..] {
+                    assert!(*a <= 1e-9 * x.norm(), "H = {h}: harmonic {a}");
+                }
+            }
+            assert_eq!(p.stable, Some(true), "a damped linear system is stable");
+            assert!(p.bifurcation.is_none());
+        }
+        assert!(worst < 1e-8, "H = {h}: worst relative error {worst:e}");
+    }
+}
+
+/// One-harmonic Duffing: `((1 - W^2 + 3/4 alpha a^2)^2 + (2 zeta W)^2) a^2 = F^2`.
+/// As a cubic in `u = a^2` it has three real roots between the two folds,
+/// so the folds are the zeros of its discriminant.
+fn duffing_discriminant(omega: f64, zeta: f64, alpha: f64, force: f64) -> f64 {
+    let c = 1.0 - omega * omega;
+    let d = 4.0 * zeta * zeta * omega * omega;
+    let (a3, a2, a1, a0) = (
+        0.5625 * alpha * alpha,
+        1.5 * alpha * c,
+        c * c + d,
+        -force * force,
+    );
+    18.0 * a3 * a2 * a1 * a0 - 4.0 * a2.powi(3) * a0 + a2 * a2 * a1 * a1
+        - 4.0 * a3 * a1.powi(3)
+        - 27.0 * a3 * a3 * a0 * a0
+}
+
+fn bisect(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
+    let fa = f(a);
+    for _ in 0..100 {
+        let mid = 0.5 * (a + b);
+        if (f(mid) > 0.0) == (fa > 0.0) {
+            a = mid;
+        } else {
+            b = mid;
+        }
+    }
+    0.5 * (a + b)
+}
+
+#[test]
+fn duffing_peak_and_folds_match_the_closed_form() {
+    let (zeta, alpha, force) = (0.05, 0.1, 0.3);
+    // Closed form. Peak: 1 - W^2 + 3/4 alpha a^2 = 0 (the backbone) and a = F / (2 zeta W).
+    let mut a_peak: f64 = force / (2.0 * zeta);
+    for _ in 0..200 {
+        let w = (1.0 + 0.75 * alpha * a_peak * a_peak).sqrt();
+        a_peak = force / (2.0 * zeta * w);
+    }
+    let w_peak = (1.0 + 0.75 * alpha * a_peak * a_peak).sqrt();
+    let disc = |w: f64| duffing_discriminant(w, zeta, alpha, force);
+    let grid: Vec<f64> = (0..=2000).map(|i| 0.5 + 1.5 * i as f64 / 2000.0).collect();
+    let folds: Vec<f64> = grid
+        .windows(2)
+        .filter(|w| disc(w[0]).signum() != disc(w[1]).signum())
+        .map(|w| bisect(disc, w[0], w[1]))
+        .collect();
+    assert_eq!(folds.len(), 2, "closed form folds {folds:?}");
+
+    let mut spec = FrfSpec::new(0.5, 2.0, 300);
+    spec.harmonics = 1;
+    let mut c = FrfContinuation::for_model(HbmModel::duffing(zeta, alpha, force), spec).unwrap();
+    let pts = branch(&mut c);
+    let amp = |p: &BranchPoint| p.meshes[0].delta_amplitude_m * 1e6; // unit model: "um" = 1
+    let top = pts.iter().max_by(|a, b| amp(a).total_cmp(&amp(b))).unwrap();
+    assert!(
+        (amp(top) - a_peak).abs() < 2e-3 * a_peak,
+        "peak {} vs {a_peak}",
+        amp(top)
+    );
+    assert!(
+        (top.omega - w_peak).abs() < 5e-3,
+        "peak at {} vs {w_peak}",
+        top.omega
+    );
+    // Every point lies on the closed-form curve.
+    for p in &pts {
+        let a = amp(p);
+        let w = p.omega;
+        let lhs = ((1.0 - w * w + 0.75 * alpha * a * a).powi(2) + (2.0 * zeta * w).powi(2)) * a * a;
+        assert!(
+            (lhs - force * force).abs() < 1e-6,
+            "off the curve at {w}: {lhs}"
+        );
+    }
+    let found: Vec<f64> = pts
+        .iter()
+        .filter(|p| p.bifurcation == Some(Bifurcation::Fold))
+        .map(|p| p.omega)
+        .collect();
+    assert_eq!(found.len(), 2, "folds found {found:?}");
+    // The upper fold is met first on the way up; each is located to within
+    // the step that passed it.
+    assert!((found[0] - folds[1]).abs() < 2e-3, "{found:?} vs {folds:?}");
+    assert!((found[1] - folds[0]).abs() < 2e-3, "{found:?} vs {folds:?}");
+    // Between the folds the middle branch is unstable (a real multiplier > 1).
+    let between: Vec<&BranchPoint> = pts
+        .iter()
+        .skip_while(|p| p.bifurcation != Some(Bifurcation::Fold))
+        .skip(1)
+        .take_while(|p| p.bifurcation != Some(Bifurcation::Fold))
+        .collect();
+    // Stability comes from the monodromy matrix of the one-harmonic orbit,
+    // which is not an exact solution of the ODE, so its multiplier crosses
+    // +1 slightly inside the balance's fold (measured: 0.002 in Omega).
+    assert!(between.len() > 4);
+    let inner: Vec<&&BranchPoint> = between
+        .iter()
+        .filter(|p| p.omega > folds[0] + 0.004 && p.omega < folds[1] - 0.004)
+        .collect();
+    assert!(inner.len() > 4);
+    assert!(
+        inner.iter().all(|p| p.stable == Some(false)),
+        "{:?}",
+        between
+            .iter()
+            .map(|p| (p.omega, p.stable))
+            .collect::<Vec<_>>()
+    );
+    assert!(pts.first().unwrap().stable == Some(true) && pts.last().unwrap().stable == Some(true));
+}
+
+/// Max and min of x = delta - e of every mesh: HBM against time integration,
+/// relative to the peak-to-peak.
+fn discrepancy(p: &BranchPoint, ti: &SteadyState) -> f64 {
+    p.meshes
+        .iter()
+        .zip(&ti.meshes)
+        .map(|(h, t)| {
+            let pp = t.rel_max_m - t.rel_min_m;
+            ((h.rel_max_m - t.rel_max_m).abs()).max((h.rel_min_m - t.rel_min_m).abs()) / pp
+        })
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn gear_pair_hbm_agrees_with_time_integration_where_it_is_period_one_and_stable() {
+    // The pair's default: TE 20 um, backlash 100 um; Omega 0.65 and 0.7 and
+    // 1.9 lose contact once per period (single-sided impacts).
+    let m = model(&["model=gear-pair"]);
+    let mut impacts = 0;
+    for omega in [0.35, 0.45, 0.65, 0.7, 1.9] {
+        let p = solve_at(&m, omega, 15, Method::Aft, None);
+        let ti = time_integration(&m, omega);
+        assert_eq!(ti.period, Some(1), "Omega {omega}");
+        assert_eq!(p.stable, Some(true), "Omega {omega}");
+        let d = discrepancy(&p, &ti);
+        assert!(
+            d < 0.01,
+            "Omega {omega}: {:.3} % of the peak-to-peak",
+            100.0 * d
+        );
+        assert_eq!(p.meshes[0].impact, ti.meshes[0].impact, "Omega {omega}");
+        if p.meshes[0].impact != solver::steady::Impact::None {
+            impacts += 1;
+        }
+    }
+    assert!(impacts >= 3);
+}
+
+#[test]
+fn ravigneaux_hbm_agrees_with_time_integration_on_every_mesh() {
+    let m = model(&[]);
+    for omega in [0.15, 0.3, 0.45] {
+        let p = solve_at(&m, omega, 9, Method::Aft, None);
+        let ti = time_integration(&m, omega);
+        assert_eq!(ti.period, Some(1), "Omega {omega}");
+        assert_eq!(p.stable, Some(true), "Omega {omega}");
+        let d = discrepancy(&p, &ti);
+        assert!(
+            d < 0.01,
+            "Omega {omega}: {:.3} % of the peak-to-peak",
+            100.0 * d
+        );
+    }
+}
+
+#[test]
+fn time_integration_does_not_settle_on_an_unstable_branch() {
+    // Gear pair at Omega 0.8 (period-1 branch past a period doubling) and the
+    // Ravigneaux set at 0.8 (past a Neimark–Sacker point).
+    for (m, omega) in [(model(&["model=gear-pair"]), 0.8), (model(&[]), 0.8)] {
+        let p = solve_at(&m, omega, 9, Method::Aft, None);
+        assert_eq!(p.stable, Some(false), "Omega {omega}");
+        let ti = time_integration(&m, omega);
+        let d = discrepancy(&p, &ti);
+        assert!(
+            ti.period != Some(1) || d > 0.05,
+            "Omega {omega}: TI period {:?}, discrepancy {d}",
+            ti.period
+        );
+    }
+}
+
+/// Up and down time-integration sweeps, each point starting from the last
+/// one's end state; returns (omega, rel_min of the first mesh).
+fn ti_sweep(m: &Model, omegas: &[f64]) -> Vec<(f64, f64)> {
+    let mut state: Option<Vec<f64>> = None;
+    omegas
+        .iter()
+        .map(|&omega| {
+            let mut o = SteadyOptions::new(omega);
+            o.transient_periods = 300;
+            o.record_periods = 20;
+            let s = steady_state(m, &o, state.as_deref()).expect("TI");
+            state = Some(s.end_state.clone());
+            (omega, s.meshes[0].rel_min_m)
+        })
+        .collect()
+}
+
+/// The interval where a sweep jumps most.
+fn jump(sweep: &[(f64, f64)]) -> (f64, f64) {
+    let w = sweep
+        .windows(2)
+        .max_by(|a, b| (a[1].1 - a[0].1).abs().total_cmp(&(b[1].1 - b[0].1).abs()))
+        .unwrap();
+    (w[0].0.min(w[1].0), w[0].0.max(w[1].0))
+}
+
+#[test]
+fn continuation_passes_the_folds_where_the_sweeps_jump() {
+    let m = model(&["model=gear-pair"]);
+    let mut spec = FrfSpec::new(0.4, 0.7, 200);
+    spec.harmonics = 7;
+    let mut c = FrfContinuation::new(&m, spec).unwrap();
+    let pts = branch(&mut c);
+    // The branch turns back: Omega is not monotonic along it.
+    let folds: Vec<f64> = pts
+        .iter()
+        .filter(|p| p.bifurcation == Some(Bifurcation::Fold))
+        .map(|p| p.omega)
+        .collect();
+    assert!(folds.len() >= 2, "folds {folds:?}");
+    let upper = folds.iter().copied().fold(f64::MIN, f64::max);
+    let lower = folds.iter().copied().fold(f64::MAX, f64::min);
+    assert!(upper - lower > 0.05, "hysteresis band {lower}..{upper}");
+    let up: Vec<f64> = (0..=30).map(|i| 0.4 + 0.01 * i as f64).collect();
+    let down: Vec<f64> = up.iter().rev().copied().collect();
+    let (a, b) = jump(&ti_sweep(&m, &up));
+    assert!(
+        a <= upper && upper <= b,
+        "up sweep jumps in {a}..{b}, upper fold {upper}"
+    );
+    let (a, b) = jump(&ti_sweep(&m, &down));
+    assert!(
+        a <= lower && lower <= b,
+        "down sweep jumps in {a}..{b}, lower fold {lower}"
+    );
+    assert!(c.stats.points as usize == pts.len());
+}
+
+#[test]
+fn convergence_in_the_number_of_harmonics() {
+    // Single-sided impacts at Omega 0.7: the error against H = 21 shrinks as
+    // H grows (measured: 5.1e-2, 7.7e-4, 1.6e-4, 2.7e-5 of the peak-to-peak
+    // for H = 1, 3, 7, 11: fast at first, then algebraic, as the force's
+    // kinks at the contact switches limit the Fourier series' decay).
+    let m = model(&["model=gear-pair"]);
+    let reference = solve_at(&m, 0.7, 21, Method::Aft, None);
+    let r = &reference.meshes[0];
+    let pp = r.rel_max_m - r.rel_min_m;
+    let errors: Vec<f64> = [1, 3, 7, 11]
+        .iter()
+        .map(|&h| {
+            let p = solve_at(&m, 0.7, h, Method::Aft, None);
+            let x = &p.meshes[0];
+            ((x.rel_max_m - r.rel_max_m).abs()).max((x.rel_min_m - r.rel_min_m).abs()) / pp
+        })
+        .collect();
+    eprintln!("H = 1, 3, 7, 11 against H = 21: {errors:?}");
+    for w in errors.windows(2) {
+        assert!(w[1] < w[0], "errors {errors:?}");
+    }
+    assert!(errors[3] < 1e-4, "errors {errors:?}");
+    assert!(errors[0] > 100.0 * errors[3], "errors {errors:?}");
+}
+
+#[test]
+fn seed_describing_function_equals_aft_at_one_harmonic() {
+    // Same approximation; the AFT quadrature of the kinked force converges
+    // as the grid grows (a 4096-point grid reaches about 1e-7 of the amplitude).
+    let m = model(&["model=gear-pair"]);
+    for omega in [0.35, 0.7, 1.2, 1.9] {
+        let df = solve_at(&m, omega, 1, Method::DescribingFunction, None);
+        let aft = solve_at(&m, omega, 1, Method::Aft, Some(4096));
+        for (a, b) in df.coefficients.iter().zip(&aft.coefficients) {
+            let scale = 1.0 + df.coefficients.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+            assert!((a - b).abs() < 1e-5 * scale, "Omega {omega}: {a} vs {b}");
+        }
+    }
+}
+
+#[test]
+fn bad_options_are_rejected_with_the_option_named() {
+    let m = model(&[]);
+    let mut spec = FrfSpec::new(0.5, 0.4, 100);
+    let e = FrfContinuation::new(&m, spec.clone())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("omega-to"), "{e}");
+    spec.omega_to = 1.0;
+    spec.harmonics = 0;
+    let e = FrfContinuation::new(&m, spec.clone())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("harmonics"), "{e}");
+    spec.harmonics = 3;
+    spec.method = Method::DescribingFunction;
+    let e = FrfContinuation::new(&m, spec.clone())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("describing-function"), "{e}");
+    spec.method = Method::Aft;
+    spec.omega_from = f64::NAN;
+    let e = FrfContinuation::new(&m, spec).unwrap_err().to_string();
+    assert!(e.contains("omega-from"), "{e}");
+}
+
+#[test]
+fn downward_continuation_retraces_the_upward_branch() {
+    let m = model(&["model=gear-pair"]);
+    let run = |direction| {
+        let mut spec = FrfSpec::new(1.2, 1.9, 100);
+        spec.harmonics = 5;
+        spec.direction = direction;
+        let mut c = FrfContinuation::new(&m, spec).unwrap();
+        branch(&mut c)
+    };
+    let up = run(Direction::Up);
+    let down = run(Direction::Down);
+    assert!((up[0].omega - 1.2).abs() < 1e-12 && (down[0].omega - 1.9).abs() < 1e-12);
+    assert!((up.last().unwrap().omega - 1.9).abs() < 1e-9);
+    assert!((down.last().unwrap().omega - 1.2).abs() < 1e-9);
+    // The same solution at both ends.
+    let a = &up.last().unwrap().meshes[0];
+    let b = &down[0].meshes[0];
+    assert!((a.rel_max_m - b.rel_max_m).abs() < 1e-9 && (a.rel_min_m - b.rel_min_m).abs() < 1e-9);
+}
