@@ -15,6 +15,13 @@
 //! [`SolverError::NotConverged`] carrying Omega and the residual otherwise —
 //! never a silent last iterate.
 //!
+//! First point. Newton at the start frequency, continued in the number of
+//! harmonics (1, 2, ..., H) from the static equilibrium; if that fails (a
+//! resonance zone, contact loss), the branch is continued upward from
+//! Omega = 0.05, where the response is quasi-static, to the start frequency.
+//! A continuation that uses `20 points + 200` points without leaving the
+//! range stops with [`SolverError::ContinuationStalled`].
+//!
 //! Continuation. Pseudo-arclength in `(X / (a sqrt(n)), Omega / range)` with
 //! `a` three times the largest RMS coefficient seen (at least 1 um); the
 //! step adapts to the corrector's iterations (grows by 1.4 after quick
@@ -372,7 +379,7 @@ impl FrfContinuation {
             Direction::Down => self.spec.omega_to,
         };
         let nx = self.n_x();
-        let (mut x, iterations) = match self.start_in_h(omega) {
+        let (x, iterations) = match self.start_in_h(omega) {
             Ok(found) => found,
             Err(direct) => self.start_from_below(omega).map_err(|_| direct)?,
         };
