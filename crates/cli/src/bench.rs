@@ -6,6 +6,7 @@
 
 use serde_json::{json, Value};
 use solver::dynamics::MeshOde;
+use solver::hbm::{FrfContinuation, FrfSpec};
 use solver::ode::Ode;
 use solver::params::ModelParams;
 use solver::steady::{steady_state, Model, SteadyOptions};
@@ -90,7 +91,54 @@ pub fn run(repeats: u32, quick: bool) -> Result<Value, SolverError> {
     }
     let sweep_median = median(sweep_s.clone());
 
+    // Harmonic balance: the default model's frequency response over
+    // Omega 0.1 ..= 2 with 400 nominal points, stability included.
+    let mut hbm = serde_json::Map::new();
+    for h in [1usize, 7] {
+        let (nominal, runs) = if quick {
+            (40, 1)
+        } else {
+            (400, repeats.min(5))
+        };
+        let mut secs = Vec::new();
+        let mut secs_no_stability = Vec::new();
+        let mut branch_points = 0;
+        for stability in [true, false] {
+            for _ in 0..runs {
+                let mut spec = FrfSpec::new(0.1, 2.0, nominal);
+                spec.harmonics = h;
+                spec.stability = stability;
+                let start = Instant::now();
+                let mut c = FrfContinuation::new(&model, spec)?;
+                let mut n = 0;
+                while !c.is_finished() {
+                    n += c.advance(64)?.len();
+                }
+                let dt = start.elapsed().as_secs_f64();
+                if stability {
+                    secs.push(dt);
+                } else {
+                    secs_no_stability.push(dt);
+                }
+                branch_points = n;
+            }
+        }
+        let med = median(secs);
+        hbm.insert(
+            format!("h{h}"),
+            json!({
+                "harmonics": h,
+                "nominal_points": nominal,
+                "branch_points": branch_points,
+                "median_ms": med * 1e3,
+                "median_ms_without_stability": median(secs_no_stability) * 1e3,
+                "us_per_branch_point": med * 1e6 / branch_points.max(1) as f64,
+            }),
+        );
+    }
+
     Ok(json!({
+        "hbm": Value::Object(hbm),
         "machine_threads": std::thread::available_parallelism().map_or(1, |n| n.get()),
         "repeats": repeats,
         "quick": quick,

@@ -164,3 +164,42 @@ pub fn sweep(v: &Value) -> String {
     }
     s
 }
+
+/// A frequency-response branch: one row per point and mesh, in continuation order.
+pub fn frf(v: &Value) -> String {
+    let mut s = String::from(
+        "index,omega,mesh,delta_max_m,delta_min_m,delta_amplitude_m,rel_max_m,rel_min_m,impact,stable,bifurcation\n",
+    );
+    let mesh_names: Vec<String> = v["meshes"]
+        .as_array()
+        .map(|a| a.iter().map(cell).collect())
+        .unwrap_or_default();
+    let Some(points) = v["branch"].as_array() else {
+        return s;
+    };
+    for (i, p) in points.iter().enumerate() {
+        let rows: Vec<(String, &Value)> = if mesh_names.len() == 1 {
+            vec![(mesh_names[0].clone(), p)]
+        } else {
+            mesh_names
+                .iter()
+                .map(|n| (n.clone(), &p["meshes"][n]))
+                .collect()
+        };
+        for (name, m) in rows {
+            s.push_str(&format!(
+                "{i},{},{name},{},{},{},{},{},{},{},{}\n",
+                cell(&p["omega"]),
+                cell(&m["delta_max_m"]),
+                cell(&m["delta_min_m"]),
+                cell(&m["delta_amplitude_m"]),
+                cell(&m["rel_max_m"]),
+                cell(&m["rel_min_m"]),
+                cell(&m["impact"]),
+                cell(&p["stable"]),
+                cell(&p["bifurcation"]),
+            ));
+        }
+    }
+    s
+}

@@ -11,10 +11,11 @@ mod progress;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use serde_json::Value;
+use solver::hbm::{FrfContinuation, FrfSpec, Method};
 use solver::keys;
 use solver::params::{ModelKind, ModelParams};
 use solver::steady::{steady_state, Model, SteadyOptions};
-use solver::sweep::{canonical_order, BifurcationSweep, Directions, SweepSpec};
+use solver::sweep::{canonical_order, BifurcationSweep, Direction, Directions, SweepSpec};
 use solver::{report, SolverError};
 use std::io::Write;
 use std::process::ExitCode;
@@ -149,6 +150,38 @@ enum Command {
         #[arg(long, value_name = "i/n")]
         shard: Option<String>,
     },
+    /// Frequency response by harmonic balance with arclength continuation.
+    Frf {
+        #[command(flatten)]
+        p: ParamArgs,
+        /// First Omega.
+        #[arg(long)]
+        omega_from: f64,
+        /// Last Omega.
+        #[arg(long)]
+        omega_to: f64,
+        /// Nominal points: the largest continuation step is range / points.
+        #[arg(long, default_value_t = 400)]
+        points: u32,
+        /// Harmonics H (1 ..= 40).
+        #[arg(long, default_value_t = 7)]
+        harmonics: usize,
+        /// aft (any H) or describing-function (the seed's Eqs. 9-13, H = 1).
+        #[arg(long, default_value = "aft")]
+        method: String,
+        /// Continue up from --omega-from or down from --omega-to.
+        #[arg(long, default_value = "up")]
+        direction: String,
+        /// AFT time-grid size (default: max(16 H, 64) rounded up to a power of two).
+        #[arg(long)]
+        grid: Option<usize>,
+        /// Skip the Floquet stability of each point.
+        #[arg(long)]
+        no_stability: bool,
+        /// Mesh to report, or `all`.
+        #[arg(long)]
+        mesh: Option<String>,
+    },
     /// Join the JSON outputs of all shards of one sweep.
     Merge {
         /// Shard outputs (JSON files).
@@ -178,6 +211,7 @@ impl From<SolverError> for Failure {
             | SolverError::NonFinite { .. }
             | SolverError::TooManySteps { .. }
             | SolverError::NotConverged { .. }
+            | SolverError::ContinuationStalled { .. }
             | SolverError::Singular { .. } => 1,
             _ => 2,
         };
@@ -407,6 +441,70 @@ fn run(cli: Cli) -> Result<(), Failure> {
                     emit_text(&csv::sweep(&value));
                     Ok(())
                 }
+            }
+        }
+        Command::Frf {
+            p,
+            omega_from,
+            omega_to,
+            points,
+            harmonics,
+            method,
+            direction,
+            grid,
+            no_stability,
+            mesh,
+        } => {
+            let params = load_params(&p)?;
+            let model = Model::new(&params)?;
+            let mut spec = FrfSpec::new(omega_from, omega_to, points);
+            spec.harmonics = harmonics;
+            spec.method = Method::from_name(&method).ok_or_else(|| {
+                usage(format!(
+                    "--method {}: allowed aft, describing-function",
+                    keys::truncate(&method, 30)
+                ))
+            })?;
+            spec.direction = Direction::from_name(&direction).ok_or_else(|| {
+                usage(format!(
+                    "--direction {}: allowed up, down",
+                    keys::truncate(&direction, 20)
+                ))
+            })?;
+            spec.grid = grid;
+            spec.stability = !no_stability;
+            let meshes: Vec<usize> = match mesh.as_deref() {
+                Some("all") => (0..model.system.meshes.len()).collect(),
+                other => vec![mesh_index(&model, other)?],
+            };
+            let mut c = FrfContinuation::new(&model, spec)?;
+            let mut bar = progress::Progress::new(1000, "per mille of the range");
+            let mut branch = Vec::new();
+            let mut failure = None;
+            while !c.is_finished() {
+                match c.advance(16) {
+                    Ok(pts) => branch.extend(pts),
+                    Err(e) => {
+                        failure = Some(e);
+                        break;
+                    }
+                }
+                bar.update((c.progress() * 1000.0) as usize);
+            }
+            bar.finish();
+            let value = report::frf_json(&model, &params, &c, &branch, &meshes, failure.as_ref());
+            match p.format {
+                Format::Json => emit(&value)?,
+                Format::Csv => emit_text(&csv::frf(&value)),
+            }
+            match failure {
+                // The partial branch is written (marked `complete: false`),
+                // and the failure is reported with exit code 1.
+                Some(e) => Err(Failure {
+                    code: 1,
+                    message: format!("{e} (the branch up to there was written, marked incomplete)"),
+                }),
+                None => Ok(()),
             }
         }
         Command::Merge { files } => {

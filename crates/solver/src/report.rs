@@ -356,3 +356,99 @@ pub fn merge_shards(shards: &[Value]) -> Result<Value> {
 pub fn impact_of(v: &Value) -> Option<Impact> {
     v.as_str().and_then(Impact::from_name)
 }
+
+/// The options of a harmonic-balance frequency response as JSON.
+pub fn frf_spec_json(spec: &crate::hbm::FrfSpec, grid: usize) -> Value {
+    json!({
+        "omega_from": num(spec.omega_from),
+        "omega_to": num(spec.omega_to),
+        "points": spec.points,
+        "direction": spec.direction.name(),
+        "harmonics": spec.harmonics,
+        "method": spec.method.name(),
+        "grid": grid,
+        "stability": spec.stability,
+        "symmetric": spec.symmetric,
+    })
+}
+
+fn branch_mesh_json(m: &crate::hbm::BranchMesh) -> Map<String, Value> {
+    let mut o = Map::new();
+    o.insert("delta_max_m".into(), num(m.delta_max_m));
+    o.insert("delta_min_m".into(), num(m.delta_min_m));
+    o.insert("delta_amplitude_m".into(), num(m.delta_amplitude_m));
+    o.insert("rel_max_m".into(), num(m.rel_max_m));
+    o.insert("rel_min_m".into(), num(m.rel_min_m));
+    o.insert("harmonics_m".into(), nums(&m.harmonics_m));
+    o.insert("impact".into(), Value::from(m.impact.name()));
+    o
+}
+
+/// One branch point. With one requested mesh its fields are inlined; with
+/// several they sit under `meshes` keyed by name. `rel_*` is `x = delta - e`.
+pub fn branch_point_json(model: &Model, p: &crate::hbm::BranchPoint, meshes: &[usize]) -> Value {
+    let mut o = Map::new();
+    o.insert("omega".into(), num(p.omega));
+    if let [j] = meshes {
+        if let Some(m) = p.meshes.get(*j) {
+            o.extend(branch_mesh_json(m));
+        }
+    } else {
+        let mut all = Map::new();
+        for &j in meshes {
+            if let (Some(mesh), Some(m)) = (model.system.meshes.get(j), p.meshes.get(j)) {
+                all.insert(mesh.name.clone(), Value::Object(branch_mesh_json(m)));
+            }
+        }
+        o.insert("meshes".into(), Value::Object(all));
+    }
+    o.insert("stable".into(), p.stable.map_or(Value::Null, Value::from));
+    o.insert(
+        "bifurcation".into(),
+        p.bifurcation.map_or(Value::Null, |b| Value::from(b.name())),
+    );
+    let radius = p.multipliers.iter().map(|z| z.norm()).fold(0.0, f64::max);
+    o.insert(
+        "max_multiplier_modulus".into(),
+        if p.multipliers.is_empty() {
+            Value::Null
+        } else {
+            num(radius)
+        },
+    );
+    o.insert("newton_iterations".into(), json!(p.newton_iterations));
+    Value::Object(o)
+}
+
+/// A whole frequency response: spec, branch, work counters and, when the
+/// continuation failed part-way, the error (the branch is then partial).
+pub fn frf_json(
+    model: &Model,
+    params: &ModelParams,
+    continuation: &crate::hbm::FrfContinuation,
+    branch: &[crate::hbm::BranchPoint],
+    meshes: &[usize],
+    error: Option<&SolverError>,
+) -> Value {
+    let names: Vec<&str> = meshes
+        .iter()
+        .filter_map(|&j| model.system.meshes.get(j).map(|m| m.name.as_str()))
+        .collect();
+    let s = continuation.stats;
+    json!({
+        "model": model.system.model.name(),
+        "params": Value::Object(keys::to_json(params)),
+        "omega_ref_rad_s": num(model.system.omega_ref_rad_s),
+        "spec": frf_spec_json(continuation.spec(), continuation.assembly().grid.n),
+        "meshes": names,
+        "complete": error.is_none(),
+        "error": error.map_or(Value::Null, |e| Value::from(e.to_string())),
+        "branch": branch.iter().map(|p| branch_point_json(model, p, meshes)).collect::<Vec<_>>(),
+        "stats": {
+            "points": s.points,
+            "newton_iterations": s.newton_iterations,
+            "rejected_steps": s.rejected_steps,
+            "jacobian_evaluations": s.jacobians,
+        },
+    })
+}
