@@ -4,8 +4,10 @@
 //! Every user action returns the messages to post to the workers; the
 //! controller queues messages for a worker until it has said "ready".
 //! Jobs are restarted by what a change affects: a model parameter restarts
-//! everything, the frequency range the two sweeps, the selected Omega or
-//! plotted mesh only the selected-Omega job. The web layer redraws the views
+//! everything, the frequency range the sweeps, the harmonics only the
+//! harmonic-balance branch, the selected Omega or plotted mesh only the
+//! selected-Omega job. The harmonic-balance branch of view 1 runs on the last
+//! worker (worker 0 serves the selected-Omega job first). The web layer redraws the views
 //! whose `dirty` flag is set, once per animation frame.
 
 use crate::link;
@@ -14,7 +16,9 @@ use crate::protocol::{
     encode, FromWorker, JobId, JobKind, JobSpec, OmegaResult, RunOptions, ToWorker,
 };
 use crate::settings::{mesh_names, view_key, MeshSel, Settings};
-use crate::views::{natural_in_range, BifStore, BifView, FrStore, FrView, ViewContext};
+use crate::views::{
+    fr_view, natural_in_range, BifStore, BifView, FrSource, FrStore, FrView, HbmStore, ViewContext,
+};
 use solver::keys;
 use solver::steady::Model;
 
@@ -24,6 +28,11 @@ pub const WORKERS: usize = 2;
 pub const SAMPLES_PER_PERIOD: u32 = 64;
 /// Highest mesh order of the spectrum.
 pub const MAX_ORDER: f64 = 8.0;
+/// The worker that runs the harmonic-balance branch.
+pub const HBM_WORKER: usize = WORKERS - 1;
+/// How a failure of the harmonic-balance branch starts in the messages (a
+/// new branch clears the old branch's failure).
+const HBM_FAILURE: &str = "Frequency response: the harmonic-balance solver failed";
 /// Jobs shorter than this show no progress indicator (ms).
 pub const PROGRESS_AFTER_MS: f64 = 200.0;
 
@@ -129,16 +138,21 @@ pub struct Controller {
     pub issues: Vec<String>,
     /// The note of the preset last loaded.
     pub preset_note: Option<String>,
-    /// Frequency-response points of the current job.
+    /// The harmonic-balance branch of the current job (view 1).
+    pub hbm: HbmStore,
+    /// The last complete branch, shown faded while a new one computes.
+    pub hbm_previous: Option<HbmStore>,
+    /// Time-integration overlay points of the current job (id 0: overlay off).
     pub fr: FrStore,
-    /// The last complete frequency response, shown faded while a new one computes.
-    pub fr_previous: Option<FrStore>,
     /// Bifurcation points of the current job.
     pub bif: BifStore,
     /// The latest selected-Omega result (possibly from an older job while a new one runs).
     pub omega: Option<OmegaResult>,
-    /// Job statuses.
+    /// Status of the harmonic-balance branch (view 1); `done` and `total`
+    /// are per cent of the Omega range.
     pub fr_status: JobStatus,
+    /// Status of the time-integration overlay grid.
+    pub ti_status: JobStatus,
     /// Bifurcation job status.
     pub bif_status: JobStatus,
     /// Selected-Omega job status.
@@ -153,15 +167,26 @@ pub struct Controller {
 /// What a change restarts.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 struct Restart {
+    /// The harmonic-balance branch.
     fr: bool,
+    /// The time-integration overlay.
+    ti: bool,
     bif: bool,
     omega: bool,
 }
 
 const ALL: Restart = Restart {
     fr: true,
+    ti: true,
     bif: true,
     omega: true,
+};
+
+const NONE: Restart = Restart {
+    fr: false,
+    ti: false,
+    bif: false,
+    omega: false,
 };
 
 impl Controller {
@@ -173,11 +198,13 @@ impl Controller {
             settings: decoded.settings,
             issues: decoded.issues,
             preset_note: None,
+            hbm: HbmStore::default(),
+            hbm_previous: None,
             fr: FrStore::default(),
-            fr_previous: None,
             bif: BifStore::default(),
             omega: None,
             fr_status: JobStatus::default(),
+            ti_status: JobStatus::default(),
             bif_status: JobStatus::default(),
             omega_status: JobStatus::default(),
             dirty: Dirty::default(),
@@ -240,6 +267,7 @@ impl Controller {
                 let e = e.clone();
                 for (flag, st) in [
                     (what.fr, &mut self.fr_status),
+                    (what.ti, &mut self.ti_status),
                     (what.bif, &mut self.bif_status),
                     (what.omega, &mut self.omega_status),
                 ] {
@@ -284,17 +312,55 @@ impl Controller {
         if what.fr {
             self.next_id += 1;
             let id = self.next_id;
-            if self.fr.done() == self.fr.points.len() && !self.fr.points.is_empty() {
-                self.fr_previous = Some(std::mem::take(&mut self.fr));
+            // Keep the last complete branch (not a half-computed one) to fade
+            // under the new one while it computes.
+            if self.hbm.is_complete() {
+                self.hbm_previous = Some(std::mem::take(&mut self.hbm));
             }
-            self.fr = FrStore::new(id, v.fr_points, v.transient_periods, v.fr_record_periods);
-            self.fr_status = JobStatus::start(id, now_ms, v.fr_points as usize);
-            let chains = (WORKERS as u32).min(v.fr_points);
+            self.hbm = HbmStore::new(id, v.harmonics);
+            let before = self.issues.len();
+            self.issues.retain(|i| !i.starts_with(HBM_FAILURE));
+            self.dirty.messages |= self.issues.len() != before;
+            self.fr_status = JobStatus::start(id, now_ms, 100);
+            let job = JobSpec::Hbm {
+                omega_from: v.omega_from,
+                omega_to: v.omega_to,
+                points: v.fr_points,
+                harmonics: v.harmonics,
+                stability: true,
+            };
+            fx.extend(self.post(
+                HBM_WORKER,
+                &ToWorker::Run {
+                    id,
+                    params: params.clone(),
+                    job,
+                },
+            ));
+            self.dirty.fr = true;
+        }
+        if what.ti && v.fr_ti_points == 0 {
+            // Overlay off: drop a running overlay job, if there was one.
+            if self.fr.id != 0 {
+                for w in 0..WORKERS {
+                    fx.extend(self.post(w, &ToWorker::Cancel { kind: JobKind::Fr }));
+                }
+            }
+            self.fr = FrStore::default();
+            self.ti_status = JobStatus::default();
+            self.dirty.fr = true;
+        } else if what.ti {
+            self.next_id += 1;
+            let id = self.next_id;
+            let n = v.fr_ti_points;
+            self.fr = FrStore::new(id, n, v.transient_periods, v.fr_record_periods);
+            self.ti_status = JobStatus::start(id, now_ms, n as usize);
+            let chains = (WORKERS as u32).min(n);
             for w in 0..chains {
                 let job = JobSpec::Fr {
                     omega_from: v.omega_from,
                     omega_to: v.omega_to,
-                    points: v.fr_points,
+                    points: n,
                     chains,
                     shard: w,
                     run: self.run_options(v.fr_record_periods),
@@ -368,13 +434,47 @@ impl Controller {
                     .map(|text| Effect::Post { worker, text })
                     .collect()
             }
-            FromWorker::FrPoints { id, points } if id == self.fr.id => {
+            FromWorker::HbmPoints {
+                id,
+                points,
+                progress,
+                finished,
+                error,
+            } if id == self.hbm.id && id != 0 => {
+                let failure = error.clone();
+                self.hbm.add(points, progress, finished, error);
+                let st = &mut self.fr_status;
+                st.done = (100.0 * self.hbm.progress).floor() as usize;
+                if !self.hbm.points.is_empty() {
+                    st.first_data_ms.get_or_insert(now_ms);
+                }
+                if finished {
+                    st.finished_ms = Some(now_ms);
+                }
+                if self.hbm.is_complete() {
+                    self.hbm_previous = None;
+                }
+                if let Some(e) = failure {
+                    let at = self
+                        .hbm
+                        .points
+                        .last()
+                        .map_or(self.settings.view.omega_from, |p| p.omega);
+                    let msg = format!(
+                        "{HBM_FAILURE} after Omega = {at:.4} ({e}); the branch shown is partial"
+                    );
+                    self.fr_status.error = Some(msg.clone());
+                    self.issue(msg);
+                }
+                self.dirty.fr = true;
+                Vec::new()
+            }
+            FromWorker::FrPoints { id, points } if id == self.fr.id && id != 0 => {
                 self.fr.add(points);
-                self.fr_status.done = self.fr.done();
-                self.fr_status.first_data_ms.get_or_insert(now_ms);
-                if self.fr_status.done >= self.fr_status.total {
-                    self.fr_status.finished_ms = Some(now_ms);
-                    self.fr_previous = None;
+                self.ti_status.done = self.fr.done();
+                self.ti_status.first_data_ms.get_or_insert(now_ms);
+                if self.ti_status.done >= self.ti_status.total {
+                    self.ti_status.finished_ms = Some(now_ms);
                 }
                 self.dirty.fr = true;
                 Vec::new()
@@ -400,6 +500,7 @@ impl Controller {
             FromWorker::Failed { id, message } => {
                 for st in [
                     &mut self.fr_status,
+                    &mut self.ti_status,
                     &mut self.bif_status,
                     &mut self.omega_status,
                 ] {
@@ -451,32 +552,20 @@ impl Controller {
             }
             let what = match key {
                 "omega" | "mesh" => Restart {
-                    fr: false,
-                    bif: false,
                     omega: true,
+                    ..NONE
                 },
-                "omega_from" | "omega_to" | "transient_periods" => ALL,
-                "fr_points" | "fr_record_periods" => Restart {
-                    fr: true,
-                    bif: false,
-                    omega: false,
-                },
-                "bif_points" | "bif_dir" => Restart {
-                    fr: false,
-                    bif: true,
-                    omega: false,
-                },
+                "omega_from" | "omega_to" => ALL,
+                "transient_periods" => Restart { fr: false, ..ALL },
+                "fr_points" | "harmonics" => Restart { fr: true, ..NONE },
+                "fr_ti_points" | "fr_record_periods" => Restart { ti: true, ..NONE },
+                "bif_points" | "bif_dir" => Restart { bif: true, ..NONE },
                 "record_periods" => Restart {
-                    fr: false,
                     bif: true,
                     omega: true,
+                    ..NONE
                 },
-                // HBM harmonics: nothing to recompute until the HBM engine lands.
-                _ => Restart {
-                    fr: false,
-                    bif: false,
-                    omega: false,
-                },
+                _ => NONE,
             };
             // The views share the mesh and range: redraw them even without new data.
             self.dirty.fr = true;
@@ -528,7 +617,7 @@ impl Controller {
         self.issues = d.issues;
         self.preset_note = None;
         self.rebuild_model();
-        self.fr_previous = None;
+        self.hbm_previous = None;
         self.dirty = Dirty {
             fr: true,
             bif: true,
@@ -584,21 +673,25 @@ impl Controller {
         }
     }
 
-    /// The frequency-response view (with the previous result faded while a new one computes).
+    /// The frequency-response view: the harmonic-balance branch (with the
+    /// previous complete branch faded while a new one computes) and the
+    /// time-integration overlay if it is on.
     pub fn fr_view(&self) -> FrView {
         let (mesh, b) = self.mesh_and_backlash();
         let ctx = self.view_context();
-        let mut v = self.fr.view(mesh, &b, &ctx);
-        if let Some(prev) = &self.fr_previous {
-            let mut p = prev.view(mesh, &b, &ctx).branches;
-            for br in &mut p {
-                br.label = "previous settings".into();
-                br.faded = true;
-            }
-            p.extend(v.branches);
-            v.branches = p;
+        // The previous branch is context while the new one computes, not
+        // after it has ended (complete or failed).
+        let previous = self.hbm_previous.as_ref().filter(|_| !self.hbm.finished);
+        let overlay = Some(&self.fr).filter(|f| f.id != 0);
+        fr_view(&self.hbm, previous, overlay, mesh, &b, &ctx)
+    }
+
+    /// The method of view 1 in words.
+    pub fn fr_method(&self) -> String {
+        FrSource::Hbm {
+            harmonics: self.hbm.harmonics,
         }
-        v
+        .label()
     }
 
     /// The bifurcation view.
@@ -694,9 +787,15 @@ impl Controller {
             "issues": self.issues,
             "omega": self.settings.view.omega,
             "fr": self.fr_status,
+            "fr_method": self.fr_method(),
+            "fr_branch_points": self.hbm.points.len(),
+            "fr_partial": self.hbm.error,
+            "fr_overlay": self.ti_status,
+            "fr_discrepancy": self.fr_view().discrepancy,
             "bif": self.bif_status,
             "omega_job": self.omega_status,
             "fr_progress": self.fr_status.progress(now_ms),
+            "fr_overlay_progress": self.ti_status.progress(now_ms),
             "bif_progress": self.bif_status.progress(now_ms),
             "omega_progress": self.omega_status.progress(now_ms),
             "workers_ready": self.workers.iter().filter(|w| w.ready).count(),
@@ -711,7 +810,7 @@ impl Controller {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::protocol::FrSample;
+    use crate::protocol::{FrSample, HbmMesh, HbmSample};
 
     fn posts(fx: &[Effect]) -> Vec<(usize, ToWorker)> {
         fx.iter()
@@ -730,14 +829,50 @@ mod tests {
         posts(&fx)
     }
 
+    fn hbm_points(id: JobId, omegas: &[f64], finished: bool, error: Option<&str>) -> String {
+        encode(&FromWorker::HbmPoints {
+            id,
+            points: omegas
+                .iter()
+                .map(|&omega| HbmSample {
+                    omega,
+                    meshes: vec![HbmMesh {
+                        rel_min_um: 80.0,
+                        rel_max_um: 120.0,
+                        regime: crate::protocol::Regime::NoImpact,
+                    }],
+                    stable: Some(true),
+                    bifurcation: None,
+                })
+                .collect(),
+            progress: omegas.last().map_or(0.0, |o| (o - 0.1) / 1.9),
+            finished,
+            error: error.map(str::to_string),
+        })
+    }
+
     #[test]
     fn jobs_queue_until_ready_then_split_over_two_workers() {
         let (mut c, fx) = Controller::new("", 0.0);
         assert!(fx.is_empty(), "nothing may be posted before ready");
         let p = ready(&mut c);
-        // Omega on worker 0, FR and bifurcation shards on both.
-        assert_eq!(p.iter().filter(|(w, _)| *w == 0).count(), 3);
+        // Omega on worker 0, the HBM branch on worker 1, bifurcation shards on
+        // both; no time-integration overlay by default.
+        assert_eq!(p.iter().filter(|(w, _)| *w == 0).count(), 2);
         assert_eq!(p.iter().filter(|(w, _)| *w == 1).count(), 2);
+        assert!(p.iter().any(|(w, m)| *w == HBM_WORKER
+            && matches!(
+                m,
+                ToWorker::Run {
+                    job: JobSpec::Hbm {
+                        harmonics: 5,
+                        points: 150,
+                        stability: true,
+                        ..
+                    },
+                    ..
+                }
+            )));
         let shards: Vec<u32> = p
             .iter()
             .filter_map(|(_, m)| match m {
@@ -752,29 +887,20 @@ mod tests {
             })
             .collect();
         assert_eq!(shards, vec![0, 1]);
+        assert_eq!(c.fr_method(), "harmonic balance, H = 5, AFT");
     }
 
     #[test]
     fn slider_change_restarts_and_stale_replies_are_ignored() {
         let (mut c, _) = Controller::new("", 0.0);
         ready(&mut c);
-        let old = c.fr.id;
+        let old = c.hbm.id;
         let fx = c.set_key("backlash_um", "150", 10.0).unwrap();
-        assert_eq!(posts(&fx).len(), 5);
-        assert_ne!(c.fr.id, old);
+        assert_eq!(posts(&fx).len(), 4);
+        assert_ne!(c.hbm.id, old);
         assert!(c.query().contains("backlash_um=150"));
-        let stale = encode(&FromWorker::FrPoints {
-            id: old,
-            points: vec![FrSample {
-                index: 0,
-                omega: 0.1,
-                meshes: vec![],
-                period: None,
-                error: None,
-            }],
-        });
-        c.worker_message(0, &stale, 11.0);
-        assert_eq!(c.fr.done(), 0);
+        c.worker_message(1, &hbm_points(old, &[0.1], false, None), 11.0);
+        assert!(c.hbm.points.is_empty());
         // Out of range: refused with the key and range named; nothing restarts.
         let e = c.set_key("backlash_um", "5000", 12.0).unwrap_err();
         assert!(e.contains("backlash_um") && e.contains("1000"), "{e}");
@@ -786,6 +912,20 @@ mod tests {
             matches!(&p[0].1, ToWorker::Run { job: JobSpec::Omega { omega, .. }, .. } if (*omega - 1.2346).abs() < 1e-12)
         );
         assert!(c.query().contains("omega=1.2346"));
+        // The harmonics restart only the branch, on its worker.
+        let p = posts(&c.set_key("harmonics", "3", 14.0).unwrap());
+        assert_eq!(p.len(), 1);
+        assert!(matches!(
+            &p[0],
+            (
+                HBM_WORKER,
+                ToWorker::Run {
+                    job: JobSpec::Hbm { harmonics: 3, .. },
+                    ..
+                }
+            )
+        ));
+        assert!(c.set_key("harmonics", "16", 15.0).is_err());
     }
 
     #[test]
@@ -793,7 +933,65 @@ mod tests {
         let (mut c, _) = Controller::new("fr_points=4", 0.0);
         ready(&mut c);
         assert_eq!(c.fr_status.progress(100.0), None);
-        assert_eq!(c.fr_status.progress(300.0), Some((0, 4)));
+        assert_eq!(c.fr_status.progress(300.0), Some((0, 100)));
+        let id = c.hbm.id;
+        c.worker_message(1, &hbm_points(id, &[0.1, 1.05], false, None), 350.0);
+        assert_eq!(c.fr_status.progress(360.0), Some((50, 100)));
+        c.worker_message(1, &hbm_points(id, &[2.0], true, None), 400.0);
+        assert_eq!(c.fr_status.finished_ms, Some(400.0));
+        assert_eq!(c.fr_status.progress(500.0), None);
+        assert!(c.hbm.is_complete());
+        // The complete branch is kept, faded, while the next one computes.
+        c.set_key("harmonics", "3", 600.0).unwrap();
+        let v = c.fr_view();
+        assert_eq!(v.branches.len(), 2);
+        assert!(v.branches[0].faded && v.branches[0].points.len() == 3);
+    }
+
+    #[test]
+    fn a_solver_failure_ends_the_branch_as_partial_and_is_reported() {
+        let (mut c, _) = Controller::new("", 0.0);
+        ready(&mut c);
+        let id = c.hbm.id;
+        c.worker_message(1, &hbm_points(id, &[0.1, 0.5], false, None), 10.0);
+        c.worker_message(
+            1,
+            &hbm_points(id, &[], true, Some("Newton did not converge")),
+            20.0,
+        );
+        assert!(!c.fr_status.running());
+        let e = c.fr_status.error.clone().unwrap();
+        assert!(e.contains("0.5000") && e.contains("partial"), "{e}");
+        assert!(c.issues.contains(&e));
+        let v = c.fr_view();
+        assert_eq!(v.branches.last().unwrap().points.len(), 2);
+        assert!(v.branches.last().unwrap().label.contains("partial"));
+        assert_eq!(v.branch_error.as_ref().map(|b| b.0), Some(0.5));
+        let s: serde_json::Value = serde_json::from_str(&c.status_json(30.0)).unwrap();
+        assert_eq!(s["fr_partial"], "Newton did not converge");
+        // A new branch clears the old branch's failure message.
+        c.set_key("harmonics", "3", 40.0).unwrap();
+        assert!(c.issues.is_empty());
+    }
+
+    #[test]
+    fn the_time_integration_overlay_runs_on_both_workers_when_asked() {
+        let (mut c, _) = Controller::new("fr_ti_points=4", 0.0);
+        let p = ready(&mut c);
+        let ti: Vec<usize> = p
+            .iter()
+            .filter(|(_, m)| {
+                matches!(
+                    m,
+                    ToWorker::Run {
+                        job: JobSpec::Fr { points: 4, .. },
+                        ..
+                    }
+                )
+            })
+            .map(|(w, _)| *w)
+            .collect();
+        assert_eq!(ti, vec![0, 1]);
         let id = c.fr.id;
         let pts = (0..4)
             .map(|i| FrSample {
@@ -805,8 +1003,15 @@ mod tests {
             })
             .collect();
         c.worker_message(1, &encode(&FromWorker::FrPoints { id, points: pts }), 400.0);
-        assert_eq!(c.fr_status.finished_ms, Some(400.0));
-        assert_eq!(c.fr_status.progress(500.0), None);
+        assert_eq!(c.ti_status.finished_ms, Some(400.0));
+        assert_eq!(c.fr_view().failed.len(), 4);
+        // Switching it off cancels it on both workers.
+        let p = posts(&c.set_key("fr_ti_points", "0", 500.0).unwrap());
+        assert_eq!(p.len(), 2);
+        assert!(p
+            .iter()
+            .all(|(_, m)| matches!(m, ToWorker::Cancel { kind: JobKind::Fr })));
+        assert!(c.fr_view().overlay_source.is_none());
     }
 
     #[test]

@@ -282,7 +282,109 @@ fn legend<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(
         .map_err(err)
 }
 
-/// View 1: the frequency response.
+/// A symbol of the key row under the frequency response.
+#[derive(Debug, Clone, Copy)]
+enum KeyIcon {
+    Regime(Regime),
+    Marker(FrMarkerKind),
+    Overlay,
+}
+
+const MARKER: RGBColor = RGBColor(0, 0, 0);
+const OVERLAY: RGBColor = RGBColor(60, 60, 60);
+const FAILURE: RGBColor = RGBColor(170, 0, 0);
+
+/// Draws the key (regimes present, bifurcation kinds present, the overlay)
+/// left to right from `(x0, y0)`, wrapping at the right edge.
+fn key_row<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    items: &[(KeyIcon, String)],
+    (x0, y0): (i32, i32),
+) -> Res<()> {
+    let font = small();
+    let right = root.dim_in_pixel().0 as i32 - 8;
+    let (mut x, mut y) = (x0, y0);
+    for (icon, text) in items {
+        let w = root
+            .estimate_text_size(text, &font)
+            .map_or(8 * text.len() as u32, |(w, _)| w) as i32;
+        if x > x0 && x + 14 + w > right {
+            x = x0;
+            y += 17;
+        }
+        let c = (x + 5, y);
+        match *icon {
+            KeyIcon::Regime(r) => root
+                .draw(&Circle::new(c, 4, regime_color(r).filled()))
+                .map_err(err)?,
+            KeyIcon::Marker(k) => draw_marker_px(root, k, c)?,
+            KeyIcon::Overlay => root
+                .draw(&Circle::new(c, 4, OVERLAY.stroke_width(1)))
+                .map_err(err)?,
+        }
+        root.draw(&Text::new(text.clone(), (x + 14, y - 7), font.clone()))
+            .map_err(err)?;
+        x += 14 + w + 16;
+    }
+    Ok(())
+}
+
+/// A bifurcation marker at a pixel position.
+fn draw_marker_px<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    kind: FrMarkerKind,
+    c: (i32, i32),
+) -> Res<()> {
+    match kind {
+        FrMarkerKind::Fold => root
+            .draw(&TriangleMarker::new(c, 6, MARKER.filled()))
+            .map_err(err),
+        FrMarkerKind::PeriodDoubling => root
+            .draw(&Cross::new(c, 5, MARKER.stroke_width(2)))
+            .map_err(err),
+        FrMarkerKind::NeimarkSacker => root
+            .draw(&Circle::new(c, 5, MARKER.stroke_width(2)))
+            .map_err(err),
+        FrMarkerKind::BranchPoint => root
+            .draw(&Rectangle::new(
+                [(c.0 - 4, c.1 - 4), (c.0 + 4, c.1 + 4)],
+                MARKER.stroke_width(2),
+            ))
+            .map_err(err),
+    }
+}
+
+/// Height of the key under the frequency-response chart (pixels).
+const KEY_HEIGHT: i32 = 56;
+
+/// The impact regime along Omega as a thin coloured strip at the bottom of
+/// the plot: the branch's own lines keep the max / min colours and the
+/// dashes of unstable stretches readable. Only stable (or unknown) stretches
+/// are drawn, since only they can be observed.
+fn regime_strip<'a, DB: DrawingBackend + 'a>(
+    chart: &mut Chart<'a, DB>,
+    points: &[crate::views::FrCurvePoint],
+    y: (f64, f64),
+) -> Res<()> {
+    let (lo, hi) = (y.0, y.0 + 0.025 * (y.1 - y.0));
+    chart
+        .draw_series(points.windows(2).filter_map(|w| {
+            let (a, b) = (&w[0], &w[1]);
+            if a.stable == Some(false) || b.stable == Some(false) {
+                return None;
+            }
+            let c = regime_color(b.regime?);
+            Some(Rectangle::new(
+                [(a.omega.min(b.omega), lo), (a.omega.max(b.omega), hi)],
+                c.filled(),
+            ))
+        }))
+        .map_err(err)?;
+    Ok(())
+}
+
+/// View 1: the frequency response (harmonic-balance branch, stable solid,
+/// unstable dashed, bifurcation markers, optional time-integration dots).
 pub fn draw_fr<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     v: &FrView,
@@ -290,24 +392,24 @@ pub fn draw_fr<DB: DrawingBackend>(
 ) -> Res<PlotFrame> {
     root.fill(&WHITE).map_err(err)?;
     let x = (v.omega_from, v.omega_to);
+    let in_range = |o: f64| o >= x.0 && o <= x.1;
     let all = v
         .branches
         .iter()
-        .flat_map(|b| b.points.iter().flat_map(|p| [p.max_um, p.min_um]));
+        .flat_map(|b| b.points.iter())
+        .chain(v.overlay.iter())
+        .filter(|p| in_range(p.omega))
+        .flat_map(|p| [p.max_um, p.min_um]);
     let mut extra: Vec<f64> = v.backlash_um.iter().flat_map(|b| [*b, -*b]).collect();
     extra.push(0.0);
     let y = with_headroom(padded_range(all, &extra, 20.0), 0.55);
-    let method = match v.source {
-        crate::views::FrSource::TimeIntegration { .. } => {
-            "fallback: time-integration steady states"
-        }
-        crate::views::FrSource::Hbm { .. } => "harmonic balance",
-    };
-    let mut chart = ChartBuilder::on(root)
+    // The key of regimes, bifurcations and the overlay goes under the chart.
+    let (upper, _) = root.split_vertically(HEIGHT as i32 - KEY_HEIGHT);
+    let mut chart = ChartBuilder::on(&upper)
         .caption(
             format!(
-                "Frequency response, mesh {} ({method}){status}",
-                v.mesh_label
+                "Frequency response, mesh {} ({}){status}",
+                v.mesh_label, v.method
             ),
             caption_font(),
         )
@@ -328,11 +430,13 @@ pub fn draw_fr<DB: DrawingBackend>(
         .map_err(err)?;
     contact_lines(&mut chart, &v.backlash_um, x, true)?;
     omega_decorations(&mut chart, &v.natural, v.selected_omega, y)?;
+    let mut any_unstable = false;
     for br in &v.branches {
         for (which, color, label) in [(true, MAX_COLOR, "max x"), (false, MIN_COLOR, "min x")] {
             let color = if br.faded { FADED } else { color };
             let val = |p: &crate::views::FrCurvePoint| if which { p.max_um } else { p.min_um };
-            // Split into runs of equal stability: stable (or unknown) solid, unstable dashed.
+            // Split into runs of equal stability: stable (or unknown) solid,
+            // unstable dashed; consecutive runs share their joining point.
             let mut runs: Vec<(bool, Vec<(f64, f64)>)> = Vec::new();
             for p in &br.points {
                 let unstable = p.stable == Some(false);
@@ -355,6 +459,7 @@ pub fn draw_fr<DB: DrawingBackend>(
             let mut labelled = br.faded && !which;
             for (unstable, pts) in runs {
                 let s = if unstable {
+                    any_unstable |= !br.faded;
                     chart
                         .draw_series(DashedLineSeries::new(pts, 5, 4, style))
                         .map_err(err)?
@@ -378,53 +483,124 @@ pub fn draw_fr<DB: DrawingBackend>(
             if br.faded {
                 continue;
             }
-            chart
-                .draw_series(br.points.iter().map(|p| {
-                    let c = p.regime.map_or(color, regime_color);
-                    Circle::new((p.omega, val(p)), 3, c.filled())
-                }))
-                .map_err(err)?;
+        }
+        if !br.faded {
+            regime_strip(&mut chart, &br.points, y)?;
         }
     }
-    for m in &v.markers {
-        let c = RGBColor(0, 0, 0);
-        match m.kind {
-            FrMarkerKind::Fold => chart
-                .draw_series(std::iter::once(TriangleMarker::new(
-                    (m.omega, m.value_um),
-                    6,
-                    c.filled(),
-                )))
-                .map_err(err)?,
-            FrMarkerKind::PeriodDoubling => chart
-                .draw_series(std::iter::once(Cross::new(
-                    (m.omega, m.value_um),
-                    6,
-                    c.stroke_width(2),
-                )))
-                .map_err(err)?,
-            FrMarkerKind::NeimarkSacker => chart
-                .draw_series(std::iter::once(Circle::new(
-                    (m.omega, m.value_um),
-                    6,
-                    c.stroke_width(2),
-                )))
-                .map_err(err)?,
-        };
+    if any_unstable {
+        let style = ShapeStyle::from(&CONTACT).stroke_width(2);
+        chart
+            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
+            .map_err(err)?
+            .label("unstable (Floquet): dashed")
+            .legend(move |(xx, yy)| {
+                PathElement::new(
+                    vec![(xx, yy), (xx + 5, yy), (xx + 9, yy), (xx + 16, yy)],
+                    style,
+                )
+            });
     }
-    regime_legend(
-        &mut chart,
-        v.branches
-            .iter()
-            .flat_map(|b| b.points.iter().filter_map(|p| p.regime)),
-    )?;
+    // Time-integration steady states: hollow dots on both extremes.
+    chart
+        .draw_series(
+            v.overlay
+                .iter()
+                .filter(|p| in_range(p.omega))
+                .flat_map(|p| [(p.omega, p.max_um), (p.omega, p.min_um)])
+                .map(|c| Circle::new(c, 4, OVERLAY.stroke_width(1))),
+        )
+        .map_err(err)?;
+    for m in v.markers.iter().filter(|m| in_range(m.omega)) {
+        let c = chart.backend_coord(&(m.omega, m.value_um));
+        draw_marker_px(root, m.kind, c)?;
+    }
+    if let Some((at, _)) = &v.branch_error {
+        chart
+            .draw_series(DashedLineSeries::new(
+                vec![(*at, y.0), (*at, y.1)],
+                3,
+                3,
+                ShapeStyle::from(&FAILURE).stroke_width(2),
+            ))
+            .map_err(err)?
+            .label("solver failure: branch ends")
+            .legend(|(xx, yy)| {
+                PathElement::new(
+                    vec![(xx, yy), (xx + 16, yy)],
+                    ShapeStyle::from(&FAILURE).stroke_width(2),
+                )
+            });
+    }
     legend(&mut chart, SeriesLabelPosition::UpperRight)?;
     let frame = frame_of(&chart, x, y);
+
+    // The key row under the x axis: regimes, bifurcations, overlay.
+    let mut items: Vec<(KeyIcon, String)> = Vec::new();
+    let mut seen = [false; 4];
+    for r in v
+        .branches
+        .iter()
+        .filter(|b| !b.faded)
+        .flat_map(|b| b.points.iter().filter_map(|p| p.regime))
+        .chain(v.overlay.iter().filter_map(|p| p.regime))
+    {
+        if let Some(i) = Regime::ALL.iter().position(|&x| x == r) {
+            seen[i] = true;
+        }
+    }
+    let mut first = true;
+    for (i, r) in Regime::ALL.iter().enumerate() {
+        if seen[i] {
+            let text = if first {
+                format!("regime strip (stable): {}", r.label())
+            } else {
+                r.label().to_string()
+            };
+            first = false;
+            items.push((KeyIcon::Regime(*r), text));
+        }
+    }
+    for k in FrMarkerKind::ALL {
+        if v.markers.iter().any(|m| m.kind == k) {
+            items.push((KeyIcon::Marker(k), k.label().to_string()));
+        }
+    }
+    if v.overlay_source.is_some() {
+        let d = &v.discrepancy;
+        let mut text = format!("time integration ({} pts)", v.overlay.len());
+        if let Some(m) = d.max_um {
+            text.push_str(&format!(
+                ": max |Δx| {m:.2} µm at {} on the stable branch",
+                d.compared
+            ));
+        }
+        if d.off_branch > 0 {
+            text.push_str(&format!("; {} where none is stable", d.off_branch));
+        }
+        items.push((KeyIcon::Overlay, text));
+    }
+    key_row(root, &items, (76, HEIGHT as i32 - KEY_HEIGHT + 10))?;
+    let mut notes = Vec::new();
+    if let Some((at, e)) = &v.branch_error {
+        let text = format!(
+            "Solver failure after Ω = {at:.4}: {}. The branch ends there (partial).",
+            solver::keys::truncate(e, 160)
+        );
+        notes.extend(wrap(&text, 84));
+    }
     if !v.failed.is_empty() {
+        notes.push(format!(
+            "{} time-integration point(s) failed: not plotted",
+            v.failed.len()
+        ));
+    }
+    let first_y = frame.bottom_right.y as i32 - 24 - 16 * (notes.len() as i32 - 1);
+    for (k, n) in notes.iter().enumerate() {
         root.draw(&Text::new(
-            format!("{} point(s) failed: not plotted", v.failed.len()),
-            (70, HEIGHT as i32 - 52),
-            small(),
+            n.clone(),
+            (76, first_y + 16 * k as i32),
+            ("sans-serif", 13).into_font().color(&FAILURE),
         ))
         .map_err(err)?;
     }
@@ -794,7 +970,7 @@ pub fn draw_spectrum<DB: DrawingBackend>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::views::{FrBranch, FrCurvePoint, FrSource};
+    use crate::views::{FrBranch, FrCurvePoint, FrMarker, FrSource};
 
     fn svg<F: FnOnce(&DrawingArea<SVGBackend, Shift>) -> Res<()>>(f: F) -> String {
         let mut s = String::new();
@@ -862,28 +1038,41 @@ mod tests {
 
     #[test]
     fn every_plot_draws_labels_units_and_legends() {
+        let point = |k: u32| FrCurvePoint {
+            omega: 0.1 + 0.2 * f64::from(k),
+            max_um: 120.0 + f64::from(k),
+            min_um: 90.0 - f64::from(k),
+            stable: Some(k <= 6),
+            regime: Some(Regime::NoImpact),
+            period: Some(1),
+            bifurcation: (k == 7).then_some(FrMarkerKind::Fold),
+        };
+        let source = FrSource::Hbm { harmonics: 5 };
         let fr = FrView {
-            source: FrSource::TimeIntegration {
-                transient_periods: 300,
-                record_periods: 30,
-            },
+            method: source.label(),
+            source,
             mesh_label: "s1a1".into(),
             backlash_um: vec![100.0],
             branches: vec![FrBranch {
-                label: "time integration".into(),
-                points: (0..10)
-                    .map(|k| FrCurvePoint {
-                        omega: 0.1 + 0.2 * f64::from(k),
-                        max_um: 120.0 + f64::from(k),
-                        min_um: 90.0 - f64::from(k),
-                        stable: if k > 6 { Some(false) } else { None },
-                        regime: Some(Regime::NoImpact),
-                        period: Some(1),
-                    })
-                    .collect(),
+                label: "HBM, H = 5".into(),
+                points: (0..10).map(point).collect(),
                 faded: false,
             }],
-            markers: vec![],
+            markers: vec![FrMarker {
+                omega: 1.5,
+                value_um: 127.0,
+                kind: FrMarkerKind::Fold,
+            }],
+            overlay: vec![point(2)],
+            overlay_source: Some(FrSource::TimeIntegration {
+                transient_periods: 300,
+                record_periods: 30,
+            }),
+            discrepancy: crate::views::Discrepancy {
+                max_um: Some(1.5),
+                compared: 1,
+                off_branch: 2,
+            },
             natural: vec![NaturalFreq {
                 omega: 0.5,
                 frequency_hz: 3000.0,
@@ -893,9 +1082,11 @@ mod tests {
             omega_from: 0.1,
             omega_to: 2.0,
             selected_omega: 0.84,
+            branch_error: Some((1.9, "no convergence at Omega = 1.9".into())),
             failed: vec![],
             done: 10,
-            total: 10,
+            progress: 0.95,
+            finished: true,
         };
         let mut frame = None;
         let s = svg(|root| {
@@ -906,7 +1097,16 @@ mod tests {
             s.contains("µm") && s.contains("Ω") && s.contains("±b"),
             "{s}"
         );
-        assert!(s.contains("fallback"));
+        for text in [
+            "harmonic balance, H = 5, AFT",
+            "unstable (Floquet): dashed",
+            "fold (jump)",
+            "time integration (1 pts): max |Δx| 1.50 µm at 1 on the stable branch; 2 where none is stable",
+            "Solver failure after Ω = 1.9000",
+            "(partial)",
+        ] {
+            assert!(s.contains(text), "{text} missing");
+        }
         let f = frame.unwrap();
         assert!(f.bottom_right.x > f.top_left.x);
         let r = result();

@@ -7,9 +7,11 @@
 //! page ignores replies whose id is not the current one of that kind. Workers
 //! compute in bounded chunks (one steady state per chunk) and yield to their
 //! event loop between chunks, so a newer job or a cancel arrives within one
-//! chunk. Bifurcation sweeps and frequency-response grids are split over two
-//! workers as interleaved continuation chains (`chains = 2`, `shard = w`);
-//! the merged result equals an unsharded run with two chains.
+//! chunk. Bifurcation sweeps and the time-integration overlay of the
+//! frequency response are split over two workers as interleaved continuation
+//! chains (`chains = 2`, `shard = w`); the merged result equals an unsharded
+//! run with two chains. The harmonic-balance branch ([`JobSpec::Hbm`]) is one
+//! continuation on one worker, advanced a few points per chunk.
 //!
 //! These are the serializable DTOs of the boundary; solver types stay inside
 //! the worker.
@@ -21,13 +23,16 @@ use solver::steady::Impact;
 /// Identifies one job; increases monotonically on the page.
 pub type JobId = u64;
 
-/// The three kinds of job: `Omega` is served first, `Fr` and `Bif` take turns.
+/// The kinds of job: `Omega` is served first, then `Hbm` every other chunk;
+/// `Fr` and `Bif` take turns in the remaining chunks.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum JobKind {
     /// One steady state at the selected Omega (views 3–6).
     Omega,
-    /// The frequency-response grid (view 1).
+    /// The harmonic-balance branch of the frequency response (view 1).
+    Hbm,
+    /// The time-integration overlay grid of the frequency response (view 1).
     Fr,
     /// The bifurcation sweep (view 2).
     Bif,
@@ -35,7 +40,7 @@ pub enum JobKind {
 
 impl JobKind {
     /// All kinds.
-    pub const ALL: [JobKind; 3] = [JobKind::Omega, JobKind::Fr, JobKind::Bif];
+    pub const ALL: [JobKind; 4] = [JobKind::Omega, JobKind::Hbm, JobKind::Fr, JobKind::Bif];
 }
 
 /// Transient and recorded mesh periods of each steady state.
@@ -64,8 +69,24 @@ pub enum JobSpec {
         /// Highest mesh order of the spectrum.
         max_order: f64,
     },
+    /// The harmonic-balance frequency response (`solver::hbm`): one
+    /// pseudo-arclength continuation upward from `omega_from`, with Floquet
+    /// stability and bifurcation labels.
+    Hbm {
+        /// Start of the Omega range.
+        omega_from: f64,
+        /// End of the Omega range.
+        omega_to: f64,
+        /// Nominal points (the largest arclength step is range / points).
+        points: u32,
+        /// Harmonics H (AFT).
+        harmonics: u32,
+        /// Compute Floquet stability at every point.
+        stability: bool,
+    },
     /// Steady-state extremes of every mesh over an Omega grid (upward
-    /// continuation along interleaved chains; this worker does `shard`).
+    /// continuation along interleaved chains; this worker does `shard`): the
+    /// time-integration overlay of the frequency response.
     Fr {
         /// First grid Omega.
         omega_from: f64,
@@ -104,6 +125,7 @@ impl JobSpec {
     pub fn kind(&self) -> JobKind {
         match self {
             JobSpec::Omega { .. } => JobKind::Omega,
+            JobSpec::Hbm { .. } => JobKind::Hbm,
             JobSpec::Fr { .. } => JobKind::Fr,
             JobSpec::Bif { .. } => JobKind::Bif,
         }
@@ -230,6 +252,57 @@ pub struct FrSample {
     pub error: Option<String>,
 }
 
+/// A bifurcation detected on a harmonic-balance branch (between the
+/// previous point and this one).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum BranchBif {
+    /// The branch turns back in Omega (a jump in a sweep).
+    Fold,
+    /// A real Floquet multiplier crosses -1.
+    PeriodDoubling,
+    /// A complex pair of multipliers crosses the unit circle.
+    NeimarkSacker,
+    /// A real multiplier crosses +1 without a turn.
+    BranchPoint,
+}
+
+impl From<solver::hbm::Bifurcation> for BranchBif {
+    fn from(b: solver::hbm::Bifurcation) -> Self {
+        use solver::hbm::Bifurcation as B;
+        match b {
+            B::Fold => BranchBif::Fold,
+            B::PeriodDoubling => BranchBif::PeriodDoubling,
+            B::NeimarkSacker => BranchBif::NeimarkSacker,
+            B::BranchPoint => BranchBif::BranchPoint,
+        }
+    }
+}
+
+/// One mesh on a harmonic-balance branch point.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct HbmMesh {
+    /// Smallest x = delta - e over the period (um).
+    pub rel_min_um: f64,
+    /// Largest x (um).
+    pub rel_max_um: f64,
+    /// Contact regime of the reconstructed orbit.
+    pub regime: Regime,
+}
+
+/// One point of a harmonic-balance branch.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct HbmSample {
+    /// Dimensionless frequency.
+    pub omega: f64,
+    /// Every mesh, in the model's order.
+    pub meshes: Vec<HbmMesh>,
+    /// Floquet stability, `None` if not computed.
+    pub stable: Option<bool>,
+    /// A bifurcation between the previous point and this one.
+    pub bifurcation: Option<BranchBif>,
+}
+
 /// One mesh's Poincaré samples at a swept point.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct BifMesh {
@@ -328,6 +401,20 @@ pub enum FromWorker {
         id: JobId,
         /// The points.
         points: Vec<FrSample>,
+    },
+    /// New points of the harmonic-balance branch, in continuation order.
+    HbmPoints {
+        /// Job id.
+        id: JobId,
+        /// The points.
+        points: Vec<HbmSample>,
+        /// Fraction of the Omega range covered (0 ..= 1).
+        progress: f64,
+        /// The branch has ended (left the range, or failed).
+        finished: bool,
+        /// The solver failure that ended the branch, if it failed: the
+        /// points before it stay valid, the branch is partial.
+        error: Option<String>,
     },
     /// New points of a bifurcation job.
     BifPoints {

@@ -57,8 +57,12 @@ pub struct ViewKey {
     pub description: &'static str,
 }
 
-/// Largest Omega grid of the frequency response.
+/// Largest nominal point count of the harmonic-balance branch.
 pub const MAX_FR_POINTS: u32 = 400;
+/// Largest time-integration overlay grid of the frequency response.
+pub const MAX_FR_TI_POINTS: u32 = 200;
+/// Most harmonics of the harmonic-balance branch (the work grows like H^3).
+pub const MAX_HARMONICS: u32 = 15;
 /// Largest Omega grid of the bifurcation diagram.
 pub const MAX_BIF_POINTS: u32 = 1000;
 /// Largest transient of one steady state (mesh periods).
@@ -104,13 +108,22 @@ pub const VIEW_KEYS: &[ViewKey] = &[
             min: 2,
             max: MAX_FR_POINTS,
         },
-        description: "Omega points of the frequency response",
+        description: "nominal points of the harmonic-balance frequency response (largest continuation step = range / points; resonances get more)",
+    },
+    ViewKey {
+        name: "fr_ti_points",
+        unit: "-",
+        ty: ViewType::Int {
+            min: 0,
+            max: MAX_FR_TI_POINTS,
+        },
+        description: "Omega points of the time-integration steady states overlaid on the frequency response as dots (0 = no overlay)",
     },
     ViewKey {
         name: "fr_record_periods",
         unit: "periods",
         ty: ViewType::Int { min: 1, max: 200 },
-        description: "recorded mesh periods per frequency-response point (time-integration fallback)",
+        description: "recorded mesh periods per time-integration overlay point of the frequency response",
     },
     ViewKey {
         name: "bif_points",
@@ -148,8 +161,11 @@ pub const VIEW_KEYS: &[ViewKey] = &[
     ViewKey {
         name: "harmonics",
         unit: "-",
-        ty: ViewType::Int { min: 1, max: 64 },
-        description: "harmonics of the harmonic-balance frequency response",
+        ty: ViewType::Int {
+            min: 1,
+            max: MAX_HARMONICS,
+        },
+        description: "harmonics H of the harmonic-balance frequency response (AFT)",
     },
 ];
 
@@ -188,9 +204,11 @@ pub struct ViewOptions {
     pub omega_from: f64,
     /// Highest Omega of the sweeps.
     pub omega_to: f64,
-    /// Frequency-response grid points.
+    /// Nominal points of the harmonic-balance branch.
     pub fr_points: u32,
-    /// Recorded periods per frequency-response point.
+    /// Time-integration overlay grid points (0: no overlay).
+    pub fr_ti_points: u32,
+    /// Recorded periods per overlay point.
     pub fr_record_periods: u32,
     /// Bifurcation grid points.
     pub bif_points: u32,
@@ -211,13 +229,14 @@ impl Default for ViewOptions {
             mesh: MeshSel::Named("s1a1".into()),
             omega_from: 0.1,
             omega_to: 2.0,
-            fr_points: 60,
+            fr_points: 150,
+            fr_ti_points: 0,
             fr_record_periods: 30,
             bif_points: 100,
             bif_dir: Directions::Both,
             transient_periods: 300,
             record_periods: 100,
-            harmonics: 8,
+            harmonics: 5,
         }
     }
 }
@@ -237,6 +256,7 @@ impl ViewOptions {
             "omega_from" => fmt_exact(self.omega_from),
             "omega_to" => fmt_exact(self.omega_to),
             "fr_points" => self.fr_points.to_string(),
+            "fr_ti_points" => self.fr_ti_points.to_string(),
             "fr_record_periods" => self.fr_record_periods.to_string(),
             "bif_points" => self.bif_points.to_string(),
             "bif_dir" => self.bif_dir.name().to_string(),
@@ -294,6 +314,7 @@ impl ViewOptions {
                 let n = x as u32;
                 match name {
                     "fr_points" => self.fr_points = n,
+                    "fr_ti_points" => self.fr_ti_points = n,
                     "fr_record_periods" => self.fr_record_periods = n,
                     "bif_points" => self.bif_points = n,
                     "transient_periods" => self.transient_periods = n,
@@ -383,12 +404,13 @@ mod tests {
             ("omega_from", "0.3"),
             ("omega_to", "1.7"),
             ("fr_points", "80"),
+            ("fr_ti_points", "24"),
             ("fr_record_periods", "12"),
             ("bif_points", "150"),
             ("bif_dir", "down"),
             ("transient_periods", "500"),
             ("record_periods", "64"),
-            ("harmonics", "12"),
+            ("harmonics", "7"),
         ] {
             v.set(k, t, &meshes).unwrap();
             assert_eq!(v.get(k).unwrap(), t, "{k}");

@@ -1,14 +1,17 @@
 //! The data behind each view: stores filled by worker replies, and the view
 //! models the plots draw (and the CSV/JSON exports write).
 //!
-//! The frequency response is modelled for the harmonic-balance engine that
-//! is being added to the solver (`solver::hbm`): branches of points with a
-//! stability flag, and bifurcation markers (folds, period doubling,
-//! Neimark–Sacker). Until it lands, [`FrStore`] fills the same type from
-//! time-integration steady states ([`FrSource::TimeIntegration`]), which the
-//! plot labels as a fallback: no curve is ever invented.
+//! The frequency response (view 1) is the harmonic-balance branch of
+//! `solver::hbm` ([`HbmStore`], [`FrSource::Hbm`]): points in continuation
+//! order with Floquet stability, and bifurcation markers (folds, period
+//! doubling, Neimark–Sacker, branch points). A solver failure ends the
+//! branch: the points before it are kept and labelled partial, the failure
+//! is reported, and nothing is invented past it. Optionally, extremes of
+//! time-integration steady states on a grid ([`FrStore`]) are overlaid as
+//! dots, with the largest distance between them and the branch as the
+//! discrepancy figure.
 
-use crate::protocol::{BifSample, FrSample, OmegaResult, Regime};
+use crate::protocol::{BifSample, BranchBif, FrSample, HbmSample, OmegaResult, Regime};
 use crate::worker_core::severity;
 use serde::Serialize;
 use solver::modal::ModeKind;
@@ -25,11 +28,21 @@ pub enum FrSource {
         /// Recorded periods per point.
         record_periods: u32,
     },
-    /// Harmonic balance with continuation (`solver::hbm`).
+    /// Harmonic balance (AFT) with pseudo-arclength continuation (`solver::hbm`).
     Hbm {
         /// Harmonics retained.
         harmonics: u32,
     },
+}
+
+impl FrSource {
+    /// The method in words, for captions and the page's status.
+    pub fn label(&self) -> String {
+        match self {
+            FrSource::TimeIntegration { .. } => "time-integration steady states".into(),
+            FrSource::Hbm { harmonics } => format!("harmonic balance, H = {harmonics}, AFT"),
+        }
+    }
 }
 
 /// One point of a frequency-response branch.
@@ -47,6 +60,8 @@ pub struct FrCurvePoint {
     pub regime: Option<Regime>,
     /// Period of the response in mesh periods, if known.
     pub period: Option<u32>,
+    /// A bifurcation detected between the previous point and this one (HBM).
+    pub bifurcation: Option<FrMarkerKind>,
 }
 
 /// A continuous branch of solutions.
@@ -70,15 +85,37 @@ pub enum FrMarkerKind {
     PeriodDoubling,
     /// Neimark–Sacker (torus) point.
     NeimarkSacker,
+    /// A real multiplier crossing +1 without a turn (symmetry breaking).
+    BranchPoint,
 }
 
 impl FrMarkerKind {
+    /// All kinds, in legend order.
+    pub const ALL: [FrMarkerKind; 4] = [
+        FrMarkerKind::Fold,
+        FrMarkerKind::PeriodDoubling,
+        FrMarkerKind::NeimarkSacker,
+        FrMarkerKind::BranchPoint,
+    ];
+
     /// Legend text.
     pub fn label(self) -> &'static str {
         match self {
-            FrMarkerKind::Fold => "fold",
+            FrMarkerKind::Fold => "fold (jump)",
             FrMarkerKind::PeriodDoubling => "period doubling",
             FrMarkerKind::NeimarkSacker => "Neimark-Sacker",
+            FrMarkerKind::BranchPoint => "branch point",
+        }
+    }
+}
+
+impl From<BranchBif> for FrMarkerKind {
+    fn from(b: BranchBif) -> Self {
+        match b {
+            BranchBif::Fold => FrMarkerKind::Fold,
+            BranchBif::PeriodDoubling => FrMarkerKind::PeriodDoubling,
+            BranchBif::NeimarkSacker => FrMarkerKind::NeimarkSacker,
+            BranchBif::BranchPoint => FrMarkerKind::BranchPoint,
         }
     }
 }
@@ -136,16 +173,25 @@ pub fn natural_in_range(model: &Model, lo: f64, hi: f64) -> Vec<NaturalFreq> {
 /// What the frequency-response plot draws.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct FrView {
-    /// Method.
+    /// Method of the branches.
     pub source: FrSource,
+    /// [`FrSource::label`] of `source`.
+    pub method: String,
     /// The plotted mesh, e.g. `s1a1` or `worst mesh`.
     pub mesh_label: String,
     /// Distinct backlash half-widths of the plotted meshes (um): the ±b lines.
     pub backlash_um: Vec<f64>,
-    /// Solution branches.
+    /// Solution branches (the previous settings' branch first, faded).
     pub branches: Vec<FrBranch>,
-    /// Bifurcation markers.
+    /// Bifurcation markers of the current branch.
     pub markers: Vec<FrMarker>,
+    /// Time-integration steady states drawn as dots over the branch (empty
+    /// when the overlay is off).
+    pub overlay: Vec<FrCurvePoint>,
+    /// How the overlay was computed, if it is on.
+    pub overlay_source: Option<FrSource>,
+    /// How the overlay compares with the branch.
+    pub discrepancy: Discrepancy,
     /// Natural frequencies in range.
     pub natural: Vec<NaturalFreq>,
     /// Omega range of the axis.
@@ -154,12 +200,97 @@ pub struct FrView {
     pub omega_to: f64,
     /// Selected Omega (the cursor).
     pub selected_omega: f64,
-    /// Omegas where the solver failed (reported, not plotted as data).
+    /// The solver failure that ended the branch early, at which Omega: the
+    /// branch is partial (reported, never plotted as data).
+    pub branch_error: Option<(f64, String)>,
+    /// Overlay Omegas where time integration failed (reported, not plotted).
     pub failed: Vec<(f64, String)>,
-    /// Points computed and in all.
+    /// Points on the current branch.
     pub done: usize,
-    /// Points in all.
-    pub total: usize,
+    /// Fraction of the Omega range the branch covers so far (0 ..= 1).
+    pub progress: f64,
+    /// Whether the branch has ended (range covered or failed).
+    pub finished: bool,
+}
+
+/// The harmonic-balance branch as it arrives, for one job.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct HbmStore {
+    /// The job these points belong to.
+    pub id: u64,
+    /// Harmonics of the job.
+    pub harmonics: u32,
+    /// Points in continuation order.
+    pub points: Vec<HbmSample>,
+    /// Fraction of the range covered.
+    pub progress: f64,
+    /// The branch has ended.
+    pub finished: bool,
+    /// The failure that ended it, if it failed.
+    pub error: Option<String>,
+}
+
+impl HbmStore {
+    /// An empty store for a new job.
+    pub fn new(id: u64, harmonics: u32) -> Self {
+        HbmStore {
+            id,
+            harmonics,
+            ..HbmStore::default()
+        }
+    }
+
+    /// Adds a chunk of points and the job's state after it.
+    pub fn add(
+        &mut self,
+        points: Vec<HbmSample>,
+        progress: f64,
+        finished: bool,
+        error: Option<String>,
+    ) {
+        self.points.extend(points);
+        self.progress = progress.clamp(0.0, 1.0);
+        self.finished |= finished;
+        if error.is_some() {
+            self.error = error;
+        }
+    }
+
+    /// Whether the branch covered the whole range without a failure.
+    pub fn is_complete(&self) -> bool {
+        self.finished && self.error.is_none()
+    }
+
+    /// The branch of mesh `mesh` (`None` = each point's mesh with the largest
+    /// peak-to-peak x) and its bifurcation markers (on the max x curve).
+    pub fn curve(&self, mesh: Option<usize>) -> (Vec<FrCurvePoint>, Vec<FrMarker>) {
+        let mut pts = Vec::with_capacity(self.points.len());
+        let mut markers = Vec::new();
+        for s in &self.points {
+            let Some(j) = pick(&s.meshes, mesh, |m| m.rel_max_um - m.rel_min_um) else {
+                continue;
+            };
+            let m = &s.meshes[j];
+            let kind = s.bifurcation.map(FrMarkerKind::from);
+            if let Some(kind) = kind {
+                markers.push(FrMarker {
+                    omega: s.omega,
+                    value_um: m.rel_max_um,
+                    kind,
+                });
+            }
+            pts.push(FrCurvePoint {
+                omega: s.omega,
+                max_um: m.rel_max_um,
+                min_um: m.rel_min_um,
+                stable: s.stable,
+                regime: Some(m.regime),
+                period: Some(1),
+                bifurcation: kind,
+            });
+        }
+        (pts, markers)
+    }
 }
 
 /// Frequency-response points as they arrive, for one job.
@@ -176,14 +307,14 @@ pub struct FrStore {
 }
 
 /// Picks the plotted mesh of a set: the given one, or the one with the
-/// largest dynamic factor.
-fn pick<T>(items: &[T], mesh: Option<usize>, dynamic: impl Fn(&T) -> f64) -> Option<usize> {
+/// largest `size` (view 1: peak-to-peak x).
+fn pick<T>(items: &[T], mesh: Option<usize>, size: impl Fn(&T) -> f64) -> Option<usize> {
     match mesh {
         Some(j) => (j < items.len()).then_some(j),
         None => items
             .iter()
             .enumerate()
-            .max_by(|a, b| dynamic(a.1).total_cmp(&dynamic(b.1)))
+            .max_by(|a, b| size(a.1).total_cmp(&size(b.1)))
             .map(|(j, _)| j),
     }
 }
@@ -213,8 +344,17 @@ impl FrStore {
         self.points.iter().filter(|p| p.is_some()).count()
     }
 
-    /// The view of mesh `mesh` (`None` = worst per point).
-    pub fn view(&self, mesh: Option<usize>, backlash_um: &[f64], ctx: &ViewContext) -> FrView {
+    /// How the points were computed.
+    pub fn source(&self) -> FrSource {
+        FrSource::TimeIntegration {
+            transient_periods: self.transient_periods,
+            record_periods: self.record_periods,
+        }
+    }
+
+    /// The points of mesh `mesh` (`None` = each point's mesh with the
+    /// largest peak-to-peak x, as for the branch) and the failed Omegas.
+    pub fn curve(&self, mesh: Option<usize>) -> (Vec<FrCurvePoint>, Vec<(f64, String)>) {
         let mut pts = Vec::new();
         let mut failed = Vec::new();
         for s in self.points.iter().flatten() {
@@ -222,7 +362,7 @@ impl FrStore {
                 failed.push((s.omega, e.clone()));
                 continue;
             }
-            let Some(j) = pick(&s.meshes, mesh, |m| m.dynamic_factor.unwrap_or(0.0)) else {
+            let Some(j) = pick(&s.meshes, mesh, |m| m.rel_max_um - m.rel_min_um) else {
                 continue;
             };
             let m = &s.meshes[j];
@@ -233,29 +373,141 @@ impl FrStore {
                 stable: None,
                 regime: Some(m.regime),
                 period: s.period,
+                bifurcation: None,
             });
         }
-        FrView {
-            source: FrSource::TimeIntegration {
-                transient_periods: self.transient_periods,
-                record_periods: self.record_periods,
-            },
-            mesh_label: ctx.mesh_label.clone(),
-            backlash_um: distinct(backlash_um, mesh),
-            branches: vec![FrBranch {
-                label: "time integration, upward sweep".into(),
-                points: pts,
-                faded: false,
-            }],
-            markers: Vec::new(),
-            natural: ctx.natural.clone(),
-            omega_from: ctx.omega_from,
-            omega_to: ctx.omega_to,
-            selected_omega: ctx.selected_omega,
-            failed,
-            done: self.done(),
-            total: self.points.len(),
+        (pts, failed)
+    }
+}
+
+/// How the time-integration overlay compares with the branch.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct Discrepancy {
+    /// Largest distance (um, the larger of the two extremes' misses) between
+    /// an overlay point and the nearest stable stretch of the branch at its
+    /// Omega; `None` if no point could be compared.
+    pub max_um: Option<f64>,
+    /// Overlay points compared.
+    pub compared: usize,
+    /// Overlay points at an Omega where the branch has no stable (or
+    /// unknown-stability) stretch: time integration settled on a response
+    /// the branch does not hold (e.g. past a period doubling), or the branch
+    /// ended before.
+    pub off_branch: usize,
+}
+
+/// Compares the overlay with the branch. Where the branch is multi-valued
+/// (between folds) the nearest stable (or unknown-stability) stretch counts,
+/// since time integration only settles on stable responses.
+pub fn discrepancy(branch: &[FrCurvePoint], overlay: &[FrCurvePoint]) -> Discrepancy {
+    let mut out = Discrepancy::default();
+    for q in overlay {
+        let mut best: Option<f64> = None;
+        for w in branch.windows(2) {
+            let (a, b) = (&w[0], &w[1]);
+            if a.stable == Some(false) || b.stable == Some(false) {
+                continue;
+            }
+            let (lo, hi) = if a.omega <= b.omega {
+                (a.omega, b.omega)
+            } else {
+                (b.omega, a.omega)
+            };
+            if q.omega < lo || q.omega > hi {
+                continue;
+            }
+            let t = if hi > lo {
+                (q.omega - a.omega) / (b.omega - a.omega)
+            } else {
+                0.0
+            };
+            let max = a.max_um + t * (b.max_um - a.max_um);
+            let min = a.min_um + t * (b.min_um - a.min_um);
+            let d = (max - q.max_um).abs().max((min - q.min_um).abs());
+            best = Some(best.map_or(d, |x: f64| x.min(d)));
         }
+        match best {
+            Some(d) => {
+                out.compared += 1;
+                out.max_um = Some(out.max_um.map_or(d, |x: f64| x.max(d)));
+            }
+            None => out.off_branch += 1,
+        }
+    }
+    out
+}
+
+/// Everything view 1 draws: the current branch, the previous settings'
+/// complete branch (faded, while the current one computes), and the
+/// time-integration overlay if it is on. `mesh = None` plots each point's
+/// mesh with the largest peak-to-peak x.
+pub fn fr_view(
+    hbm: &HbmStore,
+    previous: Option<&HbmStore>,
+    overlay: Option<&FrStore>,
+    mesh: Option<usize>,
+    backlash_um: &[f64],
+    ctx: &ViewContext,
+) -> FrView {
+    let source = FrSource::Hbm {
+        harmonics: hbm.harmonics,
+    };
+    let method = source.label();
+    let (points, markers) = hbm.curve(mesh);
+    let mut branches = Vec::new();
+    if let Some(prev) = previous {
+        branches.push(FrBranch {
+            label: "previous settings".into(),
+            points: prev.curve(mesh).0,
+            faded: true,
+        });
+    }
+    let branch_error = hbm.error.as_ref().map(|e| {
+        let at = hbm.points.last().map_or(ctx.omega_from, |p| p.omega);
+        (at, e.clone())
+    });
+    let label = if branch_error.is_some() {
+        format!("HBM, H = {}; partial: solver failed", hbm.harmonics)
+    } else {
+        format!("HBM, H = {}", hbm.harmonics)
+    };
+    let (overlay_pts, failed, overlay_source) = match overlay {
+        Some(st) => {
+            let (p, f) = st.curve(mesh);
+            (p, f, Some(st.source()))
+        }
+        None => (Vec::new(), Vec::new(), None),
+    };
+    let discrepancy = discrepancy(&points, &overlay_pts);
+    let mesh_label = if mesh.is_none() {
+        "worst (largest peak-to-peak x)".to_string()
+    } else {
+        ctx.mesh_label.clone()
+    };
+    branches.push(FrBranch {
+        label,
+        points,
+        faded: false,
+    });
+    FrView {
+        source,
+        method,
+        mesh_label,
+        backlash_um: distinct(backlash_um, mesh),
+        branches,
+        markers,
+        overlay: overlay_pts,
+        overlay_source,
+        discrepancy,
+        natural: ctx.natural.clone(),
+        omega_from: ctx.omega_from,
+        omega_to: ctx.omega_to,
+        selected_omega: ctx.selected_omega,
+        branch_error,
+        failed,
+        done: hbm.points.len(),
+        progress: hbm.progress,
+        finished: hbm.finished,
     }
 }
 
@@ -423,21 +675,26 @@ fn csv_opt<T: std::fmt::Display>(x: Option<T>) -> String {
     x.map_or(String::new(), |v| v.to_string())
 }
 
-/// The frequency response as CSV.
+/// The frequency response as CSV: the current branch (`hbm` rows, in
+/// continuation order), then the time-integration overlay, if on.
 pub fn fr_csv(v: &FrView) -> String {
-    let mut s = String::from("branch,omega,x_max_um,x_min_um,stable,regime,period\n");
-    for (b, br) in v.branches.iter().enumerate() {
-        for p in &br.points {
-            s.push_str(&format!(
-                "{b},{},{},{},{},{},{}\n",
-                csv_num(p.omega),
-                csv_num(p.max_um),
-                csv_num(p.min_um),
-                csv_opt(p.stable),
-                p.regime.map_or("", |r| r.solver_name()),
-                csv_opt(p.period)
-            ));
-        }
+    let mut s = String::from("branch,omega,x_max_um,x_min_um,stable,regime,period,bifurcation\n");
+    let current = v.branches.iter().filter(|b| !b.faded).map(|b| ("hbm", b));
+    let overlay = v.overlay.iter().map(|p| ("time-integration", p));
+    let rows = current
+        .flat_map(|(name, b)| b.points.iter().map(move |p| (name, p)))
+        .chain(overlay);
+    for (name, p) in rows {
+        s.push_str(&format!(
+            "{name},{},{},{},{},{},{},{}\n",
+            csv_num(p.omega),
+            csv_num(p.max_um),
+            csv_num(p.min_um),
+            csv_opt(p.stable),
+            p.regime.map_or("", |r| r.solver_name()),
+            csv_opt(p.period),
+            p.bifurcation.map_or("", |k| k.label())
+        ));
     }
     s
 }
@@ -534,7 +791,7 @@ pub fn omega_json(r: &OmegaResult, which: OmegaView) -> serde_json::Value {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::protocol::{BifMesh, MeshExtremes};
+    use crate::protocol::{BifMesh, HbmMesh, MeshExtremes};
 
     fn ext(lo: f64, hi: f64, df: f64) -> MeshExtremes {
         MeshExtremes {
@@ -552,6 +809,22 @@ mod tests {
             selected_omega: 0.5,
             mesh_label: "s1a1".into(),
             natural: vec![],
+        }
+    }
+
+    fn hbm_point(omega: f64, meshes: &[(f64, f64)], stable: bool) -> HbmSample {
+        HbmSample {
+            omega,
+            meshes: meshes
+                .iter()
+                .map(|&(lo, hi)| HbmMesh {
+                    rel_min_um: lo,
+                    rel_max_um: hi,
+                    regime: Regime::NoImpact,
+                })
+                .collect(),
+            stable: Some(stable),
+            bifurcation: None,
         }
     }
 
@@ -580,19 +853,104 @@ mod tests {
             error: None,
         }]);
         assert_eq!(st.done(), 2);
-        let v = st.view(Some(0), &[100.0, 50.0], &ctx());
-        assert_eq!(v.branches[0].points.len(), 1);
-        assert_eq!(v.branches[0].points[0].max_um, 2.0);
+        let (pts, failed) = st.curve(Some(0));
+        assert_eq!(pts.len(), 1);
+        assert_eq!(pts[0].max_um, 2.0);
+        assert_eq!(failed.len(), 1);
+        assert_eq!(st.curve(None).0[0].max_um, 9.0);
+    }
+
+    #[test]
+    fn hbm_branch_with_markers_partial_failure_and_overlay() {
+        let mut st = HbmStore::new(4, 5);
+        let mut p1 = hbm_point(0.5, &[(80.0, 120.0), (90.0, 100.0)], true);
+        let mut p2 = hbm_point(1.0, &[(60.0, 140.0), (50.0, 200.0)], false);
+        p2.bifurcation = Some(BranchBif::Fold);
+        p1.meshes[0].regime = Regime::SingleSided;
+        st.add(vec![p1, p2], 0.4, false, None);
+        let tail = hbm_point(1.5, &[(80.0, 120.0), (90.0, 100.0)], true);
+        st.add(vec![tail], 0.7, true, Some("did not converge".into()));
+        assert!(st.finished && !st.is_complete());
+        let mut ti = FrStore::new(2, 2, 300, 30);
+        ti.add(vec![
+            FrSample {
+                index: 0,
+                omega: 0.75,
+                meshes: vec![ext(72.0, 128.0, 1.2), ext(0.0, 1.0, 1.0)],
+                period: Some(1),
+                error: None,
+            },
+            FrSample {
+                index: 1,
+                omega: 1.9,
+                meshes: vec![],
+                period: None,
+                error: Some("x".into()),
+            },
+        ]);
+        let prev = st.clone();
+        let v = fr_view(&st, Some(&prev), Some(&ti), Some(0), &[100.0, 50.0], &ctx());
+        assert_eq!(v.method, "harmonic balance, H = 5, AFT");
         assert_eq!(v.backlash_um, vec![100.0]);
+        assert_eq!(v.branches.len(), 2);
+        assert!(v.branches[0].faded && !v.branches[1].faded);
+        let cur = &v.branches[1];
+        assert!(cur.label.contains("partial"));
+        assert_eq!(cur.points[1].stable, Some(false));
+        assert_eq!(
+            v.markers,
+            vec![FrMarker {
+                omega: 1.0,
+                value_um: 140.0,
+                kind: FrMarkerKind::Fold
+            }]
+        );
+        assert_eq!(v.branch_error, Some((1.5, "did not converge".into())));
+        // The overlay point at 0.75 lies on the unstable stretch only: not compared.
+        assert_eq!(v.overlay.len(), 1);
         assert_eq!(v.failed.len(), 1);
-        let w = st.view(None, &[100.0, 50.0], &ctx());
-        assert_eq!(w.branches[0].points[0].max_um, 9.0);
+        assert_eq!(
+            v.discrepancy,
+            Discrepancy {
+                max_um: None,
+                compared: 0,
+                off_branch: 1
+            }
+        );
+        // On a stable stretch the figure is the larger miss of the two extremes.
+        let stable: Vec<FrCurvePoint> = [(0.5, 80.0, 120.0), (1.0, 60.0, 140.0)]
+            .iter()
+            .map(|&(omega, min_um, max_um)| FrCurvePoint {
+                omega,
+                max_um,
+                min_um,
+                stable: Some(true),
+                regime: None,
+                period: Some(1),
+                bifurcation: None,
+            })
+            .collect();
+        assert_eq!(discrepancy(&stable, &v.overlay).max_um, Some(2.0));
+        // Worst: the mesh with the largest peak-to-peak x at each point.
+        let w = fr_view(&st, None, None, None, &[100.0, 50.0], &ctx());
+        let maxes: Vec<f64> = w.branches[0].points.iter().map(|p| p.max_um).collect();
+        assert_eq!(maxes, vec![120.0, 200.0, 120.0]);
         assert_eq!(w.backlash_um, vec![50.0, 100.0]);
-        assert!(fr_csv(&w)
-            .lines()
-            .nth(1)
-            .unwrap()
-            .starts_with("0,2,9,-5,,single-sided,1"));
+        let csv = fr_csv(&v);
+        assert!(
+            csv.lines()
+                .nth(2)
+                .unwrap()
+                .starts_with("hbm,1,140,60,false,none,1,fold (jump)"),
+            "{csv}"
+        );
+        assert!(
+            csv.lines()
+                .nth(4)
+                .unwrap()
+                .starts_with("time-integration,0.75,128,72,,single-sided,1"),
+            "{csv}"
+        );
     }
 
     #[test]

@@ -438,20 +438,42 @@ fn draw_fr(p: &mut Page) {
     };
     let root = b.into_drawing_area();
     let st = p.ctl.fr_status.clone();
-    let r = if let (Some(e), true) = (&st.error, p.ctl.fr.done() == 0) {
-        plots::draw_message(&root, "Frequency response", &format!("Not computed: {e}"))
-    } else {
-        let v = p.ctl.fr_view();
-        plots::draw_fr(&root, &v, &status_suffix(&st)).map(|f| {
+    let v = p.ctl.fr_view();
+    let has_data = v.branches.iter().any(|b| !b.points.is_empty()) || !v.overlay.is_empty();
+    let r = match (&st.error, has_data) {
+        (Some(e), false) => {
+            plots::draw_message(&root, "Frequency response", &format!("Not computed: {e}"))
+        }
+        _ => plots::draw_fr(&root, &v, &fr_status_suffix(&st, &v)).map(|f| {
             p.fr_frame = Some(f);
-        })
+        }),
+    };
+    let overlay = if v.overlay_source.is_some() {
+        " Hollow dots: time-integration steady states (upward sweep) for comparison."
+    } else {
+        " A time-integration overlay can be switched on under Analysis (fr_ti_points)."
     };
     set_text(
         &p.doc,
         "note-fr",
-        "Fallback until the harmonic-balance engine lands: max and min of time-integration steady states (upward sweep), not an HBM branch. The harmonics setting applies to HBM only.",
+        &format!(
+            "Method: {}, pseudo-arclength continuation upward in Ω with Floquet stability.{overlay}",
+            v.method
+        ),
     );
     report_draw_error(p, r);
+}
+
+/// The caption's status of view 1: progress over the Omega range while the
+/// branch computes, and a partial branch said as such.
+fn fr_status_suffix(st: &crate::controller::JobStatus, v: &views::FrView) -> String {
+    if v.branch_error.is_some() {
+        " (partial: solver failed)".into()
+    } else if st.running() {
+        format!(" (computing, {:.0}% of Ω range)", 100.0 * v.progress)
+    } else {
+        String::new()
+    }
 }
 
 fn fill_groups(ctx: &CanvasRenderingContext2d, groups: &[PointGroup]) {
@@ -637,7 +659,9 @@ fn update_progress(page: &Shared) {
                     let _ = bar.set_attribute("style", &format!("width:{:.1}%", 100.0 * frac));
                 }
                 if let Ok(Some(label)) = el.query_selector(".label") {
-                    let text = if view == "fr" || view == "bif" {
+                    let text = if view == "fr" {
+                        format!("harmonic balance: {done}% of the Ω range")
+                    } else if view == "bif" {
                         format!("computing {done}/{total} points")
                     } else {
                         "computing…".into()

@@ -5,17 +5,21 @@
 //! [`WorkerCore::handle`] and, while [`WorkerCore::has_work`], calls
 //! [`WorkerCore::step`] in a loop for a few milliseconds, posts the replies,
 //! and yields to the event loop so that newer jobs and cancels arrive. One
-//! step computes one steady state: the bounded chunk of work.
+//! step computes one steady state, or [`HBM_CHUNK`] points of the
+//! harmonic-balance branch: the bounded chunk of work.
 //!
 //! The selected-Omega job is served first, so the views at the selected
-//! Omega update even while a long sweep runs; the frequency-response grid and
-//! the bifurcation sweep then take turns, one steady state each.
+//! Omega update even while a long sweep runs; then the harmonic-balance
+//! branch of the frequency response (the view a slider drag watches, and the
+//! quickest sweep); the time-integration overlay grid and the bifurcation
+//! sweep then take turns, one steady state each.
 
 use crate::protocol::{
-    encode, BifMesh, BifSample, FrSample, FromWorker, JobId, JobKind, JobSpec, MeshExtremes,
-    MeshSummary, OmegaResult, Regime, RunOptions, ToWorker,
+    encode, BifMesh, BifSample, FrSample, FromWorker, HbmMesh, HbmSample, JobId, JobKind, JobSpec,
+    MeshExtremes, MeshSummary, OmegaResult, Regime, RunOptions, ToWorker,
 };
 use serde_json::{Map, Value};
+use solver::hbm::{BranchPoint, FrfContinuation, FrfSpec};
 use solver::keys;
 use solver::params::ModelParams;
 use solver::report;
@@ -31,6 +35,17 @@ struct OmegaJob {
     run: RunOptions,
     samples_per_period: u32,
     max_order: f64,
+}
+
+/// Points of the harmonic-balance branch computed per step: a few
+/// milliseconds each, so a newer job or a cancel waits at most a few tens of
+/// milliseconds.
+pub const HBM_CHUNK: usize = 8;
+
+/// A harmonic-balance branch in progress.
+struct HbmJob {
+    id: JobId,
+    cont: FrfContinuation,
 }
 
 /// A frequency-response grid in progress: one continuation chain.
@@ -55,6 +70,7 @@ struct BifJob {
 #[derive(Default)]
 pub struct WorkerCore {
     omega: Option<OmegaJob>,
+    hbm: Option<HbmJob>,
     fr: Option<FrJob>,
     bif: Option<BifJob>,
     finished_bif: Option<BifJob>,
@@ -87,7 +103,7 @@ impl WorkerCore {
 
     /// Whether a job waits for [`Self::step`].
     pub fn has_work(&self) -> bool {
-        self.omega.is_some() || self.fr.is_some() || self.bif.is_some()
+        self.omega.is_some() || self.hbm.is_some() || self.fr.is_some() || self.bif.is_some()
     }
 
     /// Handles one message from the page (JSON text).
@@ -99,24 +115,25 @@ impl WorkerCore {
         match msg {
             ToWorker::Run { id, params, job } => self.start(id, &params, job),
             ToWorker::Cancel { kind } => {
-                match kind {
-                    JobKind::Omega => self.omega = None,
-                    JobKind::Fr => self.fr = None,
-                    JobKind::Bif => self.bif = None,
-                }
+                self.drop_job(kind);
                 Vec::new()
             }
             ToWorker::ExportBif { id, mesh, other } => vec![self.export_bif(id, mesh, &other)],
         }
     }
 
-    fn start(&mut self, id: JobId, params: &Map<String, Value>, job: JobSpec) -> Vec<FromWorker> {
-        // A new job replaces the old one of its kind, even if it fails.
-        match job.kind() {
+    fn drop_job(&mut self, kind: JobKind) {
+        match kind {
             JobKind::Omega => self.omega = None,
+            JobKind::Hbm => self.hbm = None,
             JobKind::Fr => self.fr = None,
             JobKind::Bif => self.bif = None,
         }
+    }
+
+    fn start(&mut self, id: JobId, params: &Map<String, Value>, job: JobSpec) -> Vec<FromWorker> {
+        // A new job replaces the old one of its kind, even if it fails.
+        self.drop_job(job.kind());
         let (params, model) = match model_from(params) {
             Ok(x) => x,
             Err(e) => return vec![failed(id, e)],
@@ -139,6 +156,29 @@ impl WorkerCore {
                     max_order,
                 });
                 Vec::new()
+            }
+            JobSpec::Hbm {
+                omega_from,
+                omega_to,
+                points,
+                harmonics,
+                stability,
+            } => {
+                let mut spec = FrfSpec::new(omega_from, omega_to, points);
+                spec.harmonics = harmonics as usize;
+                spec.direction = solver::sweep::Direction::Up;
+                spec.stability = stability;
+                match FrfContinuation::new(&model, spec) {
+                    Ok(cont) => {
+                        self.hbm = Some(HbmJob { id, cont });
+                        vec![FromWorker::Progress {
+                            id,
+                            done: 0,
+                            total: 100,
+                        }]
+                    }
+                    Err(e) => vec![failed(id, e.to_string())],
+                }
             }
             JobSpec::Fr {
                 omega_from,
@@ -211,6 +251,13 @@ impl WorkerCore {
     pub fn step(&mut self) -> Vec<FromWorker> {
         if let Some(job) = self.omega.take() {
             return vec![run_omega(&job), FromWorker::Done { id: job.id }];
+        }
+        if let Some(job) = self.hbm.as_mut() {
+            let msg = hbm_chunk(job);
+            if matches!(msg, FromWorker::HbmPoints { finished: true, .. }) {
+                self.hbm = None;
+            }
+            return vec![msg];
         }
         // The two sweeps take turns, so both diagrams fill in together and
         // the bifurcation diagram's first points come early.
@@ -308,6 +355,49 @@ fn excitation_at(model: &Model, j: usize, omega_rad_s: f64, t_s: f64) -> (f64, f
     let (s, c) = (omega_rad_s * t_s).sin_cos();
     let (_, e, de) = model.system.meshes[j].excitation(omega_rad_s, c, s);
     (e, de)
+}
+
+/// Advances the branch by up to [`HBM_CHUNK`] points, one at a time so that
+/// a failure keeps every point before it.
+fn hbm_chunk(job: &mut HbmJob) -> FromWorker {
+    let mut points = Vec::new();
+    let mut error = None;
+    for _ in 0..HBM_CHUNK {
+        if job.cont.is_finished() {
+            break;
+        }
+        match job.cont.advance(1) {
+            Ok(pts) => points.extend(pts.iter().map(hbm_sample)),
+            Err(e) => {
+                error = Some(e.to_string());
+                break;
+            }
+        }
+    }
+    FromWorker::HbmPoints {
+        id: job.id,
+        points,
+        progress: job.cont.progress(),
+        finished: error.is_some() || job.cont.is_finished(),
+        error,
+    }
+}
+
+fn hbm_sample(p: &BranchPoint) -> HbmSample {
+    HbmSample {
+        omega: p.omega,
+        meshes: p
+            .meshes
+            .iter()
+            .map(|m| HbmMesh {
+                rel_min_um: round_um(m.rel_min_m * 1e6),
+                rel_max_um: round_um(m.rel_max_m * 1e6),
+                regime: m.impact.into(),
+            })
+            .collect(),
+        stable: p.stable,
+        bifurcation: p.bifurcation.map(Into::into),
+    }
 }
 
 fn fr_point(job: &mut FrJob, index: u32, omega: f64) -> FrSample {
@@ -583,6 +673,68 @@ mod tests {
         }
         seen.sort_unstable();
         assert_eq!(seen, vec![0, 1, 2, 3, 4]);
+    }
+
+    #[test]
+    fn hbm_job_streams_the_branch_in_chunks_and_a_newer_job_replaces_it() {
+        let p = ModelParams::defaults(solver::ModelKind::GearPair);
+        let hbm = |id, harmonics| {
+            run_msg(
+                id,
+                &p,
+                JobSpec::Hbm {
+                    omega_from: 0.3,
+                    omega_to: 1.8,
+                    points: 60,
+                    harmonics,
+                    stability: true,
+                },
+            )
+        };
+        let mut core = WorkerCore::new();
+        let out = core.handle(&hbm(1, 3));
+        assert!(matches!(out[0], FromWorker::Progress { id: 1, .. }));
+        let out = core.step();
+        assert!(
+            matches!(&out[..], [FromWorker::HbmPoints { id: 1, points, finished: false, error: None, .. }] if !points.is_empty() && points.len() <= HBM_CHUNK)
+        );
+        core.handle(&hbm(2, 3));
+        let out = drain(&mut core);
+        let mut omegas = Vec::new();
+        let mut last = None;
+        for m in &out {
+            let FromWorker::HbmPoints {
+                id,
+                points,
+                progress,
+                finished,
+                error,
+            } = m
+            else {
+                panic!("unexpected {m:?}");
+            };
+            assert_eq!(*id, 2);
+            assert!(points.len() <= HBM_CHUNK);
+            for s in points {
+                assert_eq!(s.meshes.len(), 1);
+                assert!(s.meshes[0].rel_max_um >= s.meshes[0].rel_min_um);
+                assert!(s.stable.is_some());
+                omegas.push(s.omega);
+            }
+            last = Some((*progress, *finished, error.clone()));
+        }
+        assert_eq!(last, Some((1.0, true, None)));
+        assert!(omegas[0] == 0.3 && omegas.len() > 30, "{omegas:?}");
+        assert!(!core.has_work());
+        // A cancel drops a running branch.
+        core.handle(&hbm(3, 3));
+        core.handle(&encode(&ToWorker::Cancel { kind: JobKind::Hbm }));
+        assert!(!core.has_work());
+        // Out-of-range harmonics fail cleanly.
+        let out = core.handle(&hbm(4, 99));
+        assert!(
+            matches!(&out[0], FromWorker::Failed { id: 4, message } if message.contains("harmonics"))
+        );
     }
 
     #[test]
