@@ -200,9 +200,10 @@ fn omega_decorations<'a, DB: DrawingBackend + 'a>(
     natural: &[NaturalFreq],
     selected: f64,
     y: (f64, f64),
+    in_legend: bool,
 ) -> Res<()> {
     let nat_style = ShapeStyle::from(&NATURAL.mix(0.55)).stroke_width(1);
-    let mut first = true;
+    let mut first = in_legend;
     for n in natural {
         let s = chart
             .draw_series(std::iter::once(PathElement::new(
@@ -216,12 +217,16 @@ fn omega_decorations<'a, DB: DrawingBackend + 'a>(
             first = false;
         }
     }
-    chart
+    let cursor = chart
         .draw_series(std::iter::once(PathElement::new(
             vec![(selected, y.0), (selected, y.1)],
             ShapeStyle::from(&CURSOR).stroke_width(2),
         )))
-        .map_err(err)?
+        .map_err(err)?;
+    if !in_legend {
+        return Ok(());
+    }
+    cursor
         .label(format!("selected Omega = {selected:.3}"))
         .legend(|(x, yy)| {
             PathElement::new(
@@ -238,9 +243,10 @@ fn contact_lines<'a, DB: DrawingBackend + 'a>(
     backlash_um: &[f64],
     x: (f64, f64),
     horizontal: bool,
+    in_legend: bool,
 ) -> Res<()> {
     let style = ShapeStyle::from(&CONTACT).stroke_width(1);
-    let mut first = true;
+    let mut first = in_legend;
     for &b in backlash_um {
         for v in [b, -b] {
             let pts = if horizontal {
@@ -288,32 +294,80 @@ enum KeyIcon {
     Regime(Regime),
     Marker(FrMarkerKind),
     Overlay,
+    Line(RGBColor, bool),
 }
 
 const MARKER: RGBColor = RGBColor(0, 0, 0);
 const OVERLAY: RGBColor = RGBColor(60, 60, 60);
 const FAILURE: RGBColor = RGBColor(170, 0, 0);
 
-/// Draws the key (regimes present, bifurcation kinds present, the overlay)
-/// left to right from `(x0, y0)`, wrapping at the right edge.
-fn key_row<DB: DrawingBackend>(
+/// Row height of the key (pixels).
+const KEY_ROW: i32 = 17;
+
+/// Where each key item goes, left to right from `x0`, wrapping at the right
+/// edge; rows relative to the first (0, 17, ...). Also returns the rows used.
+fn key_layout<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     items: &[(KeyIcon, String)],
-    (x0, y0): (i32, i32),
-) -> Res<()> {
+    x0: i32,
+) -> (Vec<(i32, i32)>, i32) {
     let font = small();
     let right = root.dim_in_pixel().0 as i32 - 8;
-    let (mut x, mut y) = (x0, y0);
+    let (mut x, mut y) = (x0, 0);
+    let mut out = Vec::with_capacity(items.len());
     for (icon, text) in items {
         let w = root
             .estimate_text_size(text, &font)
             .map_or(8 * text.len() as u32, |(w, _)| w) as i32;
-        if x > x0 && x + 14 + w > right {
+        let icon_w = if matches!(icon, KeyIcon::Line(..)) {
+            22
+        } else {
+            14
+        };
+        if x > x0 && x + icon_w + w > right {
             x = x0;
-            y += 17;
+            y += KEY_ROW;
         }
+        out.push((x, y));
+        x += icon_w + w + 16;
+    }
+    let rows = if items.is_empty() { 0 } else { y / KEY_ROW + 1 };
+    (out, rows)
+}
+
+/// Draws the key (the contact lines, natural frequencies and cursor,
+/// regimes present, bifurcation kinds present, the overlay) at the
+/// positions of [`key_layout`], offset by `y0`.
+fn key_row<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    items: &[(KeyIcon, String)],
+    at: &[(i32, i32)],
+    y0: i32,
+) -> Res<()> {
+    let font = small();
+    for ((icon, text), &(x, dy)) in items.iter().zip(at) {
+        let y = y0 + dy;
         let c = (x + 5, y);
+        let text_x = if let KeyIcon::Line(color, dashed) = *icon {
+            let style = ShapeStyle::from(&color).stroke_width(2);
+            if dashed {
+                for k in 0..2 {
+                    root.draw(&PathElement::new(
+                        vec![(x + 10 * k, y), (x + 10 * k + 6, y)],
+                        style,
+                    ))
+                    .map_err(err)?;
+                }
+            } else {
+                root.draw(&PathElement::new(vec![(x, y), (x + 16, y)], style))
+                    .map_err(err)?;
+            }
+            x + 22
+        } else {
+            x + 14
+        };
         match *icon {
+            KeyIcon::Line(..) => {}
             KeyIcon::Regime(r) => root
                 .draw(&Circle::new(c, 4, regime_color(r).filled()))
                 .map_err(err)?,
@@ -322,9 +376,8 @@ fn key_row<DB: DrawingBackend>(
                 .draw(&Circle::new(c, 4, OVERLAY.stroke_width(1)))
                 .map_err(err)?,
         }
-        root.draw(&Text::new(text.clone(), (x + 14, y - 7), font.clone()))
+        root.draw(&Text::new(text.clone(), (text_x, y - 7), font.clone()))
             .map_err(err)?;
-        x += 14 + w + 16;
     }
     Ok(())
 }
@@ -354,9 +407,6 @@ fn draw_marker_px<DB: DrawingBackend>(
     }
 }
 
-/// Height of the key under the frequency-response chart (pixels).
-const KEY_HEIGHT: i32 = 56;
-
 /// The impact regime along Omega as a thin coloured strip at the bottom of
 /// the plot: the branch's own lines keep the max / min colours and the
 /// dashes of unstable stretches readable. Only stable (or unknown) stretches
@@ -367,18 +417,35 @@ fn regime_strip<'a, DB: DrawingBackend + 'a>(
     y: (f64, f64),
 ) -> Res<()> {
     let (lo, hi) = (y.0, y.0 + 0.025 * (y.1 - y.0));
-    chart
-        .draw_series(points.windows(2).filter_map(|w| {
-            let (a, b) = (&w[0], &w[1]);
-            if a.stable == Some(false) || b.stable == Some(false) {
-                return None;
+    // Runs of one regime along the branch become one rectangle each: a
+    // branch has about a thousand points but only tens of runs.
+    let mut runs: Vec<(Regime, f64, f64)> = Vec::new();
+    let mut open = false;
+    for w in points.windows(2) {
+        let (a, b) = (&w[0], &w[1]);
+        let regime = b
+            .regime
+            .filter(|_| a.stable != Some(false) && b.stable != Some(false));
+        let Some(r) = regime else {
+            open = false;
+            continue;
+        };
+        let (from, to) = (a.omega.min(b.omega), a.omega.max(b.omega));
+        match runs.last_mut() {
+            Some(run) if open && run.0 == r => {
+                run.1 = run.1.min(from);
+                run.2 = run.2.max(to);
             }
-            let c = regime_color(b.regime?);
-            Some(Rectangle::new(
-                [(a.omega.min(b.omega), lo), (a.omega.max(b.omega), hi)],
-                c.filled(),
-            ))
-        }))
+            _ => runs.push((r, from, to)),
+        }
+        open = true;
+    }
+    chart
+        .draw_series(
+            runs.into_iter().map(|(r, from, to)| {
+                Rectangle::new([(from, lo), (to, hi)], regime_color(r).filled())
+            }),
+        )
         .map_err(err)?;
     Ok(())
 }
@@ -402,9 +469,79 @@ pub fn draw_fr<DB: DrawingBackend>(
         .flat_map(|p| [p.max_um, p.min_um]);
     let mut extra: Vec<f64> = v.backlash_um.iter().flat_map(|b| [*b, -*b]).collect();
     extra.push(0.0);
-    let y = with_headroom(padded_range(all, &extra, 20.0), 0.55);
-    // The key of regimes, bifurcations and the overlay goes under the chart.
-    let (upper, _) = root.split_vertically(HEIGHT as i32 - KEY_HEIGHT);
+    // Room at the top for the legend (two lines per branch, the faded
+    // branch, the unstable dash, the failure line).
+    let entries = v.branches.iter().filter(|b| !b.faded).count() * 2
+        + usize::from(v.branches.iter().any(|b| b.faded))
+        + usize::from(v.branch_error.is_some())
+        + 1;
+    let y = with_headroom(padded_range(all, &extra, 20.0), 0.25 + 0.1 * entries as f64);
+    // The key under the chart: contact lines, natural frequencies, the
+    // cursor, regimes, bifurcations, overlay.
+    let mut items: Vec<(KeyIcon, String)> = Vec::new();
+    if !v.backlash_um.is_empty() {
+        let bs: Vec<String> = v.backlash_um.iter().map(|b| format!("{b}")).collect();
+        items.push((
+            KeyIcon::Line(CONTACT, true),
+            format!("±b contact lines (b = {} µm)", bs.join(", ")),
+        ));
+    }
+    if !v.natural.is_empty() {
+        items.push((
+            KeyIcon::Line(NATURAL, false),
+            "natural frequencies (linear, mean k)".into(),
+        ));
+    }
+    items.push((
+        KeyIcon::Line(CURSOR, false),
+        format!("selected Ω = {:.3}", v.selected_omega),
+    ));
+    let mut seen = [false; 4];
+    for r in v
+        .branches
+        .iter()
+        .filter(|b| !b.faded)
+        .flat_map(|b| b.points.iter().filter_map(|p| p.regime))
+        .chain(v.overlay.iter().filter_map(|p| p.regime))
+    {
+        if let Some(i) = Regime::ALL.iter().position(|&x| x == r) {
+            seen[i] = true;
+        }
+    }
+    let mut first = true;
+    for (i, r) in Regime::ALL.iter().enumerate() {
+        if seen[i] {
+            let text = if first {
+                format!("regime strip (stable): {}", r.label())
+            } else {
+                r.label().to_string()
+            };
+            first = false;
+            items.push((KeyIcon::Regime(*r), text));
+        }
+    }
+    for k in FrMarkerKind::ALL {
+        if v.markers.iter().any(|m| m.kind == k) {
+            items.push((KeyIcon::Marker(k), k.label().to_string()));
+        }
+    }
+    if v.overlay_source.is_some() {
+        let d = &v.discrepancy;
+        let mut text = format!("time integration ({} pts)", v.overlay.len());
+        if let Some(m) = d.max_um {
+            text.push_str(&format!(
+                ": max |Δx| {m:.2} µm at {} on the stable branch",
+                d.compared
+            ));
+        }
+        if d.off_branch > 0 {
+            text.push_str(&format!("; {} where none is stable", d.off_branch));
+        }
+        items.push((KeyIcon::Overlay, text));
+    }
+    let (at, rows) = key_layout(root, &items, 76);
+    let key_h = 8 + KEY_ROW * rows;
+    let (upper, _) = root.split_vertically(HEIGHT as i32 - key_h);
     let mut chart = ChartBuilder::on(&upper)
         .caption(
             format!(
@@ -428,8 +565,9 @@ pub fn draw_fr<DB: DrawingBackend>(
         .axis_desc_style(small())
         .draw()
         .map_err(err)?;
-    contact_lines(&mut chart, &v.backlash_um, x, true)?;
-    omega_decorations(&mut chart, &v.natural, v.selected_omega, y)?;
+    // These three go in the key under the chart, keeping the legend short.
+    contact_lines(&mut chart, &v.backlash_um, x, true, false)?;
+    omega_decorations(&mut chart, &v.natural, v.selected_omega, y, false)?;
     let mut any_unstable = false;
     for br in &v.branches {
         for (which, color, label) in [(true, MAX_COLOR, "max x"), (false, MIN_COLOR, "min x")] {
@@ -535,52 +673,7 @@ pub fn draw_fr<DB: DrawingBackend>(
     legend(&mut chart, SeriesLabelPosition::UpperRight)?;
     let frame = frame_of(&chart, x, y);
 
-    // The key row under the x axis: regimes, bifurcations, overlay.
-    let mut items: Vec<(KeyIcon, String)> = Vec::new();
-    let mut seen = [false; 4];
-    for r in v
-        .branches
-        .iter()
-        .filter(|b| !b.faded)
-        .flat_map(|b| b.points.iter().filter_map(|p| p.regime))
-        .chain(v.overlay.iter().filter_map(|p| p.regime))
-    {
-        if let Some(i) = Regime::ALL.iter().position(|&x| x == r) {
-            seen[i] = true;
-        }
-    }
-    let mut first = true;
-    for (i, r) in Regime::ALL.iter().enumerate() {
-        if seen[i] {
-            let text = if first {
-                format!("regime strip (stable): {}", r.label())
-            } else {
-                r.label().to_string()
-            };
-            first = false;
-            items.push((KeyIcon::Regime(*r), text));
-        }
-    }
-    for k in FrMarkerKind::ALL {
-        if v.markers.iter().any(|m| m.kind == k) {
-            items.push((KeyIcon::Marker(k), k.label().to_string()));
-        }
-    }
-    if v.overlay_source.is_some() {
-        let d = &v.discrepancy;
-        let mut text = format!("time integration ({} pts)", v.overlay.len());
-        if let Some(m) = d.max_um {
-            text.push_str(&format!(
-                ": max |Δx| {m:.2} µm at {} on the stable branch",
-                d.compared
-            ));
-        }
-        if d.off_branch > 0 {
-            text.push_str(&format!("; {} where none is stable", d.off_branch));
-        }
-        items.push((KeyIcon::Overlay, text));
-    }
-    key_row(root, &items, (76, HEIGHT as i32 - KEY_HEIGHT + 10))?;
+    key_row(root, &items, &at, HEIGHT as i32 - key_h + 12)?;
     let mut notes = Vec::new();
     if let Some((at, e)) = &v.branch_error {
         let text = format!(
@@ -668,8 +761,8 @@ pub fn draw_bif<DB: DrawingBackend>(
         .axis_desc_style(small())
         .draw()
         .map_err(err)?;
-    contact_lines(&mut chart, &v.backlash_um, x, true)?;
-    omega_decorations(&mut chart, natural, v.selected_omega, y)?;
+    contact_lines(&mut chart, &v.backlash_um, x, true, true)?;
+    omega_decorations(&mut chart, natural, v.selected_omega, y, true)?;
     let frame = frame_of(&chart, x, y);
     let mut groups: Vec<PointGroup> = Vec::new();
     for p in &v.points {
@@ -782,7 +875,7 @@ pub fn draw_phase<DB: DrawingBackend>(
         .axis_desc_style(small())
         .draw()
         .map_err(err)?;
-    contact_lines(&mut chart, &[r.backlash_um], y, false)?;
+    contact_lines(&mut chart, &[r.backlash_um], y, false, true)?;
     let orbit = ShapeStyle::from(&ORBIT.mix(0.7)).stroke_width(1);
     chart
         .draw_series(LineSeries::new(
@@ -831,7 +924,7 @@ pub fn draw_poincare<DB: DrawingBackend>(
         .axis_desc_style(small())
         .draw()
         .map_err(err)?;
-    contact_lines(&mut chart, &[r.backlash_um], y, false)?;
+    contact_lines(&mut chart, &[r.backlash_um], y, false, true)?;
     let period = match r.period {
         Some(p) => format!("period {p}"),
         None => "not periodic".into(),
@@ -894,7 +987,7 @@ pub fn draw_time<DB: DrawingBackend>(
         .axis_desc_style(small())
         .draw()
         .map_err(err)?;
-    contact_lines(&mut chart, &[b], x, true)?;
+    contact_lines(&mut chart, &[b], x, true, true)?;
     let style = ShapeStyle::from(&ORBIT).stroke_width(2);
     chart
         .draw_series(LineSeries::new(

@@ -237,7 +237,7 @@ pub struct MeshExtremes {
     pub dynamic_factor: Option<f64>,
 }
 
-/// One computed point of the frequency-response grid.
+/// One computed point of the time-integration overlay grid of the frequency response.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct FrSample {
     /// Grid index.

@@ -48,7 +48,7 @@ struct HbmJob {
     cont: FrfContinuation,
 }
 
-/// A frequency-response grid in progress: one continuation chain.
+/// A time-integration overlay grid in progress: one continuation chain.
 struct FrJob {
     id: JobId,
     model: Model,
