@@ -755,9 +755,18 @@ impl Controller {
             (Err(_), MeshSel::Worst) => "s1a1".into(),
         };
         let chains = (WORKERS as u32).min(v.bif_points);
+        let frf_mesh = match &v.mesh {
+            MeshSel::Named(n) => n.as_str(),
+            MeshSel::Worst => "all",
+        };
         format!(
-            "gearshock simulate --params gearshock-params.json --omega {} --mesh {mesh} --transient-periods {} --record-periods {}\n\
+            "gearshock frf --params gearshock-params.json --omega-from {} --omega-to {} --points {} --harmonics {} --mesh {frf_mesh}\n\
+             gearshock simulate --params gearshock-params.json --omega {} --mesh {mesh} --transient-periods {} --record-periods {}\n\
              gearshock bifurcation --params gearshock-params.json --omega-from {} --omega-to {} --points {} --direction {} --transient-periods {} --record-periods {} --mesh {} --chains {chains}",
+            v.omega_from,
+            v.omega_to,
+            v.fr_points,
+            v.harmonics,
             v.omega,
             v.transient_periods,
             v.record_periods,
@@ -1026,6 +1035,16 @@ mod tests {
         assert_eq!(c.settings.view.mesh, MeshSel::Named("s1a1".into()));
         assert!(c.set_key("nonsense", "1", 3.0).is_err());
         assert!(c.cli_commands().contains("--mesh s1a1"));
+        let cli = c.cli_commands();
+        assert!(
+            cli.starts_with("gearshock frf --params gearshock-params.json --omega-from ")
+                && cli
+                    .lines()
+                    .next()
+                    .unwrap()
+                    .ends_with("--points 150 --harmonics 5 --mesh s1a1"),
+            "{cli}"
+        );
         let _ = c.fr_view();
         let _ = c.bif_view();
         let s: serde_json::Value = serde_json::from_str(&c.status_json(5.0)).unwrap();

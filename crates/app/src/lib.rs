@@ -7,7 +7,8 @@
 //! `wasm_bindgen` and `web_sys`. Two binaries start it: `app` on the page's
 //! main thread and `worker` in each Web Worker.
 //!
-//! Architecture invariant: heavy work (steady states, sweeps) runs only in
+//! Architecture invariant: heavy work (steady states, sweeps, the
+//! harmonic-balance continuation) runs only in
 //! the workers ([`worker_core`]); the main thread builds the small model for
 //! validation and natural frequencies, draws, and never blocks for long.
 
