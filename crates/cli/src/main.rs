@@ -13,6 +13,8 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 use serde_json::Value;
 use solver::hbm::{FrfContinuation, FrfSpec, Method};
 use solver::keys;
+use solver::lyapunov::{largest_exponent, LyapunovOptions};
+use solver::map::{MapSpec, RegimeMap};
 use solver::params::{ModelKind, ModelParams};
 use solver::steady::{steady_state, Model, SteadyOptions};
 use solver::sweep::{canonical_order, BifurcationSweep, Direction, Directions, SweepSpec};
@@ -182,6 +184,60 @@ enum Command {
         #[arg(long)]
         mesh: Option<String>,
     },
+    /// Impact-regime map over Omega (columns) and a parameter (rows).
+    Map {
+        #[command(flatten)]
+        p: ParamArgs,
+        /// First Omega.
+        #[arg(long)]
+        omega_from: f64,
+        /// Last Omega.
+        #[arg(long)]
+        omega_to: f64,
+        /// Number of Omega columns.
+        #[arg(long, default_value_t = 100)]
+        omega_points: u32,
+        /// The row parameter: any numeric key (e.g. backlash_um, te_um).
+        #[arg(long, default_value = "backlash_um")]
+        key: String,
+        /// First value of the row parameter.
+        #[arg(long)]
+        value_from: f64,
+        /// Last value of the row parameter.
+        #[arg(long)]
+        value_to: f64,
+        /// Number of rows.
+        #[arg(long, default_value_t = 40)]
+        value_points: u32,
+        #[command(flatten)]
+        run: RunArgs,
+        /// Mesh whose regime is mapped (default: the worst over all meshes).
+        #[arg(long)]
+        mesh: Option<String>,
+        /// Compute only shard i of n (rows i, i + n, ...).
+        #[arg(long, value_name = "i/n")]
+        shard: Option<String>,
+    },
+    /// Largest Lyapunov exponent of the Poincaré map over a sweep of Omega.
+    Lyapunov {
+        #[command(flatten)]
+        p: ParamArgs,
+        /// First Omega.
+        #[arg(long)]
+        omega_from: f64,
+        /// Last Omega.
+        #[arg(long)]
+        omega_to: f64,
+        /// Number of Omega points.
+        #[arg(long, default_value_t = 50)]
+        points: u32,
+        /// Transient mesh periods before measuring.
+        #[arg(long, default_value_t = 300)]
+        transient_periods: u32,
+        /// Mesh periods averaged.
+        #[arg(long, default_value_t = 200)]
+        periods: u32,
+    },
     /// Join the JSON outputs of all shards of one sweep.
     Merge {
         /// Shard outputs (JSON files).
@@ -300,6 +356,18 @@ fn mesh_index(model: &Model, name: Option<&str>) -> Result<usize, Failure> {
             ))
         }),
     }
+}
+
+fn parse_shard(s: &str) -> Result<(u32, u32), Failure> {
+    s.split_once('/')
+        .and_then(|(i, n)| Some((i.parse::<u32>().ok()?, n.parse::<u32>().ok()?)))
+        .filter(|&(i, n)| i < n)
+        .ok_or_else(|| {
+            usage(format!(
+                "--shard {}: expected i/n with i < n, e.g. 0/4",
+                keys::truncate(s, 20)
+            ))
+        })
 }
 
 fn emit(value: &Value) -> Result<(), Failure> {
@@ -507,6 +575,79 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 None => Ok(()),
             }
         }
+        Command::Map {
+            p,
+            omega_from,
+            omega_to,
+            omega_points,
+            key,
+            value_from,
+            value_to,
+            value_points,
+            run,
+            mesh,
+            shard,
+        } => {
+            let params = load_params(&p)?;
+            let model = Model::new(&params)?;
+            let mut spec = MapSpec::new(
+                (omega_from, omega_to, omega_points),
+                &key,
+                (value_from, value_to, value_points),
+            );
+            run.apply(&mut spec.steady);
+            spec.mesh = match mesh.as_deref() {
+                None | Some("worst") => None,
+                other => Some(mesh_index(&model, other)?),
+            };
+            if let Some(s) = &shard {
+                spec.shard = Some(parse_shard(s)?);
+            }
+            let mut map = RegimeMap::new(&params, spec.clone())?;
+            let mut bar = progress::Progress::new(map.total(), "cells");
+            let mut cells = Vec::with_capacity(map.total());
+            while !map.is_finished() {
+                cells.extend(map.advance(1));
+                bar.update(map.done());
+            }
+            bar.finish();
+            emit(&report::map_json(&model, &params, &spec, &cells))
+        }
+        Command::Lyapunov {
+            p,
+            omega_from,
+            omega_to,
+            points,
+            transient_periods,
+            periods,
+        } => {
+            let params = load_params(&p)?;
+            let model = Model::new(&params)?;
+            if !(2..=10_000).contains(&points) {
+                return Err(usage(format!("--points {points}: allowed 2 ..= 10000")));
+            }
+            if omega_to.partial_cmp(&omega_from) != Some(std::cmp::Ordering::Greater) {
+                return Err(usage(format!(
+                    "--omega-to {omega_to}: must exceed --omega-from {omega_from}"
+                )));
+            }
+            let mut opts = LyapunovOptions::new(omega_from);
+            opts.transient_periods = transient_periods;
+            opts.periods = periods;
+            let mut bar = progress::Progress::new(points as usize, "points");
+            let mut out = Vec::new();
+            let mut state: Option<Vec<f64>> = None;
+            for i in 0..points {
+                opts.omega =
+                    omega_from + (omega_to - omega_from) * f64::from(i) / f64::from(points - 1);
+                let l = largest_exponent(&model, &opts, state.as_deref())?;
+                state = Some(l.end_state.clone());
+                out.push(l);
+                bar.update(i as usize + 1);
+            }
+            bar.finish();
+            emit(&report::lyapunov_json(&model, &params, &opts, &out))
+        }
         Command::Merge { files } => {
             if files.is_empty() {
                 return Err(usage("merge: give the shard JSON files to join"));
@@ -519,7 +660,11 @@ fn run(cli: Cli) -> Result<(), Failure> {
                     .map_err(|e| usage(format!("merge: {}: not JSON: {e}", f.display())))?;
                 shards.push(v);
             }
-            emit(&report::merge_shards(&shards)?)
+            if shards.first().is_some_and(|v| v.get("cells").is_some()) {
+                emit(&report::merge_maps(&shards)?)
+            } else {
+                emit(&report::merge_shards(&shards)?)
+            }
         }
         Command::Bench { repeats, quick } => {
             if repeats == 0 || repeats > 100 {

@@ -15,12 +15,16 @@
 //! - [`steady`]: steady-state runs, Poincaré samples, impact regimes, spectra.
 //! - [`sweep`]: bifurcation sweeps with bounded work per call.
 //! - [`hbm`]: harmonic balance, continuation, Floquet stability.
+//! - [`lyapunov`]: the largest Lyapunov exponent of the Poincaré map.
+//! - [`map`]: impact-regime maps over Omega and a second parameter.
 //! - [`report`]: results as JSON, shared by the CLI and the browser.
 
 pub mod dynamics;
 pub mod error;
 pub mod hbm;
 pub mod keys;
+pub mod lyapunov;
+pub mod map;
 pub mod modal;
 pub mod ode;
 pub mod params;

@@ -452,3 +452,140 @@ pub fn frf_json(
         },
     })
 }
+
+/// The specification of a regime map as JSON (checked by merge).
+pub fn map_spec_json(model: &Model, spec: &crate::map::MapSpec) -> Value {
+    json!({
+        "omega_from": num(spec.omega_from),
+        "omega_to": num(spec.omega_to),
+        "omega_points": spec.omega_points,
+        "key": spec.key,
+        "value_from": num(spec.value_from),
+        "value_to": num(spec.value_to),
+        "value_points": spec.value_points,
+        "transient_periods": spec.steady.transient_periods,
+        "record_periods": spec.steady.record_periods,
+        "early_settle": spec.steady.early_settle,
+        "mesh": spec.mesh.and_then(|j| model.system.meshes.get(j)).map_or(Value::from("worst"), |m| Value::from(m.name.clone())),
+        "shards": spec.shard.map_or(1, |(_, n)| n),
+        "shard": spec.shard.map_or(Value::Null, |(i, n)| json!(format!("{i}/{n}"))),
+    })
+}
+
+/// A map cell as JSON.
+pub fn map_cell_json(c: &crate::map::MapCell) -> Value {
+    json!({
+        "row": c.row,
+        "column": c.column,
+        "omega": num(c.omega),
+        "value": num(c.value),
+        "impact": if c.error.is_some() { Value::Null } else { Value::from(c.impact.name()) },
+        "period": c.period,
+        "error": c.error,
+    })
+}
+
+/// A whole regime map (or one shard of it).
+pub fn map_json(
+    model: &Model,
+    params: &ModelParams,
+    spec: &crate::map::MapSpec,
+    cells: &[crate::map::MapCell],
+) -> Value {
+    json!({
+        "model": model.system.model.name(),
+        "params": Value::Object(keys::to_json(params)),
+        "spec": map_spec_json(model, spec),
+        "cells": cells.iter().map(map_cell_json).collect::<Vec<_>>(),
+    })
+}
+
+/// Merges the shards `0/n .. n-1/n` of one regime map into the unsharded map.
+pub fn merge_maps(shards: &[Value]) -> Result<Value> {
+    let bad = |m: String| SolverError::Parse(m);
+    let first = shards
+        .first()
+        .ok_or_else(|| bad("merge needs at least one shard".into()))?;
+    let spec_of = |v: &Value| -> Result<Map<String, Value>> {
+        match v.get("spec") {
+            Some(Value::Object(m)) => Ok(m.clone()),
+            _ => Err(bad("a shard has no `spec` object".into())),
+        }
+    };
+    let n = spec_of(first)?
+        .get("shards")
+        .and_then(Value::as_u64)
+        .ok_or_else(|| bad("map spec has no `shards`".into()))?;
+    let mut seen = vec![false; n as usize];
+    let mut base = spec_of(first)?;
+    base.insert("shard".into(), Value::Null);
+    base.insert("shards".into(), json!(1));
+    let mut cells: Vec<Value> = Vec::new();
+    for (k, sh) in shards.iter().enumerate() {
+        let mut spec = spec_of(sh)?;
+        let shard = spec
+            .get("shard")
+            .and_then(Value::as_str)
+            .and_then(|s| s.split_once('/'))
+            .and_then(|(i, _)| i.parse::<usize>().ok())
+            .ok_or_else(|| {
+                bad(format!(
+                    "input {} is not a map shard (spec.shard is missing)",
+                    k + 1
+                ))
+            })?;
+        spec.insert("shard".into(), Value::Null);
+        spec.insert("shards".into(), json!(1));
+        if spec != base || sh.get("params") != first.get("params") {
+            return Err(bad(format!(
+                "input {} belongs to a different map (its spec or params differ from the first input's)",
+                k + 1
+            )));
+        }
+        if shard >= seen.len() || seen[shard] {
+            return Err(bad(format!(
+                "shard {shard}/{n} is given twice or out of range"
+            )));
+        }
+        seen[shard] = true;
+        if let Some(Value::Array(c)) = sh.get("cells") {
+            cells.extend(c.iter().cloned());
+        }
+    }
+    if let Some(missing) = seen.iter().position(|s| !s) {
+        return Err(bad(format!("shard {missing}/{n} is missing")));
+    }
+    let key = |v: &Value, f: &str| v.get(f).and_then(Value::as_u64).unwrap_or(0);
+    cells.sort_by_key(|c| (key(c, "row"), key(c, "column")));
+    Ok(json!({
+        "model": first.get("model").cloned().unwrap_or(Value::Null),
+        "params": first.get("params").cloned().unwrap_or(Value::Null),
+        "spec": Value::Object(base),
+        "cells": cells,
+    }))
+}
+
+/// A Lyapunov-exponent sweep as JSON.
+pub fn lyapunov_json(
+    model: &Model,
+    params: &ModelParams,
+    opts: &crate::lyapunov::LyapunovOptions,
+    points: &[crate::lyapunov::Lyapunov],
+) -> Value {
+    json!({
+        "model": model.system.model.name(),
+        "params": Value::Object(keys::to_json(params)),
+        "spec": {
+            "transient_periods": opts.transient_periods,
+            "periods": opts.periods,
+            "perturbation_m": num(opts.perturbation_um * 1e-6),
+            "rtol": num(opts.rtol),
+            "atol_m": num(opts.atol_m),
+        },
+        "points": points.iter().map(|l| json!({
+            "omega": num(l.omega),
+            "exponent_per_period": num(l.per_period),
+            "exponent_per_s": num(l.per_s),
+        })).collect::<Vec<_>>(),
+    })
+}

@@ -233,7 +233,8 @@ pub struct SweepPoint {
     pub error: Option<String>,
 }
 
-fn severity(i: Impact) -> u8 {
+/// Orders impact regimes from mild to severe (for "worst over meshes").
+pub fn severity(i: Impact) -> u8 {
     match i {
         Impact::NoContact => 0,
         Impact::None => 1,

@@ -1,0 +1,291 @@
+//! Impact-regime maps: the steady response's regime over a grid of Omega and
+//! a second parameter (any numeric key, typically `backlash_um` or `te_um`).
+//!
+//! Each row holds the second parameter fixed and sweeps Omega upward, each
+//! cell starting from the previous cell's end state (as an upward
+//! bifurcation sweep does, so a row shows the jumps an upward run-up meets).
+//! Rows are independent: shard `i` of `n` computes rows `i, i + n, ...`, so
+//! workers or cluster jobs split a map by rows and [`canonical_cells`]
+//! restores the order. Work per call is bounded: [`RegimeMap::advance`]
+//! computes at most `k` cells.
+
+use crate::error::{Result, SolverError};
+use crate::keys::{self, Value};
+use crate::params::ModelParams;
+use crate::steady::{steady_state, Impact, Model, SteadyOptions};
+use crate::sweep::severity;
+
+/// What to compute.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MapSpec {
+    /// First Omega (columns).
+    pub omega_from: f64,
+    /// Last Omega.
+    pub omega_to: f64,
+    /// Number of Omega values (>= 2).
+    pub omega_points: u32,
+    /// The parameter key of the rows.
+    pub key: String,
+    /// First value of the key.
+    pub value_from: f64,
+    /// Last value of the key.
+    pub value_to: f64,
+    /// Number of rows (>= 1).
+    pub value_points: u32,
+    /// Steady-state options per cell (its `omega` is overwritten).
+    pub steady: SteadyOptions,
+    /// Mesh whose regime is reported; `None` for the worst over all meshes.
+    pub mesh: Option<usize>,
+    /// Shard `(i, n)`: only rows `i, i + n, ...`.
+    pub shard: Option<(u32, u32)>,
+}
+
+impl MapSpec {
+    /// A map over `backlash_um` or `te_um` (or any numeric key) with 300 + 100 periods per cell.
+    pub fn new(omega: (f64, f64, u32), key: &str, values: (f64, f64, u32)) -> Self {
+        MapSpec {
+            omega_from: omega.0,
+            omega_to: omega.1,
+            omega_points: omega.2,
+            key: key.into(),
+            value_from: values.0,
+            value_to: values.1,
+            value_points: values.2,
+            steady: SteadyOptions::new(omega.0),
+            mesh: None,
+            shard: None,
+        }
+    }
+
+    /// The Omega of column `c`.
+    pub fn omega(&self, c: u32) -> f64 {
+        self.omega_from
+            + (self.omega_to - self.omega_from) * f64::from(c) / f64::from(self.omega_points - 1)
+    }
+
+    /// The key's value on row `r`.
+    pub fn value(&self, r: u32) -> f64 {
+        if self.value_points == 1 {
+            return self.value_from;
+        }
+        self.value_from
+            + (self.value_to - self.value_from) * f64::from(r) / f64::from(self.value_points - 1)
+    }
+
+    fn validate(&self) -> Result<()> {
+        let bad = |option: &str, value: String, allowed: &str| {
+            Err(SolverError::BadOption {
+                option: option.into(),
+                value,
+                allowed: allowed.into(),
+            })
+        };
+        if !(self.omega_from.is_finite() && (0.01..=20.0).contains(&self.omega_from)) {
+            return bad("omega-from", format!("{}", self.omega_from), "0.01 ..= 20");
+        }
+        if !(self.omega_to.is_finite() && self.omega_to > self.omega_from && self.omega_to <= 20.0)
+        {
+            return bad(
+                "omega-to",
+                format!("{}", self.omega_to),
+                "omega-from < omega-to <= 20",
+            );
+        }
+        if !(2..=2000).contains(&self.omega_points) {
+            return bad("omega-points", self.omega_points.to_string(), "2 ..= 2000");
+        }
+        if !(1..=2000).contains(&self.value_points) {
+            return bad("value-points", self.value_points.to_string(), "1 ..= 2000");
+        }
+        if u64::from(self.omega_points) * u64::from(self.value_points) > 1_000_000 {
+            return bad(
+                "cells",
+                (u64::from(self.omega_points) * u64::from(self.value_points)).to_string(),
+                "at most 1000000",
+            );
+        }
+        if !(self.value_from.is_finite() && self.value_to.is_finite()) {
+            return bad(
+                "values",
+                format!("{}..{}", self.value_from, self.value_to),
+                "finite numbers",
+            );
+        }
+        if let Some((i, n)) = self.shard {
+            if n == 0 || i >= n || n > 10_000 {
+                return bad("shard", format!("{i}/{n}"), "i/n with 0 <= i < n <= 10000");
+            }
+        }
+        self.steady.validate()
+    }
+}
+
+/// One cell of the map.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MapCell {
+    /// Row (index of the key's value).
+    pub row: u32,
+    /// Column (index of Omega).
+    pub column: u32,
+    /// Dimensionless frequency.
+    pub omega: f64,
+    /// The key's value.
+    pub value: f64,
+    /// Regime of the reported mesh (or the worst over all meshes).
+    pub impact: Impact,
+    /// Period of the Poincaré orbit in mesh periods, `None` if not periodic.
+    pub period: Option<u32>,
+    /// A solver failure at this cell (the cell then has no regime).
+    pub error: Option<String>,
+}
+
+/// A regime map in progress.
+#[derive(Debug, Clone)]
+pub struct RegimeMap {
+    base: ModelParams,
+    spec: MapSpec,
+    rows: Vec<u32>,
+    next_row: usize,
+    next_column: u32,
+    model: Option<Model>,
+    state: Option<Vec<f64>>,
+    done: usize,
+}
+
+impl RegimeMap {
+    /// Checks the spec and that every row's parameter set is valid (so a bad
+    /// range fails at once, naming the key and the value).
+    pub fn new(base: &ModelParams, spec: MapSpec) -> Result<Self> {
+        spec.validate()?;
+        for r in [0, spec.value_points - 1] {
+            let mut p = base.clone();
+            keys::set(&mut p, &spec.key, Value::Num(spec.value(r)))?;
+            Model::new(&p)?;
+        }
+        let rows: Vec<u32> = (0..spec.value_points)
+            .filter(|r| spec.shard.is_none_or(|(i, n)| r % n == i))
+            .collect();
+        Ok(RegimeMap {
+            base: base.clone(),
+            spec,
+            rows,
+            next_row: 0,
+            next_column: 0,
+            model: None,
+            state: None,
+            done: 0,
+        })
+    }
+
+    /// The specification.
+    pub fn spec(&self) -> &MapSpec {
+        &self.spec
+    }
+
+    /// Cells this map (or shard) computes.
+    pub fn total(&self) -> usize {
+        self.rows.len() * self.spec.omega_points as usize
+    }
+
+    /// Cells computed so far.
+    pub fn done(&self) -> usize {
+        self.done
+    }
+
+    /// Whether every cell is computed.
+    pub fn is_finished(&self) -> bool {
+        self.next_row >= self.rows.len()
+    }
+
+    /// Computes up to `k` further cells. A failing cell is reported in its
+    /// `error` field and the row goes on from the static equilibrium.
+    pub fn advance(&mut self, k: usize) -> Vec<MapCell> {
+        let mut out = Vec::with_capacity(k);
+        while out.len() < k && !self.is_finished() {
+            let row = self.rows[self.next_row];
+            let value = self.spec.value(row);
+            let column = self.next_column;
+            let omega = self.spec.omega(column);
+            let cell = |impact, period, error| MapCell {
+                row,
+                column,
+                omega,
+                value,
+                impact,
+                period,
+                error,
+            };
+            if self.model.is_none() {
+                let mut p = self.base.clone();
+                let built = keys::set(&mut p, &self.spec.key, Value::Num(value))
+                    .and_then(|()| Model::new(&p));
+                match built {
+                    Ok(m) => self.model = Some(m),
+                    Err(e) => {
+                        // Skip the row: every cell carries the error.
+                        for c in column..self.spec.omega_points {
+                            let omega = self.spec.omega(c);
+                            out.push(MapCell {
+                                row,
+                                column: c,
+                                omega,
+                                value,
+                                impact: Impact::None,
+                                period: None,
+                                error: Some(e.to_string()),
+                            });
+                            self.done += 1;
+                        }
+                        self.finish_row();
+                        continue;
+                    }
+                }
+            }
+            let Some(model) = self.model.as_ref() else {
+                break;
+            };
+            let mut opts = self.spec.steady.clone();
+            opts.omega = omega;
+            opts.samples_per_period = 0;
+            opts.history_meshes.clear();
+            let result = steady_state(model, &opts, self.state.as_deref());
+            out.push(match result {
+                Ok(ss) => {
+                    let impact = match self.spec.mesh {
+                        Some(j) => ss.meshes.get(j).map_or(Impact::None, |m| m.impact),
+                        None => ss
+                            .meshes
+                            .iter()
+                            .map(|m| m.impact)
+                            .max_by_key(|&i| severity(i))
+                            .unwrap_or(Impact::None),
+                    };
+                    self.state = Some(ss.end_state);
+                    cell(impact, ss.period, None)
+                }
+                Err(e) => {
+                    self.state = None;
+                    cell(Impact::None, None, Some(e.to_string()))
+                }
+            });
+            self.done += 1;
+            self.next_column += 1;
+            if self.next_column >= self.spec.omega_points {
+                self.finish_row();
+            }
+        }
+        out
+    }
+
+    fn finish_row(&mut self) {
+        self.next_row += 1;
+        self.next_column = 0;
+        self.model = None;
+        self.state = None;
+    }
+}
+
+/// Sorts cells row by row, then by column (the order of an unsharded map).
+pub fn canonical_cells(cells: &mut [MapCell]) {
+    cells.sort_by_key(|c| (c.row, c.column));
+}
