@@ -401,3 +401,20 @@ fn downward_continuation_retraces_the_upward_branch() {
     let b = &down[0].meshes[0];
     assert!((a.rel_max_m - b.rel_max_m).abs() < 1e-9 && (a.rel_min_m - b.rel_min_m).abs() < 1e-9);
 }
+
+#[test]
+fn continuation_crosses_the_first_modes_resonance_zone() {
+    // Near Omega 0.21 the branch of the compound set is nearly vertical (the
+    // first mode's damping ratio is 0.0024) and contact is lost; a coarse AFT
+    // grid used to stall Newton there (H = 3 and H = 5, TE 20 and 30 um).
+    for (te, h) in [("te_um=20", 3), ("te_um=30", 5)] {
+        let m = model(&[te]);
+        let mut spec = FrfSpec::new(0.1, 0.5, 60);
+        spec.harmonics = h;
+        spec.stability = false;
+        let mut c = FrfContinuation::new(&m, spec).unwrap();
+        let pts = branch(&mut c);
+        let last = pts.last().unwrap().omega;
+        assert!((last - 0.5).abs() < 1e-9, "{te}, H = {h}: ended at {last}");
+    }
+}

@@ -597,6 +597,7 @@ impl FrfContinuation {
         let mut jac = DMatrix::zeros(n, n);
         let mut jx = DMatrix::zeros(nx, n);
         let weighted_t: Vec<f64> = (0..n).map(|i| self.metric(i) * self.tangent[i]).collect();
+        let mut res_prev = f64::INFINITY;
         for iteration in 1..=NEWTON_MAX {
             self.asm.evaluate(&y[..nx], y[nx], &mut r, Some(&mut jx));
             self.stats.jacobians += 1;
@@ -614,23 +615,33 @@ impl FrfContinuation {
             if !res.is_finite() {
                 break;
             }
-            let lu = jac.clone().lu();
-            let Some(dy) = lu.solve(&g) else { break };
-            for i in 0..n {
-                y[i] -= dy[i];
+            // On a kinked residual Newton can stall, bouncing between two
+            // linearizations: a residual at round-off level that no longer
+            // falls (where smooth Newton would square it) is a solution as
+            // it stands.
+            let scale_now = 1.0 + inf_norm(&y[..nx]);
+            let at_floor =
+                iteration > 2 && res <= RESIDUAL_FLOOR * scale_now && res > 0.1 * res_prev;
+            res_prev = res;
+            let mut step = 0.0;
+            if !at_floor {
+                let lu = jac.clone().lu();
+                let Some(dy) = lu.solve(&g) else { break };
+                for i in 0..n {
+                    y[i] -= dy[i];
+                }
+                let scale = 1.0 + inf_norm(&y[..nx]);
+                step = inf_norm(&dy.as_slice()[..nx]).max(dy[nx].abs() * scale) / scale;
             }
-            let scale = 1.0 + inf_norm(&y[..nx]);
-            let step = inf_norm(&dy.as_slice()[..nx]).max(dy[nx].abs() * scale);
-            // On a kinked residual Newton can stall bouncing between two
-            // linearizations with a tiny step; a residual at round-off level
-            // with a small step is accepted too.
-            if step <= NEWTON_TOL * scale || (res <= RESIDUAL_FLOOR * scale && step <= 1e-6 * scale)
-            {
+            if at_floor || step <= NEWTON_TOL {
+                let scale = 1.0 + inf_norm(&y[..nx]);
                 // Converged: the tangent solves [R_X R_Omega; t^T] t_new = [0; 1].
-                self.asm.evaluate(&y[..nx], y[nx], &mut r, Some(&mut jx));
-                self.stats.jacobians += 1;
-                if inf_norm(&r) > 1e-6 * scale {
-                    break;
+                if !at_floor {
+                    self.asm.evaluate(&y[..nx], y[nx], &mut r, Some(&mut jx));
+                    self.stats.jacobians += 1;
+                    if inf_norm(&r) > 1e-6 * scale {
+                        break;
+                    }
                 }
                 jac.rows_mut(0, nx).copy_from(&jx);
                 let mut e = DVector::zeros(n);
