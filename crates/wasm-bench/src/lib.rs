@@ -1,0 +1,72 @@
+//! The workloads of `gearshock bench`, callable from JavaScript.
+//!
+//! `scripts/bench-wasm.mjs` builds this crate for `wasm32-unknown-unknown`,
+//! binds it for node with wasm-bindgen, times each workload there (the
+//! solver has no clock; timing is the caller's) and compares the medians
+//! with the native `gearshock bench`. The workloads are the same code and
+//! inputs in both: the default model's HBM frequency response over Omega
+//! 0.1..2 and one steady-state run at Omega 0.5.
+
+use solver::hbm::{FrfContinuation, FrfSpec};
+use solver::params::ModelParams;
+use solver::steady::{steady_state, Model, SteadyOptions};
+
+/// The frequency response of the default model over Omega 0.1 ..= 2 with
+/// `points` nominal points and `harmonics` harmonics; returns the number of
+/// branch points, or -1 on a solver failure.
+pub fn frf_branch_points(harmonics: u32, points: u32, stability: bool) -> i32 {
+    let run = || -> solver::Result<usize> {
+        let model = Model::new(&ModelParams::default())?;
+        let mut spec = FrfSpec::new(0.1, 2.0, points);
+        spec.harmonics = harmonics as usize;
+        spec.stability = stability;
+        let mut c = FrfContinuation::new(&model, spec)?;
+        let mut n = 0;
+        while !c.is_finished() {
+            n += c.advance(64)?.len();
+        }
+        Ok(n)
+    };
+    run().map_or(-1, |n| i32::try_from(n).unwrap_or(i32::MAX))
+}
+
+/// One steady state of the default model at `omega` with the given periods;
+/// returns the transient periods run, or -1 on a solver failure.
+pub fn simulate_periods(omega: f64, transient: u32, record: u32) -> i32 {
+    let run = || -> solver::Result<u32> {
+        let model = Model::new(&ModelParams::default())?;
+        let mut o = SteadyOptions::new(omega);
+        o.transient_periods = transient;
+        o.record_periods = record;
+        o.history_meshes = vec![0];
+        Ok(steady_state(&model, &o, None)?.stats.transient_periods_run)
+    };
+    run().map_or(-1, |n| i32::try_from(n).unwrap_or(i32::MAX))
+}
+
+#[cfg(target_arch = "wasm32")]
+mod exports {
+    //! The wasm-bindgen exports (wasm32 only).
+    use wasm_bindgen::prelude::wasm_bindgen;
+
+    /// See [`crate::frf_branch_points`].
+    #[wasm_bindgen]
+    pub fn frf(harmonics: u32, points: u32, stability: bool) -> i32 {
+        crate::frf_branch_points(harmonics, points, stability)
+    }
+
+    /// See [`crate::simulate_periods`].
+    #[wasm_bindgen]
+    pub fn simulate(omega: f64, transient: u32, record: u32) -> i32 {
+        crate::simulate_periods(omega, transient, record)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn workloads_run_natively() {
+        assert!(super::frf_branch_points(1, 20, false) > 20);
+        assert_eq!(super::simulate_periods(0.5, 5, 2), 5);
+    }
+}
