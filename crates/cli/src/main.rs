@@ -174,7 +174,7 @@ enum Command {
         /// Continue up from --omega-from or down from --omega-to.
         #[arg(long, default_value = "up")]
         direction: String,
-        /// AFT time-grid size (default: max(16 H, 64) rounded up to a power of two).
+        /// AFT time-grid size (default: max(64 H, 256) rounded up to a power of two).
         #[arg(long)]
         grid: Option<usize>,
         /// Skip the Floquet stability of each point.
