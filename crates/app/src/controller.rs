@@ -11,6 +11,7 @@
 //! whose `dirty` flag is set, once per animation frame.
 
 use crate::link;
+use crate::maps::{LyapStore, MapGrid, MapStore, MapView};
 use crate::presets;
 use crate::protocol::{
     encode, FromWorker, JobId, JobKind, JobSpec, OmegaResult, RunOptions, ToWorker,
@@ -113,6 +114,10 @@ pub struct Dirty {
     pub url: bool,
     /// The messages area.
     pub messages: bool,
+    /// The impact-regime map.
+    pub map: bool,
+    /// The Lyapunov curve.
+    pub lyap: bool,
 }
 
 #[derive(Debug, Clone, Default)]
@@ -157,6 +162,14 @@ pub struct Controller {
     pub bif_status: JobStatus,
     /// Selected-Omega job status.
     pub omega_status: JobStatus,
+    /// The impact-regime map's cells.
+    pub map: MapStore,
+    /// Map job status.
+    pub map_status: JobStatus,
+    /// The Lyapunov curve's points.
+    pub lyap: LyapStore,
+    /// Lyapunov job status.
+    pub lyap_status: JobStatus,
     /// Views to redraw.
     pub dirty: Dirty,
     workers: [WorkerSlot; WORKERS],
@@ -173,6 +186,9 @@ struct Restart {
     ti: bool,
     bif: bool,
     omega: bool,
+    /// The map (only if what it depends on changed).
+    map: bool,
+    lyap: bool,
 }
 
 const ALL: Restart = Restart {
@@ -180,6 +196,8 @@ const ALL: Restart = Restart {
     ti: true,
     bif: true,
     omega: true,
+    map: true,
+    lyap: true,
 };
 
 const NONE: Restart = Restart {
@@ -187,6 +205,8 @@ const NONE: Restart = Restart {
     ti: false,
     bif: false,
     omega: false,
+    map: false,
+    lyap: false,
 };
 
 impl Controller {
@@ -207,6 +227,10 @@ impl Controller {
             ti_status: JobStatus::default(),
             bif_status: JobStatus::default(),
             omega_status: JobStatus::default(),
+            map: MapStore::default(),
+            map_status: JobStatus::default(),
+            lyap: LyapStore::default(),
+            lyap_status: JobStatus::default(),
             dirty: Dirty::default(),
             workers: Default::default(),
             next_id: 0,
@@ -221,6 +245,8 @@ impl Controller {
             controls: true,
             url: true,
             messages: true,
+            map: true,
+            lyap: true,
         };
         (c, fx)
     }
@@ -270,6 +296,8 @@ impl Controller {
                     (what.ti, &mut self.ti_status),
                     (what.bif, &mut self.bif_status),
                     (what.omega, &mut self.omega_status),
+                    (what.map, &mut self.map_status),
+                    (what.lyap, &mut self.lyap_status),
                 ] {
                     if flag {
                         st.error = Some(e.clone());
@@ -280,9 +308,12 @@ impl Controller {
                         fx.extend(self.post(w, &ToWorker::Cancel { kind }));
                     }
                 }
+                self.map.signature.clear();
                 self.dirty.fr = true;
                 self.dirty.bif = true;
                 self.dirty.omega = true;
+                self.dirty.map = true;
+                self.dirty.lyap = true;
                 return fx;
             }
         };
@@ -410,7 +441,152 @@ impl Controller {
             }
             self.dirty.bif = true;
         }
+        if what.map {
+            fx.extend(self.restart_map(&model, &params, now_ms));
+        }
+        if what.lyap {
+            fx.extend(self.restart_lyap(&params, now_ms));
+        }
         self.dirty.url = true;
+        fx
+    }
+
+    /// The map's grid from the view options.
+    pub fn map_grid(&self) -> MapGrid {
+        let v = &self.settings.view;
+        MapGrid {
+            key: v.map_key.clone(),
+            omega_from: v.omega_from,
+            omega_to: v.omega_to,
+            omega_points: v.map_omega_points,
+            value_from: v.map_from,
+            value_to: v.map_to,
+            value_points: v.map_value_points,
+        }
+    }
+
+    /// Everything the map depends on, as text: its grid, periods and mesh,
+    /// and the parameters with the rows' key neutralised (the rows set it),
+    /// so a click on a cell, which sets that key, does not restart the map.
+    fn map_signature(
+        &self,
+        model: &Model,
+        params: &serde_json::Map<String, serde_json::Value>,
+    ) -> String {
+        let v = &self.settings.view;
+        let mut p = self.settings.params.clone();
+        let neutral = keys::set(&mut p, &v.map_key, keys::Value::Num(0.0)).is_ok();
+        let params_text = if neutral {
+            serde_json::Value::Object(keys::to_json(&p)).to_string()
+        } else {
+            serde_json::Value::Object(params.clone()).to_string()
+        };
+        format!(
+            "{:?}|{}|{}|{:?}|{params_text}",
+            self.map_grid(),
+            v.map_transient_periods,
+            v.map_record_periods,
+            self.settings.mesh_index(model),
+        )
+    }
+
+    fn restart_map(
+        &mut self,
+        model: &Model,
+        params: &serde_json::Map<String, serde_json::Value>,
+        now_ms: f64,
+    ) -> Vec<Effect> {
+        let signature = self.map_signature(model, params);
+        if signature == self.map.signature && self.map_status.error.is_none() {
+            return Vec::new();
+        }
+        let mut fx = Vec::new();
+        self.next_id += 1;
+        let id = self.next_id;
+        let grid = self.map_grid();
+        let v = self.settings.view.clone();
+        self.map_status = JobStatus::start(id, now_ms, grid.cells());
+        let shards = (WORKERS as u32).min(grid.value_points);
+        for w in 0..shards {
+            let job = JobSpec::Map {
+                key: grid.key.clone(),
+                omega_from: grid.omega_from,
+                omega_to: grid.omega_to,
+                omega_points: grid.omega_points,
+                value_from: grid.value_from,
+                value_to: grid.value_to,
+                value_points: grid.value_points,
+                mesh: self.settings.mesh_index(model),
+                shards,
+                shard: w,
+                run: RunOptions {
+                    transient_periods: v.map_transient_periods,
+                    record_periods: v.map_record_periods,
+                },
+            };
+            fx.extend(self.post(
+                w as usize,
+                &ToWorker::Run {
+                    id,
+                    params: params.clone(),
+                    job,
+                },
+            ));
+        }
+        self.map = MapStore::new(id, grid, signature);
+        self.dirty.map = true;
+        fx
+    }
+
+    fn restart_lyap(
+        &mut self,
+        params: &serde_json::Map<String, serde_json::Value>,
+        now_ms: f64,
+    ) -> Vec<Effect> {
+        let v = self.settings.view.clone();
+        let mut fx = Vec::new();
+        self.dirty.lyap = true;
+        if v.lyap_points < 2 {
+            // The curve is off: drop a running job, if there was one.
+            if self.lyap.id != 0 {
+                for w in 0..WORKERS {
+                    fx.extend(self.post(
+                        w,
+                        &ToWorker::Cancel {
+                            kind: JobKind::Lyap,
+                        },
+                    ));
+                }
+            }
+            self.lyap = LyapStore::default();
+            self.lyap_status = JobStatus::default();
+            return fx;
+        }
+        self.next_id += 1;
+        let id = self.next_id;
+        let n = v.lyap_points;
+        self.lyap = LyapStore::new(id, n as usize, v.lyap_periods);
+        self.lyap_status = JobStatus::start(id, now_ms, n as usize);
+        let chains = (WORKERS as u32).min(n);
+        for w in 0..chains {
+            let job = JobSpec::Lyap {
+                omega_from: v.omega_from,
+                omega_to: v.omega_to,
+                points: n,
+                chains,
+                shard: w,
+                transient_periods: v.lyap_transient_periods,
+                periods: v.lyap_periods,
+            };
+            fx.extend(self.post(
+                w as usize,
+                &ToWorker::Run {
+                    id,
+                    params: params.clone(),
+                    job,
+                },
+            ));
+        }
         fx
     }
 
@@ -489,6 +665,26 @@ impl Controller {
                 self.dirty.bif = true;
                 Vec::new()
             }
+            FromWorker::MapCells { id, cells } if id == self.map.id && id != 0 => {
+                self.map.add(cells);
+                self.map_status.done = self.map.done;
+                self.map_status.first_data_ms.get_or_insert(now_ms);
+                if self.map.done >= self.map_status.total {
+                    self.map_status.finished_ms = Some(now_ms);
+                }
+                self.dirty.map = true;
+                Vec::new()
+            }
+            FromWorker::LyapPoints { id, points } if id == self.lyap.id && id != 0 => {
+                self.lyap.points.extend(points);
+                self.lyap_status.done = self.lyap.points.len();
+                self.lyap_status.first_data_ms.get_or_insert(now_ms);
+                if self.lyap_status.done >= self.lyap_status.total {
+                    self.lyap_status.finished_ms = Some(now_ms);
+                }
+                self.dirty.lyap = true;
+                Vec::new()
+            }
             FromWorker::Omega { id, result } if id == self.omega_status.id => {
                 self.omega = Some(*result);
                 self.omega_status.done = 1;
@@ -503,6 +699,8 @@ impl Controller {
                     &mut self.ti_status,
                     &mut self.bif_status,
                     &mut self.omega_status,
+                    &mut self.map_status,
+                    &mut self.lyap_status,
                 ] {
                     if st.id == id && id != 0 {
                         st.error = Some(message.clone());
@@ -511,6 +709,8 @@ impl Controller {
                 self.dirty.fr = true;
                 self.dirty.bif = true;
                 self.dirty.omega = true;
+                self.dirty.map = true;
+                self.dirty.lyap = true;
                 if self.export.as_ref().is_some_and(|e| e.id == id) {
                     self.export = None;
                 }
@@ -546,17 +746,44 @@ impl Controller {
             let before = self.settings.view.clone();
             let meshes = self.mesh_names();
             self.settings.view.set(key, text, &meshes)?;
+            if key == "map_key" && self.settings.view.map_key != before.map_key {
+                // A new axis gets that key's own default range.
+                let (lo, hi) = crate::settings::map_default_range(&self.settings.view.map_key);
+                self.settings.view.map_from = lo;
+                self.settings.view.map_to = hi;
+                self.dirty.controls = true;
+            }
             if let Some(msg) = self.settings.view.check_range() {
                 self.settings.view = before;
                 return Err(msg);
             }
             let what = match key {
-                "omega" | "mesh" => Restart {
+                "omega" => Restart {
                     omega: true,
                     ..NONE
                 },
+                "mesh" => Restart {
+                    omega: true,
+                    map: true,
+                    ..NONE
+                },
                 "omega_from" | "omega_to" => ALL,
-                "transient_periods" => Restart { fr: false, ..ALL },
+                "transient_periods" => Restart {
+                    fr: false,
+                    map: false,
+                    lyap: false,
+                    ..ALL
+                },
+                "map_key"
+                | "map_from"
+                | "map_to"
+                | "map_omega_points"
+                | "map_value_points"
+                | "map_transient_periods"
+                | "map_record_periods" => Restart { map: true, ..NONE },
+                "lyap_points" | "lyap_transient_periods" | "lyap_periods" => {
+                    Restart { lyap: true, ..NONE }
+                }
                 "fr_points" | "harmonics" => Restart { fr: true, ..NONE },
                 "fr_ti_points" | "fr_record_periods" => Restart { ti: true, ..NONE },
                 "bif_points" | "bif_dir" => Restart { bif: true, ..NONE },
@@ -570,6 +797,8 @@ impl Controller {
             // The views share the mesh and range: redraw them even without new data.
             self.dirty.fr = true;
             self.dirty.bif = true;
+            self.dirty.map = true;
+            self.dirty.lyap = true;
             self.dirty.url = true;
             return Ok(self.restart(what, now_ms));
         }
@@ -625,8 +854,47 @@ impl Controller {
             controls: true,
             url: true,
             messages: true,
+            map: true,
+            lyap: true,
         };
         self.restart(ALL, now_ms)
+    }
+
+    /// A click on the map at `(omega, value)`: sets the rows' key to the
+    /// cell's value and the selected Omega to the cell's Omega. Values are
+    /// rounded to 1e-3 um and Omega to 1e-4, as the link shows them.
+    pub fn pick_map_point(
+        &mut self,
+        omega: f64,
+        value: f64,
+        now_ms: f64,
+    ) -> Result<Vec<Effect>, String> {
+        let grid = self.map.grid.clone().unwrap_or_else(|| self.map_grid());
+        let (row, column) = grid
+            .cell_at(omega, value)
+            .ok_or_else(|| "the click is outside the map".to_string())?;
+        let v = (grid.value(row) * 1e3).round() / 1e3;
+        let mut fx = self.set_key(&grid.key, &crate::settings::fmt_exact(v), now_ms)?;
+        self.dirty.controls = true;
+        fx.extend(self.select_omega(grid.omega(column), now_ms));
+        Ok(fx)
+    }
+
+    /// What the map plot draws.
+    pub fn map_view(&self) -> MapView<'_> {
+        let key = &self.settings.view.map_key;
+        let value = match keys::get(&self.settings.params, key) {
+            Some(keys::Value::Num(x)) if x.is_finite() => Some(x),
+            _ => None,
+        };
+        MapView {
+            store: &self.map,
+            mesh_label: match &self.settings.view.mesh {
+                MeshSel::Named(n) => format!("mesh {n}"),
+                MeshSel::Worst => "most severe of all meshes".into(),
+            },
+            selected: (self.settings.view.omega, value),
+        }
     }
 
     /// Loads a preset by id.
@@ -803,6 +1071,13 @@ impl Controller {
             "fr_discrepancy": self.fr_view().discrepancy,
             "bif": self.bif_status,
             "omega_job": self.omega_status,
+            "map": self.map_status,
+            "map_grid": self.map.grid,
+            "map_progress": self.map_status.progress(now_ms),
+            "map_counts": self.map.counts(),
+            "lyap": self.lyap_status,
+            "lyap_points": self.lyap.curve().len(),
+            "lyap_progress": self.lyap_status.progress(now_ms),
             "fr_progress": self.fr_status.progress(now_ms),
             "fr_overlay_progress": self.ti_status.progress(now_ms),
             "bif_progress": self.bif_status.progress(now_ms),
@@ -867,8 +1142,9 @@ mod tests {
         let p = ready(&mut c);
         // Omega on worker 0, the HBM branch on worker 1, bifurcation shards on
         // both; no time-integration overlay by default.
-        assert_eq!(p.iter().filter(|(w, _)| *w == 0).count(), 2);
-        assert_eq!(p.iter().filter(|(w, _)| *w == 1).count(), 2);
+        // Map rows and Lyapunov chains are shared by both workers too.
+        assert_eq!(p.iter().filter(|(w, _)| *w == 0).count(), 4);
+        assert_eq!(p.iter().filter(|(w, _)| *w == 1).count(), 4);
         assert!(p.iter().any(|(w, m)| *w == HBM_WORKER
             && matches!(
                 m,
@@ -905,7 +1181,9 @@ mod tests {
         ready(&mut c);
         let old = c.hbm.id;
         let fx = c.set_key("backlash_um", "150", 10.0).unwrap();
-        assert_eq!(posts(&fx).len(), 4);
+        // Omega, branch, two bifurcation and two Lyapunov shards; the map over
+        // backlash does not depend on the backlash, so it goes on.
+        assert_eq!(posts(&fx).len(), 6);
         assert_ne!(c.hbm.id, old);
         assert!(c.query().contains("backlash_um=150"));
         c.worker_message(1, &hbm_points(old, &[0.1], false, None), 11.0);
@@ -1021,6 +1299,150 @@ mod tests {
             .iter()
             .all(|(_, m)| matches!(m, ToWorker::Cancel { kind: JobKind::Fr })));
         assert!(c.fr_view().overlay_source.is_none());
+    }
+
+    fn map_cells(id: JobId, cells: &[(u32, u32, crate::protocol::Regime, Option<u32>)]) -> String {
+        encode(&FromWorker::MapCells {
+            id,
+            cells: cells
+                .iter()
+                .map(
+                    |&(row, column, regime, period)| crate::protocol::MapSample {
+                        row,
+                        column,
+                        omega: 0.0,
+                        value: 0.0,
+                        regime,
+                        period,
+                        error: None,
+                    },
+                )
+                .collect(),
+        })
+    }
+
+    #[test]
+    fn the_map_shards_rows_and_a_cell_click_sets_both_parameters() {
+        use crate::protocol::Regime;
+        let (mut c, _) = Controller::new(
+            "map_omega_points=20&map_value_points=4&map_from=40&map_to=160",
+            0.0,
+        );
+        let p = ready(&mut c);
+        let shards: Vec<(usize, u32, u32)> = p
+            .iter()
+            .filter_map(|(w, m)| match m {
+                ToWorker::Run {
+                    job:
+                        JobSpec::Map {
+                            shard,
+                            shards,
+                            omega_points: 20,
+                            value_points: 4,
+                            ..
+                        },
+                    ..
+                } => Some((*w, *shard, *shards)),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(shards, vec![(0, 0, 2), (1, 1, 2)]);
+        let id = c.map.id;
+        c.worker_message(
+            0,
+            &map_cells(id, &[(0, 0, Regime::NoImpact, Some(1))]),
+            10.0,
+        );
+        c.worker_message(
+            1,
+            &map_cells(id, &[(1, 0, Regime::DoubleSided, Some(2))]),
+            11.0,
+        );
+        assert_eq!(c.map_status.done, 2);
+        assert_eq!(c.map.counts().0, [1, 0, 1, 0]);
+        // Row 2 is 120 um, column 10 is Omega = 0.1 + 10 * 1.9 / 19 = 1.1.
+        let fx = c.pick_map_point(1.1 + 0.02, 120.0 - 5.0, 20.0).unwrap();
+        assert!(c.query().contains("backlash_um=120"), "{}", c.query());
+        assert_eq!(c.settings.view.omega, 1.1);
+        assert!(c.query().contains("omega=1.1&"), "{}", c.query());
+        // The map goes on (same signature), everything else restarts.
+        assert_eq!(c.map.id, id);
+        assert!(!posts(&fx).iter().any(|(_, m)| matches!(
+            m,
+            ToWorker::Run {
+                job: JobSpec::Map { .. },
+                ..
+            }
+        )));
+        assert_eq!(c.map_status.done, 2);
+        assert!(c.pick_map_point(5.0, 100.0, 21.0).is_err());
+        // On the TE axis, with its own default range, a click sets te_um.
+        c.set_key("map_key", "te_um", 30.0).unwrap();
+        assert_eq!(
+            (c.settings.view.map_from, c.settings.view.map_to),
+            (0.0, 60.0)
+        );
+        assert_ne!(c.map.id, id);
+        c.set_key("map_value_points", "7", 31.0).unwrap();
+        c.pick_map_point(0.1, 30.0, 32.0).unwrap();
+        assert!(c.query().contains("te_um=30"), "{}", c.query());
+        assert_eq!(c.settings.view.omega, 0.1);
+        // Another parameter changes the map's model: it restarts.
+        let before = c.map.id;
+        c.set_key("damping_ratio", "0.05", 40.0).unwrap();
+        assert_ne!(c.map.id, before);
+    }
+
+    #[test]
+    fn the_lyapunov_curve_collects_both_chains_and_can_be_switched_off() {
+        let (mut c, _) = Controller::new("lyap_points=4", 0.0);
+        let p = ready(&mut c);
+        assert_eq!(
+            p.iter()
+                .filter(|(_, m)| matches!(
+                    m,
+                    ToWorker::Run {
+                        job: JobSpec::Lyap {
+                            points: 4,
+                            chains: 2,
+                            ..
+                        },
+                        ..
+                    }
+                ))
+                .count(),
+            2
+        );
+        let id = c.lyap.id;
+        let pts = |idx: &[u32]| {
+            encode(&FromWorker::LyapPoints {
+                id,
+                points: idx
+                    .iter()
+                    .map(|&i| crate::protocol::LyapSample {
+                        index: i,
+                        omega: 0.1 + f64::from(i),
+                        per_period: Some(-0.1 * f64::from(i)),
+                        per_s: Some(-1.0),
+                        error: None,
+                    })
+                    .collect(),
+            })
+        };
+        c.worker_message(1, &pts(&[1, 3]), 5.0);
+        c.worker_message(0, &pts(&[0, 2]), 6.0);
+        assert_eq!(c.lyap_status.finished_ms, Some(6.0));
+        let curve = c.lyap.curve();
+        assert_eq!(curve.len(), 4);
+        assert!(curve.windows(2).all(|w| w[0].0 < w[1].0));
+        let p = posts(&c.set_key("lyap_points", "0", 7.0).unwrap());
+        assert!(p.iter().all(|(_, m)| matches!(
+            m,
+            ToWorker::Cancel {
+                kind: JobKind::Lyap
+            }
+        )));
+        assert_eq!(c.lyap.id, 0);
     }
 
     #[test]

@@ -30,6 +30,8 @@ pub enum Group {
     Advanced,
     /// Frequency range, grids, periods, harmonics, plotted mesh.
     Analysis,
+    /// The impact-regime map and the Lyapunov curve.
+    Maps,
 }
 
 impl Group {
@@ -41,16 +43,18 @@ impl Group {
             Group::Mesh => "Meshes, load and planets",
             Group::Advanced => "Advanced: per mesh kind",
             Group::Analysis => "Analysis and views",
+            Group::Maps => "Regime map and Lyapunov exponent",
         }
     }
 
     /// All groups in order.
-    pub const ALL: [Group; 5] = [
+    pub const ALL: [Group; 6] = [
         Group::Model,
         Group::Excitation,
         Group::Mesh,
         Group::Advanced,
         Group::Analysis,
+        Group::Maps,
     ];
 }
 
@@ -145,6 +149,15 @@ fn param(key: &'static str, label: &str, group: Group, slider: (f64, f64, f64)) 
 }
 
 fn view(key: &'static str, label: &str, slider: (f64, f64, f64)) -> Option<Control> {
+    view_in(Group::Analysis, key, label, slider)
+}
+
+fn view_in(
+    group: Group,
+    key: &'static str,
+    label: &str,
+    slider: (f64, f64, f64),
+) -> Option<Control> {
     let spec = view_key(key)?;
     let (field_min, field_max) = match spec.ty {
         ViewType::Float { min, max } => (min, max),
@@ -156,11 +169,18 @@ fn view(key: &'static str, label: &str, slider: (f64, f64, f64)) -> Option<Contr
                 label: label.into(),
                 unit: String::new(),
                 tooltip: format!("{} ({key}: {})", spec.description, spec.ty.allowed()),
-                group: Group::Analysis,
+                group,
                 widget: Widget::Select(
                     words
                         .iter()
-                        .map(|w| (w.to_string(), w.to_string()))
+                        .map(|w| {
+                            let text = match *w {
+                                "backlash_um" => "backlash b (µm)",
+                                "te_um" => "TE amplitude (µm)",
+                                other => other,
+                            };
+                            (w.to_string(), text.to_string())
+                        })
                         .collect(),
                 ),
                 applies: Applies::Both,
@@ -173,7 +193,7 @@ fn view(key: &'static str, label: &str, slider: (f64, f64, f64)) -> Option<Contr
                 label: label.into(),
                 unit: String::new(),
                 tooltip: format!("{} ({key})", spec.description),
-                group: Group::Analysis,
+                group,
                 // Filled with the model's meshes by the page.
                 widget: Widget::Select(Vec::new()),
                 applies: Applies::Both,
@@ -186,7 +206,7 @@ fn view(key: &'static str, label: &str, slider: (f64, f64, f64)) -> Option<Contr
         label: label.into(),
         unit: unit_text(spec.unit),
         tooltip: format!("{} ({key}: {})", spec.description, spec.ty.allowed()),
-        group: Group::Analysis,
+        group,
         widget: Widget::Slider {
             min: slider.0,
             max: slider.1,
@@ -288,6 +308,46 @@ pub fn controls() -> Vec<Control> {
             (0.0, 1000.0, 10.0),
         ),
         view("record_periods", "Recorded periods", (1.0, 400.0, 1.0)),
+        view_in(Maps, "map_key", "Map: vertical axis", (0.0, 0.0, 0.0)),
+        view_in(Maps, "map_from", "Map: from", (0.0, 300.0, 1.0)),
+        view_in(Maps, "map_to", "Map: to", (0.0, 300.0, 1.0)),
+        view_in(
+            Maps,
+            "map_omega_points",
+            "Map: Ω columns",
+            (2.0, 200.0, 1.0),
+        ),
+        view_in(Maps, "map_value_points", "Map: rows", (1.0, 100.0, 1.0)),
+        view_in(
+            Maps,
+            "map_transient_periods",
+            "Map: transient periods per cell (max)",
+            (0.0, 1000.0, 10.0),
+        ),
+        view_in(
+            Maps,
+            "map_record_periods",
+            "Map: recorded periods per cell",
+            (1.0, 400.0, 1.0),
+        ),
+        view_in(
+            Maps,
+            "lyap_points",
+            "Lyapunov: Ω points (0 = off)",
+            (0.0, 200.0, 1.0),
+        ),
+        view_in(
+            Maps,
+            "lyap_transient_periods",
+            "Lyapunov: transient periods",
+            (0.0, 1000.0, 10.0),
+        ),
+        view_in(
+            Maps,
+            "lyap_periods",
+            "Lyapunov: averaged periods",
+            (10.0, 1000.0, 10.0),
+        ),
     ]);
     c.into_iter().flatten().collect()
 }

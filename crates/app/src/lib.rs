@@ -15,7 +15,9 @@
 pub mod controller;
 pub mod controls;
 pub mod link;
+pub mod maps;
 pub mod plots;
+pub mod plots_maps;
 pub mod presets;
 pub mod protocol;
 pub mod settings;

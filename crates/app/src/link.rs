@@ -390,6 +390,12 @@ mod tests {
                         Just("mesh".to_string()),
                         Just("bif_points".to_string()),
                         Just("torque_s2_nm".to_string()),
+                        Just("map_key".to_string()),
+                        Just("map_from".to_string()),
+                        Just("map_to".to_string()),
+                        Just("map_omega_points".to_string()),
+                        Just("map_value_points".to_string()),
+                        Just("lyap_points".to_string()),
                         Just("teeth_r".to_string()),
                         "[a-z_%0-9]{0,12}",
                         "\\PC{0,8}",
@@ -422,6 +428,10 @@ mod tests {
             prop_assert!(v.fr_points <= crate::settings::MAX_FR_POINTS);
             prop_assert!(v.transient_periods <= crate::settings::MAX_TRANSIENT);
             prop_assert!(v.record_periods <= crate::settings::MAX_RECORD);
+            prop_assert!(v.map_from < v.map_to);
+            prop_assert!(v.map_omega_points <= crate::settings::MAX_MAP_OMEGA_POINTS);
+            prop_assert!(v.map_value_points <= crate::settings::MAX_MAP_VALUE_POINTS);
+            prop_assert!(crate::settings::MAP_KEYS.contains(&v.map_key.as_str()));
             // And it round-trips.
             let again = decode(&encode(&d.settings));
             prop_assert!(again.issues.is_empty(), "{:?}", again.issues);

@@ -21,14 +21,14 @@ pub const WIDTH: u32 = 760;
 /// Plot height in pixels.
 pub const HEIGHT: u32 = 400;
 
-type Res<T> = Result<T, String>;
-type Chart<'a, DB> = ChartContext<
+pub(crate) type Res<T> = Result<T, String>;
+pub(crate) type Chart<'a, DB> = ChartContext<
     'a,
     DB,
     Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
 >;
 
-fn err<E: std::fmt::Display>(e: E) -> String {
+pub(crate) fn err<E: std::fmt::Display>(e: E) -> String {
     format!("drawing failed: {e}")
 }
 
@@ -42,10 +42,10 @@ pub fn regime_color(r: Regime) -> RGBColor {
     }
 }
 
-const GRID: RGBColor = RGBColor(225, 229, 235);
+pub(crate) const GRID: RGBColor = RGBColor(225, 229, 235);
 const CONTACT: RGBColor = RGBColor(90, 90, 90);
-const NATURAL: RGBColor = RGBColor(150, 110, 200);
-const CURSOR: RGBColor = RGBColor(220, 20, 60);
+pub(crate) const NATURAL: RGBColor = RGBColor(150, 110, 200);
+pub(crate) const CURSOR: RGBColor = RGBColor(220, 20, 60);
 const MAX_COLOR: RGBColor = RGBColor(25, 70, 150);
 const MIN_COLOR: RGBColor = RGBColor(20, 140, 130);
 const ORBIT: RGBColor = RGBColor(70, 110, 170);
@@ -74,6 +74,25 @@ impl PlotFrame {
         }
         let t = ((px - l) / (r - l)).clamp(0.0, 1.0);
         Some(self.x_range.0 + t * (self.x_range.1 - self.x_range.0))
+    }
+
+    /// The data point under pixel `(px, py)`, or `None` outside the
+    /// plotting area.
+    pub fn point_at(&self, px: f64, py: f64) -> Option<DVec2> {
+        let (l, r) = (self.top_left.x, self.bottom_right.x);
+        let (t, b) = (self.top_left.y, self.bottom_right.y);
+        if !(px.is_finite() && py.is_finite() && px >= l && px <= r && py >= t && py <= b)
+            || r <= l
+            || b <= t
+        {
+            return None;
+        }
+        let tx = (px - l) / (r - l);
+        let ty = (b - py) / (b - t);
+        Some(DVec2::new(
+            self.x_range.0 + tx * (self.x_range.1 - self.x_range.0),
+            self.y_range.0 + ty * (self.y_range.1 - self.y_range.0),
+        ))
     }
 
     /// The pixel of a data point.
@@ -122,7 +141,7 @@ pub fn padded_range(values: impl Iterator<Item = f64>, extra: &[f64], min_span: 
     (mid - half, mid + half)
 }
 
-fn frame_of<DB: DrawingBackend, X, Y>(
+pub(crate) fn frame_of<DB: DrawingBackend, X, Y>(
     chart: &ChartContext<DB, Cartesian2d<X, Y>>,
     x_range: (f64, f64),
     y_range: (f64, f64),
@@ -140,11 +159,11 @@ where
     }
 }
 
-fn caption_font() -> TextStyle<'static> {
+pub(crate) fn caption_font() -> TextStyle<'static> {
     ("sans-serif", 17).into_font().color(&BLACK)
 }
 
-fn small() -> TextStyle<'static> {
+pub(crate) fn small() -> TextStyle<'static> {
     ("sans-serif", 13).into_font().color(&RGBColor(50, 50, 50))
 }
 
@@ -195,7 +214,7 @@ pub fn wrap(text: &str, width: usize) -> Vec<String> {
 }
 
 /// Draws the Omega-axis decorations: natural frequencies and the cursor.
-fn omega_decorations<'a, DB: DrawingBackend + 'a>(
+pub(crate) fn omega_decorations<'a, DB: DrawingBackend + 'a>(
     chart: &mut Chart<'a, DB>,
     natural: &[NaturalFreq],
     selected: f64,

@@ -36,11 +36,22 @@ pub enum JobKind {
     Fr,
     /// The bifurcation sweep (view 2).
     Bif,
+    /// The impact-regime map (view 7).
+    Map,
+    /// The largest Lyapunov exponent over Omega (under view 2).
+    Lyap,
 }
 
 impl JobKind {
     /// All kinds.
-    pub const ALL: [JobKind; 4] = [JobKind::Omega, JobKind::Hbm, JobKind::Fr, JobKind::Bif];
+    pub const ALL: [JobKind; 6] = [
+        JobKind::Omega,
+        JobKind::Hbm,
+        JobKind::Fr,
+        JobKind::Bif,
+        JobKind::Map,
+        JobKind::Lyap,
+    ];
 }
 
 /// Transient and recorded mesh periods of each steady state.
@@ -118,6 +129,51 @@ pub enum JobSpec {
         /// Periods.
         run: RunOptions,
     },
+    /// Rows `shard, shard + shards, ...` of an impact-regime map
+    /// (`solver::map`): each row sweeps Omega upward at one value of `key`.
+    Map {
+        /// The rows' key (`backlash_um` or `te_um`).
+        key: String,
+        /// First Omega (column 0).
+        omega_from: f64,
+        /// Last Omega.
+        omega_to: f64,
+        /// Columns.
+        omega_points: u32,
+        /// The key's value on row 0.
+        value_from: f64,
+        /// Its value on the last row.
+        value_to: f64,
+        /// Rows.
+        value_points: u32,
+        /// Mesh whose regime is mapped, or `None` for the most severe of all meshes.
+        mesh: Option<usize>,
+        /// The workers sharing the rows.
+        shards: u32,
+        /// This worker's share.
+        shard: u32,
+        /// Periods per cell.
+        run: RunOptions,
+    },
+    /// One chain of the largest Lyapunov exponent of the Poincaré map over
+    /// an Omega grid (`solver::lyapunov`), upward, each point starting from
+    /// the previous point's end state.
+    Lyap {
+        /// First grid Omega.
+        omega_from: f64,
+        /// Last grid Omega.
+        omega_to: f64,
+        /// Grid points.
+        points: u32,
+        /// Interleaved chains.
+        chains: u32,
+        /// The chain this worker computes.
+        shard: u32,
+        /// Transient periods before measuring.
+        transient_periods: u32,
+        /// Periods averaged over.
+        periods: u32,
+    },
 }
 
 impl JobSpec {
@@ -128,6 +184,8 @@ impl JobSpec {
             JobSpec::Hbm { .. } => JobKind::Hbm,
             JobSpec::Fr { .. } => JobKind::Fr,
             JobSpec::Bif { .. } => JobKind::Bif,
+            JobSpec::Map { .. } => JobKind::Map,
+            JobSpec::Lyap { .. } => JobKind::Lyap,
         }
     }
 }
@@ -331,6 +389,40 @@ pub struct BifSample {
     pub error: Option<String>,
 }
 
+/// One cell of an impact-regime map.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MapSample {
+    /// Row (index of the key's value).
+    pub row: u32,
+    /// Column (index of Omega).
+    pub column: u32,
+    /// Dimensionless frequency.
+    pub omega: f64,
+    /// The key's value (um).
+    pub value: f64,
+    /// Impact regime.
+    pub regime: Regime,
+    /// Period in mesh periods, if periodic.
+    pub period: Option<u32>,
+    /// Why the cell failed.
+    pub error: Option<String>,
+}
+
+/// One point of the Lyapunov-exponent curve.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LyapSample {
+    /// Grid index.
+    pub index: u32,
+    /// Dimensionless frequency.
+    pub omega: f64,
+    /// Largest exponent of the Poincaré map per mesh period (`None` if failed).
+    pub per_period: Option<f64>,
+    /// The same per second (1/s).
+    pub per_s: Option<f64>,
+    /// Why the point failed.
+    pub error: Option<String>,
+}
+
 /// Summary of one mesh at the selected Omega.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct MeshSummary {
@@ -422,6 +514,20 @@ pub enum FromWorker {
         id: JobId,
         /// The points.
         points: Vec<BifSample>,
+    },
+    /// New cells of a map job.
+    MapCells {
+        /// Job id.
+        id: JobId,
+        /// The cells.
+        cells: Vec<MapSample>,
+    },
+    /// New points of a Lyapunov job.
+    LyapPoints {
+        /// Job id.
+        id: JobId,
+        /// The points.
+        points: Vec<LyapSample>,
     },
     /// The result of an Omega job.
     Omega {

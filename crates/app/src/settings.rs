@@ -69,6 +69,22 @@ pub const MAX_BIF_POINTS: u32 = 1000;
 pub const MAX_TRANSIENT: u32 = 3000;
 /// Largest record of one steady state (mesh periods).
 pub const MAX_RECORD: u32 = 1000;
+/// Most Omega columns of the impact-regime map.
+pub const MAX_MAP_OMEGA_POINTS: u32 = 200;
+/// Most value rows of the impact-regime map.
+pub const MAX_MAP_VALUE_POINTS: u32 = 100;
+/// Most Omega points of the Lyapunov-exponent curve.
+pub const MAX_LYAP_POINTS: u32 = 400;
+/// The keys an impact-regime map can run over (its rows).
+pub const MAP_KEYS: &[&str] = &["backlash_um", "te_um"];
+
+/// The default value range of a map key's rows (um).
+pub fn map_default_range(key: &str) -> (f64, f64) {
+    match key {
+        "te_um" => (0.0, 60.0),
+        _ => (0.0, 200.0),
+    }
+}
 
 const OMEGA: ViewType = ViewType::Float {
     min: 0.01,
@@ -167,6 +183,93 @@ pub const VIEW_KEYS: &[ViewKey] = &[
         },
         description: "harmonics H of the harmonic-balance frequency response (AFT)",
     },
+    ViewKey {
+        name: "map_key",
+        unit: "-",
+        ty: ViewType::Choice(MAP_KEYS),
+        description: "the parameter on the vertical axis of the impact-regime map: backlash b or TE amplitude",
+    },
+    ViewKey {
+        name: "map_from",
+        unit: "um",
+        ty: ViewType::Float {
+            min: 0.0,
+            max: 1000.0,
+        },
+        description: "lowest value of the map's parameter (bottom row)",
+    },
+    ViewKey {
+        name: "map_to",
+        unit: "um",
+        ty: ViewType::Float {
+            min: 0.0,
+            max: 1000.0,
+        },
+        description: "highest value of the map's parameter (top row)",
+    },
+    ViewKey {
+        name: "map_omega_points",
+        unit: "-",
+        ty: ViewType::Int {
+            min: 2,
+            max: MAX_MAP_OMEGA_POINTS,
+        },
+        description: "Omega columns of the impact-regime map (over the frequency range)",
+    },
+    ViewKey {
+        name: "map_value_points",
+        unit: "-",
+        ty: ViewType::Int {
+            min: 1,
+            max: MAX_MAP_VALUE_POINTS,
+        },
+        description: "rows of the impact-regime map (values of its parameter)",
+    },
+    ViewKey {
+        name: "map_transient_periods",
+        unit: "periods",
+        ty: ViewType::Int {
+            min: 0,
+            max: MAX_TRANSIENT,
+        },
+        description: "maximum transient mesh periods per map cell (ends early once settled)",
+    },
+    ViewKey {
+        name: "map_record_periods",
+        unit: "periods",
+        ty: ViewType::Int {
+            min: 1,
+            max: MAX_RECORD,
+        },
+        description: "recorded mesh periods per map cell (regime and period detection)",
+    },
+    ViewKey {
+        name: "lyap_points",
+        unit: "-",
+        ty: ViewType::Int {
+            min: 0,
+            max: MAX_LYAP_POINTS,
+        },
+        description: "Omega points of the largest Lyapunov exponent under the bifurcation diagram (0 = off)",
+    },
+    ViewKey {
+        name: "lyap_transient_periods",
+        unit: "periods",
+        ty: ViewType::Int {
+            min: 0,
+            max: MAX_TRANSIENT,
+        },
+        description: "transient mesh periods before the Lyapunov exponent is measured (ends early once settled)",
+    },
+    ViewKey {
+        name: "lyap_periods",
+        unit: "periods",
+        ty: ViewType::Int {
+            min: 10,
+            max: MAX_RECORD,
+        },
+        description: "mesh periods over which the Lyapunov exponent is averaged",
+    },
 ];
 
 /// Looks up a view key.
@@ -220,6 +323,26 @@ pub struct ViewOptions {
     pub record_periods: u32,
     /// HBM harmonics.
     pub harmonics: u32,
+    /// The key of the map's rows (`backlash_um` or `te_um`).
+    pub map_key: String,
+    /// Bottom row's value (um).
+    pub map_from: f64,
+    /// Top row's value (um).
+    pub map_to: f64,
+    /// Omega columns of the map.
+    pub map_omega_points: u32,
+    /// Rows of the map.
+    pub map_value_points: u32,
+    /// Maximum transient periods per map cell.
+    pub map_transient_periods: u32,
+    /// Recorded periods per map cell.
+    pub map_record_periods: u32,
+    /// Omega points of the Lyapunov curve (0: off).
+    pub lyap_points: u32,
+    /// Transient periods before each exponent.
+    pub lyap_transient_periods: u32,
+    /// Periods each exponent averages over.
+    pub lyap_periods: u32,
 }
 
 impl Default for ViewOptions {
@@ -237,6 +360,16 @@ impl Default for ViewOptions {
             transient_periods: 300,
             record_periods: 100,
             harmonics: 5,
+            map_key: "backlash_um".into(),
+            map_from: 0.0,
+            map_to: 200.0,
+            map_omega_points: 40,
+            map_value_points: 16,
+            map_transient_periods: 300,
+            map_record_periods: 50,
+            lyap_points: 40,
+            lyap_transient_periods: 150,
+            lyap_periods: 100,
         }
     }
 }
@@ -263,6 +396,16 @@ impl ViewOptions {
             "transient_periods" => self.transient_periods.to_string(),
             "record_periods" => self.record_periods.to_string(),
             "harmonics" => self.harmonics.to_string(),
+            "map_key" => self.map_key.clone(),
+            "map_from" => fmt_exact(self.map_from),
+            "map_to" => fmt_exact(self.map_to),
+            "map_omega_points" => self.map_omega_points.to_string(),
+            "map_value_points" => self.map_value_points.to_string(),
+            "map_transient_periods" => self.map_transient_periods.to_string(),
+            "map_record_periods" => self.map_record_periods.to_string(),
+            "lyap_points" => self.lyap_points.to_string(),
+            "lyap_transient_periods" => self.lyap_transient_periods.to_string(),
+            "lyap_periods" => self.lyap_periods.to_string(),
             _ => return None,
         })
     }
@@ -270,7 +413,7 @@ impl ViewOptions {
     /// The value of a numeric view key.
     pub fn get_num(&self, name: &str) -> Option<f64> {
         match name {
-            "mesh" | "bif_dir" => None,
+            "mesh" | "bif_dir" | "map_key" => None,
             _ => self.get(name)?.parse().ok(),
         }
     }
@@ -299,6 +442,8 @@ impl ViewOptions {
                     "omega" => self.omega = x,
                     "omega_from" => self.omega_from = x,
                     "omega_to" => self.omega_to = x,
+                    "map_from" => self.map_from = x,
+                    "map_to" => self.map_to = x,
                     _ => return Err(bad()),
                 }
             }
@@ -320,12 +465,23 @@ impl ViewOptions {
                     "transient_periods" => self.transient_periods = n,
                     "record_periods" => self.record_periods = n,
                     "harmonics" => self.harmonics = n,
+                    "map_omega_points" => self.map_omega_points = n,
+                    "map_value_points" => self.map_value_points = n,
+                    "map_transient_periods" => self.map_transient_periods = n,
+                    "map_record_periods" => self.map_record_periods = n,
+                    "lyap_points" => self.lyap_points = n,
+                    "lyap_transient_periods" => self.lyap_transient_periods = n,
+                    "lyap_periods" => self.lyap_periods = n,
                     _ => return Err(bad()),
                 }
             }
-            ViewType::Choice(_) => {
-                self.bif_dir = Directions::from_name(text).ok_or_else(bad)?;
-            }
+            ViewType::Choice(words) => match name {
+                "bif_dir" => self.bif_dir = Directions::from_name(text).ok_or_else(bad)?,
+                _ => {
+                    let w = words.iter().find(|w| **w == text).ok_or_else(bad)?;
+                    self.map_key = (*w).to_string();
+                }
+            },
             ViewType::Mesh => {
                 if text == "worst" {
                     self.mesh = MeshSel::Worst;
@@ -356,6 +512,16 @@ impl ViewOptions {
             let d = ViewOptions::default();
             self.omega_from = d.omega_from;
             self.omega_to = d.omega_to;
+            return Some(msg);
+        }
+        if self.map_to <= self.map_from {
+            let (lo, hi) = map_default_range(&self.map_key);
+            let msg = format!(
+                "map_from = {} must be below map_to = {}; the map's range was reset to {lo} ..= {hi}",
+                self.map_from, self.map_to
+            );
+            self.map_from = lo;
+            self.map_to = hi;
             return Some(msg);
         }
         None
@@ -411,6 +577,16 @@ mod tests {
             ("transient_periods", "500"),
             ("record_periods", "64"),
             ("harmonics", "7"),
+            ("map_key", "te_um"),
+            ("map_from", "5.5"),
+            ("map_to", "80"),
+            ("map_omega_points", "200"),
+            ("map_value_points", "100"),
+            ("map_transient_periods", "300"),
+            ("map_record_periods", "100"),
+            ("lyap_points", "0"),
+            ("lyap_transient_periods", "250"),
+            ("lyap_periods", "200"),
         ] {
             v.set(k, t, &meshes).unwrap();
             assert_eq!(v.get(k).unwrap(), t, "{k}");
@@ -432,5 +608,14 @@ mod tests {
         v.omega_to = 1.0;
         assert!(v.check_range().is_some());
         assert!(v.omega_from < v.omega_to);
+        // The map's caps and its own range rule.
+        assert!(v.set("map_omega_points", "201", &[]).is_err());
+        assert!(v.set("map_value_points", "101", &[]).is_err());
+        assert!(v.set("map_key", "damping_ratio", &[]).is_err());
+        v.map_from = 50.0;
+        v.map_to = 10.0;
+        let e = v.check_range().unwrap();
+        assert!(e.contains("map_from"), "{e}");
+        assert_eq!((v.map_from, v.map_to), (0.0, 200.0));
     }
 }

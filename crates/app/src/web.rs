@@ -105,6 +105,9 @@ pub fn start_worker() {
 // ---------------------------------------------------------------- page
 
 const VIEWS: [&str; 6] = ["fr", "bif", "phase", "poincare", "time", "spectrum"];
+/// Canvases drawn from the controller's state: the six views, the map (6)
+/// and the Lyapunov curve (7).
+const DRAWN: usize = 8;
 
 struct Page {
     ctl: Controller,
@@ -113,15 +116,17 @@ struct Page {
     workers: Vec<Worker>,
     fr_frame: Option<PlotFrame>,
     bif_frame: Option<PlotFrame>,
+    map_frame: Option<PlotFrame>,
+    lyap_frame: Option<PlotFrame>,
     pending: Vec<(String, String)>,
     pending_omega: Option<f64>,
     frame_requested: bool,
     last_query: String,
-    draws: [u32; 6],
-    last_draw_ms: [f64; 6],
-    max_draw_ms: [f64; 6],
-    first_draw_ms: [f64; 6],
-    need: [bool; 6],
+    draws: [u32; DRAWN],
+    last_draw_ms: [f64; DRAWN],
+    max_draw_ms: [f64; DRAWN],
+    first_draw_ms: [f64; DRAWN],
+    need: [bool; DRAWN],
     last_input_ms: f64,
     dragging: bool,
 }
@@ -179,15 +184,17 @@ pub fn start_app() {
         workers: Vec::new(),
         fr_frame: None,
         bif_frame: None,
+        map_frame: None,
+        lyap_frame: None,
         pending: Vec::new(),
         pending_omega: None,
         frame_requested: false,
         last_query: String::new(),
-        draws: [0; 6],
-        last_draw_ms: [0.0; 6],
-        max_draw_ms: [0.0; 6],
-        first_draw_ms: [0.0; 6],
-        need: [false; 6],
+        draws: [0; DRAWN],
+        last_draw_ms: [0.0; DRAWN],
+        max_draw_ms: [0.0; DRAWN],
+        first_draw_ms: [0.0; DRAWN],
+        need: [false; DRAWN],
         last_input_ms: 0.0,
         dragging: false,
     }));
@@ -341,7 +348,7 @@ const FRAME_BUDGET_MS: f64 = 8.0;
 const RUNNING_REDRAW_MS: f64 = 150.0;
 /// The order in which dirty views are drawn: the views a slider drag
 /// watches first.
-const DRAW_ORDER: [usize; 6] = [0, 2, 1, 3, 4, 5];
+const DRAW_ORDER: [usize; DRAWN] = [0, 2, 1, 3, 4, 5, 7, 6];
 
 fn draw_dirty(page: &Shared, p: &mut Page) {
     let t0 = now(&p.window);
@@ -365,6 +372,12 @@ fn draw_dirty(page: &Shared, p: &mut Page) {
         }
         refresh_summary(p);
     }
+    if d.map {
+        p.need[6] = true;
+    }
+    if d.lyap {
+        p.need[7] = true;
+    }
     for k in DRAW_ORDER {
         if !p.need[k] {
             continue;
@@ -376,6 +389,8 @@ fn draw_dirty(page: &Shared, p: &mut Page) {
         let running = match k {
             0 => p.ctl.fr_status.running(),
             1 => p.ctl.bif_status.running(),
+            6 => p.ctl.map_status.running(),
+            7 => p.ctl.lyap_status.running(),
             _ => false,
         };
         // Progressive views: throttle redraws while points stream in.
@@ -386,6 +401,8 @@ fn draw_dirty(page: &Shared, p: &mut Page) {
         match k {
             0 => draw_fr(p),
             1 => draw_bif(p),
+            6 => draw_map(p),
+            7 => draw_lyap(p),
             _ => draw_omega_view(p, k - 2),
         }
         let end = now(&p.window);
@@ -531,6 +548,78 @@ fn draw_bif(p: &mut Page) {
     report_draw_error(p, r);
 }
 
+fn draw_map(p: &mut Page) {
+    let Some(b) = backend(&p.doc, "map") else {
+        return;
+    };
+    let root = b.into_drawing_area();
+    let st = p.ctl.map_status.clone();
+    let r = if p.ctl.map.done == 0 && (st.error.is_some() || p.ctl.map.grid.is_none()) {
+        let msg = st.error.as_ref().map_or_else(
+            || "Waiting for the Web Workers…".to_string(),
+            |e| format!("Not computed: {e}"),
+        );
+        plots::draw_message(&root, "Impact-regime map", &msg)
+    } else {
+        let suffix = if st.running() {
+            format!(" (computing {}/{} cells)", st.done, st.total)
+        } else {
+            String::new()
+        };
+        crate::plots_maps::draw_map(&root, &p.ctl.map_view(), &suffix).map(|f| {
+            p.map_frame = Some(f);
+        })
+    };
+    let (by, not_p1, failed) = p.ctl.map.counts();
+    let mut note = format!(
+        "{} of {} cells: {} no impact, {} single-sided, {} double-sided, {} no contact; {} not period 1",
+        p.ctl.map.done, st.total, by[0], by[1], by[2], by[3], not_p1
+    );
+    if failed > 0 {
+        note.push_str(&format!("; {failed} failed"));
+    }
+    note.push_str(". Click a cell to set both parameters.");
+    set_text(&p.doc, "note-map", &note);
+    report_draw_error(p, r);
+}
+
+fn draw_lyap(p: &mut Page) {
+    let Some(b) = backend(&p.doc, "lyap") else {
+        return;
+    };
+    let root = b.into_drawing_area();
+    let st = p.ctl.lyap_status.clone();
+    let v = &p.ctl.settings.view;
+    let r = if p.ctl.lyap.id == 0 {
+        p.lyap_frame = None;
+        plots::draw_message(
+            &root,
+            "Largest Lyapunov exponent",
+            "Off: set Lyapunov Ω points above 0 (Regime map and Lyapunov exponent).",
+        )
+    } else if let (Some(e), true) = (&st.error, p.ctl.lyap.points.is_empty()) {
+        plots::draw_message(
+            &root,
+            "Largest Lyapunov exponent",
+            &format!("Not computed: {e}"),
+        )
+    } else {
+        let natural = p.ctl.view_context().natural;
+        crate::plots_maps::draw_lyap(
+            &root,
+            &p.ctl.lyap,
+            (v.omega_from, v.omega_to),
+            &natural,
+            v.omega,
+            &status_suffix(&st),
+        )
+        .map(|f| {
+            p.lyap_frame = Some(f);
+        })
+    };
+    report_draw_error(p, r);
+}
+
 fn draw_omega_view(p: &mut Page, only: usize) {
     let st = p.ctl.omega_status.clone();
     let titles = [
@@ -636,9 +725,13 @@ fn update_progress(page: &Shared) {
     let fr = p.ctl.fr_status.progress(t);
     let bif = p.ctl.bif_status.progress(t);
     let om = p.ctl.omega_status.progress(t);
+    let map = p.ctl.map_status.progress(t);
+    let lyap = p.ctl.lyap_status.progress(t);
     for (view, prog) in [
         ("fr", fr),
         ("bif", bif),
+        ("map", map),
+        ("lyap", lyap),
         ("phase", om),
         ("poincare", om),
         ("time", om),
@@ -661,8 +754,10 @@ fn update_progress(page: &Shared) {
                 if let Ok(Some(label)) = el.query_selector(".label") {
                     let text = if view == "fr" {
                         format!("harmonic balance: {done}% of the Ω range")
-                    } else if view == "bif" {
+                    } else if view == "bif" || view == "lyap" {
                         format!("computing {done}/{total} points")
+                    } else if view == "map" {
+                        format!("computing {done}/{total} cells")
                     } else {
                         "computing…".into()
                     };
@@ -672,7 +767,7 @@ fn update_progress(page: &Shared) {
             None => el.set_hidden(true),
         }
     }
-    let busy = [fr, bif, om].iter().any(Option::is_some);
+    let busy = [fr, bif, om, map, lyap].iter().any(Option::is_some);
     set_text(
         &p.doc,
         "status",
@@ -1042,6 +1137,22 @@ fn build_exports(page: &Shared) {
             }
         }
     }
+    for view in ["map", "lyap"] {
+        let Some(bar) = doc.get_element_by_id(&format!("exports-{view}")) else {
+            continue;
+        };
+        if let Some(b) = add_button(&doc, &bar, "PNG", "Save this plot as a PNG image") {
+            let page2 = page.clone();
+            listen(&b.into(), "click", move |_e: Event| {
+                let doc = page2.borrow().doc.clone();
+                if let Some(cv) = canvas(&doc, view) {
+                    if let Ok(url) = cv.to_data_url() {
+                        download_url(&doc, &format!("gearshock-{view}.png"), &url);
+                    }
+                }
+            });
+        }
+    }
     if let Some(sec) = doc.get_element_by_id("export-cli") {
         if let Some(b) = add_button(
             &doc,
@@ -1147,7 +1258,32 @@ fn canvas_px(cv: &HtmlCanvasElement, e: &MouseEvent) -> f64 {
 
 fn build_canvas_events(page: &Shared) {
     let doc = page.borrow().doc.clone();
-    for view in ["fr", "bif"] {
+    if let Some(cv) = canvas(&doc, "map") {
+        let page2 = page.clone();
+        let cv2 = cv.clone();
+        listen(&cv.into(), "click", move |e: MouseEvent| {
+            let css_w = f64::from(cv2.client_width().max(1));
+            let css_h = f64::from(cv2.client_height().max(1));
+            let px = f64::from(e.offset_x()) * f64::from(cv2.width()) / css_w;
+            let py = f64::from(e.offset_y()) * f64::from(cv2.height()) / css_h;
+            let fx = {
+                let mut p = page2.borrow_mut();
+                let t = now(&p.window);
+                let at = p.map_frame.and_then(|f| f.point_at(px, py));
+                match at.map(|q| p.ctl.pick_map_point(q.x, q.y, t)) {
+                    Some(Ok(fx)) => fx,
+                    Some(Err(msg)) => {
+                        set_text(&p.doc, "status", &msg);
+                        Vec::new()
+                    }
+                    None => Vec::new(),
+                }
+            };
+            run_effects(&page2, fx);
+            request_frame(&page2);
+        });
+    }
+    for view in ["fr", "bif", "lyap"] {
         let Some(cv) = canvas(&doc, view) else {
             continue;
         };
@@ -1158,10 +1294,10 @@ fn build_canvas_events(page: &Shared) {
                 let x = canvas_px(&cv, e);
                 let omega = {
                     let p = page.borrow();
-                    let frame = if view == "fr" {
-                        p.fr_frame
-                    } else {
-                        p.bif_frame
+                    let frame = match view {
+                        "fr" => p.fr_frame,
+                        "bif" => p.bif_frame,
+                        _ => p.lyap_frame,
                     };
                     frame.and_then(|f| f.x_at(x))
                 };
@@ -1229,6 +1365,21 @@ fn expose_status(page: &Shared) {
             o.insert("first_draw_ms".into(), serde_json::json!(p.first_draw_ms));
             o.insert("last_input_ms".into(), serde_json::json!(p.last_input_ms));
             o.insert("now_ms".into(), serde_json::json!(t));
+            let frame_json = |f: Option<PlotFrame>| {
+                serde_json::json!(f.map(|f| [
+                    f.top_left.x,
+                    f.top_left.y,
+                    f.bottom_right.x,
+                    f.bottom_right.y,
+                    f.x_range.0,
+                    f.x_range.1,
+                    f.y_range.0,
+                    f.y_range.1
+                ]))
+            };
+            o.insert("map_frame".into(), frame_json(p.map_frame));
+            o.insert("lyap_frame".into(), frame_json(p.lyap_frame));
+            o.insert("bif_frame".into(), frame_json(p.bif_frame));
             o.insert(
                 "fr_frame".into(),
                 serde_json::json!(p.fr_frame.map(|f| [

@@ -11,16 +11,19 @@
 //! The selected-Omega job is served first, so the views at the selected
 //! Omega update even while a long sweep runs; then the harmonic-balance
 //! branch of the frequency response (the view a slider drag watches, and the
-//! quickest sweep); the time-integration overlay grid and the bifurcation
-//! sweep then take turns, one steady state each.
+//! quickest sweep); the time-integration overlay grid, the bifurcation
+//! sweep, the impact-regime map and the Lyapunov curve then take turns, one
+//! steady state (map cell, Lyapunov point) each.
 
 use crate::protocol::{
     encode, BifMesh, BifSample, FrSample, FromWorker, HbmMesh, HbmSample, JobId, JobKind, JobSpec,
-    MeshExtremes, MeshSummary, OmegaResult, Regime, RunOptions, ToWorker,
+    LyapSample, MapSample, MeshExtremes, MeshSummary, OmegaResult, Regime, RunOptions, ToWorker,
 };
 use serde_json::{Map, Value};
 use solver::hbm::{BranchPoint, FrfContinuation, FrfSpec};
 use solver::keys;
+use solver::lyapunov::{largest_exponent, LyapunovOptions};
+use solver::map::{MapSpec, RegimeMap};
 use solver::params::ModelParams;
 use solver::report;
 use solver::steady::{spectrum, steady_state, Model, SteadyOptions, SteadyState};
@@ -66,6 +69,23 @@ struct BifJob {
     points: Vec<SweepPoint>,
 }
 
+/// A share of an impact-regime map in progress.
+struct MapJob {
+    id: JobId,
+    map: RegimeMap,
+}
+
+/// A chain of the Lyapunov curve in progress.
+struct LyapJob {
+    id: JobId,
+    model: Model,
+    omegas: Vec<(u32, f64)>,
+    next: usize,
+    transient_periods: u32,
+    periods: u32,
+    state: Option<Vec<f64>>,
+}
+
 /// The worker's state: at most one job of each kind.
 #[derive(Default)]
 pub struct WorkerCore {
@@ -74,7 +94,9 @@ pub struct WorkerCore {
     fr: Option<FrJob>,
     bif: Option<BifJob>,
     finished_bif: Option<BifJob>,
-    bif_turn: bool,
+    map: Option<MapJob>,
+    lyap: Option<LyapJob>,
+    turn: usize,
 }
 
 fn failed(id: JobId, message: impl Into<String>) -> FromWorker {
@@ -103,7 +125,12 @@ impl WorkerCore {
 
     /// Whether a job waits for [`Self::step`].
     pub fn has_work(&self) -> bool {
-        self.omega.is_some() || self.hbm.is_some() || self.fr.is_some() || self.bif.is_some()
+        self.omega.is_some()
+            || self.hbm.is_some()
+            || self.fr.is_some()
+            || self.bif.is_some()
+            || self.map.is_some()
+            || self.lyap.is_some()
     }
 
     /// Handles one message from the page (JSON text).
@@ -128,6 +155,8 @@ impl WorkerCore {
             JobKind::Hbm => self.hbm = None,
             JobKind::Fr => self.fr = None,
             JobKind::Bif => self.bif = None,
+            JobKind::Map => self.map = None,
+            JobKind::Lyap => self.lyap = None,
         }
     }
 
@@ -244,6 +273,71 @@ impl WorkerCore {
                     Err(e) => vec![failed(id, e.to_string())],
                 }
             }
+            JobSpec::Map {
+                key,
+                omega_from,
+                omega_to,
+                omega_points,
+                value_from,
+                value_to,
+                value_points,
+                mesh,
+                shards,
+                shard,
+                run,
+            } => {
+                let mut spec = MapSpec::new(
+                    (omega_from, omega_to, omega_points),
+                    &key,
+                    (value_from, value_to, value_points),
+                );
+                spec.steady.transient_periods = run.transient_periods;
+                spec.steady.record_periods = run.record_periods;
+                spec.mesh = mesh;
+                spec.shard = Some((shard, shards));
+                match RegimeMap::new(&params, spec) {
+                    Ok(map) => {
+                        let total = map.total();
+                        self.map = Some(MapJob { id, map });
+                        vec![FromWorker::Progress { id, done: 0, total }]
+                    }
+                    Err(e) => vec![failed(id, e.to_string())],
+                }
+            }
+            JobSpec::Lyap {
+                omega_from,
+                omega_to,
+                points,
+                chains,
+                shard,
+                transient_periods,
+                periods,
+            } => {
+                if points < 2
+                    || omega_to.partial_cmp(&omega_from) != Some(std::cmp::Ordering::Greater)
+                {
+                    return vec![failed(
+                        id,
+                        "Lyapunov: at least 2 points over an increasing Omega range",
+                    )];
+                }
+                let step = (omega_to - omega_from) / f64::from(points - 1);
+                let omegas: Vec<(u32, f64)> = (shard..points)
+                    .step_by(chains.max(1) as usize)
+                    .map(|i| (i, omega_from + step * f64::from(i)))
+                    .collect();
+                let total = omegas.len();
+                self.lyap = Some(LyapJob {
+                    id,
+                    model,
+                    omegas,
+                    next: 0,
+                    transient_periods,
+                    periods,
+                    state: None,
+                });
+                vec![FromWorker::Progress { id, done: 0, total }]
+            }
         }
     }
 
@@ -259,54 +353,139 @@ impl WorkerCore {
             }
             return vec![msg];
         }
-        // The two sweeps take turns, so both diagrams fill in together and
-        // the bifurcation diagram's first points come early.
-        self.bif_turn = !self.bif_turn;
-        let fr_first = !(self.bif_turn && self.bif.is_some());
-        if let Some(job) = self.fr.as_mut().filter(|_| fr_first) {
-            let mut out = Vec::new();
-            if let Some(&(index, omega)) = job.omegas.get(job.next) {
-                job.next += 1;
-                let sample = fr_point(job, index, omega);
-                out.push(FromWorker::FrPoints {
-                    id: job.id,
-                    points: vec![sample],
-                });
-                out.push(FromWorker::Progress {
-                    id: job.id,
-                    done: job.next,
-                    total: job.omegas.len(),
-                });
+        // The sweeps take turns, one bounded chunk each, so every diagram
+        // fills in together and each shows its first points early.
+        for k in 0..4 {
+            let kind = (self.turn + k) % 4;
+            let out = match kind {
+                0 => self.fr_step(),
+                1 => self.bif_step(),
+                2 => self.map_step(),
+                _ => self.lyap_step(),
+            };
+            if let Some(out) = out {
+                self.turn = (kind + 1) % 4;
+                return out;
             }
-            if job.next >= job.omegas.len() {
-                out.push(FromWorker::Done { id: job.id });
-                self.fr = None;
-            }
-            return out;
-        }
-        if let Some(job) = self.bif.as_mut() {
-            let mut out = Vec::new();
-            let pts = job.sweep.advance(1);
-            let samples: Vec<BifSample> = pts.iter().map(|p| bif_sample(&job.sweep, p)).collect();
-            job.points.extend(pts);
-            if !samples.is_empty() {
-                out.push(FromWorker::BifPoints {
-                    id: job.id,
-                    points: samples,
-                });
-            }
-            out.push(FromWorker::Progress {
-                id: job.id,
-                done: job.sweep.done(),
-                total: job.sweep.total(),
-            });
-            if job.sweep.is_finished() {
-                out.push(FromWorker::Done { id: job.id });
-                self.finished_bif = self.bif.take();
-            }
-            return out;
         }
         Vec::new()
+    }
+
+    fn fr_step(&mut self) -> Option<Vec<FromWorker>> {
+        let job = self.fr.as_mut()?;
+        let mut out = Vec::new();
+        if let Some(&(index, omega)) = job.omegas.get(job.next) {
+            job.next += 1;
+            let sample = fr_point(job, index, omega);
+            out.push(FromWorker::FrPoints {
+                id: job.id,
+                points: vec![sample],
+            });
+            out.push(FromWorker::Progress {
+                id: job.id,
+                done: job.next,
+                total: job.omegas.len(),
+            });
+        }
+        if job.next >= job.omegas.len() {
+            out.push(FromWorker::Done { id: job.id });
+            self.fr = None;
+        }
+        Some(out)
+    }
+
+    fn bif_step(&mut self) -> Option<Vec<FromWorker>> {
+        let job = self.bif.as_mut()?;
+        let mut out = Vec::new();
+        let pts = job.sweep.advance(1);
+        let samples: Vec<BifSample> = pts.iter().map(|p| bif_sample(&job.sweep, p)).collect();
+        job.points.extend(pts);
+        if !samples.is_empty() {
+            out.push(FromWorker::BifPoints {
+                id: job.id,
+                points: samples,
+            });
+        }
+        out.push(FromWorker::Progress {
+            id: job.id,
+            done: job.sweep.done(),
+            total: job.sweep.total(),
+        });
+        if job.sweep.is_finished() {
+            out.push(FromWorker::Done { id: job.id });
+            self.finished_bif = self.bif.take();
+        }
+        Some(out)
+    }
+
+    fn map_step(&mut self) -> Option<Vec<FromWorker>> {
+        let job = self.map.as_mut()?;
+        let mut out = Vec::new();
+        let cells: Vec<MapSample> = job
+            .map
+            .advance(1)
+            .into_iter()
+            .map(|c| MapSample {
+                row: c.row,
+                column: c.column,
+                omega: c.omega,
+                value: c.value,
+                regime: c.impact.into(),
+                period: c.period,
+                error: c.error,
+            })
+            .collect();
+        if !cells.is_empty() {
+            out.push(FromWorker::MapCells { id: job.id, cells });
+        }
+        if job.map.is_finished() {
+            out.push(FromWorker::Done { id: job.id });
+            self.map = None;
+        }
+        Some(out)
+    }
+
+    fn lyap_step(&mut self) -> Option<Vec<FromWorker>> {
+        let job = self.lyap.as_mut()?;
+        let mut out = Vec::new();
+        if let Some(&(index, omega)) = job.omegas.get(job.next) {
+            job.next += 1;
+            let mut opts = LyapunovOptions::new(omega);
+            opts.transient_periods = job.transient_periods;
+            opts.periods = job.periods;
+            let sample = match largest_exponent(&job.model, &opts, job.state.as_deref()) {
+                Ok(l) => {
+                    job.state = Some(l.end_state);
+                    LyapSample {
+                        index,
+                        omega,
+                        per_period: Some(l.per_period),
+                        per_s: Some(l.per_s),
+                        error: None,
+                    }
+                }
+                Err(e) => {
+                    // The chain restarts from the static equilibrium.
+                    job.state = None;
+                    LyapSample {
+                        index,
+                        omega,
+                        per_period: None,
+                        per_s: None,
+                        error: Some(e.to_string()),
+                    }
+                }
+            };
+            out.push(FromWorker::LyapPoints {
+                id: job.id,
+                points: vec![sample],
+            });
+        }
+        if job.next >= job.omegas.len() {
+            out.push(FromWorker::Done { id: job.id });
+            self.lyap = None;
+        }
+        Some(out)
     }
 
     fn export_bif(&self, id: JobId, mesh: Option<usize>, other: &[String]) -> FromWorker {
@@ -608,6 +787,67 @@ mod tests {
             guard += 1;
         }
         out
+    }
+
+    #[test]
+    fn map_and_lyapunov_jobs_share_the_worker_and_cover_their_shares() {
+        let mut core = WorkerCore::new();
+        let p = ModelParams::defaults(solver::ModelKind::GearPair);
+        core.handle(&run_msg(
+            3,
+            &p,
+            JobSpec::Map {
+                key: "backlash_um".into(),
+                omega_from: 0.5,
+                omega_to: 1.5,
+                omega_points: 3,
+                value_from: 0.0,
+                value_to: 100.0,
+                value_points: 3,
+                mesh: None,
+                shards: 2,
+                shard: 1,
+                run: quick(),
+            },
+        ));
+        core.handle(&run_msg(
+            4,
+            &p,
+            JobSpec::Lyap {
+                omega_from: 0.5,
+                omega_to: 1.5,
+                points: 3,
+                chains: 1,
+                shard: 0,
+                transient_periods: 20,
+                periods: 20,
+            },
+        ));
+        let out = drain(&mut core);
+        let cells: Vec<(u32, u32)> = out
+            .iter()
+            .flat_map(|m| match m {
+                FromWorker::MapCells { id: 3, cells } => {
+                    cells.iter().map(|c| (c.row, c.column)).collect()
+                }
+                _ => Vec::new(),
+            })
+            .collect();
+        // Shard 1 of 2 over 3 rows is row 1 only.
+        assert_eq!(cells, vec![(1, 0), (1, 1), (1, 2)]);
+        let lyap: Vec<f64> = out
+            .iter()
+            .flat_map(|m| match m {
+                FromWorker::LyapPoints { id: 4, points } => {
+                    points.iter().filter_map(|p| p.per_period).collect()
+                }
+                _ => Vec::new(),
+            })
+            .collect();
+        assert_eq!(lyap.len(), 3);
+        assert!(lyap.iter().all(|l| l.is_finite()));
+        assert!(out.iter().any(|m| matches!(m, FromWorker::Done { id: 3 })));
+        assert!(out.iter().any(|m| matches!(m, FromWorker::Done { id: 4 })));
     }
 
     #[test]

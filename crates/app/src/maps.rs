@@ -1,0 +1,346 @@
+//! The impact-regime map (view 7) and the Lyapunov curve under the
+//! bifurcation diagram: the grids, the stores that collect the workers'
+//! cells and points, and what the plots draw.
+//!
+//! A map is a grid of Omega columns (the page's frequency range) and rows of
+//! one parameter (`backlash_um` or `te_um`); rows are computed by the
+//! workers in shares (`solver::map`), so cells arrive row by row from every
+//! worker at once. A click on a cell is turned back into that cell's two
+//! values by [`MapGrid::cell_at`].
+
+use crate::protocol::{LyapSample, MapSample, Regime};
+use serde::Serialize;
+
+/// The grid of a map: what the job computes and the plot shows.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MapGrid {
+    /// The rows' key.
+    pub key: String,
+    /// Omega of column 0.
+    pub omega_from: f64,
+    /// Omega of the last column.
+    pub omega_to: f64,
+    /// Columns.
+    pub omega_points: u32,
+    /// The key's value on row 0 (um).
+    pub value_from: f64,
+    /// Its value on the last row (um).
+    pub value_to: f64,
+    /// Rows.
+    pub value_points: u32,
+}
+
+impl MapGrid {
+    /// Omega of column `c` (as `solver::map::MapSpec::omega`).
+    pub fn omega(&self, c: u32) -> f64 {
+        self.omega_from
+            + (self.omega_to - self.omega_from) * f64::from(c)
+                / f64::from(self.omega_points.max(2) - 1)
+    }
+
+    /// The key's value on row `r` (as `solver::map::MapSpec::value`).
+    pub fn value(&self, r: u32) -> f64 {
+        if self.value_points <= 1 {
+            return self.value_from;
+        }
+        self.value_from
+            + (self.value_to - self.value_from) * f64::from(r) / f64::from(self.value_points - 1)
+    }
+
+    /// Width of a column in Omega.
+    pub fn omega_step(&self) -> f64 {
+        (self.omega_to - self.omega_from) / f64::from(self.omega_points.max(2) - 1)
+    }
+
+    /// Height of a row in the key's unit (a single row spans the range).
+    pub fn value_step(&self) -> f64 {
+        if self.value_points <= 1 {
+            (self.value_to - self.value_from).abs().max(1.0)
+        } else {
+            (self.value_to - self.value_from) / f64::from(self.value_points - 1)
+        }
+    }
+
+    /// The plotted Omega range: the cells' outer edges.
+    pub fn x_range(&self) -> (f64, f64) {
+        let h = 0.5 * self.omega_step();
+        (self.omega_from - h, self.omega_to + h)
+    }
+
+    /// The plotted value range: the cells' outer edges.
+    pub fn y_range(&self) -> (f64, f64) {
+        let h = 0.5 * self.value_step();
+        (
+            self.value(0) - h,
+            self.value(self.value_points.max(1) - 1) + h,
+        )
+    }
+
+    /// Cells in all.
+    pub fn cells(&self) -> usize {
+        self.omega_points as usize * self.value_points as usize
+    }
+
+    /// The cell `(row, column)` containing the point `(omega, value)`, or
+    /// `None` outside the map.
+    pub fn cell_at(&self, omega: f64, value: f64) -> Option<(u32, u32)> {
+        let (x0, x1) = self.x_range();
+        let (y0, y1) = self.y_range();
+        if !(omega.is_finite() && value.is_finite() && omega >= x0 && omega <= x1) {
+            return None;
+        }
+        if !(value >= y0.min(y1) && value <= y0.max(y1)) {
+            return None;
+        }
+        let c = ((omega - self.omega_from) / self.omega_step()).round();
+        let r = if self.value_points <= 1 {
+            0.0
+        } else {
+            ((value - self.value_from) / self.value_step()).round()
+        };
+        let c = c.clamp(0.0, f64::from(self.omega_points - 1)) as u32;
+        let r = r.clamp(0.0, f64::from(self.value_points.max(1) - 1)) as u32;
+        Some((r, c))
+    }
+
+    /// The axis label of the rows.
+    pub fn key_label(&self) -> &'static str {
+        key_label(&self.key)
+    }
+}
+
+/// The axis label of a map key.
+pub fn key_label(key: &str) -> &'static str {
+    match key {
+        "te_um" => "TE sine amplitude on the s1a meshes (µm)",
+        _ => "backlash b, all meshes (µm)",
+    }
+}
+
+/// Map cells as they arrive, for one job.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct MapStore {
+    /// The job (0: none).
+    pub id: u64,
+    /// Its grid.
+    pub grid: Option<MapGrid>,
+    /// Cells, row-major (`row * omega_points + column`).
+    pub cells: Vec<Option<MapSample>>,
+    /// Cells received.
+    pub done: usize,
+    /// What the job depends on: a new map is only started when this changes.
+    pub signature: String,
+}
+
+impl MapStore {
+    /// An empty store for a new job.
+    pub fn new(id: u64, grid: MapGrid, signature: String) -> Self {
+        let n = grid.cells();
+        MapStore {
+            id,
+            grid: Some(grid),
+            cells: vec![None; n],
+            done: 0,
+            signature,
+        }
+    }
+
+    /// Adds cells (ignoring any outside the grid or already received).
+    pub fn add(&mut self, cells: Vec<MapSample>) {
+        let Some(g) = &self.grid else { return };
+        for c in cells {
+            if c.row >= g.value_points || c.column >= g.omega_points {
+                continue;
+            }
+            let k = c.row as usize * g.omega_points as usize + c.column as usize;
+            if let Some(slot) = self.cells.get_mut(k) {
+                if slot.is_none() {
+                    self.done += 1;
+                }
+                *slot = Some(c);
+            }
+        }
+    }
+
+    /// The received cell at `(row, column)`.
+    pub fn cell(&self, row: u32, column: u32) -> Option<&MapSample> {
+        let g = self.grid.as_ref()?;
+        let k = row as usize * g.omega_points as usize + column as usize;
+        self.cells.get(k)?.as_ref()
+    }
+
+    /// Counts of each regime among the received cells (in [`Regime::ALL`]
+    /// order), of cells that are not period 1, and of failed cells.
+    pub fn counts(&self) -> ([usize; 4], usize, usize) {
+        let mut by = [0; 4];
+        let (mut not_p1, mut failed) = (0, 0);
+        for c in self.cells.iter().flatten() {
+            if c.error.is_some() {
+                failed += 1;
+                continue;
+            }
+            if let Some(i) = Regime::ALL.iter().position(|&r| r == c.regime) {
+                by[i] += 1;
+            }
+            if c.period != Some(1) {
+                not_p1 += 1;
+            }
+        }
+        (by, not_p1, failed)
+    }
+}
+
+/// What the map plot draws.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MapView<'a> {
+    /// The grid and its cells.
+    pub store: &'a MapStore,
+    /// The mapped mesh in words.
+    pub mesh_label: String,
+    /// The page's selected Omega and the key's current value (the cursor).
+    pub selected: (f64, Option<f64>),
+}
+
+/// Lyapunov points as they arrive from both chains, for one job.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct LyapStore {
+    /// The job (0: none, or the curve is off).
+    pub id: u64,
+    /// Points in arrival order.
+    pub points: Vec<LyapSample>,
+    /// Points in all.
+    pub total: usize,
+    /// Periods each exponent averages over.
+    pub periods: u32,
+}
+
+impl LyapStore {
+    /// An empty store for a new job.
+    pub fn new(id: u64, total: usize, periods: u32) -> Self {
+        LyapStore {
+            id,
+            points: Vec::new(),
+            total,
+            periods,
+        }
+    }
+
+    /// The computed exponents per mesh period, sorted by Omega.
+    pub fn curve(&self) -> Vec<(f64, f64)> {
+        let mut v: Vec<(f64, f64)> = self
+            .points
+            .iter()
+            .filter_map(|p| p.per_period.map(|l| (p.omega, l)))
+            .filter(|(_, l)| l.is_finite())
+            .collect();
+        v.sort_by(|a, b| a.0.total_cmp(&b.0));
+        v
+    }
+
+    /// The failed points (Omega, why).
+    pub fn failed(&self) -> Vec<(f64, String)> {
+        self.points
+            .iter()
+            .filter_map(|p| p.error.as_ref().map(|e| (p.omega, e.clone())))
+            .collect()
+    }
+}
+
+/// How an exponent of the map reads: the band around zero is
+/// [`LYAP_ZERO_BAND`] wide on each side.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LyapKind {
+    /// Negative: a stable periodic response.
+    Periodic,
+    /// About zero: quasi-periodic (or at a bifurcation).
+    Neutral,
+    /// Positive: chaos.
+    Chaotic,
+}
+
+/// Half-width of the band of exponents read as zero (per mesh period): an
+/// average over ~100 periods is not sharper than this.
+pub const LYAP_ZERO_BAND: f64 = 0.01;
+
+/// Reads an exponent per mesh period.
+pub fn lyap_kind(per_period: f64) -> LyapKind {
+    if per_period > LYAP_ZERO_BAND {
+        LyapKind::Chaotic
+    } else if per_period < -LYAP_ZERO_BAND {
+        LyapKind::Periodic
+    } else {
+        LyapKind::Neutral
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn grid() -> MapGrid {
+        MapGrid {
+            key: "backlash_um".into(),
+            omega_from: 0.1,
+            omega_to: 2.0,
+            omega_points: 20,
+            value_from: 0.0,
+            value_to: 150.0,
+            value_points: 16,
+        }
+    }
+
+    #[test]
+    fn every_cell_centre_maps_back_to_its_cell() {
+        let g = grid();
+        for r in 0..g.value_points {
+            for c in 0..g.omega_points {
+                assert_eq!(g.cell_at(g.omega(c), g.value(r)), Some((r, c)));
+                // Anywhere inside the cell, not only its centre.
+                let (dx, dy) = (0.45 * g.omega_step(), 0.45 * g.value_step());
+                assert_eq!(g.cell_at(g.omega(c) + dx, g.value(r) - dy), Some((r, c)));
+            }
+        }
+        assert_eq!(g.value(15), 150.0);
+        assert_eq!(g.omega(19), 2.0);
+        assert_eq!(g.cell_at(2.2, 10.0), None);
+        assert_eq!(g.cell_at(1.0, -20.0), None);
+        assert_eq!(g.cell_at(f64::NAN, 10.0), None);
+        let one = MapGrid {
+            value_points: 1,
+            ..g
+        };
+        assert_eq!(one.cell_at(1.0, 10.0), Some((0, 9)));
+    }
+
+    #[test]
+    fn the_store_counts_regimes_once_per_cell() {
+        let mut s = MapStore::new(7, grid(), "sig".into());
+        let cell = |row, column, regime, period| MapSample {
+            row,
+            column,
+            omega: 0.0,
+            value: 0.0,
+            regime,
+            period,
+            error: None,
+        };
+        s.add(vec![
+            cell(0, 0, Regime::NoImpact, Some(1)),
+            cell(0, 1, Regime::DoubleSided, Some(2)),
+            cell(0, 1, Regime::DoubleSided, Some(2)),
+            cell(99, 0, Regime::NoImpact, Some(1)),
+        ]);
+        assert_eq!(s.done, 2);
+        let (by, not_p1, failed) = s.counts();
+        assert_eq!(by, [1, 0, 1, 0]);
+        assert_eq!((not_p1, failed), (1, 0));
+        assert_eq!(s.cell(0, 1).map(|c| c.period), Some(Some(2)));
+    }
+
+    #[test]
+    fn exponents_read_by_sign() {
+        assert_eq!(lyap_kind(-0.3), LyapKind::Periodic);
+        assert_eq!(lyap_kind(0.001), LyapKind::Neutral);
+        assert_eq!(lyap_kind(0.2), LyapKind::Chaotic);
+    }
+}

@@ -1,0 +1,354 @@
+//! The impact-regime map (view 7) and the Lyapunov curve (under view 2),
+//! drawn with plotters like the other plots.
+//!
+//! The map's cells are filled rectangles in the regime colours of the other
+//! views; a black dot marks a cell whose response is not period 1 (period
+//! 2 or more, or no period found: quasi-periodic or chaotic). Cells not yet
+//! computed are light grey, failed cells dark grey. The Lyapunov curve
+//! shares the bifurcation diagram's Omega axis, margins and label widths, so
+//! its Omega ticks line up with the diagram above it.
+
+use crate::maps::{lyap_kind, LyapKind, LyapStore, MapView, LYAP_ZERO_BAND};
+use crate::plots::{
+    caption_font, err, frame_of, omega_decorations, padded_range, regime_color, small, PlotFrame,
+    Res, GRID,
+};
+use crate::protocol::Regime;
+use crate::views::NaturalFreq;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+/// Height of the map canvas (pixels).
+pub const MAP_HEIGHT: u32 = 460;
+/// Height of the Lyapunov canvas (pixels).
+pub const LYAP_HEIGHT: u32 = 240;
+
+const PENDING: RGBColor = RGBColor(236, 238, 242);
+const FAILED: RGBColor = RGBColor(110, 110, 110);
+const CROSS: RGBColor = RGBColor(0, 0, 0);
+
+/// Draws the map; returns where its cells lie, to map clicks back to cells.
+pub fn draw_map<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    v: &MapView,
+    status: &str,
+) -> Res<PlotFrame> {
+    root.fill(&WHITE).map_err(err)?;
+    let Some(g) = v.store.grid.as_ref() else {
+        return Err("drawing failed: no map grid".into());
+    };
+    let x = g.x_range();
+    let y = g.y_range();
+    let (w, h) = root.dim_in_pixel();
+    // The key sits under the x axis description.
+    let (plot_area, key_area) = root.split_vertically(h as i32 - 40);
+    let mut chart = ChartBuilder::on(&plot_area)
+        .caption(
+            format!("Impact-regime map, {}{status}", v.mesh_label),
+            caption_font(),
+        )
+        .margin(8)
+        .x_label_area_size(44)
+        .y_label_area_size(64)
+        .build_cartesian_2d(x.0..x.1, y.0..y.1)
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc("Ω = ω / ω_ref (dimensionless mesh frequency)")
+        .y_desc(g.key_label())
+        .label_style(small())
+        .axis_desc_style(small())
+        .draw()
+        .map_err(err)?;
+    let (dx, dy) = (0.5 * g.omega_step(), 0.5 * g.value_step());
+    let mut rects = Vec::with_capacity(g.cells());
+    let mut dots = Vec::new();
+    for r in 0..g.value_points {
+        for c in 0..g.omega_points {
+            let (xo, yv) = (g.omega(c), g.value(r));
+            let color = match v.store.cell(r, c) {
+                None => PENDING,
+                Some(cell) if cell.error.is_some() => FAILED,
+                Some(cell) => {
+                    if cell.period != Some(1) {
+                        dots.push((xo, yv));
+                    }
+                    regime_color(cell.regime)
+                }
+            };
+            rects.push(Rectangle::new(
+                [(xo - dx, yv - dy), (xo + dx, yv + dy)],
+                color.filled(),
+            ));
+        }
+    }
+    chart.draw_series(rects).map_err(err)?;
+    let frame = frame_of(&chart, x, y);
+    // Dots scale with the cell so they stay inside it.
+    let cell_px = {
+        let a = frame.to_px(g.omega(0) - dx, g.value(0) - dy);
+        let b = frame.to_px(g.omega(0) + dx, g.value(0) + dy);
+        (b.x - a.x).abs().min((b.y - a.y).abs())
+    };
+    let radius = (cell_px * 0.18).clamp(1.0, 4.0) as i32;
+    chart
+        .draw_series(
+            dots.iter()
+                .map(|&(xo, yv)| Circle::new((xo, yv), radius, CROSS.filled())),
+        )
+        .map_err(err)?;
+    // The cursor: the selected Omega and the current value of the key.
+    let (om, val) = v.selected;
+    if om >= x.0 && om <= x.1 {
+        chart
+            .draw_series(std::iter::once(PathElement::new(
+                vec![(om, y.0), (om, y.1)],
+                ShapeStyle::from(&BLACK.mix(0.7)).stroke_width(1),
+            )))
+            .map_err(err)?;
+    }
+    if let Some(val) = val.filter(|val| *val >= y.0.min(y.1) && *val <= y.0.max(y.1)) {
+        chart
+            .draw_series(std::iter::once(PathElement::new(
+                vec![(x.0, val), (x.1, val)],
+                ShapeStyle::from(&BLACK.mix(0.7)).stroke_width(1),
+            )))
+            .map_err(err)?;
+    }
+    // The key: every regime (so the colours read the same in every map),
+    // the period mark, pending and failed cells, the cursor.
+    let mut items: Vec<(RGBColor, String, bool)> = Regime::ALL
+        .iter()
+        .map(|&r| (regime_color(r), r.label().to_string(), false))
+        .collect();
+    items.push((CROSS, "• not period 1".into(), true));
+    items.push((PENDING, "not computed yet".into(), false));
+    if v.store.counts().2 > 0 {
+        items.push((FAILED, "failed".into(), false));
+    }
+    let font = small();
+    let (mut kx, mut ky) = (12, 4);
+    for (color, text, is_text) in items {
+        let tw = key_area
+            .estimate_text_size(&text, &font)
+            .map_or(8 * text.len() as u32, |(w, _)| w) as i32;
+        if kx + 18 + tw > w as i32 - 8 {
+            kx = 12;
+            ky += 17;
+        }
+        if is_text {
+            key_area
+                .draw(&Text::new(text, (kx, ky), font.clone()))
+                .map_err(err)?;
+            kx += tw + 16;
+        } else {
+            key_area
+                .draw(&Rectangle::new(
+                    [(kx, ky + 1), (kx + 12, ky + 12)],
+                    ShapeStyle::from(&color).filled(),
+                ))
+                .map_err(err)?;
+            key_area
+                .draw(&Rectangle::new(
+                    [(kx, ky + 1), (kx + 12, ky + 12)],
+                    ShapeStyle::from(&GRID).stroke_width(1),
+                ))
+                .map_err(err)?;
+            key_area
+                .draw(&Text::new(text, (kx + 17, ky), font.clone()))
+                .map_err(err)?;
+            kx += 17 + tw + 16;
+        }
+    }
+    root.present().map_err(err)?;
+    Ok(frame)
+}
+
+/// Colour of an exponent's reading.
+pub fn lyap_color(k: LyapKind) -> RGBColor {
+    match k {
+        LyapKind::Periodic => RGBColor(31, 119, 180),
+        LyapKind::Neutral => RGBColor(230, 120, 0),
+        LyapKind::Chaotic => RGBColor(200, 30, 40),
+    }
+}
+
+/// Draws the largest Lyapunov exponent of the Poincaré map over Omega.
+pub fn draw_lyap<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    store: &LyapStore,
+    omega_range: (f64, f64),
+    natural: &[NaturalFreq],
+    selected: f64,
+    status: &str,
+) -> Res<PlotFrame> {
+    root.fill(&WHITE).map_err(err)?;
+    let curve = store.curve();
+    let x = omega_range;
+    let y = padded_range(curve.iter().map(|p| p.1), &[0.0], 0.2);
+    let y = (y.0, y.1 + 0.3 * (y.1 - y.0));
+    let mut chart = ChartBuilder::on(root)
+        .caption(
+            format!(
+                "Largest Lyapunov exponent of the Poincaré map ({} periods each){status}",
+                store.periods
+            ),
+            caption_font(),
+        )
+        .margin(8)
+        .x_label_area_size(44)
+        .y_label_area_size(64)
+        .build_cartesian_2d(x.0..x.1, y.0..y.1)
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .light_line_style(GRID.mix(0.5))
+        .bold_line_style(GRID)
+        .x_desc("Ω = ω / ω_ref (dimensionless mesh frequency)")
+        .y_desc("λ per mesh period (−)")
+        .y_labels(6)
+        .label_style(small())
+        .axis_desc_style(small())
+        .draw()
+        .map_err(err)?;
+    omega_decorations(&mut chart, natural, selected, y, false)?;
+    let zero = ShapeStyle::from(&BLACK).stroke_width(1);
+    chart
+        .draw_series(std::iter::once(PathElement::new(
+            vec![(x.0, 0.0), (x.1, 0.0)],
+            zero,
+        )))
+        .map_err(err)?
+        .label("λ = 0")
+        .legend(move |(px, py)| PathElement::new(vec![(px, py), (px + 16, py)], zero));
+    let band = RGBColor(230, 120, 0).mix(0.12);
+    chart
+        .draw_series(std::iter::once(Rectangle::new(
+            [(x.0, -LYAP_ZERO_BAND), (x.1, LYAP_ZERO_BAND)],
+            band.filled(),
+        )))
+        .map_err(err)?;
+    chart
+        .draw_series(LineSeries::new(
+            curve.iter().copied(),
+            ShapeStyle::from(&RGBColor(120, 120, 130)).stroke_width(1),
+        ))
+        .map_err(err)?;
+    for kind in [LyapKind::Periodic, LyapKind::Neutral, LyapKind::Chaotic] {
+        let c = lyap_color(kind);
+        let pts: Vec<(f64, f64)> = curve
+            .iter()
+            .copied()
+            .filter(|p| lyap_kind(p.1) == kind)
+            .collect();
+        let label = match kind {
+            LyapKind::Periodic => "λ < 0: periodic (stable)",
+            LyapKind::Neutral => "λ ≈ 0: quasi-periodic",
+            LyapKind::Chaotic => "λ > 0: chaotic",
+        };
+        chart
+            .draw_series(pts.iter().map(|&p| Circle::new(p, 3, c.filled())))
+            .map_err(err)?
+            .label(label)
+            .legend(move |(px, py)| Circle::new((px + 8, py), 3, c.filled()));
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .background_style(WHITE.mix(0.85))
+        .border_style(GRID)
+        .margin(4)
+        .legend_area_size(20)
+        .label_font(("sans-serif", 11))
+        .draw()
+        .map_err(err)?;
+    let failed = store.failed();
+    if !failed.is_empty() {
+        root.draw(&Text::new(
+            format!("{} point(s) failed: not plotted", failed.len()),
+            (70, LYAP_HEIGHT as i32 - 60),
+            small(),
+        ))
+        .map_err(err)?;
+    }
+    let frame = frame_of(&chart, x, y);
+    root.present().map_err(err)?;
+    Ok(frame)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::maps::{MapGrid, MapStore};
+    use crate::plots::WIDTH;
+    use crate::protocol::{LyapSample, MapSample};
+
+    #[test]
+    fn the_map_and_the_lyapunov_curve_draw_with_labelled_axes() {
+        let grid = MapGrid {
+            key: "te_um".into(),
+            omega_from: 0.1,
+            omega_to: 2.0,
+            omega_points: 5,
+            value_from: 0.0,
+            value_to: 60.0,
+            value_points: 3,
+        };
+        let mut store = MapStore::new(1, grid, String::new());
+        store.add(vec![MapSample {
+            row: 1,
+            column: 2,
+            omega: 1.05,
+            value: 30.0,
+            regime: Regime::DoubleSided,
+            period: None,
+            error: None,
+        }]);
+        let view = MapView {
+            store: &store,
+            mesh_label: "mesh s1a1".into(),
+            selected: (1.05, Some(30.0)),
+        };
+        let mut s = String::new();
+        let frame = {
+            let root = SVGBackend::with_string(&mut s, (WIDTH, MAP_HEIGHT)).into_drawing_area();
+            draw_map(&root, &view, "").unwrap()
+        };
+        assert!(s.contains("TE sine amplitude"), "axis label");
+        assert!(s.contains("not period 1") && s.contains("double-sided impact"));
+        // The frame maps the centre of the computed cell back to it.
+        let px = frame.to_px(1.05, 30.0);
+        let t = (px.x - frame.top_left.x) / (frame.bottom_right.x - frame.top_left.x);
+        let om = frame.x_range.0 + t * (frame.x_range.1 - frame.x_range.0);
+        assert!((om - 1.05).abs() < 1e-9);
+
+        let lyap = LyapStore {
+            id: 1,
+            points: vec![
+                LyapSample {
+                    index: 0,
+                    omega: 0.5,
+                    per_period: Some(-0.4),
+                    per_s: Some(-100.0),
+                    error: None,
+                },
+                LyapSample {
+                    index: 1,
+                    omega: 1.0,
+                    per_period: Some(0.1),
+                    per_s: Some(40.0),
+                    error: None,
+                },
+            ],
+            total: 2,
+            periods: 100,
+        };
+        let mut s = String::new();
+        {
+            let root = SVGBackend::with_string(&mut s, (WIDTH, LYAP_HEIGHT)).into_drawing_area();
+            draw_lyap(&root, &lyap, (0.1, 2.0), &[], 0.84, "").unwrap();
+        }
+        assert!(s.contains("λ per mesh period") && s.contains("chaotic") && s.contains("λ = 0"));
+    }
+}

@@ -1,0 +1,84 @@
+// Browser tests of issue 5's views: the impact-regime map (view 7), the
+// Lyapunov curve under the bifurcation diagram, the animated gear set and
+// the A/B comparison. Small grids keep the suite quick.
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { start, open, status, waitStatus, canvasStats, shot } from './harness.mjs';
+
+const QUICK = 'bif_points=8&transient_periods=120&record_periods=40&fr_points=150';
+
+let h;
+before(async () => {
+  h = await start();
+});
+after(async () => {
+  await h?.close();
+});
+
+/** Page coordinates of the data point (x, y) of a canvas whose frame is [l, t, r, b, x0, x1, y0, y1]. */
+async function pagePoint(page, canvasId, frame, x, y) {
+  const [l, t, r, b, x0, x1, y0, y1] = frame;
+  await page.locator(`#${canvasId}`).scrollIntoViewIfNeeded();
+  const box = await page.locator(`#${canvasId}`).boundingBox();
+  const width = await page.evaluate((id) => document.getElementById(id).width, canvasId);
+  const scale = box.width / width;
+  const px = l + ((x - x0) / (x1 - x0)) * (r - l);
+  const py = b - ((y - y0) / (y1 - y0)) * (b - t);
+  return [box.x + px * scale, box.y + py * scale];
+}
+
+test('the impact-regime map fills in from both workers and a cell click sets backlash and Omega', async () => {
+  const q = `${QUICK}&lyap_points=0&map_omega_points=10&map_value_points=5&map_from=40&map_to=200&map_transient_periods=150&map_record_periods=30`;
+  const { page, errors } = await open(h.browser, h.url, q);
+  const s = await waitStatus(page, (s) => s.map.finished_ms && s.map_frame, 90000, 'the map');
+  assert.equal(s.map.total, 50);
+  assert.equal(s.map.done, 50);
+  const [byRegime, , failed] = s.map_counts;
+  assert.equal(byRegime.reduce((a, b) => a + b, 0) + failed, 50);
+  const st = await canvasStats(page, 'canvas-map');
+  assert.ok(st.ink > st.total * 0.3, `the map looks empty (${st.ink} of ${st.total})`);
+  assert.match(await page.textContent('#note-map'), /50 of 50 cells/);
+  await shot(page.locator('#view-map'), '10-map');
+  // Row 3 is 40 + 3 * 40 = 160 um; column 7 is Omega = 0.1 + 7 * 1.9 / 9.
+  const g = s.map_grid;
+  const omega = g.omega_from + (7 * (g.omega_to - g.omega_from)) / (g.omega_points - 1);
+  const [x, y] = await pagePoint(page, 'canvas-map', s.map_frame, omega + 0.03, 160 - 8);
+  const mapId = s.map.id;
+  await page.mouse.click(x, y);
+  const want = Math.round(omega * 1e4) / 1e4;
+  const s2 = await waitStatus(page, (s) => s.omega === want && s.query.includes('backlash_um=160'), 20000, 'the clicked cell');
+  assert.equal(await page.inputValue('#num-backlash_um'), '160');
+  assert.equal(await page.inputValue('#num-omega'), String(want));
+  const search = await page.evaluate(() => location.search);
+  assert.ok(search.includes('backlash_um=160') && search.includes(`omega=${want}`), search);
+  // The map over backlash does not depend on the backlash: it is kept.
+  assert.equal(s2.map.id, mapId);
+  await shot(page.locator('#view-map'), '11-map-clicked');
+  // The TE axis: the select switches the rows' key and its range.
+  await page.selectOption('#sel-map_key', 'te_um');
+  const s3 = await waitStatus(page, (s) => s.map_grid && s.map_grid.key === 'te_um', 20000, 'the TE map');
+  assert.equal(s3.map_grid.value_to, 60);
+  assert.ok(s3.query.includes('map_key=te_um'));
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('the Lyapunov exponent is drawn under the bifurcation diagram on the same Omega axis', async () => {
+  const q = `${QUICK}&lyap_points=8&lyap_transient_periods=100&lyap_periods=40&map_omega_points=2&map_value_points=1`;
+  const { page, errors } = await open(h.browser, h.url, q);
+  const s = await waitStatus(page, (s) => s.lyap.finished_ms && s.bif.finished_ms && s.lyap_frame, 90000, 'the Lyapunov curve');
+  assert.equal(s.lyap_points, 8);
+  const st = await canvasStats(page, 'canvas-lyap');
+  assert.ok(st.ink > st.total * 0.02, `the Lyapunov chart looks blank (${st.ink})`);
+  // The same Omega axis as the bifurcation diagram: range and pixel columns.
+  assert.deepEqual(s.lyap_frame.slice(4, 6), [0.1, 2.0]);
+  assert.deepEqual(s.bif_frame.slice(4, 6), [0.1, 2.0]);
+  assert.ok(Math.abs(s.lyap_frame[0] - s.bif_frame[0]) <= 1, `left edges ${s.lyap_frame[0]} vs ${s.bif_frame[0]}`);
+  assert.ok(Math.abs(s.lyap_frame[2] - s.bif_frame[2]) <= 1, `right edges ${s.lyap_frame[2]} vs ${s.bif_frame[2]}`);
+  // The zero line sits inside the plotted range.
+  assert.ok(s.lyap_frame[6] < 0 && s.lyap_frame[7] > 0);
+  assert.match(await page.textContent('#note-lyap'), /flow of a forced system always has one zero exponent/);
+  await shot(page.locator('#view-bif'), '12-bif-lyapunov');
+  assert.deepEqual(errors, []);
+  await page.close();
+});
