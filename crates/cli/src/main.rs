@@ -168,7 +168,8 @@ enum Command {
         /// Harmonics H (1 ..= 40).
         #[arg(long, default_value_t = 7)]
         harmonics: usize,
-        /// aft (any H) or describing-function (the seed's Eqs. 9-13, H = 1).
+        /// aft (time grid, any H), exact (closed-form integration between the
+        /// contact switches, any H) or describing-function (the seed's Eqs. 9-13, H = 1).
         #[arg(long, default_value = "aft")]
         method: String,
         /// Continue up from --omega-from or down from --omega-to.
@@ -529,7 +530,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             spec.harmonics = harmonics;
             spec.method = Method::from_name(&method).ok_or_else(|| {
                 usage(format!(
-                    "--method {}: allowed aft, describing-function",
+                    "--method {}: allowed aft, exact, describing-function",
                     keys::truncate(&method, 30)
                 ))
             })?;

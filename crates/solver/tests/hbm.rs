@@ -418,3 +418,23 @@ fn continuation_crosses_the_first_modes_resonance_zone() {
         assert!((last - 0.5).abs() < 1e-9, "{te}, H = {h}: ended at {last}");
     }
 }
+
+#[test]
+fn exact_integration_agrees_with_fine_aft_on_both_models() {
+    // Two different evaluations of the same balance: closed-form integrals
+    // between the contact switches, and quadrature on a fine grid.
+    for (m, omega) in [
+        (model(&["model=gear-pair"]), 0.7),
+        (model(&["model=gear-pair"]), 1.9),
+        (model(&[]), 0.3),
+        (model(&["backlash_um=50"]), 0.45),
+    ] {
+        let e = solve_at(&m, omega, 7, Method::Exact, None);
+        let a = solve_at(&m, omega, 7, Method::Aft, Some(1 << 12));
+        let scale = e.coefficients.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+        for (x, y) in e.coefficients.iter().zip(&a.coefficients) {
+            assert!((x - y).abs() < 1e-5 * scale, "Omega {omega}: {x} vs {y}");
+        }
+        assert_eq!(e.stable, a.stable);
+    }
+}

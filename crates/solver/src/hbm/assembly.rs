@@ -1,12 +1,14 @@
 //! The harmonic-balance residual `R(X, Omega)`, its Jacobian `dR/dX` and
 //! its derivative `dR/dOmega`, assembled from the linear part (block
-//! diagonal over harmonics) and the channels (AFT or describing function).
+//! diagonal over harmonics) and the channels (AFT, the seed's describing
+//! function, or exact piecewise integration).
 //!
 //! Unknowns are laid out coefficient by coefficient: `X[c * m + i]` is
 //! coefficient `c` (mean, cos 1, sin 1, cos 2, ...) of coordinate `i`.
 
 use super::harmonic::{
-    channel_aft, channel_df, mult_operator, n_coef, ChannelTables, Grid, Scratch,
+    channel_aft, channel_df, channel_exact, mult_operator, n_coef, ChannelTables, ExactScratch,
+    Grid, Scratch,
 };
 use super::model::HbmModel;
 use nalgebra::Complex;
@@ -19,6 +21,9 @@ pub enum Method {
     Aft,
     /// The seed paper's closed-form one-harmonic describing function (`H = 1`).
     DescribingFunction,
+    /// Closed-form integration between the contact switches, any number of
+    /// harmonics: no quadrature error and a smooth residual.
+    Exact,
 }
 
 impl Method {
@@ -27,6 +32,7 @@ impl Method {
         match self {
             Method::Aft => "aft",
             Method::DescribingFunction => "describing-function",
+            Method::Exact => "exact",
         }
     }
 
@@ -35,6 +41,7 @@ impl Method {
         match s {
             "aft" => Some(Method::Aft),
             "describing-function" | "df" => Some(Method::DescribingFunction),
+            "exact" => Some(Method::Exact),
             _ => None,
         }
     }
@@ -55,6 +62,7 @@ pub struct Assembly {
     te_rate_cos: Vec<f64>,
     te_rate_sin: Vec<f64>,
     scratch: Scratch,
+    exact_scratch: ExactScratch,
     u_coef: Vec<f64>,
     force: Vec<f64>,
     slope: Vec<Complex<f64>>,
@@ -87,6 +95,7 @@ impl Assembly {
             te_rate_cos,
             te_rate_sin,
             scratch: Scratch::default(),
+            exact_scratch: ExactScratch::default(),
             u_coef: vec![0.0; nc],
             force: vec![0.0; nc],
             slope: vec![Complex::new(0.0, 0.0); 2 * h + 1],
@@ -189,6 +198,26 @@ impl Assembly {
                 ),
                 Method::DescribingFunction => {
                     channel_df(&ch.law, &self.u_coef, &mut self.force, &mut self.slope)
+                }
+                Method::Exact => {
+                    if !channel_exact(
+                        self.h,
+                        &ch.law,
+                        &self.u_coef,
+                        &mut self.exact_scratch,
+                        &mut self.force,
+                        &mut self.slope,
+                    ) {
+                        channel_aft(
+                            &self.grid,
+                            &ch.law,
+                            &self.tables[ch_idx],
+                            &self.u_coef,
+                            &mut self.scratch,
+                            &mut self.force,
+                            &mut self.slope,
+                        );
+                    }
                 }
             }
             let w = ch.multiplicity;

@@ -4,7 +4,8 @@
 //!
 //! - [`model`]: the problem in scaled modal coordinates (rigid mode removed),
 //!   full or reduced by the cyclic symmetry of in-phase planets.
-//! - [`harmonic`]: AFT, the seed's describing function, the multiplication operator.
+//! - [`harmonic`]: AFT, exact integration between the contact switches, the
+//!   seed's describing function, the multiplication operator.
 //! - [`assembly`]: residual and analytic Jacobian.
 //! - [`stability`]: monodromy matrix and Floquet multipliers.
 //!
@@ -661,7 +662,14 @@ impl FrfContinuation {
                 for v in &mut t {
                     *v *= sign / norm;
                 }
-                return Ok((y, t, iteration));
+                // A step accepted at the residual floor was as easy as a
+                // two-iteration one: let the step size grow.
+                let effort = if at_floor {
+                    iteration.min(2)
+                } else {
+                    iteration
+                };
+                return Ok((y, t, effort));
             }
         }
         self.asm.evaluate(&y[..nx], y[nx], &mut r, None);
