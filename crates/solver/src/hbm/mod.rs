@@ -20,7 +20,7 @@
 //! harmonics (1, 2, ..., H) from the static equilibrium; if that fails (a
 //! resonance zone, contact loss), the branch is continued upward from
 //! Omega = 0.05, where the response is quasi-static, to the start frequency.
-//! A continuation that uses `20 points + 200` points without leaving the
+//! A continuation that uses `20 points + 4000` points without leaving the
 //! range stops with [`SolverError::ContinuationStalled`].
 //!
 //! Continuation. Pseudo-arclength in `(X / (a sqrt(n)), Omega / range)` with
@@ -286,7 +286,7 @@ impl FrfContinuation {
         // Arclength is measured with Omega in units of the range.
         let ds_max = 1.0 / f64::from(spec.points);
         Ok(FrfContinuation {
-            max_points: 20 * u64::from(spec.points) + 200,
+            max_points: 20 * u64::from(spec.points) + 4000,
             asm,
             y: Vec::new(),
             tangent: Vec::new(),
