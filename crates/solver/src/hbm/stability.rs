@@ -16,7 +16,7 @@
 //! N - 1 times.
 
 use super::assembly::Assembly;
-use super::harmonic::n_coef;
+use super::harmonic::{n_coef, te_real_coefficients};
 use super::model::Law;
 use nalgebra::Complex;
 use nalgebra::{linalg::Schur, DMatrix};
@@ -56,43 +56,36 @@ pub fn eval_coef(coef: &[f64], h: usize, theta: f64) -> f64 {
     s
 }
 
-/// Phases in `(0, 2 pi)` where some mesh channel switches contact state.
+/// Phases in `(0, 2 pi)` where some mesh channel switches contact state:
+/// sign changes of `x -+ b` on the AFT grid's samples (synthesized from its
+/// tables, no trigonometric calls), refined by the Illinois method.
 fn switch_phases(asm: &Assembly, coefs: &[Vec<f64>]) -> Vec<f64> {
     let h = asm.h;
-    let n = 256.max(8 * n_coef(h));
+    let n = asm.grid.n;
+    let mut vals = vec![0.0; n];
     let mut out = Vec::new();
     for (ch, coef) in asm.model.channels.iter().zip(coefs) {
         let b = ch.law.backlash_um();
         if !matches!(ch.law, Law::Mesh { .. }) {
             continue;
         }
-        let rel = |t: f64| eval_coef(coef, h, t) - ch.law.te(t);
+        let mut rel = coef.clone();
+        for (r, t) in rel.iter_mut().zip(te_real_coefficients(&ch.law)) {
+            *r -= t;
+        }
+        asm.grid.synthesize(&rel, &mut vals);
         for side in [b, -b] {
-            let g = |t: f64| rel(t) - side;
-            let mut t0 = 0.0;
-            let mut g0 = g(t0);
-            for i in 1..=n {
-                let t1 = 2.0 * PI * i as f64 / n as f64;
-                let g1 = g(t1);
-                if g0 != 0.0 && g0.signum() != g1.signum() {
-                    let (mut a, mut bb, mut ga) = (t0, t1, g0);
-                    for _ in 0..50 {
-                        let mid = 0.5 * (a + bb);
-                        let gm = g(mid);
-                        if gm.signum() == ga.signum() {
-                            a = mid;
-                            ga = gm;
-                        } else {
-                            bb = mid;
-                        }
-                    }
-                    let t = 0.5 * (a + bb);
-                    if t > 1e-12 && t < 2.0 * PI - 1e-12 {
-                        out.push(t);
-                    }
+            let g = |t: f64| eval_coef(&rel, h, t) - side;
+            for i in 0..n {
+                let (t0, t1) = (asm.grid.theta[i], 2.0 * PI * (i + 1) as f64 / n as f64);
+                let (g0, g1) = (vals[i] - side, vals[(i + 1) % n] - side);
+                if g0 == 0.0 || (g0 > 0.0) == (g1 > 0.0) {
+                    continue;
                 }
-                t0 = t1;
-                g0 = g1;
+                let t = illinois(&g, t0, t1, g0, g1);
+                if t > 1e-12 && t < 2.0 * PI - 1e-12 {
+                    out.push(t);
+                }
             }
             if b == 0.0 {
                 break;
@@ -102,6 +95,41 @@ fn switch_phases(asm: &Assembly, coefs: &[Vec<f64>]) -> Vec<f64> {
     out.sort_by(f64::total_cmp);
     out.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
     out
+}
+
+/// A root of `g` in `[a, b]` where `g(a) = ga` and `g(b) = gb` differ in
+/// sign: regula falsi with the Illinois modification, to round-off.
+fn illinois(g: &dyn Fn(f64) -> f64, mut a: f64, mut b: f64, mut ga: f64, mut gb: f64) -> f64 {
+    let mut side = 0;
+    for _ in 0..60 {
+        let c = (a * gb - b * ga) / (gb - ga);
+        if !(c > a && c < b) || b - a < 1e-14 {
+            return 0.5 * (a + b);
+        }
+        let gc = g(c);
+        if gc == 0.0 {
+            return c;
+        }
+        if (gc > 0.0) == (gb > 0.0) {
+            b = c;
+            gb = gc;
+            if side == -1 {
+                ga *= 0.5;
+            }
+            side = -1;
+        } else {
+            a = c;
+            ga = gc;
+            if side == 1 {
+                gb *= 0.5;
+            }
+            side = 1;
+        }
+        if gc.abs() < 1e-13 * (1.0 + ga.abs().max(gb.abs())) {
+            return c;
+        }
+    }
+    0.5 * (a + b)
 }
 
 /// A linear time-periodic block `y'' + C y' + (K0 + sum_j w_j s_j(theta) v_j v_j^T) y = 0`
