@@ -203,3 +203,40 @@ pub fn frf(v: &Value) -> String {
     }
     s
 }
+
+/// A regime map: one row per cell.
+pub fn map(v: &Value) -> String {
+    let key = cell(&v["spec"]["key"]);
+    let mut s = format!("row,column,omega,{key},impact,period,error\n");
+    if let Some(cells) = v["cells"].as_array() {
+        for c in cells {
+            s.push_str(&format!(
+                "{},{},{},{},{},{},{}\n",
+                cell(&c["row"]),
+                cell(&c["column"]),
+                cell(&c["omega"]),
+                cell(&c["value"]),
+                cell(&c["impact"]),
+                cell(&c["period"]),
+                cell(&c["error"]).replace(',', ";"),
+            ));
+        }
+    }
+    s
+}
+
+/// A Lyapunov sweep: one row per Omega.
+pub fn lyapunov(v: &Value) -> String {
+    let mut s = String::from("omega,exponent_per_period,exponent_per_s\n");
+    if let Some(points) = v["points"].as_array() {
+        for p in points {
+            s.push_str(&format!(
+                "{},{},{}\n",
+                cell(&p["omega"]),
+                cell(&p["exponent_per_period"]),
+                cell(&p["exponent_per_s"]),
+            ));
+        }
+    }
+    s
+}

@@ -612,7 +612,14 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 bar.update(map.done());
             }
             bar.finish();
-            emit(&report::map_json(&model, &params, &spec, &cells))
+            let value = report::map_json(&model, &params, &spec, &cells);
+            match p.format {
+                Format::Json => emit(&value),
+                Format::Csv => {
+                    emit_text(&csv::map(&value));
+                    Ok(())
+                }
+            }
         }
         Command::Lyapunov {
             p,
@@ -647,7 +654,14 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 bar.update(i as usize + 1);
             }
             bar.finish();
-            emit(&report::lyapunov_json(&model, &params, &opts, &out))
+            let value = report::lyapunov_json(&model, &params, &opts, &out);
+            match p.format {
+                Format::Json => emit(&value),
+                Format::Csv => {
+                    emit_text(&csv::lyapunov(&value));
+                    Ok(())
+                }
+            }
         }
         Command::Merge { files } => {
             if files.is_empty() {
