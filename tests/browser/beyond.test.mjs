@@ -82,3 +82,65 @@ test('the Lyapunov exponent is drawn under the bifurcation diagram on the same O
   assert.deepEqual(errors, []);
   await page.close();
 });
+
+const CONTACT_RGB = { drive: [31, 119, 180], apart: [230, 120, 0], back: [200, 30, 40] };
+
+test('the animated gear set turns, and its mesh colours are the contact states of the simulated history at that instant', async () => {
+  // Double-sided impacts at this Omega and backlash, so all three states occur.
+  const q = `${QUICK}&lyap_points=0&map_omega_points=2&map_value_points=1&backlash_um=20&omega=1.2&mesh=s1a1`;
+  const { page, errors } = await open(h.browser, h.url, q);
+  await waitStatus(page, (s) => s.omega_job.finished_ms && s.anim && s.anim.frames > 2 && s.time_frame, 60000, 'the animation');
+  await page.locator('#canvas-anim').scrollIntoViewIfNeeded();
+  const a = await canvasStats(page, 'canvas-anim');
+  await page.waitForTimeout(400);
+  const b = await canvasStats(page, 'canvas-anim');
+  assert.notEqual(a.hash, b.hash, 'the animation canvas did not change between frames');
+  assert.ok(a.ink > a.total * 0.2, 'the gear set looks blank');
+  await page.click('#anim-play');
+  await page.waitForTimeout(100);
+  const states = new Set();
+  for (let step = 0; step < 6; step++) {
+    const s = await status(page);
+    assert.equal(s.anim.playing, false);
+    assert.equal(s.anim.markers.length, 12);
+    // The plotted mesh's gauge shows the time history's own sample.
+    const m0 = s.anim.markers.find((m) => m.name === 's1a1');
+    assert.ok(Math.abs(m0.x_um - s.anim.plotted_x_um) < 1e-3, `${m0.x_um} vs ${s.anim.plotted_x_um}`);
+    const pixels = await page.evaluate((ms) => {
+      const c = document.getElementById('canvas-anim');
+      const ctx = c.getContext('2d');
+      return ms.map((m) => Array.from(ctx.getImageData(Math.round(m.px[0]), Math.round(m.px[1]), 1, 1).data.slice(0, 3)));
+    }, s.anim.markers);
+    s.anim.markers.forEach((m, i) => {
+      const want = m.x_um > m.b_um ? 'drive' : m.x_um < -m.b_um ? 'back' : 'apart';
+      assert.equal(m.state, want, `${m.name}: x = ${m.x_um}, b = ${m.b_um}`);
+      assert.deepEqual(pixels[i], CONTACT_RGB[want], `${m.name} at sample ${s.anim.sample}: pixel ${pixels[i]} is not ${want}`);
+      states.add(want);
+    });
+    // The time history's cursor is drawn at that instant.
+    const [l, t, r, bt, x0, x1] = s.time_frame;
+    const t0 = s.anim.history_sample / 64;
+    const cx = Math.round(l + ((t0 - x0) / (x1 - x0)) * (r - l));
+    const cursor = await page.evaluate(([x, y]) => {
+      const c = document.getElementById('canvas-time-cursor');
+      return Array.from(c.getContext('2d').getImageData(x, y, 1, 1).data);
+    }, [cx, Math.round((t + bt) / 2)]);
+    assert.ok(cursor[3] > 100 && cursor[0] > 150, `no cursor at x = ${cx}: ${cursor}`);
+    for (let k = 0; k < 9; k++) await page.click('#anim-fwd');
+    await page.waitForTimeout(60);
+  }
+  assert.ok(states.size >= 2, `only ${[...states]} seen`);
+  await shot(page.locator('#view-anim'), '13-gear-set');
+  await shot(page.locator('#view-time'), '14-time-cursor');
+  // A click on the time history moves the animation there.
+  const s = await status(page);
+  const [l, t, r, bt, x0, x1] = s.time_frame;
+  const box = await page.locator('#canvas-time').boundingBox();
+  const scale = box.width / 760;
+  const target = x0 + 0.25 * (x1 - x0);
+  await page.mouse.click(box.x + (l + 0.25 * (r - l)) * scale, box.y + ((t + bt) / 2) * scale);
+  const s2 = await waitStatus(page, (s) => Math.abs(s.anim.history_sample / 64 - target) < 0.1, 5000, 'the clicked instant');
+  assert.equal(s2.anim.playing, false);
+  assert.deepEqual(errors, []);
+  await page.close();
+});

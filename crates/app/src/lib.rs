@@ -14,6 +14,7 @@
 
 pub mod controller;
 pub mod controls;
+pub mod gearset;
 pub mod link;
 pub mod maps;
 pub mod plots;

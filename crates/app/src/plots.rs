@@ -968,16 +968,23 @@ pub fn draw_poincare<DB: DrawingBackend>(
 /// Periods shown in the time history.
 pub const HISTORY_PERIODS: u32 = 12;
 
+/// The first sample of the window the time history shows (the last
+/// [`HISTORY_PERIODS`] recorded periods) in a record of `len` samples.
+pub fn history_start(len: usize, samples_per_period: u32, record_periods: u32) -> usize {
+    let shown = HISTORY_PERIODS.min(record_periods) as usize;
+    len.saturating_sub(shown * samples_per_period.max(1) as usize)
+}
+
 /// View 5a: the time history of the last recorded periods.
 pub fn draw_time<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     r: &OmegaResult,
     status: &str,
-) -> Res<()> {
+) -> Res<PlotFrame> {
     root.fill(&WHITE).map_err(err)?;
     let spp = r.samples_per_period.max(1) as usize;
     let shown = HISTORY_PERIODS.min(r.record_periods) as usize;
-    let start = r.x_um.len().saturating_sub(shown * spp);
+    let start = history_start(r.x_um.len(), r.samples_per_period, r.record_periods);
     let t0 = start as f64 / spp as f64;
     let t1 = (r.x_um.len().max(1) - 1) as f64 / spp as f64;
     let x = (t0, t1.max(t0 + 1e-9));
@@ -1020,7 +1027,9 @@ pub fn draw_time<DB: DrawingBackend>(
         .label("x(t)")
         .legend(move |(xx, yy)| PathElement::new(vec![(xx, yy), (xx + 16, yy)], style));
     legend(&mut chart, SeriesLabelPosition::UpperRight)?;
-    root.present().map_err(err)
+    let frame = frame_of(&chart, x, y);
+    root.present().map_err(err)?;
+    Ok(frame)
 }
 
 /// View 5b: the amplitude spectrum of x (without the mean), log scale.
@@ -1121,6 +1130,7 @@ mod tests {
             spectrum_order: vec![0.0, 1.0, 2.0],
             spectrum_um: vec![110.0, 30.0, 0.1],
             all_meshes: vec![],
+            anim: Default::default(),
             steps: 1,
             cli_json: "{}".into(),
         }
@@ -1225,7 +1235,7 @@ mod tests {
         for s in [
             svg(|root| draw_phase(root, &r, "")),
             svg(|root| draw_poincare(root, &r, "")),
-            svg(|root| draw_time(root, &r, "")),
+            svg(|root| draw_time(root, &r, "").map(|_| ())),
             svg(|root| draw_spectrum(root, &r, "")),
         ] {
             assert!(s.contains("µm") && s.contains("s1a1"), "{s}");

@@ -434,6 +434,18 @@ pub struct MeshSummary {
     pub dynamic_factor: Option<f64>,
 }
 
+/// Every mesh's history over the window the time-history view shows, for
+/// the animated gear set.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct AnimHistory {
+    /// The window's first sample, as an index into [`OmegaResult::x_um`].
+    pub start_sample: u32,
+    /// x = delta - e (um) of every mesh over the window, `[mesh][sample]`.
+    pub x_um: Vec<Vec<f64>>,
+    /// Every mesh's backlash half-width (um).
+    pub backlash_um: Vec<f64>,
+}
+
 /// The steady state at the selected Omega, for views 3–6.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct OmegaResult {
@@ -475,6 +487,9 @@ pub struct OmegaResult {
     pub spectrum_um: Vec<f64>,
     /// Every mesh's regime and dynamic factor.
     pub all_meshes: Vec<MeshSummary>,
+    /// Every mesh's history over the shown window (the animation).
+    #[serde(default)]
+    pub anim: AnimHistory,
     /// Integrator steps taken.
     pub steps: u64,
     /// `gearshock simulate` JSON of this run (the CLI's format).

@@ -10,10 +10,14 @@
 
 use crate::controller::{Controller, Effect, WORKERS};
 use crate::controls::{controls, field_text, shown_for, Group, Target, Widget};
+use crate::gearset::{
+    gauge_factor, sample_at, tooth_outline, view_transform, AnimClock, BodyKind, Contact, GearSet,
+};
 use crate::plots::{self, PlotFrame, PointGroup};
 use crate::presets::PRESETS;
 use crate::views::{self, OmegaView};
 use crate::worker_core::{ready_message, WorkerCore};
+use glam::DVec2;
 use plotters::prelude::IntoDrawingArea;
 use plotters_canvas::CanvasBackend;
 use std::cell::{Cell, RefCell};
@@ -118,6 +122,8 @@ struct Page {
     bif_frame: Option<PlotFrame>,
     map_frame: Option<PlotFrame>,
     lyap_frame: Option<PlotFrame>,
+    time_frame: Option<PlotFrame>,
+    anim: AnimState,
     pending: Vec<(String, String)>,
     pending_omega: Option<f64>,
     frame_requested: bool,
@@ -132,6 +138,19 @@ struct Page {
 }
 
 type Shared = Rc<RefCell<Page>>;
+
+/// The animated gear set's state on the page.
+#[derive(Default)]
+struct AnimState {
+    clock: AnimClock,
+    last_ts: Option<f64>,
+    frames: u32,
+    dirty: bool,
+    /// The drawing model and the parameters it was built from.
+    set: Option<(solver::params::ModelParams, GearSet)>,
+    /// What the last frame showed (for the tests' status).
+    info: serde_json::Value,
+}
 
 fn now(window: &Window) -> f64 {
     window.performance().map_or(0.0, |p| p.now())
@@ -186,6 +205,8 @@ pub fn start_app() {
         bif_frame: None,
         map_frame: None,
         lyap_frame: None,
+        time_frame: None,
+        anim: AnimState::default(),
         pending: Vec::new(),
         pending_omega: None,
         frame_requested: false,
@@ -205,6 +226,8 @@ pub fn start_app() {
     start_workers(&page);
     run_effects(&page, effects);
     expose_status(&page);
+    build_anim_controls(&page);
+    start_anim_loop(&page);
     // Progress indicators are time-based: refresh them ten times a second.
     let tick = {
         let page = page.clone();
@@ -622,6 +645,7 @@ fn draw_lyap(p: &mut Page) {
 
 fn draw_omega_view(p: &mut Page, only: usize) {
     let st = p.ctl.omega_status.clone();
+    let mut time_frame = None;
     let titles = [
         "Phase portrait",
         "Poincaré section",
@@ -643,7 +667,9 @@ fn draw_omega_view(p: &mut Page, only: usize) {
                 match k {
                     0 => plots::draw_phase(&root, res, stale),
                     1 => plots::draw_poincare(&root, res, stale),
-                    2 => plots::draw_time(&root, res, stale),
+                    2 => plots::draw_time(&root, res, stale).map(|f| {
+                        time_frame = Some(f);
+                    }),
                     _ => plots::draw_spectrum(&root, res, stale),
                 }
             }
@@ -657,6 +683,10 @@ fn draw_omega_view(p: &mut Page, only: usize) {
             ),
         };
         report_draw_error(p, r);
+    }
+    if only == 2 {
+        p.time_frame = time_frame;
+        p.anim.dirty = true;
     }
 }
 
@@ -1380,6 +1410,8 @@ fn expose_status(page: &Shared) {
             o.insert("map_frame".into(), frame_json(p.map_frame));
             o.insert("lyap_frame".into(), frame_json(p.lyap_frame));
             o.insert("bif_frame".into(), frame_json(p.bif_frame));
+            o.insert("time_frame".into(), frame_json(p.time_frame));
+            o.insert("anim".into(), p.anim.info.clone());
             o.insert(
                 "fr_frame".into(),
                 serde_json::json!(p.fr_frame.map(|f| [
@@ -1394,4 +1426,398 @@ fn expose_status(page: &Shared) {
     });
     let _ = js_sys::Reflect::set(&window, &JsValue::from_str("gearshockStatus"), f.as_ref());
     f.forget();
+}
+
+// ---------------------------------------------------------------- animated gear set
+
+const ANIM_SPEEDS: [(f64, &str); 5] = [
+    (0.1, "0.1 mesh periods/s"),
+    (0.25, "0.25 mesh periods/s"),
+    (0.5, "0.5 mesh periods/s"),
+    (1.0, "1 mesh period/s"),
+    (2.0, "2 mesh periods/s"),
+];
+
+fn build_anim_controls(page: &Shared) {
+    let doc = page.borrow().doc.clone();
+    if let Some(b) = doc.get_element_by_id("anim-play") {
+        let page2 = page.clone();
+        listen(&b.into(), "click", move |_e: Event| {
+            let mut p = page2.borrow_mut();
+            p.anim.clock.playing = !p.anim.clock.playing;
+            p.anim.dirty = true;
+        });
+    }
+    for (id, samples) in [("anim-back", -1_i64), ("anim-fwd", 1)] {
+        if let Some(b) = doc.get_element_by_id(id) {
+            let page2 = page.clone();
+            listen(&b.into(), "click", move |_e: Event| {
+                let mut p = page2.borrow_mut();
+                let len = anim_len(&p);
+                p.anim.clock.step(samples, len);
+                p.anim.dirty = true;
+            });
+        }
+    }
+    if let Some(sel) = by_id::<HtmlSelectElement>(&doc, "anim-speed") {
+        for (v, text) in ANIM_SPEEDS {
+            add_option(&doc, &sel, &v.to_string(), text);
+        }
+        sel.set_value("0.5");
+        let page2 = page.clone();
+        let sel2 = sel.clone();
+        listen(&sel.into(), "change", move |_e: Event| {
+            if let Ok(v) = sel2.value().parse::<f64>() {
+                let mut p = page2.borrow_mut();
+                p.anim.clock.periods_per_s = v;
+                p.anim.dirty = true;
+            }
+        });
+    }
+    // A click on the time history moves the animation to that instant.
+    if let Some(cv) = canvas(&doc, "time") {
+        let page2 = page.clone();
+        let cv2 = cv.clone();
+        listen(&cv.into(), "click", move |e: MouseEvent| {
+            let css_w = f64::from(cv2.client_width().max(1));
+            let css_h = f64::from(cv2.client_height().max(1));
+            let px = f64::from(e.offset_x()) * f64::from(cv2.width()) / css_w;
+            let py = f64::from(e.offset_y()) * f64::from(cv2.height()) / css_h;
+            let mut p = page2.borrow_mut();
+            let len = anim_len(&p);
+            let (Some(f), Some(r)) = (p.time_frame, p.ctl.omega.as_ref()) else {
+                return;
+            };
+            let Some(q) = f.point_at(px, py) else { return };
+            let spp = f64::from(r.samples_per_period.max(1));
+            let pos = (q.x * spp).round() - f64::from(r.anim.start_sample);
+            p.anim.clock.playing = false;
+            p.anim.clock.pos = pos.clamp(0.0, len.saturating_sub(1) as f64);
+            p.anim.dirty = true;
+        });
+    }
+}
+
+fn anim_len(p: &Page) -> usize {
+    p.ctl
+        .omega
+        .as_ref()
+        .and_then(|r| r.anim.x_um.first())
+        .map_or(0, Vec::len)
+}
+
+/// The animation's own requestAnimationFrame loop: a few hundred polygon
+/// vertices and a cursor line per frame, well under a millisecond.
+fn start_anim_loop(page: &Shared) {
+    type Cb = Closure<dyn FnMut(f64)>;
+    let slot: Rc<RefCell<Option<Cb>>> = Rc::new(RefCell::new(None));
+    let slot2 = slot.clone();
+    let page2 = page.clone();
+    *slot.borrow_mut() = Some(Closure::new(move |ts: f64| {
+        anim_tick(&page2, ts);
+        let window = page2.borrow().window.clone();
+        if let Some(cb) = slot2.borrow().as_ref() {
+            let _ = window.request_animation_frame(cb.as_ref().unchecked_ref());
+        }
+    }));
+    let window = page.borrow().window.clone();
+    let first = slot.borrow();
+    if let Some(cb) = first.as_ref() {
+        let _ = window.request_animation_frame(cb.as_ref().unchecked_ref());
+    }
+}
+
+fn anim_tick(page: &Shared, ts: f64) {
+    let mut p = page.borrow_mut();
+    let dt = p.anim.last_ts.map_or(0.0, |t| (ts - t) / 1000.0);
+    p.anim.last_ts = Some(ts);
+    let len = anim_len(&p);
+    let Some(spp) = p.ctl.omega.as_ref().map(|r| r.samples_per_period) else {
+        return;
+    };
+    if len == 0 {
+        return;
+    }
+    if p.anim.clock.pos >= len as f64 {
+        p.anim.clock.pos = 0.0;
+    }
+    p.anim.clock.advance(dt, spp, len);
+    if !(p.anim.clock.playing || p.anim.dirty) {
+        return;
+    }
+    p.anim.dirty = false;
+    draw_anim(&mut p);
+    draw_time_cursor(&p);
+}
+
+fn ctx2d(cv: &HtmlCanvasElement) -> Option<CanvasRenderingContext2d> {
+    cv.get_context("2d")
+        .ok()
+        .flatten()
+        .and_then(|c| c.dyn_into::<CanvasRenderingContext2d>().ok())
+}
+
+fn rgb((r, g, b): (u8, u8, u8)) -> String {
+    format!("rgb({r},{g},{b})")
+}
+
+fn draw_anim(p: &mut Page) {
+    let Some(cv) = canvas(&p.doc, "anim") else {
+        return;
+    };
+    let Some(ctx) = ctx2d(&cv) else { return };
+    let params = p.ctl.settings.params.clone();
+    let rebuild = p.anim.set.as_ref().is_none_or(|(q, _)| *q != params);
+    if rebuild {
+        let meshes: Vec<(solver::params::MeshKind, usize)> = match &p.ctl.model {
+            Ok(m) => m.system.meshes.iter().map(|x| (x.kind, x.planet)).collect(),
+            Err(_) => Vec::new(),
+        };
+        p.anim.set = GearSet::new(&params, &meshes).map(|g| (params.clone(), g));
+    }
+    let Some((_, set)) = p.anim.set.as_ref() else {
+        return;
+    };
+    let Some(r) = p.ctl.omega.as_ref() else {
+        return;
+    };
+    let (w, h) = (f64::from(cv.width()), f64::from(cv.height()));
+    let len = r.anim.x_um.first().map_or(0, Vec::len);
+    let k = p.anim.clock.sample(len);
+    let spp = f64::from(r.samples_per_period.max(1));
+    // Time in mesh periods since the recording began (the time view's axis).
+    let t_periods = (f64::from(r.anim.start_sample) + p.anim.clock.pos) / spp;
+    let tau = t_periods;
+    ctx.set_fill_style_str("#ffffff");
+    ctx.fill_rect(0.0, 0.0, w, h);
+    let key_h = 62.0;
+    let view = view_transform(set.extent_m, (w, h - key_h));
+    let scale = view.matrix2.x_axis.x;
+    // Bodies: the ring, the large sun, the small sun, then the planets.
+    for body in &set.bodies {
+        let t = view * set.body_transform(body, tau);
+        let pts = tooth_outline(body, set.module_m);
+        ctx.begin_path();
+        for (i, q) in pts.iter().enumerate() {
+            let v = t.transform_point2(*q);
+            if i == 0 {
+                ctx.move_to(v.x, v.y);
+            } else {
+                ctx.line_to(v.x, v.y);
+            }
+        }
+        ctx.close_path();
+        let (fill, stroke) = match (body.kind, body.name.as_str()) {
+            (BodyKind::Ring, _) => ("rgba(200,205,212,0.55)", "#6b7480"),
+            (_, "s1") | (_, "pinion") => ("rgba(190,210,240,0.75)", "#3d5f8f"),
+            (_, "s2") | (_, "gear") => ("rgba(215,200,235,0.55)", "#6a4f8f"),
+            _ if body.name.starts_with('a') => ("rgba(234,241,251,0.85)", "#4b6fa5"),
+            _ => ("rgba(243,238,250,0.85)", "#7d62a3"),
+        };
+        ctx.set_fill_style_str(fill);
+        if body.kind == BodyKind::Ring {
+            // The ring's body: the annulus between its teeth and its rim.
+            let c = t.transform_point2(DVec2::ZERO);
+            let rim = (body.pitch_radius_m + 2.2 * set.module_m) * scale;
+            ctx.move_to(c.x + rim, c.y);
+            let _ = ctx.arc(c.x, c.y, rim, 0.0, std::f64::consts::TAU);
+            ctx.fill_with_canvas_winding_rule(web_sys::CanvasWindingRule::Evenodd);
+        } else {
+            ctx.fill();
+        }
+        ctx.set_stroke_style_str(stroke);
+        ctx.set_line_width(1.0);
+        ctx.stroke();
+        // A radial mark so the turning shows at any tooth count.
+        let c = t.transform_point2(DVec2::ZERO);
+        let m = t.transform_point2(DVec2::new(body.pitch_radius_m * 0.8, 0.0));
+        ctx.begin_path();
+        ctx.move_to(c.x, c.y);
+        ctx.line_to(m.x, m.y);
+        ctx.stroke();
+    }
+    // The carrier: pins, arms and its circle, turning with it.
+    if set.carrier_radius_m > 0.0 {
+        ctx.set_stroke_style_str("rgba(90,100,115,0.9)");
+        ctx.set_line_width(2.0);
+        let planets: Vec<&crate::gearset::Body> = set
+            .bodies
+            .iter()
+            .filter(|b| b.kind == BodyKind::Planet)
+            .collect();
+        for pair in planets.chunks(2) {
+            ctx.begin_path();
+            for (i, b) in pair.iter().enumerate() {
+                let c = (view * set.body_transform(b, tau)).transform_point2(DVec2::ZERO);
+                if i == 0 {
+                    ctx.move_to(c.x, c.y);
+                } else {
+                    ctx.line_to(c.x, c.y);
+                }
+            }
+            ctx.stroke();
+        }
+        for b in &planets {
+            let c = (view * set.body_transform(b, tau)).transform_point2(DVec2::ZERO);
+            ctx.begin_path();
+            let _ = ctx.arc(c.x, c.y, 4.0, 0.0, std::f64::consts::TAU);
+            ctx.set_fill_style_str("#5a6573");
+            ctx.fill();
+        }
+    }
+    // Body labels.
+    ctx.set_font("12px sans-serif");
+    ctx.set_fill_style_str("#1d232b");
+    for body in &set.bodies {
+        let t = view * set.body_transform(body, tau);
+        let c = match body.kind {
+            BodyKind::Planet => t.transform_point2(DVec2::ZERO),
+            BodyKind::Ring => {
+                view.transform_point2(DVec2::new(0.72 * set.extent_m, -0.72 * set.extent_m))
+            }
+            BodyKind::Sun => {
+                let off = match body.name.as_str() {
+                    "s1" => 0.0,
+                    "s2" => -0.86 * body.pitch_radius_m,
+                    _ => 0.0,
+                };
+                let base = view.transform_point2(body.centre_m);
+                DVec2::new(base.x, base.y - off * scale)
+            }
+        };
+        let _ = ctx.fill_text(&body.name, c.x - 6.0, c.y + 4.0);
+    }
+    // Mesh gauges and contact markers.
+    let x_now = sample_at(&r.anim.x_um, k);
+    let x_max = r
+        .anim
+        .x_um
+        .iter()
+        .flatten()
+        .fold(0.0_f64, |m, x| m.max(x.abs()));
+    let factor = gauge_factor(set.module_m, &r.anim.backlash_um, x_max);
+    let mut markers = Vec::new();
+    for site in &set.sites {
+        let (pt, tan) = set.site_at(site, tau);
+        let c = view.transform_point2(pt);
+        let d = view.transform_vector2(tan).normalize_or_zero();
+        let (Some(&x), Some(&b)) = (x_now.get(site.mesh), r.anim.backlash_um.get(site.mesh)) else {
+            continue;
+        };
+        if !x.is_finite() {
+            continue;
+        }
+        let state = Contact::of(x, b);
+        let to_px = |um: f64| um * 1e-6 * factor * scale;
+        // Ticks at +-b.
+        ctx.set_stroke_style_str("#222");
+        ctx.set_line_width(1.5);
+        let n = d.perp();
+        for sb in [b, -b] {
+            let q = c + d * to_px(sb);
+            ctx.begin_path();
+            ctx.move_to(q.x - n.x * 5.0, q.y - n.y * 5.0);
+            ctx.line_to(q.x + n.x * 5.0, q.y + n.y * 5.0);
+            ctx.stroke();
+        }
+        ctx.set_stroke_style_str(&rgb(state.rgb()));
+        ctx.set_line_width(3.0);
+        ctx.begin_path();
+        ctx.move_to(c.x, c.y);
+        let e = c + d * to_px(x);
+        ctx.line_to(e.x, e.y);
+        ctx.stroke();
+        markers.push((site, c, x, b, state));
+    }
+    for (_, c, _, _, state) in &markers {
+        ctx.begin_path();
+        let _ = ctx.arc(c.x, c.y, 6.0, 0.0, std::f64::consts::TAU);
+        ctx.set_fill_style_str(&rgb(state.rgb()));
+        ctx.fill();
+    }
+    // The key and the clock.
+    let mut kx = 10.0;
+    let ky = h - key_h + 14.0;
+    ctx.set_font("12px sans-serif");
+    for state in [Contact::Drive, Contact::Apart, Contact::Back] {
+        ctx.begin_path();
+        let _ = ctx.arc(kx + 6.0, ky - 4.0, 6.0, 0.0, std::f64::consts::TAU);
+        ctx.set_fill_style_str(&rgb(state.rgb()));
+        ctx.fill();
+        ctx.set_fill_style_str("#1d232b");
+        let _ = ctx.fill_text(state.label(), kx + 16.0, ky);
+        let tw = ctx.measure_text(state.label()).map_or(150.0, |m| m.width());
+        kx += 16.0 + tw + 18.0;
+    }
+    ctx.set_fill_style_str("#1d232b");
+    let _ = ctx.fill_text(
+        &format!(
+            "t = {t_periods:.3} mesh periods (sample {} of the time history), Ω = {:.4}{}",
+            r.anim.start_sample as usize + k,
+            r.omega,
+            if p.anim.clock.playing { "" } else { "; paused" }
+        ),
+        10.0,
+        ky + 18.0,
+    );
+    let _ = ctx.fill_text(
+        &format!("gauges: x = δ − e along each mesh's pitch tangent, exaggerated × {factor}; black ticks at ±b"),
+        10.0,
+        ky + 34.0,
+    );
+    p.anim.frames += 1;
+    let plotted = r.mesh;
+    p.anim.info = serde_json::json!({
+        "frames": p.anim.frames,
+        "playing": p.anim.clock.playing,
+        "periods_per_s": p.anim.clock.periods_per_s,
+        "sample": k,
+        "history_sample": r.anim.start_sample as usize + k,
+        "t_periods": t_periods,
+        "factor": factor,
+        "omega": r.omega,
+        "plotted_mesh": plotted,
+        "plotted_x_um": r.x_um.get(r.anim.start_sample as usize + k),
+        "markers": markers.iter().map(|(site, c, x, b, state)| serde_json::json!({
+            "mesh": site.mesh, "name": site.name, "px": [c.x, c.y], "x_um": x, "b_um": b, "state": state,
+        })).collect::<Vec<_>>(),
+    });
+    let slow = r.mesh_freq_hz / p.anim.clock.periods_per_s;
+    set_text(
+        &p.doc,
+        "note-anim",
+        &format!(
+            "Slow motion: {} mesh periods per second of {:.0} Hz, {:.0}× slower than real time. Drawn to scale from the module and tooth counts; bodies turn with the rigid-body motion (ring held), the vibration shows in the mesh gauges.",
+            p.anim.clock.periods_per_s, r.mesh_freq_hz, slow
+        ),
+    );
+    set_text(
+        &p.doc,
+        "anim-play",
+        if p.anim.clock.playing {
+            "Pause"
+        } else {
+            "Play"
+        },
+    );
+}
+
+fn draw_time_cursor(p: &Page) {
+    let Some(cv) = by_id::<HtmlCanvasElement>(&p.doc, "canvas-time-cursor") else {
+        return;
+    };
+    let Some(ctx) = ctx2d(&cv) else { return };
+    ctx.clear_rect(0.0, 0.0, f64::from(cv.width()), f64::from(cv.height()));
+    let (Some(f), Some(r)) = (p.time_frame, p.ctl.omega.as_ref()) else {
+        return;
+    };
+    let spp = f64::from(r.samples_per_period.max(1));
+    let t = (f64::from(r.anim.start_sample) + p.anim.clock.pos.floor()) / spp;
+    let x = f.to_px(t, f.y_range.0).x;
+    ctx.set_stroke_style_str("rgba(220,20,60,0.9)");
+    ctx.set_line_width(2.0);
+    ctx.begin_path();
+    ctx.move_to(x, f.top_left.y);
+    ctx.line_to(x, f.bottom_right.y);
+    ctx.stroke();
 }

@@ -669,10 +669,8 @@ fn run_omega(job: &OmegaJob) -> FromWorker {
     opts.transient_periods = job.run.transient_periods;
     opts.record_periods = job.run.record_periods;
     opts.samples_per_period = job.samples_per_period.clamp(8, 256);
-    opts.history_meshes = match job.mesh {
-        Some(j) => vec![j],
-        None => (0..n_mesh).collect(),
-    };
+    // Every mesh's history: the animated gear set colours every mesh.
+    opts.history_meshes = (0..n_mesh).collect();
     let ss = match steady_state(model, &opts, None) {
         Ok(ss) => ss,
         Err(e) => return failed(job.id, format!("Omega = {}: {e}", job.omega)),
@@ -697,6 +695,27 @@ fn run_omega(job: &OmegaJob) -> FromWorker {
         job.max_order,
     );
     let cli = report::simulate_json(model, &ss, j, job.max_order);
+    let start =
+        crate::plots::history_start(h.rel_m.len(), opts.samples_per_period, opts.record_periods);
+    let mut anim_x = vec![Vec::new(); n_mesh];
+    for hist in &ss.histories {
+        if let Some(slot) = anim_x.get_mut(hist.mesh) {
+            *slot = hist.rel_m[start.min(hist.rel_m.len())..]
+                .iter()
+                .map(|x| (x * 1e9).round() / 1e3)
+                .collect();
+        }
+    }
+    let anim = crate::protocol::AnimHistory {
+        start_sample: start as u32,
+        x_um: anim_x,
+        backlash_um: model
+            .system
+            .meshes
+            .iter()
+            .map(|m| round_um(m.backlash_m * 1e6))
+            .collect(),
+    };
     let result = OmegaResult {
         omega: ss.omega,
         mesh: j,
@@ -731,6 +750,7 @@ fn run_omega(job: &OmegaJob) -> FromWorker {
                 dynamic_factor: ms.dynamic_factor,
             })
             .collect(),
+        anim,
         steps: ss.stats.integrator.steps,
         cli_json: cli.to_string(),
     };
@@ -878,6 +898,16 @@ mod tests {
         let cli: Value = serde_json::from_str(&result.cli_json).unwrap();
         assert_eq!(cli["mesh"], "pg");
         assert_eq!(out[1], FromWorker::Done { id: 7 });
+        // The animation's window is the time history's: the last 8 recorded
+        // periods here, and the plotted mesh's samples are the same numbers.
+        let a = &result.anim;
+        assert_eq!(a.x_um.len(), 1);
+        assert_eq!(a.start_sample as usize, result.x_um.len() - 8 * 32);
+        assert_eq!(a.x_um[0].len(), 8 * 32);
+        for (k, x) in a.x_um[0].iter().enumerate() {
+            assert!((x - result.x_um[a.start_sample as usize + k]).abs() < 1e-3);
+        }
+        assert_eq!(a.backlash_um.len(), 1);
     }
 
     #[test]
