@@ -144,3 +144,38 @@ test('the animated gear set turns, and its mesh colours are the contact states o
   assert.deepEqual(errors, []);
   await page.close();
 });
+
+test('Pin as A draws B over A on both diagrams, and the link restores the comparison', async () => {
+  const q = `${QUICK}&lyap_points=0&map_omega_points=2&map_value_points=1&bif_dir=up&backlash_um=100`;
+  const { page, errors } = await open(h.browser, h.url, q);
+  await waitStatus(page, (s) => s.fr.finished_ms && s.bif.finished_ms, 90000, 'the first state');
+  await page.click('#pin-a');
+  await waitStatus(page, (s) => s.pinned && s.query.includes('&a='), 5000, 'the pinned state');
+  assert.equal(await page.isVisible('#clear-a'), true);
+  // B: a larger backlash.
+  await page.fill('#num-backlash_um', '160');
+  await page.press('#num-backlash_um', 'Enter');
+  const s = await waitStatus(page, (s) => s.query.startsWith('model=ravigneaux&backlash_um=160') && s.fr.finished_ms && s.bif.finished_ms, 90000, 'state B');
+  assert.deepEqual(s.ab_labels, ['backlash_um=100', 'backlash_um=160']);
+  assert.match(await page.textContent('#ab-status'), /Comparing A \(backlash_um=100\) with B \(backlash_um=160\)/);
+  await shot(page.locator('#view-fr'), '15-ab-fr');
+  await shot(page.locator('#view-bif'), '16-ab-bif');
+  const link = s.query;
+  // The link restores both: B's values in the controls, A computed anew.
+  const again = await open(h.browser, h.url, link);
+  const s2 = await waitStatus(again.page, (s) => s.pinned && s.pinned.fr.finished_ms && s.pinned.bif.finished_ms && s.fr.finished_ms, 90000, 'the restored comparison');
+  assert.equal(await again.page.inputValue('#num-backlash_um'), '160');
+  assert.deepEqual(s2.ab_labels, ['backlash_um=100', 'backlash_um=160']);
+  assert.equal(s2.query, link);
+  assert.ok(s2.pinned.fr_branch_points > 20 && s2.pinned.bif_points === 8, JSON.stringify(s2.pinned));
+  assert.deepEqual(s2.issues, []);
+  await shot(again.page.locator('#view-fr'), '17-ab-restored-fr');
+  // Clear A ends it, and the link no longer carries A.
+  await again.page.click('#clear-a');
+  await again.page.waitForFunction(() => !location.search.includes('&a='));
+  assert.equal(await again.page.isVisible('#clear-a'), false);
+  assert.deepEqual(again.errors, []);
+  await again.page.close();
+  assert.deepEqual(errors, []);
+  await page.close();
+});

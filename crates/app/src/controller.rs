@@ -58,6 +58,35 @@ pub enum Effect {
     },
 }
 
+/// The pinned state A of an A/B comparison and its two sweeps (the
+/// frequency response and the bifurcation diagram), which are drawn under
+/// the current state B's.
+#[derive(Debug, Clone)]
+pub struct Pinned {
+    /// A's settings.
+    pub settings: Settings,
+    /// A's harmonic-balance branch.
+    pub hbm: HbmStore,
+    /// A's bifurcation points.
+    pub bif: BifStore,
+    /// A's branch job.
+    pub fr_status: JobStatus,
+    /// A's bifurcation job.
+    pub bif_status: JobStatus,
+}
+
+/// Every mesh's backlash (um) of a state's model (empty if it cannot be built).
+fn pinned_backlash(s: &Settings) -> Vec<f64> {
+    match solver::system::MeshSystem::build(&s.params) {
+        Ok(sys) => sys
+            .meshes
+            .iter()
+            .map(|m| (m.backlash_m * 1e12).round() / 1e6)
+            .collect(),
+        Err(_) => Vec::new(),
+    }
+}
+
 /// Progress and timing of the current job of one kind.
 #[derive(Debug, Clone, PartialEq, Default, serde::Serialize)]
 pub struct JobStatus {
@@ -170,6 +199,8 @@ pub struct Controller {
     pub lyap: LyapStore,
     /// Lyapunov job status.
     pub lyap_status: JobStatus,
+    /// The pinned state A of an A/B comparison.
+    pub pinned: Option<Pinned>,
     /// Views to redraw.
     pub dirty: Dirty,
     workers: [WorkerSlot; WORKERS],
@@ -213,6 +244,7 @@ impl Controller {
     /// Starts from a link's query string (all jobs queued until the workers are ready).
     pub fn new(query: &str, now_ms: f64) -> (Self, Vec<Effect>) {
         let decoded = link::decode(query);
+        let pinned = decoded.pinned;
         let mut c = Controller {
             model: Err("not built yet".into()),
             settings: decoded.settings,
@@ -231,13 +263,17 @@ impl Controller {
             map_status: JobStatus::default(),
             lyap: LyapStore::default(),
             lyap_status: JobStatus::default(),
+            pinned: None,
             dirty: Dirty::default(),
             workers: Default::default(),
             next_id: 0,
             export: None,
         };
         c.rebuild_model();
-        let fx = c.restart(ALL, now_ms);
+        let mut fx = c.restart(ALL, now_ms);
+        if let Some(a) = pinned {
+            fx.extend(c.start_pinned(a, now_ms));
+        }
         c.dirty = Dirty {
             fr: true,
             bif: true,
@@ -255,9 +291,174 @@ impl Controller {
         self.model = Model::new(&self.settings.params).map_err(|e| e.to_string());
     }
 
-    /// The current link query (without `?`).
+    /// The current link query (without `?`), with the pinned state A if any.
     pub fn query(&self) -> String {
-        link::encode(&self.settings)
+        link::encode_ab(&self.settings, self.pinned.as_ref().map(|p| &p.settings))
+    }
+
+    /// "Pin as A": keeps the current state and its results as A; later
+    /// changes draw as B over it. Results still computing are computed again
+    /// for A (B's next change would cancel them).
+    pub fn pin_a(&mut self, now_ms: f64) -> Vec<Effect> {
+        let mut fx = self.cancel_pinned();
+        let complete = self.hbm.finished && self.bif_status.finished_ms.is_some();
+        if complete {
+            self.pinned = Some(Pinned {
+                settings: self.settings.clone(),
+                hbm: self.hbm.clone(),
+                bif: self.bif.clone(),
+                fr_status: self.fr_status.clone(),
+                bif_status: self.bif_status.clone(),
+            });
+        } else {
+            fx.extend(self.start_pinned(self.settings.clone(), now_ms));
+        }
+        self.dirty.fr = true;
+        self.dirty.bif = true;
+        self.dirty.url = true;
+        fx
+    }
+
+    /// "Clear A": ends the comparison.
+    pub fn clear_a(&mut self) -> Vec<Effect> {
+        let fx = self.cancel_pinned();
+        self.pinned = None;
+        self.dirty.fr = true;
+        self.dirty.bif = true;
+        self.dirty.url = true;
+        fx
+    }
+
+    fn cancel_pinned(&mut self) -> Vec<Effect> {
+        let running = self
+            .pinned
+            .as_ref()
+            .is_some_and(|p| p.fr_status.running() || p.bif_status.running());
+        let mut fx = Vec::new();
+        if running {
+            for kind in [JobKind::Hbm, JobKind::Bif] {
+                for w in 0..WORKERS {
+                    fx.extend(self.post(w, &ToWorker::CancelPinned { kind }));
+                }
+            }
+        }
+        fx
+    }
+
+    /// Starts A's branch and bifurcation sweep (a link that carries A).
+    fn start_pinned(&mut self, a: Settings, now_ms: f64) -> Vec<Effect> {
+        let mut fx = Vec::new();
+        let mut pinned = Pinned {
+            settings: a.clone(),
+            hbm: HbmStore::default(),
+            bif: BifStore::default(),
+            fr_status: JobStatus::default(),
+            bif_status: JobStatus::default(),
+        };
+        if let Err(e) = Model::new(&a.params) {
+            pinned.fr_status.error = Some(e.to_string());
+            pinned.bif_status.error = Some(e.to_string());
+            self.pinned = Some(pinned);
+            return fx;
+        }
+        let params = keys::to_json(&a.params);
+        let v = &a.view;
+        self.next_id += 1;
+        let id = self.next_id;
+        pinned.hbm = HbmStore::new(id, v.harmonics);
+        pinned.fr_status = JobStatus::start(id, now_ms, 100);
+        let job = JobSpec::Hbm {
+            omega_from: v.omega_from,
+            omega_to: v.omega_to,
+            points: v.fr_points,
+            harmonics: v.harmonics,
+            stability: true,
+        };
+        fx.extend(self.post(
+            HBM_WORKER,
+            &ToWorker::RunPinned {
+                id,
+                params: params.clone(),
+                job,
+            },
+        ));
+        self.next_id += 1;
+        let id = self.next_id;
+        let per_dir = if v.bif_dir == solver::sweep::Directions::Both {
+            2
+        } else {
+            1
+        };
+        let total = v.bif_points as usize * per_dir;
+        pinned.bif = BifStore::new(id, total);
+        pinned.bif_status = JobStatus::start(id, now_ms, total);
+        let chains = (WORKERS as u32).min(v.bif_points);
+        for w in 0..chains {
+            let job = JobSpec::Bif {
+                omega_from: v.omega_from,
+                omega_to: v.omega_to,
+                points: v.bif_points,
+                directions: v.bif_dir.name().to_string(),
+                chains,
+                shard: w,
+                run: RunOptions {
+                    transient_periods: v.transient_periods,
+                    record_periods: v.record_periods,
+                },
+            };
+            fx.extend(self.post(
+                w as usize,
+                &ToWorker::RunPinned {
+                    id,
+                    params: params.clone(),
+                    job,
+                },
+            ));
+        }
+        self.pinned = Some(pinned);
+        fx
+    }
+
+    /// Feeds A's stores with replies to A's jobs (ids that are A's).
+    fn pinned_message(&mut self, msg: &FromWorker, now_ms: f64) {
+        let Some(p) = self.pinned.as_mut() else {
+            return;
+        };
+        match msg {
+            FromWorker::HbmPoints {
+                id,
+                points,
+                progress,
+                finished,
+                error,
+            } if *id == p.hbm.id && *id != 0 => {
+                p.hbm
+                    .add(points.clone(), *progress, *finished, error.clone());
+                if *finished {
+                    p.fr_status.finished_ms = Some(now_ms);
+                }
+                if error.is_some() {
+                    p.fr_status.error = error.clone();
+                }
+                self.dirty.fr = true;
+            }
+            FromWorker::BifPoints { id, points } if *id == p.bif.id && *id != 0 => {
+                p.bif.samples.extend(points.iter().cloned());
+                p.bif_status.done = p.bif.samples.len();
+                if p.bif_status.done >= p.bif_status.total {
+                    p.bif_status.finished_ms = Some(now_ms);
+                }
+                self.dirty.bif = true;
+            }
+            FromWorker::Failed { id, message } => {
+                for st in [&mut p.fr_status, &mut p.bif_status] {
+                    if st.id == *id && *id != 0 {
+                        st.error = Some(message.clone());
+                    }
+                }
+            }
+            _ => {}
+        }
     }
 
     /// The mesh names of the current model.
@@ -599,6 +800,7 @@ impl Controller {
                 return Vec::new();
             }
         };
+        self.pinned_message(&msg, now_ms);
         match msg {
             FromWorker::Ready => {
                 let Some(slot) = self.workers.get_mut(worker) else {
@@ -847,6 +1049,10 @@ impl Controller {
         self.preset_note = None;
         self.rebuild_model();
         self.hbm_previous = None;
+        let mut fx = self.clear_a();
+        if let Some(a) = d.pinned {
+            fx.extend(self.start_pinned(a, now_ms));
+        }
         self.dirty = Dirty {
             fr: true,
             bif: true,
@@ -857,7 +1063,8 @@ impl Controller {
             map: true,
             lyap: true,
         };
-        self.restart(ALL, now_ms)
+        fx.extend(self.restart(ALL, now_ms));
+        fx
     }
 
     /// A click on the map at `(omega, value)`: sets the rows' key to the
@@ -951,7 +1158,36 @@ impl Controller {
         // after it has ended (complete or failed).
         let previous = self.hbm_previous.as_ref().filter(|_| !self.hbm.finished);
         let overlay = Some(&self.fr).filter(|f| f.id != 0);
-        fr_view(&self.hbm, previous, overlay, mesh, &b, &ctx)
+        let mut v = fr_view(&self.hbm, previous, overlay, mesh, &b, &ctx);
+        if let Some(p) = &self.pinned {
+            let (ta, tb) = link::ab_difference(&p.settings, &self.settings, 3);
+            for br in v.branches.iter_mut().filter(|b| !b.faded) {
+                br.label = format!("B: {tb}; {}", br.label);
+            }
+            let partial = if p.hbm.error.is_some() {
+                "; partial"
+            } else {
+                ""
+            };
+            v.pinned_backlash_um = crate::views::distinct(&pinned_backlash(&p.settings), mesh);
+            v.branches.insert(
+                0,
+                crate::views::FrBranch {
+                    label: format!("A: {ta}{partial}"),
+                    points: p.hbm.curve(mesh).0,
+                    faded: false,
+                    pinned: true,
+                },
+            );
+        }
+        v
+    }
+
+    /// The legend texts of A and B (what differs), if comparing.
+    pub fn ab_labels(&self) -> Option<(String, String)> {
+        self.pinned
+            .as_ref()
+            .map(|p| link::ab_difference(&p.settings, &self.settings, 3))
     }
 
     /// The method of view 1 in words.
@@ -965,7 +1201,14 @@ impl Controller {
     /// The bifurcation view.
     pub fn bif_view(&self) -> BifView {
         let (mesh, b) = self.mesh_and_backlash();
-        self.bif.view(mesh, &b, &self.view_context())
+        let ctx = self.view_context();
+        let mut v = self.bif.view(mesh, &b, &ctx);
+        if let Some(p) = &self.pinned {
+            v.pinned = p.bif.view(mesh, &b, &ctx).points;
+            v.pinned_backlash_um = crate::views::distinct(&pinned_backlash(&p.settings), mesh);
+            v.ab_labels = self.ab_labels();
+        }
+        v
     }
 
     /// Starts assembling the bifurcation JSON in the CLI's format: the last
@@ -1078,6 +1321,14 @@ impl Controller {
             "lyap": self.lyap_status,
             "lyap_points": self.lyap.curve().len(),
             "lyap_progress": self.lyap_status.progress(now_ms),
+            "pinned": self.pinned.as_ref().map(|p| serde_json::json!({
+                "query": link::encode(&p.settings),
+                "fr": p.fr_status,
+                "bif": p.bif_status,
+                "fr_branch_points": p.hbm.points.len(),
+                "bif_points": p.bif.samples.len(),
+            })),
+            "ab_labels": self.ab_labels(),
             "fr_progress": self.fr_status.progress(now_ms),
             "fr_overlay_progress": self.ti_status.progress(now_ms),
             "bif_progress": self.bif_status.progress(now_ms),
@@ -1443,6 +1694,79 @@ mod tests {
             }
         )));
         assert_eq!(c.lyap.id, 0);
+    }
+
+    #[test]
+    fn a_link_with_a_pinned_state_computes_both_and_pinning_keeps_a() {
+        let (mut c, _) = Controller::new("backlash_um=150&a=backlash_um%3D100%26omega%3D0.5", 0.0);
+        assert!(c.issues.is_empty(), "{:?}", c.issues);
+        let p = ready(&mut c);
+        let pinned: Vec<(usize, JobKind)> = p
+            .iter()
+            .filter_map(|(w, m)| match m {
+                ToWorker::RunPinned { job, params, .. } => {
+                    assert_eq!(params["backlash_s1a_um"].as_f64(), Some(100.0));
+                    Some((*w, job.kind()))
+                }
+                _ => None,
+            })
+            .collect();
+        assert_eq!(
+            pinned,
+            vec![
+                (0, JobKind::Bif),
+                (HBM_WORKER, JobKind::Hbm),
+                (1, JobKind::Bif)
+            ]
+        );
+        let a_id = c.pinned.as_ref().unwrap().hbm.id;
+        c.worker_message(1, &hbm_points(a_id, &[0.1, 1.0, 2.0], true, None), 5.0);
+        let a = c.pinned.as_ref().unwrap();
+        assert_eq!(a.hbm.points.len(), 3);
+        assert!(c.hbm.points.is_empty(), "A's points must not reach B");
+        let v = c.fr_view();
+        let labels: Vec<&str> = v.branches.iter().map(|b| b.label.as_str()).collect();
+        assert!(
+            labels[0].starts_with("A: backlash_um=100") && v.branches[0].pinned,
+            "{labels:?}"
+        );
+        assert!(labels[1].starts_with("B: backlash_um=150"), "{labels:?}");
+        assert!(
+            c.query().contains("&a=model%3Dravigneaux%26omega%3D0.5%26"),
+            "{}",
+            c.query()
+        );
+        assert_eq!(link::decode(&c.query()).pinned.unwrap().view.omega, 0.5);
+        // Clear A: the link loses it, and A's jobs are cancelled on every worker.
+        let fx = posts(&c.clear_a());
+        assert!(fx
+            .iter()
+            .all(|(_, m)| matches!(m, ToWorker::CancelPinned { .. })));
+        assert!(c.pinned.is_none() && !c.query().contains("&a="));
+    }
+
+    #[test]
+    fn pin_as_a_keeps_finished_results_while_b_changes() {
+        let (mut c, _) = Controller::new("bif_points=2&bif_dir=up", 0.0);
+        ready(&mut c);
+        let id = c.hbm.id;
+        c.worker_message(1, &hbm_points(id, &[0.1, 2.0], true, None), 5.0);
+        c.bif_status.finished_ms = Some(6.0);
+        let fx = c.pin_a(7.0);
+        assert!(fx.is_empty(), "finished results are kept, not recomputed");
+        c.set_key("backlash_um", "150", 8.0).unwrap();
+        let a = c.pinned.as_ref().unwrap();
+        assert_eq!(a.hbm.points.len(), 2);
+        assert_eq!(
+            keys::get(&a.settings.params, "backlash_um"),
+            Some(keys::Value::Num(100.0))
+        );
+        let (ta, tb) = c.ab_labels().unwrap();
+        assert_eq!(
+            (ta.as_str(), tb.as_str()),
+            ("backlash_um=100", "backlash_um=150")
+        );
+        assert!(c.bif_view().ab_labels.is_some());
     }
 
     #[test]

@@ -8,6 +8,10 @@
 //! written in Rust's shortest round-trip form, so opening a link restores
 //! every value exactly.
 //!
+//! A/B comparison: a pinned state "A" travels in the one key `a`, whose
+//! value is A's own link (percent-encoded), so a link restores both the
+//! current state B and the comparison; an `a` inside `a` is ignored.
+//!
 //! Decoding never fails and never panics: a malformed or out-of-range value
 //! yields a message naming the key and its allowed range, and that key keeps
 //! its default while the others apply. The text of a link is untrusted: the
@@ -30,7 +34,12 @@ pub struct Decoded {
     pub settings: Settings,
     /// One message per rejected key or pair, naming it and what is allowed.
     pub issues: Vec<String>,
+    /// The pinned state A of an A/B comparison, if the link carries one.
+    pub pinned: Option<Settings>,
 }
+
+/// The key that carries the pinned state A.
+pub const PINNED_KEY: &str = "a";
 
 /// Percent-decodes a query component (`+` is a space). Invalid escapes stay
 /// as written; invalid UTF-8 becomes U+FFFD.
@@ -116,10 +125,43 @@ fn apply_param(params: &mut ModelParams, key: &str, text: &str) -> Result<(), St
     keys::set(params, key, value).map_err(|e| e.to_string())
 }
 
-/// Decodes a query string into settings plus messages. Never panics.
+/// Decodes a query string into settings plus messages (and the pinned
+/// state A, if any). Never panics.
 pub fn decode(query: &str) -> Decoded {
     let mut issues = Vec::new();
-    let all = pairs(query, &mut issues);
+    let mut all = pairs(query, &mut issues);
+    let mut pinned = None;
+    if let Some(pos) = all.iter().rposition(|(k, _)| k == PINNED_KEY) {
+        let (_, inner) = all.remove(pos);
+        all.retain(|(k, _)| k != PINNED_KEY);
+        let (a, a_issues) = decode_one(&inner);
+        issues.extend(a_issues.into_iter().map(|i| format!("A (pinned): {i}")));
+        pinned = Some(a);
+    }
+    let (settings, more) = decode_one_pairs(all);
+    issues.extend(more);
+    Decoded {
+        settings,
+        issues,
+        pinned,
+    }
+}
+
+/// Decodes one state (a nested `a` is named and ignored).
+fn decode_one(query: &str) -> (Settings, Vec<String>) {
+    let mut issues = Vec::new();
+    let mut all = pairs(query, &mut issues);
+    if all.iter().any(|(k, _)| k == PINNED_KEY) {
+        all.retain(|(k, _)| k != PINNED_KEY);
+        issues.push("a pinned state inside the pinned state was ignored".into());
+    }
+    let (settings, more) = decode_one_pairs(all);
+    issues.extend(more);
+    (settings, issues)
+}
+
+fn decode_one_pairs(all: Vec<(String, String)>) -> (Settings, Vec<String>) {
+    let mut issues = Vec::new();
     let mut settings = Settings::default();
 
     // The model first: it resets the parameters to that model's defaults.
@@ -175,7 +217,7 @@ pub fn decode(query: &str) -> Decoded {
     if let Some(e) = settings.view.check_range() {
         issues.push(e);
     }
-    Decoded { settings, issues }
+    (settings, issues)
 }
 
 /// The parameter assignments that differ from the model's defaults, in key
@@ -236,6 +278,65 @@ pub fn encode(settings: &Settings) -> String {
         }
     }
     parts.join("&")
+}
+
+/// Encodes the current state and, if pinned, the state A (in `a`).
+pub fn encode_ab(settings: &Settings, pinned: Option<&Settings>) -> String {
+    let mut q = encode(settings);
+    if let Some(a) = pinned {
+        q.push_str(&format!("&{PINNED_KEY}={}", percent_encode(&encode(a))));
+    }
+    q
+}
+
+/// The settings in which A and B differ, as `key=value` texts for A and
+/// for B (at most `max` keys each; "same settings" if none).
+pub fn ab_difference(a: &Settings, b: &Settings, max: usize) -> (String, String) {
+    let pairs_of = |s: &Settings| -> Vec<(String, String)> {
+        let mut v = vec![("model".to_string(), s.params.kind().name().to_string())];
+        v.extend(param_diff(&s.params));
+        for key in crate::settings::VIEW_KEYS {
+            if let Some(t) = s.view.get(key.name) {
+                v.push((key.name.to_string(), t));
+            }
+        }
+        v
+    };
+    let (pa, pb) = (pairs_of(a), pairs_of(b));
+    // A key's value in a state: its own text, or the state's value of a
+    // parameter that equals its model's default (and so is not in the link).
+    let value_in = |v: &[(String, String)], s: &Settings, k: &str| {
+        v.iter()
+            .find(|(kk, _)| kk == k)
+            .map(|(_, x)| x.clone())
+            .or_else(|| keys::get(&s.params, k).map(|x| value_text(&x)))
+            .unwrap_or_else(|| "-".into())
+    };
+    let mut keys_seen: Vec<String> = Vec::new();
+    for (k, _) in pa.iter().chain(pb.iter()) {
+        if !keys_seen.contains(k) && value_in(&pa, a, k) != value_in(&pb, b, k) {
+            keys_seen.push(k.clone());
+        }
+    }
+
+    // Model parameters first, then view options.
+    keys_seen.sort_by_key(|k| view_key(k).is_some());
+    if keys_seen.is_empty() {
+        return ("same settings".into(), "same settings".into());
+    }
+    let more = keys_seen.len().saturating_sub(max);
+    let text = |v: &[(String, String)], s: &Settings| {
+        let mut t: Vec<String> = keys_seen
+            .iter()
+            .take(max)
+            .map(|k| format!("{k}={}", value_in(v, s, k)))
+            .collect();
+        if more > 0 {
+            t.push(format!("+{more} more"));
+        }
+        t.join(", ")
+    };
+    (text(&pa, a), text(&pb, b))
 }
 
 /// The view options' defaults, for callers that reset them.
@@ -360,6 +461,40 @@ mod tests {
     }
 
     #[test]
+    fn a_pinned_state_rides_along_and_restores_exactly() {
+        let mut a = Settings::default();
+        keys::set_assignment(&mut a.params, "backlash_um=100").unwrap();
+        a.view.omega = 0.5;
+        let mut b = Settings::default();
+        keys::set_assignment(&mut b.params, "backlash_um=150").unwrap();
+        keys::set_assignment(&mut b.params, "te_um=35").unwrap();
+        let q = encode_ab(&b, Some(&a));
+        assert!(q.contains("&a=model%3Dravigneaux"), "{q}");
+        let d = decode(&q);
+        assert!(d.issues.is_empty(), "{:?}", d.issues);
+        assert_eq!(d.settings, b);
+        assert_eq!(d.pinned.as_ref(), Some(&a));
+        // Without a pinned state there is no `a`, and none comes back.
+        assert_eq!(decode(&encode_ab(&b, None)).pinned, None);
+        // The difference names the keys that differ, per side.
+        let (ta, tb) = ab_difference(&a, &b, 3);
+        assert!(
+            ta.contains("backlash_um=100") && tb.contains("backlash_um=150"),
+            "{ta} | {tb}"
+        );
+        assert!(
+            ta.contains("omega=0.5") && tb.contains("te_um=35"),
+            "{ta} | {tb}"
+        );
+        assert_eq!(ab_difference(&a, &a, 3).0, "same settings");
+        // Bad values inside A are named as A's; a nested `a` is ignored.
+        let d = decode("backlash_um=150&a=backlash_um%3D5000%26a%3Dx");
+        assert_eq!(d.issues.len(), 2, "{:?}", d.issues);
+        assert!(d.issues.iter().all(|i| i.starts_with("A (pinned): ")));
+        assert!(d.pinned.is_some());
+    }
+
+    #[test]
     fn percent_codec_round_trips_and_tolerates_garbage() {
         for s in ["a b&c=d", "µm Ω 漢字", "%%%", "100%"] {
             assert_eq!(percent_decode(&percent_encode(s)), s);
@@ -396,6 +531,7 @@ mod tests {
                         Just("map_omega_points".to_string()),
                         Just("map_value_points".to_string()),
                         Just("lyap_points".to_string()),
+                        Just("a".to_string()),
                         Just("teeth_r".to_string()),
                         "[a-z_%0-9]{0,12}",
                         "\\PC{0,8}",
@@ -432,10 +568,11 @@ mod tests {
             prop_assert!(v.map_omega_points <= crate::settings::MAX_MAP_OMEGA_POINTS);
             prop_assert!(v.map_value_points <= crate::settings::MAX_MAP_VALUE_POINTS);
             prop_assert!(crate::settings::MAP_KEYS.contains(&v.map_key.as_str()));
-            // And it round-trips.
-            let again = decode(&encode(&d.settings));
+            // And it round-trips, with its pinned state if it had one.
+            let again = decode(&encode_ab(&d.settings, d.pinned.as_ref()));
             prop_assert!(again.issues.is_empty(), "{:?}", again.issues);
             prop_assert_eq!(again.settings, d.settings);
+            prop_assert_eq!(again.pinned, d.pinned);
         }
 
         #[test]

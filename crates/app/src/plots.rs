@@ -50,6 +50,10 @@ const MAX_COLOR: RGBColor = RGBColor(25, 70, 150);
 const MIN_COLOR: RGBColor = RGBColor(20, 140, 130);
 const ORBIT: RGBColor = RGBColor(70, 110, 170);
 const FADED: RGBColor = RGBColor(200, 200, 205);
+/// The pinned state A of an A/B comparison: max and min x, and its dots.
+const A_MAX: RGBColor = RGBColor(150, 40, 150);
+const A_MIN: RGBColor = RGBColor(200, 110, 200);
+const A_DOTS: RGBColor = RGBColor(185, 120, 200);
 
 /// Where the data lie on the canvas, to map clicks back to Omega.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -254,6 +258,30 @@ pub(crate) fn omega_decorations<'a, DB: DrawingBackend + 'a>(
             )
         });
     Ok(())
+}
+
+/// Draws the pinned state A's ±b lines (A/B comparison) where they differ
+/// from B's, dashed in A's colour; returns whether any were drawn.
+fn pinned_contact_lines<'a, DB: DrawingBackend + 'a>(
+    chart: &mut Chart<'a, DB>,
+    pinned_um: &[f64],
+    current_um: &[f64],
+    x: (f64, f64),
+) -> Res<bool> {
+    let style = ShapeStyle::from(&A_MIN).stroke_width(1);
+    let mut any = false;
+    for &b in pinned_um
+        .iter()
+        .filter(|b| !current_um.iter().any(|c| (*c - **b).abs() < 1e-9))
+    {
+        for v in [b, -b] {
+            chart
+                .draw_series(DashedLineSeries::new(vec![(x.0, v), (x.1, v)], 6, 4, style))
+                .map_err(err)?;
+        }
+        any = true;
+    }
+    Ok(any)
 }
 
 /// Draws the ±b contact lines across the x range.
@@ -486,7 +514,12 @@ pub fn draw_fr<DB: DrawingBackend>(
         .chain(v.overlay.iter())
         .filter(|p| in_range(p.omega))
         .flat_map(|p| [p.max_um, p.min_um]);
-    let mut extra: Vec<f64> = v.backlash_um.iter().flat_map(|b| [*b, -*b]).collect();
+    let mut extra: Vec<f64> = v
+        .backlash_um
+        .iter()
+        .chain(v.pinned_backlash_um.iter())
+        .flat_map(|b| [*b, -*b])
+        .collect();
     extra.push(0.0);
     // Room at the top for the legend (two lines per branch, the faded
     // branch, the unstable dash, the failure line).
@@ -503,6 +536,18 @@ pub fn draw_fr<DB: DrawingBackend>(
         items.push((
             KeyIcon::Line(CONTACT, true),
             format!("±b contact lines (b = {} µm)", bs.join(", ")),
+        ));
+    }
+    let a_only: Vec<String> = v
+        .pinned_backlash_um
+        .iter()
+        .filter(|b| !v.backlash_um.iter().any(|c| (*c - **b).abs() < 1e-9))
+        .map(|b| format!("{b}"))
+        .collect();
+    if !a_only.is_empty() {
+        items.push((
+            KeyIcon::Line(A_MIN, true),
+            format!("A's ±b (b = {} µm)", a_only.join(", ")),
         ));
     }
     if !v.natural.is_empty() {
@@ -586,11 +631,17 @@ pub fn draw_fr<DB: DrawingBackend>(
         .map_err(err)?;
     // These three go in the key under the chart, keeping the legend short.
     contact_lines(&mut chart, &v.backlash_um, x, true, false)?;
+    pinned_contact_lines(&mut chart, &v.pinned_backlash_um, &v.backlash_um, x)?;
     omega_decorations(&mut chart, &v.natural, v.selected_omega, y, false)?;
     let mut any_unstable = false;
     for br in &v.branches {
         for (which, color, label) in [(true, MAX_COLOR, "max x"), (false, MIN_COLOR, "min x")] {
-            let color = if br.faded { FADED } else { color };
+            let color = match (br.faded, br.pinned, which) {
+                (true, _, _) => FADED,
+                (false, true, true) => A_MAX,
+                (false, true, false) => A_MIN,
+                _ => color,
+            };
             let val = |p: &crate::views::FrCurvePoint| if which { p.max_um } else { p.min_um };
             // Split into runs of equal stability: stable (or unknown) solid,
             // unstable dashed; consecutive runs share their joining point.
@@ -641,7 +692,7 @@ pub fn draw_fr<DB: DrawingBackend>(
                 continue;
             }
         }
-        if !br.faded {
+        if !br.faded && !br.pinned {
             regime_strip(&mut chart, &br.points, y)?;
         }
     }
@@ -754,11 +805,20 @@ pub fn draw_bif<DB: DrawingBackend>(
 ) -> Res<(PlotFrame, Vec<PointGroup>)> {
     root.fill(&WHITE).map_err(err)?;
     let x = (v.omega_from, v.omega_to);
-    let mut extra: Vec<f64> = v.backlash_um.iter().flat_map(|b| [*b, -*b]).collect();
+    let mut extra: Vec<f64> = v
+        .backlash_um
+        .iter()
+        .chain(v.pinned_backlash_um.iter())
+        .flat_map(|b| [*b, -*b])
+        .collect();
     extra.push(0.0);
     let y = with_headroom(
-        padded_range(v.points.iter().map(|p| p.x_um), &extra, 20.0),
-        0.55,
+        padded_range(
+            v.points.iter().chain(v.pinned.iter()).map(|p| p.x_um),
+            &extra,
+            20.0,
+        ),
+        if v.ab_labels.is_some() { 0.8 } else { 0.55 },
     );
     let mut chart = ChartBuilder::on(root)
         .caption(
@@ -781,9 +841,43 @@ pub fn draw_bif<DB: DrawingBackend>(
         .draw()
         .map_err(err)?;
     contact_lines(&mut chart, &v.backlash_um, x, true, true)?;
+    if pinned_contact_lines(&mut chart, &v.pinned_backlash_um, &v.backlash_um, x)? {
+        let style = ShapeStyle::from(&A_MIN).stroke_width(1);
+        chart
+            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
+            .map_err(err)?
+            .label("A's ±b contact lines")
+            .legend(move |(xx, yy)| {
+                PathElement::new(
+                    vec![(xx, yy), (xx + 6, yy), (xx + 10, yy), (xx + 16, yy)],
+                    style,
+                )
+            });
+    }
     omega_decorations(&mut chart, natural, v.selected_omega, y, true)?;
     let frame = frame_of(&chart, x, y);
     let mut groups: Vec<PointGroup> = Vec::new();
+    if !v.pinned.is_empty() {
+        // A's dots first, so B's are drawn over them.
+        for up in [true, false] {
+            let px: Vec<(f32, f32)> = v
+                .pinned
+                .iter()
+                .filter(|p| p.up == up)
+                .map(|p| {
+                    let q = frame.to_px(p.omega, p.x_um);
+                    (q.x as f32, q.y as f32)
+                })
+                .collect();
+            if !px.is_empty() {
+                groups.push(PointGroup {
+                    color: A_DOTS,
+                    filled: up,
+                    px,
+                });
+            }
+        }
+    }
     for p in &v.points {
         let color = regime_color(p.regime);
         let q = frame.to_px(p.omega, p.x_um);
@@ -799,6 +893,20 @@ pub fn draw_bif<DB: DrawingBackend>(
                 px: vec![px],
             }),
         }
+    }
+    if let Some((a, b)) = &v.ab_labels {
+        chart
+            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
+            .map_err(err)?
+            .label(format!("A (pinned): {a}"))
+            .legend(move |(x, y)| Circle::new((x + 8, y), 4, A_DOTS.filled()));
+        chart
+            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
+            .map_err(err)?
+            .label(format!("B (current, regime colours): {b}"))
+            .legend(move |(x, y)| {
+                Circle::new((x + 8, y), 4, regime_color(Regime::SingleSided).filled())
+            });
     }
     regime_legend(&mut chart, v.points.iter().map(|p| p.regime))?;
     let dark = RGBColor(60, 60, 60);
@@ -1174,12 +1282,22 @@ mod tests {
             method: source.label(),
             source,
             mesh_label: "s1a1".into(),
-            backlash_um: vec![100.0],
-            branches: vec![FrBranch {
-                label: "HBM, H = 5".into(),
-                points: (0..10).map(point).collect(),
-                faded: false,
-            }],
+            backlash_um: vec![150.0],
+            pinned_backlash_um: vec![100.0],
+            branches: vec![
+                FrBranch {
+                    label: "A: backlash_um=100".into(),
+                    points: (0..10).map(point).collect(),
+                    faded: false,
+                    pinned: true,
+                },
+                FrBranch {
+                    label: "B: backlash_um=150; HBM, H = 5".into(),
+                    points: (0..10).map(point).collect(),
+                    faded: false,
+                    pinned: false,
+                },
+            ],
             markers: vec![FrMarker {
                 omega: 1.5,
                 value_um: 127.0,
@@ -1226,6 +1344,9 @@ mod tests {
             "time integration (1 pts): max |Δx| 1.50 µm at 1 on the stable branch; 2 where none is stable",
             "Solver failure after Ω = 1.9000",
             "(partial)",
+            "max x (A: backlash_um=100)",
+            "max x (B: backlash_um=150; HBM, H = 5)",
+            "s ±b (b = 100 µm)",
         ] {
             assert!(s.contains(text), "{text} missing");
         }

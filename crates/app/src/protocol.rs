@@ -208,6 +208,22 @@ pub enum ToWorker {
         /// Which kind.
         kind: JobKind,
     },
+    /// Start a job for the pinned state A of an A/B comparison: it runs
+    /// beside the current state's job of the same kind (the worker keeps a
+    /// second set of jobs for A), replacing only A's job of that kind.
+    RunPinned {
+        /// Job id.
+        id: JobId,
+        /// A's parameter set (flat keys).
+        params: Map<String, Value>,
+        /// What to compute.
+        job: JobSpec,
+    },
+    /// Drop A's job of a kind.
+    CancelPinned {
+        /// Which kind.
+        kind: JobKind,
+    },
     /// The finished bifurcation shard as the CLI's JSON (`gearshock
     /// bifurcation`), restricted to one mesh (or all meshes if `None`). With
     /// `other`, the other shard's JSON text is merged in (`report::merge_shards`).

@@ -73,6 +73,9 @@ pub struct FrBranch {
     pub points: Vec<FrCurvePoint>,
     /// Drawn faded: the previous settings' result while a new one computes.
     pub faded: bool,
+    /// The pinned state A of an A/B comparison (drawn in A's colours).
+    #[serde(default)]
+    pub pinned: bool,
 }
 
 /// A bifurcation found along a branch.
@@ -181,6 +184,8 @@ pub struct FrView {
     pub mesh_label: String,
     /// Distinct backlash half-widths of the plotted meshes (um): the ±b lines.
     pub backlash_um: Vec<f64>,
+    /// The pinned state A's ±b (A/B comparison; empty if none).
+    pub pinned_backlash_um: Vec<f64>,
     /// Solution branches (the previous settings' branch first, faded).
     pub branches: Vec<FrBranch>,
     /// Bifurcation markers of the current branch.
@@ -460,6 +465,7 @@ pub fn fr_view(
             label: "previous settings".into(),
             points: prev.curve(mesh).0,
             faded: true,
+            pinned: false,
         });
     }
     let branch_error = hbm.error.as_ref().map(|e| {
@@ -488,12 +494,14 @@ pub fn fr_view(
         label,
         points,
         faded: false,
+        pinned: false,
     });
     FrView {
         source,
         method,
         mesh_label,
         backlash_um: distinct(backlash_um, mesh),
+        pinned_backlash_um: Vec::new(),
         branches,
         markers,
         overlay: overlay_pts,
@@ -512,7 +520,7 @@ pub fn fr_view(
 }
 
 /// The distinct ±b values of the plotted mesh (all meshes' for "worst").
-fn distinct(backlash_um: &[f64], mesh: Option<usize>) -> Vec<f64> {
+pub fn distinct(backlash_um: &[f64], mesh: Option<usize>) -> Vec<f64> {
     let mut out: Vec<f64> = match mesh {
         Some(j) => backlash_um.get(j).copied().into_iter().collect(),
         None => backlash_um.to_vec(),
@@ -568,6 +576,12 @@ pub struct BifView {
     pub selected_omega: f64,
     /// Failed points.
     pub failed: Vec<(f64, String)>,
+    /// The pinned state A's dots (A/B comparison), drawn under the current ones.
+    pub pinned: Vec<BifPoint>,
+    /// The pinned state A's ±b.
+    pub pinned_backlash_um: Vec<f64>,
+    /// Legend texts of A and B when comparing.
+    pub ab_labels: Option<(String, String)>,
     /// Swept points received.
     pub done: usize,
     /// Swept points in all.
@@ -621,6 +635,9 @@ impl BifStore {
             omega_to: ctx.omega_to,
             selected_omega: ctx.selected_omega,
             failed,
+            pinned: Vec::new(),
+            pinned_backlash_um: Vec::new(),
+            ab_labels: None,
             done: self.samples.len(),
             total: self.total,
         }

@@ -445,6 +445,7 @@ fn draw_dirty(page: &Shared, p: &mut Page) {
             p.last_query = q;
         }
         set_text(&p.doc, "cli-command", &p.ctl.cli_commands());
+        refresh_ab(p);
     }
     highlight_mesh(p);
     if p.need.iter().any(|&n| n) {
@@ -724,6 +725,17 @@ fn refresh_messages(p: &Page) {
     if let Some(note) = by_id::<HtmlElement>(&p.doc, "preset-note") {
         note.set_hidden(p.ctl.preset_note.is_none());
         note.set_text_content(p.ctl.preset_note.as_deref());
+    }
+}
+
+fn refresh_ab(p: &Page) {
+    let text = match p.ctl.ab_labels() {
+        Some((a, b)) => format!("Comparing A ({a}) with B ({b})"),
+        None => String::new(),
+    };
+    set_text(&p.doc, "ab-status", &text);
+    if let Some(b) = by_id::<HtmlElement>(&p.doc, "clear-a") {
+        b.set_hidden(p.ctl.pinned.is_none());
     }
 }
 
@@ -1045,6 +1057,24 @@ fn build_toolbar(page: &Shared) {
             run_effects(&page2, fx);
             request_frame(&page2);
         });
+    }
+    for (id, pin) in [("pin-a", true), ("clear-a", false)] {
+        if let Some(btn) = doc.get_element_by_id(id) {
+            let page2 = page.clone();
+            listen(&btn.into(), "click", move |_e: Event| {
+                let fx = {
+                    let mut p = page2.borrow_mut();
+                    let t = now(&p.window);
+                    if pin {
+                        p.ctl.pin_a(t)
+                    } else {
+                        p.ctl.clear_a()
+                    }
+                };
+                run_effects(&page2, fx);
+                request_frame(&page2);
+            });
+        }
     }
     if let Some(btn) = doc.get_element_by_id("copy-link") {
         let page2 = page.clone();

@@ -97,6 +97,9 @@ pub struct WorkerCore {
     map: Option<MapJob>,
     lyap: Option<LyapJob>,
     turn: usize,
+    /// The jobs of the pinned state A of an A/B comparison.
+    pinned: Option<Box<WorkerCore>>,
+    pinned_turn: bool,
 }
 
 fn failed(id: JobId, message: impl Into<String>) -> FromWorker {
@@ -125,6 +128,10 @@ impl WorkerCore {
 
     /// Whether a job waits for [`Self::step`].
     pub fn has_work(&self) -> bool {
+        self.has_own_work() || self.pinned.as_ref().is_some_and(|p| p.has_work())
+    }
+
+    fn has_own_work(&self) -> bool {
         self.omega.is_some()
             || self.hbm.is_some()
             || self.fr.is_some()
@@ -143,6 +150,16 @@ impl WorkerCore {
             ToWorker::Run { id, params, job } => self.start(id, &params, job),
             ToWorker::Cancel { kind } => {
                 self.drop_job(kind);
+                Vec::new()
+            }
+            ToWorker::RunPinned { id, params, job } => self
+                .pinned
+                .get_or_insert_with(Box::default)
+                .start(id, &params, job),
+            ToWorker::CancelPinned { kind } => {
+                if let Some(p) = self.pinned.as_mut() {
+                    p.drop_job(kind);
+                }
                 Vec::new()
             }
             ToWorker::ExportBif { id, mesh, other } => vec![self.export_bif(id, mesh, &other)],
@@ -345,6 +362,21 @@ impl WorkerCore {
     pub fn step(&mut self) -> Vec<FromWorker> {
         if let Some(job) = self.omega.take() {
             return vec![run_omega(&job), FromWorker::Done { id: job.id }];
+        }
+        // The pinned state's jobs take every other chunk.
+        self.pinned_turn = !self.pinned_turn;
+        if let Some(p) = self
+            .pinned
+            .as_mut()
+            .filter(|p| p.has_work())
+            .filter(|_| self.pinned_turn)
+        {
+            return p.step();
+        }
+        if !self.has_own_work() {
+            if let Some(p) = self.pinned.as_mut() {
+                return p.step();
+            }
         }
         if let Some(job) = self.hbm.as_mut() {
             let msg = hbm_chunk(job);
@@ -868,6 +900,47 @@ mod tests {
         assert!(lyap.iter().all(|l| l.is_finite()));
         assert!(out.iter().any(|m| matches!(m, FromWorker::Done { id: 3 })));
         assert!(out.iter().any(|m| matches!(m, FromWorker::Done { id: 4 })));
+    }
+
+    #[test]
+    fn a_pinned_job_runs_beside_the_current_job_of_its_kind() {
+        let mut core = WorkerCore::new();
+        let p = ModelParams::defaults(solver::ModelKind::GearPair);
+        let job = |shard| JobSpec::Fr {
+            omega_from: 0.5,
+            omega_to: 1.0,
+            points: 2,
+            chains: 1,
+            shard,
+            run: quick(),
+        };
+        core.handle(&run_msg(1, &p, job(0)));
+        core.handle(&encode(&ToWorker::RunPinned {
+            id: 2,
+            params: params(&p),
+            job: job(0),
+        }));
+        let out = drain(&mut core);
+        for id in [1, 2] {
+            assert!(
+                out.iter()
+                    .any(|m| matches!(m, FromWorker::Done { id: i } if *i == id)),
+                "job {id} did not finish"
+            );
+        }
+        // Cancelling A's job leaves B's alone.
+        core.handle(&run_msg(3, &p, job(0)));
+        core.handle(&encode(&ToWorker::RunPinned {
+            id: 4,
+            params: params(&p),
+            job: job(0),
+        }));
+        core.handle(&encode(&ToWorker::CancelPinned { kind: JobKind::Fr }));
+        let out = drain(&mut core);
+        assert!(out.iter().any(|m| matches!(m, FromWorker::Done { id: 3 })));
+        assert!(!out
+            .iter()
+            .any(|m| matches!(m, FromWorker::FrPoints { id: 4, .. })));
     }
 
     #[test]
