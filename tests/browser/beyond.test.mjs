@@ -179,3 +179,21 @@ test('Pin as A draws B over A on both diagrams, and the link restores the compar
   assert.deepEqual(errors, []);
   await page.close();
 });
+
+test('the phasing preset compares in-phase (A) with sequential (B) and gives the cancelled orders in the summary', async () => {
+  const { page, errors } = await open(h.browser, h.url, `${QUICK}&lyap_points=0&map_omega_points=2&map_value_points=1`);
+  await page.selectOption('#preset', 'phasing5');
+  const s = await waitStatus(page, (s) => s.pinned && s.omega_job.finished_ms && s.query.includes('phasing=sequential'), 60000, 'the phasing preset');
+  assert.deepEqual(s.ab_labels, ['phasing=in-phase', 'phasing=sequential']);
+  const summary = await page.textContent('#summary');
+  assert.match(summary, /Planet phasing \(sequential, N = 5\)/);
+  assert.match(summary, /s1a 0\.00\/0\.00\/0\.00\/0\.00\/1\.00\/0\.00/);
+  assert.match(summary, /orders 1, 2, 3, 4, 6 cancel in every kind/);
+  assert.match(summary, /Response of s1a1 at orders 1–4: [0-9.]+, [0-9.]+, [0-9.]+, [0-9.]+ µm/);
+  assert.match(await page.textContent('#preset-note'), /Parker & Lin/);
+  await waitStatus(page, (s) => s.fr.finished_ms && s.pinned.fr.finished_ms, 60000, 'both branches');
+  await shot(page.locator('#view-fr'), '18-phasing-fr');
+  await shot(page.locator('#summary'), '19-phasing-summary');
+  assert.deepEqual(errors, []);
+  await page.close();
+});

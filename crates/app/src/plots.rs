@@ -752,6 +752,31 @@ pub fn draw_fr<DB: DrawingBackend>(
         );
         notes.extend(wrap(&text, 84));
     }
+    // A finished branch that turned back at a fold and left the range at its
+    // lower end covers only part of the range: say so rather than let the
+    // empty part read as "no response".
+    if v.finished && v.branch_error.is_none() {
+        for br in v.branches.iter().filter(|b| !b.faded) {
+            let reach = br
+                .points
+                .iter()
+                .map(|p| p.omega)
+                .fold(f64::NEG_INFINITY, f64::max);
+            if reach.is_finite() && reach < x.1 - 0.01 * (x.1 - x.0) {
+                let who = if br.pinned {
+                    "A's branch"
+                } else {
+                    "The branch"
+                };
+                notes.extend(wrap(
+                    &format!(
+                        "{who} turns back at Ω = {reach:.3} (a fold) and leaves the range below: above it the response lies on another branch (see the bifurcation diagram)."
+                    ),
+                    84,
+                ));
+            }
+        }
+    }
     if !v.failed.is_empty() {
         notes.push(format!(
             "{} time-integration point(s) failed: not plotted",

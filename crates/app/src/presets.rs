@@ -128,6 +128,13 @@ pub const PRESETS: &[Preset] = &[
         assumed: "Omega = 1.97 is selected.",
     },
     Preset {
+        id: "phasing5",
+        title: "Planet phasing: in-phase (A) vs sequential (B), N = 5",
+        query: "model=ravigneaux&planets=5&phasing=sequential&mesh=s1a1&omega=0.84&a=model%3Dravigneaux%26planets%3D5%26phasing%3Din-phase%26mesh%3Ds1a1%26omega%3D0.84",
+        seed: "Not in the seed: planet phasing after Parker & Lin (2004). In phase, the N meshes of a kind engage together and their excitations add; in sequence, planet n is shifted by z psi_n (z the central member's teeth, psi_n = 2 pi (n - 1) / N), so in the net torque on a central member the mesh order k cancels unless k z / N is a whole number. With the default tooth counts (36, 48, 84) sequential equals in-phase for N = 3, 4 and 6; with N = 5 orders 1 to 4 (and 6) cancel and only order 5 acts. This preset loads the comparison: A in phase, B in sequence; the summary line gives the surviving fraction of each order and the response at orders 1 to 4 (switch the phasing control to see A's numbers).",
+        assumed: "N = 5 with the default tooth counts is a teaching case: five equally spaced pairs would clash (a long planet and the next short planet overlap) and (teeth_r + teeth_s2) = 132 is not a multiple of 5, so such a set cannot be assembled; the torsional model still runs and the phases are those of equal spacing.",
+    },
+    Preset {
         id: "pair",
         title: "Classic single gear pair",
         query: "model=gear-pair&mesh=pg&omega_from=0.3&omega_to=2.5&omega=1",
@@ -184,5 +191,17 @@ mod tests {
         assert_eq!(b("fig2"), Some(Value::Num(0.0)));
         let d = decode(preset("fig7").unwrap().query);
         assert_eq!(d.settings.view.omega, 1.97);
+        // The phasing preset is an A/B comparison: A in phase, B in sequence, N = 5.
+        let d = decode(preset("phasing5").unwrap().query);
+        assert_eq!(
+            get(&d.settings.params, "phasing"),
+            Some(Value::Text("sequential".into()))
+        );
+        let a = d.pinned.unwrap();
+        assert_eq!(
+            get(&a.params, "phasing"),
+            Some(Value::Text("in-phase".into()))
+        );
+        assert_eq!(get(&a.params, "planets"), Some(Value::Num(5.0)));
     }
 }

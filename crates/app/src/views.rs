@@ -15,6 +15,7 @@ use crate::protocol::{BifSample, BranchBif, FrSample, HbmSample, OmegaResult, Re
 use crate::worker_core::severity;
 use serde::Serialize;
 use solver::modal::ModeKind;
+use solver::params::MeshKind;
 use solver::steady::Model;
 
 /// Where a frequency response comes from.
@@ -680,6 +681,106 @@ pub fn summary_line(r: &OmegaResult, natural: &[NaturalFreq]) -> String {
     )
 }
 
+/// Highest mesh order of the phasing numbers.
+pub const PHASING_ORDERS: u32 = 6;
+
+/// How much of the in-phase excitation of a mesh kind survives the sum over
+/// its `N` planet meshes at mesh order `k`: `|sum_n exp(i k gamma_n)| / N`
+/// with the meshes' phases `gamma_n`, for `k = 1 ..= max_order`. Sequential
+/// phasing cancels order `k` in the net torque on the central members when
+/// `k z / N` is not a whole number (Parker & Lin 2004).
+pub fn phasing_factors(model: &Model, kind: MeshKind, max_order: u32) -> Vec<f64> {
+    let phases: Vec<f64> = model
+        .system
+        .meshes
+        .iter()
+        .filter(|m| m.kind == kind)
+        .map(|m| m.phase_rad)
+        .collect();
+    if phases.is_empty() {
+        return Vec::new();
+    }
+    let n = phases.len() as f64;
+    (1..=max_order)
+        .map(|k| {
+            let (c, s) = phases.iter().fold((0.0, 0.0), |(c, s), g| {
+                let a = f64::from(k) * g;
+                (c + a.cos(), s + a.sin())
+            });
+            let f = (c * c + s * s).sqrt() / n;
+            // Exact zeros read as zeros, not as 1e-16.
+            (f * 1e6).round() / 1e6
+        })
+        .collect()
+}
+
+/// The phasing clause of the summary: per mesh kind, the surviving fraction
+/// of the in-phase excitation at mesh orders 1.., the orders that cancel,
+/// and the response's spectrum at those orders. `None` for the gear pair.
+pub fn phasing_line(
+    model: &Model,
+    params: &solver::params::ModelParams,
+    r: Option<&OmegaResult>,
+) -> Option<String> {
+    let solver::params::ModelParams::Ravigneaux(p) = params else {
+        return None;
+    };
+    let mut parts = Vec::new();
+    let mut cancelled_all: Option<Vec<u32>> = None;
+    for (kind, name) in [
+        (MeshKind::S1A, "s1a"),
+        (MeshKind::S2B, "s2b"),
+        (MeshKind::AB, "ab"),
+        (MeshKind::RB, "rb"),
+    ] {
+        let f = phasing_factors(model, kind, PHASING_ORDERS);
+        let cancelled: Vec<u32> = f
+            .iter()
+            .enumerate()
+            .filter(|(_, v)| **v < 1e-3)
+            .map(|(k, _)| k as u32 + 1)
+            .collect();
+        cancelled_all = Some(match cancelled_all {
+            None => cancelled.clone(),
+            Some(c) => c.into_iter().filter(|k| cancelled.contains(k)).collect(),
+        });
+        let nums: Vec<String> = f.iter().map(|v| format!("{v:.2}")).collect();
+        parts.push(format!("{name} {}", nums.join("/")));
+    }
+    let cancelled = cancelled_all.unwrap_or_default();
+    let cancel_text = if cancelled.is_empty() {
+        "no order cancels".to_string()
+    } else {
+        let ks: Vec<String> = cancelled.iter().map(|k| k.to_string()).collect();
+        format!("orders {} cancel in every kind", ks.join(", "))
+    };
+    let mut line = format!(
+        "Planet phasing ({}, N = {}): fraction of the in-phase excitation left in the sum over the planets at mesh orders 1–{PHASING_ORDERS}: {}; {cancel_text}.",
+        p.phasing.name(),
+        p.planets,
+        parts.join("; ")
+    );
+    if let Some(r) = r {
+        let amp = |k: u32| {
+            r.spectrum_order
+                .iter()
+                .zip(&r.spectrum_um)
+                .filter(|(o, _)| (**o - f64::from(k)).abs() < 1e-6)
+                .map(|(_, a)| *a)
+                .next()
+        };
+        let spec: Vec<String> = (1..=PHASING_ORDERS.min(4))
+            .map(|k| amp(k).map_or("-".into(), |a| format!("{a:.2}")))
+            .collect();
+        line.push_str(&format!(
+            " Response of {} at orders 1–4: {} µm.",
+            r.mesh_name,
+            spec.join(", ")
+        ));
+    }
+    Some(line)
+}
+
 fn csv_num(x: f64) -> String {
     if x.is_finite() {
         format!("{x}")
@@ -807,6 +908,36 @@ pub fn omega_json(r: &OmegaResult, which: OmegaView) -> serde_json::Value {
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn sequential_phasing_of_five_planets_cancels_orders_one_to_four() {
+        let model = |q: &str| {
+            let d = crate::link::decode(q);
+            (Model::new(&d.settings.params).unwrap(), d.settings.params)
+        };
+        // z_s1 = 36, z_s2 = 48, z_r = 84: k z / 5 is whole only for k = 5.
+        let (m, p) = model("planets=5&phasing=sequential");
+        for kind in [MeshKind::S1A, MeshKind::S2B, MeshKind::AB, MeshKind::RB] {
+            assert_eq!(
+                phasing_factors(&m, kind, 6),
+                vec![0.0, 0.0, 0.0, 0.0, 1.0, 0.0],
+                "{kind:?}"
+            );
+        }
+        let line = phasing_line(&m, &p, None).unwrap();
+        assert!(line.contains("orders 1, 2, 3, 4, 6 cancel"), "{line}");
+        // In phase, nothing cancels; with N = 3 sequential equals in-phase.
+        for q in ["planets=5&phasing=in-phase", "planets=3&phasing=sequential"] {
+            let (m, p) = model(q);
+            assert_eq!(phasing_factors(&m, MeshKind::S1A, 6), vec![1.0; 6], "{q}");
+            assert!(phasing_line(&m, &p, None)
+                .unwrap()
+                .contains("no order cancels"));
+        }
+        let (m, p) = model("model=gear-pair");
+        assert!(phasing_line(&m, &p, None).is_none());
+    }
+
     use super::*;
     use crate::protocol::{BifMesh, HbmMesh, MeshExtremes};
 

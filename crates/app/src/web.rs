@@ -697,6 +697,12 @@ fn refresh_summary(p: &Page) {
         (_, Some(e)) => format!("Not computed: {e}"),
         (Some(r), None) => {
             let mut s = views::summary_line(r, &natural);
+            if let Ok(m) = &p.ctl.model {
+                if let Some(line) = views::phasing_line(m, &p.ctl.settings.params, Some(r)) {
+                    s.push(' ');
+                    s.push_str(&line);
+                }
+            }
             if p.ctl.omega_status.running() {
                 s.push_str(" Updating…");
             }
