@@ -27,12 +27,28 @@ const PENDING: RGBColor = RGBColor(236, 238, 242);
 const FAILED: RGBColor = RGBColor(110, 110, 110);
 const CROSS: RGBColor = RGBColor(0, 0, 0);
 
-/// Draws the map; returns where its cells lie, to map clicks back to cells.
+/// The map's cells, period marks and cursor in pixels, for the caller to
+/// fill in a batch (one path per colour: a 200 x 100 map is 20000 cells,
+/// too many for one plotters call each).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct MapOverlay {
+    /// Cells by colour: `(colour, [x, y, width, height] in pixels)`.
+    pub cells: Vec<(RGBColor, Vec<[f64; 4]>)>,
+    /// Centres of the cells that are not period 1.
+    pub dots: Vec<[f64; 2]>,
+    /// Radius of the dots (pixels).
+    pub dot_radius: f64,
+    /// The cursor: the selected Omega's column and the key's value's row (pixels).
+    pub cursor: (Option<f64>, Option<f64>),
+}
+
+/// Draws the map's axes and key; returns where its cells lie (to map
+/// clicks back to cells) and the cells themselves, in pixels.
 pub fn draw_map<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     v: &MapView,
     status: &str,
-) -> Res<PlotFrame> {
+) -> Res<(PlotFrame, MapOverlay)> {
     root.fill(&WHITE).map_err(err)?;
     let Some(g) = v.store.grid.as_ref() else {
         return Err("drawing failed: no map grid".into());
@@ -61,8 +77,14 @@ pub fn draw_map<DB: DrawingBackend>(
         .axis_desc_style(small())
         .draw()
         .map_err(err)?;
+    let frame = frame_of(&chart, x, y);
     let (dx, dy) = (0.5 * g.omega_step(), 0.5 * g.value_step());
-    let mut rects = Vec::with_capacity(g.cells());
+    let mut overlay = MapOverlay::default();
+    let mut push =
+        |color: RGBColor, r: [f64; 4]| match overlay.cells.iter_mut().find(|(c, _)| *c == color) {
+            Some((_, v)) => v.push(r),
+            None => overlay.cells.push((color, vec![r])),
+        };
     let mut dots = Vec::new();
     for r in 0..g.value_points {
         for c in 0..g.omega_points {
@@ -77,45 +99,34 @@ pub fn draw_map<DB: DrawingBackend>(
                     regime_color(cell.regime)
                 }
             };
-            rects.push(Rectangle::new(
-                [(xo - dx, yv - dy), (xo + dx, yv + dy)],
-                color.filled(),
-            ));
+            let a = frame.to_px(xo - dx, yv + dy);
+            let b = frame.to_px(xo + dx, yv - dy);
+            // Cells overlap by a fraction of a pixel so no seams show.
+            push(color, [a.x, a.y, b.x - a.x + 0.5, b.y - a.y + 0.5]);
         }
     }
-    chart.draw_series(rects).map_err(err)?;
-    let frame = frame_of(&chart, x, y);
-    // Dots scale with the cell so they stay inside it.
     let cell_px = {
         let a = frame.to_px(g.omega(0) - dx, g.value(0) - dy);
         let b = frame.to_px(g.omega(0) + dx, g.value(0) + dy);
         (b.x - a.x).abs().min((b.y - a.y).abs())
     };
-    let radius = (cell_px * 0.18).clamp(1.0, 4.0) as i32;
-    chart
-        .draw_series(
-            dots.iter()
-                .map(|&(xo, yv)| Circle::new((xo, yv), radius, CROSS.filled())),
-        )
-        .map_err(err)?;
+    overlay.dot_radius = (cell_px * 0.18).clamp(1.0, 4.0);
+    overlay.dots = dots
+        .iter()
+        .map(|&(xo, yv)| {
+            let q = frame.to_px(xo, yv);
+            [q.x, q.y]
+        })
+        .collect();
     // The cursor: the selected Omega and the current value of the key.
     let (om, val) = v.selected;
-    if om >= x.0 && om <= x.1 {
-        chart
-            .draw_series(std::iter::once(PathElement::new(
-                vec![(om, y.0), (om, y.1)],
-                ShapeStyle::from(&BLACK.mix(0.7)).stroke_width(1),
-            )))
-            .map_err(err)?;
-    }
-    if let Some(val) = val.filter(|val| *val >= y.0.min(y.1) && *val <= y.0.max(y.1)) {
-        chart
-            .draw_series(std::iter::once(PathElement::new(
-                vec![(x.0, val), (x.1, val)],
-                ShapeStyle::from(&BLACK.mix(0.7)).stroke_width(1),
-            )))
-            .map_err(err)?;
-    }
+    overlay.cursor = (
+        Some(om)
+            .filter(|om| *om >= x.0 && *om <= x.1)
+            .map(|om| frame.to_px(om, y.0).x),
+        val.filter(|val| *val >= y.0.min(y.1) && *val <= y.0.max(y.1))
+            .map(|val| frame.to_px(x.0, val).y),
+    );
     // The key: every regime (so the colours read the same in every map),
     // the period mark, pending and failed cells, the cursor.
     let mut items: Vec<(RGBColor, String, bool)> = Regime::ALL
@@ -162,7 +173,51 @@ pub fn draw_map<DB: DrawingBackend>(
         }
     }
     root.present().map_err(err)?;
-    Ok(frame)
+    Ok((frame, overlay))
+}
+
+/// Draws a map's cells, dots and cursor with plotters (for backends
+/// without a fast path, e.g. the SVG of the tests).
+pub fn draw_map_overlay<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    frame: &PlotFrame,
+    o: &MapOverlay,
+) -> Res<()> {
+    for (color, rects) in &o.cells {
+        for r in rects {
+            root.draw(&Rectangle::new(
+                [
+                    (r[0] as i32, r[1] as i32),
+                    ((r[0] + r[2]) as i32, (r[1] + r[3]) as i32),
+                ],
+                color.filled(),
+            ))
+            .map_err(err)?;
+        }
+    }
+    for d in &o.dots {
+        root.draw(&Circle::new(
+            (d[0] as i32, d[1] as i32),
+            o.dot_radius as i32,
+            CROSS.filled(),
+        ))
+        .map_err(err)?;
+    }
+    let (l, t, r, b) = (
+        frame.top_left.x as i32,
+        frame.top_left.y as i32,
+        frame.bottom_right.x as i32,
+        frame.bottom_right.y as i32,
+    );
+    if let Some(x) = o.cursor.0 {
+        root.draw(&PathElement::new(vec![(x as i32, t), (x as i32, b)], BLACK))
+            .map_err(err)?;
+    }
+    if let Some(y) = o.cursor.1 {
+        root.draw(&PathElement::new(vec![(l, y as i32), (r, y as i32)], BLACK))
+            .map_err(err)?;
+    }
+    root.present().map_err(err)
 }
 
 /// Colour of an exponent's reading.
@@ -313,7 +368,14 @@ mod tests {
         let mut s = String::new();
         let frame = {
             let root = SVGBackend::with_string(&mut s, (WIDTH, MAP_HEIGHT)).into_drawing_area();
-            draw_map(&root, &view, "").unwrap()
+            let (frame, overlay) = draw_map(&root, &view, "").unwrap();
+            // 15 cells in two colours (one computed, 14 pending), one dot, both cursor lines.
+            assert_eq!(overlay.cells.iter().map(|c| c.1.len()).sum::<usize>(), 15);
+            assert_eq!(overlay.cells.len(), 2);
+            assert_eq!(overlay.dots.len(), 1);
+            assert!(overlay.cursor.0.is_some() && overlay.cursor.1.is_some());
+            draw_map_overlay(&root, &frame, &overlay).unwrap();
+            frame
         };
         assert!(s.contains("TE sine amplitude"), "axis label");
         assert!(s.contains("not period 1") && s.contains("double-sided impact"));

@@ -590,8 +590,11 @@ fn draw_map(p: &mut Page) {
         } else {
             String::new()
         };
-        crate::plots_maps::draw_map(&root, &p.ctl.map_view(), &suffix).map(|f| {
+        crate::plots_maps::draw_map(&root, &p.ctl.map_view(), &suffix).map(|(f, o)| {
             p.map_frame = Some(f);
+            if let Some(ctx) = canvas(&p.doc, "map").as_ref().and_then(ctx2d) {
+                fill_map(&ctx, &f, &o);
+            }
         })
     };
     let (by, not_p1, failed) = p.ctl.map.counts();
@@ -605,6 +608,37 @@ fn draw_map(p: &mut Page) {
     note.push_str(". Click a cell to set both parameters.");
     set_text(&p.doc, "note-map", &note);
     report_draw_error(p, r);
+}
+
+/// The map's cells, one path per colour, then the period dots and the cursor.
+fn fill_map(ctx: &CanvasRenderingContext2d, f: &PlotFrame, o: &crate::plots_maps::MapOverlay) {
+    for (c, rects) in &o.cells {
+        ctx.begin_path();
+        for r in rects {
+            ctx.rect(r[0], r[1], r[2], r[3]);
+        }
+        ctx.set_fill_style_str(&format!("rgb({},{},{})", c.0, c.1, c.2));
+        ctx.fill();
+    }
+    ctx.begin_path();
+    for d in &o.dots {
+        ctx.move_to(d[0] + o.dot_radius, d[1]);
+        let _ = ctx.arc(d[0], d[1], o.dot_radius, 0.0, std::f64::consts::TAU);
+    }
+    ctx.set_fill_style_str("#000");
+    ctx.fill();
+    ctx.set_stroke_style_str("rgba(0,0,0,0.7)");
+    ctx.set_line_width(1.0);
+    ctx.begin_path();
+    if let Some(x) = o.cursor.0 {
+        ctx.move_to(x, f.top_left.y);
+        ctx.line_to(x, f.bottom_right.y);
+    }
+    if let Some(y) = o.cursor.1 {
+        ctx.move_to(f.top_left.x, y);
+        ctx.line_to(f.bottom_right.x, y);
+    }
+    ctx.stroke();
 }
 
 fn draw_lyap(p: &mut Page) {
