@@ -29,11 +29,11 @@ test('the page loads without console errors and draws every canvas', async () =>
   assert.equal(s.workers_ready, 2);
   assert.deepEqual(s.issues, []);
   // View 1 is the harmonic-balance branch, complete (not a partial one).
-  assert.equal(s.fr_method, 'harmonic balance, H = 5, AFT');
+  assert.equal(s.fr_method, 'harmonic balance, H = 5, exact');
   assert.equal(s.fr.error, null);
   assert.equal(s.fr_partial, null);
   assert.ok(s.fr_branch_points > 20, `${s.fr_branch_points} branch points`);
-  assert.match(await page.textContent('#note-fr'), /Method: harmonic balance, H = 5, AFT/);
+  assert.match(await page.textContent('#note-fr'), /Method: harmonic balance, H = 5, exact/);
   for (const id of CANVASES) {
     const st = await canvasStats(page, `canvas-${id}`);
     assert.ok(st.ink > st.total * 0.02, `canvas-${id} looks blank (${st.ink} of ${st.total} pixels drawn)`);
@@ -165,7 +165,7 @@ test('exports: CSV and JSON of the views, and the CLI formats of simulate and bi
   assert.equal(csv.text.trim().split('\n').length, frJson.branches[0].points.length + 1);
   assert.equal(frJson.source.method, 'hbm');
   assert.equal(frJson.source.harmonics, 5);
-  assert.equal(frJson.method, 'harmonic balance, H = 5, AFT');
+  assert.equal(frJson.method, 'harmonic balance, H = 5, exact');
   const sim = JSON.parse((await grab('phase', 'CLI JSON')).text);
   assert.equal(sim.mesh, 's1a1');
   assert.equal(sim.omega, 0.84);
@@ -245,7 +245,7 @@ test('the frequency response is the harmonic-balance branch at the default setti
   // bifurcation sweep runs alongside on both workers, as on a fresh page.
   const { page, errors } = await open(h.browser, h.url, '');
   const s = await waitStatus(page, (s) => s.fr.finished_ms, 120000, 'the harmonic-balance branch');
-  assert.equal(s.fr_method, 'harmonic balance, H = 5, AFT');
+  assert.equal(s.fr_method, 'harmonic balance, H = 5, exact');
   assert.equal(s.fr_partial, null, `the branch failed: ${s.fr_partial}`);
   const ready = s.first_draw_ms[0];
   console.log(`# harmonic balance (default: 150 points, H = 5, stability): ${s.fr_branch_points} points in ${Math.round(s.fr.finished_ms - s.fr.started_ms)} ms from page start, first points after ${Math.round(s.fr.first_data_ms - s.fr.started_ms)} ms; first FR draw at ${Math.round(ready)} ms`);

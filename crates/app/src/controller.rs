@@ -1423,7 +1423,7 @@ mod tests {
             })
             .collect();
         assert_eq!(shards, vec![0, 1]);
-        assert_eq!(c.fr_method(), "harmonic balance, H = 5, AFT");
+        assert_eq!(c.fr_method(), "harmonic balance, H = 5, exact");
     }
 
     #[test]

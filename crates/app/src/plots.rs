@@ -1363,7 +1363,7 @@ mod tests {
             "{s}"
         );
         for text in [
-            "harmonic balance, H = 5, AFT",
+            "harmonic balance, H = 5, exact",
             "unstable (Floquet): dashed",
             "fold (jump)",
             "time integration (1 pts): max |Δx| 1.50 µm at 1 on the stable branch; 2 where none is stable",

@@ -34,7 +34,7 @@ pub const PRESETS: &[Preset] = &[
         title: "Fig. 2: frequency response, b = 0",
         query: "model=ravigneaux&backlash_um=0&te_um=20&mesh=s1a1&omega_from=0.1&omega_to=2",
         seed: "HBM frequency response of one mesh of each kind, with no backlash and TE sine amplitudes of 5 to 30 um on the s1a meshes.",
-        assumed: "One TE amplitude of 20 um (the middle of the seed's range); pick other meshes with the mesh control. The curve is the harmonic-balance branch (H = 5 by default, AFT).",
+        assumed: "One TE amplitude of 20 um (the middle of the seed's range); pick other meshes with the mesh control. The curve is the harmonic-balance branch (H = 5 by default, forces integrated exactly between the contact switches).",
     },
     Preset {
         id: "fig3",

@@ -90,7 +90,7 @@ pub enum JobSpec {
         omega_to: f64,
         /// Nominal points (the largest arclength step is range / points).
         points: u32,
-        /// Harmonics H (AFT).
+        /// Harmonics H (exact method).
         harmonics: u32,
         /// Compute Floquet stability at every point.
         stability: bool,

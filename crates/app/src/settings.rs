@@ -181,7 +181,7 @@ pub const VIEW_KEYS: &[ViewKey] = &[
             min: 1,
             max: MAX_HARMONICS,
         },
-        description: "harmonics H of the harmonic-balance frequency response (AFT)",
+        description: "harmonics H of the harmonic-balance frequency response",
     },
     ViewKey {
         name: "map_key",

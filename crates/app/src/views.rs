@@ -29,7 +29,7 @@ pub enum FrSource {
         /// Recorded periods per point.
         record_periods: u32,
     },
-    /// Harmonic balance (AFT) with pseudo-arclength continuation (`solver::hbm`).
+    /// Harmonic balance (exact method) with pseudo-arclength continuation (`solver::hbm`).
     Hbm {
         /// Harmonics retained.
         harmonics: u32,
@@ -41,7 +41,7 @@ impl FrSource {
     pub fn label(&self) -> String {
         match self {
             FrSource::TimeIntegration { .. } => "time-integration steady states".into(),
-            FrSource::Hbm { harmonics } => format!("harmonic balance, H = {harmonics}, AFT"),
+            FrSource::Hbm { harmonics } => format!("harmonic balance, H = {harmonics}, exact"),
         }
     }
 }
@@ -1038,7 +1038,7 @@ mod tests {
         ]);
         let prev = st.clone();
         let v = fr_view(&st, Some(&prev), Some(&ti), Some(0), &[100.0, 50.0], &ctx());
-        assert_eq!(v.method, "harmonic balance, H = 5, AFT");
+        assert_eq!(v.method, "harmonic balance, H = 5, exact");
         assert_eq!(v.backlash_um, vec![100.0]);
         assert_eq!(v.branches.len(), 2);
         assert!(v.branches[0].faded && !v.branches[1].faded);

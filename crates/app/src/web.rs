@@ -498,7 +498,7 @@ fn draw_fr(p: &mut Page) {
         &p.doc,
         "note-fr",
         &format!(
-            "Method: {}, pseudo-arclength continuation upward in Ω with Floquet stability.{overlay}",
+            "Method: {} (mesh forces integrated in closed form between the contact switches), pseudo-arclength continuation upward in Ω with Floquet stability.{overlay}",
             v.method
         ),
     );

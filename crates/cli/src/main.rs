@@ -170,7 +170,7 @@ enum Command {
         harmonics: usize,
         /// aft (time grid, any H), exact (closed-form integration between the
         /// contact switches, any H) or describing-function (the seed's Eqs. 9-13, H = 1).
-        #[arg(long, default_value = "aft")]
+        #[arg(long, default_value = "exact")]
         method: String,
         /// Continue up from --omega-from or down from --omega-to.
         #[arg(long, default_value = "up")]
@@ -565,6 +565,13 @@ fn run(cli: Cli) -> Result<(), Failure> {
             match p.format {
                 Format::Json => emit(&value)?,
                 Format::Csv => emit_text(&csv::frf(&value)),
+            }
+            if failure.is_none() && c.left_at_start() {
+                eprintln!(
+                    "gearshock: note: the branch turned back at a fold and left the range at its start; \
+                     continue from the other end with --direction {} to see the rest",
+                    if c.spec().direction == Direction::Up { "down" } else { "up" }
+                );
             }
             match failure {
                 // The partial branch is written (marked `complete: false`),

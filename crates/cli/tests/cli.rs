@@ -291,7 +291,7 @@ fn frf_reports_the_branch_with_stability_and_bifurcations() {
     ]);
     assert_eq!(v["complete"], true);
     assert_eq!(v["spec"]["harmonics"], 5);
-    assert_eq!(v["spec"]["method"], "aft");
+    assert_eq!(v["spec"]["method"], "exact");
     let branch = v["branch"].as_array().expect("branch");
     assert!(branch.len() >= 100);
     assert_eq!(v["stats"]["points"].as_u64(), Some(branch.len() as u64));

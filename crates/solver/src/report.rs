@@ -442,6 +442,7 @@ pub fn frf_json(
         "spec": frf_spec_json(continuation.spec(), continuation.assembly().grid.n),
         "meshes": names,
         "complete": error.is_none(),
+        "left_range_at_start": continuation.left_at_start(),
         "error": error.map_or(Value::Null, |e| Value::from(e.to_string())),
         "branch": branch.iter().map(|p| branch_point_json(model, p, meshes)).collect::<Vec<_>>(),
         "stats": {

@@ -450,3 +450,34 @@ fn exact_integration_agrees_with_fine_aft_on_both_models() {
         assert_eq!(e.stable, a.stable);
     }
 }
+
+#[test]
+fn sequential_phasing_branch_crosses_the_range_and_turning_back_is_reported() {
+    // Five planet pairs with sequential phasing (no symmetric reduction):
+    // the exact method follows the branch across the first mode's zone.
+    let m = model(&["planets=5", "phasing=sequential"]);
+    let mut spec = FrfSpec::new(0.1, 0.5, 100);
+    spec.stability = false;
+    let mut c = FrfContinuation::new(&m, spec).unwrap();
+    let pts = branch(&mut c);
+    assert!((pts.last().unwrap().omega - 0.5).abs() < 1e-9);
+    assert!(!c.left_at_start());
+    // The gear pair from inside its hysteresis band (0.49..0.60): the
+    // branch found at 0.55 ends at the upper fold, turns back and leaves
+    // the range through 0.55, which the continuation reports.
+    let m = model(&["model=gear-pair"]);
+    let mut spec = FrfSpec::new(0.55, 0.7, 100);
+    spec.harmonics = 7;
+    spec.stability = false;
+    let mut c = FrfContinuation::new(&m, spec).unwrap();
+    let pts = branch(&mut c);
+    assert!(c.left_at_start());
+    assert!(pts.last().unwrap().omega < 0.55);
+    let folds: Vec<f64> = pts
+        .iter()
+        .filter(|p| p.bifurcation == Some(Bifurcation::Fold))
+        .map(|p| p.omega)
+        .collect();
+    assert_eq!(folds.len(), 1);
+    assert!((0.59..0.62).contains(&folds[0]), "{folds:?}");
+}

@@ -100,7 +100,8 @@ pub struct FrfSpec {
 }
 
 impl FrfSpec {
-    /// Defaults: H = 5 with AFT, stability on, symmetric reduction on, up.
+    /// Defaults: H = 5 with the exact method, stability on, symmetric
+    /// reduction on, up.
     pub fn new(omega_from: f64, omega_to: f64, points: u32) -> Self {
         FrfSpec {
             omega_from,
@@ -108,7 +109,7 @@ impl FrfSpec {
             points,
             direction: Direction::Up,
             harmonics: 5,
-            method: Method::Aft,
+            method: Method::Exact,
             grid: None,
             stability: true,
             symmetric: true,
@@ -228,6 +229,7 @@ pub struct FrfContinuation {
     transform: Option<DMatrix<f64>>,
     mesh_to_channel: Vec<usize>,
     recon: Vec<f64>,
+    left_at_start: bool,
 }
 
 const NEWTON_MAX: usize = 12;
@@ -303,6 +305,7 @@ impl FrfContinuation {
             transform,
             mesh_to_channel,
             recon: recon_table(h),
+            left_at_start: false,
             spec,
         })
     }
@@ -320,6 +323,14 @@ impl FrfContinuation {
     /// Whether the branch has left the Omega range (or failed).
     pub fn is_finished(&self) -> bool {
         self.finished
+    }
+
+    /// Whether the finished branch turned back at a fold and left the range
+    /// through the end it started from, so that the rest of the range was
+    /// not reached (continue from the other end, in the other direction, to
+    /// see it).
+    pub fn left_at_start(&self) -> bool {
+        self.left_at_start
     }
 
     /// Fraction of the Omega range covered so far, for progress bars.
@@ -571,6 +582,14 @@ impl FrfContinuation {
                         || omega < self.spec.omega_from - 1e-12
                     {
                         self.finished = true;
+                        // Left through the end it started from: the branch
+                        // turned back at a fold and the rest of the range
+                        // was not reached.
+                        let at_start = match self.spec.direction {
+                            Direction::Up => omega < self.spec.omega_from + 1e-9,
+                            Direction::Down => omega > self.spec.omega_to - 1e-9,
+                        };
+                        self.left_at_start = at_start && !landing;
                     }
                     return Ok(Some(
                         self.point(iterations, fold.then_some(Bifurcation::Fold)),
