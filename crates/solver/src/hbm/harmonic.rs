@@ -224,8 +224,8 @@ pub fn channel_aft(
 /// the force `k(theta) (x -+ b)` is itself a trigonometric polynomial of
 /// degree `h + 1`, so `int w(theta) e^{-i p theta}` over the interval is a
 /// finite sum of `(e^{i m beta} - e^{i m alpha}) / (i m)`. The roots are
-/// bracketed on `max(64, 16 (2h + 1))` samples and refined by bisection to
-/// round-off. Because the dead zone is continuous, the result is a smooth
+/// bracketed on `max(64, 16 (2h + 1))` samples and refined by the Illinois
+/// method to round-off. Because the dead zone is continuous, the result is a smooth
 /// (C1) function of the coefficients: no grid kinks, and the Jacobian from
 /// [`mult_operator`] is its exact derivative. At `h = 1` it equals the
 /// describing function's closed forms. Non-mesh laws fall back to AFT.
@@ -300,53 +300,58 @@ pub fn channel_exact(
         scratch.dx.push(kf * scratch.x[2 * kk]);
         scratch.dx.push(-kf * scratch.x[2 * kk - 1]);
     }
+    // The basis on the samples, built once per (h, samples).
+    if scratch.table.len() != samples * nc {
+        scratch.table = (0..samples)
+            .flat_map(|i| {
+                let t = 2.0 * PI * i as f64 / samples as f64;
+                (0..nc).map(move |c| match c {
+                    0 => 1.0,
+                    c if c % 2 == 1 => (c.div_ceil(2) as f64 * t).cos(),
+                    c => ((c / 2) as f64 * t).sin(),
+                })
+            })
+            .collect();
+    }
+    let at = |coef: &[f64], i: usize| -> f64 {
+        let row = &scratch.table[(i % samples) * nc..(i % samples + 1) * nc];
+        row.iter().zip(coef).map(|(a, b)| a * b).sum()
+    };
     let eval = |t: f64| super::stability::eval_coef(&scratch.x, h, t);
     let slope_at = |t: f64| super::stability::eval_coef(&scratch.dx, h, t);
-    let bisect = |f: &dyn Fn(f64) -> f64, mut lo: f64, mut hi: f64| -> f64 {
-        let mut flo = f(lo);
-        for _ in 0..60 {
-            let mid = 0.5 * (lo + hi);
-            let fm = f(mid);
-            if (fm > 0.0) == (flo > 0.0) {
-                lo = mid;
-                flo = fm;
-            } else {
-                hi = mid;
-            }
-            if hi - lo < 1e-15 {
-                break;
-            }
-        }
-        0.5 * (lo + hi)
+    let root = |f: &dyn Fn(f64) -> f64, lo: f64, hi: f64, flo: f64, fhi: f64| -> f64 {
+        illinois(f, lo, hi, flo, fhi)
     };
+    // Monotone pieces as (phase, x) pairs.
     scratch.pieces.clear();
-    scratch.pieces.push(0.0);
+    scratch.pieces.push((0.0, at(&scratch.x, 0)));
     let mut t0 = 0.0;
-    let mut d0 = slope_at(0.0);
+    let mut d0 = at(&scratch.dx, 0);
     for i in 1..=samples {
         let t1 = 2.0 * PI * i as f64 / samples as f64;
-        let d1 = slope_at(t1);
+        let d1 = at(&scratch.dx, i);
         if (d0 > 0.0) != (d1 > 0.0) {
-            scratch.pieces.push(bisect(&slope_at, t0, t1));
+            let te = root(&slope_at, t0, t1, d0, d1);
+            scratch.pieces.push((te, eval(te)));
         }
-        scratch.pieces.push(t1);
+        scratch.pieces.push((t1, at(&scratch.x, i)));
         t0 = t1;
         d0 = d1;
     }
     scratch.cuts.clear();
     scratch.cuts.push(0.0);
-    let mut xa = eval(0.0);
     for w in scratch.pieces.windows(2) {
-        let xb = eval(w[1]);
+        let ((ta, xa), (tb, xb)) = (w[0], w[1]);
         for side in [b, -b] {
             if (xa - side > 0.0) != (xb - side > 0.0) {
-                scratch.cuts.push(bisect(&|t| eval(t) - side, w[0], w[1]));
+                scratch
+                    .cuts
+                    .push(root(&|t| eval(t) - side, ta, tb, xa - side, xb - side));
             }
             if b == 0.0 {
                 break;
             }
         }
-        xa = xb;
     }
     scratch.cuts.push(2.0 * PI);
     scratch.cuts.sort_by(f64::total_cmp);
@@ -439,12 +444,54 @@ pub fn te_real_coefficients(law: &Law) -> [f64; 3] {
     }
 }
 
+/// A root of `g` in `[a, b]` where `g(a) = ga` and `g(b) = gb` differ in
+/// sign: regula falsi with the Illinois modification, to round-off.
+pub(crate) fn illinois(
+    g: &dyn Fn(f64) -> f64,
+    mut a: f64,
+    mut b: f64,
+    mut ga: f64,
+    mut gb: f64,
+) -> f64 {
+    let mut side = 0;
+    for _ in 0..60 {
+        let c = (a * gb - b * ga) / (gb - ga);
+        if !(c > a && c < b) || b - a < 1e-14 {
+            return 0.5 * (a + b);
+        }
+        let gc = g(c);
+        if gc == 0.0 {
+            return c;
+        }
+        if (gc > 0.0) == (gb > 0.0) {
+            b = c;
+            gb = gc;
+            if side == -1 {
+                ga *= 0.5;
+            }
+            side = -1;
+        } else {
+            a = c;
+            ga = gc;
+            if side == 1 {
+                gb *= 0.5;
+            }
+            side = 1;
+        }
+        if gc.abs() < 1e-13 * (1.0 + ga.abs().max(gb.abs())) {
+            return c;
+        }
+    }
+    0.5 * (a + b)
+}
+
 /// Scratch buffers of [`channel_exact`].
 #[derive(Debug, Clone, Default)]
 pub struct ExactScratch {
     x: Vec<f64>,
     dx: Vec<f64>,
-    pieces: Vec<f64>,
+    pieces: Vec<(f64, f64)>,
+    table: Vec<f64>,
     w_hi: Vec<Complex<f64>>,
     w_lo: Vec<Complex<f64>>,
     cuts: Vec<f64>,

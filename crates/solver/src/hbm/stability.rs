@@ -16,7 +16,7 @@
 //! N - 1 times.
 
 use super::assembly::Assembly;
-use super::harmonic::{n_coef, te_real_coefficients};
+use super::harmonic::{illinois, n_coef, te_real_coefficients};
 use super::model::Law;
 use nalgebra::Complex;
 use nalgebra::{linalg::Schur, DMatrix};
@@ -95,41 +95,6 @@ fn switch_phases(asm: &Assembly, coefs: &[Vec<f64>]) -> Vec<f64> {
     out.sort_by(f64::total_cmp);
     out.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
     out
-}
-
-/// A root of `g` in `[a, b]` where `g(a) = ga` and `g(b) = gb` differ in
-/// sign: regula falsi with the Illinois modification, to round-off.
-fn illinois(g: &dyn Fn(f64) -> f64, mut a: f64, mut b: f64, mut ga: f64, mut gb: f64) -> f64 {
-    let mut side = 0;
-    for _ in 0..60 {
-        let c = (a * gb - b * ga) / (gb - ga);
-        if !(c > a && c < b) || b - a < 1e-14 {
-            return 0.5 * (a + b);
-        }
-        let gc = g(c);
-        if gc == 0.0 {
-            return c;
-        }
-        if (gc > 0.0) == (gb > 0.0) {
-            b = c;
-            gb = gc;
-            if side == -1 {
-                ga *= 0.5;
-            }
-            side = -1;
-        } else {
-            a = c;
-            ga = gc;
-            if side == 1 {
-                gb *= 0.5;
-            }
-            side = 1;
-        }
-        if gc.abs() < 1e-13 * (1.0 + ga.abs().max(gb.abs())) {
-            return c;
-        }
-    }
-    0.5 * (a + b)
 }
 
 /// A linear time-periodic block `y'' + C y' + (K0 + sum_j w_j s_j(theta) v_j v_j^T) y = 0`
