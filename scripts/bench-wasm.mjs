@@ -4,6 +4,7 @@
 // (HBM frequency responses H = 1 and H = 7 over Omega 0.1..2 with 400
 // nominal points, stability on; one simulate of 300 + 100 periods at
 // Omega 0.5) in node and natively, and prints medians and the ratios as JSON.
+// The wasm is optimized by wasm-opt -O3 as in the page's release build.
 // Usage: node scripts/bench-wasm.mjs [repeats]   (run from the repository root,
 // with scripts/env.sh sourced so wasm-bindgen is on PATH)
 import { execFileSync } from 'node:child_process';
@@ -17,6 +18,9 @@ const run = (cmd, args) => execFileSync(cmd, args, { stdio: ['ignore', 'pipe', '
 run('cargo', ['build', '--release', '-p', 'wasm-bench', '--target', 'wasm32-unknown-unknown']);
 run('wasm-bindgen', ['--target', 'nodejs', '--out-dir', 'target/wasm-bench',
   'target/wasm32-unknown-unknown/release/wasm_bench.wasm']);
+// Optimize as the page's build does (Trunk runs binaryen's wasm-opt).
+run('wasm-opt', ['-O3', '--enable-bulk-memory', '--enable-nontrapping-float-to-int', '--enable-sign-ext',
+  'target/wasm-bench/wasm_bench_bg.wasm', '-o', 'target/wasm-bench/wasm_bench_bg.wasm']);
 run('cargo', ['build', '--release', '-p', 'cli']);
 // The bindings are CommonJS; the repository's package.json says "module".
 writeFileSync('target/wasm-bench/package.json', '{ "type": "commonjs" }\n');
