@@ -190,6 +190,8 @@ test('the phasing preset compares in-phase (A) with sequential (B) and gives the
   assert.match(summary, /s1a 0\.00\/0\.00\/0\.00\/0\.00\/1\.00\/0\.00/);
   assert.match(summary, /orders 1, 2, 3, 4, 6 cancel in every kind/);
   assert.match(summary, /Response of s1a1 at orders 1–4: [0-9.]+, [0-9.]+, [0-9.]+, [0-9.]+ µm/);
+  // The solver's geometry warnings reach the page: five pairs clash.
+  assert.match(summary, /Model warnings: .*planets = 5/);
   assert.match(await page.textContent('#preset-note'), /Parker & Lin/);
   await waitStatus(page, (s) => s.fr.finished_ms && s.pinned.fr.finished_ms, 60000, 'both branches');
   await shot(page.locator('#view-fr'), '18-phasing-fr');

@@ -273,6 +273,78 @@ pub fn lyap_kind(per_period: f64) -> LyapKind {
     }
 }
 
+/// The map's cells as CSV, row by row (the format of `gearshock map --format csv`).
+pub fn map_csv(store: &MapStore) -> String {
+    let key = store.grid.as_ref().map_or("value", |g| g.key.as_str());
+    let mut s = format!("row,column,omega,{key},impact,period,error\n");
+    for c in store.cells.iter().flatten() {
+        s.push_str(&format!(
+            "{},{},{},{},{},{},{}\n",
+            c.row,
+            c.column,
+            c.omega,
+            c.value,
+            if c.error.is_some() {
+                ""
+            } else {
+                c.regime.solver_name()
+            },
+            c.period.map_or(String::new(), |p| p.to_string()),
+            c.error.as_deref().unwrap_or("").replace(',', ";"),
+        ));
+    }
+    s
+}
+
+/// The map as JSON: its grid and the computed cells (field names as in
+/// `gearshock map`).
+pub fn map_json(store: &MapStore) -> serde_json::Value {
+    let cells: Vec<serde_json::Value> = store
+        .cells
+        .iter()
+        .flatten()
+        .map(|c| {
+            serde_json::json!({
+                "row": c.row,
+                "column": c.column,
+                "omega": c.omega,
+                "value": c.value,
+                "impact": if c.error.is_some() { None } else { Some(c.regime.solver_name()) },
+                "period": c.period,
+                "error": c.error,
+            })
+        })
+        .collect();
+    serde_json::json!({ "grid": store.grid, "cells": cells })
+}
+
+/// The Lyapunov curve as CSV (the format of `gearshock lyapunov --format csv`).
+pub fn lyap_csv(store: &LyapStore) -> String {
+    let mut s = String::from("omega,exponent_per_period,exponent_per_s\n");
+    for p in &store.points {
+        let f = |x: Option<f64>| x.map_or(String::new(), |v| v.to_string());
+        s.push_str(&format!("{},{},{}\n", p.omega, f(p.per_period), f(p.per_s)));
+    }
+    s
+}
+
+/// The Lyapunov curve as JSON (field names as in `gearshock lyapunov`).
+pub fn lyap_json(store: &LyapStore) -> serde_json::Value {
+    let points: Vec<serde_json::Value> = store
+        .points
+        .iter()
+        .map(|p| {
+            serde_json::json!({
+                "omega": p.omega,
+                "exponent_per_period": p.per_period,
+                "exponent_per_s": p.per_s,
+                "error": p.error,
+            })
+        })
+        .collect();
+    serde_json::json!({ "periods": store.periods, "points": points })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -342,5 +414,52 @@ mod tests {
         assert_eq!(lyap_kind(-0.3), LyapKind::Periodic);
         assert_eq!(lyap_kind(0.001), LyapKind::Neutral);
         assert_eq!(lyap_kind(0.2), LyapKind::Chaotic);
+    }
+
+    #[test]
+    fn exports_match_the_cli_formats() {
+        let mut s = MapStore::new(7, grid(), "sig".into());
+        s.add(vec![
+            MapSample {
+                row: 1,
+                column: 2,
+                omega: 0.3,
+                value: 10.0,
+                regime: Regime::SingleSided,
+                period: Some(2),
+                error: None,
+            },
+            MapSample {
+                row: 0,
+                column: 0,
+                omega: 0.1,
+                value: 0.0,
+                regime: Regime::NoImpact,
+                period: None,
+                error: Some("step size, too small".into()),
+            },
+        ]);
+        let csv = map_csv(&s);
+        let lines: Vec<&str> = csv.lines().collect();
+        assert_eq!(lines[0], "row,column,omega,backlash_um,impact,period,error");
+        assert_eq!(lines.len(), 3);
+        assert!(lines.contains(&"1,2,0.3,10,single-sided,2,"));
+        assert!(lines.contains(&"0,0,0.1,0,,,step size; too small"));
+        let j = map_json(&s);
+        assert_eq!(j["grid"]["key"], "backlash_um");
+        assert_eq!(j["cells"].as_array().map(Vec::len), Some(2));
+        let mut l = LyapStore::new(3, 2, 100);
+        l.points.push(LyapSample {
+            index: 0,
+            omega: 0.5,
+            per_period: Some(-0.25),
+            per_s: Some(-100.0),
+            error: None,
+        });
+        assert_eq!(
+            lyap_csv(&l),
+            "omega,exponent_per_period,exponent_per_s\n0.5,-0.25,-100\n"
+        );
+        assert_eq!(lyap_json(&l)["points"][0]["exponent_per_s"], -100.0);
     }
 }

@@ -744,6 +744,12 @@ fn refresh_summary(p: &Page) {
         }
         (None, None) => "Computing the steady state at the selected Omega…".into(),
     };
+    let text = match &p.ctl.model {
+        Ok(m) if !m.system.warnings.is_empty() => {
+            format!("{text} Model warnings: {}", m.system.warnings.join("; "))
+        }
+        _ => text,
+    };
     set_text(&p.doc, "summary", &text);
 }
 
@@ -1251,6 +1257,31 @@ fn build_exports(page: &Shared) {
                     }
                 }
             });
+        }
+        for fmt in ["CSV", "JSON"] {
+            if let Some(b) = add_button(
+                &doc,
+                &bar,
+                fmt,
+                &format!("Download the data behind this plot as {fmt}"),
+            ) {
+                let page2 = page.clone();
+                listen(&b.into(), "click", move |_e: Event| {
+                    let p = page2.borrow();
+                    let text = match (view, fmt) {
+                        ("map", "CSV") => crate::maps::map_csv(&p.ctl.map),
+                        ("map", _) => crate::maps::map_json(&p.ctl.map).to_string(),
+                        (_, "CSV") => crate::maps::lyap_csv(&p.ctl.lyap),
+                        _ => crate::maps::lyap_json(&p.ctl.lyap).to_string(),
+                    };
+                    let (ext, mime) = if fmt == "CSV" {
+                        ("csv", "text/csv")
+                    } else {
+                        ("json", "application/json")
+                    };
+                    download_text(&p.doc, &format!("gearshock-{view}.{ext}"), mime, &text);
+                });
+            }
         }
     }
     if let Some(sec) = doc.get_element_by_id("export-cli") {

@@ -11,9 +11,9 @@
 //! The selected-Omega job is served first, so the views at the selected
 //! Omega update even while a long sweep runs; then the harmonic-balance
 //! branch of the frequency response (the view a slider drag watches, and the
-//! quickest sweep); the time-integration overlay grid, the bifurcation
-//! sweep, the impact-regime map and the Lyapunov curve then take turns, one
-//! steady state (map cell, Lyapunov point) each.
+//! quickest sweep); the time-integration overlay grid and the bifurcation
+//! sweep then take turns, one steady state each; the Lyapunov curve and
+//! then the impact-regime map run when those are idle.
 
 use crate::protocol::{
     encode, BifMesh, BifSample, FrSample, FromWorker, HbmMesh, HbmSample, JobId, JobKind, JobSpec,
@@ -385,22 +385,26 @@ impl WorkerCore {
             }
             return vec![msg];
         }
-        // The sweeps take turns, one bounded chunk each, so every diagram
-        // fills in together and each shows its first points early.
-        for k in 0..4 {
-            let kind = (self.turn + k) % 4;
+        // The frequency-response overlay and the bifurcation sweep take
+        // turns, one bounded chunk each, so both diagrams fill in together
+        // and show their first points early; the Lyapunov curve and then the
+        // regime map use the workers once those are idle (they are the
+        // slower, secondary views and must not delay the main diagrams).
+        for k in 0..2 {
+            let kind = (self.turn + k) % 2;
             let out = match kind {
                 0 => self.fr_step(),
-                1 => self.bif_step(),
-                2 => self.map_step(),
-                _ => self.lyap_step(),
+                _ => self.bif_step(),
             };
             if let Some(out) = out {
-                self.turn = (kind + 1) % 4;
+                self.turn = (kind + 1) % 2;
                 return out;
             }
         }
-        Vec::new()
+        if let Some(out) = self.lyap_step() {
+            return out;
+        }
+        self.map_step().unwrap_or_default()
     }
 
     fn fr_step(&mut self) -> Option<Vec<FromWorker>> {
