@@ -8,7 +8,7 @@
 
 use super::harmonic::{
     channel_aft, channel_df, channel_exact, mult_operator, n_coef, ChannelTables, ExactScratch,
-    Grid, Scratch,
+    Grid, Scratch, SwitchTable,
 };
 use super::model::HbmModel;
 use nalgebra::Complex;
@@ -58,6 +58,8 @@ pub struct Assembly {
     pub method: Method,
     /// Time grid (AFT; also used to reconstruct orbits).
     pub grid: Grid,
+    /// Samples on which contact switches are bracketed (exact method, stability).
+    pub switch_table: SwitchTable,
     tables: Vec<ChannelTables>,
     te_rate_cos: Vec<f64>,
     te_rate_sin: Vec<f64>,
@@ -96,6 +98,7 @@ impl Assembly {
             te_rate_sin,
             scratch: Scratch::default(),
             exact_scratch: ExactScratch::default(),
+            switch_table: SwitchTable::new(h),
             u_coef: vec![0.0; nc],
             force: vec![0.0; nc],
             slope: vec![Complex::new(0.0, 0.0); 2 * h + 1],
@@ -202,6 +205,7 @@ impl Assembly {
                 Method::Exact => {
                     if !channel_exact(
                         self.h,
+                        &self.switch_table,
                         &ch.law,
                         &self.u_coef,
                         &mut self.exact_scratch,

@@ -224,13 +224,13 @@ pub fn channel_aft(
 /// the force `k(theta) (x -+ b)` is itself a trigonometric polynomial of
 /// degree `h + 1`, so `int w(theta) e^{-i p theta}` over the interval is a
 /// finite sum of `(e^{i m beta} - e^{i m alpha}) / (i m)`. The roots are
-/// bracketed on `max(64, 16 (2h + 1))` samples and refined by the Illinois
-/// method to round-off. Because the dead zone is continuous, the result is a smooth
+/// found by [`contact_switches`]. Because the dead zone is continuous, the result is a smooth
 /// (C1) function of the coefficients: no grid kinks, and the Jacobian from
 /// [`mult_operator`] is its exact derivative. At `h = 1` it equals the
 /// describing function's closed forms. Non-mesh laws fall back to AFT.
 pub fn channel_exact(
     h: usize,
+    table: &SwitchTable,
     law: &Law,
     u_coef: &[f64],
     scratch: &mut ExactScratch,
@@ -288,71 +288,18 @@ pub fn channel_exact(
         scratch.w_hi[(d + hk) as usize] -= kd * b;
         scratch.w_lo[(d + hk) as usize] += kd * b;
     }
-    // Contact switches: roots of x - b and x + b. The period is first cut
-    // into monotone pieces (at the samples and at the zeros of x' between
-    // them), so that a brief excursion across +-b between two samples is
-    // not missed: each monotone piece holds at most one root per side.
-    let samples = 64.max(16 * nc);
-    scratch.dx.clear();
-    scratch.dx.push(0.0);
-    for kk in 1..=h {
-        let kf = kk as f64;
-        scratch.dx.push(kf * scratch.x[2 * kk]);
-        scratch.dx.push(-kf * scratch.x[2 * kk - 1]);
-    }
-    // The basis on the samples, built once per (h, samples).
-    if scratch.table.len() != samples * nc {
-        scratch.table = (0..samples)
-            .flat_map(|i| {
-                let t = 2.0 * PI * i as f64 / samples as f64;
-                (0..nc).map(move |c| match c {
-                    0 => 1.0,
-                    c if c % 2 == 1 => (c.div_ceil(2) as f64 * t).cos(),
-                    c => ((c / 2) as f64 * t).sin(),
-                })
-            })
-            .collect();
-    }
-    let at = |coef: &[f64], i: usize| -> f64 {
-        let row = &scratch.table[(i % samples) * nc..(i % samples + 1) * nc];
-        row.iter().zip(coef).map(|(a, b)| a * b).sum()
-    };
+    // Contact switches: the roots of x -+ b.
     let eval = |t: f64| super::stability::eval_coef(&scratch.x, h, t);
-    let slope_at = |t: f64| super::stability::eval_coef(&scratch.dx, h, t);
-    let root = |f: &dyn Fn(f64) -> f64, lo: f64, hi: f64, flo: f64, fhi: f64| -> f64 {
-        illinois(f, lo, hi, flo, fhi)
-    };
-    // Monotone pieces as (phase, x) pairs.
-    scratch.pieces.clear();
-    scratch.pieces.push((0.0, at(&scratch.x, 0)));
-    let mut t0 = 0.0;
-    let mut d0 = at(&scratch.dx, 0);
-    for i in 1..=samples {
-        let t1 = 2.0 * PI * i as f64 / samples as f64;
-        let d1 = at(&scratch.dx, i);
-        if (d0 > 0.0) != (d1 > 0.0) {
-            let te = root(&slope_at, t0, t1, d0, d1);
-            scratch.pieces.push((te, eval(te)));
-        }
-        scratch.pieces.push((t1, at(&scratch.x, i)));
-        t0 = t1;
-        d0 = d1;
-    }
     scratch.cuts.clear();
     scratch.cuts.push(0.0);
-    for w in scratch.pieces.windows(2) {
-        let ((ta, xa), (tb, xb)) = (w[0], w[1]);
-        for side in [b, -b] {
-            if (xa - side > 0.0) != (xb - side > 0.0) {
-                scratch
-                    .cuts
-                    .push(root(&|t| eval(t) - side, ta, tb, xa - side, xb - side));
-            }
-            if b == 0.0 {
-                break;
-            }
-        }
-    }
+    contact_switches(
+        table,
+        &scratch.x,
+        b,
+        &mut scratch.dx,
+        &mut scratch.pieces,
+        &mut scratch.cuts,
+    );
     scratch.cuts.push(2.0 * PI);
     scratch.cuts.sort_by(f64::total_cmp);
     // Integrate interval by interval.
@@ -420,6 +367,102 @@ pub fn channel_exact(
         *sl *= inv;
     }
     true
+}
+
+/// The trigonometric basis on `max(64, 16 (2h + 1))` equally spaced phases,
+/// on which [`contact_switches`] brackets its roots.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SwitchTable {
+    h: usize,
+    samples: usize,
+    basis: Vec<f64>,
+}
+
+impl SwitchTable {
+    /// The table for `h` harmonics.
+    pub fn new(h: usize) -> Self {
+        let nc = n_coef(h);
+        let samples = 64.max(16 * nc);
+        let basis = (0..samples)
+            .flat_map(|i| {
+                let t = 2.0 * PI * i as f64 / samples as f64;
+                (0..nc).map(move |c| match c {
+                    0 => 1.0,
+                    c if c % 2 == 1 => (c.div_ceil(2) as f64 * t).cos(),
+                    c => ((c / 2) as f64 * t).sin(),
+                })
+            })
+            .collect();
+        SwitchTable { h, samples, basis }
+    }
+
+    fn at(&self, coef: &[f64], i: usize) -> f64 {
+        let nc = n_coef(self.h);
+        let i = i % self.samples;
+        self.basis[i * nc..(i + 1) * nc]
+            .iter()
+            .zip(coef)
+            .map(|(a, b)| a * b)
+            .sum()
+    }
+}
+
+/// Appends to `out` every phase in `(0, 2 pi)` where the trigonometric
+/// polynomial `x` (coefficients up to `table`'s `h`) crosses `b` or `-b`.
+///
+/// The period is first cut into monotone pieces (at the table's samples and
+/// at the zeros of `x'` between them), so a brief excursion across `+-b`
+/// between two samples is not missed: each monotone piece holds at most one
+/// root per side. Roots are refined by the Illinois method to round-off.
+/// `dx` and `pieces` are scratch buffers.
+pub fn contact_switches(
+    table: &SwitchTable,
+    x: &[f64],
+    b: f64,
+    dx: &mut Vec<f64>,
+    pieces: &mut Vec<(f64, f64)>,
+    out: &mut Vec<f64>,
+) {
+    let h = table.h;
+    let samples = table.samples;
+    dx.clear();
+    dx.push(0.0);
+    for k in 1..=h {
+        let kf = k as f64;
+        dx.push(kf * x[2 * k]);
+        dx.push(-kf * x[2 * k - 1]);
+    }
+    let eval = |t: f64| super::stability::eval_coef(x, h, t);
+    let slope_at = |t: f64| super::stability::eval_coef(dx, h, t);
+    pieces.clear();
+    pieces.push((0.0, table.at(x, 0)));
+    let mut t0 = 0.0;
+    let mut d0 = table.at(dx, 0);
+    for i in 1..=samples {
+        let t1 = 2.0 * PI * i as f64 / samples as f64;
+        let d1 = table.at(dx, i);
+        if (d0 > 0.0) != (d1 > 0.0) {
+            let te = illinois(&slope_at, t0, t1, d0, d1);
+            pieces.push((te, eval(te)));
+        }
+        pieces.push((t1, table.at(x, i)));
+        t0 = t1;
+        d0 = d1;
+    }
+    for w in pieces.windows(2) {
+        let ((ta, xa), (tb, xb)) = (w[0], w[1]);
+        for side in [b, -b] {
+            if (xa - side > 0.0) != (xb - side > 0.0) {
+                let t = illinois(&|t| eval(t) - side, ta, tb, xa - side, xb - side);
+                if t > 0.0 && t < 2.0 * PI {
+                    out.push(t);
+                }
+            }
+            if b == 0.0 {
+                break;
+            }
+        }
+    }
 }
 
 /// The TE of a mesh law as real coefficients `[mean, cos 1, sin 1]` in theta.
@@ -491,7 +534,6 @@ pub struct ExactScratch {
     x: Vec<f64>,
     dx: Vec<f64>,
     pieces: Vec<(f64, f64)>,
-    table: Vec<f64>,
     w_hi: Vec<Complex<f64>>,
     w_lo: Vec<Complex<f64>>,
     cuts: Vec<f64>,
@@ -796,6 +838,7 @@ mod tests {
             let (mut se, mut sd) = ([Complex::new(0.0, 0.0); 3], [Complex::new(0.0, 0.0); 3]);
             assert!(channel_exact(
                 1,
+                &SwitchTable::new(1),
                 &law,
                 &u,
                 &mut ExactScratch::default(),
@@ -850,6 +893,7 @@ mod tests {
             );
             assert!(channel_exact(
                 h,
+                &SwitchTable::new(h),
                 &law,
                 &u,
                 &mut ExactScratch::default(),

@@ -228,7 +228,8 @@ pub struct FrfContinuation {
     x0: Vec<f64>,
     transform: Option<DMatrix<f64>>,
     mesh_to_channel: Vec<usize>,
-    recon: Vec<f64>,
+    /// A fine grid on which reconstructed orbits are sampled for their extremes.
+    recon: harmonic::Grid,
     left_at_start: bool,
 }
 
@@ -304,7 +305,7 @@ impl FrfContinuation {
             x0,
             transform,
             mesh_to_channel,
-            recon: recon_table(h),
+            recon: harmonic::Grid::new(h, recon_samples(h)),
             left_at_start: false,
             spec,
         })
@@ -768,7 +769,7 @@ impl FrfContinuation {
                 // delta - e has the same series with the TE's mean and first
                 // harmonic subtracted.
                 let mut rel_coef = coef.clone();
-                let te = te_coefficients(&ch.law);
+                let te = harmonic::te_real_coefficients(&ch.law);
                 for (r, t) in rel_coef.iter_mut().zip(te) {
                     *r -= t;
                 }
@@ -797,48 +798,9 @@ impl FrfContinuation {
     }
 }
 
-/// The TE of a mesh law as Fourier coefficients `[mean, cos 1, sin 1]`.
-fn te_coefficients(law: &model::Law) -> [f64; 3] {
-    match *law {
-        model::Law::Mesh {
-            phase_rad,
-            te_mean_um,
-            te_cos_um,
-            te_sin_um,
-            ..
-        } => {
-            // c cos(t + p) + s sin(t + p) = (c cos p + s sin p) cos t + (s cos p - c sin p) sin t
-            let (sp, cp) = phase_rad.sin_cos();
-            [
-                te_mean_um,
-                te_cos_um * cp + te_sin_um * sp,
-                te_sin_um * cp - te_cos_um * sp,
-            ]
-        }
-        model::Law::Cubic { .. } => [0.0; 3],
-    }
-}
-
 /// Samples per period used to find the extremes of a reconstructed orbit.
 fn recon_samples(h: usize) -> usize {
     256.max(16 * harmonic::n_coef(h))
-}
-
-/// Row `i` holds `[1, cos t_i, sin t_i, cos 2 t_i, ...]` at `t_i = 2 pi i / n`.
-fn recon_table(h: usize) -> Vec<f64> {
-    let n = recon_samples(h);
-    let nc = harmonic::n_coef(h);
-    let mut t = vec![0.0; n * nc];
-    for i in 0..n {
-        let theta = 2.0 * PI * i as f64 / n as f64;
-        t[i * nc] = 1.0;
-        for k in 1..=h {
-            let (s, c) = (k as f64 * theta).sin_cos();
-            t[i * nc + 2 * k - 1] = c;
-            t[i * nc + 2 * k] = s;
-        }
-    }
-    t
 }
 
 /// Damped Newton at fixed Omega: the step is halved (down to 1/128) while
@@ -917,16 +879,13 @@ fn classify_crossing(before: &[Complex<f64>], after: &[Complex<f64>]) -> Bifurca
     }
 }
 
-/// Min and max of a Fourier series: samples from the table, then a
-/// parabola through the best sample and its neighbours.
-fn extremes(table: &[f64], coef: &[f64], h: usize) -> (f64, f64) {
-    let nc = coef.len();
-    let n = table.len() / nc;
+/// Min and max of a Fourier series: samples on `grid`, then a parabola
+/// through the best sample and its neighbours.
+fn extremes(grid: &harmonic::Grid, coef: &[f64], h: usize) -> (f64, f64) {
+    let n = grid.n;
     let dt = 2.0 * PI / n as f64;
-    let vals: Vec<f64> = table
-        .chunks_exact(nc)
-        .map(|row| row.iter().zip(coef).map(|(a, b)| a * b).sum())
-        .collect();
+    let mut vals = vec![0.0; n];
+    grid.synthesize(coef, &mut vals);
     let refine = |i: usize| -> f64 {
         let (a, b, c) = (vals[(i + n - 1) % n], vals[i], vals[(i + 1) % n]);
         let den = a - 2.0 * b + c;

@@ -16,7 +16,7 @@
 //! N - 1 times.
 
 use super::assembly::Assembly;
-use super::harmonic::{illinois, n_coef, te_real_coefficients};
+use super::harmonic::{contact_switches, n_coef, te_real_coefficients};
 use super::model::Law;
 use nalgebra::Complex;
 use nalgebra::{linalg::Schur, DMatrix};
@@ -56,16 +56,11 @@ pub fn eval_coef(coef: &[f64], h: usize, theta: f64) -> f64 {
     s
 }
 
-/// Phases in `(0, 2 pi)` where some mesh channel switches contact state:
-/// sign changes of `x -+ b` on the AFT grid's samples (synthesized from its
-/// tables, no trigonometric calls), refined by the Illinois method.
+/// Phases in `(0, 2 pi)` where some mesh channel switches contact state,
+/// found as the exact method finds them ([`contact_switches`]).
 fn switch_phases(asm: &Assembly, coefs: &[Vec<f64>]) -> Vec<f64> {
-    let h = asm.h;
-    let n = asm.grid.n;
-    let mut vals = vec![0.0; n];
-    let mut out = Vec::new();
+    let (mut dx, mut pieces, mut out) = (Vec::new(), Vec::new(), Vec::new());
     for (ch, coef) in asm.model.channels.iter().zip(coefs) {
-        let b = ch.law.backlash_um();
         if !matches!(ch.law, Law::Mesh { .. }) {
             continue;
         }
@@ -73,24 +68,8 @@ fn switch_phases(asm: &Assembly, coefs: &[Vec<f64>]) -> Vec<f64> {
         for (r, t) in rel.iter_mut().zip(te_real_coefficients(&ch.law)) {
             *r -= t;
         }
-        asm.grid.synthesize(&rel, &mut vals);
-        for side in [b, -b] {
-            let g = |t: f64| eval_coef(&rel, h, t) - side;
-            for i in 0..n {
-                let (t0, t1) = (asm.grid.theta[i], 2.0 * PI * (i + 1) as f64 / n as f64);
-                let (g0, g1) = (vals[i] - side, vals[(i + 1) % n] - side);
-                if g0 == 0.0 || (g0 > 0.0) == (g1 > 0.0) {
-                    continue;
-                }
-                let t = illinois(&g, t0, t1, g0, g1);
-                if t > 1e-12 && t < 2.0 * PI - 1e-12 {
-                    out.push(t);
-                }
-            }
-            if b == 0.0 {
-                break;
-            }
-        }
+        let b = ch.law.backlash_um();
+        contact_switches(&asm.switch_table, &rel, b, &mut dx, &mut pieces, &mut out);
     }
     out.sort_by(f64::total_cmp);
     out.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
