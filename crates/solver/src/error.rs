@@ -126,5 +126,17 @@ pub enum SolverError {
     Parse(String),
 }
 
+impl SolverError {
+    /// An out-of-range option, as an `Err`: the one constructor behind every
+    /// options struct's `validate`.
+    pub(crate) fn bad_option<T>(option: &str, value: impl ToString, allowed: &str) -> Result<T> {
+        Err(SolverError::BadOption {
+            option: option.into(),
+            value: value.to_string(),
+            allowed: allowed.into(),
+        })
+    }
+}
+
 /// Shorthand for the solver's results.
 pub type Result<T> = std::result::Result<T, SolverError>;

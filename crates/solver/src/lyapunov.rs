@@ -23,7 +23,7 @@
 
 use crate::dynamics::MeshOde;
 use crate::error::{Result, SolverError};
-use crate::ode::{Dopri5, Tolerances};
+use crate::ode::Dopri5;
 use crate::steady::{steady_state, Model, SteadyOptions};
 use std::f64::consts::PI;
 
@@ -61,11 +61,7 @@ impl LyapunovOptions {
     /// Checks the options.
     pub fn validate(&self) -> Result<()> {
         let bad = |option: &str, value: String, allowed: &str| {
-            Err(SolverError::BadOption {
-                option: option.into(),
-                value,
-                allowed: allowed.into(),
-            })
+            SolverError::bad_option(option, value, allowed)
         };
         if !(self.omega.is_finite() && (0.01..=20.0).contains(&self.omega)) {
             return bad("omega", format!("{}", self.omega), "0.01 ..= 20");
@@ -152,16 +148,8 @@ pub fn largest_exponent(
     let ss = steady_state(model, &so, start)?;
     let y0 = ss.end_state;
 
+    let tol = crate::steady::tolerances(sys, opts.omega, opts.rtol, opts.atol_m, period, 1e-14);
     let lengths = sys.dof_length_m();
-    let v_scale = sys.omega_ref_rad_s * opts.omega.max(1.0);
-    let mut atol: Vec<f64> = lengths.iter().map(|l| opts.atol_m / l).collect();
-    atol.extend(lengths.iter().map(|l| opts.atol_m / l * v_scale));
-    let tol = Tolerances {
-        rtol: opts.rtol,
-        atol,
-        h_min: period * 1e-14,
-        h_max: period / 8.0,
-    };
     let n = y0.len();
     let dof = sys.dof();
 

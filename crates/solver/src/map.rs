@@ -74,11 +74,7 @@ impl MapSpec {
 
     fn validate(&self) -> Result<()> {
         let bad = |option: &str, value: String, allowed: &str| {
-            Err(SolverError::BadOption {
-                option: option.into(),
-                value,
-                allowed: allowed.into(),
-            })
+            SolverError::bad_option(option, value, allowed)
         };
         if !(self.omega_from.is_finite() && (0.01..=20.0).contains(&self.omega_from)) {
             return bad("omega-from", format!("{}", self.omega_from), "0.01 ..= 20");

@@ -276,33 +276,44 @@ pub fn sweep_json(
     })
 }
 
-/// Merges the JSON outputs of the shards `0/n .. n-1/n` of one sweep into the
-/// JSON of the unsharded run with `chains = n`.
-pub fn merge_shards(shards: &[Value]) -> Result<Value> {
+/// Checks that `shards` are the `n` shards `i/n` of one run (`n` read from
+/// `spec[count_key]`): every input has the first one's spec (but for
+/// `shard`) and params, and each shard appears exactly once. Returns the
+/// first input, its spec with `shard` cleared, and all the shards' `items`
+/// arrays concatenated in input order.
+fn join_shards<'a>(
+    shards: &'a [Value],
+    count_key: &str,
+    items: &str,
+    what: &str,
+) -> Result<(&'a Value, Map<String, Value>, Vec<Value>)> {
     let bad = |m: String| SolverError::Parse(m);
     let first = shards
         .first()
         .ok_or_else(|| bad("merge needs at least one shard".into()))?;
     let spec_of = |v: &Value| -> Result<Map<String, Value>> {
         match v.get("spec") {
-            Some(Value::Object(m)) => Ok(m.clone()),
-            _ => Err(bad(
-                "a shard has no `spec` object: is it gearshock bifurcation output?".into(),
-            )),
+            Some(Value::Object(m)) => {
+                let mut m = m.clone();
+                m.insert("shard".into(), Value::Null);
+                Ok(m)
+            }
+            _ => Err(bad(format!(
+                "a shard has no `spec` object: is it gearshock {what} output?"
+            ))),
         }
     };
-    let chains = spec_of(first)?
-        .get("chains")
+    let n = spec_of(first)?
+        .get(count_key)
         .and_then(Value::as_u64)
-        .ok_or_else(|| bad("shard spec has no `chains`".into()))?;
-    let mut seen = vec![false; chains as usize];
-    let mut points: Vec<Value> = Vec::new();
-    let mut base_spec = spec_of(first)?;
-    base_spec.insert("shard".into(), Value::Null);
+        .ok_or_else(|| bad(format!("shard spec has no `{count_key}`")))?;
+    let base = spec_of(first)?;
+    let mut seen = vec![false; n as usize];
+    let mut all = Vec::new();
     for (k, sh) in shards.iter().enumerate() {
-        let mut spec = spec_of(sh)?;
-        let shard = spec
-            .get("shard")
+        let shard = sh
+            .get("spec")
+            .and_then(|s| s.get("shard"))
             .and_then(Value::as_str)
             .and_then(|s| s.split_once('/'))
             .and_then(|(i, _)| i.parse::<usize>().ok())
@@ -312,26 +323,32 @@ pub fn merge_shards(shards: &[Value]) -> Result<Value> {
                     k + 1
                 ))
             })?;
-        spec.insert("shard".into(), Value::Null);
-        if spec != base_spec || sh.get("params") != first.get("params") {
+        if spec_of(sh)? != base || sh.get("params") != first.get("params") {
             return Err(bad(format!(
-                "input {} belongs to a different sweep (its spec or params differ from the first input's)",
+                "input {} belongs to a different {what} (its spec or params differ from the first input's)",
                 k + 1
             )));
         }
         if shard >= seen.len() || seen[shard] {
             return Err(bad(format!(
-                "shard {shard}/{chains} is given twice or out of range"
+                "shard {shard}/{n} is given twice or out of range"
             )));
         }
         seen[shard] = true;
-        if let Some(Value::Array(p)) = sh.get("points") {
-            points.extend(p.iter().cloned());
+        if let Some(Value::Array(p)) = sh.get(items) {
+            all.extend(p.iter().cloned());
         }
     }
     if let Some(missing) = seen.iter().position(|s| !s) {
-        return Err(bad(format!("shard {missing}/{chains} is missing")));
+        return Err(bad(format!("shard {missing}/{n} is missing")));
     }
+    Ok((first, base, all))
+}
+
+/// Merges the JSON outputs of the shards `0/n .. n-1/n` of one sweep into the
+/// JSON of the unsharded run with `chains = n`.
+pub fn merge_shards(shards: &[Value]) -> Result<Value> {
+    let (first, base_spec, mut points) = join_shards(shards, "chains", "points", "sweep")?;
     points.sort_by_key(|p| {
         let idx = p.get("index").and_then(Value::as_i64).unwrap_or(0);
         match p
@@ -503,59 +520,9 @@ pub fn map_json(
 
 /// Merges the shards `0/n .. n-1/n` of one regime map into the unsharded map.
 pub fn merge_maps(shards: &[Value]) -> Result<Value> {
-    let bad = |m: String| SolverError::Parse(m);
-    let first = shards
-        .first()
-        .ok_or_else(|| bad("merge needs at least one shard".into()))?;
-    let spec_of = |v: &Value| -> Result<Map<String, Value>> {
-        match v.get("spec") {
-            Some(Value::Object(m)) => Ok(m.clone()),
-            _ => Err(bad("a shard has no `spec` object".into())),
-        }
-    };
-    let n = spec_of(first)?
-        .get("shards")
-        .and_then(Value::as_u64)
-        .ok_or_else(|| bad("map spec has no `shards`".into()))?;
-    let mut seen = vec![false; n as usize];
-    let mut base = spec_of(first)?;
-    base.insert("shard".into(), Value::Null);
+    let (first, mut base, mut cells) = join_shards(shards, "shards", "cells", "map")?;
+    // The merged map is the unsharded one.
     base.insert("shards".into(), json!(1));
-    let mut cells: Vec<Value> = Vec::new();
-    for (k, sh) in shards.iter().enumerate() {
-        let mut spec = spec_of(sh)?;
-        let shard = spec
-            .get("shard")
-            .and_then(Value::as_str)
-            .and_then(|s| s.split_once('/'))
-            .and_then(|(i, _)| i.parse::<usize>().ok())
-            .ok_or_else(|| {
-                bad(format!(
-                    "input {} is not a map shard (spec.shard is missing)",
-                    k + 1
-                ))
-            })?;
-        spec.insert("shard".into(), Value::Null);
-        spec.insert("shards".into(), json!(1));
-        if spec != base || sh.get("params") != first.get("params") {
-            return Err(bad(format!(
-                "input {} belongs to a different map (its spec or params differ from the first input's)",
-                k + 1
-            )));
-        }
-        if shard >= seen.len() || seen[shard] {
-            return Err(bad(format!(
-                "shard {shard}/{n} is given twice or out of range"
-            )));
-        }
-        seen[shard] = true;
-        if let Some(Value::Array(c)) = sh.get("cells") {
-            cells.extend(c.iter().cloned());
-        }
-    }
-    if let Some(missing) = seen.iter().position(|s| !s) {
-        return Err(bad(format!("shard {missing}/{n} is missing")));
-    }
     let key = |v: &Value, f: &str| v.get(f).and_then(Value::as_u64).unwrap_or(0);
     cells.sort_by_key(|c| (key(c, "row"), key(c, "column")));
     Ok(json!({

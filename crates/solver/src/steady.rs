@@ -160,11 +160,7 @@ impl SteadyOptions {
     /// Checks the options' ranges.
     pub fn validate(&self) -> Result<()> {
         let bad = |option: &str, value: String, allowed: &str| {
-            Err(SolverError::BadOption {
-                option: option.into(),
-                value,
-                allowed: allowed.into(),
-            })
+            SolverError::bad_option(option, value, allowed)
         };
         if !(self.omega.is_finite() && self.omega >= 0.01 && self.omega <= 20.0) {
             return bad("omega", format!("{}", self.omega), "0.01 ..= 20");
@@ -296,6 +292,30 @@ pub fn settle_tol_um(span_um: f64) -> f64 {
     1e-4 + 1e-5 * span_um
 }
 
+/// The integrator's tolerances for a run at `omega`: `atol_m` as a mesh
+/// deflection, scaled to each coordinate's length (and, for rates, by the
+/// larger of the mesh and reference frequencies); steps between
+/// `h_min_periods` and an eighth of a mesh period.
+pub(crate) fn tolerances(
+    sys: &crate::system::MeshSystem,
+    omega: f64,
+    rtol: f64,
+    atol_m: f64,
+    period: f64,
+    h_min_periods: f64,
+) -> Tolerances {
+    let lengths = sys.dof_length_m();
+    let v_scale = sys.omega_ref_rad_s * omega.max(1.0);
+    let mut atol: Vec<f64> = lengths.iter().map(|l| atol_m / l).collect();
+    atol.extend(lengths.iter().map(|l| atol_m / l * v_scale));
+    Tolerances {
+        rtol,
+        atol,
+        h_min: period * h_min_periods,
+        h_max: period / 8.0,
+    }
+}
+
 /// Runs one steady-state response from `start` (or the static equilibrium).
 pub fn steady_state(
     model: &Model,
@@ -311,16 +331,7 @@ pub fn steady_state(
         Some(y) if y.len() == 2 * sys.dof() && y.iter().all(|v| v.is_finite()) => y.to_vec(),
         _ => model.static_state(),
     };
-    let lengths = sys.dof_length_m();
-    let v_scale = sys.omega_ref_rad_s * opts.omega.max(1.0);
-    let mut atol: Vec<f64> = lengths.iter().map(|l| opts.atol_m / l).collect();
-    atol.extend(lengths.iter().map(|l| opts.atol_m / l * v_scale));
-    let tol = Tolerances {
-        rtol: opts.rtol,
-        atol,
-        h_min: period * 1e-13,
-        h_max: period / 8.0,
-    };
+    let tol = tolerances(sys, opts.omega, opts.rtol, opts.atol_m, period, 1e-13);
     let mut int = Dopri5::new(&mut ode, 0.0, &y0, period / 200.0, tol);
     let n_mesh = sys.meshes.len();
     let budget = opts

@@ -119,11 +119,7 @@ impl FrfSpec {
     /// Checks the options.
     pub fn validate(&self) -> Result<()> {
         let bad = |option: &str, value: String, allowed: &str| {
-            Err(SolverError::BadOption {
-                option: option.into(),
-                value,
-                allowed: allowed.into(),
-            })
+            SolverError::bad_option(option, value, allowed)
         };
         for (name, v) in [("omega-from", self.omega_from), ("omega-to", self.omega_to)] {
             if !(v.is_finite() && (0.01..=20.0).contains(&v)) {
