@@ -371,6 +371,17 @@ fn parse_shard(s: &str) -> Result<(u32, u32), Failure> {
         })
 }
 
+/// Writes a result as JSON, or as the CSV `csv` makes of that JSON.
+fn output(format: Format, value: &Value, csv: fn(&Value) -> String) -> Result<(), Failure> {
+    match format {
+        Format::Json => emit(value),
+        Format::Csv => {
+            emit_text(&csv(value));
+            Ok(())
+        }
+    }
+}
+
 fn emit(value: &Value) -> Result<(), Failure> {
     let text = serde_json::to_string_pretty(value).map_err(|e| Failure {
         code: 1,
@@ -473,15 +484,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 other => vec![mesh_index(&model, other)?],
             };
             if let Some(s) = &shard {
-                let (i, n) = s
-                    .split_once('/')
-                    .and_then(|(i, n)| Some((i.parse::<u32>().ok()?, n.parse::<u32>().ok()?)))
-                    .ok_or_else(|| {
-                        usage(format!(
-                            "--shard {}: expected i/n, e.g. 0/4",
-                            keys::truncate(s, 20)
-                        ))
-                    })?;
+                let (i, n) = parse_shard(s)?;
                 if let Some(c) = chains {
                     if c != n {
                         return Err(usage(format!(
@@ -504,13 +507,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             bar.finish();
             canonical_order(&mut pts);
             let value = report::sweep_json(&model, &params, &spec, &pts);
-            match p.format {
-                Format::Json => emit(&value),
-                Format::Csv => {
-                    emit_text(&csv::sweep(&value));
-                    Ok(())
-                }
-            }
+            output(p.format, &value, csv::sweep)
         }
         Command::Frf {
             p,
@@ -562,10 +559,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             }
             bar.finish();
             let value = report::frf_json(&model, &params, &c, &branch, &meshes, failure.as_ref());
-            match p.format {
-                Format::Json => emit(&value)?,
-                Format::Csv => emit_text(&csv::frf(&value)),
-            }
+            output(p.format, &value, csv::frf)?;
             if failure.is_none() && c.left_at_start() {
                 eprintln!(
                     "gearshock: note: the branch turned back at a fold and left the range at its start; \
@@ -620,13 +614,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             }
             bar.finish();
             let value = report::map_json(&model, &params, &spec, &cells);
-            match p.format {
-                Format::Json => emit(&value),
-                Format::Csv => {
-                    emit_text(&csv::map(&value));
-                    Ok(())
-                }
-            }
+            output(p.format, &value, csv::map)
         }
         Command::Lyapunov {
             p,
@@ -662,13 +650,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             }
             bar.finish();
             let value = report::lyapunov_json(&model, &params, &opts, &out);
-            match p.format {
-                Format::Json => emit(&value),
-                Format::Csv => {
-                    emit_text(&csv::lyapunov(&value));
-                    Ok(())
-                }
-            }
+            output(p.format, &value, csv::lyapunov)
         }
         Command::Merge { files } => {
             if files.is_empty() {
