@@ -4,7 +4,7 @@
 // docs/browser-bench.md. Needs a release build in dist/:
 //
 //   scripts/setup.sh && source scripts/env.sh && trunk build --release --offline
-//   node tests/browser/bench.mjs [--repeats N] [--quick]
+//   node tests/browser/bench.mjs [--repeats N] [--quick] [--map]
 import fs from 'node:fs';
 import path from 'node:path';
 import zlib from 'node:zlib';
@@ -13,6 +13,8 @@ import { start, open, status, waitStatus, ROOT } from './harness.mjs';
 const args = process.argv.slice(2);
 const REPEATS = Number(args[args.indexOf('--repeats') + 1] || 5) || 5;
 const QUICK = args.includes('--quick');
+// --map adds the regime-map figure (100 x 40 cells of 300 + 100 periods: about 2 minutes).
+const MAP = args.includes('--map');
 
 const median = (xs) => {
   const s = [...xs].sort((a, b) => a - b);
@@ -105,6 +107,14 @@ try {
     }
     row(`bifurcation: ${points} points x (300 + 100) periods, 2 workers`, total, 'ms', 'upward sweep, Omega 0.1..2, default model');
     row('bifurcation: first partial frame', first, 'ms', 'from job start');
+  }
+
+  // Regime map: 100 x 40 cells x (300 + 100) periods, two workers (opt-in).
+  if (MAP) {
+    const { page } = await open(h.browser, h.url, 'map_omega_points=100&map_value_points=40&map_transient_periods=300&map_record_periods=100&bif_points=2&fr_points=2&lyap_points=0&omega_from=0.1&omega_to=2');
+    const s = await waitStatus(page, (s) => s.map.finished_ms, 900000, 'regime map');
+    row('regime map: 100 x 40 cells x (300 + 100) periods, 2 workers', [s.map.finished_ms - s.map.started_ms], 'ms', 'backlash rows, Omega 0.1..2, default model');
+    await page.close();
   }
 } finally {
   await h.close();

@@ -240,6 +240,18 @@ const NONE: Restart = Restart {
     lyap: false,
 };
 
+/// The harmonic-balance job of a view's settings (the current state's and
+/// the pinned A state's alike).
+fn hbm_job(v: &crate::settings::ViewOptions) -> JobSpec {
+    JobSpec::Hbm {
+        omega_from: v.omega_from,
+        omega_to: v.omega_to,
+        points: v.fr_points,
+        harmonics: v.harmonics,
+        stability: true,
+    }
+}
+
 impl Controller {
     /// Starts from a link's query string (all jobs queued until the workers are ready).
     pub fn new(query: &str, now_ms: f64) -> (Self, Vec<Effect>) {
@@ -367,13 +379,7 @@ impl Controller {
         let id = self.next_id;
         pinned.hbm = HbmStore::new(id, v.harmonics);
         pinned.fr_status = JobStatus::start(id, now_ms, 100);
-        let job = JobSpec::Hbm {
-            omega_from: v.omega_from,
-            omega_to: v.omega_to,
-            points: v.fr_points,
-            harmonics: v.harmonics,
-            stability: true,
-        };
+        let job = hbm_job(v);
         fx.extend(self.post(
             HBM_WORKER,
             &ToWorker::RunPinned {
@@ -554,13 +560,7 @@ impl Controller {
             self.issues.retain(|i| !i.starts_with(HBM_FAILURE));
             self.dirty.messages |= self.issues.len() != before;
             self.fr_status = JobStatus::start(id, now_ms, 100);
-            let job = JobSpec::Hbm {
-                omega_from: v.omega_from,
-                omega_to: v.omega_to,
-                points: v.fr_points,
-                harmonics: v.harmonics,
-                stability: true,
-            };
+            let job = hbm_job(&v);
             fx.extend(self.post(
                 HBM_WORKER,
                 &ToWorker::Run {

@@ -108,7 +108,10 @@ pub fn start_worker() {
 
 // ---------------------------------------------------------------- page
 
-const VIEWS: [&str; 6] = ["fr", "bif", "phase", "poincare", "time", "spectrum"];
+/// Every view with an export bar (PNG, CSV, JSON).
+const EXPORT_VIEWS: [&str; 8] = [
+    "fr", "bif", "phase", "poincare", "time", "spectrum", "map", "lyap",
+];
 /// Canvases drawn from the controller's state: the six views, the map (6)
 /// and the Lyapunov curve (7).
 const DRAWN: usize = 8;
@@ -1199,7 +1202,7 @@ fn add_button(doc: &Document, parent: &Element, text: &str, title: &str) -> Opti
 
 fn build_exports(page: &Shared) {
     let doc = page.borrow().doc.clone();
-    for view in VIEWS {
+    for view in EXPORT_VIEWS {
         let Some(bar) = doc.get_element_by_id(&format!("exports-{view}")) else {
             continue;
         };
@@ -1239,47 +1242,6 @@ fn build_exports(page: &Shared) {
                 let page2 = page.clone();
                 listen(&b.into(), "click", move |_e: Event| {
                     export_cli(&page2, view)
-                });
-            }
-        }
-    }
-    for view in ["map", "lyap"] {
-        let Some(bar) = doc.get_element_by_id(&format!("exports-{view}")) else {
-            continue;
-        };
-        if let Some(b) = add_button(&doc, &bar, "PNG", "Save this plot as a PNG image") {
-            let page2 = page.clone();
-            listen(&b.into(), "click", move |_e: Event| {
-                let doc = page2.borrow().doc.clone();
-                if let Some(cv) = canvas(&doc, view) {
-                    if let Ok(url) = cv.to_data_url() {
-                        download_url(&doc, &format!("gearshock-{view}.png"), &url);
-                    }
-                }
-            });
-        }
-        for fmt in ["CSV", "JSON"] {
-            if let Some(b) = add_button(
-                &doc,
-                &bar,
-                fmt,
-                &format!("Download the data behind this plot as {fmt}"),
-            ) {
-                let page2 = page.clone();
-                listen(&b.into(), "click", move |_e: Event| {
-                    let p = page2.borrow();
-                    let text = match (view, fmt) {
-                        ("map", "CSV") => crate::maps::map_csv(&p.ctl.map),
-                        ("map", _) => crate::maps::map_json(&p.ctl.map).to_string(),
-                        (_, "CSV") => crate::maps::lyap_csv(&p.ctl.lyap),
-                        _ => crate::maps::lyap_json(&p.ctl.lyap).to_string(),
-                    };
-                    let (ext, mime) = if fmt == "CSV" {
-                        ("csv", "text/csv")
-                    } else {
-                        ("json", "application/json")
-                    };
-                    download_text(&p.doc, &format!("gearshock-{view}.{ext}"), mime, &text);
                 });
             }
         }
@@ -1325,6 +1287,10 @@ fn export_view(page: &Shared, view: &str, fmt: &str) {
                 (serde_json::to_string(&v).unwrap_or_default(), true)
             }
         }
+        "map" if fmt == "CSV" => (crate::maps::map_csv(&p.ctl.map), true),
+        "map" => (crate::maps::map_json(&p.ctl.map).to_string(), true),
+        "lyap" if fmt == "CSV" => (crate::maps::lyap_csv(&p.ctl.lyap), true),
+        "lyap" => (crate::maps::lyap_json(&p.ctl.lyap).to_string(), true),
         _ => {
             let which = match view {
                 "phase" => OmegaView::Phase,
