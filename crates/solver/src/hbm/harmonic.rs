@@ -763,15 +763,7 @@ mod tests {
 
     #[test]
     fn describing_function_equals_fine_quadrature() {
-        let law = Law::Mesh {
-            k: 1.3,
-            variation: 0.3,
-            phase_rad: 0.4,
-            backlash_um: 100.0,
-            te_mean_um: 2.0,
-            te_cos_um: 5.0,
-            te_sin_um: 20.0,
-        };
+        let law = test_law();
         let fine = Grid::new(1, 1 << 16);
         let tables = ChannelTables::new(&law, &fine);
         for u in [
