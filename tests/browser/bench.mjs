@@ -60,6 +60,7 @@ try {
     await waitStatus(page, (s) => s.fr.finished_ms && s.omega_job.finished_ms && s.bif.finished_ms, 120000, 'initial jobs');
     const frRedraw = [];
     const phase = [];
+    const preview = [];
     const frDone = [];
     let partial = 0;
     const bifFirst = [];
@@ -75,6 +76,8 @@ try {
       }, value);
       const s1 = await waitStatus(page, (s) => s.last_draw_ms[0] > t0, 10000, 'frequency-response redraw');
       frRedraw.push(s1.last_draw_ms[0] - t0);
+      const sp = await waitStatus(page, (s) => s.omega_job.preview_ms >= t0 && s.last_draw_ms[2] >= s.omega_job.preview_ms, 30000, 'phase portrait preview');
+      preview.push(sp.last_draw_ms[2] - t0);
       const s2 = await waitStatus(page, (s) => s.omega_job.finished_ms && s.omega_job.started_ms >= t0 && s.last_draw_ms[2] >= s.omega_job.finished_ms, 30000, 'phase portrait');
       phase.push(s2.last_draw_ms[2] - t0);
       const s3 = await waitStatus(page, (s) => s.fr.finished_ms && s.fr.started_ms >= t0, 120000, 'frequency response complete');
@@ -84,7 +87,8 @@ try {
       bifFirst.push(s4.bif.first_data_ms - t0);
     }
     row('slider input to redrawn frequency response (new ±b lines, previous curve faded)', frRedraw, 'ms');
-    row('slider input to redrawn phase portrait (new steady state, 300 + 100 periods)', phase, 'ms');
+    row('slider input to redrawn phase portrait, preview (20 + 10 periods on from the last state, main thread)', preview, 'ms');
+    row('slider input to redrawn phase portrait, full steady state (300 + 100 periods, worker)', phase, 'ms');
     row('slider input to complete frequency response (harmonic balance, 150 nominal points, H = 5, Floquet stability, 1 worker)', frDone, 'ms', partial ? `${partial} of ${n} branches ended in a solver failure (partial)` : '');
     row('slider input to first bifurcation points (restarted sweep)', bifFirst, 'ms');
     await page.close();

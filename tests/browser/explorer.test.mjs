@@ -66,6 +66,33 @@ test('moving the backlash slider with the keyboard changes the frequency respons
   await page.close();
 });
 
+test('a slider change previews the selected-Omega views at once, then the full steady state replaces the preview', async () => {
+  // A long transient keeps the worker's full run busy long enough to see
+  // the preview on screen.
+  const { page, errors } = await open(h.browser, h.url, 'bif_points=4&transient_periods=2500&record_periods=100');
+  await waitStatus(page, (s) => s.omega_job.finished_ms, 90000, 'the first Omega job');
+  const before = await canvasStats(page, 'canvas-phase');
+  const t0 = await page.evaluate(() => {
+    const el = document.getElementById('slider-backlash_um');
+    el.value = '130';
+    el.dispatchEvent(new Event('input', { bubbles: true }));
+    return performance.now();
+  });
+  const sp = await waitStatus(page, (s) => s.omega_job.preview_ms >= t0 && s.last_draw_ms[2] >= s.omega_job.preview_ms, 10000, 'the preview');
+  assert.ok(!sp.omega_job.finished_ms, 'the full run should still be computing');
+  assert.match(await page.textContent('#summary'), /^Preview \(20 \+ 10 periods continued from the previous state; the full run is computing\): Omega = /);
+  await shot(page.locator('#summary'), '03b-summary-preview');
+  const previewStats = await canvasStats(page, 'canvas-phase');
+  assert.notEqual(previewStats.hash, before.hash, 'the preview did not redraw the phase portrait');
+  await shot(page.locator('#view-phase'), '03a-phase-preview');
+  const s = await waitStatus(page, (s) => s.omega_job.finished_ms && s.omega_job.started_ms >= t0, 90000, 'the full run');
+  assert.ok(s.omega_job.finished_ms > sp.omega_job.preview_ms);
+  const summary = await page.textContent('#summary');
+  assert.ok(!summary.startsWith('Preview'), summary);
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
 test('a saved link restores slider values, the mesh and the selected Omega', async () => {
   const link = `backlash_um=150&te_um=35.5&damping_ratio=0.045&omega=1.2345&mesh=s2b2&bif_dir=up&${QUICK}`;
   const { page, errors } = await open(h.browser, h.url, link);

@@ -20,6 +20,7 @@ use crate::settings::{mesh_names, view_key, MeshSel, Settings};
 use crate::views::{
     fr_view, natural_in_range, BifStore, BifView, FrSource, FrStore, FrView, HbmStore, ViewContext,
 };
+use crate::worker_core;
 use solver::keys;
 use solver::steady::Model;
 
@@ -104,6 +105,9 @@ pub struct JobStatus {
     pub total: usize,
     /// Why it failed, if it did.
     pub error: Option<String>,
+    /// When the page's own preview of this job's result was shown (the
+    /// selected-Omega job only).
+    pub preview_ms: Option<f64>,
 }
 
 impl JobStatus {
@@ -491,6 +495,36 @@ impl Controller {
         }
     }
 
+    /// Shows a preview of the selected-Omega views at once: a short bounded
+    /// run ([`worker_core::PREVIEW_RUN`]) continued from the last result's
+    /// end state under the new settings. The worker's full steady state
+    /// replaces it; without a previous state, or if the run fails or
+    /// exceeds its step budget, the views keep the last result until then.
+    fn preview_omega(&mut self, model: &Model, id: JobId, now_ms: f64) {
+        let Some(start) = self
+            .omega
+            .as_ref()
+            .map(|r| r.end_state.clone())
+            .filter(|y| y.len() == 2 * model.system.dof())
+        else {
+            return;
+        };
+        let v = &self.settings.view;
+        let job = worker_core::OmegaJob {
+            id,
+            model: model.clone(),
+            omega: v.omega,
+            mesh: self.settings.mesh_index(model),
+            run: worker_core::PREVIEW_RUN,
+            samples_per_period: SAMPLES_PER_PERIOD,
+            max_order: MAX_ORDER,
+        };
+        if let Ok(r) = worker_core::omega_result(&job, Some(&start)) {
+            self.omega = Some(r);
+            self.omega_status.preview_ms = Some(now_ms);
+        }
+    }
+
     fn restart(&mut self, what: Restart, now_ms: f64) -> Vec<Effect> {
         let mut fx = Vec::new();
         let model = match &self.model {
@@ -545,6 +579,7 @@ impl Controller {
                     job,
                 },
             ));
+            self.preview_omega(&model, id, now_ms);
             self.dirty.omega = true;
         }
         if what.fr {
@@ -1464,6 +1499,65 @@ mod tests {
             )
         ));
         assert!(c.set_key("harmonics", "16", 15.0).is_err());
+    }
+
+    /// Runs the Omega jobs among `p` on a real worker core and feeds the
+    /// replies back to the controller.
+    fn run_omega_jobs(c: &mut Controller, p: &[(usize, ToWorker)], now_ms: f64) {
+        for (w, m) in p {
+            if matches!(
+                m,
+                ToWorker::Run {
+                    job: JobSpec::Omega { .. },
+                    ..
+                }
+            ) {
+                let mut core = worker_core::WorkerCore::new();
+                core.handle(&encode(m));
+                while core.has_work() {
+                    for reply in core.step() {
+                        c.worker_message(*w, &encode(&reply), now_ms);
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_slider_change_previews_the_selected_omega_from_the_last_end_state() {
+        let (mut c, _) = Controller::new("transient_periods=40&record_periods=10", 0.0);
+        let p = ready(&mut c);
+        // No previous state: no preview, the views wait for the worker.
+        assert!(c.omega.is_none() && c.omega_status.preview_ms.is_none());
+        run_omega_jobs(&mut c, &p, 5.0);
+        let full = c.omega.clone().expect("the worker's result");
+        assert!(!full.preview && !full.cli_json.is_empty());
+        assert_eq!(
+            full.end_state.len(),
+            2 * c.model.as_ref().unwrap().system.dof()
+        );
+
+        let p = posts(&c.set_key("backlash_um", "150", 10.0).unwrap());
+        // The preview shows at once, under the new backlash, while the
+        // worker's job runs; it is bounded and carries no CLI JSON.
+        let pre = c.omega.clone().expect("a preview");
+        assert!(pre.preview && pre.cli_json.is_empty());
+        assert_eq!(c.omega_status.preview_ms, Some(10.0));
+        assert!(c.omega_status.running());
+        assert_eq!(pre.backlash_um, 150.0);
+        assert_eq!(pre.record_periods, worker_core::PREVIEW_RUN.record_periods);
+        assert!(pre.transient_periods_run <= worker_core::PREVIEW_RUN.transient_periods);
+        assert!(crate::views::summary_line(&pre, &[]).starts_with("Preview ("));
+        // The full run (from the static state, as the CLI starts) replaces it.
+        run_omega_jobs(&mut c, &p, 20.0);
+        let after = c.omega.clone().unwrap();
+        assert!(!after.preview && after.backlash_um == 150.0);
+        assert!(!c.omega_status.running());
+        // A preview that cannot start (a model with other coordinates) is
+        // skipped: the last result stays until the worker answers.
+        c.omega.as_mut().unwrap().end_state.pop();
+        c.set_key("backlash_um", "120", 30.0).unwrap();
+        assert!(!c.omega.as_ref().unwrap().preview);
     }
 
     #[test]

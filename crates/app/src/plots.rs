@@ -1266,6 +1266,8 @@ mod tests {
             anim: Default::default(),
             steps: 1,
             cli_json: "{}".into(),
+            preview: false,
+            end_state: vec![],
         }
     }
 

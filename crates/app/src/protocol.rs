@@ -508,8 +508,17 @@ pub struct OmegaResult {
     pub anim: AnimHistory,
     /// Integrator steps taken.
     pub steps: u64,
-    /// `gearshock simulate` JSON of this run (the CLI's format).
+    /// `gearshock simulate` JSON of this run (the CLI's format); empty for
+    /// a preview.
     pub cli_json: String,
+    /// A preview: a short run continued from the previous result's end
+    /// state, shown while the full steady state computes.
+    #[serde(default)]
+    pub preview: bool,
+    /// The state at the end of the run (generalized coordinates and rates),
+    /// where the next preview starts.
+    #[serde(default)]
+    pub end_state: Vec<f64>,
 }
 
 /// A message from a worker to the page.

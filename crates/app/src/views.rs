@@ -669,8 +669,16 @@ pub fn summary_line(r: &OmegaResult, natural: &[NaturalFreq]) -> String {
             .collect::<Vec<_>>()
             .join(", ")
     };
+    let preview = if r.preview {
+        format!(
+            "Preview ({} + {} periods continued from the previous state; the full run is computing): ",
+            r.transient_periods_run, r.record_periods
+        )
+    } else {
+        String::new()
+    };
     format!(
-        "Omega = {:.4} ({:.0} Hz mesh frequency), mesh {}: {}, {}, dynamic factor {}. Natural frequencies in range (Omega): {}.",
+        "{preview}Omega = {:.4} ({:.0} Hz mesh frequency), mesh {}: {}, {}, dynamic factor {}. Natural frequencies in range (Omega): {}.",
         r.omega,
         r.mesh_freq_hz,
         r.mesh_name,

@@ -701,7 +701,11 @@ fn draw_omega_view(p: &mut Page, only: usize) {
         let r = match (&p.ctl.omega, &st.error) {
             (_, Some(e)) => plots::draw_message(&root, titles[k], &format!("Not computed: {e}")),
             (Some(res), None) => {
-                let stale = if st.running() { " (updating…)" } else { "" };
+                let stale = match (res.preview, st.running()) {
+                    (true, _) => " (preview; full run computing…)",
+                    (false, true) => " (updating…)",
+                    (false, false) => "",
+                };
                 match k {
                     0 => plots::draw_phase(&root, res, stale),
                     1 => plots::draw_poincare(&root, res, stale),
@@ -740,7 +744,7 @@ fn refresh_summary(p: &Page) {
                     s.push_str(&line);
                 }
             }
-            if p.ctl.omega_status.running() {
+            if p.ctl.omega_status.running() && !r.preview {
                 s.push_str(" Updating…");
             }
             s
@@ -1299,6 +1303,10 @@ fn export_view(page: &Shared, view: &str, fmt: &str) {
                 _ => OmegaView::Spectrum,
             };
             match &p.ctl.omega {
+                Some(r) if r.preview => {
+                    set_text(&p.doc, "status", PREVIEW_EXPORT);
+                    (String::new(), false)
+                }
                 Some(r) if fmt == "CSV" => (views::omega_csv(r, which), true),
                 Some(r) => (views::omega_json(r, which).to_string(), true),
                 None => (String::new(), false),
@@ -1320,6 +1328,10 @@ fn export_view(page: &Shared, view: &str, fmt: &str) {
     }
 }
 
+/// Why the selected-Omega views do not export while they show a preview.
+const PREVIEW_EXPORT: &str =
+    "The selected-Omega views show a preview; export once the full steady state has arrived.";
+
 fn export_cli(page: &Shared, view: &str) {
     if view == "bif" {
         let fx = {
@@ -1336,6 +1348,10 @@ fn export_cli(page: &Shared, view: &str) {
         return;
     }
     let p = page.borrow();
+    if p.ctl.omega.as_ref().is_some_and(|r| r.preview) {
+        set_text(&p.doc, "status", PREVIEW_EXPORT);
+        return;
+    }
     if let Some(r) = &p.ctl.omega {
         download_text(
             &p.doc,

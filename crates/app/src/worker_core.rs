@@ -29,16 +29,36 @@ use solver::report;
 use solver::steady::{spectrum, steady_state, Model, SteadyOptions, SteadyState};
 use solver::sweep::{canonical_order, BifurcationSweep, Directions, SweepPoint, SweepSpec};
 
-/// An Omega job waiting for its one step.
-struct OmegaJob {
-    id: JobId,
-    model: Model,
-    omega: f64,
-    mesh: Option<usize>,
-    run: RunOptions,
-    samples_per_period: u32,
-    max_order: f64,
+/// An Omega job waiting for its one step (also the page's preview run).
+pub struct OmegaJob {
+    /// Job id.
+    pub id: JobId,
+    /// The model.
+    pub model: Model,
+    /// Dimensionless frequency.
+    pub omega: f64,
+    /// Mesh to plot, `None` for the worst.
+    pub mesh: Option<usize>,
+    /// Transient and recorded periods.
+    pub run: RunOptions,
+    /// History samples per mesh period.
+    pub samples_per_period: u32,
+    /// Highest spectrum order.
+    pub max_order: f64,
 }
+
+/// Periods of the page's preview run: continued from the last result's end
+/// state under the new settings, so the selected-Omega views follow a
+/// slider within a frame while the full steady state computes.
+pub const PREVIEW_RUN: RunOptions = RunOptions {
+    transient_periods: 20,
+    record_periods: 10,
+};
+
+/// The preview's step budget per period: it bounds the main thread's time
+/// (about 10 ms in the browser); a run that needs more steps shows no
+/// preview and waits for the worker.
+pub const PREVIEW_STEPS_PER_PERIOD: u64 = 300;
 
 /// Points of the harmonic-balance branch computed per step: a few
 /// milliseconds each, so a newer job or a cancel waits at most a few tens of
@@ -696,24 +716,39 @@ pub fn worst_mesh(ss: &SteadyState) -> usize {
 }
 
 fn run_omega(job: &OmegaJob) -> FromWorker {
+    match omega_result(job, None) {
+        Ok(result) => FromWorker::Omega {
+            id: job.id,
+            result: Box::new(result),
+        },
+        Err(e) => failed(job.id, e),
+    }
+}
+
+/// The selected-Omega views' data. With `preview_from` (a previous result's
+/// end state) it is the page's bounded preview run: it starts there, keeps
+/// to [`PREVIEW_STEPS_PER_PERIOD`], and carries no CLI JSON (the full run,
+/// from the static state as `gearshock simulate` starts, replaces it).
+pub fn omega_result(job: &OmegaJob, preview_from: Option<&[f64]>) -> Result<OmegaResult, String> {
     let model = &job.model;
     let n_mesh = model.system.meshes.len();
     if let Some(j) = job.mesh.filter(|&j| j >= n_mesh) {
-        return failed(job.id, format!("mesh {j} does not exist in this model"));
+        return Err(format!("mesh {j} does not exist in this model"));
     }
     let mut opts = SteadyOptions::new(job.omega);
     opts.transient_periods = job.run.transient_periods;
     opts.record_periods = job.run.record_periods;
     opts.samples_per_period = job.samples_per_period.clamp(8, 256);
+    if preview_from.is_some() {
+        opts.max_steps_per_period = PREVIEW_STEPS_PER_PERIOD;
+    }
     // Every mesh's history: the animated gear set colours every mesh.
     opts.history_meshes = (0..n_mesh).collect();
-    let ss = match steady_state(model, &opts, None) {
-        Ok(ss) => ss,
-        Err(e) => return failed(job.id, format!("Omega = {}: {e}", job.omega)),
-    };
+    let ss = steady_state(model, &opts, preview_from)
+        .map_err(|e| format!("Omega = {}: {e}", job.omega))?;
     let j = job.mesh.unwrap_or_else(|| worst_mesh(&ss));
     let Some(h) = ss.histories.iter().find(|h| h.mesh == j) else {
-        return failed(job.id, "the run kept no history of the plotted mesh");
+        return Err("the run kept no history of the plotted mesh".into());
     };
     let m = &ss.meshes[j];
     let w = ss.omega_rad_s;
@@ -730,7 +765,10 @@ fn run_omega(job: &OmegaJob) -> FromWorker {
         opts.record_periods,
         job.max_order,
     );
-    let cli = report::simulate_json(model, &ss, j, job.max_order);
+    let cli_json = match preview_from {
+        Some(_) => String::new(),
+        None => report::simulate_json(model, &ss, j, job.max_order).to_string(),
+    };
     let start =
         crate::plots::history_start(h.rel_m.len(), opts.samples_per_period, opts.record_periods);
     let mut anim_x = vec![Vec::new(); n_mesh];
@@ -788,12 +826,11 @@ fn run_omega(job: &OmegaJob) -> FromWorker {
             .collect(),
         anim,
         steps: ss.stats.integrator.steps,
-        cli_json: cli.to_string(),
+        cli_json,
+        preview: preview_from.is_some(),
+        end_state: ss.end_state,
     };
-    FromWorker::Omega {
-        id: job.id,
-        result: Box::new(result),
-    }
+    Ok(result)
 }
 
 /// The message a worker posts first.

@@ -73,10 +73,10 @@ struct RunArgs {
     #[arg(long)]
     full_transient: bool,
     /// Relative tolerance of the integrator.
-    #[arg(long, default_value_t = 1e-7)]
+    #[arg(long, default_value_t = solver::steady::DEFAULT_RTOL)]
     rtol: f64,
     /// Absolute tolerance as a mesh deflection (m).
-    #[arg(long, default_value_t = 1e-11)]
+    #[arg(long, default_value_t = solver::steady::DEFAULT_ATOL_M)]
     atol: f64,
 }
 

@@ -11,6 +11,7 @@
 
 use crate::ode::Ode;
 use crate::system::{dead_zone, MeshSystem};
+use crate::trig::phase_sin_cos;
 
 /// Largest number of coordinates a mesh vector touches (sun, carrier, planet).
 const MAX_W: usize = 3;
@@ -184,7 +185,7 @@ impl MeshOde {
 
     /// The state of mesh `j` at `(t, y)`.
     pub fn mesh_instant(&self, j: usize, t: f64, y: &[f64]) -> MeshInstant {
-        let (s, c) = (self.omega_rad_s * t).sin_cos();
+        let (s, c) = phase_sin_cos(self.omega_rad_s * t);
         self.instant_at_phase(j, c, s, y)
     }
 
@@ -208,7 +209,7 @@ impl MeshOde {
 
     /// All meshes' states at `(t, y)`, into `out`.
     pub fn mesh_instants(&self, t: f64, y: &[f64], out: &mut Vec<MeshInstant>) {
-        let (s, c) = (self.omega_rad_s * t).sin_cos();
+        let (s, c) = phase_sin_cos(self.omega_rad_s * t);
         out.clear();
         out.extend((0..self.meshes.len()).map(|j| self.instant_at_phase(j, c, s, y)));
     }
@@ -242,7 +243,7 @@ impl Ode for MeshOde {
         let (s, c) = if t == self.phase_cache.0 {
             (self.phase_cache.1, self.phase_cache.2)
         } else {
-            let (s, c) = (self.omega_rad_s * t).sin_cos();
+            let (s, c) = phase_sin_cos(self.omega_rad_s * t);
             self.phase_cache = (t, s, c);
             (s, c)
         };
@@ -276,7 +277,7 @@ impl Ode for MeshOde {
 
     fn events(&mut self, t: f64, y: &[f64], _dy: &[f64], g: &mut [f64], dg: &mut [f64]) {
         let (q, v) = y.split_at(self.n);
-        let (s, c) = (self.omega_rad_s * t).sin_cos();
+        let (s, c) = phase_sin_cos(self.omega_rad_s * t);
         let mut idx = 0;
         while idx < self.events.len() {
             let j = self.events[idx].0;
@@ -296,7 +297,7 @@ impl Ode for MeshOde {
     fn event(&mut self, i: usize, t: f64, y: &[f64]) -> f64 {
         let (j, side) = self.events[i];
         let m = &self.meshes[j];
-        let (s, c) = (self.omega_rad_s * t).sin_cos();
+        let (s, c) = phase_sin_cos(self.omega_rad_s * t);
         let (_, e, _) = self.excitation(m, c, s);
         self.dot(m, &y[..self.n]) - e - side * m.backlash
     }

@@ -12,6 +12,7 @@
 //! - [`modal`]: statics, natural modes, the linear receptance.
 //! - [`ode`]: the adaptive Dormand–Prince integrator with event location.
 //! - [`dynamics`]: the equations of motion as an ODE.
+//! - [`trig`]: the mesh phase's sine and cosine, the same bits in native and wasm.
 //! - [`steady`]: steady-state runs, Poincaré samples, impact regimes, spectra.
 //! - [`sweep`]: bifurcation sweeps with bounded work per call.
 //! - [`hbm`]: harmonic balance, continuation, Floquet stability.
@@ -32,6 +33,7 @@ pub mod report;
 pub mod steady;
 pub mod sweep;
 pub mod system;
+pub mod trig;
 
 pub use error::{Result, SolverError};
 pub use params::{ModelKind, ModelParams};
