@@ -233,19 +233,22 @@ impl Assembly {
             }
             if let Some(j) = jac.as_deref_mut() {
                 mult_operator(&self.slope, self.h, &mut self.op);
-                for p in 0..nc {
-                    for q in 0..nc {
+                // Column by column: the matrix is column-major.
+                for q in 0..nc {
+                    for p in 0..nc {
                         let coef = w * self.op[p * nc + q];
                         if coef == 0.0 {
                             continue;
                         }
-                        for a in 0..m {
-                            let ca = coef * ch.d[a];
-                            if ca == 0.0 {
-                                continue;
-                            }
-                            for b in 0..m {
-                                j[(p * m + a, q * m + b)] += ca * ch.d[b];
+                        for b in 0..m {
+                            let db = ch.d[b];
+                            let mut col = j.column_mut(q * m + b);
+                            let rows = &mut col.as_mut_slice()[p * m..(p + 1) * m];
+                            for (entry, &da) in rows.iter_mut().zip(&ch.d) {
+                                let ca = coef * da;
+                                if ca != 0.0 {
+                                    *entry += ca * db;
+                                }
                             }
                         }
                     }

@@ -103,6 +103,21 @@ impl Grid {
         }
     }
 
+    /// [`Grid::synthesize`] coefficient by coefficient (the same sums in the
+    /// same order, vectorized over the samples).
+    pub fn synthesize_fast(&self, coef: &[f64], out: &mut [f64]) {
+        let n = self.n;
+        out.fill(coef[0]);
+        for k in 1..=self.h {
+            let (a, b) = (coef[2 * k - 1], coef[2 * k]);
+            let c = &self.cos_l[k * n..(k + 1) * n];
+            let s = &self.sin_l[k * n..(k + 1) * n];
+            for ((o, &ck), &sk) in out.iter_mut().zip(c).zip(s) {
+                *o = *o + ck * a + sk * b;
+            }
+        }
+    }
+
     /// Coefficients (up to `h`) of the function sampled in `samples`.
     pub fn analyze(&self, samples: &[f64], out: &mut [f64]) {
         let n = self.n;
@@ -375,6 +390,8 @@ pub fn channel_exact(
 pub struct SwitchTable {
     h: usize,
     samples: usize,
+    /// `basis[c * samples + i]`: basis function `c` at phase `i`, so that a
+    /// function's samples accumulate coefficient by coefficient.
     basis: Vec<f64>,
 }
 
@@ -383,27 +400,30 @@ impl SwitchTable {
     pub fn new(h: usize) -> Self {
         let nc = n_coef(h);
         let samples = 64.max(16 * nc);
-        let basis = (0..samples)
-            .flat_map(|i| {
-                let t = 2.0 * PI * i as f64 / samples as f64;
-                (0..nc).map(move |c| match c {
-                    0 => 1.0,
-                    c if c % 2 == 1 => (c.div_ceil(2) as f64 * t).cos(),
-                    c => ((c / 2) as f64 * t).sin(),
+        let basis = (0..nc)
+            .flat_map(|c| {
+                (0..samples).map(move |i| {
+                    let t = 2.0 * PI * i as f64 / samples as f64;
+                    match c {
+                        0 => 1.0,
+                        c if c % 2 == 1 => (c.div_ceil(2) as f64 * t).cos(),
+                        c => ((c / 2) as f64 * t).sin(),
+                    }
                 })
             })
             .collect();
         SwitchTable { h, samples, basis }
     }
 
-    fn at(&self, coef: &[f64], i: usize) -> f64 {
-        let nc = n_coef(self.h);
-        let i = i % self.samples;
-        self.basis[i * nc..(i + 1) * nc]
-            .iter()
-            .zip(coef)
-            .map(|(a, b)| a * b)
-            .sum()
+    /// The samples of the function with coefficients `coef` into `out`.
+    fn sample(&self, coef: &[f64], out: &mut [f64]) {
+        let n = self.samples;
+        out.fill(0.0);
+        for (row, &a) in self.basis.chunks_exact(n).zip(coef) {
+            for (o, &b) in out.iter_mut().zip(row) {
+                *o += b * a;
+            }
+        }
     }
 }
 
@@ -414,7 +434,8 @@ impl SwitchTable {
 /// at the zeros of `x'` between them), so a brief excursion across `+-b`
 /// between two samples is not missed: each monotone piece holds at most one
 /// root per side. Roots are refined by the Illinois method to round-off.
-/// `dx` and `pieces` are scratch buffers.
+/// `dx` (the derivative's coefficients, then the samples of `x` and `x'`)
+/// and `pieces` are scratch buffers.
 pub fn contact_switches(
     table: &SwitchTable,
     x: &[f64],
@@ -424,6 +445,7 @@ pub fn contact_switches(
     out: &mut Vec<f64>,
 ) {
     let h = table.h;
+    let nc = n_coef(h);
     let samples = table.samples;
     dx.clear();
     dx.push(0.0);
@@ -432,22 +454,41 @@ pub fn contact_switches(
         dx.push(kf * x[2 * k]);
         dx.push(-kf * x[2 * k - 1]);
     }
+    dx.resize(nc + 2 * samples, 0.0);
+    let (dcoef, rest) = dx.split_at_mut(nc);
+    let (xs, ds) = rest.split_at_mut(samples);
+    table.sample(x, xs);
+    table.sample(dcoef, ds);
+    let dcoef = &*dcoef;
     let eval = |t: f64| super::stability::eval_coef(x, h, t);
-    let slope_at = |t: f64| super::stability::eval_coef(dx, h, t);
+    let slope_at = |t: f64| super::stability::eval_coef(dcoef, h, t);
+    // Between two samples where x' changes sign, x moves by at most
+    // `max|x''| dt^2 / 2` from either sample. An extremum that cannot reach
+    // `+-b` by twice that margin brackets no root and need not be located:
+    // the pieces it would split see no sign change either way.
+    let dt = 2.0 * PI / samples as f64;
+    let curvature: f64 = (1..=h)
+        .map(|k| (k * k) as f64 * (x[2 * k - 1].abs() + x[2 * k].abs()))
+        .sum();
+    let reach = curvature * dt * dt + 1e-12 * (1.0 + b.abs() + x[0].abs());
+    let far = |xa: f64| (xa - b).abs() > reach && (xa + b).abs() > reach;
     pieces.clear();
-    pieces.push((0.0, table.at(x, 0)));
+    let mut x0 = xs[0];
+    pieces.push((0.0, x0));
     let mut t0 = 0.0;
-    let mut d0 = table.at(dx, 0);
+    let mut d0 = ds[0];
     for i in 1..=samples {
         let t1 = 2.0 * PI * i as f64 / samples as f64;
-        let d1 = table.at(dx, i);
-        if (d0 > 0.0) != (d1 > 0.0) {
+        let d1 = ds[i % samples];
+        let x1 = xs[i % samples];
+        if (d0 > 0.0) != (d1 > 0.0) && !(far(x0) && far(x1)) {
             let te = illinois(&slope_at, t0, t1, d0, d1);
             pieces.push((te, eval(te)));
         }
-        pieces.push((t1, table.at(x, i)));
+        pieces.push((t1, x1));
         t0 = t1;
         d0 = d1;
+        x0 = x1;
     }
     for w in pieces.windows(2) {
         let ((ta, xa), (tb, xb)) = (w[0], w[1]);

@@ -10,9 +10,14 @@
 //! - [`stability`]: monodromy matrix and Floquet multipliers.
 //!
 //! Newton. The corrector solves the bordered system `[R_X R_Omega; t^T]` by
-//! LU; a step that does not reduce the residual is halved (up to eight
-//! times). It has converged when both the residual and the last step are
-//! below `1e-9` of the solution's scale (micrometres), and fails with
+//! LU; the last factorization also gives the new tangent, and on a smooth
+//! residual (not AFT's) once a step is below `1e-5` of the solution's scale
+//! it is kept for the next (chord) step, which then costs a residual and a
+//! solve instead of a Jacobian and an LU. The fixed-
+//! Omega Newton of the first and last points halves a step that does not
+//! reduce the residual (down to 1/128). The corrector has converged when
+//! the last step is below `1e-9` of the solution's scale (micrometres) and
+//! the residual at the result below `1e-6` of it, and fails with
 //! [`SolverError::NotConverged`] carrying Omega and the residual otherwise —
 //! never a silent last iterate.
 //!
@@ -236,6 +241,8 @@ const NEWTON_TOL: f64 = 1e-9;
 /// A residual this small (relative to the solution's scale) is converged
 /// even if the kinked force makes the last step stall above `NEWTON_TOL`.
 const RESIDUAL_FLOOR: f64 = 1e-7;
+/// Below this relative Newton step the corrector keeps its factorization.
+const CHORD_STEP: f64 = 1e-5;
 
 impl FrfContinuation {
     /// Prepares the frequency response of a gear model.
@@ -615,14 +622,23 @@ impl FrfContinuation {
         let mut jx = DMatrix::zeros(nx, n);
         let weighted_t: Vec<f64> = (0..n).map(|i| self.metric(i) * self.tangent[i]).collect();
         let mut res_prev = f64::INFINITY;
+        // The last factorization and the size of the step it produced: once
+        // a step is below `CHORD_STEP`, the Jacobian moves by less than that
+        // and the factorization is kept (a chord step, whose error is the
+        // product of the two small steps), and it also gives the tangent.
+        let mut lu: Option<nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>> = None;
+        let mut step_prev = f64::INFINITY;
         for iteration in 1..=NEWTON_MAX {
-            self.asm.evaluate(&y[..nx], y[nx], &mut r, Some(&mut jx));
+            // AFT's residual has small kinks where a contact switch crosses
+            // a grid point, on which chord steps can stall: it keeps Newton.
+            let chord = lu.is_some() && step_prev <= CHORD_STEP && self.asm.method != Method::Aft;
+            if chord {
+                self.asm.evaluate(&y[..nx], y[nx], &mut r, None);
+            } else {
+                self.asm.evaluate(&y[..nx], y[nx], &mut r, Some(&mut jx));
+            }
             self.stats.jacobians += 1;
             self.stats.newton_iterations += 1;
-            jac.rows_mut(0, nx).copy_from(&jx);
-            for i in 0..n {
-                jac[(nx, i)] = weighted_t[i];
-            }
             let mut g = DVector::zeros(n);
             for i in 0..nx {
                 g[i] = r[i];
@@ -640,30 +656,39 @@ impl FrfContinuation {
             let at_floor =
                 iteration > 2 && res <= RESIDUAL_FLOOR * scale_now && res > 0.1 * res_prev;
             res_prev = res;
+            if !chord {
+                jac.rows_mut(0, nx).copy_from(&jx);
+                for i in 0..n {
+                    jac[(nx, i)] = weighted_t[i];
+                }
+                lu = Some(jac.clone().lu());
+            }
+            let Some(factors) = lu.as_ref() else { break };
             let mut step = 0.0;
             if !at_floor {
-                let lu = jac.clone().lu();
-                let Some(dy) = lu.solve(&g) else { break };
+                let Some(dy) = factors.solve(&g) else { break };
                 for i in 0..n {
                     y[i] -= dy[i];
                 }
                 let scale = 1.0 + inf_norm(&y[..nx]);
                 step = inf_norm(&dy.as_slice()[..nx]).max(dy[nx].abs() * scale) / scale;
             }
+            step_prev = step;
             if at_floor || step <= NEWTON_TOL {
                 let scale = 1.0 + inf_norm(&y[..nx]);
-                // Converged: the tangent solves [R_X R_Omega; t^T] t_new = [0; 1].
                 if !at_floor {
-                    self.asm.evaluate(&y[..nx], y[nx], &mut r, Some(&mut jx));
+                    self.asm.evaluate(&y[..nx], y[nx], &mut r, None);
                     self.stats.jacobians += 1;
                     if inf_norm(&r) > 1e-6 * scale {
                         break;
                     }
                 }
-                jac.rows_mut(0, nx).copy_from(&jx);
+                // Converged: the tangent solves [R_X R_Omega; t^T] t_new = [0; 1],
+                // with the last factorization (a Jacobian within a chord
+                // step of the solution).
                 let mut e = DVector::zeros(n);
                 e[nx] = 1.0;
-                let t = jac.lu().solve(&e).ok_or_else(|| SolverError::Singular {
+                let t = factors.solve(&e).ok_or_else(|| SolverError::Singular {
                     what: format!("bordered Jacobian at Omega = {}", y[nx]),
                 })?;
                 let mut t: Vec<f64> = t.iter().copied().collect();
@@ -881,7 +906,7 @@ fn extremes(grid: &harmonic::Grid, coef: &[f64], h: usize) -> (f64, f64) {
     let n = grid.n;
     let dt = 2.0 * PI / n as f64;
     let mut vals = vec![0.0; n];
-    grid.synthesize(coef, &mut vals);
+    grid.synthesize_fast(coef, &mut vals);
     let refine = |i: usize| -> f64 {
         let (a, b, c) = (vals[(i + n - 1) % n], vals[i], vals[(i + 1) % n]);
         let den = a - 2.0 * b + c;

@@ -78,6 +78,8 @@ fn switch_phases(asm: &Assembly, coefs: &[Vec<f64>]) -> Vec<f64> {
 
 /// A linear time-periodic block `y'' + C y' + (K0 + sum_j w_j s_j(theta) v_j v_j^T) y = 0`
 /// in M-orthonormal coordinates, with its monodromy accumulated in place.
+///
+/// All buffers are allocated once per orbit; a step reuses them.
 struct LtpBlock {
     m: usize,
     k0: Vec<f64>,
@@ -86,8 +88,12 @@ struct LtpBlock {
     channels: Vec<(f64, Vec<f64>)>,
     /// The monodromy so far, row-major `2m x 2m`.
     phi: Vec<f64>,
-    k_eff: Vec<f64>,
-    stages: [Vec<f64>; 4],
+    /// `K_eff` at the start, middle and end of the current step, row-major `m x m`.
+    k_eff: [Vec<f64>; 3],
+    /// The current stage derivative.
+    stage: Vec<f64>,
+    /// `k1 + 2 k2 + 2 k3 + k4`, accumulated stage by stage.
+    acc: Vec<f64>,
     tmp: Vec<f64>,
 }
 
@@ -104,17 +110,18 @@ impl LtpBlock {
             c,
             channels,
             phi,
-            k_eff: vec![0.0; m * m],
-            stages: std::array::from_fn(|_| vec![0.0; n2 * n2]),
+            k_eff: std::array::from_fn(|_| vec![0.0; m * m]),
+            stage: vec![0.0; n2 * n2],
+            acc: vec![0.0; n2 * n2],
             tmp: vec![0.0; n2 * n2],
         }
     }
 
-    /// `out = A(theta) z / omega` for the slopes `s` of the channels.
-    fn deriv(&mut self, slopes: &[f64], omega: f64, z_is_tmp: bool, out_stage: usize) {
+    /// `K_eff = K0 + sum_j w_j s_j v_j v_j^T` for the channel slopes `s` into slot `slot`.
+    fn set_stiffness(&mut self, slot: usize, slopes: &[f64]) {
         let m = self.m;
-        let n2 = 2 * m;
-        self.k_eff.copy_from_slice(&self.k0);
+        let k_eff = &mut self.k_eff[slot];
+        k_eff.copy_from_slice(&self.k0);
         for ((w, v), &s) in self.channels.iter().zip(slopes) {
             if s == 0.0 {
                 continue;
@@ -125,77 +132,54 @@ impl LtpBlock {
                 if a == 0.0 {
                     continue;
                 }
-                for (kk, &vc) in self.k_eff[r * m..(r + 1) * m].iter_mut().zip(v) {
+                for (kk, &vc) in k_eff[r * m..(r + 1) * m].iter_mut().zip(v) {
                     *kk += a * vc;
                 }
             }
         }
-        let inv = 1.0 / omega;
+    }
+
+    /// `stage = A(theta) z / omega` with `K_eff` from `slot`; `z` is the
+    /// monodromy or the stage point `tmp`.
+    fn deriv(&mut self, slot: usize, inv: f64, z_is_tmp: bool) {
         let z = if z_is_tmp { &self.tmp } else { &self.phi };
-        let out = &mut self.stages[out_stage];
-        // Position rows: the velocity rows.
-        for r in 0..m {
-            for col in 0..n2 {
-                out[r * n2 + col] = z[(m + r) * n2 + col] * inv;
-            }
-        }
-        // Velocity rows: -(K_eff z_x + C z_v).
-        for r in 0..m {
-            let row = &mut out[(m + r) * n2..(m + r + 1) * n2];
-            row.iter_mut().for_each(|x| *x = 0.0);
-            for l in 0..m {
-                let (kl, cl) = (self.k_eff[r * m + l], self.c[r * m + l]);
-                if kl != 0.0 {
-                    let zx = &z[l * n2..(l + 1) * n2];
-                    for (o, &v) in row.iter_mut().zip(zx) {
-                        *o -= kl * v;
-                    }
-                }
-                if cl != 0.0 {
-                    let zv = &z[(m + l) * n2..(m + l + 1) * n2];
-                    for (o, &v) in row.iter_mut().zip(zv) {
-                        *o -= cl * v;
-                    }
-                }
-            }
-            row.iter_mut().for_each(|x| *x *= inv);
+        let (k_eff, c, out) = (&self.k_eff[slot], &self.c, &mut self.stage);
+        // The usual block sizes (the symmetric set and its planet block) with
+        // the row length known to the compiler, which keeps a row in registers.
+        match self.m {
+            5 => deriv_fixed::<5, 10>(k_eff, c, z, out, inv),
+            2 => deriv_fixed::<2, 4>(k_eff, c, z, out, inv),
+            1 => deriv_fixed::<1, 2>(k_eff, c, z, out, inv),
+            m => deriv_any(m, k_eff, c, z, out, inv),
         }
     }
 
-    /// One classical Runge–Kutta step of size `ht` in theta; `slopes_at`
-    /// gives the channel slopes at a phase.
-    fn rk4(&mut self, t0: f64, ht: f64, omega: f64, slopes_at: &mut dyn FnMut(f64) -> Vec<f64>) {
-        let s0 = slopes_at(t0);
-        let sm = slopes_at(t0 + 0.5 * ht);
-        let s1 = slopes_at(t0 + ht);
-        self.deriv(&s0, omega, false, 0);
-        for (t, (p, k)) in self
-            .tmp
-            .iter_mut()
-            .zip(self.phi.iter().zip(&self.stages[0]))
-        {
+    /// One classical Runge–Kutta step of size `ht` in theta with the
+    /// stiffness slots 0, 1 and 2 set for its start, middle and end.
+    fn rk4(&mut self, ht: f64, omega: f64) {
+        let inv = 1.0 / omega;
+        self.deriv(0, inv, false);
+        self.acc.copy_from_slice(&self.stage);
+        for (t, (p, k)) in self.tmp.iter_mut().zip(self.phi.iter().zip(&self.stage)) {
             *t = p + 0.5 * ht * k;
         }
-        self.deriv(&sm, omega, true, 1);
-        for (t, (p, k)) in self
-            .tmp
-            .iter_mut()
-            .zip(self.phi.iter().zip(&self.stages[1]))
-        {
+        self.deriv(1, inv, true);
+        for (a, k) in self.acc.iter_mut().zip(&self.stage) {
+            *a += 2.0 * k;
+        }
+        for (t, (p, k)) in self.tmp.iter_mut().zip(self.phi.iter().zip(&self.stage)) {
             *t = p + 0.5 * ht * k;
         }
-        self.deriv(&sm, omega, true, 2);
-        for (t, (p, k)) in self
-            .tmp
-            .iter_mut()
-            .zip(self.phi.iter().zip(&self.stages[2]))
-        {
+        self.deriv(1, inv, true);
+        for (a, k) in self.acc.iter_mut().zip(&self.stage) {
+            *a += 2.0 * k;
+        }
+        for (t, (p, k)) in self.tmp.iter_mut().zip(self.phi.iter().zip(&self.stage)) {
             *t = p + ht * k;
         }
-        self.deriv(&s1, omega, true, 3);
-        let [k1, k2, k3, k4] = &self.stages;
-        for i in 0..self.phi.len() {
-            self.phi[i] += ht / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+        self.deriv(2, inv, true);
+        for ((p, a), k) in self.phi.iter_mut().zip(&self.acc).zip(&self.stage) {
+            *p += ht / 6.0 * (a + k);
         }
     }
 
@@ -207,6 +191,73 @@ impl LtpBlock {
         let mat = DMatrix::from_row_slice(n2, n2, &self.phi);
         Schur::try_new(mat, 1e-14, 100_000)
             .map(|s| s.complex_eigenvalues().iter().copied().collect())
+    }
+}
+
+/// `out = A z / omega` for `A = [[0, I], [-K_eff, -C]]` (`m x m` blocks,
+/// row-major `2m x 2m` matrices), any `m`.
+fn deriv_any(m: usize, k_eff: &[f64], c: &[f64], z: &[f64], out: &mut [f64], inv: f64) {
+    let n2 = 2 * m;
+    // Position rows: the velocity rows.
+    for (o, &v) in out[..m * n2].iter_mut().zip(&z[m * n2..]) {
+        *o = v * inv;
+    }
+    // Velocity rows: -(K_eff z_x + C z_v).
+    for r in 0..m {
+        let row = &mut out[(m + r) * n2..(m + r + 1) * n2];
+        row.fill(0.0);
+        for l in 0..m {
+            let (kl, cl) = (k_eff[r * m + l], c[r * m + l]);
+            if kl != 0.0 {
+                for (o, &v) in row.iter_mut().zip(&z[l * n2..(l + 1) * n2]) {
+                    *o -= kl * v;
+                }
+            }
+            if cl != 0.0 {
+                for (o, &v) in row.iter_mut().zip(&z[(m + l) * n2..(m + l + 1) * n2]) {
+                    *o -= cl * v;
+                }
+            }
+        }
+        for x in row.iter_mut() {
+            *x *= inv;
+        }
+    }
+}
+
+/// [`deriv_any`] for `m = M`, `2m = N2` (the same operations in the same order).
+fn deriv_fixed<const M: usize, const N2: usize>(
+    k_eff: &[f64],
+    c: &[f64],
+    z: &[f64],
+    out: &mut [f64],
+    inv: f64,
+) {
+    let (z, _) = z.as_chunks::<N2>();
+    let (out, _) = out.as_chunks_mut::<N2>();
+    for r in 0..M {
+        for (o, &v) in out[r].iter_mut().zip(&z[M + r]) {
+            *o = v * inv;
+        }
+    }
+    for r in 0..M {
+        let mut row = [0.0; N2];
+        for l in 0..M {
+            let (kl, cl) = (k_eff[r * M + l], c[r * M + l]);
+            if kl != 0.0 {
+                for (o, &v) in row.iter_mut().zip(&z[l]) {
+                    *o -= kl * v;
+                }
+            }
+            if cl != 0.0 {
+                for (o, &v) in row.iter_mut().zip(&z[M + l]) {
+                    *o -= cl * v;
+                }
+            }
+        }
+        for (o, &v) in out[M + r].iter_mut().zip(&row) {
+            *o = v * inv;
+        }
     }
 }
 
@@ -262,6 +313,7 @@ pub fn floquet(asm: &Assembly, x: &[f64], omega: f64) -> Option<Floquet> {
         )
     });
     let mut active = vec![false; model.channels.len()];
+    let mut slopes = vec![0.0; model.channels.len()];
     for w in cuts.windows(2) {
         let (a, b) = (w[0], w[1]);
         if b - a <= 0.0 {
@@ -273,15 +325,11 @@ pub fn floquet(asm: &Assembly, x: &[f64], omega: f64) -> Option<Floquet> {
             let u = eval_coef(&coefs[j], h, mid);
             active[j] = ch.law.force(mid, u).1 != 0.0;
         }
-        let mut slopes_at = |theta: f64| -> Vec<f64> {
-            model
-                .channels
-                .iter()
-                .enumerate()
-                .map(|(j, ch)| {
-                    if !active[j] {
-                        return 0.0;
-                    }
+        let slopes_at = |theta: f64, out: &mut [f64]| {
+            for (j, (ch, o)) in model.channels.iter().zip(out.iter_mut()).enumerate() {
+                *o = if !active[j] {
+                    0.0
+                } else {
                     match ch.law {
                         Law::Mesh {
                             k,
@@ -291,16 +339,38 @@ pub fn floquet(asm: &Assembly, x: &[f64], omega: f64) -> Option<Floquet> {
                         } => k * (1.0 + variation * (theta + phase_rad).cos()),
                         Law::Cubic { .. } => ch.law.force(theta, eval_coef(&coefs[j], h, theta)).1,
                     }
-                })
-                .collect()
+                };
+            }
         };
         let steps = ((b - a) / h_theta_max).ceil().max(1.0) as usize;
         let ht = (b - a) / steps as f64;
         for step in 0..steps {
             let t0 = a + step as f64 * ht;
-            main.rk4(t0, ht, omega, &mut slopes_at);
+            // The end of a step is the start of the next (up to the
+            // rounding of theta): its stiffness is kept.
+            let first = if step == 0 {
+                0
+            } else {
+                main.k_eff.swap(0, 2);
+                if let Some(pb) = planet.as_mut() {
+                    pb.k_eff.swap(0, 2);
+                }
+                1
+            };
+            for (slot, theta) in [t0, t0 + 0.5 * ht, t0 + ht]
+                .into_iter()
+                .enumerate()
+                .skip(first)
+            {
+                slopes_at(theta, &mut slopes);
+                main.set_stiffness(slot, &slopes);
+                if let Some(pb) = planet.as_mut() {
+                    pb.set_stiffness(slot, &slopes);
+                }
+            }
+            main.rk4(ht, omega);
             if let Some(pb) = planet.as_mut() {
-                pb.rk4(t0, ht, omega, &mut slopes_at);
+                pb.rk4(ht, omega);
             }
         }
     }
