@@ -3,7 +3,7 @@
 // node with wasm-bindgen, times the same workloads as `gearshock bench`
 // (HBM frequency responses H = 1 and H = 7 over Omega 0.1..2 with 400
 // nominal points, stability on; one simulate of 300 + 100 periods at
-// Omega 0.5) in node and natively, and prints medians and the ratios as JSON.
+// Omega 0.5; the 200-point bifurcation sweep) in node and natively, and prints medians and the ratios as JSON.
 // The wasm is optimized by wasm-opt -O3 as in the page's release build.
 // Usage: node scripts/bench-wasm.mjs [repeats]   (run from the repository root,
 // with scripts/env.sh sourced so wasm-bindgen is on PATH)
@@ -19,7 +19,7 @@ run('cargo', ['build', '--release', '-p', 'wasm-bench', '--target', 'wasm32-unkn
 run('wasm-bindgen', ['--target', 'nodejs', '--out-dir', 'target/wasm-bench',
   'target/wasm32-unknown-unknown/release/wasm_bench.wasm']);
 // Optimize as the page's build does (Trunk runs binaryen's wasm-opt).
-run('wasm-opt', ['-O3', '--enable-bulk-memory', '--enable-nontrapping-float-to-int', '--enable-sign-ext',
+run('wasm-opt', ['-O3', '--enable-bulk-memory', '--enable-nontrapping-float-to-int', '--enable-sign-ext', '--enable-simd',
   'target/wasm-bench/wasm_bench_bg.wasm', '-o', 'target/wasm-bench/wasm_bench_bg.wasm']);
 run('cargo', ['build', '--release', '-p', 'cli']);
 // The bindings are CommonJS; the repository's package.json says "module".
@@ -47,12 +47,14 @@ const wasmMs = {
   hbm_h1_ms: time(() => wasm.frf(1, 400, true)),
   hbm_h7_ms: time(() => wasm.frf(7, 400, true)),
   simulate_ms: time(() => wasm.simulate(0.5, 300, 100)),
+  bifurcation_200_ms: time(() => wasm.sweep(200)),
 };
 const native = JSON.parse(run('target/release/gearshock', ['bench', '--repeats', String(repeats)]));
 const nativeMs = {
   hbm_h1_ms: native.hbm.h1.median_ms,
   hbm_h7_ms: native.hbm.h7.median_ms,
   simulate_ms: native.simulate.median_ms,
+  bifurcation_200_ms: native.bifurcation.median_s * 1000,
 };
 const ratio = Object.fromEntries(Object.keys(wasmMs).map((k) => [k, wasmMs[k] / nativeMs[k]]));
 console.log(JSON.stringify({ repeats, node: process.version, wasm_ms: wasmMs, native_ms: nativeMs, wasm_over_native: ratio }, null, 2));

@@ -10,6 +10,7 @@
 use solver::hbm::{FrfContinuation, FrfSpec};
 use solver::params::ModelParams;
 use solver::steady::{steady_state, Model, SteadyOptions};
+use solver::sweep::{BifurcationSweep, SweepSpec};
 
 /// The frequency response of the default model over Omega 0.1 ..= 2 with
 /// `points` nominal points and `harmonics` harmonics; returns the number of
@@ -44,6 +45,21 @@ pub fn simulate_periods(omega: f64, transient: u32, record: u32) -> i32 {
     run().map_or(-1, |n| i32::try_from(n).unwrap_or(i32::MAX))
 }
 
+/// A single-chain bifurcation sweep of the default model over Omega
+/// 0.05 ..= 2 with `points` points of 300 + 100 periods, as `gearshock
+/// bench` runs it; returns the number of points that failed (-1 if the
+/// sweep could not start).
+pub fn sweep_failures(points: u32) -> i32 {
+    let run = || -> solver::Result<i32> {
+        let model = Model::new(&ModelParams::default())?;
+        let spec = SweepSpec::new(0.05, 2.0, points);
+        let mut sweep = BifurcationSweep::new(model, spec)?;
+        let pts = sweep.advance(points as usize);
+        Ok(pts.iter().filter(|p| p.error.is_some()).count() as i32)
+    };
+    run().unwrap_or(-1)
+}
+
 #[cfg(target_arch = "wasm32")]
 mod exports {
     //! The wasm-bindgen exports (wasm32 only).
@@ -53,6 +69,12 @@ mod exports {
     #[wasm_bindgen]
     pub fn frf(harmonics: u32, points: u32, stability: bool) -> i32 {
         crate::frf_branch_points(harmonics, points, stability)
+    }
+
+    /// See [`crate::sweep_failures`].
+    #[wasm_bindgen]
+    pub fn sweep(points: u32) -> i32 {
+        crate::sweep_failures(points)
     }
 
     /// See [`crate::simulate_periods`].
@@ -68,5 +90,6 @@ mod tests {
     fn workloads_run_natively() {
         assert!(super::frf_branch_points(1, 20, false) > 20);
         assert_eq!(super::simulate_periods(0.5, 5, 2), 5);
+        assert_eq!(super::sweep_failures(2), 0);
     }
 }

@@ -55,7 +55,7 @@ impl Grid {
             basis[i * nc] = 1.0;
             proj[i] = 1.0 / n as f64;
             for k in 1..=h {
-                let (s, c) = (k as f64 * t).sin_cos();
+                let (s, c) = crate::trig::phase_sin_cos(k as f64 * t);
                 basis[i * nc + 2 * k - 1] = c;
                 basis[i * nc + 2 * k] = s;
                 proj[(2 * k - 1) * n + i] = 2.0 * c / n as f64;
@@ -66,7 +66,7 @@ impl Grid {
         let mut sin_l = vec![0.0; (2 * h + 1) * n];
         for l in 0..=2 * h {
             for (i, &t) in theta.iter().enumerate() {
-                let (s, c) = (l as f64 * t).sin_cos();
+                let (s, c) = crate::trig::phase_sin_cos(l as f64 * t);
                 cos_l[l * n + i] = c;
                 sin_l[l * n + i] = s;
             }

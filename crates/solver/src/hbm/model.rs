@@ -72,7 +72,7 @@ impl Law {
                 te_cos_um,
                 te_sin_um,
             } => {
-                let (s, c) = (theta + phase_rad).sin_cos();
+                let (s, c) = crate::trig::phase_sin_cos(theta + phase_rad);
                 let kt = k * (1.0 + variation * c);
                 let x = u - (te_mean_um + te_cos_um * c + te_sin_um * s);
                 if x > backlash_um {
@@ -97,7 +97,7 @@ impl Law {
                 te_sin_um,
                 ..
             } => {
-                let (s, c) = (theta + phase_rad).sin_cos();
+                let (s, c) = crate::trig::phase_sin_cos(theta + phase_rad);
                 te_mean_um + te_cos_um * c + te_sin_um * s
             }
             Law::Cubic { .. } => 0.0,

@@ -46,7 +46,7 @@ impl Floquet {
 /// Evaluates a channel displacement's trigonometric polynomial at `theta`.
 pub fn eval_coef(coef: &[f64], h: usize, theta: f64) -> f64 {
     // One sin_cos, then the angle-addition recurrence for the harmonics.
-    let (s1, c1) = theta.sin_cos();
+    let (s1, c1) = crate::trig::phase_sin_cos(theta);
     let (mut sn, mut cs) = (s1, c1);
     let mut s = coef[0];
     for k in 1..=h {
