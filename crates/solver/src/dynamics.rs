@@ -294,6 +294,10 @@ impl Ode for MeshOde {
         }
     }
 
+    fn event_dim(&self) -> usize {
+        self.n
+    }
+
     fn event(&mut self, i: usize, t: f64, y: &[f64]) -> f64 {
         let (j, side) = self.events[i];
         let m = &self.meshes[j];

@@ -33,9 +33,16 @@ pub trait Ode {
     /// Values `g` and time rates `dg` of all event functions at `(t, y)`, with
     /// `dy = f(t, y)` given.
     fn events(&mut self, _t: f64, _y: &[f64], _dy: &[f64], _g: &mut [f64], _dg: &mut [f64]) {}
-    /// Value of event function `i` at `(t, y)`.
+    /// Value of event function `i` at `(t, y)`; `y` holds at least the
+    /// first [`Ode::event_dim`] components.
     fn event(&mut self, _i: usize, _t: f64, _y: &[f64]) -> f64 {
         0.0
+    }
+    /// How many leading components of `y` the event functions read: event
+    /// location interpolates only those (a mechanical system's crossings
+    /// depend on the positions, not the rates).
+    fn event_dim(&self) -> usize {
+        self.dim()
     }
 }
 
@@ -514,6 +521,7 @@ impl Dopri5 {
     fn first_event<O: Ode>(&mut self, ode: &mut O, h: f64) -> Option<(usize, f64)> {
         let mut best: Option<(usize, f64)> = None;
         let mut ybuf = std::mem::take(&mut self.ytmp);
+        let m = ode.event_dim().min(ybuf.len());
         for i in 0..self.n_events {
             let (g0, g1, d0, d1) = (self.g0[i], self.g1[i], self.dg0[i] * h, self.dg1[i] * h);
             let limit = best.map_or(1.0, |b| b.1);
@@ -528,8 +536,9 @@ impl Dopri5 {
                     if theta_dip >= limit {
                         return None;
                     }
-                    dense_eval(&self.r, theta_dip, &mut ybuf);
-                    let g = ode.event(i, self.t + theta_dip * h, &ybuf);
+                    let part = &mut ybuf[..m];
+                    dense_eval(&self.r, theta_dip, part);
+                    let g = ode.event(i, self.t + theta_dip * h, part);
                     (g.signum() != g0.signum()).then_some(theta_dip)
                 })
             } else {
@@ -577,9 +586,11 @@ impl Dopri5 {
         tol: f64,
         ybuf: &mut [f64],
     ) -> f64 {
+        let m = ode.event_dim().min(ybuf.len());
         let eval = |theta: f64, ode: &mut O, buf: &mut [f64]| {
-            dense_eval(&self.r, theta, buf);
-            ode.event(i, self.t + theta * h, buf)
+            let part = &mut buf[..m];
+            dense_eval(&self.r, theta, part);
+            ode.event(i, self.t + theta * h, part)
         };
         let (mut a, mut fa) = (a0, ga);
         let (mut b, mut fb) = (hi, eval(hi, ode, ybuf));
