@@ -62,6 +62,7 @@ try {
     const phase = [];
     const preview = [];
     const frDone = [];
+    const frFirst = [];
     let partial = 0;
     const bifFirst = [];
     const n = QUICK ? 3 : Math.max(REPEATS, 8);
@@ -82,6 +83,7 @@ try {
       phase.push(s2.last_draw_ms[2] - t0);
       const s3 = await waitStatus(page, (s) => s.fr.finished_ms && s.fr.started_ms >= t0, 120000, 'frequency response complete');
       frDone.push(s3.fr.finished_ms - t0);
+      frFirst.push(s3.fr.first_data_ms - t0);
       if (s3.fr_partial) partial += 1;
       const s4 = await waitStatus(page, (s) => s.bif.finished_ms && s.bif.started_ms >= t0, 120000, 'bifurcation complete');
       bifFirst.push(s4.bif.first_data_ms - t0);
@@ -89,6 +91,7 @@ try {
     row('slider input to redrawn frequency response (new ±b lines, previous curve faded)', frRedraw, 'ms');
     row('slider input to redrawn phase portrait, preview (20 + 10 periods on from the last state, main thread)', preview, 'ms');
     row('slider input to redrawn phase portrait, full steady state (300 + 100 periods, worker)', phase, 'ms');
+    row('slider input to the first points of the new harmonic-balance branch', frFirst, 'ms');
     row('slider input to complete frequency response (harmonic balance, 150 nominal points, H = 5, Floquet stability, 1 worker)', frDone, 'ms', partial ? `${partial} of ${n} branches ended in a solver failure (partial)` : '');
     row('slider input to first bifurcation points (restarted sweep)', bifFirst, 'ms');
     await page.close();

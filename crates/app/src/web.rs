@@ -368,8 +368,13 @@ fn status_suffix(st: &crate::controller::JobStatus) -> String {
 }
 
 /// Main-thread time after which a frame starts no further view (ms): a
-/// full refresh spreads over a few frames instead of blocking one.
+/// full refresh spreads over a few frames instead of blocking one. The
+/// first [`ALWAYS_DRAWN`] views of [`DRAW_ORDER`] (the frequency response
+/// and the phase portrait, which a slider drag watches) are drawn in the
+/// same frame regardless.
 const FRAME_BUDGET_MS: f64 = 8.0;
+/// See [`FRAME_BUDGET_MS`].
+const ALWAYS_DRAWN: usize = 2;
 /// While a sweep is still running its view is redrawn at most this often (ms).
 const RUNNING_REDRAW_MS: f64 = 150.0;
 /// The order in which dirty views are drawn: the views a slider drag
@@ -404,23 +409,32 @@ fn draw_dirty(page: &Shared, p: &mut Page) {
     if d.lyap {
         p.need[7] = true;
     }
-    for k in DRAW_ORDER {
+    for (rank, k) in DRAW_ORDER.into_iter().enumerate() {
         if !p.need[k] {
             continue;
         }
         let start = now(&p.window);
-        if start - t0 > FRAME_BUDGET_MS {
+        if rank >= ALWAYS_DRAWN && start - t0 > FRAME_BUDGET_MS {
             break;
         }
-        let running = match k {
-            0 => p.ctl.fr_status.running(),
-            1 => p.ctl.bif_status.running(),
-            6 => p.ctl.map_status.running(),
-            7 => p.ctl.lyap_status.running(),
-            _ => false,
+        let status = match k {
+            0 => Some(&p.ctl.fr_status),
+            1 => Some(&p.ctl.bif_status),
+            6 => Some(&p.ctl.map_status),
+            7 => Some(&p.ctl.lyap_status),
+            _ => None,
         };
+        let running = status.is_some_and(|s| s.running());
+        // A new job's first points are drawn at once; later ones wait.
+        let first_points = status
+            .and_then(|s| s.first_data_ms)
+            .is_some_and(|t| t >= p.last_draw_ms[k]);
         // Progressive views: throttle redraws while points stream in.
-        if running && p.draws[k] > 0 && start - p.last_draw_ms[k] < RUNNING_REDRAW_MS {
+        if running
+            && !first_points
+            && p.draws[k] > 0
+            && start - p.last_draw_ms[k] < RUNNING_REDRAW_MS
+        {
             continue;
         }
         p.need[k] = false;
