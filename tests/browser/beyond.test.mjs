@@ -89,8 +89,9 @@ test('the animated gear set turns, and its mesh colours are the contact states o
   // Double-sided impacts at this Omega and backlash, so all three states occur.
   const q = `${QUICK}&lyap_points=0&map_omega_points=2&map_value_points=1&backlash_um=20&omega=1.2&mesh=s1a1`;
   const { page, errors } = await open(h.browser, h.url, q);
-  await waitStatus(page, (s) => s.omega_job.finished_ms && s.anim && s.anim.frames > 2 && s.time_frame, 60000, 'the animation');
+  // The animation draws only while in view.
   await page.locator('#canvas-anim').scrollIntoViewIfNeeded();
+  await waitStatus(page, (s) => s.omega_job.finished_ms && s.anim && s.anim.frames > 2 && s.time_frame, 60000, 'the animation');
   const a = await canvasStats(page, 'canvas-anim');
   await page.waitForTimeout(400);
   const b = await canvasStats(page, 'canvas-anim');
