@@ -449,8 +449,13 @@ fn draw_dirty(page: &Shared, p: &mut Page) {
             _ => None,
         };
         let running = status.is_some_and(|s| s.running());
-        // Progressive views: throttle redraws while points stream in.
-        if running && p.draws[k] > 0 && start - p.last_draw_ms[k] < RUNNING_REDRAW_MS {
+        // Progressive views: throttle redraws while points stream in, but
+        // show a new job's start (the new settings) and its first points
+        // at once.
+        let last = p.last_draw_ms[k];
+        let fresh = status
+            .is_some_and(|s| s.started_ms > last || s.first_data_ms.is_some_and(|t| t > last));
+        if running && !fresh && p.draws[k] > 0 && start - last < RUNNING_REDRAW_MS {
             continue;
         }
         p.need[k] = false;
