@@ -33,6 +33,11 @@ use web_sys::{
 
 // ---------------------------------------------------------------- worker
 
+/// A worker's time slice (ms) before it yields to its event loop.
+const SLICE_MS: f64 = 25.0;
+/// The pause after a full slice (ms): see `start_worker`.
+const SLICE_PAUSE_MS: i32 = 3;
+
 /// Runs a Web Worker: posts "ready", then serves jobs in bounded chunks,
 /// yielding to the event loop (through a `MessageChannel`, which, unlike
 /// `setTimeout`, is not clamped) so that newer jobs and cancels arrive.
@@ -65,6 +70,28 @@ pub fn start_worker() {
         }
     };
 
+    // After a full time slice the worker pauses briefly (a timer, not the
+    // unclamped channel): on the 2-core target two busy workers otherwise
+    // leave the page's main thread too little CPU to draw within 100 ms.
+    let resume = {
+        let port = port.clone();
+        Closure::<dyn FnMut()>::new(move || {
+            let _ = port.post_message(&JsValue::NULL);
+        })
+    };
+    let pause = {
+        let scheduled = scheduled.clone();
+        let scope = scope.clone();
+        move || {
+            if !scheduled.get() {
+                scheduled.set(true);
+                let _ = scope.set_timeout_with_callback_and_timeout_and_arguments_0(
+                    resume.as_ref().unchecked_ref(),
+                    SLICE_PAUSE_MS,
+                );
+            }
+        }
+    };
     let tick = {
         let core = core.clone();
         let scheduled = scheduled.clone();
@@ -74,15 +101,24 @@ pub fn start_worker() {
             scheduled.set(false);
             let start = js_sys::Date::now();
             // A time slice of about 25 ms, then yield; one step is one steady state.
+            let mut full = false;
             loop {
                 let msgs = core.borrow_mut().step();
                 post(msgs);
-                if !core.borrow().has_work() || js_sys::Date::now() - start > 25.0 {
+                if !core.borrow().has_work() {
+                    break;
+                }
+                if js_sys::Date::now() - start > SLICE_MS {
+                    full = true;
                     break;
                 }
             }
             if core.borrow().has_work() {
-                schedule();
+                if full {
+                    pause();
+                } else {
+                    schedule();
+                }
             }
         })
     };
