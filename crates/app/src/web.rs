@@ -41,7 +41,7 @@ const SLICE_PAUSE_MS: i32 = 3;
 /// Runs a Web Worker: posts "ready", then serves jobs in bounded chunks,
 /// yielding to the event loop so that newer jobs and cancels arrive:
 /// through a `MessageChannel` (which, unlike `setTimeout`, is not clamped)
-/// after a short slice, through a [`SLICE_PAUSE_MS`] timer after a full
+/// after a short slice, through a `SLICE_PAUSE_MS` timer after a full
 /// one, to leave the page's main thread room on two cores.
 pub fn start_worker() {
     let scope: DedicatedWorkerGlobalScope = js_sys::global().unchecked_into();
