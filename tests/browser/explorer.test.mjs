@@ -228,6 +228,10 @@ test('a preset loads its settings and says what the seed states', async () => {
 test('the bifurcation diagram completes progressively while the main thread stays responsive', async () => {
   // 40 points up and down at the full 300 + 100 periods: about 80 steady states.
   const { page, errors } = await open(h.browser, h.url, 'bif_points=40&fr_points=12&fr_record_periods=10&omega_from=0.3&omega_to=1.8');
+  // Responsiveness while the sweep runs, from the first paint on (page
+  // load, with its one-time wasm compilation, is the first-paint figure
+  // of the benchmark).
+  await waitStatus(page, (s) => s.first_draw_ms.every((t) => t > 0), 30000, 'the first paint');
   await page.evaluate(() => {
     window.__beat = { maxGap: 0, last: performance.now(), long: 0, longs: [] };
     const loop = () => {
