@@ -88,6 +88,17 @@ fn pinned_backlash(s: &Settings) -> Vec<f64> {
     }
 }
 
+/// Steady states in a bifurcation sweep of view settings `v` (both
+/// directions count twice).
+fn bif_total(v: &crate::settings::ViewOptions) -> usize {
+    let per_dir = if v.bif_dir == solver::sweep::Directions::Both {
+        2
+    } else {
+        1
+    };
+    v.bif_points as usize * per_dir
+}
+
 /// Progress and timing of the current job of one kind.
 #[derive(Debug, Clone, PartialEq, Default, serde::Serialize)]
 pub struct JobStatus {
@@ -394,12 +405,7 @@ impl Controller {
         ));
         self.next_id += 1;
         let id = self.next_id;
-        let per_dir = if v.bif_dir == solver::sweep::Directions::Both {
-            2
-        } else {
-            1
-        };
-        let total = v.bif_points as usize * per_dir;
+        let total = bif_total(v);
         pinned.bif = BifStore::new(id, total);
         pinned.bif_status = JobStatus::start(id, now_ms, total);
         let chains = (WORKERS as u32).min(v.bif_points);
@@ -646,12 +652,7 @@ impl Controller {
         if what.bif {
             self.next_id += 1;
             let id = self.next_id;
-            let per_dir = if v.bif_dir == solver::sweep::Directions::Both {
-                2
-            } else {
-                1
-            };
-            let total = v.bif_points as usize * per_dir;
+            let total = bif_total(&v);
             self.bif = BifStore::new(id, total);
             self.bif_status = JobStatus::start(id, now_ms, total);
             self.export = None;

@@ -1443,9 +1443,18 @@ fn export_cli(page: &Shared, view: &str) {
 
 // ---------------------------------------------------------------- canvases
 
+/// A mouse event's position in the canvas's drawing pixels.
+fn canvas_xy(cv: &HtmlCanvasElement, e: &MouseEvent) -> (f64, f64) {
+    let css_w = f64::from(cv.client_width().max(1));
+    let css_h = f64::from(cv.client_height().max(1));
+    (
+        f64::from(e.offset_x()) * f64::from(cv.width()) / css_w,
+        f64::from(e.offset_y()) * f64::from(cv.height()) / css_h,
+    )
+}
+
 fn canvas_px(cv: &HtmlCanvasElement, e: &MouseEvent) -> f64 {
-    let css = f64::from(cv.client_width().max(1));
-    f64::from(e.offset_x()) * f64::from(cv.width()) / css
+    canvas_xy(cv, e).0
 }
 
 fn build_canvas_events(page: &Shared) {
@@ -1454,10 +1463,7 @@ fn build_canvas_events(page: &Shared) {
         let page2 = page.clone();
         let cv2 = cv.clone();
         listen(&cv.into(), "click", move |e: MouseEvent| {
-            let css_w = f64::from(cv2.client_width().max(1));
-            let css_h = f64::from(cv2.client_height().max(1));
-            let px = f64::from(e.offset_x()) * f64::from(cv2.width()) / css_w;
-            let py = f64::from(e.offset_y()) * f64::from(cv2.height()) / css_h;
+            let (px, py) = canvas_xy(&cv2, &e);
             let fx = {
                 let mut p = page2.borrow_mut();
                 let t = now(&p.window);
@@ -1643,10 +1649,7 @@ fn build_anim_controls(page: &Shared) {
         let page2 = page.clone();
         let cv2 = cv.clone();
         listen(&cv.into(), "click", move |e: MouseEvent| {
-            let css_w = f64::from(cv2.client_width().max(1));
-            let css_h = f64::from(cv2.client_height().max(1));
-            let px = f64::from(e.offset_x()) * f64::from(cv2.width()) / css_w;
-            let py = f64::from(e.offset_y()) * f64::from(cv2.height()) / css_h;
+            let (px, py) = canvas_xy(&cv2, &e);
             let mut p = page2.borrow_mut();
             let len = anim_len(&p);
             let (Some(f), Some(r)) = (p.time_frame, p.ctl.omega.as_ref()) else {

@@ -35,8 +35,6 @@ pub struct Grid {
     pub n: usize,
     /// Sample phases `2 pi i / n`.
     pub theta: Vec<f64>,
-    /// `basis[i * nc + c]` = basis function `c` at sample `i`.
-    basis: Vec<f64>,
     /// `proj[c * n + i]`: weights that project samples onto coefficient `c`.
     proj: Vec<f64>,
     /// `cos(l theta_i)`, `sin(l theta_i)` for `l = 0..=2h`: `trig[l * n + i]`.
@@ -49,15 +47,11 @@ impl Grid {
     pub fn new(h: usize, n: usize) -> Self {
         let nc = n_coef(h);
         let theta: Vec<f64> = (0..n).map(|i| 2.0 * PI * i as f64 / n as f64).collect();
-        let mut basis = vec![0.0; n * nc];
         let mut proj = vec![0.0; nc * n];
         for (i, &t) in theta.iter().enumerate() {
-            basis[i * nc] = 1.0;
             proj[i] = 1.0 / n as f64;
             for k in 1..=h {
                 let (s, c) = crate::trig::phase_sin_cos(k as f64 * t);
-                basis[i * nc + 2 * k - 1] = c;
-                basis[i * nc + 2 * k] = s;
                 proj[(2 * k - 1) * n + i] = 2.0 * c / n as f64;
                 proj[2 * k * n + i] = 2.0 * s / n as f64;
             }
@@ -75,7 +69,6 @@ impl Grid {
             h,
             n,
             theta,
-            basis,
             proj,
             cos_l,
             sin_l,
@@ -94,18 +87,9 @@ impl Grid {
         (64 * h).max(256).next_power_of_two()
     }
 
-    /// Samples of the function with coefficients `coef` into `out`.
+    /// Samples of the function with coefficients `coef` into `out`,
+    /// coefficient by coefficient (vectorized over the samples).
     pub fn synthesize(&self, coef: &[f64], out: &mut [f64]) {
-        let nc = n_coef(self.h);
-        for (i, o) in out.iter_mut().enumerate() {
-            let row = &self.basis[i * nc..(i + 1) * nc];
-            *o = row.iter().zip(coef).map(|(b, c)| b * c).sum();
-        }
-    }
-
-    /// [`Grid::synthesize`] coefficient by coefficient (the same sums in the
-    /// same order, vectorized over the samples).
-    pub fn synthesize_fast(&self, coef: &[f64], out: &mut [f64]) {
         let n = self.n;
         out.fill(coef[0]);
         for k in 1..=self.h {

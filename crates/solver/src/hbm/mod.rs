@@ -906,7 +906,7 @@ fn extremes(grid: &harmonic::Grid, coef: &[f64], h: usize) -> (f64, f64) {
     let n = grid.n;
     let dt = 2.0 * PI / n as f64;
     let mut vals = vec![0.0; n];
-    grid.synthesize_fast(coef, &mut vals);
+    grid.synthesize(coef, &mut vals);
     let refine = |i: usize| -> f64 {
         let (a, b, c) = (vals[(i + n - 1) % n], vals[i], vals[(i + 1) % n]);
         let den = a - 2.0 * b + c;
