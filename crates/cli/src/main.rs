@@ -266,6 +266,7 @@ impl From<SolverError> for Failure {
         let code = match e {
             SolverError::StepSizeTooSmall { .. }
             | SolverError::NonFinite { .. }
+            | SolverError::Diverged { .. }
             | SolverError::TooManySteps { .. }
             | SolverError::NotConverged { .. }
             | SolverError::ContinuationStalled { .. }

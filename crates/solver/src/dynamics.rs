@@ -221,6 +221,11 @@ impl MeshOde {
         }
     }
 
+    /// The deflection `w_j . q` of mesh `j` for positions `q`.
+    pub fn deflection(&self, j: usize, q: &[f64]) -> f64 {
+        self.dot(&self.meshes[j], q)
+    }
+
     /// Number of meshes.
     pub fn n_meshes(&self) -> usize {
         self.meshes.len()
@@ -296,6 +301,10 @@ impl Ode for MeshOde {
 
     fn event_dim(&self) -> usize {
         self.n
+    }
+
+    fn event_components(&self, i: usize) -> Option<&[usize]> {
+        Some(&self.meshes[self.events[i].0].cols)
     }
 
     fn event(&mut self, i: usize, t: f64, y: &[f64]) -> f64 {

@@ -89,6 +89,23 @@ pub enum SolverError {
         /// Time of the blow-up.
         t_s: f64,
     },
+    /// The response grows without bound: a mesh deflection left the range a
+    /// bounded response can reach.
+    #[error(
+        "the response grows without bound: mesh {mesh} deflected {delta_m:.3e} m at t = {t_s:.6e} s, \
+         beyond {bound_m:.3e} m (100 times the static deflection, backlash and TE, more under light damping); \
+         the time-varying mesh stiffness makes the motion parametrically unstable here"
+    )]
+    Diverged {
+        /// The mesh.
+        mesh: String,
+        /// Its deflection (m).
+        delta_m: f64,
+        /// The bound (m).
+        bound_m: f64,
+        /// Time (s).
+        t_s: f64,
+    },
     /// The step budget was used up before the end time was reached.
     #[error("more than {max_steps} steps needed by t = {t_s:.6e} s; the integration was stopped")]
     TooManySteps {

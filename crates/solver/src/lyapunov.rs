@@ -217,15 +217,21 @@ pub fn largest_exponent(
     let budget = 200_000u64 * (u64::from(opts.periods) + 1);
     let mut a = Dopri5::new(&mut ode_a, 0.0, &y0, period / 200.0, tol.clone());
     let mut b = Dopri5::new(&mut ode_b, 0.0, &y1, period / 200.0, tol.clone());
+    let bound_m = model.divergence_bound_m();
     let mut sum = 0.0;
     let mut running = Vec::with_capacity(opts.periods as usize);
     for p in 1..=opts.periods {
         let t_end = f64::from(p) * period;
         while a.t() < t_end {
-            a.step(&mut ode_a, t_end)?;
+            if let Err(e) = a.step(&mut ode_a, t_end) {
+                return Err(model.explain_failure(&ode_a, &a, e));
+            }
         }
+        model.check_bounded(&ode_a, t_end, a.y(), bound_m)?;
         while b.t() < t_end {
-            b.step(&mut ode_b, t_end)?;
+            if let Err(e) = b.step(&mut ode_b, t_end) {
+                return Err(model.explain_failure(&ode_b, &b, e));
+            }
         }
         if a.stats.steps > budget || b.stats.steps > budget {
             return Err(SolverError::TooManySteps {

@@ -44,6 +44,12 @@ pub trait Ode {
     fn event_dim(&self) -> usize {
         self.dim()
     }
+    /// The components of `y` that event function `i` reads, if fewer than
+    /// [`Ode::event_dim`]: event location then interpolates only those (a
+    /// mesh's contact switch depends on its three coordinates).
+    fn event_components(&self, _i: usize) -> Option<&[usize]> {
+        None
+    }
 }
 
 /// Work counters of an integration.
@@ -148,8 +154,8 @@ pub struct StepInfo {
     pub t0: f64,
     /// End of the step.
     pub t1: f64,
-    /// Number of event crossings inside the step; their events and times are
-    /// in [`Dopri5::last_events`].
+    /// Number of event crossings inside the step; [`Dopri5::last_events`]
+    /// locates them.
     pub events: usize,
 }
 
@@ -180,8 +186,12 @@ pub struct Dopri5 {
     h_prev: f64,
     g1: Vec<f64>,
     dg1: Vec<f64>,
-    /// Crossings inside the last accepted step: (event, time).
-    last_events: Vec<(usize, f64)>,
+    /// Crossings inside the last accepted step: (event, value at the step's
+    /// start). Their times are located only on request ([`Dopri5::last_events`]):
+    /// a long run needs the count, rarely the instants.
+    crossings: Vec<(usize, f64)>,
+    /// The located crossings of the last accepted step: (event, time).
+    located: Vec<(usize, f64)>,
     /// Counters.
     pub stats: IntegratorStats,
 }
@@ -211,7 +221,8 @@ impl Dopri5 {
             dg0: vec![0.0; ne],
             dg_prev: vec![0.0; ne],
             h_prev: 0.0,
-            last_events: Vec::new(),
+            crossings: Vec::new(),
+            located: Vec::new(),
             g1: vec![0.0; ne],
             dg1: vec![0.0; ne],
             stats: IntegratorStats::default(),
@@ -224,9 +235,20 @@ impl Dopri5 {
         s
     }
 
-    /// The event crossings inside the last accepted step, as (event, time), in time order.
-    pub fn last_events(&self) -> &[(usize, f64)] {
-        &self.last_events
+    /// The event crossings inside the last accepted step, as (event, time), in
+    /// time order, each located on the step's dense output to 1e-12 of the
+    /// step (Illinois iterations; computed here, on request).
+    pub fn last_events<O: Ode>(&mut self, ode: &mut O) -> &[(usize, f64)] {
+        self.located.clear();
+        let mut ybuf = std::mem::take(&mut self.ytmp);
+        for k in 0..self.crossings.len() {
+            let (i, g0) = self.crossings[k];
+            let theta = self.illinois(ode, i, (0.0, g0), 1.0, 1e-12, &mut ybuf);
+            self.located.push((i, self.dense_t0 + theta * self.dense_h));
+        }
+        self.ytmp = ybuf;
+        self.located.sort_by(|a, b| a.1.total_cmp(&b.1));
+        &self.located
     }
 
     /// Current time.
@@ -432,19 +454,13 @@ impl Dopri5 {
             }
             // Every crossing inside the accepted step (the one it was aimed
             // at, and any that the landing tolerance let it straddle at its
-            // start), each located on the step's dense output.
-            self.last_events.clear();
-            if self.n_events > 0 {
-                let mut ybuf = std::mem::take(&mut self.ytmp);
-                for i in 0..self.n_events {
-                    let (g0, g1) = (self.g0[i], self.g1[i]);
-                    if g0 != 0.0 && (g0.signum() != g1.signum() || g1 == 0.0) {
-                        let theta = self.refine_precise(ode, i, h, g0, &mut ybuf);
-                        self.last_events.push((i, self.t + theta * h));
-                    }
+            // start); `last_events` locates them.
+            self.crossings.clear();
+            for i in 0..self.n_events {
+                let (g0, g1) = (self.g0[i], self.g1[i]);
+                if g0 != 0.0 && (g0.signum() != g1.signum() || g1 == 0.0) {
+                    self.crossings.push((i, g0));
                 }
-                self.ytmp = ybuf;
-                self.last_events.sort_by(|a, b| a.1.total_cmp(&b.1));
             }
             // Accept.
             let t0 = self.t;
@@ -459,7 +475,7 @@ impl Dopri5 {
             std::mem::swap(&mut self.dg0, &mut self.dg_prev);
             self.h_prev = h;
             self.stats.steps += 1;
-            self.stats.events += self.last_events.len() as u64;
+            self.stats.events += self.crossings.len() as u64;
             // Step-size proposal (PI control).
             let fac = (fac11 / self.fac_old.powf(BETA) / SAFE).clamp(FAC_MAX_INV, FAC_MIN_INV);
             self.fac_old = err.max(1e-4);
@@ -472,7 +488,7 @@ impl Dopri5 {
             return Ok(StepInfo {
                 t0,
                 t1: self.t,
-                events: self.last_events.len(),
+                events: self.crossings.len(),
             });
         }
     }
@@ -521,7 +537,6 @@ impl Dopri5 {
     fn first_event<O: Ode>(&mut self, ode: &mut O, h: f64) -> Option<(usize, f64)> {
         let mut best: Option<(usize, f64)> = None;
         let mut ybuf = std::mem::take(&mut self.ytmp);
-        let m = ode.event_dim().min(ybuf.len());
         for i in 0..self.n_events {
             let (g0, g1, d0, d1) = (self.g0[i], self.g1[i], self.dg0[i] * h, self.dg1[i] * h);
             let limit = best.map_or(1.0, |b| b.1);
@@ -536,16 +551,14 @@ impl Dopri5 {
                     if theta_dip >= limit {
                         return None;
                     }
-                    let part = &mut ybuf[..m];
-                    dense_eval(&self.r, theta_dip, part);
-                    let g = ode.event(i, self.t + theta_dip * h, part);
+                    let g = self.event_on_dense(ode, i, theta_dip, &mut ybuf);
                     (g.signum() != g0.signum()).then_some(theta_dip)
                 })
             } else {
                 None
             };
             let Some(hi) = bracket else { continue };
-            let theta = self.refine(ode, i, h, g0, hi, &mut ybuf);
+            let theta = self.illinois(ode, i, (0.0, g0), hi, 0.05 * EVENT_LANDING, &mut ybuf);
             if theta <= EVENT_LANDING {
                 // A crossing at the very start of the step: it is the switch we
                 // just landed on (or one that happened there), not a new one.
@@ -559,39 +572,34 @@ impl Dopri5 {
         best
     }
 
-    /// The crossing of event `i` inside the accepted trial step, to 1e-12 of
-    /// the step (Illinois iterations on the dense output).
-    fn refine_precise<O: Ode>(
-        &self,
-        ode: &mut O,
-        i: usize,
-        h: f64,
-        g0: f64,
-        ybuf: &mut [f64],
-    ) -> f64 {
-        self.illinois(ode, i, h, (0.0, g0), 1.0, 1e-12, ybuf)
+    /// Event `i` on the dense output at `theta`: only the components the event
+    /// reads are interpolated into `ybuf`.
+    #[inline]
+    fn event_on_dense<O: Ode>(&self, ode: &mut O, i: usize, theta: f64, ybuf: &mut [f64]) -> f64 {
+        match ode.event_components(i) {
+            Some(cols) => dense_eval_at(&self.r, theta, cols, ybuf),
+            None => {
+                let m = ode.event_dim().min(ybuf.len());
+                dense_eval(&self.r, theta, &mut ybuf[..m]);
+            }
+        }
+        ode.event(i, self.dense_t0 + theta * self.dense_h, ybuf)
     }
 
     /// Illinois (modified regula falsi) on `[a, hi]` for event `i` on the
     /// dense output, to a bracket of width `tol` (in units of the step);
     /// returns the end of the final bracket that lies past the crossing.
-    #[allow(clippy::too_many_arguments)]
     fn illinois<O: Ode>(
         &self,
         ode: &mut O,
         i: usize,
-        h: f64,
         (a0, ga): (f64, f64),
         hi: f64,
         tol: f64,
         ybuf: &mut [f64],
     ) -> f64 {
-        let m = ode.event_dim().min(ybuf.len());
-        let eval = |theta: f64, ode: &mut O, buf: &mut [f64]| {
-            let part = &mut buf[..m];
-            dense_eval(&self.r, theta, part);
-            ode.event(i, self.t + theta * h, part)
-        };
+        let eval =
+            |theta: f64, ode: &mut O, buf: &mut [f64]| self.event_on_dense(ode, i, theta, buf);
         let (mut a, mut fa) = (a0, ga);
         let (mut b, mut fb) = (hi, eval(hi, ode, ybuf));
         if fb == 0.0 || fa.signum() == fb.signum() {
@@ -627,21 +635,6 @@ impl Dopri5 {
         }
         b
     }
-
-    /// The root of event `i` in `theta` in `[0, hi]` on the dense output,
-    /// where `g(0) = g0` and `g(hi)` has the other sign, to the landing
-    /// tolerance.
-    fn refine<O: Ode>(
-        &self,
-        ode: &mut O,
-        i: usize,
-        h: f64,
-        g0: f64,
-        hi: f64,
-        ybuf: &mut [f64],
-    ) -> f64 {
-        self.illinois(ode, i, h, (0.0, g0), hi, 0.05 * EVENT_LANDING, ybuf)
-    }
 }
 
 /// Evaluates the DOPRI5 dense output at `theta` in `[0, 1]`.
@@ -652,6 +645,16 @@ fn dense_eval(r: &[Vec<f64>; 5], theta: f64, out: &mut [f64]) {
     let (r0, r1, r2, r3, r4) = (&r[0][..n], &r[1][..n], &r[2][..n], &r[3][..n], &r[4][..n]);
     for i in 0..n {
         out[i] = r0[i] + theta * (r1[i] + s1 * (r2[i] + theta * (r3[i] + s1 * r4[i])));
+    }
+}
+
+/// Evaluates the dense output at `theta` for the components `cols` only,
+/// each into its own place in `out` (the same arithmetic as [`dense_eval`]).
+#[inline]
+fn dense_eval_at(r: &[Vec<f64>; 5], theta: f64, cols: &[usize], out: &mut [f64]) {
+    let s1 = 1.0 - theta;
+    for &i in cols {
+        out[i] = r[0][i] + theta * (r[1][i] + s1 * (r[2][i] + theta * (r[3][i] + s1 * r[4][i])));
     }
 }
 

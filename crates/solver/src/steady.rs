@@ -66,7 +66,75 @@ impl Model {
         y.extend(std::iter::repeat_n(0.0, self.system.dof()));
         y
     }
+
+    /// The largest mesh deflection (m) a bounded response is taken to reach:
+    /// [`DIVERGENCE_FACTOR`] times the model's own scale (the largest of any
+    /// mesh's static deflection plus backlash plus TE, at least 1 um), raised
+    /// in proportion under light damping (below a damping ratio of 0.05,
+    /// where a resonance amplifies more).
+    ///
+    /// Forcing and backlash are bounded and damping is not negative, so only
+    /// a parametric instability of the time-varying stiffness (the motion's
+    /// growth outruns the dead zone, beyond which the force law is linear)
+    /// carries a response past it, well before the integrator overflows.
+    pub fn divergence_bound_m(&self) -> f64 {
+        let meshes = &self.system.meshes;
+        let scale = meshes
+            .iter()
+            .zip(&self.statics.mesh_deflection_m)
+            .map(|(m, d)| d.abs() + m.backlash_m + m.te_mean_m.abs() + m.te_cos_m.hypot(m.te_sin_m))
+            .fold(1e-6, f64::max);
+        let zeta_min = meshes
+            .iter()
+            .map(|m| m.damping_n_s_m / (2.0 * (m.stiffness_mean_n_m * m.equivalent_mass_kg).sqrt()))
+            .fold(f64::INFINITY, f64::min)
+            .max(1e-4);
+        DIVERGENCE_FACTOR * scale * (0.05 / zeta_min).max(1.0)
+    }
+
+    /// [`SolverError::Diverged`] if a mesh deflection of state `y` at `t_s`
+    /// exceeds `bound_m` (or is not finite).
+    pub(crate) fn check_bounded(
+        &self,
+        ode: &MeshOde,
+        t_s: f64,
+        y: &[f64],
+        bound_m: f64,
+    ) -> Result<()> {
+        let q = &y[..self.system.dof()];
+        for (j, m) in self.system.meshes.iter().enumerate() {
+            let delta_m = ode.deflection(j, q);
+            if delta_m.abs() > bound_m || !delta_m.is_finite() {
+                return Err(SolverError::Diverged {
+                    mesh: m.name.clone(),
+                    delta_m,
+                    bound_m,
+                    t_s,
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// An integrator failure, or [`SolverError::Diverged`] if the state it
+    /// stopped in had already left the bounded range (the failure is then
+    /// the growth's consequence, not its cause).
+    pub(crate) fn explain_failure(
+        &self,
+        ode: &MeshOde,
+        int: &Dopri5,
+        e: SolverError,
+    ) -> SolverError {
+        match self.check_bounded(ode, int.t(), int.y(), self.divergence_bound_m()) {
+            Err(diverged) => diverged,
+            Ok(()) => e,
+        }
+    }
 }
+
+/// How many times the model's deflection scale a mesh deflection may reach
+/// before the response counts as unbounded ([`Model::divergence_bound_m`]).
+pub const DIVERGENCE_FACTOR: f64 = 100.0;
 
 /// Impact regime of a steady response (Kahraman & Singh, 1990).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -343,6 +411,7 @@ pub fn steady_state(
     };
     let tol = tolerances(sys, opts.omega, opts.rtol, opts.atol_m, period, 1e-13);
     let mut int = Dopri5::new(&mut ode, 0.0, &y0, period / 200.0, tol);
+    let bound_m = model.divergence_bound_m();
     let n_mesh = sys.meshes.len();
     let budget = opts
         .max_steps_per_period
@@ -359,7 +428,9 @@ pub fn steady_state(
     for p in 1..=opts.transient_periods {
         let t_end = f64::from(p) * period;
         while int.t() < t_end {
-            int.step(&mut ode, t_end)?;
+            if let Err(e) = int.step(&mut ode, t_end) {
+                return Err(model.explain_failure(&ode, &int, e));
+            }
             guard(&int, budget)?;
             if opts.early_settle {
                 ode.deflections(&int.y()[..sys.dof()], &mut deflections);
@@ -367,6 +438,7 @@ pub fn steady_state(
             }
         }
         periods_run = p;
+        model.check_bounded(&ode, int.t(), int.y(), bound_m)?;
         if opts.early_settle {
             poincare_hist.push(poincare_point(&ode, int.t(), int.y(), omega_rad_s));
             if poincare_hist.len() > SETTLE_DISTANCES * 8 + 1 {
@@ -386,10 +458,14 @@ pub fn steady_state(
     for r in 1..=opts.record_periods {
         let t_end = t_rec + f64::from(r) * period;
         while int.t() < t_end {
-            let info = int.step(&mut ode, t_end)?;
+            let info = match int.step(&mut ode, t_end) {
+                Ok(info) => info,
+                Err(e) => return Err(model.explain_failure(&ode, &int, e)),
+            };
             guard(&int, budget)?;
             rec.on_step(&ode, &int, info);
         }
+        model.check_bounded(&ode, int.t(), int.y(), bound_m)?;
         rec.on_period(&ode, int.t(), int.y(), omega_rad_s);
     }
     let end_state = int.y().to_vec();

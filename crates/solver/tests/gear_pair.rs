@@ -94,3 +94,41 @@ fn teeth_that_separate_carry_no_stiffness_force() {
     assert!(r.force_min_n < 0.2 * r.static_force_n);
     assert!(r.dynamic_factor.expect("loaded") > 1.5);
 }
+
+/// The principal parametric resonance of the Mathieu equation
+/// `x'' + 2 z x' + (1 + v cos(Omega t)) x = f(t)` at `Omega = 2`: to first
+/// order in `v` the motion grows without bound when `v / 4 > z` (growth rate
+/// `v / 4 - z` per unit of dimensionless time) and stays bounded otherwise.
+/// Without backlash the gear pair is exactly that equation, so the steady
+/// state reports the growth as `Diverged` on one side of the boundary and a
+/// bounded period-1 response on the other, never a "response" of metres.
+#[test]
+fn principal_parametric_resonance_is_reported_as_unbounded_growth() {
+    let run = |zeta: f64| {
+        let m = pair(&[
+            "backlash_um=0",
+            "te_um=0",
+            "stiffness_variation=0.3",
+            &format!("damping_ratio={zeta}"),
+        ]);
+        let mut opts = SteadyOptions::new(2.0);
+        opts.early_settle = false;
+        steady_state(&m, &opts, None)
+    };
+    // v / 4 = 0.075 against z = 0.05: growth e^(0.025 pi) per period, some
+    // 1e13 over the 400 periods.
+    match run(0.05) {
+        Err(solver::error::SolverError::Diverged {
+            delta_m, bound_m, ..
+        }) => {
+            assert!(delta_m.abs() > bound_m, "{delta_m} {bound_m}");
+        }
+        other => panic!("expected unbounded growth, got {other:?}"),
+    }
+    // z = 0.1: outside the tongue, a bounded period-1 response near the
+    // static deflection.
+    let ss = run(0.1).expect("bounded");
+    assert_eq!(ss.period, Some(1));
+    let mesh = &ss.meshes[0];
+    assert!(mesh.delta_max_m < 3.0 * mesh.delta_mean_m, "{mesh:?}");
+}

@@ -141,7 +141,7 @@ fn contact_switches_are_located_at_the_exact_crossing_times() {
     let t_end = expected[3] + t_quarter;
     while int.t() < t_end {
         int.step(&mut ode, t_end).expect("step");
-        located.extend(int.last_events().iter().map(|&(_, t)| t));
+        located.extend(int.last_events(&mut ode).iter().map(|&(_, t)| t));
     }
     assert_eq!(
         located.len(),
@@ -155,4 +155,73 @@ fn contact_switches_are_located_at_the_exact_crossing_times() {
         assert!((t - e).abs() < 1e-6 * t_quarter, "switch at {t}, exact {e}");
     }
     let _ = ode.dim();
+}
+
+/// The compound set's ODE with event location interpolating every position
+/// (the default of [`Ode::event_components`]) instead of only the three
+/// coordinates of the event's mesh.
+struct AllComponents(MeshOde);
+impl Ode for AllComponents {
+    fn dim(&self) -> usize {
+        self.0.dim()
+    }
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
+        self.0.rhs(t, y, dy);
+    }
+    fn n_events(&self) -> usize {
+        self.0.n_events()
+    }
+    fn events(&mut self, t: f64, y: &[f64], dy: &[f64], g: &mut [f64], dg: &mut [f64]) {
+        self.0.events(t, y, dy, g, dg);
+    }
+    fn event(&mut self, i: usize, t: f64, y: &[f64]) -> f64 {
+        self.0.event(i, t, y)
+    }
+    fn event_dim(&self) -> usize {
+        self.0.event_dim()
+    }
+}
+
+/// Interpolating only an event's own components is an optimization, not an
+/// approximation: the same steps, states and switch times to the bit, over a
+/// stretch with many double-sided impacts.
+#[test]
+fn event_location_on_the_mesh_coordinates_only_changes_nothing() {
+    let mut p = ModelParams::default();
+    keys::set_assignment(&mut p, "backlash_um=10").expect("backlash");
+    let model = Model::new(&p).expect("model");
+    let sys = &model.system;
+    let omega_rad_s = 1.2 * sys.omega_ref_rad_s;
+    let period = 2.0 * PI / omega_rad_s;
+    let lengths = sys.dof_length_m();
+    let mut atol: Vec<f64> = lengths.iter().map(|l| 1e-10 / l).collect();
+    atol.extend(lengths.iter().map(|l| 1e-10 / l * omega_rad_s));
+    let tol = Tolerances {
+        rtol: 1e-7,
+        atol,
+        h_min: 1e-13 * period,
+        h_max: period / 8.0,
+    };
+    let y0 = model.static_state();
+    let mut fast = MeshOde::new(sys, omega_rad_s);
+    assert!(fast.event_components(0).is_some());
+    let mut full = AllComponents(MeshOde::new(sys, omega_rad_s));
+    let mut a = Dopri5::new(&mut fast, 0.0, &y0, period / 200.0, tol.clone());
+    let mut b = Dopri5::new(&mut full, 0.0, &y0, period / 200.0, tol);
+    let t_end = 30.0 * period;
+    let mut switches = 0;
+    while a.t() < t_end {
+        a.step(&mut fast, t_end).expect("step");
+        b.step(&mut full, t_end).expect("step");
+        assert_eq!(a.t().to_bits(), b.t().to_bits());
+        assert_eq!(a.y(), b.y());
+        let ea = a.last_events(&mut fast).to_vec();
+        assert_eq!(ea, b.last_events(&mut full));
+        switches += ea.len();
+    }
+    assert_eq!(a.stats, b.stats);
+    assert!(
+        switches > 100,
+        "only {switches} switches: not a test of event location"
+    );
 }
