@@ -3,7 +3,7 @@
 // node with wasm-bindgen, times the same workloads as `gearshock bench`
 // (HBM frequency responses H = 1 and H = 7 over Omega 0.1..2 with 400
 // nominal points, stability on; one simulate of 300 + 100 periods at
-// Omega 0.5; the 200-point bifurcation sweep) in node and natively, and prints medians and the ratios as JSON.
+// Omega 0.5; the 200-point bifurcation sweep; a 100 x 4 regime map) in node and natively, and prints medians and the ratios as JSON.
 // The wasm is optimized by wasm-opt -O3 as in the page's release build.
 // Usage: node scripts/bench-wasm.mjs [repeats]   (run from the repository root,
 // with scripts/env.sh sourced so wasm-bindgen is on PATH)
@@ -48,6 +48,7 @@ const wasmMs = {
   hbm_h7_ms: time(() => wasm.frf(7, 400, true)),
   simulate_ms: time(() => wasm.simulate(0.5, 300, 100)),
   bifurcation_200_ms: time(() => wasm.sweep(200)),
+  map_100x4_ms: time(() => wasm.map(100, 4)),
 };
 const native = JSON.parse(run('target/release/gearshock', ['bench', '--repeats', String(repeats)]));
 const nativeMs = {
@@ -55,6 +56,7 @@ const nativeMs = {
   hbm_h7_ms: native.hbm.h7.median_ms,
   simulate_ms: native.simulate.median_ms,
   bifurcation_200_ms: native.bifurcation.median_s * 1000,
+  map_100x4_ms: native.map.median_s * 1000,
 };
 const ratio = Object.fromEntries(Object.keys(wasmMs).map((k) => [k, wasmMs[k] / nativeMs[k]]));
 console.log(JSON.stringify({ repeats, node: process.version, wasm_ms: wasmMs, native_ms: nativeMs, wasm_over_native: ratio }, null, 2));

@@ -13,8 +13,10 @@ import { start, open, status, waitStatus, ROOT } from './harness.mjs';
 const args = process.argv.slice(2);
 const REPEATS = Number(args[args.indexOf('--repeats') + 1] || 5) || 5;
 const QUICK = args.includes('--quick');
-// --map adds the regime-map figure (100 x 40 cells of 300 + 100 periods: about 2 minutes).
-const MAP = args.includes('--map');
+// --map adds the regime-map figure (100 x 40 cells of 300 + 100 periods: about
+// a minute per run, --repeats runs at most 3); --map-only measures nothing else.
+const MAP_ONLY = args.includes('--map-only');
+const MAP = MAP_ONLY || args.includes('--map');
 
 const median = (xs) => {
   const s = [...xs].sort((a, b) => a - b);
@@ -42,86 +44,92 @@ const h = await start();
 try {
   // First paint from a cold load: navigation start to the first drawn frame
   // of the frequency-response axes, and to its first computed points.
-  const paint = [];
-  const firstFr = [];
-  for (let i = 0; i < REPEATS; i++) {
-    const { page } = await open(h.browser, h.url, 'bif_points=20');
-    const s = await waitStatus(page, (s) => s.first_draw_ms.every((t) => t > 0) && s.fr.first_data_ms, 60000, 'first paint');
-    paint.push(Math.max(...s.first_draw_ms));
-    firstFr.push(s.fr.first_data_ms);
-    await page.close();
-  }
-  row('first paint: every canvas drawn (axes, contact lines, cursor)', paint, 'ms', 'from navigation start');
-  row('first frequency-response point received', firstFr, 'ms', 'from navigation start');
-
-  // Slider input to redraw. One page; each input moves the backlash slider.
-  {
-    const { page } = await open(h.browser, h.url, 'bif_points=10&bif_dir=up');
-    await waitStatus(page, (s) => s.fr.finished_ms && s.omega_job.finished_ms && s.bif.finished_ms, 120000, 'initial jobs');
-    const frRedraw = [];
-    const phase = [];
-    const preview = [];
-    const frDone = [];
-    const frFirst = [];
-    let partial = 0;
-    const bifFirst = [];
-    const n = QUICK ? 3 : Math.max(REPEATS, 8);
-    for (let i = 0; i < n; i++) {
-      const value = String(90 + 7 * (i % 2 ? i : -i) + i);
-      const t0 = await page.evaluate((v) => {
-        const el = document.getElementById('slider-backlash_um');
-        el.value = v;
-        const t = performance.now();
-        el.dispatchEvent(new Event('input', { bubbles: true }));
-        return t;
-      }, value);
-      const s1 = await waitStatus(page, (s) => s.last_draw_ms[0] > t0, 10000, 'frequency-response redraw');
-      frRedraw.push(s1.last_draw_ms[0] - t0);
-      const sp = await waitStatus(page, (s) => s.omega_job.preview_ms >= t0 && s.last_draw_ms[2] >= s.omega_job.preview_ms, 30000, 'phase portrait preview');
-      preview.push(sp.last_draw_ms[2] - t0);
-      const s2 = await waitStatus(page, (s) => s.omega_job.finished_ms && s.omega_job.started_ms >= t0 && s.last_draw_ms[2] >= s.omega_job.finished_ms, 30000, 'phase portrait');
-      phase.push(s2.last_draw_ms[2] - t0);
-      const s3 = await waitStatus(page, (s) => s.fr.finished_ms && s.fr.started_ms >= t0, 120000, 'frequency response complete');
-      frDone.push(s3.fr.finished_ms - t0);
-      frFirst.push(s3.fr.first_data_ms - t0);
-      if (s3.fr_partial) partial += 1;
-      const s4 = await waitStatus(page, (s) => s.bif.finished_ms && s.bif.started_ms >= t0, 120000, 'bifurcation complete');
-      bifFirst.push(s4.bif.first_data_ms - t0);
-    }
-    row('slider input to redrawn frequency response (new ±b lines, previous curve faded)', frRedraw, 'ms');
-    row('slider input to redrawn phase portrait, preview (20 + 10 periods on from the last state, main thread)', preview, 'ms');
-    row('slider input to redrawn phase portrait, full steady state (300 + 100 periods, worker)', phase, 'ms');
-    row('slider input to the first points of the new harmonic-balance branch', frFirst, 'ms');
-    row('slider input to complete frequency response (harmonic balance, 150 nominal points, H = 5, Floquet stability, 1 worker)', frDone, 'ms', partial ? `${partial} of ${n} branches ended in a solver failure (partial)` : '');
-    row('slider input to first bifurcation points (restarted sweep)', bifFirst, 'ms');
-    await page.close();
-  }
-
-  // Bifurcation: 200 Omega points x (300 + 100) periods, two workers.
-  {
-    const points = QUICK ? 20 : 200;
-    const total = [];
-    const first = [];
-    const reps = QUICK ? 1 : Math.min(REPEATS, 3);
-    for (let i = 0; i < reps; i++) {
-      // fr_points=2: the coarsest harmonic-balance branch, so that it takes
-      // little time from the worker it shares with a bifurcation shard.
-      const { page } = await open(h.browser, h.url, `bif_points=${points}&bif_dir=up&fr_points=2&transient_periods=300&record_periods=100&omega_from=0.1&omega_to=2`);
-      const s = await waitStatus(page, (s) => s.bif.finished_ms, 600000, 'bifurcation');
-      total.push(s.bif.finished_ms - s.bif.started_ms);
-      first.push(s.bif.first_data_ms - s.bif.started_ms);
+  if (!MAP_ONLY) {
+    const paint = [];
+    const firstFr = [];
+    for (let i = 0; i < REPEATS; i++) {
+      const { page } = await open(h.browser, h.url, 'bif_points=20');
+      const s = await waitStatus(page, (s) => s.first_draw_ms.every((t) => t > 0) && s.fr.first_data_ms, 60000, 'first paint');
+      paint.push(Math.max(...s.first_draw_ms));
+      firstFr.push(s.fr.first_data_ms);
       await page.close();
     }
-    row(`bifurcation: ${points} points x (300 + 100) periods, 2 workers`, total, 'ms', 'upward sweep, Omega 0.1..2, default model');
-    row('bifurcation: first partial frame', first, 'ms', 'from job start');
+    row('first paint: every canvas drawn (axes, contact lines, cursor)', paint, 'ms', 'from navigation start');
+    row('first frequency-response point received', firstFr, 'ms', 'from navigation start');
+
+    // Slider input to redraw. One page; each input moves the backlash slider.
+    {
+      const { page } = await open(h.browser, h.url, 'bif_points=10&bif_dir=up');
+      await waitStatus(page, (s) => s.fr.finished_ms && s.omega_job.finished_ms && s.bif.finished_ms, 120000, 'initial jobs');
+      const frRedraw = [];
+      const phase = [];
+      const preview = [];
+      const frDone = [];
+      const frFirst = [];
+      let partial = 0;
+      const bifFirst = [];
+      const n = QUICK ? 3 : Math.max(REPEATS, 8);
+      for (let i = 0; i < n; i++) {
+        const value = String(90 + 7 * (i % 2 ? i : -i) + i);
+        const t0 = await page.evaluate((v) => {
+          const el = document.getElementById('slider-backlash_um');
+          el.value = v;
+          const t = performance.now();
+          el.dispatchEvent(new Event('input', { bubbles: true }));
+          return t;
+        }, value);
+        const s1 = await waitStatus(page, (s) => s.last_draw_ms[0] > t0, 10000, 'frequency-response redraw');
+        frRedraw.push(s1.last_draw_ms[0] - t0);
+        const sp = await waitStatus(page, (s) => s.omega_job.preview_ms >= t0 && s.last_draw_ms[2] >= s.omega_job.preview_ms, 30000, 'phase portrait preview');
+        preview.push(sp.last_draw_ms[2] - t0);
+        const s2 = await waitStatus(page, (s) => s.omega_job.finished_ms && s.omega_job.started_ms >= t0 && s.last_draw_ms[2] >= s.omega_job.finished_ms, 30000, 'phase portrait');
+        phase.push(s2.last_draw_ms[2] - t0);
+        const s3 = await waitStatus(page, (s) => s.fr.finished_ms && s.fr.started_ms >= t0, 120000, 'frequency response complete');
+        frDone.push(s3.fr.finished_ms - t0);
+        frFirst.push(s3.fr.first_data_ms - t0);
+        if (s3.fr_partial) partial += 1;
+        const s4 = await waitStatus(page, (s) => s.bif.finished_ms && s.bif.started_ms >= t0, 120000, 'bifurcation complete');
+        bifFirst.push(s4.bif.first_data_ms - t0);
+      }
+      row('slider input to redrawn frequency response (new ±b lines, previous curve faded)', frRedraw, 'ms');
+      row('slider input to redrawn phase portrait, preview (20 + 10 periods on from the last state, main thread)', preview, 'ms');
+      row('slider input to redrawn phase portrait, full steady state (300 + 100 periods, worker)', phase, 'ms');
+      row('slider input to the first points of the new harmonic-balance branch', frFirst, 'ms');
+      row('slider input to complete frequency response (harmonic balance, 150 nominal points, H = 5, Floquet stability, 1 worker)', frDone, 'ms', partial ? `${partial} of ${n} branches ended in a solver failure (partial)` : '');
+      row('slider input to first bifurcation points (restarted sweep)', bifFirst, 'ms');
+      await page.close();
+    }
+
+    // Bifurcation: 200 Omega points x (300 + 100) periods, two workers.
+    {
+      const points = QUICK ? 20 : 200;
+      const total = [];
+      const first = [];
+      const reps = QUICK ? 1 : Math.min(REPEATS, 3);
+      for (let i = 0; i < reps; i++) {
+        // fr_points=2: the coarsest harmonic-balance branch, so that it takes
+        // little time from the worker it shares with a bifurcation shard.
+        const { page } = await open(h.browser, h.url, `bif_points=${points}&bif_dir=up&fr_points=2&transient_periods=300&record_periods=100&omega_from=0.1&omega_to=2`);
+        const s = await waitStatus(page, (s) => s.bif.finished_ms, 600000, 'bifurcation');
+        total.push(s.bif.finished_ms - s.bif.started_ms);
+        first.push(s.bif.first_data_ms - s.bif.started_ms);
+        await page.close();
+      }
+      row(`bifurcation: ${points} points x (300 + 100) periods, 2 workers`, total, 'ms', 'upward sweep, Omega 0.1..2, default model');
+      row('bifurcation: first partial frame', first, 'ms', 'from job start');
+    }
   }
 
   // Regime map: 100 x 40 cells x (300 + 100) periods, two workers (opt-in).
   if (MAP) {
-    const { page } = await open(h.browser, h.url, 'map_omega_points=100&map_value_points=40&map_transient_periods=300&map_record_periods=100&bif_points=2&fr_points=2&lyap_points=0&omega_from=0.1&omega_to=2');
-    const s = await waitStatus(page, (s) => s.map.finished_ms, 900000, 'regime map');
-    row('regime map: 100 x 40 cells x (300 + 100) periods, 2 workers', [s.map.finished_ms - s.map.started_ms], 'ms', 'backlash rows, Omega 0.1..2, default model');
-    await page.close();
+    const total = [];
+    for (let i = 0; i < (QUICK ? 1 : Math.min(REPEATS, 3)); i++) {
+      const { page } = await open(h.browser, h.url, 'map_omega_points=100&map_value_points=40&map_transient_periods=300&map_record_periods=100&bif_points=2&fr_points=2&lyap_points=0&omega_from=0.1&omega_to=2');
+      const s = await waitStatus(page, (s) => s.map.finished_ms, 900000, 'regime map');
+      total.push(s.map.finished_ms - s.map.started_ms);
+      await page.close();
+    }
+    row('regime map: 100 x 40 cells x (300 + 100) periods, 2 workers', total, 'ms', 'backlash rows, Omega 0.1..2, default model');
   }
 } finally {
   await h.close();

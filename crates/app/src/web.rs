@@ -35,14 +35,17 @@ use web_sys::{
 
 /// A worker's time slice (ms) before it yields to its event loop.
 const SLICE_MS: f64 = 25.0;
-/// The pause after a full slice (ms): see `start_worker`.
+/// The pause (ms) after `PAUSE_EVERY_MS` of work: see `start_worker`.
 const SLICE_PAUSE_MS: i32 = 3;
+/// Work (ms) between two pauses.
+const PAUSE_EVERY_MS: f64 = 100.0;
 
 /// Runs a Web Worker: posts "ready", then serves jobs in bounded chunks,
 /// yielding to the event loop so that newer jobs and cancels arrive:
 /// through a `MessageChannel` (which, unlike `setTimeout`, is not clamped)
-/// after a short slice, through a `SLICE_PAUSE_MS` timer after a full
-/// one, to leave the page's main thread room on two cores.
+/// after a slice, through a `SLICE_PAUSE_MS` timer once `PAUSE_EVERY_MS`
+/// of work have passed since the last pause, to leave the page's main thread
+/// room on two cores.
 pub fn start_worker() {
     let scope: DedicatedWorkerGlobalScope = js_sys::global().unchecked_into();
     let core = Rc::new(RefCell::new(WorkerCore::new()));
@@ -72,7 +75,7 @@ pub fn start_worker() {
         }
     };
 
-    // After a full time slice the worker pauses briefly (a timer, not the
+    // Every PAUSE_EVERY_MS of work the worker pauses briefly (a timer, not the
     // unclamped channel): on the 2-core target two busy workers otherwise
     // leave the page's main thread too little CPU to draw within 100 ms.
     let resume = {
@@ -94,33 +97,34 @@ pub fn start_worker() {
             }
         }
     };
+    let busy_ms = Rc::new(Cell::new(0.0));
     let tick = {
         let core = core.clone();
         let scheduled = scheduled.clone();
+        let busy_ms = busy_ms.clone();
         let post = post.clone();
         let schedule = schedule.clone();
         Closure::<dyn FnMut(MessageEvent)>::new(move |_e: MessageEvent| {
             scheduled.set(false);
             let start = js_sys::Date::now();
             // A time slice of about 25 ms, then yield; one step is one steady state.
-            let mut full = false;
             loop {
                 let msgs = core.borrow_mut().step();
                 post(msgs);
-                if !core.borrow().has_work() {
-                    break;
-                }
-                if js_sys::Date::now() - start > SLICE_MS {
-                    full = true;
+                if !core.borrow().has_work() || js_sys::Date::now() - start > SLICE_MS {
                     break;
                 }
             }
             if core.borrow().has_work() {
-                if full {
+                busy_ms.set(busy_ms.get() + js_sys::Date::now() - start);
+                if busy_ms.get() > PAUSE_EVERY_MS {
+                    busy_ms.set(0.0);
                     pause();
                 } else {
                     schedule();
                 }
+            } else {
+                busy_ms.set(0.0);
             }
         })
     };

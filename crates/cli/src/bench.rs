@@ -7,6 +7,7 @@
 use serde_json::{json, Value};
 use solver::dynamics::MeshOde;
 use solver::hbm::{FrfContinuation, FrfSpec};
+use solver::map::{MapSpec, RegimeMap};
 use solver::ode::Ode;
 use solver::params::ModelParams;
 use solver::steady::{steady_state, Model, SteadyOptions};
@@ -91,6 +92,23 @@ pub fn run(repeats: u32, quick: bool) -> Result<Value, SolverError> {
     }
     let sweep_median = median(sweep_s.clone());
 
+    // A regime map of the page's default kind: Omega 0.1..2 in 100 columns,
+    // backlash 10..200 um in 4 rows (a tenth of the page's 100 x 40 map).
+    let (columns, rows) = if quick { (4, 1) } else { (100, 4) };
+    let mut map_s = Vec::new();
+    for _ in 0..sweep_repeats {
+        let mut spec = MapSpec::new((0.1, 2.0, columns), "backlash_um", (10.0, 200.0, rows));
+        spec.steady.transient_periods = transient;
+        spec.steady.record_periods = record;
+        let mut map = RegimeMap::new(&ModelParams::default(), spec)?;
+        let start = Instant::now();
+        while !map.is_finished() {
+            map.advance(64);
+        }
+        map_s.push(start.elapsed().as_secs_f64());
+    }
+    let map_median = median(map_s);
+
     // Harmonic balance: the default model's frequency response over
     // Omega 0.1 ..= 2 with 400 nominal points, stability included.
     let mut hbm = serde_json::Map::new();
@@ -157,6 +175,14 @@ pub fn run(repeats: u32, quick: bool) -> Result<Value, SolverError> {
             "event_retakes": sim_stats.integrator.event_retakes,
             "rhs_evaluations": sim_stats.integrator.rhs_evaluations,
             "contact_switches": sim_stats.integrator.events,
+        },
+        "map": {
+            "omega_points": columns,
+            "backlash_um_points": rows,
+            "transient_periods": transient,
+            "record_periods": record,
+            "median_s": map_median,
+            "ms_per_cell": map_median * 1e3 / f64::from(columns * rows),
         },
         "bifurcation": {
             "omega_from": 0.05,

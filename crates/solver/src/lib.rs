@@ -13,6 +13,7 @@
 //! - [`ode`]: the adaptive Dormand–Prince integrator with event location.
 //! - [`dynamics`]: the equations of motion as an ODE.
 //! - [`trig`]: the mesh phase's sine and cosine, the same bits in native and wasm.
+//! - [`fastmath`]: max, min and a power function for the hot loops, likewise.
 //! - [`steady`]: steady-state runs, Poincaré samples, impact regimes, spectra.
 //! - [`sweep`]: bifurcation sweeps with bounded work per call.
 //! - [`hbm`]: harmonic balance, continuation, Floquet stability.
@@ -22,6 +23,7 @@
 
 pub mod dynamics;
 pub mod error;
+pub mod fastmath;
 pub mod hbm;
 pub mod keys;
 pub mod lyapunov;

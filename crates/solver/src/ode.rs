@@ -19,6 +19,7 @@
 //! landing tolerance counts as having happened at the start.
 
 use crate::error::{Result, SolverError};
+use crate::fastmath::{exp2, log2_pos, max, min};
 
 /// A first-order system `y' = f(t, y)` with optional event functions.
 pub trait Ode {
@@ -134,6 +135,8 @@ const FAC_MIN_INV: f64 = 5.0; // step may shrink at most 5x
 const FAC_MAX_INV: f64 = 0.1; // and grow at most 10x
 const BETA: f64 = 0.04;
 const EXPO1: f64 = 0.2 - BETA * 0.75;
+/// log2 of the floor 1e-4 of the PI controller's remembered error.
+const LOG2_FAC_OLD_MIN: f64 = -13.287_712_379_549_449;
 
 /// Relative position inside a step below which an event counts as at the step's start
 /// (or, after a retake, as landed at its end).
@@ -167,7 +170,8 @@ pub struct Dopri5 {
     y: Vec<f64>,
     h: f64,
     tol: Tolerances,
-    fac_old: f64,
+    /// log2 of the previous accepted step's error norm (at least 1e-4).
+    log_fac_old: f64,
     k: [Vec<f64>; 7],
     y1: Vec<f64>,
     ytmp: Vec<f64>,
@@ -208,7 +212,7 @@ impl Dopri5 {
             y: y0.to_vec(),
             h: h0.min(tol.h_max),
             tol,
-            fac_old: 1e-4,
+            log_fac_old: LOG2_FAC_OLD_MIN,
             k: std::array::from_fn(|_| zeros()),
             y1: zeros(),
             ytmp: zeros(),
@@ -333,7 +337,7 @@ impl Dopri5 {
             let e =
                 h * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i] + E7 * k7[i]);
             err[i] = e;
-            let sk = atol[i] + self.tol.rtol * y[i].abs().max(y1[i].abs());
+            let sk = atol[i] + self.tol.rtol * max(y[i].abs(), y1[i].abs());
             sum += (e / sk) * (e / sk);
         }
         (sum / n as f64).sqrt()
@@ -369,7 +373,7 @@ impl Dopri5 {
 
     /// Takes one accepted step that ends no later than `t_limit`.
     pub fn step<O: Ode>(&mut self, ode: &mut O, t_limit: f64) -> Result<StepInfo> {
-        let mut h = self.h.min(t_limit - self.t).min(self.tol.h_max);
+        let mut h = min(min(self.h, t_limit - self.t), self.tol.h_max);
         // The step the controller wanted before any retake aimed at an event.
         let mut h_proposal: Option<f64> = None;
         let mut aimed: Option<usize> = None;
@@ -379,7 +383,7 @@ impl Dopri5 {
         if let Some((i, tau)) = self.predict_event(h) {
             h_proposal = Some(h);
             aimed = Some(i);
-            h = (tau * (1.0 + 0.5 * EVENT_LANDING)).min(h);
+            h = min(tau * (1.0 + 0.5 * EVENT_LANDING), h);
         }
         loop {
             if h < self.tol.h_min && self.t + h < t_limit {
@@ -399,10 +403,12 @@ impl Dopri5 {
                 }
                 return Err(SolverError::NonFinite { t_s: self.t });
             }
-            let fac11 = err.powf(EXPO1);
+            // err^EXPO1 (and below the PI term) from one logarithm per trial.
+            let log_err = log2_pos(max(err, 1e-300));
             if err > 1.0 {
                 self.stats.rejected_steps += 1;
-                let h_err = h / FAC_MIN_INV.min(fac11 / SAFE);
+                let fac11 = exp2(EXPO1 * log_err);
+                let h_err = h / min(FAC_MIN_INV, fac11 / SAFE);
                 // A trial that failed because it straddles a contact switch:
                 // aim the retry at the switch (located roughly on the trial's
                 // own dense output) instead of only shrinking blindly.
@@ -423,7 +429,7 @@ impl Dopri5 {
                 };
                 match h_event {
                     Some((i, he)) if he > 0.5 * h_err => {
-                        h_proposal.get_or_insert(h_err.max(he));
+                        h_proposal.get_or_insert(max(h_err, he));
                         aimed = Some(i);
                         h = he;
                     }
@@ -447,7 +453,7 @@ impl Dopri5 {
                         self.stats.event_retakes += 1;
                         h_proposal.get_or_insert(h);
                         aimed = Some(i);
-                        h *= (theta / (1.0 - 0.5 * EVENT_LANDING)).min(1.0);
+                        h *= min(theta / (1.0 - 0.5 * EVENT_LANDING), 1.0);
                         continue;
                     }
                 }
@@ -465,7 +471,7 @@ impl Dopri5 {
             // Accept.
             let t0 = self.t;
             self.t += h;
-            if (t_limit - self.t).abs() <= 4.0 * f64::EPSILON * t_limit.abs().max(1.0) {
+            if (t_limit - self.t).abs() <= 4.0 * f64::EPSILON * max(t_limit.abs(), 1.0) {
                 self.t = t_limit;
             }
             std::mem::swap(&mut self.y, &mut self.y1);
@@ -477,14 +483,17 @@ impl Dopri5 {
             self.stats.steps += 1;
             self.stats.events += self.crossings.len() as u64;
             // Step-size proposal (PI control).
-            let fac = (fac11 / self.fac_old.powf(BETA) / SAFE).clamp(FAC_MAX_INV, FAC_MIN_INV);
-            self.fac_old = err.max(1e-4);
+            let fac = (exp2(EXPO1 * log_err - BETA * self.log_fac_old) / SAFE)
+                .clamp(FAC_MAX_INV, FAC_MIN_INV);
+            self.log_fac_old = max(log_err, LOG2_FAC_OLD_MIN);
             let h_next = h / fac;
-            self.h = match h_proposal {
-                Some(hp) => hp.max(h_next),
-                None => h_next,
-            }
-            .min(self.tol.h_max);
+            self.h = min(
+                match h_proposal {
+                    Some(hp) => max(hp, h_next),
+                    None => h_next,
+                },
+                self.tol.h_max,
+            );
             return Ok(StepInfo {
                 t0,
                 t1: self.t,
@@ -520,7 +529,7 @@ impl Dopri5 {
                 let r1 = q / a;
                 let r2 = c / q;
                 match (r1 > 0.0, r2 > 0.0) {
-                    (true, true) => r1.min(r2),
+                    (true, true) => min(r1, r2),
                     (true, false) => r1,
                     (false, true) => r2,
                     (false, false) => continue,
@@ -545,8 +554,8 @@ impl Dopri5 {
             let bracket = if g0 == 0.0 {
                 None // on the surface at the start: that crossing was handled
             } else if g0.signum() != g1.signum() || g1 == 0.0 {
-                Some(limit.min(1.0))
-            } else if g0.abs().min(g1.abs()) <= 0.15 * (d0.abs() + d1.abs()) {
+                Some(min(limit, 1.0))
+            } else if min(g0.abs(), g1.abs()) <= 0.15 * (d0.abs() + d1.abs()) {
                 hermite_dip(g0, g1, d0, d1).and_then(|theta_dip| {
                     if theta_dip >= limit {
                         return None;

@@ -30,6 +30,7 @@
 
 use crate::dynamics::{MeshInstant, MeshOde};
 use crate::error::{Result, SolverError};
+use crate::fastmath::{max, min};
 use crate::modal::{self, Modes, StaticSolution};
 use crate::ode::{Dopri5, IntegratorStats, StepInfo, Tolerances};
 use crate::params::ModelParams;
@@ -516,10 +517,8 @@ fn poincare_point(ode: &MeshOde, t: f64, y: &[f64], omega_rad_s: f64) -> Vec<f64
 }
 
 fn dist_inf(a: &[f64], b: &[f64]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max)
+    // fastmath::max: with f64::max this was a call per entry in wasm32.
+    a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, max)
 }
 
 /// Distances between Poincaré points `p` apart used by the settle test.
@@ -592,8 +591,8 @@ impl SpanTracker {
     }
     fn add(&mut self, deflections: &[f64]) {
         for (j, &d) in deflections.iter().enumerate() {
-            self.lo[j] = self.lo[j].min(d);
-            self.hi[j] = self.hi[j].max(d);
+            self.lo[j] = min(self.lo[j], d);
+            self.hi[j] = max(self.hi[j], d);
         }
     }
     fn span_um(&self) -> f64 {
@@ -721,8 +720,8 @@ impl Recorder {
                 1
             };
             self.contact[j][c] += 1;
-            self.f_min[j] = self.f_min[j].min(mi.force);
-            self.f_max[j] = self.f_max[j].max(mi.force);
+            self.f_min[j] = min(self.f_min[j], mi.force);
+            self.f_max[j] = max(self.f_max[j], mi.force);
         }
         for h in &mut self.histories {
             let mi = inst[h.mesh];
@@ -749,12 +748,12 @@ impl Recorder {
         let mut ybuf = std::mem::take(&mut self.ybuf);
         for j in 0..self.n_mesh {
             let (a, b) = (self.prev[j], self.cur[j]);
-            self.d_min[j] = self.d_min[j].min(b.delta);
-            self.d_max[j] = self.d_max[j].max(b.delta);
-            self.x_min[j] = self.x_min[j].min(b.rel);
-            self.x_max[j] = self.x_max[j].max(b.rel);
-            self.f_min[j] = self.f_min[j].min(b.force);
-            self.f_max[j] = self.f_max[j].max(b.force);
+            self.d_min[j] = min(self.d_min[j], b.delta);
+            self.d_max[j] = max(self.d_max[j], b.delta);
+            self.x_min[j] = min(self.x_min[j], b.rel);
+            self.x_max[j] = max(self.x_max[j], b.rel);
+            self.f_min[j] = min(self.f_min[j], b.force);
+            self.f_max[j] = max(self.f_max[j], b.force);
             // Interior extremum of delta or of x: the rate changes sign.
             for rel in [false, true] {
                 let (v0, v1, r0, r1) = if rel {
@@ -773,10 +772,10 @@ impl Recorder {
                         } else {
                             (&mut self.d_min[j], &mut self.d_max[j])
                         };
-                        *lo = lo.min(v);
-                        *hi = hi.max(v);
-                        self.f_min[j] = self.f_min[j].min(mi.force);
-                        self.f_max[j] = self.f_max[j].max(mi.force);
+                        *lo = min(*lo, v);
+                        *hi = max(*hi, v);
+                        self.f_min[j] = min(self.f_min[j], mi.force);
+                        self.f_max[j] = max(self.f_max[j], mi.force);
                     }
                 }
             }
@@ -850,7 +849,7 @@ fn hermite_extremum(v0: f64, v1: f64, s0: f64, s1: f64) -> Option<f64> {
     let roots = if a.abs() <= 1e-14 * (b.abs() + c.abs()) {
         [-c / b, f64::NAN]
     } else {
-        let disc = (b * b - 4.0 * a * c).max(0.0);
+        let disc = max(b * b - 4.0 * a * c, 0.0);
         let q = -0.5 * (b + b.signum() * disc.sqrt());
         [q / a, if q != 0.0 { c / q } else { f64::NAN }]
     };

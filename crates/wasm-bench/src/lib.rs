@@ -5,9 +5,11 @@
 //! solver has no clock; timing is the caller's) and compares the medians
 //! with the native `gearshock bench`. The workloads are the same code and
 //! inputs in both: the default model's HBM frequency response over Omega
-//! 0.1..2 and one steady-state run at Omega 0.5.
+//! 0.1..2, one steady-state run at Omega 0.5, a bifurcation sweep and a
+//! regime map.
 
 use solver::hbm::{FrfContinuation, FrfSpec};
+use solver::map::{MapSpec, RegimeMap};
 use solver::params::ModelParams;
 use solver::steady::{steady_state, Model, SteadyOptions};
 use solver::sweep::{BifurcationSweep, SweepSpec};
@@ -60,6 +62,24 @@ pub fn sweep_failures(points: u32) -> i32 {
     run().unwrap_or(-1)
 }
 
+/// A regime map of the default model over Omega 0.1 ..= 2 (`columns`
+/// points) and backlash 10 ..= 200 um (`rows` points), 300 + 100 periods
+/// per cell, as `gearshock bench` runs it; returns the number of failed
+/// cells (-1 if the map could not start).
+pub fn map_failures(columns: u32, rows: u32) -> i32 {
+    let spec = MapSpec::new((0.1, 2.0, columns), "backlash_um", (10.0, 200.0, rows));
+    match RegimeMap::new(&ModelParams::default(), spec) {
+        Ok(mut map) => {
+            let mut failed = 0;
+            while !map.is_finished() {
+                failed += map.advance(64).iter().filter(|c| c.error.is_some()).count();
+            }
+            i32::try_from(failed).unwrap_or(i32::MAX)
+        }
+        Err(_) => -1,
+    }
+}
+
 #[cfg(target_arch = "wasm32")]
 mod exports {
     //! The wasm-bindgen exports (wasm32 only).
@@ -77,6 +97,12 @@ mod exports {
         crate::sweep_failures(points)
     }
 
+    /// See [`crate::map_failures`].
+    #[wasm_bindgen]
+    pub fn map(columns: u32, rows: u32) -> i32 {
+        crate::map_failures(columns, rows)
+    }
+
     /// See [`crate::simulate_periods`].
     #[wasm_bindgen]
     pub fn simulate(omega: f64, transient: u32, record: u32) -> i32 {
@@ -91,5 +117,6 @@ mod tests {
         assert!(super::frf_branch_points(1, 20, false) > 20);
         assert_eq!(super::simulate_periods(0.5, 5, 2), 5);
         assert_eq!(super::sweep_failures(2), 0);
+        assert_eq!(super::map_failures(2, 1), 0);
     }
 }
