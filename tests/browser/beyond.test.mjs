@@ -3,7 +3,7 @@
 // the A/B comparison. Small grids keep the suite quick.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { start, open, status, waitStatus, canvasStats, shot } from './harness.mjs';
+import { start, open, status, waitStatus, canvasStats, shot, watchMainThread, stopWatch } from './harness.mjs';
 
 const QUICK = 'bif_points=8&transient_periods=120&record_periods=40&fr_points=150';
 
@@ -30,7 +30,15 @@ async function pagePoint(page, canvasId, frame, x, y) {
 test('the impact-regime map fills in from both workers and a cell click sets backlash and Omega', async () => {
   const q = `${QUICK}&lyap_points=0&map_omega_points=10&map_value_points=5&map_from=40&map_to=200&map_transient_periods=150&map_record_periods=30`;
   const { page, errors } = await open(h.browser, h.url, q);
+  // The page stays responsive while both workers compute the map (from the
+  // first paint on, as for the bifurcation sweep).
+  await waitStatus(page, (s) => s.first_draw_ms.every((t) => t > 0), 30000, 'the first paint');
+  await watchMainThread(page);
   const s = await waitStatus(page, (s) => s.map.finished_ms && s.map_frame, 90000, 'the map');
+  const beat = await stopWatch(page);
+  console.log(`# map: 50 cells in ${Math.round(s.map.finished_ms - s.map.started_ms)} ms; heartbeat max gap ${Math.round(beat.maxGap)} ms; longest main-thread task ${Math.round(beat.long)} ms (${beat.longs.length} over 50 ms)`);
+  assert.ok(beat.long < 100, `a main-thread task took ${beat.long} ms`);
+  assert.ok(beat.maxGap < 250, `the main thread missed its heartbeat for ${beat.maxGap} ms`);
   assert.equal(s.map.total, 50);
   assert.equal(s.map.done, 50);
   const [byRegime, , failed] = s.map_counts;

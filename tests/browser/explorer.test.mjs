@@ -4,7 +4,7 @@
 // tests/browser/screenshots/ (git-ignored) for a human to look at.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { start, open, status, waitStatus, canvasStats, shot } from './harness.mjs';
+import { start, open, status, waitStatus, canvasStats, shot, watchMainThread, stopWatch } from './harness.mjs';
 
 // Small grids keep the suite quick; the bifurcation test uses full periods.
 // The frequency response keeps its defaults (150 nominal points, H = 5):
@@ -232,22 +232,7 @@ test('the bifurcation diagram completes progressively while the main thread stay
   // load, with its one-time wasm compilation, is the first-paint figure
   // of the benchmark).
   await waitStatus(page, (s) => s.first_draw_ms.every((t) => t > 0), 30000, 'the first paint');
-  await page.evaluate(() => {
-    window.__beat = { maxGap: 0, last: performance.now(), long: 0, longs: [] };
-    const loop = () => {
-      const t = performance.now();
-      window.__beat.maxGap = Math.max(window.__beat.maxGap, t - window.__beat.last);
-      window.__beat.last = t;
-      if (!window.__beat.stop) setTimeout(loop, 10);
-    };
-    setTimeout(loop, 10);
-    new PerformanceObserver((list) => {
-      for (const e of list.getEntries()) {
-        window.__beat.long = Math.max(window.__beat.long, e.duration);
-        window.__beat.longs.push(Math.round(e.duration));
-      }
-    }).observe({ entryTypes: ['longtask'] });
-  });
+  await watchMainThread(page);
   const partial = await waitStatus(page, (s) => s.bif.done > 0 && !s.bif.finished_ms, 60000, 'first bifurcation points');
   assert.ok(partial.draws[1] >= 1);
   // A job this long shows its progress.
@@ -255,10 +240,7 @@ test('the bifurcation diagram completes progressively while the main thread stay
   assert.match(await page.textContent('#progress-bif'), /computing \d+\/80 points/);
   await shot(page.locator('#view-bif'), '06-bifurcation-partial');
   const s = await waitStatus(page, (s) => s.bif.finished_ms, 240000, 'the bifurcation sweep');
-  const beat = await page.evaluate(() => {
-    window.__beat.stop = true;
-    return window.__beat;
-  });
+  const beat = await stopWatch(page);
   console.log(`# bifurcation: 80 points in ${Math.round(s.bif.finished_ms - s.bif.started_ms)} ms, first points after ${Math.round(s.bif.first_data_ms - s.bif.started_ms)} ms; heartbeat max gap ${Math.round(beat.maxGap)} ms; longest main-thread task ${Math.round(beat.long)} ms (${beat.longs.length} tasks over 50 ms: ${beat.longs}); slowest draws (ms) ${s.max_draw_ms.map(Math.round)}; longest frame ${Math.round(s.max_frame_ms)} ms, longest worker message ${Math.round(s.max_message_ms)} ms`);
   assert.equal(s.bif.done, 80);
   assert.ok(s.draws[1] > 2, 'drawn progressively');

@@ -103,3 +103,35 @@ export async function shot(pageOrLocator, name) {
   await pageOrLocator.screenshot({ path: file, fullPage: pageOrLocator.url ? true : undefined });
   return file;
 }
+
+/**
+ * Starts watching the page's main thread: a 10 ms heartbeat (its largest
+ * gap) and the long tasks (over 50 ms) the browser reports. `stopWatch`
+ * returns { maxGap, long, longs }.
+ */
+export async function watchMainThread(page) {
+  await page.evaluate(() => {
+    window.__beat = { maxGap: 0, last: performance.now(), long: 0, longs: [] };
+    const loop = () => {
+      const t = performance.now();
+      window.__beat.maxGap = Math.max(window.__beat.maxGap, t - window.__beat.last);
+      window.__beat.last = t;
+      if (!window.__beat.stop) setTimeout(loop, 10);
+    };
+    setTimeout(loop, 10);
+    new PerformanceObserver((list) => {
+      for (const e of list.getEntries()) {
+        window.__beat.long = Math.max(window.__beat.long, e.duration);
+        window.__beat.longs.push(Math.round(e.duration));
+      }
+    }).observe({ entryTypes: ['longtask'] });
+  });
+}
+
+/** Stops the watch of `watchMainThread` and returns what it saw. */
+export async function stopWatch(page) {
+  return page.evaluate(() => {
+    window.__beat.stop = true;
+    return window.__beat;
+  });
+}

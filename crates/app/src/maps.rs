@@ -169,6 +169,11 @@ impl MapStore {
         self.cells.get(k)?.as_ref()
     }
 
+    /// The first failed cell in row-major order, if any.
+    pub fn first_failure(&self) -> Option<&MapSample> {
+        self.cells.iter().flatten().find(|c| c.error.is_some())
+    }
+
     /// Counts of each regime among the received cells (in [`Regime::ALL`]
     /// order), of cells that are not period 1, and of failed cells.
     pub fn counts(&self) -> ([usize; 4], usize, usize) {
@@ -439,6 +444,8 @@ mod tests {
                 error: Some("step size, too small".into()),
             },
         ]);
+        assert_eq!(s.first_failure().map(|c| (c.row, c.column)), Some((0, 0)));
+        assert_eq!(s.counts().2, 1);
         let csv = map_csv(&s);
         let lines: Vec<&str> = csv.lines().collect();
         assert_eq!(lines[0], "row,column,omega,backlash_um,impact,period,error");

@@ -683,7 +683,16 @@ fn draw_map(p: &mut Page) {
         p.ctl.map.done, st.total, by[0], by[1], by[2], by[3], not_p1
     );
     if failed > 0 {
-        note.push_str(&format!("; {failed} failed"));
+        note.push_str(&format!("; {failed} failed (dark grey)"));
+        if let Some(c) = p.ctl.map.first_failure() {
+            let key = p.ctl.map.grid.as_ref().map_or("", |g| g.key.as_str());
+            note.push_str(&format!(
+                ", e.g. Omega {:.4}, {key} {:.4}: {}",
+                c.omega,
+                c.value,
+                c.error.as_deref().unwrap_or("")
+            ));
+        }
     }
     note.push_str(". Click a cell to set both parameters.");
     set_text(&p.doc, "note-map", &note);
