@@ -820,6 +820,22 @@ fn regime_legend<'a, DB: DrawingBackend + 'a>(
     Ok(())
 }
 
+/// The legend entry for failed sweep points: how many, and the first one's
+/// reason (its message up to the first colon, e.g. "the response grows
+/// without bound").
+pub fn failed_label(failed: &[(f64, String)]) -> String {
+    let reason = failed
+        .first()
+        .map(|(omega, e)| {
+            format!(
+                ", first at Ω = {omega:.3}: {}",
+                e.split(':').next().unwrap_or(e)
+            )
+        })
+        .unwrap_or_default();
+    format!("{} point(s) failed, not plotted{reason}", failed.len())
+}
+
 /// View 2: the bifurcation diagram. Returns the frame and the dots (in
 /// pixels, grouped by colour and sweep direction) for the caller to draw.
 pub fn draw_bif<DB: DrawingBackend>(
@@ -951,15 +967,21 @@ pub fn draw_bif<DB: DrawingBackend>(
                 Rectangle::new([(x + 6, y - 2), (x + 10, y + 2)], dark.stroke_width(1))
             });
     }
-    legend(&mut chart, SeriesLabelPosition::UpperRight)?;
     if !v.failed.is_empty() {
-        root.draw(&Text::new(
-            format!("{} point(s) failed: not plotted", v.failed.len()),
-            (70, HEIGHT as i32 - 52),
-            small(),
-        ))
-        .map_err(err)?;
+        // Where the sweep failed: a grey cross on the Omega axis each, and
+        // the first failure's reason (its message up to the first colon).
+        let grey = RGBColor(90, 90, 90);
+        chart
+            .draw_series(
+                v.failed
+                    .iter()
+                    .map(|&(omega, _)| Cross::new((omega, y.0), 5, grey.stroke_width(2))),
+            )
+            .map_err(err)?
+            .label(failed_label(&v.failed))
+            .legend(move |(x, y)| Cross::new((x + 8, y), 4, grey.stroke_width(2)));
     }
+    legend(&mut chart, SeriesLabelPosition::UpperRight)?;
     root.present().map_err(err)?;
     Ok((frame, groups))
 }
@@ -1269,6 +1291,22 @@ mod tests {
             preview: false,
             end_state: vec![],
         }
+    }
+
+    #[test]
+    fn a_failed_point_is_counted_and_its_reason_named() {
+        let failed = vec![
+            (
+                1.1,
+                "the response grows without bound: mesh rb1 deflected 5e-3 m".to_string(),
+            ),
+            (1.2, "step size fell to 1e-17 s at t = 0.1 s".to_string()),
+        ];
+        assert_eq!(
+            failed_label(&failed),
+            "2 point(s) failed, not plotted, first at Ω = 1.100: the response grows without bound"
+        );
+        assert_eq!(failed_label(&[]), "0 point(s) failed, not plotted");
     }
 
     #[test]

@@ -308,6 +308,19 @@ pub fn draw_lyap<DB: DrawingBackend>(
             .label(label)
             .legend(move |(px, py)| Circle::new((px + 8, py), 3, c.filled()));
     }
+    let failed = store.failed();
+    if !failed.is_empty() {
+        let grey = RGBColor(90, 90, 90);
+        chart
+            .draw_series(
+                failed
+                    .iter()
+                    .map(|&(omega, _)| Cross::new((omega, y.0), 5, grey.stroke_width(2))),
+            )
+            .map_err(err)?
+            .label(crate::plots::failed_label(&failed))
+            .legend(move |(px, py)| Cross::new((px + 8, py), 4, grey.stroke_width(2)));
+    }
     chart
         .configure_series_labels()
         .position(SeriesLabelPosition::UpperRight)
@@ -318,15 +331,6 @@ pub fn draw_lyap<DB: DrawingBackend>(
         .label_font(("sans-serif", 11))
         .draw()
         .map_err(err)?;
-    let failed = store.failed();
-    if !failed.is_empty() {
-        root.draw(&Text::new(
-            format!("{} point(s) failed: not plotted", failed.len()),
-            (70, LYAP_HEIGHT as i32 - 60),
-            small(),
-        ))
-        .map_err(err)?;
-    }
     let frame = frame_of(&chart, x, y);
     root.present().map_err(err)?;
     Ok(frame)
