@@ -240,3 +240,20 @@ pub fn lyapunov(v: &Value) -> String {
     }
     s
 }
+
+/// A parametric-instability scan: one row per Omega.
+pub fn instability(v: &Value) -> String {
+    let mut s = String::from("omega,spectral_radius,growth_per_period,unstable\n");
+    if let Some(points) = v["points"].as_array() {
+        for p in points {
+            s.push_str(&format!(
+                "{},{},{},{}\n",
+                cell(&p["omega"]),
+                cell(&p["spectral_radius"]),
+                cell(&p["growth_per_period"]),
+                cell(&p["unstable"]),
+            ));
+        }
+    }
+    s
+}

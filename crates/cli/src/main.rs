@@ -15,6 +15,7 @@ use solver::hbm::{FrfContinuation, FrfSpec, Method};
 use solver::keys;
 use solver::lyapunov::{largest_exponent, LyapunovOptions};
 use solver::map::{MapSpec, RegimeMap};
+use solver::parametric::Parametric;
 use solver::params::{ModelKind, ModelParams};
 use solver::steady::{steady_state, Model, SteadyOptions};
 use solver::sweep::{canonical_order, BifurcationSweep, Direction, Directions, SweepSpec};
@@ -238,6 +239,22 @@ enum Command {
         /// Mesh periods averaged.
         #[arg(long, default_value_t = 200)]
         periods: u32,
+    },
+    /// Parametric instability over Omega: the Floquet spectral radius of the
+    /// linear system with every tooth pair in contact (above 1, motion large
+    /// against the backlash grows without bound).
+    Instability {
+        #[command(flatten)]
+        p: ParamArgs,
+        /// First Omega.
+        #[arg(long)]
+        omega_from: f64,
+        /// Last Omega.
+        #[arg(long)]
+        omega_to: f64,
+        /// Number of Omega points.
+        #[arg(long, default_value_t = 200)]
+        points: u32,
     },
     /// Join the JSON outputs of all shards of one sweep.
     Merge {
@@ -652,6 +669,35 @@ fn run(cli: Cli) -> Result<(), Failure> {
             bar.finish();
             let value = report::lyapunov_json(&model, &params, &opts, &out);
             output(p.format, &value, csv::lyapunov)
+        }
+        Command::Instability {
+            p,
+            omega_from,
+            omega_to,
+            points,
+        } => {
+            let params = load_params(&p)?;
+            let model = Model::new(&params)?;
+            if !(2..=100_000).contains(&points) {
+                return Err(usage(format!("--points {points}: allowed 2 ..= 100000")));
+            }
+            if omega_to.partial_cmp(&omega_from) != Some(std::cmp::Ordering::Greater) {
+                return Err(usage(format!(
+                    "--omega-to {omega_to}: must exceed --omega-from {omega_from}"
+                )));
+            }
+            let engaged = Parametric::new(&model)?;
+            let mut bar = progress::Progress::new(points as usize, "points");
+            let mut out = Vec::with_capacity(points as usize);
+            for i in 0..points {
+                let omega =
+                    omega_from + (omega_to - omega_from) * f64::from(i) / f64::from(points - 1);
+                out.push(engaged.at(omega)?);
+                bar.update(i as usize + 1);
+            }
+            bar.finish();
+            let value = report::instability_json(&model, &params, &out);
+            output(p.format, &value, csv::instability)
         }
         Command::Merge { files } => {
             if files.is_empty() {

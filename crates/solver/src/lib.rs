@@ -18,6 +18,7 @@
 //! - [`sweep`]: bifurcation sweeps with bounded work per call.
 //! - [`hbm`]: harmonic balance, continuation, Floquet stability.
 //! - [`lyapunov`]: the largest Lyapunov exponent of the Poincaré map.
+//! - [`parametric`]: parametric instability of the fully engaged set over Omega.
 //! - [`map`]: impact-regime maps over Omega and a second parameter.
 //! - [`report`]: results as JSON, shared by the CLI and the browser.
 
@@ -30,6 +31,7 @@ pub mod lyapunov;
 pub mod map;
 pub mod modal;
 pub mod ode;
+pub mod parametric;
 pub mod params;
 pub mod report;
 pub mod steady;

@@ -533,6 +533,26 @@ pub fn merge_maps(shards: &[Value]) -> Result<Value> {
     }))
 }
 
+/// A parametric-instability scan: the engaged system's Floquet spectral
+/// radius per Omega, its logarithm (growth of large motion per mesh period)
+/// and whether it exceeds 1.
+pub fn instability_json(
+    model: &Model,
+    params: &ModelParams,
+    points: &[crate::parametric::EngagedStability],
+) -> Value {
+    json!({
+        "model": model.system.model.name(),
+        "params": Value::Object(keys::to_json(params)),
+        "points": points.iter().map(|p| json!({
+            "omega": num(p.omega),
+            "spectral_radius": num(p.spectral_radius),
+            "growth_per_period": num(p.growth_per_period()),
+            "unstable": p.unstable(),
+        })).collect::<Vec<_>>(),
+    })
+}
+
 /// A Lyapunov-exponent sweep as JSON.
 pub fn lyapunov_json(
     model: &Model,

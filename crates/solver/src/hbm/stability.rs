@@ -280,10 +280,44 @@ pub fn floquet(asm: &Assembly, x: &[f64], omega: f64) -> Option<Floquet> {
     let mut cuts = vec![0.0];
     cuts.extend(switch_phases(asm, &coefs));
     cuts.push(2.0 * PI);
-    // Steps in theta: at least 8 per period of the fastest mode (in tau),
-    // where RK4 keeps 99.9 % of an undamped oscillation's amplitude per step;
-    // those fast modes are well damped and never decide stability.
-    let h_theta_max = omega * 2.0 * PI / (8.0 * model.omega_max.max(omega));
+    monodromy(asm, omega, &cuts, Some(&coefs), 8.0)
+}
+
+/// The Floquet multipliers of the linear time-periodic system with every
+/// mesh in contact (the dead zone's slope 1 everywhere): the linearization
+/// of any motion large against the backlash. A multiplier outside the unit
+/// circle means such motion grows without bound (a parametric instability
+/// of the time-varying mesh stiffness). `None` if the eigenvalue iteration
+/// did not converge.
+///
+/// With 32 RK4 steps per period of the fastest mode (not the orbits' 8):
+/// RK4's artificial damping of an oscillation, `(omega h)^6 / 144` per
+/// step, would otherwise shift `ln rho` by some 5 % where the fastest mode
+/// decides it (a single gear pair at low Omega).
+pub fn floquet_engaged(asm: &Assembly, omega: f64) -> Option<Floquet> {
+    monodromy(asm, omega, &[0.0, 2.0 * PI], None, 32.0)
+}
+
+/// The monodromy over one period split at `cuts` (contact switches), the
+/// contact state of each piece read from the orbit's channel coefficients
+/// `coefs`, or every channel in contact without them; at least
+/// `steps_per_fastest` RK4 steps per period of the fastest mode.
+fn monodromy(
+    asm: &Assembly,
+    omega: f64,
+    cuts: &[f64],
+    coefs: Option<&[Vec<f64>]>,
+    steps_per_fastest: f64,
+) -> Option<Floquet> {
+    let model = &asm.model;
+    let m = model.m;
+    let h = asm.h;
+    let u_at = |j: usize, theta: f64| coefs.map_or(0.0, |c| eval_coef(&c[j], h, theta));
+    // Steps in theta: for orbits at least 8 per period of the fastest mode
+    // (in tau), where RK4 keeps 99.8 % of an undamped oscillation's
+    // amplitude per step; in the compound set those fast modes are well
+    // damped and never decide stability.
+    let h_theta_max = omega * 2.0 * PI / (steps_per_fastest * model.omega_max.max(omega));
     let flat = |mat: &DMatrix<f64>| -> Vec<f64> {
         (0..mat.nrows())
             .flat_map(|r| (0..mat.ncols()).map(move |c| mat[(r, c)]))
@@ -322,8 +356,7 @@ pub fn floquet(asm: &Assembly, x: &[f64], omega: f64) -> Option<Floquet> {
         // The contact state is fixed inside the piece: read it at the middle.
         let mid = 0.5 * (a + b);
         for (j, ch) in model.channels.iter().enumerate() {
-            let u = eval_coef(&coefs[j], h, mid);
-            active[j] = ch.law.force(mid, u).1 != 0.0;
+            active[j] = coefs.is_none() || ch.law.force(mid, u_at(j, mid)).1 != 0.0;
         }
         let slopes_at = |theta: f64, out: &mut [f64]| {
             for (j, (ch, o)) in model.channels.iter().zip(out.iter_mut()).enumerate() {
@@ -337,7 +370,7 @@ pub fn floquet(asm: &Assembly, x: &[f64], omega: f64) -> Option<Floquet> {
                             phase_rad,
                             ..
                         } => k * (1.0 + variation * (theta + phase_rad).cos()),
-                        Law::Cubic { .. } => ch.law.force(theta, eval_coef(&coefs[j], h, theta)).1,
+                        Law::Cubic { .. } => ch.law.force(theta, u_at(j, theta)).1,
                     }
                 };
             }

@@ -1,0 +1,113 @@
+//! Parametric instability of the engaged system against the Mathieu
+//! equation's known growth rates, the exact decay of a constant-stiffness
+//! oscillator, and time integration of the compound set.
+
+// Tests may panic: that is how they fail.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+use solver::keys;
+use solver::parametric::Parametric;
+use solver::params::ModelParams;
+use solver::steady::{steady_state, Model, SteadyOptions};
+use solver::SolverError;
+use std::f64::consts::PI;
+
+fn model(assignments: &[&str]) -> Model {
+    let mut p = ModelParams::default();
+    for a in assignments {
+        keys::set_assignment(&mut p, a).expect(a);
+    }
+    Model::new(&p).expect("model")
+}
+
+fn gear_pair(variation: f64, zeta: f64) -> Model {
+    model(&[
+        "model=gear-pair",
+        "backlash_um=50",
+        &format!("stiffness_variation={variation}"),
+        &format!("damping_ratio={zeta}"),
+    ])
+}
+
+/// The gear pair with all teeth engaged is `x'' + 2 z x' + (1 + v cos(Omega
+/// t)) x = f` in units of its natural frequency. At the principal resonance
+/// `Omega = 2` averaging gives the growth rate `v / 4 - z` per unit time
+/// (error O(v^2)), so per mesh period (`pi`) `ln rho = pi (v / 4 - z)`.
+#[test]
+fn principal_resonance_grows_at_the_mathieu_rate() {
+    for (v, z) in [(0.1, 0.0), (0.1, 0.01), (0.2, 0.02)] {
+        let s = Parametric::new(&gear_pair(v, z)).unwrap().at(2.0).unwrap();
+        let want = PI * (v / 4.0 - z);
+        let got = s.growth_per_period();
+        assert!(
+            (got - want).abs() < 0.05 * want + 0.2 * v * v,
+            "v = {v}, z = {z}: ln rho = {got}, Mathieu {want}"
+        );
+        assert!(s.unstable());
+    }
+    // Past the damping threshold z = v / 4 it is stable.
+    assert!(!Parametric::new(&gear_pair(0.2, 0.06))
+        .unwrap()
+        .at(2.0)
+        .unwrap()
+        .unstable());
+}
+
+/// Without stiffness variation the engaged system is a damped oscillator
+/// with constant coefficients: every multiplier has modulus `exp(-z T)` with
+/// `T = 2 pi / Omega` exactly, whatever Omega (here to the RK4 monodromy's
+/// 1e-4).
+#[test]
+fn constant_stiffness_decays_at_the_damping_rate() {
+    let p = Parametric::new(&gear_pair(0.0, 0.03)).unwrap();
+    for omega in [0.3, 1.0, 2.0, 3.7] {
+        let s = p.at(omega).unwrap();
+        let want = (-0.03 * 2.0 * PI / omega).exp();
+        assert!(
+            (s.growth_per_period() / want.ln() - 1.0).abs() < 1e-4,
+            "Omega {omega}: rho {} against {want}",
+            s.spectral_radius
+        );
+    }
+}
+
+/// The compound set without backlash is exactly its engaged system: time
+/// integration diverges where the spectral radius exceeds 1 and stays
+/// bounded where it is below.
+#[test]
+fn compound_set_time_integration_agrees_with_the_multipliers() {
+    let m = model(&["backlash_um=0"]);
+    let p = Parametric::new(&m).unwrap();
+    for omega in [1.1, 1.3] {
+        let s = p.at(omega).unwrap();
+        let mut opts = SteadyOptions::new(omega);
+        opts.early_settle = false;
+        let run = steady_state(&m, &opts, None);
+        match run {
+            Err(SolverError::Diverged { .. }) => assert!(
+                s.spectral_radius > 1.0,
+                "Omega {omega}: diverged with rho {}",
+                s.spectral_radius
+            ),
+            Ok(_) => assert!(
+                s.spectral_radius < 1.0,
+                "Omega {omega}: bounded with rho {}",
+                s.spectral_radius
+            ),
+            Err(e) => panic!("Omega {omega}: {e}"),
+        }
+    }
+    assert!(
+        p.at(1.1).unwrap().unstable(),
+        "the test needs an unstable case"
+    );
+    assert!(!p.at(1.3).unwrap().unstable(), "and a stable one");
+}
+
+#[test]
+fn omega_out_of_range_is_refused() {
+    let p = Parametric::new(&model(&[])).unwrap();
+    for bad in [0.0, -1.0, f64::NAN, 25.0] {
+        assert!(matches!(p.at(bad), Err(SolverError::BadOption { .. })));
+    }
+}
