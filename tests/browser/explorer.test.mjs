@@ -243,6 +243,9 @@ test('the bifurcation diagram completes progressively while the main thread stay
   const beat = await stopWatch(page);
   console.log(`# bifurcation: 80 points in ${Math.round(s.bif.finished_ms - s.bif.started_ms)} ms, first points after ${Math.round(s.bif.first_data_ms - s.bif.started_ms)} ms; heartbeat max gap ${Math.round(beat.maxGap)} ms; longest main-thread task ${Math.round(beat.long)} ms (${beat.longs.length} tasks over 50 ms: ${beat.longs}); slowest draws (ms) ${s.max_draw_ms.map(Math.round)}; longest frame ${Math.round(s.max_frame_ms)} ms, longest worker message ${Math.round(s.max_message_ms)} ms`);
   assert.equal(s.bif.done, 80);
+  // The shaded parametric-instability bands (engaged system, rho > 1): the
+  // default model's 0.99-1.22 band holds Omega 1.1 (gearshock instability).
+  assert.ok(s.bif_bands.some(([a, b]) => a < 1.1 && b > 1.1), JSON.stringify(s.bif_bands));
   assert.ok(s.draws[1] > 2, 'drawn progressively');
   assert.ok(beat.long < 100, `a main-thread task took ${beat.long} ms`);
   assert.ok(beat.maxGap < 250, `the main thread missed its heartbeat for ${beat.maxGap} ms`);

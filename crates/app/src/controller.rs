@@ -221,7 +221,24 @@ pub struct Controller {
     workers: [WorkerSlot; WORKERS],
     next_id: JobId,
     export: Option<PendingExport>,
+    /// The parametric-instability scan for the bifurcation view.
+    bands: Option<BandScan>,
 }
+
+/// The parametric-instability scan: what it depends on (the parameters
+/// without backlash and TE, the Omega range), the samples so far and, once
+/// complete, the bands.
+#[derive(Debug, Clone)]
+struct BandScan {
+    key: (solver::ModelParams, (f64, f64)),
+    engaged: Option<solver::parametric::Parametric>,
+    growth: Vec<(f64, f64)>,
+    bands: Option<Vec<(f64, f64)>>,
+}
+
+/// Omega samples of the parametric-instability scan over the view's range
+/// (bands narrower than the spacing can slip between them).
+const BAND_SAMPLES: u32 = 300;
 
 /// What a change restarts.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -295,6 +312,7 @@ impl Controller {
             workers: Default::default(),
             next_id: 0,
             export: None,
+            bands: None,
         };
         c.rebuild_model();
         let mut fx = c.restart(ALL, now_ms);
@@ -1239,12 +1257,84 @@ impl Controller {
         let (mesh, b) = self.mesh_and_backlash();
         let ctx = self.view_context();
         let mut v = self.bif.view(mesh, &b, &ctx);
+        v.unstable_bands = self.instability_bands();
         if let Some(p) = &self.pinned {
             v.pinned = p.bif.view(mesh, &b, &ctx).points;
             v.pinned_backlash_um = crate::views::distinct(&pinned_backlash(&p.settings), mesh);
             v.ab_labels = self.ab_labels();
         }
         v
+    }
+
+    /// The Omega bands of the view's range where the system with every tooth
+    /// pair in contact is parametrically unstable (Floquet spectral radius
+    /// above 1: motion large against the backlash grows without bound), once
+    /// [`Controller::advance_bands`] has scanned the current settings; empty
+    /// until then.
+    pub fn instability_bands(&self) -> Vec<(f64, f64)> {
+        match &self.bands {
+            Some(scan) if scan.key == self.band_key() => scan.bands.clone().unwrap_or_default(),
+            _ => Vec::new(),
+        }
+    }
+
+    /// What the bands depend on: neither the backlash nor the TE (the
+    /// sliders a drag moves), so those keep them.
+    fn band_key(&self) -> (solver::ModelParams, (f64, f64)) {
+        let mut params = self.settings.params.clone();
+        let _ = keys::set(&mut params, "backlash_um", keys::Value::Num(0.0));
+        let _ = keys::set(&mut params, "te_um", keys::Value::Num(0.0));
+        let v = &self.settings.view;
+        (params, (v.omega_from, v.omega_to))
+    }
+
+    /// Computes up to `k` further samples of the parametric-instability scan
+    /// (starting a new scan when the settings it depends on changed; the
+    /// page spends a few milliseconds of each frame on it). Returns whether
+    /// samples remain; the bifurcation view is marked for redrawing when the
+    /// bands are complete.
+    pub fn advance_bands(&mut self, k: usize) -> bool {
+        let key = self.band_key();
+        if self.bands.as_ref().is_none_or(|s| s.key != key) {
+            let engaged = match &self.model {
+                Ok(m) => solver::parametric::Parametric::new(m).ok(),
+                Err(_) => None,
+            };
+            let done = engaged.is_none().then(Vec::new);
+            self.bands = Some(BandScan {
+                key,
+                engaged,
+                growth: Vec::with_capacity(BAND_SAMPLES as usize),
+                bands: done,
+            });
+        }
+        let Some(scan) = self.bands.as_mut() else {
+            return false;
+        };
+        if scan.bands.is_some() {
+            return false;
+        }
+        let (from, to) = scan.key.1;
+        for _ in 0..k {
+            let i = scan.growth.len() as u32;
+            if i >= BAND_SAMPLES {
+                break;
+            }
+            let omega = from + (to - from) * f64::from(i) / f64::from(BAND_SAMPLES - 1);
+            match scan.engaged.as_ref().map(|e| e.at(omega.max(0.01))) {
+                Some(Ok(st)) => scan.growth.push((omega, st.growth_per_period())),
+                _ => {
+                    scan.bands = Some(Vec::new());
+                    return false;
+                }
+            }
+        }
+        if scan.growth.len() as u32 >= BAND_SAMPLES {
+            scan.bands = Some(bands_of(&scan.growth));
+            self.dirty.bif = true;
+            return false;
+        }
+        true
     }
 
     /// Starts assembling the bifurcation JSON in the CLI's format: the last
@@ -1349,6 +1439,7 @@ impl Controller {
             "fr_overlay": self.ti_status,
             "fr_discrepancy": self.fr_view().discrepancy,
             "bif": self.bif_status,
+            "bif_bands": self.instability_bands(),
             "omega_job": self.omega_status,
             "map": self.map_status,
             "map_grid": self.map.grid,
@@ -1376,6 +1467,30 @@ impl Controller {
         });
         v.to_string()
     }
+}
+
+/// The Omega intervals where the sampled growth `ln rho` per period is
+/// positive, their edges interpolated linearly between samples.
+fn bands_of(growth: &[(f64, f64)]) -> Vec<(f64, f64)> {
+    let edge = |(o0, g0): (f64, f64), (o1, g1): (f64, f64)| o0 + (o1 - o0) * g0 / (g0 - g1);
+    let mut bands = Vec::new();
+    let mut start = growth.first().filter(|g| g.1 > 0.0).map(|g| g.0);
+    for w in growth.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        match (a.1 > 0.0, b.1 > 0.0) {
+            (false, true) => start = Some(edge(a, b)),
+            (true, false) => {
+                if let Some(s0) = start.take() {
+                    bands.push((s0, edge(a, b)));
+                }
+            }
+            _ => {}
+        }
+    }
+    if let (Some(s0), Some(last)) = (start, growth.last()) {
+        bands.push((s0, last.0));
+    }
+    bands
 }
 
 #[cfg(test)]
@@ -1420,6 +1535,42 @@ mod tests {
             finished,
             error: error.map(str::to_string),
         })
+    }
+
+    /// The default model's bands (the CLI's `gearshock instability` finds
+    /// 0.99-1.22 among them) hold Omega 1.1, where the compound set without
+    /// backlash diverges in time integration, and not 1.3, where it stays
+    /// bounded; the backlash does not move them.
+    #[test]
+    fn instability_bands_follow_the_engaged_system() {
+        let (mut c, _) = Controller::new("omega_from=0.1&omega_to=2", 0.0);
+        assert!(c.instability_bands().is_empty(), "not scanned yet");
+        let mut calls = 0;
+        while c.advance_bands(40) {
+            calls += 1;
+        }
+        assert_eq!(calls, 7, "300 samples, 40 a call");
+        assert!(c.dirty.bif);
+        let bands = c.instability_bands();
+        let inside = |o: f64| bands.iter().any(|&(a, b)| a <= o && o <= b);
+        assert!(inside(1.1) && !inside(1.3), "{bands:?}");
+        let main = bands
+            .iter()
+            .find(|&&(a, b)| a <= 1.1 && 1.1 <= b)
+            .copied()
+            .unwrap();
+        assert!(
+            (main.0 - 0.99).abs() < 0.01 && (main.1 - 1.22).abs() < 0.01,
+            "{main:?}"
+        );
+        assert_eq!(c.bif_view().unstable_bands, bands);
+        // The backlash keeps them; the stiffness variation starts a new scan.
+        c.set_key("backlash_um", "10", 1.0).unwrap();
+        assert!(!c.advance_bands(1));
+        assert_eq!(c.instability_bands(), bands);
+        c.set_key("stiffness_variation", "0.1", 2.0).unwrap();
+        assert!(c.instability_bands().is_empty());
+        assert!(c.advance_bands(1));
     }
 
     #[test]

@@ -820,6 +820,10 @@ fn regime_legend<'a, DB: DrawingBackend + 'a>(
     Ok(())
 }
 
+/// The shade of the Omega bands where the engaged system is parametrically
+/// unstable.
+const UNSTABLE_BAND: RGBColor = RGBColor(90, 90, 90);
+
 /// The legend entry for failed sweep points: how many, and the first one's
 /// reason (its message up to the first colon, e.g. "the response grows
 /// without bound").
@@ -893,6 +897,20 @@ pub fn draw_bif<DB: DrawingBackend>(
                     vec![(xx, yy), (xx + 6, yy), (xx + 10, yy), (xx + 16, yy)],
                     style,
                 )
+            });
+    }
+    if !v.unstable_bands.is_empty() {
+        // Where motion large against the backlash grows without bound (the
+        // engaged system's Floquet spectral radius above 1), under the dots.
+        let shade = UNSTABLE_BAND.mix(0.14);
+        chart
+            .draw_series(v.unstable_bands.iter().map(|&(a, b)| {
+                Rectangle::new([(a.max(x.0), y.0), (b.min(x.1), y.1)], shade.filled())
+            }))
+            .map_err(err)?
+            .label("parametrically unstable with all teeth engaged")
+            .legend(move |(px, py)| {
+                Rectangle::new([(px + 2, py - 4), (px + 14, py + 4)], shade.filled())
             });
     }
     omega_decorations(&mut chart, natural, v.selected_omega, y, true)?;

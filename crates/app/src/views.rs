@@ -577,6 +577,9 @@ pub struct BifView {
     pub selected_omega: f64,
     /// Failed points.
     pub failed: Vec<(f64, String)>,
+    /// Omega bands where the system with every tooth pair in contact is
+    /// parametrically unstable (shaded).
+    pub unstable_bands: Vec<(f64, f64)>,
     /// The pinned state A's dots (A/B comparison), drawn under the current ones.
     pub pinned: Vec<BifPoint>,
     /// The pinned state A's ±b.
@@ -636,6 +639,7 @@ impl BifStore {
             omega_to: ctx.omega_to,
             selected_omega: ctx.selected_omega,
             failed,
+            unstable_bands: Vec::new(),
             pinned: Vec::new(),
             pinned_backlash_um: Vec::new(),
             ab_labels: None,
