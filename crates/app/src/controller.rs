@@ -221,24 +221,10 @@ pub struct Controller {
     workers: [WorkerSlot; WORKERS],
     next_id: JobId,
     export: Option<PendingExport>,
-    /// The parametric-instability scan for the bifurcation view.
-    bands: Option<BandScan>,
+    /// The parametric-instability bands of the bifurcation sweep's range,
+    /// from its shard-0 worker (kept until a newer job's arrive).
+    bands: Vec<(f64, f64)>,
 }
-
-/// The parametric-instability scan: what it depends on (the parameters
-/// without backlash and TE, the Omega range), the samples so far and, once
-/// complete, the bands.
-#[derive(Debug, Clone)]
-struct BandScan {
-    key: (solver::ModelParams, (f64, f64)),
-    engaged: Option<solver::parametric::Parametric>,
-    growth: Vec<(f64, f64)>,
-    bands: Option<Vec<(f64, f64)>>,
-}
-
-/// Omega samples of the parametric-instability scan over the view's range
-/// (bands narrower than the spacing can slip between them).
-const BAND_SAMPLES: u32 = 300;
 
 /// What a change restarts.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -312,7 +298,7 @@ impl Controller {
             workers: Default::default(),
             next_id: 0,
             export: None,
-            bands: None,
+            bands: Vec::new(),
         };
         c.rebuild_model();
         let mut fx = c.restart(ALL, now_ms);
@@ -911,6 +897,13 @@ impl Controller {
                 self.dirty.fr = true;
                 Vec::new()
             }
+            FromWorker::Bands { id, bands } if id == self.bif.id => {
+                if bands != self.bands {
+                    self.bands = bands;
+                    self.dirty.bif = true;
+                }
+                Vec::new()
+            }
             FromWorker::BifPoints { id, points } if id == self.bif.id => {
                 self.bif.samples.extend(points);
                 self.bif_status.done = self.bif.samples.len();
@@ -1266,75 +1259,12 @@ impl Controller {
         v
     }
 
-    /// The Omega bands of the view's range where the system with every tooth
-    /// pair in contact is parametrically unstable (Floquet spectral radius
-    /// above 1: motion large against the backlash grows without bound), once
-    /// [`Controller::advance_bands`] has scanned the current settings; empty
-    /// until then.
+    /// The Omega bands of the bifurcation sweep's range where the system
+    /// with every tooth pair in contact is parametrically unstable (Floquet
+    /// spectral radius above 1: motion large against the backlash grows
+    /// without bound), as the sweep's worker computed them.
     pub fn instability_bands(&self) -> Vec<(f64, f64)> {
-        match &self.bands {
-            Some(scan) if scan.key == self.band_key() => scan.bands.clone().unwrap_or_default(),
-            _ => Vec::new(),
-        }
-    }
-
-    /// What the bands depend on: neither the backlash nor the TE (the
-    /// sliders a drag moves), so those keep them.
-    fn band_key(&self) -> (solver::ModelParams, (f64, f64)) {
-        let mut params = self.settings.params.clone();
-        let _ = keys::set(&mut params, "backlash_um", keys::Value::Num(0.0));
-        let _ = keys::set(&mut params, "te_um", keys::Value::Num(0.0));
-        let v = &self.settings.view;
-        (params, (v.omega_from, v.omega_to))
-    }
-
-    /// Computes up to `k` further samples of the parametric-instability scan
-    /// (starting a new scan when the settings it depends on changed; the
-    /// page spends a few milliseconds of each frame on it). Returns whether
-    /// samples remain; the bifurcation view is marked for redrawing when the
-    /// bands are complete.
-    pub fn advance_bands(&mut self, k: usize) -> bool {
-        let key = self.band_key();
-        if self.bands.as_ref().is_none_or(|s| s.key != key) {
-            let engaged = match &self.model {
-                Ok(m) => solver::parametric::Parametric::new(m).ok(),
-                Err(_) => None,
-            };
-            let done = engaged.is_none().then(Vec::new);
-            self.bands = Some(BandScan {
-                key,
-                engaged,
-                growth: Vec::with_capacity(BAND_SAMPLES as usize),
-                bands: done,
-            });
-        }
-        let Some(scan) = self.bands.as_mut() else {
-            return false;
-        };
-        if scan.bands.is_some() {
-            return false;
-        }
-        let (from, to) = scan.key.1;
-        for _ in 0..k {
-            let i = scan.growth.len() as u32;
-            if i >= BAND_SAMPLES {
-                break;
-            }
-            let omega = from + (to - from) * f64::from(i) / f64::from(BAND_SAMPLES - 1);
-            match scan.engaged.as_ref().map(|e| e.at(omega.max(0.01))) {
-                Some(Ok(st)) => scan.growth.push((omega, st.growth_per_period())),
-                _ => {
-                    scan.bands = Some(Vec::new());
-                    return false;
-                }
-            }
-        }
-        if scan.growth.len() as u32 >= BAND_SAMPLES {
-            scan.bands = Some(bands_of(&scan.growth));
-            self.dirty.bif = true;
-            return false;
-        }
-        true
+        self.bands.clone()
     }
 
     /// Starts assembling the bifurcation JSON in the CLI's format: the last
@@ -1469,30 +1399,6 @@ impl Controller {
     }
 }
 
-/// The Omega intervals where the sampled growth `ln rho` per period is
-/// positive, their edges interpolated linearly between samples.
-fn bands_of(growth: &[(f64, f64)]) -> Vec<(f64, f64)> {
-    let edge = |(o0, g0): (f64, f64), (o1, g1): (f64, f64)| o0 + (o1 - o0) * g0 / (g0 - g1);
-    let mut bands = Vec::new();
-    let mut start = growth.first().filter(|g| g.1 > 0.0).map(|g| g.0);
-    for w in growth.windows(2) {
-        let (a, b) = (w[0], w[1]);
-        match (a.1 > 0.0, b.1 > 0.0) {
-            (false, true) => start = Some(edge(a, b)),
-            (true, false) => {
-                if let Some(s0) = start.take() {
-                    bands.push((s0, edge(a, b)));
-                }
-            }
-            _ => {}
-        }
-    }
-    if let (Some(s0), Some(last)) = (start, growth.last()) {
-        bands.push((s0, last.0));
-    }
-    bands
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1537,40 +1443,21 @@ mod tests {
         })
     }
 
-    /// The default model's bands (the CLI's `gearshock instability` finds
-    /// 0.99-1.22 among them) hold Omega 1.1, where the compound set without
-    /// backlash diverges in time integration, and not 1.3, where it stays
-    /// bounded; the backlash does not move them.
+    /// The bands arrive from the sweep's shard-0 worker and are kept for
+    /// the view; another job's bands are ignored.
     #[test]
-    fn instability_bands_follow_the_engaged_system() {
-        let (mut c, _) = Controller::new("omega_from=0.1&omega_to=2", 0.0);
-        assert!(c.instability_bands().is_empty(), "not scanned yet");
-        let mut calls = 0;
-        while c.advance_bands(40) {
-            calls += 1;
-        }
-        assert_eq!(calls, 7, "300 samples, 40 a call");
-        assert!(c.dirty.bif);
-        let bands = c.instability_bands();
-        let inside = |o: f64| bands.iter().any(|&(a, b)| a <= o && o <= b);
-        assert!(inside(1.1) && !inside(1.3), "{bands:?}");
-        let main = bands
-            .iter()
-            .find(|&&(a, b)| a <= 1.1 && 1.1 <= b)
-            .copied()
-            .unwrap();
-        assert!(
-            (main.0 - 0.99).abs() < 0.01 && (main.1 - 1.22).abs() < 0.01,
-            "{main:?}"
-        );
-        assert_eq!(c.bif_view().unstable_bands, bands);
-        // The backlash keeps them; the stiffness variation starts a new scan.
-        c.set_key("backlash_um", "10", 1.0).unwrap();
-        assert!(!c.advance_bands(1));
-        assert_eq!(c.instability_bands(), bands);
-        c.set_key("stiffness_variation", "0.1", 2.0).unwrap();
+    fn instability_bands_come_from_the_current_sweep() {
+        let (mut c, _) = Controller::new("", 0.0);
+        ready(&mut c);
+        let id = c.bif.id;
+        let msg = |id, bands: Vec<(f64, f64)>| encode(&FromWorker::Bands { id, bands });
+        c.worker_message(0, &msg(id + 100, vec![(0.2, 0.3)]), 1.0);
         assert!(c.instability_bands().is_empty());
-        assert!(c.advance_bands(1));
+        c.dirty = Dirty::default();
+        c.worker_message(0, &msg(id, vec![(0.99, 1.22)]), 2.0);
+        assert_eq!(c.instability_bands(), vec![(0.99, 1.22)]);
+        assert!(c.dirty.bif);
+        assert_eq!(c.bif_view().unstable_bands, vec![(0.99, 1.22)]);
     }
 
     #[test]

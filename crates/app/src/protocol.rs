@@ -548,6 +548,15 @@ pub enum FromWorker {
         /// points before it stay valid, the branch is partial.
         error: Option<String>,
     },
+    /// The Omega bands of a bifurcation job's range where the set with every
+    /// tooth pair in contact is parametrically unstable (sent by shard 0
+    /// when the job starts).
+    Bands {
+        /// The bifurcation job's id.
+        id: JobId,
+        /// The bands `(from, to)` in Omega.
+        bands: Vec<(f64, f64)>,
+    },
     /// New points of a bifurcation job.
     BifPoints {
         /// Job id.

@@ -415,28 +415,9 @@ fn frame(page: &Shared) {
     run_effects(page, effects);
     let mut p = page.borrow_mut();
     draw_dirty(page, &mut p);
-    // The parametric-instability scan of the bifurcation view, a slice of
-    // each frame from the first paint on until it is complete (then its
-    // view is redrawn).
-    let mut again = false;
-    if p.first_draw_ms.iter().all(|&t| t > 0.0) {
-        let t_scan = now(&p.window);
-        let mut more = p.ctl.advance_bands(1);
-        while more && now(&p.window) - t_scan < BAND_SLICE_MS {
-            more = p.ctl.advance_bands(1);
-        }
-        again = more || p.ctl.dirty.bif;
-    }
     let took = now(&p.window) - t_frame;
     p.max_frame_ms = p.max_frame_ms.max(took);
-    drop(p);
-    if again {
-        request_frame(page);
-    }
 }
-
-/// Time (ms) a frame spends on the parametric-instability scan.
-const BAND_SLICE_MS: f64 = 4.0;
 
 fn mark_invalid(doc: &Document, key: &str, invalid: bool) {
     if let Some(e) = doc.get_element_by_id(&format!("control-{key}")) {

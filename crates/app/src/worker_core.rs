@@ -120,6 +120,59 @@ pub struct WorkerCore {
     /// The jobs of the pinned state A of an A/B comparison.
     pinned: Option<Box<WorkerCore>>,
     pinned_turn: bool,
+    /// The last parametric-instability bands and what they depend on (the
+    /// parameters without backlash and TE, the Omega range): a backlash or
+    /// TE drag restarts the sweep but not the scan.
+    bands: Option<BandsCache>,
+}
+
+/// Parametric-instability bands and their inputs.
+#[derive(Debug, Clone, PartialEq)]
+struct BandsCache {
+    params: ModelParams,
+    range: (f64, f64),
+    bands: Vec<(f64, f64)>,
+}
+
+/// Omega samples of the parametric-instability scan over the sweep's range
+/// (a band narrower than the spacing can slip between them).
+pub const BAND_SAMPLES: u32 = 300;
+
+/// The Omega intervals of `range` where the engaged system's Floquet
+/// spectral radius exceeds 1, from `samples` equally spaced Omegas, their
+/// edges interpolated linearly in `ln rho`; empty if the scan fails.
+pub fn unstable_bands(model: &Model, range: (f64, f64), samples: u32) -> Vec<(f64, f64)> {
+    let Ok(engaged) = solver::parametric::Parametric::new(model) else {
+        return Vec::new();
+    };
+    let n = samples.max(2);
+    let mut growth = Vec::with_capacity(n as usize);
+    for i in 0..n {
+        let omega = range.0 + (range.1 - range.0) * f64::from(i) / f64::from(n - 1);
+        match engaged.at(omega.max(0.01)) {
+            Ok(s) => growth.push((omega, s.growth_per_period())),
+            Err(_) => return Vec::new(),
+        }
+    }
+    let edge = |(o0, g0): (f64, f64), (o1, g1): (f64, f64)| o0 + (o1 - o0) * g0 / (g0 - g1);
+    let mut bands = Vec::new();
+    let mut start = growth.first().filter(|g| g.1 > 0.0).map(|g| g.0);
+    for w in growth.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        match (a.1 > 0.0, b.1 > 0.0) {
+            (false, true) => start = Some(edge(a, b)),
+            (true, false) => {
+                if let Some(s0) = start.take() {
+                    bands.push((s0, edge(a, b)));
+                }
+            }
+            _ => {}
+        }
+    }
+    if let Some(s0) = start {
+        bands.push((s0, range.1));
+    }
+    bands
 }
 
 fn failed(id: JobId, message: impl Into<String>) -> FromWorker {
@@ -184,6 +237,31 @@ impl WorkerCore {
             }
             ToWorker::ExportBif { id, mesh, other } => vec![self.export_bif(id, mesh, &other)],
         }
+    }
+
+    /// The instability bands of `model` over `range`, from the cache when
+    /// only the backlash or the TE changed.
+    fn bands_for(
+        &mut self,
+        params: &ModelParams,
+        model: &Model,
+        range: (f64, f64),
+    ) -> Vec<(f64, f64)> {
+        let mut key = params.clone();
+        let _ = keys::set(&mut key, "backlash_um", keys::Value::Num(0.0));
+        let _ = keys::set(&mut key, "te_um", keys::Value::Num(0.0));
+        if let Some(c) = &self.bands {
+            if c.params == key && c.range == range {
+                return c.bands.clone();
+            }
+        }
+        let bands = unstable_bands(model, range, BAND_SAMPLES);
+        self.bands = Some(BandsCache {
+            params: key,
+            range,
+            bands: bands.clone(),
+        });
+        bands
     }
 
     fn drop_job(&mut self, kind: JobKind) {
@@ -296,6 +374,11 @@ impl WorkerCore {
                 spec.steady.transient_periods = run.transient_periods;
                 spec.steady.record_periods = run.record_periods;
                 spec.meshes = (0..model.system.meshes.len()).collect();
+                // Shard 0 also sends the instability bands of the range.
+                let bands = (shard == 0).then(|| FromWorker::Bands {
+                    id,
+                    bands: self.bands_for(&params, &model, (omega_from, omega_to)),
+                });
                 match BifurcationSweep::new(model, spec) {
                     Ok(sweep) => {
                         let total = sweep.total();
@@ -305,7 +388,10 @@ impl WorkerCore {
                             sweep,
                             points: Vec::new(),
                         });
-                        vec![FromWorker::Progress { id, done: 0, total }]
+                        bands
+                            .into_iter()
+                            .chain([FromWorker::Progress { id, done: 0, total }])
+                            .collect()
                     }
                     Err(e) => vec![failed(id, e.to_string())],
                 }
@@ -1057,6 +1143,52 @@ mod tests {
         }
         seen.sort_unstable();
         assert_eq!(seen, vec![0, 1, 2, 3, 4]);
+    }
+
+    /// Shard 0 of a sweep sends the instability bands first: for the
+    /// default model over 0.1..2 the band 0.99-1.22 that `gearshock
+    /// instability` finds holds Omega 1.1 (where the set without backlash
+    /// diverges) and not 1.3; a backlash change sends the same bands (from
+    /// the cache); shard 1 sends none.
+    #[test]
+    fn the_first_shard_of_a_sweep_sends_the_instability_bands() {
+        let bif = |id, shard, p: &ModelParams| {
+            run_msg(
+                id,
+                p,
+                JobSpec::Bif {
+                    omega_from: 0.1,
+                    omega_to: 2.0,
+                    points: 4,
+                    directions: "up".into(),
+                    chains: 2,
+                    shard,
+                    run: quick(),
+                },
+            )
+        };
+        let mut p = ModelParams::default();
+        let mut core = WorkerCore::new();
+        let out = core.handle(&bif(1, 0, &p));
+        let Some(FromWorker::Bands { id: 1, bands }) = out.first() else {
+            panic!("{out:?}");
+        };
+        let inside = |o: f64| bands.iter().any(|&(a, b)| a <= o && o <= b);
+        assert!(inside(1.1) && !inside(1.3), "{bands:?}");
+        let main = bands
+            .iter()
+            .find(|&&(a, b)| a <= 1.1 && 1.1 <= b)
+            .copied()
+            .unwrap();
+        assert!(
+            (main.0 - 0.99).abs() < 0.01 && (main.1 - 1.22).abs() < 0.01,
+            "{main:?}"
+        );
+        keys::set_assignment(&mut p, "backlash_um=10").unwrap();
+        let again = core.handle(&bif(2, 0, &p));
+        assert!(matches!(again.first(), Some(FromWorker::Bands { id: 2, bands: b }) if b == bands));
+        let other = WorkerCore::new().handle(&bif(3, 1, &p));
+        assert!(!other.iter().any(|m| matches!(m, FromWorker::Bands { .. })));
     }
 
     #[test]
