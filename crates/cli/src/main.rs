@@ -297,6 +297,29 @@ impl From<SolverError> for Failure {
     }
 }
 
+/// `points` equally spaced Omegas from `omega_from` to `omega_to` (both
+/// included), or a usage failure naming the bad option and its range.
+fn omega_grid(
+    omega_from: f64,
+    omega_to: f64,
+    points: u32,
+    max_points: u32,
+) -> Result<Vec<f64>, Failure> {
+    if !(2..=max_points).contains(&points) {
+        return Err(usage(format!(
+            "--points {points}: allowed 2 ..= {max_points}"
+        )));
+    }
+    if omega_to.partial_cmp(&omega_from) != Some(std::cmp::Ordering::Greater) {
+        return Err(usage(format!(
+            "--omega-to {omega_to}: must exceed --omega-from {omega_from}"
+        )));
+    }
+    Ok((0..points)
+        .map(|i| omega_from + (omega_to - omega_from) * f64::from(i) / f64::from(points - 1))
+        .collect())
+}
+
 fn usage(message: impl Into<String>) -> Failure {
     Failure {
         code: 2,
@@ -644,27 +667,19 @@ fn run(cli: Cli) -> Result<(), Failure> {
         } => {
             let params = load_params(&p)?;
             let model = Model::new(&params)?;
-            if !(2..=10_000).contains(&points) {
-                return Err(usage(format!("--points {points}: allowed 2 ..= 10000")));
-            }
-            if omega_to.partial_cmp(&omega_from) != Some(std::cmp::Ordering::Greater) {
-                return Err(usage(format!(
-                    "--omega-to {omega_to}: must exceed --omega-from {omega_from}"
-                )));
-            }
+            let omegas = omega_grid(omega_from, omega_to, points, 10_000)?;
             let mut opts = LyapunovOptions::new(omega_from);
             opts.transient_periods = transient_periods;
             opts.periods = periods;
-            let mut bar = progress::Progress::new(points as usize, "points");
+            let mut bar = progress::Progress::new(omegas.len(), "points");
             let mut out = Vec::new();
             let mut state: Option<Vec<f64>> = None;
-            for i in 0..points {
-                opts.omega =
-                    omega_from + (omega_to - omega_from) * f64::from(i) / f64::from(points - 1);
+            for (i, omega) in omegas.into_iter().enumerate() {
+                opts.omega = omega;
                 let l = largest_exponent(&model, &opts, state.as_deref())?;
                 state = Some(l.end_state.clone());
                 out.push(l);
-                bar.update(i as usize + 1);
+                bar.update(i + 1);
             }
             bar.finish();
             let value = report::lyapunov_json(&model, &params, &opts, &out);
@@ -678,22 +693,13 @@ fn run(cli: Cli) -> Result<(), Failure> {
         } => {
             let params = load_params(&p)?;
             let model = Model::new(&params)?;
-            if !(2..=100_000).contains(&points) {
-                return Err(usage(format!("--points {points}: allowed 2 ..= 100000")));
-            }
-            if omega_to.partial_cmp(&omega_from) != Some(std::cmp::Ordering::Greater) {
-                return Err(usage(format!(
-                    "--omega-to {omega_to}: must exceed --omega-from {omega_from}"
-                )));
-            }
+            let omegas = omega_grid(omega_from, omega_to, points, 100_000)?;
             let engaged = Parametric::new(&model)?;
-            let mut bar = progress::Progress::new(points as usize, "points");
-            let mut out = Vec::with_capacity(points as usize);
-            for i in 0..points {
-                let omega =
-                    omega_from + (omega_to - omega_from) * f64::from(i) / f64::from(points - 1);
+            let mut bar = progress::Progress::new(omegas.len(), "points");
+            let mut out = Vec::with_capacity(omegas.len());
+            for (i, omega) in omegas.into_iter().enumerate() {
                 out.push(engaged.at(omega)?);
-                bar.update(i as usize + 1);
+                bar.update(i + 1);
             }
             bar.finish();
             let value = report::instability_json(&model, &params, &out);

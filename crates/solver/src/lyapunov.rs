@@ -223,15 +223,13 @@ pub fn largest_exponent(
     for p in 1..=opts.periods {
         let t_end = f64::from(p) * period;
         while a.t() < t_end {
-            if let Err(e) = a.step(&mut ode_a, t_end) {
-                return Err(model.explain_failure(&ode_a, &a, e));
-            }
+            a.step(&mut ode_a, t_end)
+                .map_err(|e| model.explain_failure(&ode_a, &a, e))?;
         }
         model.check_bounded(&ode_a, t_end, a.y(), bound_m)?;
         while b.t() < t_end {
-            if let Err(e) = b.step(&mut ode_b, t_end) {
-                return Err(model.explain_failure(&ode_b, &b, e));
-            }
+            b.step(&mut ode_b, t_end)
+                .map_err(|e| model.explain_failure(&ode_b, &b, e))?;
         }
         if a.stats.steps > budget || b.stats.steps > budget {
             return Err(SolverError::TooManySteps {

@@ -429,9 +429,8 @@ pub fn steady_state(
     for p in 1..=opts.transient_periods {
         let t_end = f64::from(p) * period;
         while int.t() < t_end {
-            if let Err(e) = int.step(&mut ode, t_end) {
-                return Err(model.explain_failure(&ode, &int, e));
-            }
+            int.step(&mut ode, t_end)
+                .map_err(|e| model.explain_failure(&ode, &int, e))?;
             guard(&int, budget)?;
             if opts.early_settle {
                 ode.deflections(&int.y()[..sys.dof()], &mut deflections);
@@ -459,10 +458,9 @@ pub fn steady_state(
     for r in 1..=opts.record_periods {
         let t_end = t_rec + f64::from(r) * period;
         while int.t() < t_end {
-            let info = match int.step(&mut ode, t_end) {
-                Ok(info) => info,
-                Err(e) => return Err(model.explain_failure(&ode, &int, e)),
-            };
+            let info = int
+                .step(&mut ode, t_end)
+                .map_err(|e| model.explain_failure(&ode, &int, e))?;
             guard(&int, budget)?;
             rec.on_step(&ode, &int, info);
         }
