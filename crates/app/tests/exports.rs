@@ -1,0 +1,165 @@
+//! Regression test: the exported data of one fixed link, computed by the
+//! real controller and worker job runner natively, compared byte for byte
+//! with the snapshot in `tests/snapshots/exports.txt`.
+//!
+//! The snapshot was written by the code before the app's restructuring
+//! (issue 11); a refactoring that changes any exported number, column or
+//! file name fails here. To regenerate it after an intended change, run
+//! `GEARSHOCK_BLESS=1 cargo test -p app --test exports` and review the diff.
+
+// Tests may panic: that is how they fail.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+use app::controller::{Controller, Effect, WORKERS};
+use app::protocol::encode;
+use app::worker_core::WorkerCore;
+
+/// A small but complete page: a few Omega points per view, a small map and
+/// Lyapunov curve, the time-integration overlay on.
+const LINK: &str = "omega=1.05&omega_from=0.8&omega_to=1.3&fr_points=12&fr_ti_points=4\
+&fr_record_periods=5&bif_points=6&bif_dir=up&transient_periods=60&record_periods=12\
+&harmonics=3&map_omega_points=3&map_value_points=2&map_transient_periods=40\
+&map_record_periods=8&lyap_points=3&lyap_transient_periods=40&lyap_periods=20";
+
+/// Delivers every posted message to its worker, runs the workers until they
+/// are idle and feeds the replies back, until nothing more is posted.
+/// Returns the downloads the controller asked for.
+fn settle(c: &mut Controller, cores: &mut [WorkerCore], mut fx: Vec<Effect>) -> Vec<Effect> {
+    let mut downloads = Vec::new();
+    let mut now = 10.0;
+    for _round in 0..10_000 {
+        let mut replies = Vec::new();
+        for e in fx.drain(..) {
+            match e {
+                Effect::Post { worker, text } => {
+                    for r in cores[worker].handle(&text) {
+                        replies.push((worker, encode(&r)));
+                    }
+                }
+                d @ Effect::Download { .. } => downloads.push(d),
+            }
+        }
+        for (w, core) in cores.iter_mut().enumerate() {
+            if core.has_work() {
+                for r in core.step() {
+                    replies.push((w, encode(&r)));
+                }
+            }
+        }
+        if replies.is_empty() && cores.iter().all(|c| !c.has_work()) {
+            return downloads;
+        }
+        for (w, text) in replies {
+            now += 1.0;
+            fx.extend(c.worker_message(w, &text, now));
+        }
+    }
+    panic!("the jobs did not finish");
+}
+
+fn exports() -> String {
+    let (mut c, fx) = Controller::new(LINK, 0.0);
+    assert!(c.issues.is_empty(), "{:?}", c.issues);
+    let mut cores: Vec<WorkerCore> = (0..WORKERS).map(|_| WorkerCore::new()).collect();
+    let mut fx = fx;
+    for w in 0..WORKERS {
+        fx.extend(c.worker_message(w, r#"{"type":"ready"}"#, 1.0));
+    }
+    let downloads = settle(&mut c, &mut cores, fx);
+    assert!(downloads.is_empty());
+    assert!(c.issues.is_empty(), "{:?}", c.issues);
+    let mut out = String::new();
+    for (name, text) in files(&mut c, &mut cores) {
+        out.push_str(&format!("===== {name}\n{text}\n"));
+    }
+    out
+}
+
+/// Every export of the page: (file name, text).
+fn files(c: &mut Controller, cores: &mut [WorkerCore]) -> Vec<(String, String)> {
+    use app::views::{self, OmegaView};
+    let mesh = c.mesh_file_label();
+    let mut out = Vec::new();
+    let fr = c.fr_view();
+    out.push((format!("gearshock-fr-{mesh}.csv"), views::fr_csv(&fr)));
+    out.push((
+        format!("gearshock-fr-{mesh}.json"),
+        serde_json::to_string_pretty(&fr).unwrap(),
+    ));
+    let bif = c.bif_view();
+    out.push((format!("gearshock-bif-{mesh}.csv"), views::bif_csv(&bif)));
+    out.push((
+        format!("gearshock-bif-{mesh}.json"),
+        serde_json::to_string(&bif).unwrap(),
+    ));
+    out.push((
+        format!("gearshock-map-{mesh}.csv"),
+        app::maps::map_csv(&c.map),
+    ));
+    out.push((
+        format!("gearshock-map-{mesh}.json"),
+        app::maps::map_json(&c.map).to_string(),
+    ));
+    out.push((
+        format!("gearshock-lyap-{mesh}.csv"),
+        app::maps::lyap_csv(&c.lyap),
+    ));
+    out.push((
+        format!("gearshock-lyap-{mesh}.json"),
+        app::maps::lyap_json(&c.lyap).to_string(),
+    ));
+    let r = c.omega.clone().expect("the selected-Omega result");
+    assert!(!r.preview);
+    for (view, which) in [
+        ("phase", OmegaView::Phase),
+        ("poincare", OmegaView::Poincare),
+        ("time", OmegaView::Time),
+        ("spectrum", OmegaView::Spectrum),
+    ] {
+        out.push((
+            format!("gearshock-{view}-{mesh}.csv"),
+            views::omega_csv(&r, which),
+        ));
+        out.push((
+            format!("gearshock-{view}-{mesh}.json"),
+            views::omega_json(&r, which).to_string(),
+        ));
+    }
+    out.push((
+        format!("gearshock-simulate-{}-{}.json", r.mesh_name, r.omega),
+        r.cli_json.clone(),
+    ));
+    out.push(("gearshock-params.json".into(), c.params_json()));
+    let fx = c.request_bif_export().expect("a bifurcation export");
+    for d in settle(c, cores, fx) {
+        if let Effect::Download { name, mime, text } = d {
+            out.push((format!("{name} ({mime})"), text));
+        }
+    }
+    out.push(("cli-commands".into(), c.cli_commands()));
+    out
+}
+
+#[test]
+fn the_exports_of_a_fixed_link_are_unchanged() {
+    let got = exports();
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/snapshots/exports.txt");
+    if std::env::var_os("GEARSHOCK_BLESS").is_some() {
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        std::fs::write(&path, &got).unwrap();
+    }
+    let want = std::fs::read_to_string(&path).expect("the snapshot file");
+    if got != want {
+        let first = got
+            .lines()
+            .zip(want.lines())
+            .position(|(a, b)| a != b)
+            .unwrap_or(got.lines().count().min(want.lines().count()));
+        panic!(
+            "the exports differ from the snapshot at line {}:\n got: {:?}\nwant: {:?}",
+            first + 1,
+            got.lines().nth(first),
+            want.lines().nth(first)
+        );
+    }
+}
