@@ -20,7 +20,6 @@ use crate::settings::{mesh_names, view_key, MeshSel, Settings};
 use crate::views::{
     fr_view, natural_in_range, BifStore, BifView, FrSource, FrStore, FrView, HbmStore, ViewContext,
 };
-use crate::worker_core;
 use solver::keys;
 use solver::steady::Model;
 
@@ -506,7 +505,7 @@ impl Controller {
     }
 
     /// Shows a preview of the selected-Omega views at once: a short bounded
-    /// run ([`worker_core::PREVIEW_RUN`]) continued from the last result's
+    /// run ([`crate::jobs::omega::PREVIEW_RUN`]) continued from the last result's
     /// end state under the new settings. The worker's full steady state
     /// replaces it; without a previous state, or if the run fails or
     /// exceeds its step budget, the views keep the last result until then.
@@ -520,16 +519,16 @@ impl Controller {
             return;
         };
         let v = &self.settings.view;
-        let job = worker_core::OmegaJob {
+        let job = crate::jobs::omega::OmegaJob {
             id,
             model: model.clone(),
             omega: v.omega,
             mesh: self.settings.mesh_index(model),
-            run: worker_core::PREVIEW_RUN,
+            run: crate::jobs::omega::PREVIEW_RUN,
             samples_per_period: SAMPLES_PER_PERIOD,
             max_order: MAX_ORDER,
         };
-        if let Ok(r) = worker_core::omega_result(&job, Some(&start)) {
+        if let Ok(r) = crate::jobs::omega::omega_result(&job, Some(&start)) {
             self.omega = Some(r);
             self.omega_status.preview_ms = Some(now_ms);
         }
@@ -897,10 +896,13 @@ impl Controller {
                 self.dirty.fr = true;
                 Vec::new()
             }
-            FromWorker::Bands { id, bands } if id == self.bif.id => {
+            FromWorker::Bands { id, bands, error } if id == self.bif.id => {
                 if bands != self.bands {
                     self.bands = bands;
                     self.dirty.bif = true;
+                }
+                if let Some(e) = error {
+                    self.issue(format!("Parametric-instability bands not computed: {e}"));
                 }
                 Vec::new()
             }
@@ -1450,7 +1452,13 @@ mod tests {
         let (mut c, _) = Controller::new("", 0.0);
         ready(&mut c);
         let id = c.bif.id;
-        let msg = |id, bands: Vec<(f64, f64)>| encode(&FromWorker::Bands { id, bands });
+        let msg = |id, bands: Vec<(f64, f64)>| {
+            encode(&FromWorker::Bands {
+                id,
+                bands,
+                error: None,
+            })
+        };
         c.worker_message(0, &msg(id + 100, vec![(0.2, 0.3)]), 1.0);
         assert!(c.instability_bands().is_empty());
         c.dirty = Dirty::default();
@@ -1551,7 +1559,7 @@ mod tests {
                     ..
                 }
             ) {
-                let mut core = worker_core::WorkerCore::new();
+                let mut core = crate::worker_core::WorkerCore::new();
                 core.handle(&encode(m));
                 while core.has_work() {
                     for reply in core.step() {
@@ -1584,8 +1592,11 @@ mod tests {
         assert_eq!(c.omega_status.preview_ms, Some(10.0));
         assert!(c.omega_status.running());
         assert_eq!(pre.backlash_um, 150.0);
-        assert_eq!(pre.record_periods, worker_core::PREVIEW_RUN.record_periods);
-        assert!(pre.transient_periods_run <= worker_core::PREVIEW_RUN.transient_periods);
+        assert_eq!(
+            pre.record_periods,
+            crate::jobs::omega::PREVIEW_RUN.record_periods
+        );
+        assert!(pre.transient_periods_run <= crate::jobs::omega::PREVIEW_RUN.transient_periods);
         assert!(crate::views::summary_line(&pre, &[]).starts_with("Preview ("));
         // The full run (from the static state, as the CLI starts) replaces it.
         run_omega_jobs(&mut c, &p, 20.0);

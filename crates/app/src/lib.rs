@@ -15,6 +15,7 @@
 pub mod controller;
 pub mod controls;
 pub mod gearset;
+pub mod jobs;
 pub mod link;
 pub mod maps;
 pub mod plots;

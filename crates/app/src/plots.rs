@@ -10,7 +10,7 @@
 //! positions grouped by colour, for the caller to draw in a batch: plotters
 //! would set a fill style per pixel, which is slow on a canvas.
 
-use crate::protocol::{OmegaResult, Regime};
+use crate::protocol::{history_start, OmegaResult, Regime, HISTORY_PERIODS};
 use crate::views::{BifView, FrMarkerKind, FrView, NaturalFreq};
 use glam::DVec2;
 use plotters::coord::{CoordTranslate, Shift};
@@ -1136,16 +1136,6 @@ pub fn draw_poincare<DB: DrawingBackend>(
         .legend(|(xx, yy)| Circle::new((xx + 8, yy), 3, CURSOR.filled()));
     legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
     root.present().map_err(err)
-}
-
-/// Periods shown in the time history.
-pub const HISTORY_PERIODS: u32 = 12;
-
-/// The first sample of the window the time history shows (the last
-/// [`HISTORY_PERIODS`] recorded periods) in a record of `len` samples.
-pub fn history_start(len: usize, samples_per_period: u32, record_periods: u32) -> usize {
-    let shown = HISTORY_PERIODS.min(record_periods) as usize;
-    len.saturating_sub(shown * samples_per_period.max(1) as usize)
 }
 
 /// View 5a: the time history of the last recorded periods.

@@ -276,6 +276,19 @@ impl Regime {
     }
 }
 
+impl Regime {
+    /// How severe the regime is, for colouring a sample by its worst mesh:
+    /// no contact, no impact, single-sided, double-sided.
+    pub fn severity(self) -> u8 {
+        match self {
+            Regime::NoContact => 0,
+            Regime::NoImpact => 1,
+            Regime::SingleSided => 2,
+            Regime::DoubleSided => 3,
+        }
+    }
+}
+
 impl From<Impact> for Regime {
     fn from(i: Impact) -> Self {
         match i {
@@ -462,6 +475,17 @@ pub struct AnimHistory {
     pub backlash_um: Vec<f64>,
 }
 
+/// Periods shown in the time history.
+pub const HISTORY_PERIODS: u32 = 12;
+
+/// The first sample of the window the time history shows (the last
+/// [`HISTORY_PERIODS`] recorded periods) in a record of `len` samples: the
+/// time-history view and the gear-set animation both start there.
+pub fn history_start(len: usize, samples_per_period: u32, record_periods: u32) -> usize {
+    let shown = HISTORY_PERIODS.min(record_periods) as usize;
+    len.saturating_sub(shown * samples_per_period.max(1) as usize)
+}
+
 /// The steady state at the selected Omega, for views 3–6.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct OmegaResult {
@@ -554,8 +578,11 @@ pub enum FromWorker {
     Bands {
         /// The bifurcation job's id.
         id: JobId,
-        /// The bands `(from, to)` in Omega.
+        /// The bands `(from, to)` in Omega (empty when the scan failed).
         bands: Vec<(f64, f64)>,
+        /// Why the scan failed, if it did.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        error: Option<String>,
     },
     /// New points of a bifurcation job.
     BifPoints {

@@ -12,7 +12,6 @@
 //! discrepancy figure.
 
 use crate::protocol::{BifSample, BranchBif, FrSample, HbmSample, OmegaResult, Regime};
-use crate::worker_core::severity;
 use serde::Serialize;
 use solver::modal::ModeKind;
 use solver::params::MeshKind;
@@ -654,7 +653,7 @@ pub fn worst_regime(s: &BifSample) -> Option<Regime> {
     s.meshes
         .iter()
         .map(|m| m.regime)
-        .max_by_key(|&r| severity(r))
+        .max_by_key(|&r| r.severity())
 }
 
 /// The one-line summary at the selected Omega (view 6).
@@ -696,36 +695,6 @@ pub fn summary_line(r: &OmegaResult, natural: &[NaturalFreq]) -> String {
 /// Highest mesh order of the phasing numbers.
 pub const PHASING_ORDERS: u32 = 6;
 
-/// How much of the in-phase excitation of a mesh kind survives the sum over
-/// its `N` planet meshes at mesh order `k`: `|sum_n exp(i k gamma_n)| / N`
-/// with the meshes' phases `gamma_n`, for `k = 1 ..= max_order`. Sequential
-/// phasing cancels order `k` in the net torque on the central members when
-/// `k z / N` is not a whole number (Parker & Lin 2004).
-pub fn phasing_factors(model: &Model, kind: MeshKind, max_order: u32) -> Vec<f64> {
-    let phases: Vec<f64> = model
-        .system
-        .meshes
-        .iter()
-        .filter(|m| m.kind == kind)
-        .map(|m| m.phase_rad)
-        .collect();
-    if phases.is_empty() {
-        return Vec::new();
-    }
-    let n = phases.len() as f64;
-    (1..=max_order)
-        .map(|k| {
-            let (c, s) = phases.iter().fold((0.0, 0.0), |(c, s), g| {
-                let a = f64::from(k) * g;
-                (c + a.cos(), s + a.sin())
-            });
-            let f = (c * c + s * s).sqrt() / n;
-            // Exact zeros read as zeros, not as 1e-16.
-            (f * 1e6).round() / 1e6
-        })
-        .collect()
-}
-
 /// The phasing clause of the summary: per mesh kind, the surviving fraction
 /// of the in-phase excitation at mesh orders 1.., the orders that cancel,
 /// and the response's spectrum at those orders. `None` for the gear pair.
@@ -745,7 +714,7 @@ pub fn phasing_line(
         (MeshKind::AB, "ab"),
         (MeshKind::RB, "rb"),
     ] {
-        let f = phasing_factors(model, kind, PHASING_ORDERS);
+        let f = model.system.phasing_factors(kind, PHASING_ORDERS);
         let cancelled: Vec<u32> = f
             .iter()
             .enumerate()
@@ -931,7 +900,7 @@ mod tests {
         let (m, p) = model("planets=5&phasing=sequential");
         for kind in [MeshKind::S1A, MeshKind::S2B, MeshKind::AB, MeshKind::RB] {
             assert_eq!(
-                phasing_factors(&m, kind, 6),
+                m.system.phasing_factors(kind, 6),
                 vec![0.0, 0.0, 0.0, 0.0, 1.0, 0.0],
                 "{kind:?}"
             );
@@ -941,7 +910,11 @@ mod tests {
         // In phase, nothing cancels; with N = 3 sequential equals in-phase.
         for q in ["planets=5&phasing=in-phase", "planets=3&phasing=sequential"] {
             let (m, p) = model(q);
-            assert_eq!(phasing_factors(&m, MeshKind::S1A, 6), vec![1.0; 6], "{q}");
+            assert_eq!(
+                m.system.phasing_factors(MeshKind::S1A, 6),
+                vec![1.0; 6],
+                "{q}"
+            );
             assert!(phasing_line(&m, &p, None)
                 .unwrap()
                 .contains("no order cancels"));

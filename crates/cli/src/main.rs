@@ -702,6 +702,19 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 bar.update(i + 1);
             }
             bar.finish();
+            let bands = report::instability_bands(&out);
+            let text: Vec<String> = bands
+                .iter()
+                .map(|(a, b)| format!("Omega {a:.4} to {b:.4}"))
+                .collect();
+            eprintln!(
+                "gearshock: unstable bands of the engaged system: {}",
+                if text.is_empty() {
+                    "none in the scanned range".to_string()
+                } else {
+                    text.join(", ")
+                }
+            );
             let value = report::instability_json(&model, &params, &out);
             output(p.format, &value, csv::instability)
         }

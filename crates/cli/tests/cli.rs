@@ -489,6 +489,13 @@ fn instability_finds_the_principal_parametric_resonance() {
     let rho = pts[1]["spectral_radius"].as_f64().unwrap();
     let growth = pts[1]["growth_per_period"].as_f64().unwrap();
     assert!((rho.ln() - growth).abs() < 1e-12 && rho > 1.0);
+    // Stable at 1.0, unstable at 2.0: one band, from the interpolated edge
+    // to the end of the scan.
+    let bands = v["unstable_bands"].as_array().unwrap();
+    assert_eq!(bands.len(), 1);
+    assert_eq!(bands[0]["omega_to"], 2.0);
+    let from = bands[0]["omega_from"].as_f64().unwrap();
+    assert!(from > 1.0 && from < 2.0, "{from}");
     let bad = gearshock(&["instability", "--omega-from", "2", "--omega-to", "1"]);
     assert_eq!(bad.status.code(), Some(2));
 }

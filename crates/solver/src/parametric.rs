@@ -78,3 +78,45 @@ impl Parametric {
         })
     }
 }
+
+impl Parametric {
+    /// The Omega intervals of `range` where the engaged system is unstable,
+    /// from `samples` (at least 2) equally spaced Omegas (a band narrower
+    /// than the spacing can slip between them); see [`unstable_bands`].
+    pub fn unstable_bands(&self, range: (f64, f64), samples: u32) -> Result<Vec<(f64, f64)>> {
+        let n = samples.max(2);
+        let mut points = Vec::with_capacity(n as usize);
+        for i in 0..n {
+            let omega = range.0 + (range.1 - range.0) * f64::from(i) / f64::from(n - 1);
+            let s = self.at(omega.max(0.01))?;
+            points.push((omega, s.growth_per_period()));
+        }
+        Ok(unstable_bands(&points, range.1))
+    }
+}
+
+/// The Omega intervals where the growth per period `ln rho` of `points`
+/// (`(omega, ln rho)`, ascending in Omega) is positive, each edge
+/// interpolated linearly in `ln rho` between the samples that straddle it;
+/// a band still open at the last sample ends at `end`.
+pub fn unstable_bands(points: &[(f64, f64)], end: f64) -> Vec<(f64, f64)> {
+    let edge = |(o0, g0): (f64, f64), (o1, g1): (f64, f64)| o0 + (o1 - o0) * g0 / (g0 - g1);
+    let mut bands = Vec::new();
+    let mut start = points.first().filter(|g| g.1 > 0.0).map(|g| g.0);
+    for w in points.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        match (a.1 > 0.0, b.1 > 0.0) {
+            (false, true) => start = Some(edge(a, b)),
+            (true, false) => {
+                if let Some(s0) = start.take() {
+                    bands.push((s0, edge(a, b)));
+                }
+            }
+            _ => {}
+        }
+    }
+    if let Some(s0) = start {
+        bands.push((s0, end));
+    }
+    bands
+}

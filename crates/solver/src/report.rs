@@ -535,7 +535,8 @@ pub fn merge_maps(shards: &[Value]) -> Result<Value> {
 
 /// A parametric-instability scan: the engaged system's Floquet spectral
 /// radius per Omega, its logarithm (growth of large motion per mesh period)
-/// and whether it exceeds 1.
+/// and whether it exceeds 1; then the unstable bands
+/// ([`crate::parametric::unstable_bands`] of the points, ascending Omega).
 pub fn instability_json(
     model: &Model,
     params: &ModelParams,
@@ -550,7 +551,21 @@ pub fn instability_json(
             "growth_per_period": num(p.growth_per_period()),
             "unstable": p.unstable(),
         })).collect::<Vec<_>>(),
+        "unstable_bands": instability_bands(points).iter().map(|&(from, to)| json!({
+            "omega_from": num(from),
+            "omega_to": num(to),
+        })).collect::<Vec<_>>(),
     })
+}
+
+/// The unstable bands of a scan's points (ascending Omega).
+pub fn instability_bands(points: &[crate::parametric::EngagedStability]) -> Vec<(f64, f64)> {
+    let growth: Vec<(f64, f64)> = points
+        .iter()
+        .map(|p| (p.omega, p.growth_per_period()))
+        .collect();
+    let end = growth.last().map_or(0.0, |g| g.0);
+    crate::parametric::unstable_bands(&growth, end)
 }
 
 /// A Lyapunov-exponent sweep as JSON.

@@ -363,6 +363,22 @@ pub struct SteadyState {
     pub stats: SteadyStats,
 }
 
+impl SteadyState {
+    /// The mesh with the largest dynamic factor (the first on a tie, mesh 0
+    /// when none has one): the "worst" mesh of sweeps and views.
+    pub fn worst_mesh(&self) -> usize {
+        self.meshes
+            .iter()
+            .enumerate()
+            .max_by(|a, b| {
+                let da = a.1.dynamic_factor.unwrap_or(0.0);
+                let db = b.1.dynamic_factor.unwrap_or(0.0);
+                da.total_cmp(&db)
+            })
+            .map_or(0, |(j, _)| j)
+    }
+}
+
 /// Largest orbit period tested.
 pub const MAX_PERIOD: usize = 32;
 

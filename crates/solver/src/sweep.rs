@@ -350,16 +350,7 @@ impl BifurcationSweep {
         match steady_state(&self.model, &opts, start.as_deref()) {
             Ok(ss) => {
                 self.chain_state[task.chain as usize] = Some(ss.end_state.clone());
-                let worst_mesh = ss
-                    .meshes
-                    .iter()
-                    .enumerate()
-                    .max_by(|a, b| {
-                        let da = a.1.dynamic_factor.unwrap_or(0.0);
-                        let db = b.1.dynamic_factor.unwrap_or(0.0);
-                        da.total_cmp(&db)
-                    })
-                    .map_or(0, |(j, _)| j);
+                let worst_mesh = ss.worst_mesh();
                 let impact_worst = ss
                     .meshes
                     .iter()

@@ -354,6 +354,36 @@ impl RavigneauxGeometry {
 }
 
 impl MeshSystem {
+    /// How much of the in-phase excitation of a mesh kind survives the sum
+    /// over its `N` planet meshes at mesh order `k`: `|sum_n exp(i k
+    /// gamma_n)| / N` with the meshes' phases `gamma_n`, for `k = 1 ..=
+    /// max_order`, rounded to 1e-6 (exact zeros read as zeros). Sequential
+    /// phasing cancels order `k` in the net torque on the central members
+    /// when `k z / N` is not a whole number (Parker & Lin 2004). Empty when
+    /// the system has no mesh of that kind.
+    pub fn phasing_factors(&self, kind: MeshKind, max_order: u32) -> Vec<f64> {
+        let phases: Vec<f64> = self
+            .meshes
+            .iter()
+            .filter(|m| m.kind == kind)
+            .map(|m| m.phase_rad)
+            .collect();
+        if phases.is_empty() {
+            return Vec::new();
+        }
+        let n = phases.len() as f64;
+        (1..=max_order)
+            .map(|k| {
+                let (c, s) = phases.iter().fold((0.0, 0.0), |(c, s), g| {
+                    let a = f64::from(k) * g;
+                    (c + a.cos(), s + a.sin())
+                });
+                let f = (c * c + s * s).sqrt() / n;
+                (f * 1e6).round() / 1e6
+            })
+            .collect()
+    }
+
     /// Validates the parameters and builds the system.
     pub fn build(params: &ModelParams) -> Result<Self> {
         validate_keys(params)?;

@@ -111,3 +111,37 @@ fn omega_out_of_range_is_refused() {
         assert!(matches!(p.at(bad), Err(SolverError::BadOption { .. })));
     }
 }
+
+/// The first Mathieu tongue of `x'' + (1 + v cos(Omega t)) x = 0`: with
+/// `tau = Omega t / 2` it reads `x'' + (delta + 2 eps cos 2 tau) x = 0`,
+/// `delta = 4 / Omega^2`, `eps = 2 v / Omega^2`, unstable for
+/// `1 - eps < delta < 1 + eps` (to O(eps^2)), so between
+/// `Omega = sqrt(4 - 2 v)` and `sqrt(4 + 2 v)`: the one band of the scan.
+#[test]
+fn the_unstable_band_is_the_first_mathieu_tongue() {
+    let v = 0.1;
+    let p = Parametric::new(&gear_pair(v, 0.0)).unwrap();
+    let bands = p.unstable_bands((1.7, 2.3), 121).unwrap();
+    assert_eq!(bands.len(), 1, "{bands:?}");
+    let (lo, hi) = bands[0];
+    let (want_lo, want_hi) = ((4.0 - 2.0 * v).sqrt(), (4.0 + 2.0 * v).sqrt());
+    assert!((lo - want_lo).abs() < 0.01, "{lo} vs {want_lo}");
+    assert!((hi - want_hi).abs() < 0.01, "{hi} vs {want_hi}");
+}
+
+/// Band edges interpolate `ln rho` linearly between the straddling samples;
+/// a band open at either end of the scan runs to that end.
+#[test]
+fn band_edges_interpolate_the_growth() {
+    use solver::parametric::unstable_bands;
+    let pts = [(1.0, -1.0), (2.0, 1.0), (3.0, 3.0), (4.0, -1.0), (5.0, 2.0)];
+    assert_eq!(
+        unstable_bands(&pts, 5.5),
+        vec![(1.5, 3.75), (4.0 + 1.0 / 3.0, 5.5)]
+    );
+    assert_eq!(
+        unstable_bands(&[(1.0, 0.5), (2.0, -0.5)], 2.0),
+        vec![(1.0, 1.5)]
+    );
+    assert!(unstable_bands(&[(1.0, -0.5), (2.0, -0.5)], 2.0).is_empty());
+}

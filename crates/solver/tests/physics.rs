@@ -404,3 +404,49 @@ fn validation_names_the_key_value_and_range() {
     let msg = Model::new(&p).expect_err("odd").to_string();
     assert!(msg.contains("85") && msg.contains("48"), "{msg}");
 }
+
+/// Planet phasing: with five planets spaced evenly and sequential phasing
+/// the mesh phases are `gamma_n = 2 pi n z / 5`, so order `k` survives the
+/// sum over the planets only when `k z / 5` is whole; z_s1 = 36, z_s2 = 48,
+/// z_r = 84 are not multiples of 5, so only k = 5 survives (Parker & Lin
+/// 2004). In phase (or with three planets, where `z / 3` is whole for these
+/// tooth counts) every order survives in full.
+#[test]
+fn sequential_phasing_of_five_planets_cancels_orders_one_to_four() {
+    use solver::params::MeshKind;
+    let kinds = [MeshKind::S1A, MeshKind::S2B, MeshKind::AB, MeshKind::RB];
+    let m = model(&["planets=5", "phasing=sequential"]);
+    for kind in kinds {
+        assert_eq!(
+            m.system.phasing_factors(kind, 6),
+            vec![0.0, 0.0, 0.0, 0.0, 1.0, 0.0],
+            "{kind:?}"
+        );
+    }
+    for q in [
+        ["planets=5", "phasing=in-phase"],
+        ["planets=3", "phasing=sequential"],
+    ] {
+        let m = model(&q);
+        for kind in kinds {
+            assert_eq!(m.system.phasing_factors(kind, 6), vec![1.0; 6], "{q:?}");
+        }
+    }
+    let pair = model(&["model=gear-pair"]);
+    assert!(pair.system.phasing_factors(MeshKind::S1A, 6).is_empty());
+}
+
+/// The worst mesh of a steady state is the one with the largest dynamic
+/// factor, as the sweep reports it.
+#[test]
+fn the_worst_mesh_has_the_largest_dynamic_factor() {
+    let m = model(&["backlash_um=50"]);
+    let mut o = SteadyOptions::new(1.05);
+    o.transient_periods = 40;
+    o.record_periods = 10;
+    let ss = steady_state(&m, &o, None).unwrap();
+    let j = ss.worst_mesh();
+    let df = |k: usize| ss.meshes[k].dynamic_factor.unwrap_or(0.0);
+    assert!(df(j) > 0.0);
+    assert!((0..ss.meshes.len()).all(|k| df(k) <= df(j)));
+}

@@ -288,7 +288,7 @@ pub fn channel_exact(
         scratch.w_lo[(d + hk) as usize] += kd * b;
     }
     // Contact switches: the roots of x -+ b.
-    let eval = |t: f64| super::stability::eval_coef(&scratch.x, h, t);
+    let eval = |t: f64| eval_coef(&scratch.x, h, t);
     scratch.cuts.clear();
     scratch.cuts.push(0.0);
     contact_switches(
@@ -444,8 +444,8 @@ pub fn contact_switches(
     table.sample(x, xs);
     table.sample(dcoef, ds);
     let dcoef = &*dcoef;
-    let eval = |t: f64| super::stability::eval_coef(x, h, t);
-    let slope_at = |t: f64| super::stability::eval_coef(dcoef, h, t);
+    let eval = |t: f64| eval_coef(x, h, t);
+    let slope_at = |t: f64| eval_coef(dcoef, h, t);
     // Between two samples where x' changes sign, x moves by at most
     // `max|x''| dt^2 / 2` from either sample. An extremum that cannot reach
     // `+-b` by twice that margin brackets no root and need not be located:
@@ -734,6 +734,19 @@ pub fn channel_df(law: &Law, u_coef: &[f64], force: &mut [f64], slope: &mut [Com
     }
 }
 
+/// Evaluates a channel displacement's trigonometric polynomial at `theta`.
+pub fn eval_coef(coef: &[f64], h: usize, theta: f64) -> f64 {
+    // One sin_cos, then the angle-addition recurrence for the harmonics.
+    let (s1, c1) = crate::trig::phase_sin_cos(theta);
+    let (mut sn, mut cs) = (s1, c1);
+    let mut s = coef[0];
+    for k in 1..=h {
+        s += coef[2 * k - 1] * cs + coef[2 * k] * sn;
+        (sn, cs) = (sn * c1 + cs * s1, cs * c1 - sn * s1);
+    }
+    s
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -757,6 +770,23 @@ mod tests {
             }
         }
         out
+    }
+
+    /// The recurrence-based evaluator agrees with the series written out
+    /// with `cos(k theta)` and `sin(k theta)` term by term.
+    #[test]
+    fn eval_coef_is_the_trigonometric_series() {
+        let coef = [0.3, 1.0, -0.5, 0.25, 2.0, -0.125, 0.75];
+        for i in 0..40 {
+            let theta = -7.0 + 0.37 * f64::from(i);
+            let mut want = coef[0];
+            for k in 1..=3 {
+                let kt = k as f64 * theta;
+                want += coef[2 * k - 1] * kt.cos() + coef[2 * k] * kt.sin();
+            }
+            let got = eval_coef(&coef, 3, theta);
+            assert!((got - want).abs() < 1e-12, "theta {theta}: {got} vs {want}");
+        }
     }
 
     #[test]

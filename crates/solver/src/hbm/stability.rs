@@ -17,6 +17,10 @@
 
 use super::assembly::Assembly;
 use super::harmonic::{contact_switches, n_coef, te_real_coefficients};
+// The Fourier evaluator lives in `harmonic` (stability depends on harmonic,
+// never the reverse); re-exported here because `hbm::mod` imports it from
+// `stability` (that file belongs to the continuation's owner).
+pub(crate) use super::harmonic::eval_coef;
 use super::model::Law;
 use nalgebra::Complex;
 use nalgebra::{linalg::Schur, DMatrix};
@@ -41,19 +45,6 @@ impl Floquet {
     pub fn spectral_radius(&self) -> f64 {
         self.all().map(|z| z.norm()).fold(0.0, f64::max)
     }
-}
-
-/// Evaluates a channel displacement's trigonometric polynomial at `theta`.
-pub fn eval_coef(coef: &[f64], h: usize, theta: f64) -> f64 {
-    // One sin_cos, then the angle-addition recurrence for the harmonics.
-    let (s1, c1) = crate::trig::phase_sin_cos(theta);
-    let (mut sn, mut cs) = (s1, c1);
-    let mut s = coef[0];
-    for k in 1..=h {
-        s += coef[2 * k - 1] * cs + coef[2 * k] * sn;
-        (sn, cs) = (sn * c1 + cs * s1, cs * c1 - sn * s1);
-    }
-    s
 }
 
 /// Phases in `(0, 2 pi)` where some mesh channel switches contact state,

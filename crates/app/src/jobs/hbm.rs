@@ -1,0 +1,114 @@
+//! The harmonic-balance branch of the frequency response (view 1): a
+//! pseudo-arclength continuation streamed in chunks of [`HBM_CHUNK`] points.
+
+use super::{failed, round_um, Job};
+use crate::protocol::{FromWorker, HbmMesh, HbmSample, JobId};
+use solver::hbm::{BranchPoint, FrfContinuation, FrfSpec};
+use solver::steady::Model;
+
+/// Points of the harmonic-balance branch computed per step: a few
+/// milliseconds each, so a newer job or a cancel waits at most a few tens of
+/// milliseconds.
+pub const HBM_CHUNK: usize = 8;
+
+/// A harmonic-balance branch in progress.
+pub(crate) struct HbmJob {
+    id: JobId,
+    cont: FrfContinuation,
+    finished: bool,
+}
+
+impl HbmJob {
+    /// Starts the branch over `omega_from ..= omega_to` with `points`
+    /// nominal points and `harmonics` harmonics (upward, with stability if asked).
+    pub(crate) fn start(
+        id: JobId,
+        model: &Model,
+        (omega_from, omega_to, points): (f64, f64, u32),
+        harmonics: u32,
+        stability: bool,
+    ) -> Result<(Self, Vec<FromWorker>), FromWorker> {
+        let mut spec = FrfSpec::new(omega_from, omega_to, points);
+        spec.harmonics = harmonics as usize;
+        spec.direction = solver::sweep::Direction::Up;
+        spec.stability = stability;
+        match FrfContinuation::new(model, spec) {
+            Ok(cont) => Ok((
+                HbmJob {
+                    id,
+                    cont,
+                    finished: false,
+                },
+                vec![FromWorker::Progress {
+                    id,
+                    done: 0,
+                    total: 100,
+                }],
+            )),
+            Err(e) => Err(failed(id, e.to_string())),
+        }
+    }
+}
+
+impl Job for HbmJob {
+    fn id(&self) -> JobId {
+        self.id
+    }
+
+    fn step(&mut self) -> Vec<FromWorker> {
+        let msg = hbm_chunk(self);
+        self.finished = matches!(msg, FromWorker::HbmPoints { finished: true, .. });
+        vec![msg]
+    }
+
+    fn finished(&self) -> bool {
+        self.finished
+    }
+
+    fn progress(&self) -> (usize, usize) {
+        ((100.0 * self.cont.progress()).floor() as usize, 100)
+    }
+}
+
+/// Advances the branch by up to [`HBM_CHUNK`] points, one at a time so that
+/// a failure keeps every point before it.
+fn hbm_chunk(job: &mut HbmJob) -> FromWorker {
+    let mut points = Vec::new();
+    let mut error = None;
+    for _ in 0..HBM_CHUNK {
+        if job.cont.is_finished() {
+            break;
+        }
+        match job.cont.advance(1) {
+            Ok(pts) => points.extend(pts.iter().map(hbm_sample)),
+            Err(e) => {
+                error = Some(e.to_string());
+                break;
+            }
+        }
+    }
+    FromWorker::HbmPoints {
+        id: job.id,
+        points,
+        progress: job.cont.progress(),
+        finished: error.is_some() || job.cont.is_finished(),
+        error,
+    }
+}
+
+fn hbm_sample(p: &BranchPoint) -> HbmSample {
+    HbmSample {
+        omega: p.omega,
+        meshes: p
+            .meshes
+            .iter()
+            .map(|m| HbmMesh {
+                rel_min_um: round_um(m.rel_min_m * 1e6),
+                rel_max_um: round_um(m.rel_max_m * 1e6),
+                regime: m.impact.into(),
+            })
+            .collect(),
+        stable: p.stable,
+        bifurcation: p.bifurcation.map(Into::into),
+    }
+}

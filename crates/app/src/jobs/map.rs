@@ -1,0 +1,72 @@
+//! The impact-regime map (view 7): one worker's share of the rows, one
+//! cell per step.
+
+use super::{failed, Job};
+use crate::protocol::{FromWorker, JobId, MapSample};
+use solver::map::{MapSpec, RegimeMap};
+use solver::params::ModelParams;
+
+/// A share of an impact-regime map in progress.
+pub(crate) struct MapJob {
+    id: JobId,
+    map: RegimeMap,
+}
+
+impl MapJob {
+    /// Starts the share of `params`' map that `spec` names.
+    pub(crate) fn start(
+        id: JobId,
+        params: &ModelParams,
+        spec: MapSpec,
+    ) -> Result<(Self, Vec<FromWorker>), FromWorker> {
+        match RegimeMap::new(params, spec) {
+            Ok(map) => {
+                let total = map.total();
+                Ok((
+                    MapJob { id, map },
+                    vec![FromWorker::Progress { id, done: 0, total }],
+                ))
+            }
+            Err(e) => Err(failed(id, e.to_string())),
+        }
+    }
+}
+
+impl Job for MapJob {
+    fn id(&self) -> JobId {
+        self.id
+    }
+
+    fn step(&mut self) -> Vec<FromWorker> {
+        let mut out = Vec::new();
+        let cells: Vec<MapSample> = self
+            .map
+            .advance(1)
+            .into_iter()
+            .map(|c| MapSample {
+                row: c.row,
+                column: c.column,
+                omega: c.omega,
+                value: c.value,
+                regime: c.impact.into(),
+                period: c.period,
+                error: c.error,
+            })
+            .collect();
+        if !cells.is_empty() {
+            out.push(FromWorker::MapCells { id: self.id, cells });
+        }
+        if self.map.is_finished() {
+            out.push(FromWorker::Done { id: self.id });
+        }
+        out
+    }
+
+    fn finished(&self) -> bool {
+        self.map.is_finished()
+    }
+
+    fn progress(&self) -> (usize, usize) {
+        (self.map.done(), self.map.total())
+    }
+}

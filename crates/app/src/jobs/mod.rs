@@ -1,0 +1,59 @@
+//! The worker's jobs, one module per kind, behind one trait.
+//!
+//! Each kind's module turns its [`crate::protocol::JobSpec`] into a job
+//! (`start`), and the job computes one bounded chunk per [`Job::step`]
+//! (one steady state, a few harmonic-balance points, one map cell), posting
+//! its data and progress as [`FromWorker`] messages. Cancelling a job is
+//! dropping it; the runner ([`crate::worker_core::WorkerCore`]) keeps at
+//! most one job of each kind and loops over the kinds in its priority order.
+//!
+//! Architecture invariant: a job's step is bounded (one steady state, or
+//! [`hbm::HBM_CHUNK`] branch points), so a newer job or a cancel waits at
+//! most one step.
+
+pub mod bif;
+pub mod hbm;
+pub mod lyap;
+pub mod map;
+pub mod omega;
+pub mod overlay;
+
+use crate::protocol::{FromWorker, JobId};
+use solver::steady::Model;
+
+/// A job of one kind in progress in a worker.
+pub trait Job {
+    /// The job's id (the page's, so replies to an old job are recognised).
+    fn id(&self) -> JobId;
+    /// Computes one bounded chunk and returns the messages to post.
+    fn step(&mut self) -> Vec<FromWorker>;
+    /// Whether every chunk has been computed (the runner then drops it).
+    fn finished(&self) -> bool;
+    /// Units done and in all (steady states, cells, per cent of the range).
+    fn progress(&self) -> (usize, usize);
+    /// The finished job's data as the CLI's JSON (`other`: the other
+    /// shards' JSON to merge), for kinds that export from the worker.
+    fn export(&self, _mesh: Option<usize>, _other: &[String]) -> Option<FromWorker> {
+        None
+    }
+}
+
+/// The message of a job that failed.
+pub fn failed(id: JobId, message: impl Into<String>) -> FromWorker {
+    FromWorker::Failed {
+        id,
+        message: message.into(),
+    }
+}
+
+/// Micrometres rounded to 1e-6 µm (the precision the page shows and exports).
+pub(crate) fn round_um(x: f64) -> f64 {
+    (x * 1e6).round() / 1e6
+}
+
+/// TE and its rate of mesh `j` at phase 0 of the excitation (the Poincaré phase).
+pub(crate) fn excitation_at(model: &Model, j: usize, omega_rad_s: f64, t_s: f64) -> (f64, f64) {
+    let (s, c) = (omega_rad_s * t_s).sin_cos();
+    let (_, e, de) = model.system.meshes[j].excitation(omega_rad_s, c, s);
+    (e, de)
+}

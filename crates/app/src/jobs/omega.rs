@@ -1,0 +1,189 @@
+//! The selected-Omega job: one steady state with every mesh's history,
+//! turned into the data of the phase portrait, Poincaré section, time
+//! history, spectrum and gear-set animation ([`OmegaResult`]); also the
+//! page's bounded preview run ([`omega_result`] with a start state).
+
+use super::{excitation_at, failed, round_um, Job};
+use crate::protocol::{
+    history_start, AnimHistory, FromWorker, JobId, MeshSummary, OmegaResult, RunOptions,
+};
+use solver::report;
+use solver::steady::{spectrum, steady_state, Model, SteadyOptions};
+
+/// An Omega job waiting for its one step (also the page's preview run).
+pub struct OmegaJob {
+    /// Job id.
+    pub id: JobId,
+    /// The model.
+    pub model: Model,
+    /// Dimensionless frequency.
+    pub omega: f64,
+    /// Mesh to plot, `None` for the worst.
+    pub mesh: Option<usize>,
+    /// Transient and recorded periods.
+    pub run: RunOptions,
+    /// History samples per mesh period.
+    pub samples_per_period: u32,
+    /// Highest spectrum order.
+    pub max_order: f64,
+}
+
+/// Periods of the page's preview run: continued from the last result's end
+/// state under the new settings, so the selected-Omega views follow a
+/// slider within a frame while the full steady state computes.
+pub const PREVIEW_RUN: RunOptions = RunOptions {
+    transient_periods: 20,
+    record_periods: 10,
+};
+
+/// The preview's step budget per period: it bounds the main thread's time
+/// (about 10 ms in the browser); a run that needs more steps shows no
+/// preview and waits for the worker.
+pub const PREVIEW_STEPS_PER_PERIOD: u64 = 300;
+
+/// An Omega job in the worker: one step, then finished.
+pub(crate) struct OmegaRun {
+    job: OmegaJob,
+    done: bool,
+}
+
+impl OmegaRun {
+    /// Starts `job`.
+    pub(crate) fn start(job: OmegaJob) -> Self {
+        OmegaRun { job, done: false }
+    }
+}
+
+impl Job for OmegaRun {
+    fn id(&self) -> JobId {
+        self.job.id
+    }
+
+    fn step(&mut self) -> Vec<FromWorker> {
+        self.done = true;
+        let id = self.job.id;
+        let msg = match omega_result(&self.job, None) {
+            Ok(result) => FromWorker::Omega {
+                id,
+                result: Box::new(result),
+            },
+            Err(e) => failed(id, e),
+        };
+        vec![msg, FromWorker::Done { id }]
+    }
+
+    fn finished(&self) -> bool {
+        self.done
+    }
+
+    fn progress(&self) -> (usize, usize) {
+        (usize::from(self.done), 1)
+    }
+}
+
+/// The selected-Omega views' data. With `preview_from` (a previous result's
+/// end state) it is the page's bounded preview run: it starts there, keeps
+/// to [`PREVIEW_STEPS_PER_PERIOD`], and carries no CLI JSON (the full run,
+/// from the static state as `gearshock simulate` starts, replaces it).
+pub fn omega_result(job: &OmegaJob, preview_from: Option<&[f64]>) -> Result<OmegaResult, String> {
+    let model = &job.model;
+    let n_mesh = model.system.meshes.len();
+    if let Some(j) = job.mesh.filter(|&j| j >= n_mesh) {
+        return Err(format!("mesh {j} does not exist in this model"));
+    }
+    let mut opts = SteadyOptions::new(job.omega);
+    opts.transient_periods = job.run.transient_periods;
+    opts.record_periods = job.run.record_periods;
+    opts.samples_per_period = job.samples_per_period.clamp(8, 256);
+    if preview_from.is_some() {
+        opts.max_steps_per_period = PREVIEW_STEPS_PER_PERIOD;
+    }
+    // Every mesh's history: the animated gear set colours every mesh.
+    opts.history_meshes = (0..n_mesh).collect();
+    let ss = steady_state(model, &opts, preview_from)
+        .map_err(|e| format!("Omega = {}: {e}", job.omega))?;
+    let j = job.mesh.unwrap_or_else(|| ss.worst_mesh());
+    let Some(h) = ss.histories.iter().find(|h| h.mesh == j) else {
+        return Err("the run kept no history of the plotted mesh".into());
+    };
+    let m = &ss.meshes[j];
+    let w = ss.omega_rad_s;
+    let xdot_m_s: Vec<f64> = h
+        .velocity_m_s
+        .iter()
+        .zip(&ss.sample_times_s)
+        .map(|(v, &t)| v - excitation_at(model, j, w, t).1)
+        .collect();
+    let (e0, de0) = excitation_at(model, j, w, 0.0);
+    let spec = spectrum(
+        &h.rel_m,
+        opts.samples_per_period,
+        opts.record_periods,
+        job.max_order,
+    );
+    let cli_json = match preview_from {
+        Some(_) => String::new(),
+        None => report::simulate_json(model, &ss, j, job.max_order).to_string(),
+    };
+    let start = history_start(h.rel_m.len(), opts.samples_per_period, opts.record_periods);
+    let mut anim_x = vec![Vec::new(); n_mesh];
+    for hist in &ss.histories {
+        if let Some(slot) = anim_x.get_mut(hist.mesh) {
+            *slot = hist.rel_m[start.min(hist.rel_m.len())..]
+                .iter()
+                .map(|x| (x * 1e9).round() / 1e3)
+                .collect();
+        }
+    }
+    let anim = AnimHistory {
+        start_sample: start as u32,
+        x_um: anim_x,
+        backlash_um: model
+            .system
+            .meshes
+            .iter()
+            .map(|m| round_um(m.backlash_m * 1e6))
+            .collect(),
+    };
+    let result = OmegaResult {
+        omega: ss.omega,
+        mesh: j,
+        mesh_name: model.system.meshes[j].name.clone(),
+        backlash_um: round_um(model.system.meshes[j].backlash_m * 1e6),
+        regime: m.impact.into(),
+        period: ss.period,
+        dynamic_factor: m.dynamic_factor,
+        mesh_freq_hz: ss.mesh_freq_hz,
+        transient_periods_run: ss.stats.transient_periods_run,
+        settled: ss.stats.settled,
+        samples_per_period: opts.samples_per_period,
+        record_periods: opts.record_periods,
+        x_um: h.rel_m.iter().map(|x| round_um(x * 1e6)).collect(),
+        xdot_m_s: xdot_m_s.iter().map(|v| (v * 1e9).round() / 1e9).collect(),
+        poincare_x_um: m
+            .poincare_delta_m
+            .iter()
+            .map(|d| round_um((d - e0) * 1e6))
+            .collect(),
+        poincare_xdot_m_s: m.poincare_velocity_m_s.iter().map(|v| v - de0).collect(),
+        spectrum_order: spec.order,
+        spectrum_um: spec.amplitude.iter().map(|a| a * 1e6).collect(),
+        all_meshes: model
+            .system
+            .meshes
+            .iter()
+            .zip(&ss.meshes)
+            .map(|(d, ms)| MeshSummary {
+                name: d.name.clone(),
+                regime: ms.impact.into(),
+                dynamic_factor: ms.dynamic_factor,
+            })
+            .collect(),
+        anim,
+        steps: ss.stats.integrator.steps,
+        cli_json,
+        preview: preview_from.is_some(),
+        end_state: ss.end_state,
+    };
+    Ok(result)
+}

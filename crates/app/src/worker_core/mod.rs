@@ -1,0 +1,311 @@
+//! The Web Worker's job runner, as plain Rust: no browser types, so it is
+//! tested natively.
+//!
+//! The worker's thin shell (`web.rs`) feeds every incoming message to
+//! [`WorkerCore::handle`] and, while [`WorkerCore::has_work`], calls
+//! [`WorkerCore::step`] in a loop for a few milliseconds, posts the replies,
+//! and yields to the event loop so that newer jobs and cancels arrive. One
+//! step is one bounded chunk of one job ([`crate::jobs::Job::step`]).
+//!
+//! The selected-Omega job is served first, so the views at the selected
+//! Omega update even while a long sweep runs; then the harmonic-balance
+//! branch of the frequency response (the view a slider drag watches, and the
+//! quickest sweep); the time-integration overlay grid and the bifurcation
+//! sweep then take turns, one steady state each; the Lyapunov curve and
+//! then the impact-regime map run when those are idle.
+
+use crate::jobs::bif::{BandsCache, BifJob, BifSpec};
+use crate::jobs::hbm::HbmJob;
+use crate::jobs::lyap::LyapJob;
+use crate::jobs::map::MapJob;
+use crate::jobs::omega::{OmegaJob, OmegaRun};
+use crate::jobs::overlay::FrJob;
+use crate::jobs::{failed, Job};
+use crate::protocol::{encode, FromWorker, JobId, JobKind, JobSpec, ToWorker};
+use serde_json::{Map, Value};
+use solver::keys;
+use solver::map::MapSpec;
+use solver::params::ModelParams;
+use solver::steady::Model;
+
+/// The kinds in the order the runner serves them after the selected-Omega
+/// job and the harmonic-balance branch: the overlay and the bifurcation
+/// sweep take turns (so both diagrams fill in together and show their
+/// first points early), then the Lyapunov curve, then the map (the slower,
+/// secondary views must not delay the main diagrams).
+const TAKING_TURNS: [JobKind; 2] = [JobKind::Fr, JobKind::Bif];
+const WHEN_IDLE: [JobKind; 2] = [JobKind::Lyap, JobKind::Map];
+
+/// The worker's state: at most one job of each kind.
+#[derive(Default)]
+pub struct WorkerCore {
+    /// The running job of each kind, by [`kind_slot`].
+    jobs: [Option<Box<dyn Job>>; 6],
+    /// The last finished job that exports from the worker (a bifurcation shard).
+    finished: Option<Box<dyn Job>>,
+    turn: usize,
+    /// The jobs of the pinned state A of an A/B comparison.
+    pinned: Option<Box<WorkerCore>>,
+    pinned_turn: bool,
+    /// The last parametric-instability bands and their inputs.
+    bands: BandsCache,
+}
+
+/// The slot of a kind in [`WorkerCore::jobs`].
+fn kind_slot(kind: JobKind) -> usize {
+    match kind {
+        JobKind::Omega => 0,
+        JobKind::Hbm => 1,
+        JobKind::Fr => 2,
+        JobKind::Bif => 3,
+        JobKind::Map => 4,
+        JobKind::Lyap => 5,
+    }
+}
+
+fn model_from(params: &Map<String, Value>) -> Result<(ModelParams, Model), String> {
+    let p = keys::from_json(params).map_err(|e| e.to_string())?;
+    let model = Model::new(&p).map_err(|e| e.to_string())?;
+    Ok((p, model))
+}
+
+impl WorkerCore {
+    /// A worker with no jobs.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Whether a job waits for [`Self::step`].
+    pub fn has_work(&self) -> bool {
+        self.has_own_work() || self.pinned.as_ref().is_some_and(|p| p.has_work())
+    }
+
+    fn has_own_work(&self) -> bool {
+        self.jobs.iter().any(Option::is_some)
+    }
+
+    /// Handles one message from the page (JSON text).
+    pub fn handle(&mut self, text: &str) -> Vec<FromWorker> {
+        let msg: ToWorker = match serde_json::from_str(text) {
+            Ok(m) => m,
+            Err(e) => return vec![failed(0, format!("unreadable message: {e}"))],
+        };
+        match msg {
+            ToWorker::Run { id, params, job } => self.start(id, &params, job),
+            ToWorker::Cancel { kind } => {
+                self.jobs[kind_slot(kind)] = None;
+                Vec::new()
+            }
+            ToWorker::RunPinned { id, params, job } => self
+                .pinned
+                .get_or_insert_with(Box::default)
+                .start(id, &params, job),
+            ToWorker::CancelPinned { kind } => {
+                if let Some(p) = self.pinned.as_mut() {
+                    p.jobs[kind_slot(kind)] = None;
+                }
+                Vec::new()
+            }
+            ToWorker::ExportBif { id, mesh, other } => {
+                let job = self.finished.as_ref().filter(|j| j.id() == id);
+                match job.and_then(|j| j.export(mesh, &other)) {
+                    Some(reply) => vec![reply],
+                    None => vec![failed(id, "the bifurcation sweep has not finished yet")],
+                }
+            }
+        }
+    }
+
+    fn start(&mut self, id: JobId, params: &Map<String, Value>, job: JobSpec) -> Vec<FromWorker> {
+        // A new job replaces the old one of its kind, even if it fails.
+        let slot = kind_slot(job.kind());
+        self.jobs[slot] = None;
+        let (params, model) = match model_from(params) {
+            Ok(x) => x,
+            Err(e) => return vec![failed(id, e)],
+        };
+        match self.new_job(id, params, model, job) {
+            Ok((job, out)) => {
+                self.jobs[slot] = Some(job);
+                out
+            }
+            Err(reply) => vec![reply],
+        }
+    }
+
+    /// The job of a spec, and its first messages.
+    fn new_job(
+        &mut self,
+        id: JobId,
+        params: ModelParams,
+        model: Model,
+        job: JobSpec,
+    ) -> Result<(Box<dyn Job>, Vec<FromWorker>), FromWorker> {
+        fn boxed<J: Job + 'static>(
+            r: Result<(J, Vec<FromWorker>), FromWorker>,
+        ) -> Result<(Box<dyn Job>, Vec<FromWorker>), FromWorker> {
+            r.map(|(j, out)| (Box::new(j) as Box<dyn Job>, out))
+        }
+        match job {
+            JobSpec::Omega {
+                omega,
+                mesh,
+                run,
+                samples_per_period,
+                max_order,
+            } => {
+                let job = OmegaJob {
+                    id,
+                    model,
+                    omega,
+                    mesh,
+                    run,
+                    samples_per_period,
+                    max_order,
+                };
+                Ok((Box::new(OmegaRun::start(job)), Vec::new()))
+            }
+            JobSpec::Hbm {
+                omega_from,
+                omega_to,
+                points,
+                harmonics,
+                stability,
+            } => boxed(HbmJob::start(
+                id,
+                &model,
+                (omega_from, omega_to, points),
+                harmonics,
+                stability,
+            )),
+            JobSpec::Fr {
+                omega_from,
+                omega_to,
+                points,
+                chains,
+                shard,
+                run,
+            } => boxed(FrJob::start(
+                id,
+                model,
+                (omega_from, omega_to, points),
+                (chains, shard),
+                run,
+            )),
+            JobSpec::Bif {
+                omega_from,
+                omega_to,
+                points,
+                directions,
+                chains,
+                shard,
+                run,
+            } => {
+                let spec = BifSpec {
+                    grid: (omega_from, omega_to, points),
+                    directions: &directions,
+                    chains: (chains, shard),
+                    run,
+                };
+                boxed(BifJob::start(id, params, model, spec, &mut self.bands))
+            }
+            JobSpec::Map {
+                key,
+                omega_from,
+                omega_to,
+                omega_points,
+                value_from,
+                value_to,
+                value_points,
+                mesh,
+                shards,
+                shard,
+                run,
+            } => {
+                let mut spec = MapSpec::new(
+                    (omega_from, omega_to, omega_points),
+                    &key,
+                    (value_from, value_to, value_points),
+                );
+                spec.steady.transient_periods = run.transient_periods;
+                spec.steady.record_periods = run.record_periods;
+                spec.mesh = mesh;
+                spec.shard = Some((shard, shards));
+                boxed(MapJob::start(id, &params, spec))
+            }
+            JobSpec::Lyap {
+                omega_from,
+                omega_to,
+                points,
+                chains,
+                shard,
+                transient_periods,
+                periods,
+            } => boxed(LyapJob::start(
+                id,
+                model,
+                (omega_from, omega_to, points),
+                (chains, shard),
+                (transient_periods, periods),
+            )),
+        }
+    }
+
+    /// One step of the job of `kind`, if there is one; a finished job is
+    /// dropped (a bifurcation shard is kept for its export).
+    fn step_kind(&mut self, kind: JobKind) -> Option<Vec<FromWorker>> {
+        let slot = &mut self.jobs[kind_slot(kind)];
+        let out = slot.as_mut()?.step();
+        if slot.as_ref().is_some_and(|j| j.finished()) {
+            let job = slot.take();
+            if kind == JobKind::Bif {
+                self.finished = job;
+            }
+        }
+        Some(out)
+    }
+
+    /// Does one bounded chunk of the most urgent job.
+    pub fn step(&mut self) -> Vec<FromWorker> {
+        if let Some(out) = self.step_kind(JobKind::Omega) {
+            return out;
+        }
+        // The pinned state's jobs take every other chunk.
+        self.pinned_turn = !self.pinned_turn;
+        if let Some(p) = self
+            .pinned
+            .as_mut()
+            .filter(|p| p.has_work())
+            .filter(|_| self.pinned_turn)
+        {
+            return p.step();
+        }
+        if !self.has_own_work() {
+            if let Some(p) = self.pinned.as_mut() {
+                return p.step();
+            }
+        }
+        if let Some(out) = self.step_kind(JobKind::Hbm) {
+            return out;
+        }
+        for k in 0..TAKING_TURNS.len() {
+            let i = (self.turn + k) % TAKING_TURNS.len();
+            if let Some(out) = self.step_kind(TAKING_TURNS[i]) {
+                self.turn = (i + 1) % TAKING_TURNS.len();
+                return out;
+            }
+        }
+        WHEN_IDLE
+            .iter()
+            .find_map(|&kind| self.step_kind(kind))
+            .unwrap_or_default()
+    }
+}
+
+/// The message a worker posts first.
+pub fn ready_message() -> String {
+    encode(&FromWorker::Ready)
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,440 @@
+//! The worker job runner's tests: real jobs on small models.
+
+use super::*;
+use crate::jobs::hbm::HBM_CHUNK;
+use crate::protocol::{encode, RunOptions};
+
+fn params(p: &ModelParams) -> Map<String, Value> {
+    keys::to_json(p)
+}
+
+fn run_msg(id: JobId, p: &ModelParams, job: JobSpec) -> String {
+    encode(&ToWorker::Run {
+        id,
+        params: params(p),
+        job,
+    })
+}
+
+fn quick() -> RunOptions {
+    RunOptions {
+        transient_periods: 20,
+        record_periods: 8,
+    }
+}
+
+fn drain(core: &mut WorkerCore) -> Vec<FromWorker> {
+    let mut out = Vec::new();
+    let mut guard = 0;
+    while core.has_work() && guard < 10_000 {
+        out.extend(core.step());
+        guard += 1;
+    }
+    out
+}
+
+#[test]
+fn map_and_lyapunov_jobs_share_the_worker_and_cover_their_shares() {
+    let mut core = WorkerCore::new();
+    let p = ModelParams::defaults(solver::ModelKind::GearPair);
+    core.handle(&run_msg(
+        3,
+        &p,
+        JobSpec::Map {
+            key: "backlash_um".into(),
+            omega_from: 0.5,
+            omega_to: 1.5,
+            omega_points: 3,
+            value_from: 0.0,
+            value_to: 100.0,
+            value_points: 3,
+            mesh: None,
+            shards: 2,
+            shard: 1,
+            run: quick(),
+        },
+    ));
+    core.handle(&run_msg(
+        4,
+        &p,
+        JobSpec::Lyap {
+            omega_from: 0.5,
+            omega_to: 1.5,
+            points: 3,
+            chains: 1,
+            shard: 0,
+            transient_periods: 20,
+            periods: 20,
+        },
+    ));
+    let out = drain(&mut core);
+    let cells: Vec<(u32, u32)> = out
+        .iter()
+        .flat_map(|m| match m {
+            FromWorker::MapCells { id: 3, cells } => {
+                cells.iter().map(|c| (c.row, c.column)).collect()
+            }
+            _ => Vec::new(),
+        })
+        .collect();
+    // Shard 1 of 2 over 3 rows is row 1 only.
+    assert_eq!(cells, vec![(1, 0), (1, 1), (1, 2)]);
+    let lyap: Vec<f64> = out
+        .iter()
+        .flat_map(|m| match m {
+            FromWorker::LyapPoints { id: 4, points } => {
+                points.iter().filter_map(|p| p.per_period).collect()
+            }
+            _ => Vec::new(),
+        })
+        .collect();
+    assert_eq!(lyap.len(), 3);
+    assert!(lyap.iter().all(|l| l.is_finite()));
+    assert!(out.iter().any(|m| matches!(m, FromWorker::Done { id: 3 })));
+    assert!(out.iter().any(|m| matches!(m, FromWorker::Done { id: 4 })));
+}
+
+#[test]
+fn a_pinned_job_runs_beside_the_current_job_of_its_kind() {
+    let mut core = WorkerCore::new();
+    let p = ModelParams::defaults(solver::ModelKind::GearPair);
+    let job = |shard| JobSpec::Fr {
+        omega_from: 0.5,
+        omega_to: 1.0,
+        points: 2,
+        chains: 1,
+        shard,
+        run: quick(),
+    };
+    core.handle(&run_msg(1, &p, job(0)));
+    core.handle(&encode(&ToWorker::RunPinned {
+        id: 2,
+        params: params(&p),
+        job: job(0),
+    }));
+    let out = drain(&mut core);
+    for id in [1, 2] {
+        assert!(
+            out.iter()
+                .any(|m| matches!(m, FromWorker::Done { id: i } if *i == id)),
+            "job {id} did not finish"
+        );
+    }
+    // Cancelling A's job leaves B's alone.
+    core.handle(&run_msg(3, &p, job(0)));
+    core.handle(&encode(&ToWorker::RunPinned {
+        id: 4,
+        params: params(&p),
+        job: job(0),
+    }));
+    core.handle(&encode(&ToWorker::CancelPinned { kind: JobKind::Fr }));
+    let out = drain(&mut core);
+    assert!(out.iter().any(|m| matches!(m, FromWorker::Done { id: 3 })));
+    assert!(!out
+        .iter()
+        .any(|m| matches!(m, FromWorker::FrPoints { id: 4, .. })));
+}
+
+#[test]
+fn omega_job_returns_history_poincare_and_cli_json() {
+    let mut core = WorkerCore::new();
+    let p = ModelParams::defaults(solver::ModelKind::GearPair);
+    let out = core.handle(&run_msg(
+        7,
+        &p,
+        JobSpec::Omega {
+            omega: 0.8,
+            mesh: None,
+            run: quick(),
+            samples_per_period: 32,
+            max_order: 4.0,
+        },
+    ));
+    assert!(out.is_empty());
+    let out = drain(&mut core);
+    let FromWorker::Omega { id, result } = &out[0] else {
+        panic!("expected an Omega result, got {out:?}");
+    };
+    assert_eq!(*id, 7);
+    assert_eq!(result.mesh_name, "pg");
+    assert_eq!(result.x_um.len(), result.xdot_m_s.len());
+    assert_eq!(result.poincare_x_um.len(), 8);
+    assert!(!result.spectrum_order.is_empty());
+    let cli: Value = serde_json::from_str(&result.cli_json).unwrap();
+    assert_eq!(cli["mesh"], "pg");
+    assert_eq!(out[1], FromWorker::Done { id: 7 });
+    // The animation's window is the time history's: the last 8 recorded
+    // periods here, and the plotted mesh's samples are the same numbers.
+    let a = &result.anim;
+    assert_eq!(a.x_um.len(), 1);
+    assert_eq!(a.start_sample as usize, result.x_um.len() - 8 * 32);
+    assert_eq!(a.x_um[0].len(), 8 * 32);
+    for (k, x) in a.x_um[0].iter().enumerate() {
+        assert!((x - result.x_um[a.start_sample as usize + k]).abs() < 1e-3);
+    }
+    assert_eq!(a.backlash_um.len(), 1);
+}
+
+#[test]
+fn sharded_fr_grid_covers_every_point_once() {
+    let p = ModelParams::defaults(solver::ModelKind::GearPair);
+    let mut seen = Vec::new();
+    for shard in 0..2 {
+        let mut core = WorkerCore::new();
+        let out = core.handle(&run_msg(
+            1,
+            &p,
+            JobSpec::Fr {
+                omega_from: 0.5,
+                omega_to: 1.5,
+                points: 5,
+                chains: 2,
+                shard,
+                run: quick(),
+            },
+        ));
+        assert!(
+            matches!(out[0], FromWorker::Progress { total, .. } if total == if shard == 0 { 3 } else { 2 })
+        );
+        for m in drain(&mut core) {
+            if let FromWorker::FrPoints { points, .. } = m {
+                for s in points {
+                    assert_eq!(s.meshes.len(), 1);
+                    assert!(s.meshes[0].rel_max_um >= s.meshes[0].rel_min_um);
+                    seen.push(s.index);
+                }
+            }
+        }
+    }
+    seen.sort_unstable();
+    assert_eq!(seen, vec![0, 1, 2, 3, 4]);
+}
+
+/// Shard 0 of a sweep sends the instability bands first: for the
+/// default model over 0.1..2 the band 0.99-1.22 that `gearshock
+/// instability` finds holds Omega 1.1 (where the set without backlash
+/// diverges) and not 1.3; a backlash change sends the same bands (from
+/// the cache); shard 1 sends none.
+#[test]
+fn the_first_shard_of_a_sweep_sends_the_instability_bands() {
+    let bif = |id, shard, p: &ModelParams| {
+        run_msg(
+            id,
+            p,
+            JobSpec::Bif {
+                omega_from: 0.1,
+                omega_to: 2.0,
+                points: 4,
+                directions: "up".into(),
+                chains: 2,
+                shard,
+                run: quick(),
+            },
+        )
+    };
+    let mut p = ModelParams::default();
+    let mut core = WorkerCore::new();
+    let out = core.handle(&bif(1, 0, &p));
+    let Some(FromWorker::Bands { id: 1, bands, .. }) = out.first() else {
+        panic!("{out:?}");
+    };
+    let inside = |o: f64| bands.iter().any(|&(a, b)| a <= o && o <= b);
+    assert!(inside(1.1) && !inside(1.3), "{bands:?}");
+    let main = bands
+        .iter()
+        .find(|&&(a, b)| a <= 1.1 && 1.1 <= b)
+        .copied()
+        .unwrap();
+    assert!(
+        (main.0 - 0.99).abs() < 0.01 && (main.1 - 1.22).abs() < 0.01,
+        "{main:?}"
+    );
+    keys::set_assignment(&mut p, "backlash_um=10").unwrap();
+    let again = core.handle(&bif(2, 0, &p));
+    assert!(matches!(again.first(), Some(FromWorker::Bands { id: 2, bands: b, .. }) if b == bands));
+    let other = WorkerCore::new().handle(&bif(3, 1, &p));
+    assert!(!other.iter().any(|m| matches!(m, FromWorker::Bands { .. })));
+}
+
+#[test]
+fn hbm_job_streams_the_branch_in_chunks_and_a_newer_job_replaces_it() {
+    let p = ModelParams::defaults(solver::ModelKind::GearPair);
+    let hbm = |id, harmonics| {
+        run_msg(
+            id,
+            &p,
+            JobSpec::Hbm {
+                omega_from: 0.3,
+                omega_to: 1.8,
+                points: 60,
+                harmonics,
+                stability: true,
+            },
+        )
+    };
+    let mut core = WorkerCore::new();
+    let out = core.handle(&hbm(1, 3));
+    assert!(matches!(out[0], FromWorker::Progress { id: 1, .. }));
+    let out = core.step();
+    assert!(
+        matches!(&out[..], [FromWorker::HbmPoints { id: 1, points, finished: false, error: None, .. }] if !points.is_empty() && points.len() <= HBM_CHUNK)
+    );
+    core.handle(&hbm(2, 3));
+    let out = drain(&mut core);
+    let mut omegas = Vec::new();
+    let mut last = None;
+    for m in &out {
+        let FromWorker::HbmPoints {
+            id,
+            points,
+            progress,
+            finished,
+            error,
+        } = m
+        else {
+            panic!("unexpected {m:?}");
+        };
+        assert_eq!(*id, 2);
+        assert!(points.len() <= HBM_CHUNK);
+        for s in points {
+            assert_eq!(s.meshes.len(), 1);
+            assert!(s.meshes[0].rel_max_um >= s.meshes[0].rel_min_um);
+            assert!(s.stable.is_some());
+            omegas.push(s.omega);
+        }
+        last = Some((*progress, *finished, error.clone()));
+    }
+    assert_eq!(last, Some((1.0, true, None)));
+    assert!(omegas[0] == 0.3 && omegas.len() > 30, "{omegas:?}");
+    assert!(!core.has_work());
+    // A cancel drops a running branch.
+    core.handle(&hbm(3, 3));
+    core.handle(&encode(&ToWorker::Cancel { kind: JobKind::Hbm }));
+    assert!(!core.has_work());
+    // Out-of-range harmonics fail cleanly.
+    let out = core.handle(&hbm(4, 99));
+    assert!(
+        matches!(&out[0], FromWorker::Failed { id: 4, message } if message.contains("harmonics"))
+    );
+}
+
+#[test]
+fn newer_job_replaces_older_and_bad_params_fail_cleanly() {
+    let mut core = WorkerCore::new();
+    let p = ModelParams::defaults(solver::ModelKind::GearPair);
+    let bif = |id| {
+        run_msg(
+            id,
+            &p,
+            JobSpec::Bif {
+                omega_from: 0.5,
+                omega_to: 1.5,
+                points: 4,
+                directions: "both".into(),
+                chains: 2,
+                shard: 1,
+                run: quick(),
+            },
+        )
+    };
+    core.handle(&bif(1));
+    core.step();
+    core.handle(&bif(2));
+    let out = drain(&mut core);
+    assert!(out.iter().all(|m| match m {
+        FromWorker::BifPoints { id, .. }
+        | FromWorker::Progress { id, .. }
+        | FromWorker::Done { id } => *id == 2,
+        _ => false,
+    }));
+    // Shard 1 of 2 chains over 4 points: indices 1 and 3, up and down.
+    let n: usize = out
+        .iter()
+        .map(|m| match m {
+            FromWorker::BifPoints { points, .. } => points.len(),
+            _ => 0,
+        })
+        .sum();
+    assert_eq!(n, 4);
+
+    let mut bad = params(&p);
+    bad.insert("backlash_um".into(), Value::from(-5));
+    let msg = encode(&ToWorker::Run {
+        id: 9,
+        params: bad,
+        job: JobSpec::Omega {
+            omega: 1.0,
+            mesh: Some(0),
+            run: quick(),
+            samples_per_period: 16,
+            max_order: 4.0,
+        },
+    });
+    let out = core.handle(&msg);
+    assert!(
+        matches!(&out[0], FromWorker::Failed { id: 9, message } if message.contains("backlash_um"))
+    );
+    assert!(matches!(
+        core.handle("{not json")[0],
+        FromWorker::Failed { id: 0, .. }
+    ));
+}
+
+#[test]
+fn exported_shards_merge_into_the_cli_format() {
+    let p = ModelParams::defaults(solver::ModelKind::GearPair);
+    let mut cores = [WorkerCore::new(), WorkerCore::new()];
+    for (w, core) in cores.iter_mut().enumerate() {
+        core.handle(&run_msg(
+            5,
+            &p,
+            JobSpec::Bif {
+                omega_from: 0.6,
+                omega_to: 1.2,
+                points: 4,
+                directions: "up".into(),
+                chains: 2,
+                shard: w as u32,
+                run: quick(),
+            },
+        ));
+        drain(core);
+    }
+    let FromWorker::Export { text: shard1, .. } = cores[1].handle(&encode(&ToWorker::ExportBif {
+        id: 5,
+        mesh: Some(0),
+        other: vec![],
+    }))[0]
+        .clone()
+    else {
+        panic!("no export");
+    };
+    let FromWorker::Export { text, .. } = cores[0].handle(&encode(&ToWorker::ExportBif {
+        id: 5,
+        mesh: Some(0),
+        other: vec![shard1],
+    }))[0]
+        .clone()
+    else {
+        panic!("no merged export");
+    };
+    let v: Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(v["spec"]["chains"], 2);
+    assert_eq!(v["spec"]["shard"], Value::Null);
+    let idx: Vec<i64> = v["points"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["index"].as_i64().unwrap())
+        .collect();
+    assert_eq!(idx, vec![0, 1, 2, 3]);
+    // An export of an unknown or unfinished sweep is an error, not a panic.
+    assert!(matches!(
+        cores[0].handle(&encode(&ToWorker::ExportBif {
+            id: 99,
+            mesh: None,
+            other: vec![]
+        }))[0],
+        FromWorker::Failed { .. }
+    ));
+}
