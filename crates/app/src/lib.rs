@@ -17,7 +17,6 @@ pub mod controls;
 pub mod gearset;
 pub mod jobs;
 pub mod link;
-pub mod maps;
 pub mod plots;
 pub mod plots_maps;
 pub mod presets;

@@ -11,7 +11,9 @@
 //! would set a fill style per pixel, which is slow on a canvas.
 
 use crate::protocol::{history_start, OmegaResult, Regime, HISTORY_PERIODS};
-use crate::views::{BifView, FrMarkerKind, FrView, NaturalFreq};
+use crate::views::bif::BifView;
+use crate::views::fr::{FrCurvePoint, FrMarkerKind, FrView};
+use crate::views::NaturalFreq;
 use glam::DVec2;
 use plotters::coord::{CoordTranslate, Shift};
 use plotters::prelude::*;
@@ -460,7 +462,7 @@ fn draw_marker_px<DB: DrawingBackend>(
 /// are drawn, since only they can be observed.
 fn regime_strip<'a, DB: DrawingBackend + 'a>(
     chart: &mut Chart<'a, DB>,
-    points: &[crate::views::FrCurvePoint],
+    points: &[FrCurvePoint],
     y: (f64, f64),
 ) -> Res<()> {
     let (lo, hi) = (y.0, y.0 + 0.025 * (y.1 - y.0));
@@ -642,7 +644,7 @@ pub fn draw_fr<DB: DrawingBackend>(
                 (false, true, false) => A_MIN,
                 _ => color,
             };
-            let val = |p: &crate::views::FrCurvePoint| if which { p.max_um } else { p.min_um };
+            let val = |p: &FrCurvePoint| if which { p.max_um } else { p.min_um };
             // Split into runs of equal stability: stable (or unknown) solid,
             // unstable dashed; consecutive runs share their joining point.
             let mut runs: Vec<(bool, Vec<(f64, f64)>)> = Vec::new();
@@ -1254,7 +1256,7 @@ pub fn draw_spectrum<DB: DrawingBackend>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::views::{FrBranch, FrCurvePoint, FrMarker, FrSource};
+    use crate::views::fr::{FrBranch, FrMarker, FrSource};
 
     fn svg<F: FnOnce(&DrawingArea<SVGBackend, Shift>) -> Res<()>>(f: F) -> String {
         let mut s = String::new();
@@ -1381,7 +1383,7 @@ mod tests {
                 transient_periods: 300,
                 record_periods: 30,
             }),
-            discrepancy: crate::views::Discrepancy {
+            discrepancy: crate::views::fr::Discrepancy {
                 max_um: Some(1.5),
                 compared: 1,
                 off_branch: 2,

@@ -8,12 +8,12 @@
 //! shares the bifurcation diagram's Omega axis, margins and label widths, so
 //! its Omega ticks line up with the diagram above it.
 
-use crate::maps::{lyap_kind, LyapKind, LyapStore, MapView, LYAP_ZERO_BAND};
 use crate::plots::{
     caption_font, err, frame_of, omega_decorations, padded_range, regime_color, small, PlotFrame,
     Res, GRID,
 };
 use crate::protocol::Regime;
+use crate::views::map::{lyap_kind, LyapKind, LyapStore, MapView, LYAP_ZERO_BAND};
 use crate::views::NaturalFreq;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -339,9 +339,9 @@ pub fn draw_lyap<DB: DrawingBackend>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::maps::{MapGrid, MapStore};
     use crate::plots::WIDTH;
     use crate::protocol::{LyapSample, MapSample};
+    use crate::views::map::{MapGrid, MapStore};
 
     #[test]
     fn the_map_and_the_lyapunov_curve_draw_with_labelled_axes() {

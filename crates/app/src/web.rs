@@ -1383,10 +1383,10 @@ fn export_view(page: &Shared, view: &str, fmt: &str) {
                 (serde_json::to_string(&v).unwrap_or_default(), true)
             }
         }
-        "map" if fmt == "CSV" => (crate::maps::map_csv(&p.ctl.map), true),
-        "map" => (crate::maps::map_json(&p.ctl.map).to_string(), true),
-        "lyap" if fmt == "CSV" => (crate::maps::lyap_csv(&p.ctl.lyap), true),
-        "lyap" => (crate::maps::lyap_json(&p.ctl.lyap).to_string(), true),
+        "map" if fmt == "CSV" => (crate::views::map::map_csv(&p.ctl.map), true),
+        "map" => (crate::views::map::map_json(&p.ctl.map).to_string(), true),
+        "lyap" if fmt == "CSV" => (crate::views::map::lyap_csv(&p.ctl.lyap), true),
+        "lyap" => (crate::views::map::lyap_json(&p.ctl.lyap).to_string(), true),
         _ => {
             let which = match view {
                 "phase" => OmegaView::Phase,

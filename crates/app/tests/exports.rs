@@ -75,62 +75,37 @@ fn exports() -> String {
     out
 }
 
-/// Every export of the page: (file name, text).
+/// Every export of the page, as the page's export buttons ask the
+/// controller for them: (file name, text).
 fn files(c: &mut Controller, cores: &mut [WorkerCore]) -> Vec<(String, String)> {
-    use app::views::{self, OmegaView};
-    let mesh = c.mesh_file_label();
+    use app::controller::Format;
+    use app::views::{ViewId, VIEWS};
     let mut out = Vec::new();
-    let fr = c.fr_view();
-    out.push((format!("gearshock-fr-{mesh}.csv"), views::fr_csv(&fr)));
-    out.push((
-        format!("gearshock-fr-{mesh}.json"),
-        serde_json::to_string_pretty(&fr).unwrap(),
-    ));
-    let bif = c.bif_view();
-    out.push((format!("gearshock-bif-{mesh}.csv"), views::bif_csv(&bif)));
-    out.push((
-        format!("gearshock-bif-{mesh}.json"),
-        serde_json::to_string(&bif).unwrap(),
-    ));
-    out.push((
-        format!("gearshock-map-{mesh}.csv"),
-        app::maps::map_csv(&c.map),
-    ));
-    out.push((
-        format!("gearshock-map-{mesh}.json"),
-        app::maps::map_json(&c.map).to_string(),
-    ));
-    out.push((
-        format!("gearshock-lyap-{mesh}.csv"),
-        app::maps::lyap_csv(&c.lyap),
-    ));
-    out.push((
-        format!("gearshock-lyap-{mesh}.json"),
-        app::maps::lyap_json(&c.lyap).to_string(),
-    ));
-    let r = c.omega.clone().expect("the selected-Omega result");
-    assert!(!r.preview);
-    for (view, which) in [
-        ("phase", OmegaView::Phase),
-        ("poincare", OmegaView::Poincare),
-        ("time", OmegaView::Time),
-        ("spectrum", OmegaView::Spectrum),
-    ] {
-        out.push((
-            format!("gearshock-{view}-{mesh}.csv"),
-            views::omega_csv(&r, which),
-        ));
-        out.push((
-            format!("gearshock-{view}-{mesh}.json"),
-            views::omega_json(&r, which).to_string(),
-        ));
+    let file = |e: Effect| match e {
+        Effect::Download { name, text, .. } => (name, text),
+        Effect::Post { .. } => panic!("a data export posts nothing"),
+    };
+    // The order the snapshot was written in: the sweeps, the map and the
+    // Lyapunov curve, then the selected-Omega views.
+    let order = [ViewId::Fr, ViewId::Bif, ViewId::Map, ViewId::Lyap]
+        .into_iter()
+        .chain([
+            ViewId::Phase,
+            ViewId::Poincare,
+            ViewId::Time,
+            ViewId::Spectrum,
+        ]);
+    assert_eq!(order.clone().count(), VIEWS.len());
+    for view in order {
+        for format in Format::ALL {
+            out.push(file(c.export(view, format).unwrap()));
+        }
     }
-    out.push((
-        format!("gearshock-simulate-{}-{}.json", r.mesh_name, r.omega),
-        r.cli_json.clone(),
-    ));
-    out.push(("gearshock-params.json".into(), c.params_json()));
-    let fx = c.request_bif_export().expect("a bifurcation export");
+    let sim = c.export_cli(ViewId::Time).unwrap();
+    assert_eq!(sim.len(), 1);
+    out.extend(sim.into_iter().map(file));
+    out.push(file(c.export_params()));
+    let fx = c.export_cli(ViewId::Bif).expect("a bifurcation export");
     for d in settle(c, cores, fx) {
         if let Effect::Download { name, mime, text } = d {
             out.push((format!("{name} ({mime})"), text));

@@ -1,0 +1,236 @@
+//! Exports: each view's data as CSV or JSON, the CLI-format JSON (the
+//! bifurcation sweep assembled from the workers' shards), the parameters
+//! file and the CLI commands.
+
+use super::*;
+use crate::views::{omega::OmegaView, ExportKind, ViewId};
+
+/// A data export's format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// Comma-separated values.
+    Csv,
+    /// JSON.
+    Json,
+}
+
+impl Format {
+    /// Both formats, in the export bar's order.
+    pub const ALL: [Format; 2] = [Format::Csv, Format::Json];
+
+    /// The button's label.
+    pub fn label(self) -> &'static str {
+        match self {
+            Format::Csv => "CSV",
+            Format::Json => "JSON",
+        }
+    }
+
+    fn file(self) -> (&'static str, &'static str) {
+        match self {
+            Format::Csv => ("csv", "text/csv"),
+            Format::Json => ("json", "application/json"),
+        }
+    }
+}
+
+/// Why an export cannot be offered now (the page says so in its status line).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ExportError {
+    /// The selected-Omega views show the page's preview, not a result.
+    #[error(
+        "The selected-Omega views show a preview; export once the full steady state has arrived."
+    )]
+    Preview,
+    /// The selected-Omega steady state has not arrived yet.
+    #[error(
+        "The steady state at the selected Omega is still computing; export once it has arrived."
+    )]
+    NotComputed,
+    /// The bifurcation sweep is still running.
+    #[error("the bifurcation sweep has not finished yet")]
+    SweepRunning,
+    /// The view has no CLI-format export.
+    #[error("this view has no CLI-format export")]
+    NoCliFormat,
+    /// The data could not be written as JSON.
+    #[error("cannot write the JSON: {0}")]
+    Json(String),
+}
+
+fn json_text(r: Result<String, serde_json::Error>) -> Result<String, ExportError> {
+    r.map_err(|e| ExportError::Json(e.to_string()))
+}
+
+impl Controller {
+    /// The selected-Omega result, if it is exportable (not a preview).
+    fn exportable_omega(&self) -> Result<&OmegaResult, ExportError> {
+        match &self.omega {
+            Some(r) if r.preview => Err(ExportError::Preview),
+            Some(r) => Ok(r),
+            None => Err(ExportError::NotComputed),
+        }
+    }
+
+    /// The data behind `view` as a file in `format`.
+    pub fn export(&self, view: ViewId, format: Format) -> Result<Effect, ExportError> {
+        let csv = format == Format::Csv;
+        let text = match view.spec().data {
+            ExportKind::Fr => {
+                let v = self.fr_view();
+                if csv {
+                    crate::views::fr::fr_csv(&v)
+                } else {
+                    json_text(serde_json::to_string_pretty(&v))?
+                }
+            }
+            ExportKind::Bif => {
+                let v = self.bif_view();
+                if csv {
+                    crate::views::bif::bif_csv(&v)
+                } else {
+                    json_text(serde_json::to_string(&v))?
+                }
+            }
+            ExportKind::Map if csv => crate::views::map::map_csv(&self.map),
+            ExportKind::Map => crate::views::map::map_json(&self.map).to_string(),
+            ExportKind::Lyap if csv => crate::views::map::lyap_csv(&self.lyap),
+            ExportKind::Lyap => crate::views::map::lyap_json(&self.lyap).to_string(),
+            ExportKind::Omega => {
+                let r = self.exportable_omega()?;
+                let which = OmegaView::of(view).ok_or(ExportError::NoCliFormat)?;
+                if csv {
+                    crate::views::omega::omega_csv(r, which)
+                } else {
+                    crate::views::omega::omega_json(r, which).to_string()
+                }
+            }
+        };
+        let (ext, mime) = format.file();
+        Ok(Effect::Download {
+            name: format!("gearshock-{}-{}.{ext}", view.key(), self.mesh_file_label()),
+            mime: mime.into(),
+            text,
+        })
+    }
+
+    /// The data behind `view` in the CLI's JSON format: the selected-Omega
+    /// run as `gearshock simulate` writes it (a download at once), or the
+    /// bifurcation sweep, assembled from the workers' shards (messages to
+    /// post; the download follows their replies).
+    pub fn export_cli(&mut self, view: ViewId) -> Result<Vec<Effect>, ExportError> {
+        match view.spec().data {
+            ExportKind::Bif => self.request_bif_export(),
+            ExportKind::Omega => {
+                let r = self.exportable_omega()?;
+                Ok(vec![Effect::Download {
+                    name: format!("gearshock-simulate-{}-{}.json", r.mesh_name, r.omega),
+                    mime: "application/json".into(),
+                    text: r.cli_json.clone(),
+                }])
+            }
+            _ => Err(ExportError::NoCliFormat),
+        }
+    }
+
+    /// The parameters as the CLI's `--params` file.
+    pub fn export_params(&self) -> Effect {
+        Effect::Download {
+            name: "gearshock-params.json".into(),
+            mime: "application/json".into(),
+            text: self.params_json(),
+        }
+    }
+
+    /// Starts assembling the bifurcation JSON in the CLI's format: the last
+    /// shard exports first, then worker 0 merges the others into its own.
+    fn request_bif_export(&mut self) -> Result<Vec<Effect>, ExportError> {
+        if self.bif_status.finished_ms.is_none() {
+            return Err(ExportError::SweepRunning);
+        }
+        let (mesh, _) = self.mesh_and_backlash();
+        let id = self.bif.id;
+        self.export = Some(PendingExport { id, mesh });
+        let chains = (WORKERS as u32).min(self.settings.view.bif_points) as usize;
+        let msg = ToWorker::ExportBif {
+            id,
+            mesh,
+            other: Vec::new(),
+        };
+        Ok(self.post(chains - 1, &msg))
+    }
+
+    pub(super) fn export_reply(&mut self, worker: usize, id: JobId, text: String) -> Vec<Effect> {
+        let Some(pending) = self.export.clone().filter(|e| e.id == id) else {
+            return Vec::new();
+        };
+        if worker == 0 {
+            self.export = None;
+            return vec![Effect::Download {
+                name: format!("gearshock-bifurcation-{}.json", self.mesh_file_label()),
+                mime: "application/json".into(),
+                text,
+            }];
+        }
+        let msg = ToWorker::ExportBif {
+            id,
+            mesh: pending.mesh,
+            other: vec![text],
+        };
+        self.post(0, &msg)
+    }
+
+    /// The plotted mesh for file names.
+    pub fn mesh_file_label(&self) -> String {
+        self.settings.view.mesh.text().to_string()
+    }
+
+    /// The CLI commands that reproduce the current views natively.
+    pub fn cli_commands(&self) -> String {
+        let v = &self.settings.view;
+        let mesh = match (&self.model, &v.mesh) {
+            (_, MeshSel::Named(n)) => n.clone(),
+            (Ok(m), MeshSel::Worst) => self
+                .omega
+                .as_ref()
+                .map_or_else(|| m.system.meshes[0].name.clone(), |r| r.mesh_name.clone()),
+            (Err(_), MeshSel::Worst) => "s1a1".into(),
+        };
+        let chains = (WORKERS as u32).min(v.bif_points);
+        let frf_mesh = match &v.mesh {
+            MeshSel::Named(n) => n.as_str(),
+            MeshSel::Worst => "all",
+        };
+        format!(
+            "gearshock frf --params gearshock-params.json --omega-from {} --omega-to {} --points {} --harmonics {} --mesh {frf_mesh}\n\
+             gearshock simulate --params gearshock-params.json --omega {} --mesh {mesh} --transient-periods {} --record-periods {}\n\
+             gearshock bifurcation --params gearshock-params.json --omega-from {} --omega-to {} --points {} --direction {} --transient-periods {} --record-periods {} --mesh {} --chains {chains}",
+            v.omega_from,
+            v.omega_to,
+            v.fr_points,
+            v.harmonics,
+            v.omega,
+            v.transient_periods,
+            v.record_periods,
+            v.omega_from,
+            v.omega_to,
+            v.bif_points,
+            v.bif_dir.name(),
+            v.transient_periods,
+            v.record_periods,
+            match &v.mesh {
+                MeshSel::Named(n) => n.as_str(),
+                MeshSel::Worst => "all",
+            }
+        )
+    }
+
+    /// The parameters as the CLI's `--params` JSON.
+    pub fn params_json(&self) -> String {
+        // `{:#}` is serde_json's pretty printer, which cannot fail on a Value.
+        format!(
+            "{:#}",
+            serde_json::Value::Object(keys::to_json(&self.settings.params))
+        )
+    }
+}

@@ -1,0 +1,170 @@
+//! View 2, the bifurcation diagram: the store of the sweep's Poincaré
+//! samples from both workers, the dots the plot draws, and the CSV export.
+
+use super::{csv_num, distinct, ViewContext};
+use crate::protocol::{BifSample, Regime};
+use serde::Serialize;
+
+/// One dot of the bifurcation diagram.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct BifPoint {
+    /// Dimensionless frequency.
+    pub omega: f64,
+    /// Poincaré sample of x = delta - e (um).
+    pub x_um: f64,
+    /// Impact regime at this Omega.
+    pub regime: Regime,
+    /// Upward sweep (else downward).
+    pub up: bool,
+}
+
+/// What the bifurcation diagram draws.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BifView {
+    /// The plotted mesh.
+    pub mesh_label: String,
+    /// ±b lines (um).
+    pub backlash_um: Vec<f64>,
+    /// The dots.
+    pub points: Vec<BifPoint>,
+    /// Lower end of the axis.
+    pub omega_from: f64,
+    /// Upper end.
+    pub omega_to: f64,
+    /// The cursor.
+    pub selected_omega: f64,
+    /// Failed points.
+    pub failed: Vec<(f64, String)>,
+    /// Omega bands where the system with every tooth pair in contact is
+    /// parametrically unstable (shaded).
+    pub unstable_bands: Vec<(f64, f64)>,
+    /// The pinned state A's dots (A/B comparison), drawn under the current ones.
+    pub pinned: Vec<BifPoint>,
+    /// The pinned state A's ±b.
+    pub pinned_backlash_um: Vec<f64>,
+    /// Legend texts of A and B when comparing.
+    pub ab_labels: Option<(String, String)>,
+    /// Swept points received.
+    pub done: usize,
+    /// Swept points in all.
+    pub total: usize,
+}
+
+/// Bifurcation points as they arrive from both workers, for one job.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct BifStore {
+    /// The job.
+    pub id: u64,
+    /// Samples in arrival order.
+    pub samples: Vec<BifSample>,
+    /// Swept points in all (both shards).
+    pub total: usize,
+}
+
+impl BifStore {
+    /// An empty store for a new job.
+    pub fn new(id: u64, total: usize) -> Self {
+        BifStore {
+            id,
+            samples: Vec::new(),
+            total,
+        }
+    }
+
+    /// The view of mesh `mesh` (`None` = each point's worst mesh).
+    pub fn view(&self, mesh: Option<usize>, backlash_um: &[f64], ctx: &ViewContext) -> BifView {
+        let mut points = Vec::new();
+        let mut failed = Vec::new();
+        for s in &self.samples {
+            if let Some(e) = &s.error {
+                failed.push((s.omega, e.clone()));
+                continue;
+            }
+            let j = mesh.unwrap_or(s.worst_mesh);
+            let Some(m) = s.meshes.get(j) else { continue };
+            points.extend(m.x_um.iter().map(|&x| BifPoint {
+                omega: s.omega,
+                x_um: x,
+                regime: m.regime,
+                up: s.up,
+            }));
+        }
+        BifView {
+            mesh_label: ctx.mesh_label.clone(),
+            backlash_um: distinct(backlash_um, mesh),
+            points,
+            omega_from: ctx.omega_from,
+            omega_to: ctx.omega_to,
+            selected_omega: ctx.selected_omega,
+            failed,
+            unstable_bands: Vec::new(),
+            pinned: Vec::new(),
+            pinned_backlash_um: Vec::new(),
+            ab_labels: None,
+            done: self.samples.len(),
+            total: self.total,
+        }
+    }
+}
+
+/// The most severe regime of a sample's meshes.
+pub fn worst_regime(s: &BifSample) -> Option<Regime> {
+    s.meshes
+        .iter()
+        .map(|m| m.regime)
+        .max_by_key(|&r| r.severity())
+}
+
+/// The bifurcation diagram as CSV.
+pub fn bif_csv(v: &BifView) -> String {
+    let mut s = String::from("omega,direction,x_um,regime\n");
+    for p in &v.points {
+        s.push_str(&format!(
+            "{},{},{},{}\n",
+            csv_num(p.omega),
+            if p.up { "up" } else { "down" },
+            csv_num(p.x_um),
+            p.regime.solver_name()
+        ));
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::protocol::BifMesh;
+
+    fn ctx() -> ViewContext {
+        ViewContext {
+            omega_from: 0.1,
+            omega_to: 2.0,
+            selected_omega: 0.5,
+            mesh_label: "s1a1".into(),
+            natural: vec![],
+        }
+    }
+
+    #[test]
+    fn bif_store_flattens_poincare_samples() {
+        let mut st = BifStore::new(3, 4);
+        st.samples.push(BifSample {
+            index: 0,
+            omega: 0.5,
+            up: false,
+            meshes: vec![BifMesh {
+                x_um: vec![1.0, 2.0],
+                regime: Regime::DoubleSided,
+            }],
+            worst_mesh: 0,
+            period: Some(2),
+            error: None,
+        });
+        let v = st.view(None, &[100.0], &ctx());
+        assert_eq!(v.points.len(), 2);
+        assert!(!v.points[0].up);
+        assert_eq!(v.done, 1);
+        assert_eq!(bif_csv(&v).lines().count(), 3);
+        assert_eq!(worst_regime(&st.samples[0]), Some(Regime::DoubleSided));
+    }
+}

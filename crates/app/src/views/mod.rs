@@ -1,0 +1,98 @@
+//! The views: one table ([`VIEWS`]) names every view the page draws from
+//! the controller's state, and one module per view kind holds its data
+//! store, its view model (what the plot draws) and its CSV/JSON export.
+//!
+//! Architecture invariant: a view is a [`ViewId`]; its key (canvas, export
+//! bar, progress bar, file names), heading number, title, draw priority and
+//! export formats come from [`VIEWS`] and nowhere else.
+
+pub mod bif;
+pub mod fr;
+pub mod map;
+pub mod omega;
+pub mod redraw;
+mod table;
+
+pub use table::{ExportKind, ViewId, ViewSpec, DRAW_ORDER, VIEWS};
+
+use serde::Serialize;
+use solver::modal::ModeKind;
+use solver::steady::Model;
+
+/// A natural frequency of the mean-stiffness linear system.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct NaturalFreq {
+    /// Dimensionless frequency omega_n / omega_ref.
+    pub omega: f64,
+    /// Hz.
+    pub frequency_hz: f64,
+    /// `rotational` or `planet`.
+    pub kind: String,
+    /// Repeated modes.
+    pub multiplicity: usize,
+}
+
+/// The elastic natural frequencies (repeated ones once) within `lo ..= hi`.
+pub fn natural_in_range(model: &Model, lo: f64, hi: f64) -> Vec<NaturalFreq> {
+    let mut out: Vec<NaturalFreq> = Vec::new();
+    for m in model.modes.elastic() {
+        if m.omega < lo || m.omega > hi {
+            continue;
+        }
+        if out
+            .last()
+            .is_some_and(|p| (p.omega - m.omega).abs() <= 1e-6 * m.omega)
+        {
+            continue;
+        }
+        out.push(NaturalFreq {
+            omega: m.omega,
+            frequency_hz: m.frequency_hz,
+            kind: match m.kind {
+                ModeKind::Planet => "planet".into(),
+                ModeKind::Rotational | ModeKind::RigidBody => "rotational".into(),
+            },
+            multiplicity: m.multiplicity,
+        });
+    }
+    out
+}
+
+/// What every view shares: the axis range, the cursor, the mesh label and
+/// the natural frequencies.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ViewContext {
+    /// Lower end of the Omega axis.
+    pub omega_from: f64,
+    /// Upper end.
+    pub omega_to: f64,
+    /// The cursor.
+    pub selected_omega: f64,
+    /// E.g. `s1a1` or `worst mesh`.
+    pub mesh_label: String,
+    /// Natural frequencies in range.
+    pub natural: Vec<NaturalFreq>,
+}
+
+fn csv_num(x: f64) -> String {
+    if x.is_finite() {
+        format!("{x}")
+    } else {
+        String::new()
+    }
+}
+
+fn csv_opt<T: std::fmt::Display>(x: Option<T>) -> String {
+    x.map_or(String::new(), |v| v.to_string())
+}
+
+/// The distinct ±b values of the plotted mesh (all meshes' for "worst").
+pub fn distinct(backlash_um: &[f64], mesh: Option<usize>) -> Vec<f64> {
+    let mut out: Vec<f64> = match mesh {
+        Some(j) => backlash_um.get(j).copied().into_iter().collect(),
+        None => backlash_um.to_vec(),
+    };
+    out.sort_by(f64::total_cmp);
+    out.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+    out
+}

@@ -1,0 +1,232 @@
+//! The redraw scheduler: which views to draw in this animation frame, as a
+//! pure type fed with the page's clock (`now_ms`), so it is tested natively.
+//!
+//! A change marks views as needed ([`Redraw::mark`]); each frame the page
+//! walks [`DRAW_ORDER`] and asks [`Redraw::decide`] per view: draw it, skip
+//! it for now (a running sweep's view is redrawn at most every
+//! [`RUNNING_REDRAW_MS`], though a new job's start and its first points show
+//! at once), or stop (the frame's budget [`FRAME_BUDGET_MS`] is spent; the
+//! rest waits for the next frame). It also keeps the per-view counters the
+//! tests' status reports.
+
+use super::{ViewId, DRAW_ORDER, VIEWS};
+use crate::controller::{Dirty, JobStatus};
+
+/// Main-thread time after which a frame starts no further view (ms): a
+/// full refresh spreads over a few frames instead of blocking one. (Drawing
+/// the frequency response and the phase portrait in one frame regardless
+/// was tried: with both workers busy such frames reached 100 ms.)
+pub const FRAME_BUDGET_MS: f64 = 8.0;
+/// While a sweep is still running its view is redrawn at most this often (ms).
+pub const RUNNING_REDRAW_MS: f64 = 250.0;
+
+const N: usize = VIEWS.len();
+
+/// What to do with a view in this frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Decision {
+    /// Draw it now.
+    Draw,
+    /// Not now (not needed, or throttled while its job runs).
+    Skip,
+    /// The frame's budget is spent: draw nothing more in this frame.
+    Stop,
+}
+
+/// Which views need drawing, and what the drawing took.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Redraw {
+    need: [bool; N],
+    /// Draws per view.
+    pub draws: [u32; N],
+    /// When each view was last drawn (ms).
+    pub last_draw_ms: [f64; N],
+    /// The longest draw per view (ms).
+    pub max_draw_ms: [f64; N],
+    /// When each view was first drawn (ms, 0 before).
+    pub first_draw_ms: [f64; N],
+}
+
+impl Redraw {
+    /// Marks the views whose data `dirty` says changed.
+    pub fn mark(&mut self, dirty: &Dirty) {
+        for v in ViewId::ALL {
+            let changed = match v {
+                ViewId::Fr => dirty.fr,
+                ViewId::Bif => dirty.bif,
+                ViewId::Phase | ViewId::Poincare | ViewId::Time | ViewId::Spectrum => dirty.omega,
+                ViewId::Map => dirty.map,
+                ViewId::Lyap => dirty.lyap,
+            };
+            self.need[v.slot()] |= changed;
+        }
+    }
+
+    /// Whether a view still waits for a frame.
+    pub fn pending(&self) -> bool {
+        self.need.iter().any(|&n| n)
+    }
+
+    /// Whether `view` waits to be drawn.
+    pub fn needs(&self, view: ViewId) -> bool {
+        self.need[view.slot()]
+    }
+
+    /// Whether to draw `view` at `now_ms` in a frame that started at
+    /// `frame_ms`; `status` is the view's job when it streams points. A
+    /// [`Decision::Draw`] clears the need: call [`Self::drawn`] after.
+    pub fn decide(
+        &mut self,
+        view: ViewId,
+        frame_ms: f64,
+        now_ms: f64,
+        status: Option<&JobStatus>,
+    ) -> Decision {
+        let k = view.slot();
+        if !self.need[k] {
+            return Decision::Skip;
+        }
+        if now_ms - frame_ms > FRAME_BUDGET_MS {
+            return Decision::Stop;
+        }
+        let status = status.filter(|_| view.spec().progressive);
+        let running = status.is_some_and(JobStatus::running);
+        // Progressive views: throttle redraws while points stream in, but
+        // show a new job's start (the new settings) and its first points
+        // at once.
+        let last = self.last_draw_ms[k];
+        let fresh = status
+            .is_some_and(|s| s.started_ms > last || s.first_data_ms.is_some_and(|t| t > last));
+        if running && !fresh && self.draws[k] > 0 && now_ms - last < RUNNING_REDRAW_MS {
+            return Decision::Skip;
+        }
+        self.need[k] = false;
+        Decision::Draw
+    }
+
+    /// Records that `view` was drawn from `start_ms` to `end_ms`.
+    pub fn drawn(&mut self, view: ViewId, start_ms: f64, end_ms: f64) {
+        let k = view.slot();
+        self.draws[k] += 1;
+        self.last_draw_ms[k] = end_ms;
+        self.max_draw_ms[k] = self.max_draw_ms[k].max(end_ms - start_ms);
+        if self.first_draw_ms[k] == 0.0 {
+            self.first_draw_ms[k] = end_ms;
+        }
+    }
+
+    /// The views to draw in one frame if each takes `draw_ms`, for tests
+    /// and for reasoning about the order: [`Self::decide`] over
+    /// [`DRAW_ORDER`] from `frame_ms`, with `status` per view.
+    pub fn plan<'a>(
+        &mut self,
+        frame_ms: f64,
+        draw_ms: f64,
+        status: impl Fn(ViewId) -> Option<&'a JobStatus>,
+    ) -> Vec<ViewId> {
+        let mut now = frame_ms;
+        let mut out = Vec::new();
+        for v in DRAW_ORDER {
+            match self.decide(v, frame_ms, now, status(v)) {
+                Decision::Stop => break,
+                Decision::Skip => {}
+                Decision::Draw => {
+                    self.drawn(v, now, now + draw_ms);
+                    now += draw_ms;
+                    out.push(v);
+                }
+            }
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn all() -> Dirty {
+        Dirty {
+            fr: true,
+            bif: true,
+            omega: true,
+            map: true,
+            lyap: true,
+            ..Dirty::default()
+        }
+    }
+
+    /// A full refresh draws the slider's views first and spreads over
+    /// frames once a frame's budget is spent.
+    #[test]
+    fn a_full_refresh_spreads_over_frames_in_draw_order() {
+        let mut r = Redraw::default();
+        r.mark(&all());
+        // 3 ms per view: views start at 0, 3, 6, 9 ms; the fourth starts
+        // after the 8 ms budget, so three per frame.
+        let first = r.plan(100.0, 3.0, |_| None);
+        assert_eq!(first, vec![ViewId::Fr, ViewId::Phase, ViewId::Bif]);
+        let second = r.plan(200.0, 3.0, |_| None);
+        assert_eq!(
+            second,
+            vec![ViewId::Poincare, ViewId::Time, ViewId::Spectrum]
+        );
+        let third = r.plan(300.0, 3.0, |_| None);
+        assert_eq!(third, vec![ViewId::Lyap, ViewId::Map]);
+        assert!(!r.pending());
+        assert_eq!(r.draws, [1; 8]);
+        assert_eq!(r.first_draw_ms[ViewId::Fr.slot()], 103.0);
+        assert_eq!(r.max_draw_ms[ViewId::Map.slot()], 3.0);
+        // Nothing marked: nothing drawn.
+        assert!(r.plan(400.0, 3.0, |_| None).is_empty());
+    }
+
+    /// A running sweep's view is redrawn at most every RUNNING_REDRAW_MS,
+    /// but a new job's start and its first data show at once; a view whose
+    /// job does not stream (the selected-Omega views) is never throttled.
+    #[test]
+    fn running_sweeps_are_throttled_but_fresh_data_is_not() {
+        let mut r = Redraw::default();
+        let mut st = JobStatus {
+            id: 4,
+            started_ms: 0.0,
+            total: 10,
+            ..JobStatus::default()
+        };
+        let bif = Dirty {
+            bif: true,
+            omega: true,
+            ..Dirty::default()
+        };
+        r.mark(&bif);
+        let status = |s: &JobStatus| s.clone();
+        let s0 = status(&st);
+        let drawn = r.plan(10.0, 1.0, |v| (v == ViewId::Bif).then_some(&s0));
+        assert!(drawn.contains(&ViewId::Bif) && drawn.contains(&ViewId::Phase));
+        // 100 ms later, more points, same job: throttled, still needed.
+        r.mark(&bif);
+        let drawn = r.plan(112.0, 1.0, |v| (v == ViewId::Bif).then_some(&s0));
+        assert!(!drawn.contains(&ViewId::Bif) && drawn.contains(&ViewId::Phase));
+        assert!(r.needs(ViewId::Bif));
+        // The first data arrive: drawn at once.
+        st.first_data_ms = Some(115.0);
+        let s1 = status(&st);
+        let drawn = r.plan(120.0, 1.0, |v| (v == ViewId::Bif).then_some(&s1));
+        assert_eq!(drawn, vec![ViewId::Bif]);
+        // More points within 250 ms: throttled; after 250 ms: drawn.
+        r.mark(&bif);
+        assert!(!r
+            .plan(200.0, 1.0, |v| (v == ViewId::Bif).then_some(&s1))
+            .contains(&ViewId::Bif));
+        assert!(r
+            .plan(380.0, 1.0, |v| (v == ViewId::Bif).then_some(&s1))
+            .contains(&ViewId::Bif));
+        // A finished job is not throttled.
+        st.finished_ms = Some(390.0);
+        let s2 = status(&st);
+        r.mark(&bif);
+        assert!(r
+            .plan(400.0, 1.0, |v| (v == ViewId::Bif).then_some(&s2))
+            .contains(&ViewId::Bif));
+    }
+}
