@@ -21,7 +21,9 @@ pub mod plots;
 pub mod plots_maps;
 pub mod presets;
 pub mod protocol;
+pub mod scene;
 pub mod settings;
+pub mod status;
 pub mod views;
 pub mod worker_core;
 

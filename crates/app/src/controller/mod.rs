@@ -16,6 +16,7 @@ use crate::protocol::{
     encode, FromWorker, JobId, JobKind, JobSpec, OmegaResult, RunOptions, ToWorker,
 };
 use crate::settings::{mesh_names, view_key, MeshSel, Settings};
+pub use crate::status::{Dirty, JobStatus, PROGRESS_AFTER_MS};
 use crate::views::bif::{BifStore, BifView};
 use crate::views::fr::{fr_view, FrBranch, FrSource, FrStore, FrView, HbmStore};
 use crate::views::map::{LyapStore, MapGrid, MapStore, MapView};
@@ -34,9 +35,6 @@ pub const HBM_WORKER: usize = WORKERS - 1;
 /// How a failure of the harmonic-balance branch starts in the messages (a
 /// new branch clears the old branch's failure).
 const HBM_FAILURE: &str = "Frequency response: the harmonic-balance solver failed";
-/// Jobs shorter than this show no progress indicator (ms).
-pub const PROGRESS_AFTER_MS: f64 = 200.0;
-
 /// Something the web layer must do.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Effect {
@@ -56,71 +54,6 @@ pub enum Effect {
         /// Contents.
         text: String,
     },
-}
-
-/// Progress and timing of the current job of one kind.
-#[derive(Debug, Clone, PartialEq, Default, serde::Serialize)]
-pub struct JobStatus {
-    /// Current job id (0: none yet).
-    pub id: JobId,
-    /// When it was started (ms, the page's clock).
-    pub started_ms: f64,
-    /// When its first data arrived.
-    pub first_data_ms: Option<f64>,
-    /// When it finished.
-    pub finished_ms: Option<f64>,
-    /// Units done.
-    pub done: usize,
-    /// Units in all.
-    pub total: usize,
-    /// Why it failed, if it did.
-    pub error: Option<String>,
-    /// When the page's own preview of this job's result was shown (the
-    /// selected-Omega job only).
-    pub preview_ms: Option<f64>,
-}
-
-impl JobStatus {
-    /// Whether it is still running.
-    pub fn running(&self) -> bool {
-        self.id != 0 && self.finished_ms.is_none() && self.error.is_none()
-    }
-
-    /// Progress to show at time `now_ms` (`None` for quick or finished jobs).
-    pub fn progress(&self, now_ms: f64) -> Option<(usize, usize)> {
-        (self.running() && now_ms - self.started_ms > PROGRESS_AFTER_MS)
-            .then_some((self.done, self.total))
-    }
-
-    fn start(id: JobId, now_ms: f64, total: usize) -> Self {
-        JobStatus {
-            id,
-            started_ms: now_ms,
-            total,
-            ..JobStatus::default()
-        }
-    }
-}
-
-/// Which views need drawing.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct Dirty {
-    /// Frequency response.
-    pub fr: bool,
-    /// Bifurcation diagram.
-    pub bif: bool,
-    /// Views 3–6 and the summary.
-    pub omega: bool,
-    /// Control values (after a link, preset or reset).
-    pub controls: bool,
-    /// The URL.
-    pub url: bool,
-    /// The messages area.
-    pub messages: bool,
-    /// The impact-regime map.
-    pub map: bool,
-    /// The Lyapunov curve.
-    pub lyap: bool,
 }
 
 #[derive(Debug, Clone, Default)]
@@ -544,7 +477,12 @@ impl Controller {
 
     /// Everything the tests and the benchmark read (JSON).
     pub fn status_json(&self, now_ms: f64) -> String {
-        let v = serde_json::json!({
+        self.status(now_ms).to_string()
+    }
+
+    /// Everything the tests and the benchmark read.
+    pub fn status(&self, now_ms: f64) -> serde_json::Value {
+        serde_json::json!({
             "query": self.query(),
             "issues": self.issues,
             "omega": self.settings.view.omega,
@@ -580,8 +518,60 @@ impl Controller {
             "omega_result": self.omega.as_ref().map(|r| serde_json::json!({
                 "omega": r.omega, "mesh": r.mesh_name, "impact": r.regime.solver_name(), "period": r.period,
             })),
-        });
-        v.to_string()
+        })
+    }
+}
+
+impl Controller {
+    /// The status of the job whose data `view` shows.
+    pub fn view_status(&self, view: crate::views::ViewId) -> &JobStatus {
+        match view.spec().data {
+            crate::views::ExportKind::Fr => &self.fr_status,
+            crate::views::ExportKind::Bif => &self.bif_status,
+            crate::views::ExportKind::Omega => &self.omega_status,
+            crate::views::ExportKind::Map => &self.map_status,
+            crate::views::ExportKind::Lyap => &self.lyap_status,
+        }
+    }
+
+    /// The summary line at the selected Omega: the result's figures and the
+    /// planet phasing clause, or why there is none yet; the model's warnings.
+    pub fn summary_text(&self) -> String {
+        let natural = self.view_context().natural;
+        let text = match (&self.omega, &self.omega_status.error) {
+            (_, Some(e)) => format!("Not computed: {e}"),
+            (Some(r), None) => {
+                let mut s = crate::views::omega::summary_line(r, &natural);
+                if let Ok(m) = &self.model {
+                    let line = crate::views::omega::phasing_line(m, &self.settings.params, Some(r));
+                    if let Some(line) = line {
+                        s.push(' ');
+                        s.push_str(&line);
+                    }
+                }
+                if self.omega_status.running() && !r.preview {
+                    s.push_str(" Updating…");
+                }
+                s
+            }
+            (None, None) => "Computing the steady state at the selected Omega…".into(),
+        };
+        match &self.model {
+            Ok(m) if !m.system.warnings.is_empty() => {
+                format!("{text} Model warnings: {}", m.system.warnings.join("; "))
+            }
+            _ => text,
+        }
+    }
+
+    /// The mesh the schematic highlights: the chosen one, or the worst of
+    /// the last result.
+    pub fn highlighted_mesh(&self) -> String {
+        match (&self.settings.view.mesh, &self.omega) {
+            (MeshSel::Named(n), _) => n.clone(),
+            (MeshSel::Worst, Some(r)) => r.mesh_name.clone(),
+            _ => String::new(),
+        }
     }
 }
 

@@ -502,6 +502,31 @@ pub fn fr_csv(v: &FrView) -> String {
     s
 }
 
+/// The note under view 1: the method, and how to see the overlay.
+pub fn fr_note(v: &FrView) -> String {
+    let overlay = if v.overlay_source.is_some() {
+        " Hollow dots: time-integration steady states (upward sweep) for comparison."
+    } else {
+        " A time-integration overlay can be switched on under Analysis (fr_ti_points)."
+    };
+    format!(
+        "Method: {} (mesh forces integrated in closed form between the contact switches), pseudo-arclength continuation upward in Ω with Floquet stability.{overlay}",
+        v.method
+    )
+}
+
+/// The caption's status of view 1: progress over the Omega range while the
+/// branch computes, and a partial branch said as such.
+pub fn fr_caption_suffix(running: bool, v: &FrView) -> String {
+    if v.branch_error.is_some() {
+        " (partial: solver failed)".into()
+    } else if running {
+        format!(" (computing, {:.0}% of Ω range)", 100.0 * v.progress)
+    } else {
+        String::new()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

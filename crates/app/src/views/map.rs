@@ -350,6 +350,30 @@ pub fn lyap_json(store: &LyapStore) -> serde_json::Value {
     serde_json::json!({ "periods": store.periods, "points": points })
 }
 
+/// The note under the map: cells done, counts per regime, failures with
+/// an example, and what a click does.
+pub fn map_note(store: &MapStore, total: usize) -> String {
+    let (by, not_p1, failed) = store.counts();
+    let mut note = format!(
+        "{} of {} cells: {} no impact, {} single-sided, {} double-sided, {} no contact; {} not period 1",
+        store.done, total, by[0], by[1], by[2], by[3], not_p1
+    );
+    if failed > 0 {
+        note.push_str(&format!("; {failed} failed (dark grey)"));
+        if let Some(c) = store.first_failure() {
+            let key = store.grid.as_ref().map_or("", |g| g.key.as_str());
+            note.push_str(&format!(
+                ", e.g. Omega {:.4}, {key} {:.4}: {}",
+                c.omega,
+                c.value,
+                c.error.as_deref().unwrap_or("")
+            ));
+        }
+    }
+    note.push_str(". Click a cell to set both parameters.");
+    note
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -201,6 +201,20 @@ pub fn omega_json(r: &OmegaResult, which: OmegaView) -> serde_json::Value {
     json!({ "view": head, "data": body })
 }
 
+/// The caption's status of a selected-Omega view.
+pub fn caption_suffix(preview: bool, running: bool) -> &'static str {
+    match (preview, running) {
+        (true, _) => " (preview; full run computing…)",
+        (false, true) => " (updating…)",
+        (false, false) => "",
+    }
+}
+
+/// What a selected-Omega view shows while its first result computes.
+pub fn computing_message(omega: f64) -> String {
+    format!("Computing the steady state at Ω = {omega} in a Web Worker…")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

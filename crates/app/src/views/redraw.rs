@@ -10,7 +10,7 @@
 //! tests' status reports.
 
 use super::{ViewId, DRAW_ORDER, VIEWS};
-use crate::controller::{Dirty, JobStatus};
+use crate::status::{Dirty, JobStatus};
 
 /// Main-thread time after which a frame starts no further view (ms): a
 /// full refresh spreads over a few frames instead of blocking one. (Drawing

@@ -177,6 +177,16 @@ impl ViewId {
         format!("{}. {}", self.spec().number, self.spec().title)
     }
 
+    /// The progress bar's label at `done` of `total`.
+    pub fn progress_label(self, done: usize, total: usize) -> String {
+        match self.spec().data {
+            ExportKind::Fr => format!("harmonic balance: {done}% of the Ω range"),
+            ExportKind::Bif | ExportKind::Lyap => format!("computing {done}/{total} points"),
+            ExportKind::Map => format!("computing {done}/{total} cells"),
+            ExportKind::Omega => "computing…".into(),
+        }
+    }
+
     /// The CLI-format export's button title, for the views that have one.
     pub fn cli_export_title(self) -> Option<&'static str> {
         match self.spec().data {

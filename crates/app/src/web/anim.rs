@@ -1,0 +1,300 @@
+//! The animated gear set on the page: its controls, its own animation-frame
+//! loop (drawing only while on screen), the rasterizer of its
+//! [`Scene`] and the time history's cursor.
+
+use super::*;
+use crate::scene::{anim_note, gear_scene, Item, Marker, Scene, SubPath};
+
+const ANIM_SPEEDS: [(f64, &str); 5] = [
+    (0.1, "0.1 mesh periods/s"),
+    (0.25, "0.25 mesh periods/s"),
+    (0.5, "0.5 mesh periods/s"),
+    (1.0, "1 mesh period/s"),
+    (2.0, "2 mesh periods/s"),
+];
+
+pub(super) fn build_anim_controls(page: &Shared) {
+    let doc = page.borrow().doc.clone();
+    if let Some(b) = doc.get_element_by_id("anim-play") {
+        let page2 = page.clone();
+        listen(&b.into(), "click", move |_e: Event| {
+            let mut p = page2.borrow_mut();
+            p.anim.clock.playing = !p.anim.clock.playing;
+            p.anim.dirty = true;
+        });
+    }
+    for (id, samples) in [("anim-back", -1_i64), ("anim-fwd", 1)] {
+        if let Some(b) = doc.get_element_by_id(id) {
+            let page2 = page.clone();
+            listen(&b.into(), "click", move |_e: Event| {
+                let mut p = page2.borrow_mut();
+                let len = anim_len(&p);
+                p.anim.clock.step(samples, len);
+                p.anim.dirty = true;
+            });
+        }
+    }
+    if let Some(sel) = by_id::<HtmlSelectElement>(&doc, "anim-speed") {
+        for (v, text) in ANIM_SPEEDS {
+            add_option(&doc, &sel, &v.to_string(), text);
+        }
+        sel.set_value("0.5");
+        let page2 = page.clone();
+        let sel2 = sel.clone();
+        listen(&sel.into(), "change", move |_e: Event| {
+            if let Ok(v) = sel2.value().parse::<f64>() {
+                let mut p = page2.borrow_mut();
+                p.anim.clock.periods_per_s = v;
+                p.anim.dirty = true;
+            }
+        });
+    }
+    // A click on the time history moves the animation to that instant.
+    if let Some(cv) = canvas(&doc, ViewId::Time) {
+        let page2 = page.clone();
+        let cv2 = cv.clone();
+        listen(&cv.into(), "click", move |e: MouseEvent| {
+            let (px, py) = canvas_xy(&cv2, &e);
+            let mut p = page2.borrow_mut();
+            let len = anim_len(&p);
+            let (Some(f), Some(r)) = (p.frames[ViewId::Time.slot()], p.ctl.omega.as_ref()) else {
+                return;
+            };
+            let Some(q) = f.point_at(px, py) else { return };
+            let spp = f64::from(r.samples_per_period.max(1));
+            let pos = (q.x * spp).round() - f64::from(r.anim.start_sample);
+            p.anim.clock.playing = false;
+            p.anim.clock.pos = pos.clamp(0.0, len.saturating_sub(1) as f64);
+            p.anim.dirty = true;
+        });
+    }
+}
+
+pub(super) fn anim_len(p: &Page) -> usize {
+    p.ctl
+        .omega
+        .as_ref()
+        .and_then(|r| r.anim.x_um.first())
+        .map_or(0, Vec::len)
+}
+
+/// Tracks whether the animation's two canvases are on screen.
+pub(super) fn observe_anim_visibility(page: &Shared) {
+    let page2 = page.clone();
+    let cb = Closure::<dyn FnMut(js_sys::Array)>::new(move |entries: js_sys::Array| {
+        let mut p = page2.borrow_mut();
+        for e in entries.iter() {
+            let Ok(entry) = e.dyn_into::<IntersectionObserverEntry>() else {
+                continue;
+            };
+            let slot = match entry.target().id().as_str() {
+                "canvas-anim" => 0,
+                "canvas-time-cursor" => 1,
+                _ => continue,
+            };
+            p.anim.offscreen[slot] = !entry.is_intersecting();
+        }
+        p.anim.dirty = true;
+    });
+    let Ok(observer) = IntersectionObserver::new(cb.as_ref().unchecked_ref()) else {
+        return;
+    };
+    let doc = page.borrow().doc.clone();
+    for id in ["canvas-anim", "canvas-time-cursor"] {
+        if let Some(el) = doc.get_element_by_id(id) {
+            observer.observe(&el);
+        }
+    }
+    cb.forget();
+    // The observer lives as long as the page.
+    std::mem::forget(observer);
+}
+
+/// The animation's own requestAnimationFrame loop: a few hundred polygon
+/// vertices and a cursor line per frame, well under a millisecond to draw,
+/// but two canvas updates for the browser to commit; it draws only while
+/// one of its canvases is in view.
+pub(super) fn start_anim_loop(page: &Shared) {
+    type Cb = Closure<dyn FnMut(f64)>;
+    let slot: Rc<RefCell<Option<Cb>>> = Rc::new(RefCell::new(None));
+    let slot2 = slot.clone();
+    let page2 = page.clone();
+    *slot.borrow_mut() = Some(Closure::new(move |ts: f64| {
+        anim_tick(&page2, ts);
+        let window = page2.borrow().window.clone();
+        if let Some(cb) = slot2.borrow().as_ref() {
+            check(window.request_animation_frame(cb.as_ref().unchecked_ref()));
+        }
+    }));
+    let window = page.borrow().window.clone();
+    let first = slot.borrow();
+    if let Some(cb) = first.as_ref() {
+        check(window.request_animation_frame(cb.as_ref().unchecked_ref()));
+    }
+}
+
+pub(super) fn anim_tick(page: &Shared, ts: f64) {
+    let mut p = page.borrow_mut();
+    let dt = p.anim.last_ts.map_or(0.0, |t| (ts - t) / 1000.0);
+    p.anim.last_ts = Some(ts);
+    let len = anim_len(&p);
+    let Some(spp) = p.ctl.omega.as_ref().map(|r| r.samples_per_period) else {
+        return;
+    };
+    if len == 0 {
+        return;
+    }
+    if p.anim.clock.pos >= len as f64 {
+        p.anim.clock.pos = 0.0;
+    }
+    p.anim.clock.advance(dt, spp, len);
+    if !(p.anim.clock.playing || p.anim.dirty) {
+        return;
+    }
+    if p.anim.offscreen.iter().all(|&o| o) {
+        // Drawn once it scrolls into view (the observer sets `dirty`).
+        return;
+    }
+    p.anim.dirty = false;
+    draw_anim(&mut p);
+    draw_time_cursor(&p);
+}
+
+pub(super) fn trace(ctx: &CanvasRenderingContext2d, part: &SubPath) {
+    match part {
+        SubPath::Polygon(pts) | SubPath::Polyline(pts) => {
+            for (i, q) in pts.iter().enumerate() {
+                if i == 0 {
+                    ctx.move_to(q.x, q.y);
+                } else {
+                    ctx.line_to(q.x, q.y);
+                }
+            }
+            if matches!(part, SubPath::Polygon(_)) {
+                ctx.close_path();
+            }
+        }
+        SubPath::Circle { c, r } => {
+            ctx.move_to(c.x + r, c.y);
+            check(ctx.arc(c.x, c.y, *r, 0.0, std::f64::consts::TAU));
+        }
+    }
+}
+
+/// Rasterizes a scene on a canvas of `size` pixels.
+pub(super) fn paint_scene(ctx: &CanvasRenderingContext2d, scene: &Scene, size: (f64, f64)) {
+    ctx.set_font("12px sans-serif");
+    for item in &scene.items {
+        match item {
+            Item::Clear(color) => {
+                ctx.set_fill_style_str(color);
+                ctx.fill_rect(0.0, 0.0, size.0, size.1);
+            }
+            Item::Shape {
+                parts,
+                fill,
+                even_odd,
+                stroke,
+            } => {
+                ctx.begin_path();
+                parts.iter().for_each(|part| trace(ctx, part));
+                if let Some(fill) = fill {
+                    ctx.set_fill_style_str(fill);
+                    if *even_odd {
+                        ctx.fill_with_canvas_winding_rule(web_sys::CanvasWindingRule::Evenodd);
+                    } else {
+                        ctx.fill();
+                    }
+                }
+                if let Some((color, width)) = stroke {
+                    ctx.set_stroke_style_str(color);
+                    ctx.set_line_width(*width);
+                    ctx.stroke();
+                }
+            }
+            Item::Text { at, text, color } => {
+                ctx.set_fill_style_str(color);
+                check(ctx.fill_text(text, at.x, at.y));
+            }
+            Item::Key { at, entries } => {
+                let mut kx = at.x;
+                for (color, label) in entries {
+                    ctx.begin_path();
+                    check(ctx.arc(kx + 6.0, at.y - 4.0, 6.0, 0.0, std::f64::consts::TAU));
+                    ctx.set_fill_style_str(color);
+                    ctx.fill();
+                    ctx.set_fill_style_str("#1d232b");
+                    check(ctx.fill_text(label, kx + 16.0, at.y));
+                    let tw = ctx.measure_text(label).map_or(150.0, |m| m.width());
+                    kx += 16.0 + tw + 18.0;
+                }
+            }
+        }
+    }
+}
+
+pub(super) fn draw_anim(p: &mut Page) {
+    let Some(cv) = by_id::<HtmlCanvasElement>(&p.doc, "canvas-anim") else {
+        return;
+    };
+    let Some(ctx) = ctx2d(&cv) else { return };
+    let params = p.ctl.settings.params.clone();
+    if p.anim.set.as_ref().is_none_or(|(q, _)| *q != params) {
+        let meshes: Vec<(solver::params::MeshKind, usize)> = match &p.ctl.model {
+            Ok(m) => m.system.meshes.iter().map(|x| (x.kind, x.planet)).collect(),
+            Err(_) => Vec::new(),
+        };
+        p.anim.set = GearSet::new(&params, &meshes).map(|g| (params.clone(), g));
+    }
+    let (Some((_, set)), Some(r)) = (p.anim.set.as_ref(), p.ctl.omega.as_ref()) else {
+        return;
+    };
+    let size = (f64::from(cv.width()), f64::from(cv.height()));
+    let clock = p.anim.clock;
+    let scene = gear_scene(set, r, &clock, size);
+    paint_scene(&ctx, &scene, size);
+    let k = r.anim.start_sample as usize + scene.sample;
+    let markers: &[Marker] = &scene.markers;
+    let info = serde_json::json!({
+        "frames": p.anim.frames + 1,
+        "playing": clock.playing,
+        "periods_per_s": clock.periods_per_s,
+        "sample": scene.sample,
+        "history_sample": k,
+        "t_periods": scene.t_periods,
+        "factor": scene.factor,
+        "omega": r.omega,
+        "plotted_mesh": r.mesh,
+        "plotted_x_um": r.x_um.get(k),
+        "markers": markers,
+    });
+    let note = anim_note(r, &clock);
+    p.anim.frames += 1;
+    p.anim.info = info;
+    set_text(&p.doc, "note-anim", &note);
+    set_text(
+        &p.doc,
+        "anim-play",
+        if clock.playing { "Pause" } else { "Play" },
+    );
+}
+
+pub(super) fn draw_time_cursor(p: &Page) {
+    let Some(cv) = by_id::<HtmlCanvasElement>(&p.doc, "canvas-time-cursor") else {
+        return;
+    };
+    let Some(ctx) = ctx2d(&cv) else { return };
+    ctx.clear_rect(0.0, 0.0, f64::from(cv.width()), f64::from(cv.height()));
+    let (Some(f), Some(r)) = (p.frames[ViewId::Time.slot()], p.ctl.omega.as_ref()) else {
+        return;
+    };
+    let spp = f64::from(r.samples_per_period.max(1));
+    let t = (f64::from(r.anim.start_sample) + p.anim.clock.pos.floor()) / spp;
+    let x = f.to_px(t, f.y_range.0).x;
+    ctx.set_stroke_style_str("rgba(220,20,60,0.9)");
+    ctx.set_line_width(2.0);
+    ctx.begin_path();
+    ctx.move_to(x, f.top_left.y);
+    ctx.line_to(x, f.bottom_right.y);
+    ctx.stroke();
+}
