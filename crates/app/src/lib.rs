@@ -18,7 +18,6 @@ pub mod gearset;
 pub mod jobs;
 pub mod link;
 pub mod plots;
-pub mod plots_maps;
 pub mod presets;
 pub mod protocol;
 pub mod scene;

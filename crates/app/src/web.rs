@@ -456,7 +456,7 @@ fn draw_map(p: &mut Page, root: &Area, cv: &HtmlCanvasElement) -> Result<(), Str
     } else {
         String::new()
     };
-    let (f, o) = crate::plots_maps::draw_map(root, &p.ctl.map_view(), &suffix)?;
+    let (f, o) = crate::plots::maps::draw_map(root, &p.ctl.map_view(), &suffix)?;
     p.frames[ViewId::Map.slot()] = Some(f);
     if let Some(ctx) = ctx2d(cv) {
         fill_map(&ctx, &f, &o);
@@ -465,7 +465,7 @@ fn draw_map(p: &mut Page, root: &Area, cv: &HtmlCanvasElement) -> Result<(), Str
 }
 
 /// The map's cells, one path per colour, then the period dots and the cursor.
-fn fill_map(ctx: &CanvasRenderingContext2d, f: &PlotFrame, o: &crate::plots_maps::MapOverlay) {
+fn fill_map(ctx: &CanvasRenderingContext2d, f: &PlotFrame, o: &crate::plots::maps::MapOverlay) {
     for (c, rects) in &o.cells {
         ctx.begin_path();
         for r in rects {
@@ -508,7 +508,7 @@ fn draw_lyap(p: &mut Page, root: &Area) -> Result<(), String> {
         return not_computed(root, ViewId::Lyap, e);
     }
     let natural = p.ctl.view_context().natural;
-    let f = crate::plots_maps::draw_lyap(
+    let f = crate::plots::maps::draw_lyap(
         root,
         &p.ctl.lyap,
         (v.omega_from, v.omega_to),

@@ -8,9 +8,9 @@
 //! shares the bifurcation diagram's Omega axis, margins and label widths, so
 //! its Omega ticks line up with the diagram above it.
 
-use crate::plots::{
-    caption_font, err, frame_of, omega_decorations, padded_range, regime_color, small, PlotFrame,
-    Res, GRID,
+use super::{
+    err, frame_of, linear_chart, omega_decorations, padded_range, regime_color, small, Axes,
+    PlotFrame, Res, GRID, OMEGA_AXIS,
 };
 use crate::protocol::Regime;
 use crate::views::map::{lyap_kind, LyapKind, LyapStore, MapView, LYAP_ZERO_BAND};
@@ -58,25 +58,12 @@ pub fn draw_map<DB: DrawingBackend>(
     let (w, h) = root.dim_in_pixel();
     // The key sits under the x axis description.
     let (plot_area, key_area) = root.split_vertically(h as i32 - 40);
-    let mut chart = ChartBuilder::on(&plot_area)
-        .caption(
-            format!("Impact-regime map, {}{status}", v.mesh_label),
-            caption_font(),
-        )
-        .margin(8)
-        .x_label_area_size(44)
-        .y_label_area_size(64)
-        .build_cartesian_2d(x.0..x.1, y.0..y.1)
-        .map_err(err)?;
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .x_desc("Ω = ω / ω_ref (dimensionless mesh frequency)")
-        .y_desc(g.key_label())
-        .label_style(small())
-        .axis_desc_style(small())
-        .draw()
-        .map_err(err)?;
+    let caption = format!("Impact-regime map, {}{status}", v.mesh_label);
+    let axes = Axes {
+        grid: false,
+        ..Axes::new(OMEGA_AXIS, g.key_label())
+    };
+    let chart = linear_chart(&plot_area, &caption, (x, y), &axes)?;
     let frame = frame_of(&chart, x, y);
     let (dx, dy) = (0.5 * g.omega_step(), 0.5 * g.value_step());
     let mut overlay = MapOverlay::default();
@@ -243,30 +230,15 @@ pub fn draw_lyap<DB: DrawingBackend>(
     let x = omega_range;
     let y = padded_range(curve.iter().map(|p| p.1), &[0.0], 0.2);
     let y = (y.0, y.1 + 0.3 * (y.1 - y.0));
-    let mut chart = ChartBuilder::on(root)
-        .caption(
-            format!(
-                "Largest Lyapunov exponent of the Poincaré map ({} periods each){status}",
-                store.periods
-            ),
-            caption_font(),
-        )
-        .margin(8)
-        .x_label_area_size(44)
-        .y_label_area_size(64)
-        .build_cartesian_2d(x.0..x.1, y.0..y.1)
-        .map_err(err)?;
-    chart
-        .configure_mesh()
-        .light_line_style(GRID.mix(0.5))
-        .bold_line_style(GRID)
-        .x_desc("Ω = ω / ω_ref (dimensionless mesh frequency)")
-        .y_desc("λ per mesh period (−)")
-        .y_labels(6)
-        .label_style(small())
-        .axis_desc_style(small())
-        .draw()
-        .map_err(err)?;
+    let caption = format!(
+        "Largest Lyapunov exponent of the Poincaré map ({} periods each){status}",
+        store.periods
+    );
+    let axes = Axes {
+        y_labels: Some(6),
+        ..Axes::new(OMEGA_AXIS, "λ per mesh period (−)")
+    };
+    let mut chart = linear_chart(root, &caption, (x, y), &axes)?;
     omega_decorations(&mut chart, natural, selected, y, false)?;
     let zero = ShapeStyle::from(&BLACK).stroke_width(1);
     chart
@@ -318,7 +290,7 @@ pub fn draw_lyap<DB: DrawingBackend>(
                     .map(|&(omega, _)| Cross::new((omega, y.0), 5, grey.stroke_width(2))),
             )
             .map_err(err)?
-            .label(crate::plots::failed_label(&failed))
+            .label(super::failed_label(&failed))
             .legend(move |(px, py)| Cross::new((px + 8, py), 4, grey.stroke_width(2)));
     }
     chart

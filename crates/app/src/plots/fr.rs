@@ -1,0 +1,287 @@
+//! View 1's plot: the frequency response (branches, stability, markers,
+//! the regime strip, the overlay and the key row).
+
+use super::*;
+use crate::views::fr::{FrCurvePoint, FrMarkerKind, FrView};
+
+/// View 1: the frequency response (harmonic-balance branch, stable solid,
+/// unstable dashed, bifurcation markers, optional time-integration dots).
+pub fn draw_fr<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    v: &FrView,
+    status: &str,
+) -> Res<PlotFrame> {
+    root.fill(&WHITE).map_err(err)?;
+    let x = (v.omega_from, v.omega_to);
+    let in_range = |o: f64| o >= x.0 && o <= x.1;
+    let all = v
+        .branches
+        .iter()
+        .flat_map(|b| b.points.iter())
+        .chain(v.overlay.iter())
+        .filter(|p| in_range(p.omega))
+        .flat_map(|p| [p.max_um, p.min_um]);
+    let mut extra: Vec<f64> = v
+        .backlash_um
+        .iter()
+        .chain(v.pinned_backlash_um.iter())
+        .flat_map(|b| [*b, -*b])
+        .collect();
+    extra.push(0.0);
+    // Room at the top for the legend (two lines per branch, the faded
+    // branch, the unstable dash, the failure line).
+    let entries = v.branches.iter().filter(|b| !b.faded).count() * 2
+        + usize::from(v.branches.iter().any(|b| b.faded))
+        + usize::from(v.branch_error.is_some())
+        + 1;
+    let y = with_headroom(padded_range(all, &extra, 20.0), 0.25 + 0.1 * entries as f64);
+    // The key under the chart: contact lines, natural frequencies, the
+    // cursor, regimes, bifurcations, overlay.
+    let mut items: Vec<(KeyIcon, String)> = Vec::new();
+    if !v.backlash_um.is_empty() {
+        let bs: Vec<String> = v.backlash_um.iter().map(|b| format!("{b}")).collect();
+        items.push((
+            KeyIcon::Line(CONTACT, true),
+            format!("±b contact lines (b = {} µm)", bs.join(", ")),
+        ));
+    }
+    let a_only: Vec<String> = v
+        .pinned_backlash_um
+        .iter()
+        .filter(|b| !v.backlash_um.iter().any(|c| (*c - **b).abs() < 1e-9))
+        .map(|b| format!("{b}"))
+        .collect();
+    if !a_only.is_empty() {
+        items.push((
+            KeyIcon::Line(A_MIN, true),
+            format!("A's ±b (b = {} µm)", a_only.join(", ")),
+        ));
+    }
+    if !v.natural.is_empty() {
+        items.push((
+            KeyIcon::Line(NATURAL, false),
+            "natural frequencies (linear, mean k)".into(),
+        ));
+    }
+    items.push((
+        KeyIcon::Line(CURSOR, false),
+        format!("selected Ω = {:.3}", v.selected_omega),
+    ));
+    let mut seen = [false; 4];
+    for r in v
+        .branches
+        .iter()
+        .filter(|b| !b.faded)
+        .flat_map(|b| b.points.iter().filter_map(|p| p.regime))
+        .chain(v.overlay.iter().filter_map(|p| p.regime))
+    {
+        if let Some(i) = Regime::ALL.iter().position(|&x| x == r) {
+            seen[i] = true;
+        }
+    }
+    let mut first = true;
+    for (i, r) in Regime::ALL.iter().enumerate() {
+        if seen[i] {
+            let text = if first {
+                format!("regime strip (stable): {}", r.label())
+            } else {
+                r.label().to_string()
+            };
+            first = false;
+            items.push((KeyIcon::Regime(*r), text));
+        }
+    }
+    for k in FrMarkerKind::ALL {
+        if v.markers.iter().any(|m| m.kind == k) {
+            items.push((KeyIcon::Marker(k), k.label().to_string()));
+        }
+    }
+    if v.overlay_source.is_some() {
+        let d = &v.discrepancy;
+        let mut text = format!("time integration ({} pts)", v.overlay.len());
+        if let Some(m) = d.max_um {
+            text.push_str(&format!(
+                ": max |Δx| {m:.2} µm at {} on the stable branch",
+                d.compared
+            ));
+        }
+        if d.off_branch > 0 {
+            text.push_str(&format!("; {} where none is stable", d.off_branch));
+        }
+        items.push((KeyIcon::Overlay, text));
+    }
+    let (at, rows) = key_layout(root, &items, 76);
+    let key_h = 8 + KEY_ROW * rows;
+    let (upper, _) = root.split_vertically(HEIGHT as i32 - key_h);
+    let caption = format!(
+        "Frequency response, mesh {} ({}){status}",
+        v.mesh_label, v.method
+    );
+    let axes = Axes::new(OMEGA_AXIS, "x = δ − e (µm)");
+    let mut chart = linear_chart(&upper, &caption, (x, y), &axes)?;
+    // These three go in the key under the chart, keeping the legend short.
+    contact_lines(&mut chart, &v.backlash_um, x, true, false)?;
+    pinned_contact_lines(&mut chart, &v.pinned_backlash_um, &v.backlash_um, x)?;
+    omega_decorations(&mut chart, &v.natural, v.selected_omega, y, false)?;
+    let mut any_unstable = false;
+    for br in &v.branches {
+        for (which, color, label) in [(true, MAX_COLOR, "max x"), (false, MIN_COLOR, "min x")] {
+            let color = match (br.faded, br.pinned, which) {
+                (true, _, _) => FADED,
+                (false, true, true) => A_MAX,
+                (false, true, false) => A_MIN,
+                _ => color,
+            };
+            let val = |p: &FrCurvePoint| if which { p.max_um } else { p.min_um };
+            // Split into runs of equal stability: stable (or unknown) solid,
+            // unstable dashed; consecutive runs share their joining point.
+            let mut runs: Vec<(bool, Vec<(f64, f64)>)> = Vec::new();
+            for p in &br.points {
+                let unstable = p.stable == Some(false);
+                match runs.last_mut() {
+                    Some((u, pts)) if *u == unstable => pts.push((p.omega, val(p))),
+                    _ => {
+                        let mut pts = Vec::new();
+                        if let Some((_, prev)) = runs.last() {
+                            if let Some(&last) = prev.last() {
+                                pts.push(last);
+                            }
+                        }
+                        pts.push((p.omega, val(p)));
+                        runs.push((unstable, pts));
+                    }
+                }
+            }
+            let style = ShapeStyle::from(&color).stroke_width(2);
+            // The faded branch is labelled once, not per extreme.
+            let mut labelled = br.faded && !which;
+            for (unstable, pts) in runs {
+                let s = if unstable {
+                    any_unstable |= !br.faded;
+                    chart
+                        .draw_series(DashedLineSeries::new(pts, 5, 4, style))
+                        .map_err(err)?
+                } else {
+                    chart
+                        .draw_series(LineSeries::new(pts, style))
+                        .map_err(err)?
+                };
+                if !labelled {
+                    let text = if br.faded {
+                        "previous settings (updating)".to_string()
+                    } else {
+                        format!("{label} ({})", br.label)
+                    };
+                    s.label(text).legend(move |(xx, yy)| {
+                        PathElement::new(vec![(xx, yy), (xx + 16, yy)], style)
+                    });
+                    labelled = true;
+                }
+            }
+            if br.faded {
+                continue;
+            }
+        }
+        if !br.faded && !br.pinned {
+            regime_strip(&mut chart, &br.points, y)?;
+        }
+    }
+    if any_unstable {
+        let style = ShapeStyle::from(&CONTACT).stroke_width(2);
+        chart
+            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
+            .map_err(err)?
+            .label("unstable (Floquet): dashed")
+            .legend(move |(xx, yy)| {
+                PathElement::new(
+                    vec![(xx, yy), (xx + 5, yy), (xx + 9, yy), (xx + 16, yy)],
+                    style,
+                )
+            });
+    }
+    // Time-integration steady states: hollow dots on both extremes.
+    chart
+        .draw_series(
+            v.overlay
+                .iter()
+                .filter(|p| in_range(p.omega))
+                .flat_map(|p| [(p.omega, p.max_um), (p.omega, p.min_um)])
+                .map(|c| Circle::new(c, 4, OVERLAY.stroke_width(1))),
+        )
+        .map_err(err)?;
+    for m in v.markers.iter().filter(|m| in_range(m.omega)) {
+        let c = chart.backend_coord(&(m.omega, m.value_um));
+        draw_marker_px(root, m.kind, c)?;
+    }
+    if let Some((at, _)) = &v.branch_error {
+        chart
+            .draw_series(DashedLineSeries::new(
+                vec![(*at, y.0), (*at, y.1)],
+                3,
+                3,
+                ShapeStyle::from(&FAILURE).stroke_width(2),
+            ))
+            .map_err(err)?
+            .label("solver failure: branch ends")
+            .legend(|(xx, yy)| {
+                PathElement::new(
+                    vec![(xx, yy), (xx + 16, yy)],
+                    ShapeStyle::from(&FAILURE).stroke_width(2),
+                )
+            });
+    }
+    legend(&mut chart, SeriesLabelPosition::UpperRight)?;
+    let frame = frame_of(&chart, x, y);
+
+    key_row(root, &items, &at, HEIGHT as i32 - key_h + 12)?;
+    let mut notes = Vec::new();
+    if let Some((at, e)) = &v.branch_error {
+        let text = format!(
+            "Solver failure after Ω = {at:.4}: {}. The branch ends there (partial).",
+            solver::keys::truncate(e, 160)
+        );
+        notes.extend(wrap(&text, 84));
+    }
+    // A finished branch that turned back at a fold and left the range at its
+    // lower end covers only part of the range: say so rather than let the
+    // empty part read as "no response".
+    if v.finished && v.branch_error.is_none() {
+        for br in v.branches.iter().filter(|b| !b.faded) {
+            let reach = br
+                .points
+                .iter()
+                .map(|p| p.omega)
+                .fold(f64::NEG_INFINITY, f64::max);
+            if reach.is_finite() && reach < x.1 - 0.01 * (x.1 - x.0) {
+                let who = if br.pinned {
+                    "A's branch"
+                } else {
+                    "The branch"
+                };
+                notes.extend(wrap(
+                    &format!(
+                        "{who} turns back at Ω = {reach:.3} (a fold) and leaves the range below: above it the response lies on another branch (see the bifurcation diagram)."
+                    ),
+                    84,
+                ));
+            }
+        }
+    }
+    if !v.failed.is_empty() {
+        notes.push(format!(
+            "{} time-integration point(s) failed: not plotted",
+            v.failed.len()
+        ));
+    }
+    let first_y = frame.bottom_right.y as i32 - 24 - 16 * (notes.len() as i32 - 1);
+    for (k, n) in notes.iter().enumerate() {
+        root.draw(&Text::new(
+            n.clone(),
+            (76, first_y + 16 * k as i32),
+            ("sans-serif", 13).into_font().color(&FAILURE),
+        ))
+        .map_err(err)?;
+    }
+    root.present().map_err(err)?;
+    Ok(frame)
+}

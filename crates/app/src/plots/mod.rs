@@ -1,0 +1,598 @@
+//! The six plots, drawn with plotters on any backend: a canvas in the
+//! browser (`plotters-canvas`), an SVG string in the native tests.
+//!
+//! Every plot labels its axes with units, draws the ±b contact lines where
+//! contact matters, the natural frequencies and the selected-Omega cursor on
+//! the Omega axes, and a legend. Axis ranges never shrink below a sensible
+//! span, so numerical noise is never magnified into structure.
+//!
+//! Dense point clouds (the bifurcation diagram) are returned as pixel
+//! positions grouped by colour, for the caller to draw in a batch: plotters
+//! would set a fill style per pixel, which is slow on a canvas.
+
+//!
+//! Shared here: colours, the plot frame (pixels to data), ranges, the one
+//! chart layout ([`linear_chart`], [`chart_layout`], [`draw_axes`]), the
+//! legend and the key row; each view kind's plot in its own module.
+
+mod bif;
+mod fr;
+pub mod maps;
+mod omega;
+
+pub use bif::{draw_bif, failed_label};
+pub use fr::draw_fr;
+pub use omega::{draw_phase, draw_poincare, draw_spectrum, draw_time};
+
+use crate::protocol::Regime;
+use crate::views::fr::{FrCurvePoint, FrMarkerKind};
+use crate::views::NaturalFreq;
+use glam::DVec2;
+use plotters::coord::ranged1d::{Ranged, ValueFormatter};
+use plotters::coord::{CoordTranslate, Shift};
+use plotters::prelude::*;
+
+/// Plot size in pixels (the canvases' width and height attributes).
+pub const WIDTH: u32 = 760;
+/// Plot height in pixels.
+pub const HEIGHT: u32 = 400;
+
+pub(crate) type Res<T> = Result<T, String>;
+pub(crate) type Chart<'a, DB> = ChartContext<
+    'a,
+    DB,
+    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+>;
+
+pub(crate) fn err<E: std::fmt::Display>(e: E) -> String {
+    format!("drawing failed: {e}")
+}
+
+/// Colour of an impact regime.
+pub fn regime_color(r: Regime) -> RGBColor {
+    match r {
+        Regime::NoImpact => RGBColor(31, 119, 180),
+        Regime::SingleSided => RGBColor(230, 120, 0),
+        Regime::DoubleSided => RGBColor(200, 30, 40),
+        Regime::NoContact => RGBColor(40, 150, 60),
+    }
+}
+
+pub(crate) const GRID: RGBColor = RGBColor(225, 229, 235);
+const CONTACT: RGBColor = RGBColor(90, 90, 90);
+pub(crate) const NATURAL: RGBColor = RGBColor(150, 110, 200);
+pub(crate) const CURSOR: RGBColor = RGBColor(220, 20, 60);
+const MAX_COLOR: RGBColor = RGBColor(25, 70, 150);
+const MIN_COLOR: RGBColor = RGBColor(20, 140, 130);
+const ORBIT: RGBColor = RGBColor(70, 110, 170);
+const FADED: RGBColor = RGBColor(200, 200, 205);
+/// The pinned state A of an A/B comparison: max and min x, and its dots.
+const A_MAX: RGBColor = RGBColor(150, 40, 150);
+const A_MIN: RGBColor = RGBColor(200, 110, 200);
+const A_DOTS: RGBColor = RGBColor(185, 120, 200);
+
+/// Where the data lie on the canvas, to map clicks back to Omega.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlotFrame {
+    /// Top-left corner of the plotting area (pixels).
+    pub top_left: DVec2,
+    /// Bottom-right corner (pixels).
+    pub bottom_right: DVec2,
+    /// Data x range.
+    pub x_range: (f64, f64),
+    /// Data y range.
+    pub y_range: (f64, f64),
+}
+
+impl PlotFrame {
+    /// The data x (Omega) under pixel column `px`, clamped to the range;
+    /// `None` if the click is well outside the plotting area.
+    pub fn x_at(&self, px: f64) -> Option<f64> {
+        let (l, r) = (self.top_left.x, self.bottom_right.x);
+        if !(px.is_finite() && px >= l - 8.0 && px <= r + 8.0 && r > l) {
+            return None;
+        }
+        let t = ((px - l) / (r - l)).clamp(0.0, 1.0);
+        Some(self.x_range.0 + t * (self.x_range.1 - self.x_range.0))
+    }
+
+    /// The data point under pixel `(px, py)`, or `None` outside the
+    /// plotting area.
+    pub fn point_at(&self, px: f64, py: f64) -> Option<DVec2> {
+        let (l, r) = (self.top_left.x, self.bottom_right.x);
+        let (t, b) = (self.top_left.y, self.bottom_right.y);
+        if !(px.is_finite() && py.is_finite() && px >= l && px <= r && py >= t && py <= b)
+            || r <= l
+            || b <= t
+        {
+            return None;
+        }
+        let tx = (px - l) / (r - l);
+        let ty = (b - py) / (b - t);
+        Some(DVec2::new(
+            self.x_range.0 + tx * (self.x_range.1 - self.x_range.0),
+            self.y_range.0 + ty * (self.y_range.1 - self.y_range.0),
+        ))
+    }
+
+    /// The pixel of a data point.
+    pub fn to_px(&self, x: f64, y: f64) -> DVec2 {
+        let tx = (x - self.x_range.0) / (self.x_range.1 - self.x_range.0);
+        let ty = (y - self.y_range.0) / (self.y_range.1 - self.y_range.0);
+        DVec2::new(
+            self.top_left.x + tx * (self.bottom_right.x - self.top_left.x),
+            self.bottom_right.y - ty * (self.bottom_right.y - self.top_left.y),
+        )
+    }
+}
+
+/// Points of one colour and shape, in pixels.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PointGroup {
+    /// Colour.
+    pub color: RGBColor,
+    /// Filled dot (upward sweep) or open square (downward sweep).
+    pub filled: bool,
+    /// Pixel positions.
+    pub px: Vec<(f32, f32)>,
+}
+
+/// Extends a range upwards to leave room for the legend above the data.
+pub fn with_headroom(r: (f64, f64), fraction: f64) -> (f64, f64) {
+    (r.0, r.1 + fraction * (r.1 - r.0))
+}
+
+/// A range that contains `values` and `extra`, padded, at least `min_span` wide.
+pub fn padded_range(values: impl Iterator<Item = f64>, extra: &[f64], min_span: f64) -> (f64, f64) {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for v in values
+        .chain(extra.iter().copied())
+        .filter(|v| v.is_finite())
+    {
+        lo = lo.min(v);
+        hi = hi.max(v);
+    }
+    if !lo.is_finite() {
+        return (-1.0, 1.0);
+    }
+    let span = (hi - lo).max(min_span.max(1e-12));
+    let mid = 0.5 * (hi + lo);
+    let half = 0.5 * span * 1.08;
+    (mid - half, mid + half)
+}
+
+pub(crate) fn frame_of<DB: DrawingBackend, X, Y>(
+    chart: &ChartContext<DB, Cartesian2d<X, Y>>,
+    x_range: (f64, f64),
+    y_range: (f64, f64),
+) -> PlotFrame
+where
+    X: plotters::coord::ranged1d::Ranged<ValueType = f64>,
+    Y: plotters::coord::ranged1d::Ranged<ValueType = f64>,
+{
+    let (xr, yr) = chart.plotting_area().get_pixel_range();
+    PlotFrame {
+        top_left: DVec2::new(f64::from(xr.start), f64::from(yr.start)),
+        bottom_right: DVec2::new(f64::from(xr.end), f64::from(yr.end)),
+        x_range,
+        y_range,
+    }
+}
+
+pub(crate) fn caption_font() -> TextStyle<'static> {
+    ("sans-serif", 17).into_font().color(&BLACK)
+}
+
+pub(crate) fn small() -> TextStyle<'static> {
+    ("sans-serif", 13).into_font().color(&RGBColor(50, 50, 50))
+}
+
+/// The x axis of every plot over Omega.
+pub(crate) const OMEGA_AXIS: &str = "Ω = ω / ω_ref (dimensionless mesh frequency)";
+
+/// A chart's axes: their descriptions, the grid, the number of y labels.
+pub(crate) struct Axes {
+    /// The x axis's description.
+    pub(crate) x: String,
+    /// The y axis's description.
+    pub(crate) y: String,
+    /// Grid lines (off where cells fill the plotting area).
+    pub(crate) grid: bool,
+    /// The number of y labels, if not plotters' default.
+    pub(crate) y_labels: Option<usize>,
+}
+
+impl Axes {
+    /// Axes with grid lines and default labels.
+    pub(crate) fn new(x: impl Into<String>, y: impl Into<String>) -> Self {
+        Axes {
+            x: x.into(),
+            y: y.into(),
+            grid: true,
+            y_labels: None,
+        }
+    }
+}
+
+/// The one chart layout every plot uses on `area`: the caption, margins
+/// and label areas.
+pub(crate) fn chart_layout<'a, 'b, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    caption: &str,
+) -> ChartBuilder<'a, 'b, DB> {
+    let mut b = ChartBuilder::on(area);
+    b.caption(caption, caption_font())
+        .margin(8)
+        .x_label_area_size(44)
+        .y_label_area_size(64);
+    b
+}
+
+/// Draws a chart's grid, tick labels and axis descriptions.
+pub(crate) fn draw_axes<DB: DrawingBackend, X, Y>(
+    chart: &mut ChartContext<'_, DB, Cartesian2d<X, Y>>,
+    axes: &Axes,
+) -> Res<()>
+where
+    X: Ranged + ValueFormatter<X::ValueType>,
+    Y: Ranged + ValueFormatter<Y::ValueType>,
+{
+    let mut mesh = chart.configure_mesh();
+    if axes.grid {
+        mesh.light_line_style(GRID.mix(0.5)).bold_line_style(GRID);
+    } else {
+        mesh.disable_mesh();
+    }
+    if let Some(n) = axes.y_labels {
+        mesh.y_labels(n);
+    }
+    mesh.x_desc(axes.x.as_str())
+        .y_desc(axes.y.as_str())
+        .label_style(small())
+        .axis_desc_style(small())
+        .draw()
+        .map_err(err)
+}
+
+/// A linear chart over `x` and `y` with the shared layout and `axes`.
+pub(crate) fn linear_chart<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    caption: &str,
+    (x, y): ((f64, f64), (f64, f64)),
+    axes: &Axes,
+) -> Res<Chart<'a, DB>> {
+    let mut chart = chart_layout(area, caption)
+        .build_cartesian_2d(x.0..x.1, y.0..y.1)
+        .map_err(err)?;
+    draw_axes(&mut chart, axes)?;
+    Ok(chart)
+}
+
+/// A plot with nothing to show yet: a frame and a message (never blank).
+pub fn draw_message<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    title: &str,
+    message: &str,
+) -> Res<()> {
+    root.fill(&WHITE).map_err(err)?;
+    let (w, h) = root.dim_in_pixel();
+    root.draw(&Rectangle::new(
+        [(1, 1), (w as i32 - 2, h as i32 - 2)],
+        ShapeStyle::from(&GRID).stroke_width(1),
+    ))
+    .map_err(err)?;
+    root.draw(&Text::new(title.to_string(), (12, 10), caption_font()))
+        .map_err(err)?;
+    for (k, line) in wrap(message, 80).iter().enumerate() {
+        root.draw(&Text::new(
+            line.clone(),
+            (24, h as i32 / 2 - 10 + 18 * k as i32),
+            ("sans-serif", 14).into_font().color(&RGBColor(90, 90, 90)),
+        ))
+        .map_err(err)?;
+    }
+    root.present().map_err(err)
+}
+
+/// Breaks text into lines of at most `width` characters (at spaces).
+pub fn wrap(text: &str, width: usize) -> Vec<String> {
+    let mut lines = Vec::new();
+    let mut cur = String::new();
+    for word in text.split_whitespace() {
+        if !cur.is_empty() && cur.chars().count() + 1 + word.chars().count() > width {
+            lines.push(std::mem::take(&mut cur));
+        }
+        if !cur.is_empty() {
+            cur.push(' ');
+        }
+        cur.push_str(word);
+    }
+    if !cur.is_empty() {
+        lines.push(cur);
+    }
+    lines.truncate(6);
+    lines
+}
+
+/// Draws the Omega-axis decorations: natural frequencies and the cursor.
+pub(crate) fn omega_decorations<'a, DB: DrawingBackend + 'a>(
+    chart: &mut Chart<'a, DB>,
+    natural: &[NaturalFreq],
+    selected: f64,
+    y: (f64, f64),
+    in_legend: bool,
+) -> Res<()> {
+    let nat_style = ShapeStyle::from(&NATURAL.mix(0.55)).stroke_width(1);
+    let mut first = in_legend;
+    for n in natural {
+        let s = chart
+            .draw_series(std::iter::once(PathElement::new(
+                vec![(n.omega, y.0), (n.omega, y.1)],
+                nat_style,
+            )))
+            .map_err(err)?;
+        if first {
+            s.label("natural frequencies (linear, mean k)")
+                .legend(move |(x, yy)| PathElement::new(vec![(x, yy), (x + 16, yy)], nat_style));
+            first = false;
+        }
+    }
+    let cursor = chart
+        .draw_series(std::iter::once(PathElement::new(
+            vec![(selected, y.0), (selected, y.1)],
+            ShapeStyle::from(&CURSOR).stroke_width(2),
+        )))
+        .map_err(err)?;
+    if !in_legend {
+        return Ok(());
+    }
+    cursor
+        .label(format!("selected Omega = {selected:.3}"))
+        .legend(|(x, yy)| {
+            PathElement::new(
+                vec![(x, yy), (x + 16, yy)],
+                ShapeStyle::from(&CURSOR).stroke_width(2),
+            )
+        });
+    Ok(())
+}
+
+/// Draws the pinned state A's ±b lines (A/B comparison) where they differ
+/// from B's, dashed in A's colour; returns whether any were drawn.
+fn pinned_contact_lines<'a, DB: DrawingBackend + 'a>(
+    chart: &mut Chart<'a, DB>,
+    pinned_um: &[f64],
+    current_um: &[f64],
+    x: (f64, f64),
+) -> Res<bool> {
+    let style = ShapeStyle::from(&A_MIN).stroke_width(1);
+    let mut any = false;
+    for &b in pinned_um
+        .iter()
+        .filter(|b| !current_um.iter().any(|c| (*c - **b).abs() < 1e-9))
+    {
+        for v in [b, -b] {
+            chart
+                .draw_series(DashedLineSeries::new(vec![(x.0, v), (x.1, v)], 6, 4, style))
+                .map_err(err)?;
+        }
+        any = true;
+    }
+    Ok(any)
+}
+
+/// Draws the ±b contact lines across the x range.
+fn contact_lines<'a, DB: DrawingBackend + 'a>(
+    chart: &mut Chart<'a, DB>,
+    backlash_um: &[f64],
+    x: (f64, f64),
+    horizontal: bool,
+    in_legend: bool,
+) -> Res<()> {
+    let style = ShapeStyle::from(&CONTACT).stroke_width(1);
+    let mut first = in_legend;
+    for &b in backlash_um {
+        for v in [b, -b] {
+            let pts = if horizontal {
+                vec![(x.0, v), (x.1, v)]
+            } else {
+                vec![(v, x.0), (v, x.1)]
+            };
+            let s = chart
+                .draw_series(DashedLineSeries::new(pts, 6, 4, style))
+                .map_err(err)?;
+            if first {
+                s.label(format!("±b contact lines (b = {b} µm)"))
+                    .legend(move |(xx, yy)| {
+                        PathElement::new(
+                            vec![(xx, yy), (xx + 6, yy), (xx + 10, yy), (xx + 16, yy)],
+                            style,
+                        )
+                    });
+                first = false;
+            }
+        }
+    }
+    Ok(())
+}
+
+fn legend<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    pos: SeriesLabelPosition,
+) -> Res<()> {
+    chart
+        .configure_series_labels()
+        .position(pos)
+        .background_style(WHITE.mix(0.8))
+        .border_style(GRID)
+        .margin(6)
+        .legend_area_size(22)
+        .label_font(("sans-serif", 12))
+        .draw()
+        .map_err(err)
+}
+
+/// A symbol of the key row under the frequency response.
+#[derive(Debug, Clone, Copy)]
+enum KeyIcon {
+    Regime(Regime),
+    Marker(FrMarkerKind),
+    Overlay,
+    Line(RGBColor, bool),
+}
+
+const MARKER: RGBColor = RGBColor(0, 0, 0);
+const OVERLAY: RGBColor = RGBColor(60, 60, 60);
+const FAILURE: RGBColor = RGBColor(170, 0, 0);
+
+/// Row height of the key (pixels).
+const KEY_ROW: i32 = 17;
+
+/// Where each key item goes, left to right from `x0`, wrapping at the right
+/// edge; rows relative to the first (0, 17, ...). Also returns the rows used.
+fn key_layout<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    items: &[(KeyIcon, String)],
+    x0: i32,
+) -> (Vec<(i32, i32)>, i32) {
+    let font = small();
+    let right = root.dim_in_pixel().0 as i32 - 8;
+    let (mut x, mut y) = (x0, 0);
+    let mut out = Vec::with_capacity(items.len());
+    for (icon, text) in items {
+        let w = root
+            .estimate_text_size(text, &font)
+            .map_or(8 * text.len() as u32, |(w, _)| w) as i32;
+        let icon_w = if matches!(icon, KeyIcon::Line(..)) {
+            22
+        } else {
+            14
+        };
+        if x > x0 && x + icon_w + w > right {
+            x = x0;
+            y += KEY_ROW;
+        }
+        out.push((x, y));
+        x += icon_w + w + 16;
+    }
+    let rows = if items.is_empty() { 0 } else { y / KEY_ROW + 1 };
+    (out, rows)
+}
+
+/// Draws the key (the contact lines, natural frequencies and cursor,
+/// regimes present, bifurcation kinds present, the overlay) at the
+/// positions of [`key_layout`], offset by `y0`.
+fn key_row<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    items: &[(KeyIcon, String)],
+    at: &[(i32, i32)],
+    y0: i32,
+) -> Res<()> {
+    let font = small();
+    for ((icon, text), &(x, dy)) in items.iter().zip(at) {
+        let y = y0 + dy;
+        let c = (x + 5, y);
+        let text_x = if let KeyIcon::Line(color, dashed) = *icon {
+            let style = ShapeStyle::from(&color).stroke_width(2);
+            if dashed {
+                for k in 0..2 {
+                    root.draw(&PathElement::new(
+                        vec![(x + 10 * k, y), (x + 10 * k + 6, y)],
+                        style,
+                    ))
+                    .map_err(err)?;
+                }
+            } else {
+                root.draw(&PathElement::new(vec![(x, y), (x + 16, y)], style))
+                    .map_err(err)?;
+            }
+            x + 22
+        } else {
+            x + 14
+        };
+        match *icon {
+            KeyIcon::Line(..) => {}
+            KeyIcon::Regime(r) => root
+                .draw(&Circle::new(c, 4, regime_color(r).filled()))
+                .map_err(err)?,
+            KeyIcon::Marker(k) => draw_marker_px(root, k, c)?,
+            KeyIcon::Overlay => root
+                .draw(&Circle::new(c, 4, OVERLAY.stroke_width(1)))
+                .map_err(err)?,
+        }
+        root.draw(&Text::new(text.clone(), (text_x, y - 7), font.clone()))
+            .map_err(err)?;
+    }
+    Ok(())
+}
+
+/// A bifurcation marker at a pixel position.
+fn draw_marker_px<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    kind: FrMarkerKind,
+    c: (i32, i32),
+) -> Res<()> {
+    match kind {
+        FrMarkerKind::Fold => root
+            .draw(&TriangleMarker::new(c, 6, MARKER.filled()))
+            .map_err(err),
+        FrMarkerKind::PeriodDoubling => root
+            .draw(&Cross::new(c, 5, MARKER.stroke_width(2)))
+            .map_err(err),
+        FrMarkerKind::NeimarkSacker => root
+            .draw(&Circle::new(c, 5, MARKER.stroke_width(2)))
+            .map_err(err),
+        FrMarkerKind::BranchPoint => root
+            .draw(&Rectangle::new(
+                [(c.0 - 4, c.1 - 4), (c.0 + 4, c.1 + 4)],
+                MARKER.stroke_width(2),
+            ))
+            .map_err(err),
+    }
+}
+
+/// The impact regime along Omega as a thin coloured strip at the bottom of
+/// the plot: the branch's own lines keep the max / min colours and the
+/// dashes of unstable stretches readable. Only stable (or unknown) stretches
+/// are drawn, since only they can be observed.
+fn regime_strip<'a, DB: DrawingBackend + 'a>(
+    chart: &mut Chart<'a, DB>,
+    points: &[FrCurvePoint],
+    y: (f64, f64),
+) -> Res<()> {
+    let (lo, hi) = (y.0, y.0 + 0.025 * (y.1 - y.0));
+    // Runs of one regime along the branch become one rectangle each: a
+    // branch has about a thousand points but only tens of runs.
+    let mut runs: Vec<(Regime, f64, f64)> = Vec::new();
+    let mut open = false;
+    for w in points.windows(2) {
+        let (a, b) = (&w[0], &w[1]);
+        let regime = b
+            .regime
+            .filter(|_| a.stable != Some(false) && b.stable != Some(false));
+        let Some(r) = regime else {
+            open = false;
+            continue;
+        };
+        let (from, to) = (a.omega.min(b.omega), a.omega.max(b.omega));
+        match runs.last_mut() {
+            Some(run) if open && run.0 == r => {
+                run.1 = run.1.min(from);
+                run.2 = run.2.max(to);
+            }
+            _ => runs.push((r, from, to)),
+        }
+        open = true;
+    }
+    chart
+        .draw_series(
+            runs.into_iter().map(|(r, from, to)| {
+                Rectangle::new([(from, lo), (to, hi)], regime_color(r).filled())
+            }),
+        )
+        .map_err(err)?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,178 @@
+//! The selected-Omega plots: phase portrait, Poincaré section, time
+//! history and spectrum.
+
+use super::*;
+use crate::protocol::{history_start, OmegaResult, HISTORY_PERIODS};
+
+fn phase_ranges(r: &OmegaResult) -> ((f64, f64), (f64, f64)) {
+    let b = r.backlash_um;
+    let x = padded_range(r.x_um.iter().copied(), &[b, -b], 20.0);
+    let vmax = r.xdot_m_s.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let y = padded_range(r.xdot_m_s.iter().copied(), &[], (vmax * 0.2).max(1e-3));
+    (x, with_headroom(y, 0.25))
+}
+
+fn omega_caption(what: &str, r: &OmegaResult, status: &str) -> String {
+    format!("{what}, mesh {}, Ω = {:.4}{status}", r.mesh_name, r.omega)
+}
+
+/// View 3: the phase portrait with its Poincaré points.
+pub fn draw_phase<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    r: &OmegaResult,
+    status: &str,
+) -> Res<()> {
+    root.fill(&WHITE).map_err(err)?;
+    let (x, y) = phase_ranges(r);
+    let caption = omega_caption("Phase portrait", r, status);
+    let axes = Axes::new("x = δ − e (µm)", "ẋ (m/s)");
+    let mut chart = linear_chart(root, &caption, (x, y), &axes)?;
+    contact_lines(&mut chart, &[r.backlash_um], y, false, true)?;
+    let orbit = ShapeStyle::from(&ORBIT.mix(0.7)).stroke_width(1);
+    chart
+        .draw_series(LineSeries::new(
+            r.x_um.iter().copied().zip(r.xdot_m_s.iter().copied()),
+            orbit,
+        ))
+        .map_err(err)?
+        .label(format!("orbit over {} recorded periods", r.record_periods))
+        .legend(move |(xx, yy)| PathElement::new(vec![(xx, yy), (xx + 16, yy)], orbit));
+    chart
+        .draw_series(
+            r.poincare_x_um
+                .iter()
+                .zip(&r.poincare_xdot_m_s)
+                .map(|(&a, &b)| Circle::new((a, b), 4, CURSOR.filled())),
+        )
+        .map_err(err)?
+        .label("Poincaré points (once per mesh period)")
+        .legend(|(xx, yy)| Circle::new((xx + 8, yy), 4, CURSOR.filled()));
+    legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
+    root.present().map_err(err)
+}
+
+/// View 4: the Poincaré section, on the orbit's axes so that one point reads as one point.
+pub fn draw_poincare<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    r: &OmegaResult,
+    status: &str,
+) -> Res<()> {
+    root.fill(&WHITE).map_err(err)?;
+    let (x, y) = phase_ranges(r);
+    let caption = omega_caption("Poincaré section", r, status);
+    let axes = Axes::new("x = δ − e (µm), sampled once per mesh period", "ẋ (m/s)");
+    let mut chart = linear_chart(root, &caption, (x, y), &axes)?;
+    contact_lines(&mut chart, &[r.backlash_um], y, false, true)?;
+    let period = match r.period {
+        Some(p) => format!("period {p}"),
+        None => "not periodic".into(),
+    };
+    chart
+        .draw_series(
+            r.poincare_x_um
+                .iter()
+                .zip(&r.poincare_xdot_m_s)
+                .map(|(&a, &b)| Circle::new((a, b), 3, CURSOR.filled())),
+        )
+        .map_err(err)?
+        .label(format!(
+            "{} Poincaré points ({period})",
+            r.poincare_x_um.len()
+        ))
+        .legend(|(xx, yy)| Circle::new((xx + 8, yy), 3, CURSOR.filled()));
+    legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
+    root.present().map_err(err)
+}
+
+/// View 5a: the time history of the last recorded periods.
+pub fn draw_time<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    r: &OmegaResult,
+    status: &str,
+) -> Res<PlotFrame> {
+    root.fill(&WHITE).map_err(err)?;
+    let spp = r.samples_per_period.max(1) as usize;
+    let shown = HISTORY_PERIODS.min(r.record_periods) as usize;
+    let start = history_start(r.x_um.len(), r.samples_per_period, r.record_periods);
+    let t0 = start as f64 / spp as f64;
+    let t1 = (r.x_um.len().max(1) - 1) as f64 / spp as f64;
+    let x = (t0, t1.max(t0 + 1e-9));
+    let b = r.backlash_um;
+    let y = with_headroom(
+        padded_range(r.x_um[start..].iter().copied(), &[b, -b], 20.0),
+        0.2,
+    );
+    let caption = omega_caption("Time history", r, status);
+    let axes = Axes::new(
+        format!(
+            "time (mesh periods since the recording began; last {shown} of {})",
+            r.record_periods
+        ),
+        "x = δ − e (µm)",
+    );
+    let mut chart = linear_chart(root, &caption, (x, y), &axes)?;
+    contact_lines(&mut chart, &[b], x, true, true)?;
+    let style = ShapeStyle::from(&ORBIT).stroke_width(2);
+    chart
+        .draw_series(LineSeries::new(
+            r.x_um[start..]
+                .iter()
+                .enumerate()
+                .map(|(k, &v)| ((start + k) as f64 / spp as f64, v)),
+            style,
+        ))
+        .map_err(err)?
+        .label("x(t)")
+        .legend(move |(xx, yy)| PathElement::new(vec![(xx, yy), (xx + 16, yy)], style));
+    legend(&mut chart, SeriesLabelPosition::UpperRight)?;
+    let frame = frame_of(&chart, x, y);
+    root.present().map_err(err)?;
+    Ok(frame)
+}
+
+/// View 5b: the amplitude spectrum of x (without the mean), log scale.
+pub fn draw_spectrum<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    r: &OmegaResult,
+    status: &str,
+) -> Res<()> {
+    root.fill(&WHITE).map_err(err)?;
+    let lines: Vec<(f64, f64)> = r
+        .spectrum_order
+        .iter()
+        .zip(&r.spectrum_um)
+        .filter(|(o, _)| **o > 0.0)
+        .map(|(&o, &a)| (o, a))
+        .collect();
+    let mean = r
+        .spectrum_order
+        .first()
+        .filter(|o| **o == 0.0)
+        .and_then(|_| r.spectrum_um.first().copied());
+    let amax = lines.iter().fold(1e-3_f64, |m, l| m.max(l.1));
+    let floor = amax * 1e-5;
+    let omax = lines.last().map_or(1.0, |l| l.0).max(1.0);
+    let mut chart = chart_layout(root, &omega_caption("Spectrum of x", r, status))
+        .build_cartesian_2d(0.0..omax * 1.02, (floor..amax * 20.0).log_scale())
+        .map_err(err)?;
+    let axes = Axes::new(
+        "frequency (mesh orders: multiples of the mesh frequency)",
+        "amplitude of x (µm, log)",
+    );
+    draw_axes(&mut chart, &axes)?;
+    let style = ShapeStyle::from(&MAX_COLOR).stroke_width(2);
+    chart
+        .draw_series(
+            lines
+                .iter()
+                .map(|&(o, a)| PathElement::new(vec![(o, floor), (o, a.max(floor))], style)),
+        )
+        .map_err(err)?
+        .label(match mean {
+            Some(m) => format!("amplitude (mean x = {m:.2} µm not shown)"),
+            None => "amplitude".into(),
+        })
+        .legend(move |(xx, yy)| PathElement::new(vec![(xx, yy), (xx + 16, yy)], style));
+    legend(&mut chart, SeriesLabelPosition::UpperRight)?;
+    root.present().map_err(err)
+}

@@ -1,0 +1,193 @@
+//! The plots drawn to SVG natively: labels, units, legends, ranges.
+
+use super::*;
+use crate::protocol::OmegaResult;
+use crate::views::fr::FrView;
+use crate::views::fr::{FrBranch, FrMarker, FrSource};
+
+fn svg<F: FnOnce(&DrawingArea<SVGBackend, Shift>) -> Res<()>>(f: F) -> String {
+    let mut s = String::new();
+    {
+        let root = SVGBackend::with_string(&mut s, (WIDTH, HEIGHT)).into_drawing_area();
+        f(&root).unwrap();
+    }
+    s
+}
+
+fn result() -> OmegaResult {
+    let n = 64 * 20;
+    let x: Vec<f64> = (0..n)
+        .map(|k| 110.0 + 30.0 * (k as f64 / 64.0 * std::f64::consts::TAU).sin())
+        .collect();
+    let v: Vec<f64> = (0..n)
+        .map(|k| 0.5 * (k as f64 / 64.0 * std::f64::consts::TAU).cos())
+        .collect();
+    OmegaResult {
+        omega: 0.84,
+        mesh: 0,
+        mesh_name: "s1a1".into(),
+        backlash_um: 100.0,
+        regime: Regime::SingleSided,
+        period: Some(1),
+        dynamic_factor: Some(1.4),
+        mesh_freq_hz: 4500.0,
+        transient_periods_run: 100,
+        settled: true,
+        samples_per_period: 64,
+        record_periods: 20,
+        x_um: x,
+        xdot_m_s: v,
+        poincare_x_um: vec![110.0; 20],
+        poincare_xdot_m_s: vec![0.5; 20],
+        spectrum_order: vec![0.0, 1.0, 2.0],
+        spectrum_um: vec![110.0, 30.0, 0.1],
+        all_meshes: vec![],
+        anim: Default::default(),
+        steps: 1,
+        cli_json: "{}".into(),
+        preview: false,
+        end_state: vec![],
+    }
+}
+
+#[test]
+fn a_failed_point_is_counted_and_its_reason_named() {
+    let failed = vec![
+        (
+            1.1,
+            "the response grows without bound: mesh rb1 deflected 5e-3 m".to_string(),
+        ),
+        (1.2, "step size fell to 1e-17 s at t = 0.1 s".to_string()),
+    ];
+    assert_eq!(
+        failed_label(&failed),
+        "2 point(s) failed, not plotted, first at Ω = 1.100: the response grows without bound"
+    );
+    assert_eq!(failed_label(&[]), "0 point(s) failed, not plotted");
+}
+
+#[test]
+fn frame_maps_pixels_to_omega_and_back() {
+    let f = PlotFrame {
+        top_left: DVec2::new(60.0, 30.0),
+        bottom_right: DVec2::new(760.0, 360.0),
+        x_range: (0.1, 2.0),
+        y_range: (-100.0, 100.0),
+    };
+    let p = f.to_px(1.05, 0.0);
+    assert!((f.x_at(p.x).unwrap() - 1.05).abs() < 1e-12);
+    assert_eq!(f.x_at(0.0), None);
+    assert_eq!(f.x_at(f64::NAN), None);
+    assert_eq!(f.x_at(55.0), Some(0.1));
+}
+
+#[test]
+fn ranges_never_magnify_noise() {
+    let (lo, hi) = padded_range([5.0, 5.0 + 1e-9].into_iter(), &[], 20.0);
+    assert!(hi - lo >= 20.0);
+    assert_eq!(padded_range(std::iter::empty(), &[], 1.0), (-1.0, 1.0));
+}
+
+#[test]
+fn every_plot_draws_labels_units_and_legends() {
+    let point = |k: u32| FrCurvePoint {
+        omega: 0.1 + 0.2 * f64::from(k),
+        max_um: 120.0 + f64::from(k),
+        min_um: 90.0 - f64::from(k),
+        stable: Some(k <= 6),
+        regime: Some(Regime::NoImpact),
+        period: Some(1),
+        bifurcation: (k == 7).then_some(FrMarkerKind::Fold),
+    };
+    let source = FrSource::Hbm { harmonics: 5 };
+    let fr = FrView {
+        method: source.label(),
+        source,
+        mesh_label: "s1a1".into(),
+        backlash_um: vec![150.0],
+        pinned_backlash_um: vec![100.0],
+        branches: vec![
+            FrBranch {
+                label: "A: backlash_um=100".into(),
+                points: (0..10).map(point).collect(),
+                faded: false,
+                pinned: true,
+            },
+            FrBranch {
+                label: "B: backlash_um=150; HBM, H = 5".into(),
+                points: (0..10).map(point).collect(),
+                faded: false,
+                pinned: false,
+            },
+        ],
+        markers: vec![FrMarker {
+            omega: 1.5,
+            value_um: 127.0,
+            kind: FrMarkerKind::Fold,
+        }],
+        overlay: vec![point(2)],
+        overlay_source: Some(FrSource::TimeIntegration {
+            transient_periods: 300,
+            record_periods: 30,
+        }),
+        discrepancy: crate::views::fr::Discrepancy {
+            max_um: Some(1.5),
+            compared: 1,
+            off_branch: 2,
+        },
+        natural: vec![NaturalFreq {
+            omega: 0.5,
+            frequency_hz: 3000.0,
+            kind: "rotational".into(),
+            multiplicity: 1,
+        }],
+        omega_from: 0.1,
+        omega_to: 2.0,
+        selected_omega: 0.84,
+        branch_error: Some((1.9, "no convergence at Omega = 1.9".into())),
+        failed: vec![],
+        done: 10,
+        progress: 0.95,
+        finished: true,
+    };
+    let mut frame = None;
+    let s = svg(|root| {
+        frame = Some(draw_fr(root, &fr, "")?);
+        Ok(())
+    });
+    assert!(
+        s.contains("µm") && s.contains("Ω") && s.contains("±b"),
+        "{s}"
+    );
+    for text in [
+        "harmonic balance, H = 5, exact",
+        "unstable (Floquet): dashed",
+        "fold (jump)",
+        "time integration (1 pts): max |Δx| 1.50 µm at 1 on the stable branch; 2 where none is stable",
+        "Solver failure after Ω = 1.9000",
+        "(partial)",
+        "max x (A: backlash_um=100)",
+        "max x (B: backlash_um=150; HBM, H = 5)",
+        "s ±b (b = 100 µm)",
+    ] {
+        assert!(s.contains(text), "{text} missing");
+    }
+    let f = frame.unwrap();
+    assert!(f.bottom_right.x > f.top_left.x);
+    let r = result();
+    for s in [
+        svg(|root| draw_phase(root, &r, "")),
+        svg(|root| draw_poincare(root, &r, "")),
+        svg(|root| draw_time(root, &r, "").map(|_| ())),
+        svg(|root| draw_spectrum(root, &r, "")),
+    ] {
+        assert!(s.contains("µm") && s.contains("s1a1"), "{s}");
+    }
+    let s = svg(|root| draw_message(root, "Bifurcation diagram", "waiting for the workers"));
+    assert!(s.contains("waiting"));
+}
+
+#[test]
+fn wrap_breaks_at_spaces() {
+    assert_eq!(wrap("aa bb cc", 5), vec!["aa bb", "cc"]);
+}
