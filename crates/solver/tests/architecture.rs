@@ -57,16 +57,25 @@ fn the_solver_has_no_platform_dependencies() {
     }
 }
 
+/// Every source file below `src/`, recursively (`hbm/` included).
+fn source_files(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
+    for entry in std::fs::read_dir(dir).expect("src") {
+        let path = entry.expect("entry").path();
+        if path.is_dir() {
+            source_files(&path, out);
+        } else if path.extension().and_then(|e| e.to_str()) == Some("rs") {
+            out.push(path);
+        }
+    }
+}
+
 #[test]
 fn the_solver_source_uses_no_clock_thread_or_io() {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
-    let mut checked = 0;
-    for entry in std::fs::read_dir(&src).expect("src") {
-        let path = entry.expect("entry").path();
-        if path.extension().and_then(|e| e.to_str()) != Some("rs") {
-            continue;
-        }
-        let text = std::fs::read_to_string(&path).expect("read");
+    let mut files = Vec::new();
+    source_files(&src, &mut files);
+    for path in &files {
+        let text = std::fs::read_to_string(path).expect("read");
         assert!(
             text.starts_with("//!"),
             "{} must start with a //! doc",
@@ -75,7 +84,70 @@ fn the_solver_source_uses_no_clock_thread_or_io() {
         for bad in FORBIDDEN_SOURCE {
             assert!(!text.contains(bad), "{} uses {bad}", path.display());
         }
-        checked += 1;
     }
-    assert!(checked >= 10, "checked {checked} files");
+    assert!(files.len() >= 20, "checked {} files", files.len());
+    let hbm = src.join("hbm").join("stability.rs");
+    assert!(files.contains(&hbm), "the walk reaches src/hbm/");
+}
+
+#[path = "support/modgraph.rs"]
+mod modgraph;
+
+/// Architecture invariant: no import cycle in the solver, between its
+/// top-level modules or between any two of its files (see
+/// `support/modgraph.rs` for how the graph is read).
+#[test]
+fn the_solver_has_no_import_cycle() {
+    let g = modgraph::read(&Path::new(env!("CARGO_MANIFEST_DIR")).join("src"));
+    // The reader sees the edges it must: dependencies known from the code.
+    for (a, b) in [
+        ("hbm::stability", "hbm::harmonic"),
+        ("hbm::assembly", "hbm::harmonic"),
+        ("parametric", "hbm::stability"),
+        ("steady", "ode"),
+    ] {
+        assert!(
+            g.edges.contains(&(a.into(), b.into())),
+            "{a} -> {b} not seen"
+        );
+    }
+    for depth in [1, 2, 99] {
+        assert_eq!(modgraph::cycle(&g, depth), None, "at depth {depth}");
+    }
+}
+
+/// The cycle finder finds cycles: through `use` groups, `super::` paths and
+/// inline paths, and at file level inside one top-level module.
+#[test]
+fn the_cycle_finder_finds_cycles() {
+    let g = modgraph::from_files(&[
+        ("lib.rs", "//! root\npub mod a;\npub mod b;\npub mod c;"),
+        ("a.rs", "use crate::{b::{self, X}, other};"),
+        ("b.rs", "fn f() { crate::c::g(); }"),
+        (
+            "c.rs",
+            "// use crate::a;\nfn g() {}\n#[cfg(test)]\nmod tests { use crate::a::Y; }",
+        ),
+    ]);
+    assert_eq!(
+        modgraph::cycle(&g, 1),
+        None,
+        "comments and tests are not edges"
+    );
+    let g = modgraph::from_files(&[
+        ("a.rs", "use crate::{b::{self, X}, other};"),
+        ("b.rs", "fn f() { crate::c::g(); }"),
+        ("c.rs", "use crate::a::Y;"),
+    ]);
+    assert_eq!(
+        modgraph::cycle(&g, 1),
+        Some(vec!["a".into(), "b".into(), "c".into(), "a".into()])
+    );
+    let g = modgraph::from_files(&[
+        ("h/mod.rs", "pub mod p; pub mod q; pub use p::X;"),
+        ("h/p.rs", "use super::q::Y; use super::*;"),
+        ("h/q.rs", "fn f() { super::p::x() }"),
+    ]);
+    assert_eq!(modgraph::cycle(&g, 1), None);
+    assert!(modgraph::cycle(&g, 2).is_some(), "h::p <-> h::q");
 }
