@@ -12,6 +12,8 @@
 //! the workers ([`worker_core`]); the main thread builds the small model for
 //! validation and natural frequencies, draws, and never blocks for long.
 
+#![warn(unreachable_pub)]
+
 pub mod controller;
 pub mod controls;
 pub mod gearset;

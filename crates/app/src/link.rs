@@ -17,7 +17,7 @@
 //! its default while the others apply. The text of a link is untrusted: the
 //! page shows these messages with `textContent` only.
 
-use crate::settings::{fmt_exact, mesh_names, view_key, Settings, ViewOptions};
+use crate::settings::{fmt_exact, mesh_names, view_key, Settings};
 use solver::keys::{self, Value};
 use solver::params::{ModelKind, ModelParams};
 use solver::steady::Model;
@@ -339,15 +339,10 @@ pub fn ab_difference(a: &Settings, b: &Settings, max: usize) -> (String, String)
     (text(&pa, a), text(&pb, b))
 }
 
-/// The view options' defaults, for callers that reset them.
-pub fn default_view() -> ViewOptions {
-    ViewOptions::default()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::settings::MeshSel;
+    use crate::settings::{MeshSel, ViewOptions};
     use proptest::prelude::*;
 
     #[test]

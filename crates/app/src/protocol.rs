@@ -276,19 +276,6 @@ impl Regime {
     }
 }
 
-impl Regime {
-    /// How severe the regime is, for colouring a sample by its worst mesh:
-    /// no contact, no impact, single-sided, double-sided.
-    pub fn severity(self) -> u8 {
-        match self {
-            Regime::NoContact => 0,
-            Regime::NoImpact => 1,
-            Regime::SingleSided => 2,
-            Regime::DoubleSided => 3,
-        }
-    }
-}
-
 impl From<Impact> for Regime {
     fn from(i: Impact) -> Self {
         match i {

@@ -410,14 +410,6 @@ impl ViewOptions {
         })
     }
 
-    /// The value of a numeric view key.
-    pub fn get_num(&self, name: &str) -> Option<f64> {
-        match name {
-            "mesh" | "bif_dir" | "map_key" => None,
-            _ => self.get(name)?.parse().ok(),
-        }
-    }
-
     /// Sets a view key from text, checking its type and range. `meshes`
     /// lists the mesh names of the current model. The error names the key,
     /// the value and the allowed range.

@@ -16,7 +16,7 @@ use crate::protocol::{
     encode, FromWorker, JobId, JobKind, JobSpec, OmegaResult, RunOptions, ToWorker,
 };
 use crate::settings::{mesh_names, view_key, MeshSel, Settings};
-pub use crate::status::{Dirty, JobStatus, PROGRESS_AFTER_MS};
+use crate::status::{Dirty, JobStatus};
 use crate::views::bif::{BifStore, BifView};
 use crate::views::fr::{fr_view, FrBranch, FrSource, FrStore, FrView, HbmStore};
 use crate::views::map::{LyapStore, MapGrid, MapStore, MapView};
@@ -473,11 +473,6 @@ impl Controller {
     /// without bound), as the sweep's worker computed them.
     pub fn instability_bands(&self) -> Vec<(f64, f64)> {
         self.bands.clone()
-    }
-
-    /// Everything the tests and the benchmark read (JSON).
-    pub fn status_json(&self, now_ms: f64) -> String {
-        self.status(now_ms).to_string()
     }
 
     /// Everything the tests and the benchmark read.

@@ -245,7 +245,7 @@ fn a_solver_failure_ends_the_branch_as_partial_and_is_reported() {
     assert_eq!(v.branches.last().unwrap().points.len(), 2);
     assert!(v.branches.last().unwrap().label.contains("partial"));
     assert_eq!(v.branch_error.as_ref().map(|b| b.0), Some(0.5));
-    let s: serde_json::Value = serde_json::from_str(&c.status_json(30.0)).unwrap();
+    let s: serde_json::Value = c.status(30.0);
     assert_eq!(s["fr_partial"], "Newton did not converge");
     // A new branch clears the old branch's failure message.
     c.set_key("harmonics", "3", 40.0).unwrap();
@@ -533,6 +533,6 @@ fn presets_links_and_model_switch() {
     );
     let _ = c.fr_view();
     let _ = c.bif_view();
-    let s: serde_json::Value = serde_json::from_str(&c.status_json(5.0)).unwrap();
+    let s: serde_json::Value = c.status(5.0);
     assert!(s["query"].as_str().unwrap().starts_with("model=ravigneaux"));
 }

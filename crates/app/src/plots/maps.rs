@@ -19,9 +19,8 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 /// Height of the map canvas (pixels).
-pub const MAP_HEIGHT: u32 = 460;
+
 /// Height of the Lyapunov canvas (pixels).
-pub const LYAP_HEIGHT: u32 = 240;
 
 const PENDING: RGBColor = RGBColor(236, 238, 242);
 const FAILED: RGBColor = RGBColor(110, 110, 110);
@@ -163,50 +162,6 @@ pub fn draw_map<DB: DrawingBackend>(
     Ok((frame, overlay))
 }
 
-/// Draws a map's cells, dots and cursor with plotters (for backends
-/// without a fast path, e.g. the SVG of the tests).
-pub fn draw_map_overlay<DB: DrawingBackend>(
-    root: &DrawingArea<DB, Shift>,
-    frame: &PlotFrame,
-    o: &MapOverlay,
-) -> Res<()> {
-    for (color, rects) in &o.cells {
-        for r in rects {
-            root.draw(&Rectangle::new(
-                [
-                    (r[0] as i32, r[1] as i32),
-                    ((r[0] + r[2]) as i32, (r[1] + r[3]) as i32),
-                ],
-                color.filled(),
-            ))
-            .map_err(err)?;
-        }
-    }
-    for d in &o.dots {
-        root.draw(&Circle::new(
-            (d[0] as i32, d[1] as i32),
-            o.dot_radius as i32,
-            CROSS.filled(),
-        ))
-        .map_err(err)?;
-    }
-    let (l, t, r, b) = (
-        frame.top_left.x as i32,
-        frame.top_left.y as i32,
-        frame.bottom_right.x as i32,
-        frame.bottom_right.y as i32,
-    );
-    if let Some(x) = o.cursor.0 {
-        root.draw(&PathElement::new(vec![(x as i32, t), (x as i32, b)], BLACK))
-            .map_err(err)?;
-    }
-    if let Some(y) = o.cursor.1 {
-        root.draw(&PathElement::new(vec![(l, y as i32), (r, y as i32)], BLACK))
-            .map_err(err)?;
-    }
-    root.present().map_err(err)
-}
-
 /// Colour of an exponent's reading.
 pub fn lyap_color(k: LyapKind) -> RGBColor {
     match k {
@@ -314,6 +269,55 @@ mod tests {
     use crate::plots::WIDTH;
     use crate::protocol::{LyapSample, MapSample};
     use crate::views::map::{MapGrid, MapStore};
+
+    /// The map canvas's height (pixels).
+    const MAP_HEIGHT: u32 = 460;
+    /// The Lyapunov canvas's height (pixels).
+    const LYAP_HEIGHT: u32 = 240;
+
+    /// Draws a map's cells, dots and cursor with plotters (for backends
+    /// without a fast path, e.g. the SVG of the tests).
+    fn draw_map_overlay<DB: DrawingBackend>(
+        root: &DrawingArea<DB, Shift>,
+        frame: &PlotFrame,
+        o: &MapOverlay,
+    ) -> Res<()> {
+        for (color, rects) in &o.cells {
+            for r in rects {
+                root.draw(&Rectangle::new(
+                    [
+                        (r[0] as i32, r[1] as i32),
+                        ((r[0] + r[2]) as i32, (r[1] + r[3]) as i32),
+                    ],
+                    color.filled(),
+                ))
+                .map_err(err)?;
+            }
+        }
+        for d in &o.dots {
+            root.draw(&Circle::new(
+                (d[0] as i32, d[1] as i32),
+                o.dot_radius as i32,
+                CROSS.filled(),
+            ))
+            .map_err(err)?;
+        }
+        let (l, t, r, b) = (
+            frame.top_left.x as i32,
+            frame.top_left.y as i32,
+            frame.bottom_right.x as i32,
+            frame.bottom_right.y as i32,
+        );
+        if let Some(x) = o.cursor.0 {
+            root.draw(&PathElement::new(vec![(x as i32, t), (x as i32, b)], BLACK))
+                .map_err(err)?;
+        }
+        if let Some(y) = o.cursor.1 {
+            root.draw(&PathElement::new(vec![(l, y as i32), (r, y as i32)], BLACK))
+                .map_err(err)?;
+        }
+        root.present().map_err(err)
+    }
 
     #[test]
     fn the_map_and_the_lyapunov_curve_draw_with_labelled_axes() {

@@ -107,14 +107,6 @@ impl BifStore {
     }
 }
 
-/// The most severe regime of a sample's meshes.
-pub fn worst_regime(s: &BifSample) -> Option<Regime> {
-    s.meshes
-        .iter()
-        .map(|m| m.regime)
-        .max_by_key(|&r| r.severity())
-}
-
 /// The bifurcation diagram as CSV.
 pub fn bif_csv(v: &BifView) -> String {
     let mut s = String::from("omega,direction,x_um,regime\n");
@@ -165,6 +157,5 @@ mod tests {
         assert!(!v.points[0].up);
         assert_eq!(v.done, 1);
         assert_eq!(bif_csv(&v).lines().count(), 3);
-        assert_eq!(worst_regime(&st.samples[0]), Some(Regime::DoubleSided));
     }
 }

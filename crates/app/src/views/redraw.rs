@@ -2,14 +2,14 @@
 //! pure type fed with the page's clock (`now_ms`), so it is tested natively.
 //!
 //! A change marks views as needed ([`Redraw::mark`]); each frame the page
-//! walks [`DRAW_ORDER`] and asks [`Redraw::decide`] per view: draw it, skip
+//! walks [`super::DRAW_ORDER`] and asks [`Redraw::decide`] per view: draw it, skip
 //! it for now (a running sweep's view is redrawn at most every
 //! [`RUNNING_REDRAW_MS`], though a new job's start and its first points show
 //! at once), or stop (the frame's budget [`FRAME_BUDGET_MS`] is spent; the
 //! rest waits for the next frame). It also keeps the per-view counters the
 //! tests' status reports.
 
-use super::{ViewId, DRAW_ORDER, VIEWS};
+use super::{ViewId, VIEWS};
 use crate::status::{Dirty, JobStatus};
 
 /// Main-thread time after which a frame starts no further view (ms): a
@@ -114,12 +114,18 @@ impl Redraw {
             self.first_draw_ms[k] = end_ms;
         }
     }
+}
 
-    /// The views to draw in one frame if each takes `draw_ms`, for tests
-    /// and for reasoning about the order: [`Self::decide`] over
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::views::DRAW_ORDER;
+
+    /// The views drawn in one frame if each takes `draw_ms`:
+    /// [`Redraw::decide`] over
     /// [`DRAW_ORDER`] from `frame_ms`, with `status` per view.
-    pub fn plan<'a>(
-        &mut self,
+    fn plan<'a>(
+        r: &mut Redraw,
         frame_ms: f64,
         draw_ms: f64,
         status: impl Fn(ViewId) -> Option<&'a JobStatus>,
@@ -127,11 +133,11 @@ impl Redraw {
         let mut now = frame_ms;
         let mut out = Vec::new();
         for v in DRAW_ORDER {
-            match self.decide(v, frame_ms, now, status(v)) {
+            match r.decide(v, frame_ms, now, status(v)) {
                 Decision::Stop => break,
                 Decision::Skip => {}
                 Decision::Draw => {
-                    self.drawn(v, now, now + draw_ms);
+                    r.drawn(v, now, now + draw_ms);
                     now += draw_ms;
                     out.push(v);
                 }
@@ -139,11 +145,6 @@ impl Redraw {
         }
         out
     }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
 
     fn all() -> Dirty {
         Dirty {
@@ -164,21 +165,21 @@ mod tests {
         r.mark(&all());
         // 3 ms per view: views start at 0, 3, 6, 9 ms; the fourth starts
         // after the 8 ms budget, so three per frame.
-        let first = r.plan(100.0, 3.0, |_| None);
+        let first = plan(&mut r, 100.0, 3.0, |_| None);
         assert_eq!(first, vec![ViewId::Fr, ViewId::Phase, ViewId::Bif]);
-        let second = r.plan(200.0, 3.0, |_| None);
+        let second = plan(&mut r, 200.0, 3.0, |_| None);
         assert_eq!(
             second,
             vec![ViewId::Poincare, ViewId::Time, ViewId::Spectrum]
         );
-        let third = r.plan(300.0, 3.0, |_| None);
+        let third = plan(&mut r, 300.0, 3.0, |_| None);
         assert_eq!(third, vec![ViewId::Lyap, ViewId::Map]);
         assert!(!r.pending());
         assert_eq!(r.draws, [1; 8]);
         assert_eq!(r.first_draw_ms[ViewId::Fr.slot()], 103.0);
         assert_eq!(r.max_draw_ms[ViewId::Map.slot()], 3.0);
         // Nothing marked: nothing drawn.
-        assert!(r.plan(400.0, 3.0, |_| None).is_empty());
+        assert!(plan(&mut r, 400.0, 3.0, |_| None).is_empty());
     }
 
     /// A running sweep's view is redrawn at most every RUNNING_REDRAW_MS,
@@ -201,32 +202,32 @@ mod tests {
         r.mark(&bif);
         let status = |s: &JobStatus| s.clone();
         let s0 = status(&st);
-        let drawn = r.plan(10.0, 1.0, |v| (v == ViewId::Bif).then_some(&s0));
+        let drawn = plan(&mut r, 10.0, 1.0, |v| (v == ViewId::Bif).then_some(&s0));
         assert!(drawn.contains(&ViewId::Bif) && drawn.contains(&ViewId::Phase));
         // 100 ms later, more points, same job: throttled, still needed.
         r.mark(&bif);
-        let drawn = r.plan(112.0, 1.0, |v| (v == ViewId::Bif).then_some(&s0));
+        let drawn = plan(&mut r, 112.0, 1.0, |v| (v == ViewId::Bif).then_some(&s0));
         assert!(!drawn.contains(&ViewId::Bif) && drawn.contains(&ViewId::Phase));
         assert!(r.needs(ViewId::Bif));
         // The first data arrive: drawn at once.
         st.first_data_ms = Some(115.0);
         let s1 = status(&st);
-        let drawn = r.plan(120.0, 1.0, |v| (v == ViewId::Bif).then_some(&s1));
+        let drawn = plan(&mut r, 120.0, 1.0, |v| (v == ViewId::Bif).then_some(&s1));
         assert_eq!(drawn, vec![ViewId::Bif]);
         // More points within 250 ms: throttled; after 250 ms: drawn.
         r.mark(&bif);
-        assert!(!r
-            .plan(200.0, 1.0, |v| (v == ViewId::Bif).then_some(&s1))
-            .contains(&ViewId::Bif));
-        assert!(r
-            .plan(380.0, 1.0, |v| (v == ViewId::Bif).then_some(&s1))
-            .contains(&ViewId::Bif));
+        assert!(
+            !plan(&mut r, 200.0, 1.0, |v| (v == ViewId::Bif).then_some(&s1)).contains(&ViewId::Bif)
+        );
+        assert!(
+            plan(&mut r, 380.0, 1.0, |v| (v == ViewId::Bif).then_some(&s1)).contains(&ViewId::Bif)
+        );
         // A finished job is not throttled.
         st.finished_ms = Some(390.0);
         let s2 = status(&st);
         r.mark(&bif);
-        assert!(r
-            .plan(400.0, 1.0, |v| (v == ViewId::Bif).then_some(&s2))
-            .contains(&ViewId::Bif));
+        assert!(
+            plan(&mut r, 400.0, 1.0, |v| (v == ViewId::Bif).then_some(&s2)).contains(&ViewId::Bif)
+        );
     }
 }
