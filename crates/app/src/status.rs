@@ -73,7 +73,33 @@ pub struct Dirty {
     pub lyap: bool,
 }
 
+impl Dirty {
+    /// Everything: a new page state (a link, a preset, a reset).
+    pub fn all() -> Self {
+        Dirty {
+            fr: true,
+            bif: true,
+            omega: true,
+            controls: true,
+            url: true,
+            messages: true,
+            map: true,
+            lyap: true,
+        }
+    }
+}
+
 impl JobStatus {
+    /// Records `done` units at `now_ms`: the first data's time, and the
+    /// finish once every unit is done.
+    pub fn record(&mut self, done: usize, now_ms: f64) {
+        self.done = done;
+        self.first_data_ms.get_or_insert(now_ms);
+        if done >= self.total {
+            self.finished_ms = Some(now_ms);
+        }
+    }
+
     /// The caption's status: failed, or computing with its count.
     pub fn caption_suffix(&self) -> String {
         if self.error.is_some() {

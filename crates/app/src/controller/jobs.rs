@@ -28,6 +28,22 @@ pub(super) struct Restart {
     pub(super) lyap: bool,
 }
 
+impl Restart {
+    /// The kinds to restart, in the order they start (the selected Omega
+    /// first: its worker serves it first).
+    fn kinds(self) -> impl Iterator<Item = JobKind> {
+        let on = [self.omega, self.fr, self.ti, self.bif, self.map, self.lyap];
+        JobKind::ALL
+            .into_iter()
+            .zip(on)
+            .filter(|(_, on)| *on)
+            .map(|(k, _)| k)
+    }
+}
+
+/// A job's parameters as the worker messages carry them.
+pub(super) type Params = serde_json::Map<String, serde_json::Value>;
+
 pub(super) const ALL: Restart = Restart {
     fr: true,
     ti: true,
@@ -108,6 +124,72 @@ impl Controller {
         }
     }
 
+    /// The next job id.
+    fn next_job(&mut self) -> JobId {
+        self.next_id += 1;
+        self.next_id
+    }
+
+    /// Posts the job of each of `chains` shards (`job(shard)`), one per
+    /// worker, for the current state or (`pinned`) for A.
+    pub(super) fn post_shards(
+        &mut self,
+        id: JobId,
+        params: &Params,
+        (chains, pinned): (u32, bool),
+        job: impl Fn(u32) -> JobSpec,
+    ) -> Vec<Effect> {
+        let mut fx = Vec::new();
+        for w in 0..chains {
+            let (params, job) = (params.clone(), job(w));
+            let msg = if pinned {
+                ToWorker::RunPinned { id, params, job }
+            } else {
+                ToWorker::Run { id, params, job }
+            };
+            fx.extend(self.post(w as usize, &msg));
+        }
+        fx
+    }
+
+    /// A new job of `kind` with `total` units: its id, its status started.
+    fn begin(&mut self, kind: JobKind, total: usize, now_ms: f64) -> JobId {
+        let id = self.next_job();
+        *self.status_mut(kind) = JobStatus::start(id, now_ms, total);
+        id
+    }
+
+    /// A kind switched off: its running job (if `running`) cancelled and
+    /// its status cleared.
+    fn switch_off(&mut self, kind: JobKind, running: bool) -> Vec<Effect> {
+        *self.status_mut(kind) = JobStatus::default();
+        if running {
+            self.cancel(kind)
+        } else {
+            Vec::new()
+        }
+    }
+
+    /// Cancels the jobs of `kind` on every worker.
+    fn cancel(&mut self, kind: JobKind) -> Vec<Effect> {
+        (0..WORKERS)
+            .flat_map(|w| self.post(w, &ToWorker::Cancel { kind }))
+            .collect()
+    }
+
+    /// The status of the current job of `kind`.
+    pub(super) fn status_mut(&mut self, kind: JobKind) -> &mut JobStatus {
+        match kind {
+            JobKind::Omega => &mut self.omega_status,
+            JobKind::Hbm => &mut self.fr_status,
+            JobKind::Fr => &mut self.ti_status,
+            JobKind::Bif => &mut self.bif_status,
+            JobKind::Map => &mut self.map_status,
+            JobKind::Lyap => &mut self.lyap_status,
+        }
+    }
+
+    /// Restarts the jobs `what` names, kind by kind.
     pub(super) fn restart(&mut self, what: Restart, now_ms: f64) -> Vec<Effect> {
         let mut fx = Vec::new();
         let model = match &self.model {
@@ -115,22 +197,11 @@ impl Controller {
             Err(e) => {
                 // No jobs on an invalid model: say why on every view.
                 let e = e.clone();
-                for (flag, st) in [
-                    (what.fr, &mut self.fr_status),
-                    (what.ti, &mut self.ti_status),
-                    (what.bif, &mut self.bif_status),
-                    (what.omega, &mut self.omega_status),
-                    (what.map, &mut self.map_status),
-                    (what.lyap, &mut self.lyap_status),
-                ] {
-                    if flag {
-                        st.error = Some(e.clone());
-                    }
+                for kind in what.kinds() {
+                    self.status_mut(kind).error = Some(e.clone());
                 }
                 for kind in JobKind::ALL {
-                    for w in 0..WORKERS {
-                        fx.extend(self.post(w, &ToWorker::Cancel { kind }));
-                    }
+                    fx.extend(self.cancel(kind));
                 }
                 self.map.signature.clear();
                 self.dirty.fr = true;
@@ -142,127 +213,113 @@ impl Controller {
             }
         };
         let params = keys::to_json(&self.settings.params);
-        let v = self.settings.view.clone();
-        if what.omega {
-            self.next_id += 1;
-            let id = self.next_id;
-            self.omega_status = JobStatus::start(id, now_ms, 1);
-            let job = JobSpec::Omega {
-                omega: v.omega,
-                mesh: self.settings.mesh_index(&model),
-                run: self.run_options(v.record_periods),
-                samples_per_period: SAMPLES_PER_PERIOD,
-                max_order: MAX_ORDER,
-            };
-            fx.extend(self.post(
-                0,
-                &ToWorker::Run {
-                    id,
-                    params: params.clone(),
-                    job,
-                },
-            ));
-            self.preview_omega(&model, id, now_ms);
-            self.dirty.omega = true;
-        }
-        if what.fr {
-            self.next_id += 1;
-            let id = self.next_id;
-            // Keep the last complete branch (not a half-computed one) to fade
-            // under the new one while it computes.
-            if self.hbm.is_complete() {
-                self.hbm_previous = Some(std::mem::take(&mut self.hbm));
-            }
-            self.hbm = HbmStore::new(id, v.harmonics);
-            let before = self.issues.len();
-            self.issues.retain(|i| !i.starts_with(HBM_FAILURE));
-            self.dirty.messages |= self.issues.len() != before;
-            self.fr_status = JobStatus::start(id, now_ms, 100);
-            let job = hbm_job(&v);
-            fx.extend(self.post(
-                HBM_WORKER,
-                &ToWorker::Run {
-                    id,
-                    params: params.clone(),
-                    job,
-                },
-            ));
-            self.dirty.fr = true;
-        }
-        if what.ti && v.fr_ti_points == 0 {
-            // Overlay off: drop a running overlay job, if there was one.
-            if self.fr.id != 0 {
-                for w in 0..WORKERS {
-                    fx.extend(self.post(w, &ToWorker::Cancel { kind: JobKind::Fr }));
-                }
-            }
-            self.fr = FrStore::default();
-            self.ti_status = JobStatus::default();
-            self.dirty.fr = true;
-        } else if what.ti {
-            self.next_id += 1;
-            let id = self.next_id;
-            let n = v.fr_ti_points;
-            self.fr = FrStore::new(id, n, v.transient_periods, v.fr_record_periods);
-            self.ti_status = JobStatus::start(id, now_ms, n as usize);
-            let chains = (WORKERS as u32).min(n);
-            for w in 0..chains {
-                let job = JobSpec::Fr {
-                    omega_from: v.omega_from,
-                    omega_to: v.omega_to,
-                    points: n,
-                    chains,
-                    shard: w,
-                    run: self.run_options(v.fr_record_periods),
-                };
-                fx.extend(self.post(
-                    w as usize,
-                    &ToWorker::Run {
-                        id,
-                        params: params.clone(),
-                        job,
-                    },
-                ));
-            }
-            self.dirty.fr = true;
-        }
-        if what.bif {
-            self.next_id += 1;
-            let id = self.next_id;
-            let total = bif_total(&v);
-            self.bif = BifStore::new(id, total);
-            self.bif_status = JobStatus::start(id, now_ms, total);
-            self.export = None;
-            let chains = (WORKERS as u32).min(v.bif_points);
-            for w in 0..chains {
-                let job = JobSpec::Bif {
-                    omega_from: v.omega_from,
-                    omega_to: v.omega_to,
-                    points: v.bif_points,
-                    directions: v.bif_dir.name().to_string(),
-                    chains,
-                    shard: w,
-                    run: self.run_options(v.record_periods),
-                };
-                fx.extend(self.post(
-                    w as usize,
-                    &ToWorker::Run {
-                        id,
-                        params: params.clone(),
-                        job,
-                    },
-                ));
-            }
-            self.dirty.bif = true;
-        }
-        if what.map {
-            fx.extend(self.restart_map(&model, &params, now_ms));
-        }
-        if what.lyap {
-            fx.extend(self.restart_lyap(&params, now_ms));
+        for kind in what.kinds() {
+            fx.extend(match kind {
+                JobKind::Omega => self.start_omega(&model, &params, now_ms),
+                JobKind::Hbm => self.start_hbm(&params, now_ms),
+                JobKind::Fr => self.start_overlay(&params, now_ms),
+                JobKind::Bif => self.start_bif(&params, now_ms),
+                JobKind::Map => self.restart_map(&model, &params, now_ms),
+                JobKind::Lyap => self.restart_lyap(&params, now_ms),
+            });
         }
         self.dirty.url = true;
         fx
+    }
+
+    fn start_omega(&mut self, model: &Model, params: &Params, now_ms: f64) -> Vec<Effect> {
+        let v = &self.settings.view;
+        let job = JobSpec::Omega {
+            omega: v.omega,
+            mesh: self.settings.mesh_index(model),
+            run: self.run_options(v.record_periods),
+            samples_per_period: SAMPLES_PER_PERIOD,
+            max_order: MAX_ORDER,
+        };
+        let id = self.begin(JobKind::Omega, 1, now_ms);
+        let fx = self.post_shards(id, params, (1, false), |_| job.clone());
+        self.preview_omega(model, id, now_ms);
+        self.dirty.omega = true;
+        fx
+    }
+
+    fn start_hbm(&mut self, params: &Params, now_ms: f64) -> Vec<Effect> {
+        let id = self.begin(JobKind::Hbm, 100, now_ms);
+        // Keep the last complete branch (not a half-computed one) to fade
+        // under the new one while it computes.
+        if self.hbm.is_complete() {
+            self.hbm_previous = Some(std::mem::take(&mut self.hbm));
+        }
+        self.hbm = HbmStore::new(id, self.settings.view.harmonics);
+        let before = self.issues.len();
+        self.issues.retain(|i| !i.starts_with(HBM_FAILURE));
+        self.dirty.messages |= self.issues.len() != before;
+        let job = hbm_job(&self.settings.view);
+        self.dirty.fr = true;
+        let msg = ToWorker::Run {
+            id,
+            params: params.clone(),
+            job,
+        };
+        self.post(HBM_WORKER, &msg)
+    }
+
+    fn start_overlay(&mut self, params: &Params, now_ms: f64) -> Vec<Effect> {
+        let v = self.settings.view.clone();
+        self.dirty.fr = true;
+        if v.fr_ti_points == 0 {
+            // Overlay off: drop a running overlay job, if there was one.
+            let running = self.fr.id != 0;
+            self.fr = FrStore::default();
+            return self.switch_off(JobKind::Fr, running);
+        }
+        let n = v.fr_ti_points;
+        let id = self.begin(JobKind::Fr, n as usize, now_ms);
+        self.fr = FrStore::new(id, n, v.transient_periods, v.fr_record_periods);
+        let chains = (WORKERS as u32).min(n);
+        let run = self.run_options(v.fr_record_periods);
+        self.post_shards(id, params, (chains, false), |shard| JobSpec::Fr {
+            omega_from: v.omega_from,
+            omega_to: v.omega_to,
+            points: n,
+            chains,
+            shard,
+            run,
+        })
+    }
+
+    fn start_bif(&mut self, params: &Params, now_ms: f64) -> Vec<Effect> {
+        let v = self.settings.view.clone();
+        let total = bif_total(&v);
+        let id = self.begin(JobKind::Bif, total, now_ms);
+        self.bif = BifStore::new(id, total);
+        self.export = None;
+        self.dirty.bif = true;
+        self.post_bif(id, params, &v, false)
+    }
+
+    /// Posts the shards of a bifurcation sweep of view settings `v`.
+    pub(super) fn post_bif(
+        &mut self,
+        id: JobId,
+        params: &Params,
+        v: &crate::settings::ViewOptions,
+        pinned: bool,
+    ) -> Vec<Effect> {
+        let chains = (WORKERS as u32).min(v.bif_points);
+        let run = RunOptions {
+            transient_periods: v.transient_periods,
+            record_periods: v.record_periods,
+        };
+        self.post_shards(id, params, (chains, pinned), |shard| JobSpec::Bif {
+            omega_from: v.omega_from,
+            omega_to: v.omega_to,
+            points: v.bif_points,
+            directions: v.bif_dir.name().to_string(),
+            chains,
+            shard,
+            run,
+        })
     }
 
     /// The map's grid from the view options.
@@ -307,100 +364,61 @@ impl Controller {
     pub(super) fn restart_map(
         &mut self,
         model: &Model,
-        params: &serde_json::Map<String, serde_json::Value>,
+        params: &Params,
         now_ms: f64,
     ) -> Vec<Effect> {
         let signature = self.map_signature(model, params);
         if signature == self.map.signature && self.map_status.error.is_none() {
             return Vec::new();
         }
-        let mut fx = Vec::new();
-        self.next_id += 1;
-        let id = self.next_id;
         let grid = self.map_grid();
-        let v = self.settings.view.clone();
-        self.map_status = JobStatus::start(id, now_ms, grid.cells());
+        let id = self.begin(JobKind::Map, grid.cells(), now_ms);
+        let v = &self.settings.view;
+        let run = RunOptions {
+            transient_periods: v.map_transient_periods,
+            record_periods: v.map_record_periods,
+        };
         let shards = (WORKERS as u32).min(grid.value_points);
-        for w in 0..shards {
-            let job = JobSpec::Map {
-                key: grid.key.clone(),
-                omega_from: grid.omega_from,
-                omega_to: grid.omega_to,
-                omega_points: grid.omega_points,
-                value_from: grid.value_from,
-                value_to: grid.value_to,
-                value_points: grid.value_points,
-                mesh: self.settings.mesh_index(model),
-                shards,
-                shard: w,
-                run: RunOptions {
-                    transient_periods: v.map_transient_periods,
-                    record_periods: v.map_record_periods,
-                },
-            };
-            fx.extend(self.post(
-                w as usize,
-                &ToWorker::Run {
-                    id,
-                    params: params.clone(),
-                    job,
-                },
-            ));
-        }
+        let mesh = self.settings.mesh_index(model);
+        let fx = self.post_shards(id, params, (shards, false), |shard| JobSpec::Map {
+            key: grid.key.clone(),
+            omega_from: grid.omega_from,
+            omega_to: grid.omega_to,
+            omega_points: grid.omega_points,
+            value_from: grid.value_from,
+            value_to: grid.value_to,
+            value_points: grid.value_points,
+            mesh,
+            shards,
+            shard,
+            run,
+        });
         self.map = MapStore::new(id, grid, signature);
         self.dirty.map = true;
         fx
     }
 
-    pub(super) fn restart_lyap(
-        &mut self,
-        params: &serde_json::Map<String, serde_json::Value>,
-        now_ms: f64,
-    ) -> Vec<Effect> {
+    pub(super) fn restart_lyap(&mut self, params: &Params, now_ms: f64) -> Vec<Effect> {
         let v = self.settings.view.clone();
-        let mut fx = Vec::new();
         self.dirty.lyap = true;
         if v.lyap_points < 2 {
             // The curve is off: drop a running job, if there was one.
-            if self.lyap.id != 0 {
-                for w in 0..WORKERS {
-                    fx.extend(self.post(
-                        w,
-                        &ToWorker::Cancel {
-                            kind: JobKind::Lyap,
-                        },
-                    ));
-                }
-            }
+            let running = self.lyap.id != 0;
             self.lyap = LyapStore::default();
-            self.lyap_status = JobStatus::default();
-            return fx;
+            return self.switch_off(JobKind::Lyap, running);
         }
-        self.next_id += 1;
-        let id = self.next_id;
         let n = v.lyap_points;
+        let id = self.begin(JobKind::Lyap, n as usize, now_ms);
         self.lyap = LyapStore::new(id, n as usize, v.lyap_periods);
-        self.lyap_status = JobStatus::start(id, now_ms, n as usize);
         let chains = (WORKERS as u32).min(n);
-        for w in 0..chains {
-            let job = JobSpec::Lyap {
-                omega_from: v.omega_from,
-                omega_to: v.omega_to,
-                points: n,
-                chains,
-                shard: w,
-                transient_periods: v.lyap_transient_periods,
-                periods: v.lyap_periods,
-            };
-            fx.extend(self.post(
-                w as usize,
-                &ToWorker::Run {
-                    id,
-                    params: params.clone(),
-                    job,
-                },
-            ));
-        }
-        fx
+        self.post_shards(id, params, (chains, false), |shard| JobSpec::Lyap {
+            omega_from: v.omega_from,
+            omega_to: v.omega_to,
+            points: n,
+            chains,
+            shard,
+            transient_periods: v.lyap_transient_periods,
+            periods: v.lyap_periods,
+        })
     }
 }

@@ -62,11 +62,7 @@ impl Controller {
             }
             FromWorker::FrPoints { id, points } if id == self.fr.id && id != 0 => {
                 self.fr.add(points);
-                self.ti_status.done = self.fr.done();
-                self.ti_status.first_data_ms.get_or_insert(now_ms);
-                if self.ti_status.done >= self.ti_status.total {
-                    self.ti_status.finished_ms = Some(now_ms);
-                }
+                self.ti_status.record(self.fr.done(), now_ms);
                 self.dirty.fr = true;
                 Vec::new()
             }
@@ -82,31 +78,19 @@ impl Controller {
             }
             FromWorker::BifPoints { id, points } if id == self.bif.id => {
                 self.bif.samples.extend(points);
-                self.bif_status.done = self.bif.samples.len();
-                self.bif_status.first_data_ms.get_or_insert(now_ms);
-                if self.bif_status.done >= self.bif_status.total {
-                    self.bif_status.finished_ms = Some(now_ms);
-                }
+                self.bif_status.record(self.bif.samples.len(), now_ms);
                 self.dirty.bif = true;
                 Vec::new()
             }
             FromWorker::MapCells { id, cells } if id == self.map.id && id != 0 => {
                 self.map.add(cells);
-                self.map_status.done = self.map.done;
-                self.map_status.first_data_ms.get_or_insert(now_ms);
-                if self.map.done >= self.map_status.total {
-                    self.map_status.finished_ms = Some(now_ms);
-                }
+                self.map_status.record(self.map.done, now_ms);
                 self.dirty.map = true;
                 Vec::new()
             }
             FromWorker::LyapPoints { id, points } if id == self.lyap.id && id != 0 => {
                 self.lyap.points.extend(points);
-                self.lyap_status.done = self.lyap.points.len();
-                self.lyap_status.first_data_ms.get_or_insert(now_ms);
-                if self.lyap_status.done >= self.lyap_status.total {
-                    self.lyap_status.finished_ms = Some(now_ms);
-                }
+                self.lyap_status.record(self.lyap.points.len(), now_ms);
                 self.dirty.lyap = true;
                 Vec::new()
             }
@@ -119,14 +103,8 @@ impl Controller {
                 Vec::new()
             }
             FromWorker::Failed { id, message } => {
-                for st in [
-                    &mut self.fr_status,
-                    &mut self.ti_status,
-                    &mut self.bif_status,
-                    &mut self.omega_status,
-                    &mut self.map_status,
-                    &mut self.lyap_status,
-                ] {
+                for kind in JobKind::ALL {
+                    let st = self.status_mut(kind);
                     if st.id == id && id != 0 {
                         st.error = Some(message.clone());
                     }

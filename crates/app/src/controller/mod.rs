@@ -153,16 +153,7 @@ impl Controller {
         if let Some(a) = pinned {
             fx.extend(c.start_pinned(a, now_ms));
         }
-        c.dirty = Dirty {
-            fr: true,
-            bif: true,
-            omega: true,
-            controls: true,
-            url: true,
-            messages: true,
-            map: true,
-            lyap: true,
-        };
+        c.dirty = Dirty::all();
         (c, fx)
     }
 
@@ -308,16 +299,7 @@ impl Controller {
         if let Some(a) = d.pinned {
             fx.extend(self.start_pinned(a, now_ms));
         }
-        self.dirty = Dirty {
-            fr: true,
-            bif: true,
-            omega: true,
-            controls: true,
-            url: true,
-            messages: true,
-            map: true,
-            lyap: true,
-        };
+        self.dirty = Dirty::all();
         fx.extend(self.restart(ALL, now_ms));
         fx
     }

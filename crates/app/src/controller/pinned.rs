@@ -105,43 +105,18 @@ impl Controller {
         let id = self.next_id;
         pinned.hbm = HbmStore::new(id, v.harmonics);
         pinned.fr_status = JobStatus::start(id, now_ms, 100);
-        let job = hbm_job(v);
-        fx.extend(self.post(
-            HBM_WORKER,
-            &ToWorker::RunPinned {
-                id,
-                params: params.clone(),
-                job,
-            },
-        ));
+        let msg = ToWorker::RunPinned {
+            id,
+            params: params.clone(),
+            job: hbm_job(v),
+        };
+        fx.extend(self.post(HBM_WORKER, &msg));
         self.next_id += 1;
         let id = self.next_id;
         let total = bif_total(v);
         pinned.bif = BifStore::new(id, total);
         pinned.bif_status = JobStatus::start(id, now_ms, total);
-        let chains = (WORKERS as u32).min(v.bif_points);
-        for w in 0..chains {
-            let job = JobSpec::Bif {
-                omega_from: v.omega_from,
-                omega_to: v.omega_to,
-                points: v.bif_points,
-                directions: v.bif_dir.name().to_string(),
-                chains,
-                shard: w,
-                run: RunOptions {
-                    transient_periods: v.transient_periods,
-                    record_periods: v.record_periods,
-                },
-            };
-            fx.extend(self.post(
-                w as usize,
-                &ToWorker::RunPinned {
-                    id,
-                    params: params.clone(),
-                    job,
-                },
-            ));
-        }
+        fx.extend(self.post_bif(id, &params, v, true));
         self.pinned = Some(pinned);
         fx
     }

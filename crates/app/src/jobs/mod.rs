@@ -12,6 +12,7 @@
 //! most one step.
 
 pub mod bif;
+pub mod chain;
 pub mod hbm;
 pub mod lyap;
 pub mod map;

@@ -58,13 +58,7 @@ pub fn draw_bif<DB: DrawingBackend>(
 ) -> Res<(PlotFrame, Vec<PointGroup>)> {
     root.fill(&WHITE).map_err(err)?;
     let x = (v.omega_from, v.omega_to);
-    let mut extra: Vec<f64> = v
-        .backlash_um
-        .iter()
-        .chain(v.pinned_backlash_um.iter())
-        .flat_map(|b| [*b, -*b])
-        .collect();
-    extra.push(0.0);
+    let extra = contact_levels(&v.backlash_um, &v.pinned_backlash_um);
     let y = with_headroom(
         padded_range(
             v.points.iter().chain(v.pinned.iter()).map(|p| p.x_um),
@@ -79,16 +73,7 @@ pub fn draw_bif<DB: DrawingBackend>(
     contact_lines(&mut chart, &v.backlash_um, x, true, true)?;
     if pinned_contact_lines(&mut chart, &v.pinned_backlash_um, &v.backlash_um, x)? {
         let style = ShapeStyle::from(&A_MIN).stroke_width(1);
-        chart
-            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
-            .map_err(err)?
-            .label("A's ±b contact lines")
-            .legend(move |(xx, yy)| {
-                PathElement::new(
-                    vec![(xx, yy), (xx + 6, yy), (xx + 10, yy), (xx + 16, yy)],
-                    style,
-                )
-            });
+        legend_only(&mut chart, "A's ±b contact lines", style, [6, 10])?;
     }
     if !v.unstable_bands.is_empty() {
         // Where motion large against the backlash grows without bound (the

@@ -21,13 +21,7 @@ pub fn draw_fr<DB: DrawingBackend>(
         .chain(v.overlay.iter())
         .filter(|p| in_range(p.omega))
         .flat_map(|p| [p.max_um, p.min_um]);
-    let mut extra: Vec<f64> = v
-        .backlash_um
-        .iter()
-        .chain(v.pinned_backlash_um.iter())
-        .flat_map(|b| [*b, -*b])
-        .collect();
-    extra.push(0.0);
+    let extra = contact_levels(&v.backlash_um, &v.pinned_backlash_um);
     // Room at the top for the legend (two lines per branch, the faded
     // branch, the unstable dash, the failure line).
     let entries = v.branches.iter().filter(|b| !b.faded).count() * 2
@@ -188,16 +182,7 @@ pub fn draw_fr<DB: DrawingBackend>(
     }
     if any_unstable {
         let style = ShapeStyle::from(&CONTACT).stroke_width(2);
-        chart
-            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
-            .map_err(err)?
-            .label("unstable (Floquet): dashed")
-            .legend(move |(xx, yy)| {
-                PathElement::new(
-                    vec![(xx, yy), (xx + 5, yy), (xx + 9, yy), (xx + 16, yy)],
-                    style,
-                )
-            });
+        legend_only(&mut chart, "unstable (Floquet): dashed", style, [5, 9])?;
     }
     // Time-integration steady states: hollow dots on both extremes.
     chart

@@ -142,6 +142,18 @@ pub fn with_headroom(r: (f64, f64), fraction: f64) -> (f64, f64) {
     (r.0, r.1 + fraction * (r.1 - r.0))
 }
 
+/// The levels a plot of x must show whatever the data: ±b of the current
+/// state's and A's meshes, and zero.
+pub(crate) fn contact_levels(backlash_um: &[f64], pinned_um: &[f64]) -> Vec<f64> {
+    let mut extra: Vec<f64> = backlash_um
+        .iter()
+        .chain(pinned_um.iter())
+        .flat_map(|b| [*b, -*b])
+        .collect();
+    extra.push(0.0);
+    extra
+}
+
 /// A range that contains `values` and `extra`, padded, at least `min_span` wide.
 pub fn padded_range(values: impl Iterator<Item = f64>, extra: &[f64], min_span: f64) -> (f64, f64) {
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
@@ -266,6 +278,32 @@ pub(crate) fn linear_chart<'a, DB: DrawingBackend>(
         .map_err(err)?;
     draw_axes(&mut chart, axes)?;
     Ok(chart)
+}
+
+/// A legend entry for a line style drawn elsewhere (no series of its own):
+/// a 16-pixel path through the offsets `mid`.
+pub(crate) fn legend_only<'a, DB: DrawingBackend + 'a>(
+    chart: &mut Chart<'a, DB>,
+    label: &str,
+    style: ShapeStyle,
+    mid: [i32; 2],
+) -> Res<()> {
+    chart
+        .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
+        .map_err(err)?
+        .label(label)
+        .legend(move |(xx, yy)| {
+            PathElement::new(
+                vec![
+                    (xx, yy),
+                    (xx + mid[0], yy),
+                    (xx + mid[1], yy),
+                    (xx + 16, yy),
+                ],
+                style,
+            )
+        });
+    Ok(())
 }
 
 /// A plot with nothing to show yet: a frame and a message (never blank).

@@ -16,18 +16,30 @@ fn omega_caption(what: &str, r: &OmegaResult, status: &str) -> String {
     format!("{what}, mesh {}, Ω = {:.4}{status}", r.mesh_name, r.omega)
 }
 
+/// The phase plane (x, ẋ) of the phase portrait and the Poincaré section:
+/// the same axes, so one point reads as one point, and the ±b lines.
+fn phase_plane<'a, DB: DrawingBackend>(
+    root: &'a DrawingArea<DB, Shift>,
+    r: &OmegaResult,
+    (what, x_desc): (&str, &str),
+    status: &str,
+) -> Res<Chart<'a, DB>> {
+    root.fill(&WHITE).map_err(err)?;
+    let (x, y) = phase_ranges(r);
+    let caption = omega_caption(what, r, status);
+    let mut chart = linear_chart(root, &caption, (x, y), &Axes::new(x_desc, "ẋ (m/s)"))?;
+    contact_lines(&mut chart, &[r.backlash_um], y, false, true)?;
+    Ok(chart)
+}
+
 /// View 3: the phase portrait with its Poincaré points.
 pub fn draw_phase<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     r: &OmegaResult,
     status: &str,
 ) -> Res<()> {
-    root.fill(&WHITE).map_err(err)?;
-    let (x, y) = phase_ranges(r);
-    let caption = omega_caption("Phase portrait", r, status);
-    let axes = Axes::new("x = δ − e (µm)", "ẋ (m/s)");
-    let mut chart = linear_chart(root, &caption, (x, y), &axes)?;
-    contact_lines(&mut chart, &[r.backlash_um], y, false, true)?;
+    let what = ("Phase portrait", "x = δ − e (µm)");
+    let mut chart = phase_plane(root, r, what, status)?;
     let orbit = ShapeStyle::from(&ORBIT.mix(0.7)).stroke_width(1);
     chart
         .draw_series(LineSeries::new(
@@ -57,12 +69,11 @@ pub fn draw_poincare<DB: DrawingBackend>(
     r: &OmegaResult,
     status: &str,
 ) -> Res<()> {
-    root.fill(&WHITE).map_err(err)?;
-    let (x, y) = phase_ranges(r);
-    let caption = omega_caption("Poincaré section", r, status);
-    let axes = Axes::new("x = δ − e (µm), sampled once per mesh period", "ẋ (m/s)");
-    let mut chart = linear_chart(root, &caption, (x, y), &axes)?;
-    contact_lines(&mut chart, &[r.backlash_um], y, false, true)?;
+    let what = (
+        "Poincaré section",
+        "x = δ − e (µm), sampled once per mesh period",
+    );
+    let mut chart = phase_plane(root, r, what, status)?;
     let period = match r.period {
         Some(p) => format!("period {p}"),
         None => "not periodic".into(),

@@ -16,10 +16,8 @@
 
 use crate::jobs::bif::{BandsCache, BifJob, BifSpec};
 use crate::jobs::hbm::HbmJob;
-use crate::jobs::lyap::LyapJob;
 use crate::jobs::map::MapJob;
 use crate::jobs::omega::{OmegaJob, OmegaRun};
-use crate::jobs::overlay::FrJob;
 use crate::jobs::{failed, Job};
 use crate::protocol::{encode, FromWorker, JobId, JobKind, JobSpec, ToWorker};
 use serde_json::{Map, Value};
@@ -185,7 +183,7 @@ impl WorkerCore {
                 chains,
                 shard,
                 run,
-            } => boxed(FrJob::start(
+            } => boxed(crate::jobs::overlay::start(
                 id,
                 model,
                 (omega_from, omega_to, points),
@@ -241,7 +239,7 @@ impl WorkerCore {
                 shard,
                 transient_periods,
                 periods,
-            } => boxed(LyapJob::start(
+            } => boxed(crate::jobs::lyap::start(
                 id,
                 model,
                 (omega_from, omega_to, points),

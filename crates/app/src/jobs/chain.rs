@@ -1,0 +1,146 @@
+//! Jobs that walk a chain of Omega grid points, each continued from the
+//! previous point's end state: the time-integration overlay and the
+//! Lyapunov curve. One [`ChainJob`] runs the chain; its kind
+//! ([`ChainKind`]) computes one point.
+
+use super::Job;
+use crate::protocol::{FromWorker, JobId};
+use solver::steady::Model;
+
+/// A chain's share of an Omega grid: every `chains`-th of `points` grid
+/// points from `shard`, computed in order (each continued from the last).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Chain {
+    omegas: Vec<(u32, f64)>,
+    next: usize,
+}
+
+impl Chain {
+    /// Chain `shard` of `chains` over grid points `0..points` at `omega(i)`.
+    pub(crate) fn new(
+        points: u32,
+        (chains, shard): (u32, u32),
+        omega: impl Fn(u32) -> f64,
+    ) -> Self {
+        let omegas = (shard..points)
+            .step_by(chains.max(1) as usize)
+            .map(|i| (i, omega(i)))
+            .collect();
+        Chain { omegas, next: 0 }
+    }
+
+    /// The next grid point `(index, omega)`, if any is left.
+    pub(crate) fn advance(&mut self) -> Option<(u32, f64)> {
+        let p = self.omegas.get(self.next).copied();
+        self.next += usize::from(p.is_some());
+        p
+    }
+
+    /// Whether every point is done.
+    pub(crate) fn finished(&self) -> bool {
+        self.next >= self.omegas.len()
+    }
+
+    /// Points done and in all.
+    pub(crate) fn progress(&self) -> (usize, usize) {
+        (self.next, self.omegas.len())
+    }
+
+    /// The first message of a chain's job: nothing done yet.
+    pub(crate) fn started(&self, id: JobId) -> Vec<FromWorker> {
+        vec![FromWorker::Progress {
+            id,
+            done: 0,
+            total: self.omegas.len(),
+        }]
+    }
+}
+
+/// What one kind of chain computes at a grid point.
+pub(crate) trait ChainKind {
+    /// One point's data.
+    type Sample;
+    /// Whether each point is followed by a progress message.
+    const PROGRESS: bool;
+    /// Grid point `index` at `omega`, continued from `from` (the previous
+    /// point's end state; the static state if `None`): its sample and end state.
+    fn compute(
+        &self,
+        model: &Model,
+        from: Option<&[f64]>,
+        at: (u32, f64),
+    ) -> solver::Result<(Self::Sample, Vec<f64>)>;
+    /// The sample of a point whose computation failed, saying why.
+    fn failed(at: (u32, f64), error: String) -> Self::Sample;
+    /// The message that carries samples.
+    fn message(id: JobId, points: Vec<Self::Sample>) -> FromWorker;
+}
+
+/// A chain of one kind in progress.
+pub(crate) struct ChainJob<K> {
+    id: JobId,
+    model: Model,
+    chain: Chain,
+    state: Option<Vec<f64>>,
+    kind: K,
+}
+
+impl<K: ChainKind> ChainJob<K> {
+    /// Starts `chain` of `kind` on `model`, with its first message.
+    pub(crate) fn start(id: JobId, model: Model, chain: Chain, kind: K) -> (Self, Vec<FromWorker>) {
+        let out = chain.started(id);
+        let job = ChainJob {
+            id,
+            model,
+            chain,
+            state: None,
+            kind,
+        };
+        (job, out)
+    }
+}
+
+impl<K: ChainKind> Job for ChainJob<K> {
+    fn id(&self) -> JobId {
+        self.id
+    }
+
+    fn step(&mut self) -> Vec<FromWorker> {
+        let mut out = Vec::new();
+        if let Some(at) = self.chain.advance() {
+            let sample = match self.kind.compute(&self.model, self.state.as_deref(), at) {
+                Ok((sample, end)) => {
+                    self.state = Some(end);
+                    sample
+                }
+                Err(e) => {
+                    // The chain restarts from the static equilibrium, like
+                    // the solver's sweeps.
+                    self.state = None;
+                    K::failed(at, e.to_string())
+                }
+            };
+            out.push(K::message(self.id, vec![sample]));
+            if K::PROGRESS {
+                let (done, total) = self.chain.progress();
+                out.push(FromWorker::Progress {
+                    id: self.id,
+                    done,
+                    total,
+                });
+            }
+        }
+        if self.finished() {
+            out.push(FromWorker::Done { id: self.id });
+        }
+        out
+    }
+
+    fn finished(&self) -> bool {
+        self.chain.finished()
+    }
+
+    fn progress(&self) -> (usize, usize) {
+        self.chain.progress()
+    }
+}
