@@ -338,8 +338,10 @@ mod tests {
     #[test]
     fn the_scene_draws_every_body_and_every_mesh_in_its_contact_state() {
         let (set, r) = fixture();
-        let mut clock = AnimClock::default();
-        clock.pos = 37.6;
+        let clock = AnimClock {
+            pos: 37.6,
+            ..AnimClock::default()
+        };
         let sc = gear_scene(&set, &r, &clock, SIZE);
         assert_eq!(sc.items[0], Item::Clear("#ffffff".into()));
         assert_eq!(sc.sample, 37);

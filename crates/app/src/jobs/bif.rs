@@ -41,8 +41,11 @@ pub(crate) struct BifSpec<'a> {
 /// drag restarts the sweep but not the scan.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub(crate) struct BandsCache {
-    last: Option<(ModelParams, (f64, f64), Vec<(f64, f64)>)>,
+    last: Option<CachedBands>,
 }
+
+/// Bands, the parameters (without backlash and TE) and the range they are of.
+type CachedBands = (ModelParams, (f64, f64), Vec<(f64, f64)>);
 
 impl BandsCache {
     /// The instability bands of `model` over `range`, from the cache when

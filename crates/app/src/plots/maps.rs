@@ -18,10 +18,6 @@ use crate::views::NaturalFreq;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-/// Height of the map canvas (pixels).
-
-/// Height of the Lyapunov canvas (pixels).
-
 const PENDING: RGBColor = RGBColor(236, 238, 242);
 const FAILED: RGBColor = RGBColor(110, 110, 110);
 const CROSS: RGBColor = RGBColor(0, 0, 0);
