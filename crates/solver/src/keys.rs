@@ -709,7 +709,7 @@ pub fn set(params: &mut ModelParams, name: &str, value: Value) -> Result<()> {
     check(spec, &value, &shown)?;
     // A typed -0 is stored (and so written back in links) as 0.
     let value = match value {
-        Value::Num(x) if x == 0.0 => Value::Num(0.0),
+        Value::Num(x) => Value::Num(x + 0.0),
         v => v,
     };
     if name == "model" {
