@@ -42,12 +42,12 @@ impl Rng {
     /// A generator for input `n` of a run with `seed`.
     pub fn new(seed: u64, n: u64) -> Self {
         let mut r = Rng(seed ^ n.wrapping_mul(0xD134_2543_DE82_EF95));
-        r.next();
+        r.bits();
         r
     }
 
     /// The next 64 random bits.
-    pub fn next(&mut self) -> u64 {
+    pub fn bits(&mut self) -> u64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
@@ -60,13 +60,13 @@ impl Rng {
         if n == 0 {
             0
         } else {
-            (self.next() % n as u64) as usize
+            (self.bits() % n as u64) as usize
         }
     }
 
     /// True with probability `percent` / 100.
     pub fn chance(&mut self, percent: u64) -> bool {
-        self.next() % 100 < percent
+        self.bits() % 100 < percent
     }
 
     /// One of `xs` (which must not be empty; `fallback` if it is).
@@ -140,13 +140,13 @@ const HOSTILE: &[&str] = &[
 /// A number as text, from several distributions.
 fn number_text(r: &mut Rng) -> String {
     match r.below(6) {
-        0 => format!("{}", f64::from_bits(r.next())),
-        1 => format!("{}", r.next() as i64),
+        0 => format!("{}", f64::from_bits(r.bits())),
+        1 => format!("{}", r.bits() as i64),
         2 => format!("{}", r.below(2000)),
         3 => format!("{}", (r.below(2_000_000) as f64) / 1000.0 - 500.0),
         4 => format!(
             "{:e}",
-            (r.next() % 1000) as f64 * 10f64.powi(r.below(40) as i32 - 20)
+            (r.bits() % 1000) as f64 * 10f64.powi(r.below(40) as i32 - 20)
         ),
         _ => format!("-{}", r.below(100)),
     }
@@ -158,7 +158,7 @@ fn junk_text(r: &mut Rng, max_len: usize) -> String {
     let mut bytes = Vec::with_capacity(n);
     for _ in 0..n {
         bytes.push(match r.below(4) {
-            0 => r.next() as u8,
+            0 => r.bits() as u8,
             1 => b"=&%+?#;a0._-"[r.below(12)],
             _ => b'a' + r.below(26) as u8,
         });
@@ -206,8 +206,8 @@ pub fn mutate_text(r: &mut Rng, text: &str) -> String {
     for _ in 0..1 + r.below(4) {
         let at = r.below(b.len() + 1);
         match r.below(6) {
-            0 if at < b.len() => b[at] = r.next() as u8,
-            1 => b.insert(at, r.next() as u8),
+            0 if at < b.len() => b[at] = r.bits() as u8,
+            1 => b.insert(at, r.bits() as u8),
             2 if at < b.len() => {
                 b.remove(at);
             }
@@ -238,7 +238,7 @@ pub fn link_input(r: &mut Rng, keys: &[String]) -> String {
                 let k = key_text(r, keys);
                 let v = if k == app::link::PINNED_KEY && r.chance(70) {
                     let inner = link_input(&mut r.clone(), keys);
-                    r.next();
+                    r.bits();
                     app::link::percent_encode(&inner)
                 } else {
                     value_text(r)
@@ -260,7 +260,7 @@ pub fn link_input(r: &mut Rng, keys: &[String]) -> String {
         // A real link, mutated.
         6..=8 => {
             let mut inner = r.clone();
-            r.next();
+            r.bits();
             let d = app::link::decode(&link_input(&mut inner, keys));
             let q = app::link::encode_ab(&d.settings, d.pinned.as_ref());
             mutate_text(r, &q)
@@ -281,9 +281,9 @@ fn random_json(r: &mut Rng, depth: usize) -> Value {
     match r.below(if depth > 3 { 6 } else { 8 }) {
         0 => Value::Null,
         1 => Value::Bool(r.chance(50)),
-        2 => json!(r.next() as i64),
-        3 => json!(r.next()),
-        4 => serde_json::Number::from_f64(f64::from_bits(r.next()))
+        2 => json!(r.bits() as i64),
+        3 => json!(r.bits()),
+        4 => serde_json::Number::from_f64(f64::from_bits(r.bits()))
             .map_or(Value::Null, Value::Number),
         5 => Value::String(value_text(r)),
         6 => Value::Array((0..r.below(4)).map(|_| random_json(r, depth + 1)).collect()),
@@ -325,7 +325,7 @@ pub fn params_input(r: &mut Rng, keys: &[String]) -> String {
         }
         6..=8 => {
             let mut inner = r.clone();
-            r.next();
+            r.bits();
             let base =
                 solver::keys::from_json_str(&params_input(&mut inner, keys)).unwrap_or_default();
             let text = Value::Object(solver::keys::to_json(&base)).to_string();
@@ -393,7 +393,7 @@ fn forged_number(r: &mut Rng) -> Value {
         4 => json!(999.0),
         5 => json!(-1),
         6 => json!(r.below(8)),
-        _ => json!(r.next() >> r.below(64)),
+        _ => json!(r.bits() >> r.below(64)),
     }
 }
 
