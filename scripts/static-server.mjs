@@ -16,10 +16,19 @@ const TYPES = {
   '.json': 'application/json',
 };
 
+/**
+ * Largest request head (request line plus headers) in bytes. Node's default
+ * (16 KiB) answers 431 to a long share link before the page can load and
+ * say itself that the link is too long; the app reads links of up to 64 KiB
+ * characters (MAX_LINK_CHARS), which a browser may send percent-encoded at
+ * up to 9 bytes per character, so the limit leaves room for that.
+ */
+export const MAX_HEADER_BYTES = 1024 * 1024;
+
 /** Starts serving `root`; resolves to { server, url } once listening. */
 export function serve(root, port = 0, host = '127.0.0.1') {
   const base = path.resolve(root);
-  const server = http.createServer((req, res) => {
+  const server = http.createServer({ maxHeaderSize: MAX_HEADER_BYTES }, (req, res) => {
     let rel;
     try {
       rel = decodeURIComponent(new URL(req.url, 'http://x').pathname);

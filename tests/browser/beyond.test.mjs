@@ -160,13 +160,19 @@ test('Pin as A draws B over A on both diagrams, and the link restores the compar
   await waitStatus(page, (s) => s.fr.finished_ms && s.bif.finished_ms, 90000, 'the first state');
   await page.click('#pin-a');
   await waitStatus(page, (s) => s.pinned && s.query.includes('&a='), 5000, 'the pinned state');
-  assert.equal(await page.isVisible('#clear-a'), true);
+  // The status and the button are updated by different renders: wait for the
+  // button itself rather than checking it the moment the status says pinned.
+  await page.locator('#clear-a').waitFor({ state: 'visible', timeout: 10000 });
   // B: a larger backlash.
   await page.fill('#num-backlash_um', '160');
   await page.press('#num-backlash_um', 'Enter');
   const s = await waitStatus(page, (s) => s.query.startsWith('model=ravigneaux&backlash_um=160') && s.fr.finished_ms && s.bif.finished_ms, 90000, 'state B');
   assert.deepEqual(s.ab_labels, ['backlash_um=100', 'backlash_um=160']);
-  assert.match(await page.textContent('#ab-status'), /Comparing A \(backlash_um=100\) with B \(backlash_um=160\)/);
+  await page.waitForFunction(
+    () => /Comparing A \(backlash_um=100\) with B \(backlash_um=160\)/.test(document.querySelector('#ab-status')?.textContent ?? ''),
+    null,
+    { timeout: 10000 },
+  );
   await shot(page.locator('#view-fr'), '15-ab-fr');
   await shot(page.locator('#view-bif'), '16-ab-bif');
   const link = s.query;
@@ -182,7 +188,7 @@ test('Pin as A draws B over A on both diagrams, and the link restores the compar
   // Clear A ends it, and the link no longer carries A.
   await again.page.click('#clear-a');
   await again.page.waitForFunction(() => !location.search.includes('&a='));
-  assert.equal(await again.page.isVisible('#clear-a'), false);
+  await again.page.locator('#clear-a').waitFor({ state: 'hidden', timeout: 10000 });
   assert.deepEqual(again.errors, []);
   await again.page.close();
   assert.deepEqual(errors, []);

@@ -10,7 +10,9 @@
 //!
 //! A/B comparison: a pinned state "A" travels in the one key `a`, whose
 //! value is A's own link (percent-encoded), so a link restores both the
-//! current state B and the comparison; an `a` inside `a` is ignored.
+//! current state B and the comparison; an `a` inside `a` is ignored, and so
+//! (with a message) is an `a` that names no setting at all (`a=x`), rather
+//! than turning the comparison on with defaults.
 //!
 //! Decoding never fails and never panics: a malformed or out-of-range value
 //! yields a message naming the key and its allowed range, and that key keeps
@@ -135,8 +137,15 @@ pub fn decode(query: &str) -> Decoded {
         let (_, inner) = all.remove(pos);
         all.retain(|(k, _)| k != PINNED_KEY);
         let (a, a_issues) = decode_one(&inner);
-        issues.extend(a_issues.into_iter().map(|i| format!("A (pinned): {i}")));
-        pinned = Some(a);
+        if names_a_setting(&inner) {
+            issues.extend(a_issues.into_iter().map(|i| format!("A (pinned): {i}")));
+            pinned = Some(a);
+        } else {
+            issues.push(format!(
+                "a = {} names no setting, so it is no pinned state A; ignored",
+                keys::truncate(&inner, 40)
+            ));
+        }
     }
     let (settings, more) = decode_one_pairs(all);
     issues.extend(more);
@@ -145,6 +154,16 @@ pub fn decode(query: &str) -> Decoded {
         issues,
         pinned,
     }
+}
+
+/// Whether a pinned state's text has at least one `key=value` pair whose key
+/// is a parameter or view key (its value may still be refused, with a
+/// message): a link made by [`encode_ab`] always starts with `model=`.
+fn names_a_setting(query: &str) -> bool {
+    let mut ignored = Vec::new();
+    pairs(query, &mut ignored)
+        .iter()
+        .any(|(k, _)| k != PINNED_KEY && (keys::spec(k).is_some() || view_key(k).is_some()))
 }
 
 /// Decodes one state (a nested `a` is named and ignored).
@@ -487,6 +506,70 @@ mod tests {
         assert_eq!(d.issues.len(), 2, "{:?}", d.issues);
         assert!(d.issues.iter().all(|i| i.starts_with("A (pinned): ")));
         assert!(d.pinned.is_some());
+    }
+
+    #[test]
+    fn a_pinned_state_that_names_no_setting_is_reported_and_ignored() {
+        // `?a=x` turned the comparison on with default settings.
+        for q in [
+            "a=x",
+            "a=",
+            "backlash_um=150&a=%%%",
+            "a=foo%3D1",
+            "a=a%3Dmodel",
+        ] {
+            let d = decode(q);
+            assert_eq!(d.pinned, None, "{q}");
+            assert_eq!(d.issues.len(), 1, "{q}: {:?}", d.issues);
+            assert!(
+                d.issues[0].starts_with("a = ") && d.issues[0].contains("ignored"),
+                "{q}: {:?}",
+                d.issues
+            );
+        }
+        assert_eq!(
+            keys::get(
+                &decode("backlash_um=150&a=x").settings.params,
+                "backlash_um"
+            ),
+            Some(Value::Num(150.0))
+        );
+        // A pinned state with only a view option, or only the model, is one.
+        assert!(decode("a=omega%3D0.5").pinned.is_some());
+        assert!(decode("a=model%3Dgear-pair").pinned.is_some());
+    }
+
+    #[test]
+    fn both_inverted_ranges_are_reset_like_one() {
+        let d = decode("omega_from=1.5&omega_to=1&map_from=50&map_to=10");
+        let v = &d.settings.view;
+        let def = ViewOptions::default();
+        assert_eq!((v.omega_from, v.omega_to), (def.omega_from, def.omega_to));
+        assert_eq!((v.map_from, v.map_to), (def.map_from, def.map_to));
+        let all = d.issues.join("\n");
+        assert!(
+            all.contains("omega_from") && all.contains("map_from"),
+            "{all}"
+        );
+        // Only the map's range inverted: the same reset.
+        let d = decode("map_from=50&map_to=10");
+        assert_eq!(
+            (d.settings.view.map_from, d.settings.view.map_to),
+            (def.map_from, def.map_to)
+        );
+    }
+
+    #[test]
+    fn minus_zero_is_normalized_to_zero() {
+        let d = decode("te_um=-0&map_from=-0&te_cos_rb_um=-0.0");
+        assert!(d.issues.is_empty(), "{:?}", d.issues);
+        let q = encode(&d.settings);
+        assert!(!q.contains("-0"), "{q}");
+        assert_eq!(
+            keys::get(&d.settings.params, "te_um"),
+            Some(Value::Num(0.0))
+        );
+        assert!(d.settings.view.map_from.is_sign_positive());
     }
 
     #[test]

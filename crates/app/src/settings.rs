@@ -430,6 +430,8 @@ impl ViewOptions {
                 if !(x.is_finite() && x >= min && x <= max) {
                     return Err(bad());
                 }
+                // A typed -0 is kept (and written back in links) as 0.
+                let x = x + 0.0;
                 match name {
                     "omega" => self.omega = x,
                     "omega_from" => self.omega_from = x,
@@ -490,33 +492,30 @@ impl ViewOptions {
         Ok(())
     }
 
-    /// Cross-key rules: the range must be increasing. Returns a message and
-    /// restores the defaults of the range if not.
+    /// Cross-key rules: every range must be increasing. Each range that is
+    /// not is restored to its defaults, and named in the message (both
+    /// ranges are checked, so one bad range never hides the other).
     pub fn check_range(&mut self) -> Option<String> {
+        let mut msgs = Vec::new();
         if self.omega_to <= self.omega_from {
-            let msg = format!(
-                "omega_from = {} must be below omega_to = {}; the range was reset to {} ..= {}",
-                self.omega_from,
-                self.omega_to,
-                ViewOptions::default().omega_from,
-                ViewOptions::default().omega_to
-            );
             let d = ViewOptions::default();
+            msgs.push(format!(
+                "omega_from = {} must be below omega_to = {}; the range was reset to {} ..= {}",
+                self.omega_from, self.omega_to, d.omega_from, d.omega_to
+            ));
             self.omega_from = d.omega_from;
             self.omega_to = d.omega_to;
-            return Some(msg);
         }
         if self.map_to <= self.map_from {
             let (lo, hi) = map_default_range(&self.map_key);
-            let msg = format!(
+            msgs.push(format!(
                 "map_from = {} must be below map_to = {}; the map's range was reset to {lo} ..= {hi}",
                 self.map_from, self.map_to
-            );
+            ));
             self.map_from = lo;
             self.map_to = hi;
-            return Some(msg);
         }
-        None
+        (!msgs.is_empty()).then(|| msgs.join("; "))
     }
 }
 
@@ -609,5 +608,31 @@ mod tests {
         let e = v.check_range().unwrap();
         assert!(e.contains("map_from"), "{e}");
         assert_eq!((v.map_from, v.map_to), (0.0, 200.0));
+    }
+
+    #[test]
+    fn both_inverted_ranges_are_named_and_reset() {
+        // Once the Omega range was reset the map's was kept inverted.
+        let mut v = ViewOptions {
+            omega_from: 1.5,
+            omega_to: 1.0,
+            map_from: 50.0,
+            map_to: 10.0,
+            ..ViewOptions::default()
+        };
+        let e = v.check_range().unwrap();
+        assert!(e.contains("omega_from") && e.contains("map_from"), "{e}");
+        let d = ViewOptions::default();
+        assert_eq!((v.omega_from, v.omega_to), (d.omega_from, d.omega_to));
+        assert_eq!((v.map_from, v.map_to), (d.map_from, d.map_to));
+        assert_eq!(v.check_range(), None);
+    }
+
+    #[test]
+    fn minus_zero_is_kept_as_zero() {
+        let mut v = ViewOptions::default();
+        v.set("map_from", "-0", &[]).unwrap();
+        assert_eq!(v.get("map_from").unwrap(), "0");
+        assert!(v.map_from.is_sign_positive());
     }
 }

@@ -2,8 +2,11 @@
 //! sweeps on a workstation or a cluster and for checking results.
 //!
 //! JSON goes to stdout (or CSV with `--format csv`), a progress bar to stderr
-//! when stderr is a terminal. Bad input exits with code 2 and one line that
-//! names the offending flag, key or value; a solver failure exits with 1.
+//! when stderr is a terminal (plain progress lines with `--progress`). Bad
+//! input exits with code 2 and one line that names the offending flag, key
+//! or value; a solver failure exits with 1. Every option is checked before
+//! any work starts, input files are read through a size limit, and each
+//! command's total work and memory are capped ([`budget`]).
 
 mod bench;
 mod csv;
@@ -20,6 +23,7 @@ use solver::params::{ModelKind, ModelParams};
 use solver::steady::{steady_state, Model, SteadyOptions};
 use solver::sweep::{canonical_order, BifurcationSweep, Direction, Directions, SweepSpec};
 use solver::{report, SolverError};
+use std::io::Read;
 use std::io::Write;
 use std::process::ExitCode;
 
@@ -31,10 +35,17 @@ struct Cli {
     command: Command,
 }
 
-#[derive(Debug, Clone, Copy, ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 enum Format {
+    /// One JSON document, written at the end.
     Json,
+    /// CSV tables.
     Csv,
+    /// JSON lines, streamed: for bifurcation, map, lyapunov and
+    /// instability a header line (model, params, spec), then one line per
+    /// point or cell as soon as it is computed, then `{"complete": true,
+    /// ...}`; for the other commands the JSON document on one line.
+    Jsonl,
 }
 
 #[derive(Debug, Clone, Copy, ValueEnum)]
@@ -55,9 +66,13 @@ struct ParamArgs {
     /// Set one parameter, e.g. `--set backlash_um=200` (repeatable).
     #[arg(long = "set", value_name = "KEY=VALUE")]
     set: Vec<String>,
-    /// Output format.
+    /// Output format (jsonl streams sweeps point by point).
     #[arg(long, value_enum, default_value = "json")]
     format: Format,
+    /// Print progress lines on stderr even when it is not a terminal (logs,
+    /// cluster jobs): one line per whole percent.
+    #[arg(long)]
+    progress: bool,
 }
 
 /// Options of a steady-state run.
@@ -74,10 +89,10 @@ struct RunArgs {
     #[arg(long)]
     full_transient: bool,
     /// Relative tolerance of the integrator.
-    #[arg(long, default_value_t = solver::steady::DEFAULT_RTOL)]
+    #[arg(long, default_value_t = solver::steady::DEFAULT_RTOL, allow_hyphen_values = true)]
     rtol: f64,
     /// Absolute tolerance as a mesh deflection (m).
-    #[arg(long, default_value_t = solver::steady::DEFAULT_ATOL_M)]
+    #[arg(long, default_value_t = solver::steady::DEFAULT_ATOL_M, allow_hyphen_values = true)]
     atol: f64,
 }
 
@@ -94,27 +109,31 @@ impl RunArgs {
 #[derive(Debug, Subcommand)]
 enum Command {
     /// Print the full parameter set (defaults plus --params/--set) as JSON.
+    #[command(allow_negative_numbers = true)]
     Params {
         #[command(flatten)]
         p: ParamArgs,
     },
     /// List every parameter key with unit, range and meaning.
+    #[command(allow_negative_numbers = true)]
     Keys {
         /// Print a Markdown table (as in the README).
         #[arg(long)]
         markdown: bool,
     },
     /// Static equilibrium, mesh forces and natural modes.
+    #[command(allow_negative_numbers = true)]
     Modes {
         #[command(flatten)]
         p: ParamArgs,
     },
     /// Steady-state response at one dimensionless mesh frequency.
+    #[command(allow_negative_numbers = true)]
     Simulate {
         #[command(flatten)]
         p: ParamArgs,
         /// Dimensionless mesh frequency Omega = omega / omega_ref.
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         omega: f64,
         #[command(flatten)]
         run: RunArgs,
@@ -122,18 +141,19 @@ enum Command {
         #[arg(long)]
         mesh: Option<String>,
         /// Highest harmonic order in the spectrum.
-        #[arg(long, default_value_t = 8.0)]
+        #[arg(long, default_value_t = 8.0, allow_hyphen_values = true)]
         max_order: f64,
     },
     /// Bifurcation diagram: Poincaré samples over a sweep of Omega.
+    #[command(allow_negative_numbers = true)]
     Bifurcation {
         #[command(flatten)]
         p: ParamArgs,
         /// First Omega.
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         omega_from: f64,
         /// Last Omega.
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         omega_to: f64,
         /// Number of Omega points.
         #[arg(long, default_value_t = 200)]
@@ -154,14 +174,15 @@ enum Command {
         shard: Option<String>,
     },
     /// Frequency response by harmonic balance with arclength continuation.
+    #[command(allow_negative_numbers = true)]
     Frf {
         #[command(flatten)]
         p: ParamArgs,
         /// First Omega.
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         omega_from: f64,
         /// Last Omega.
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         omega_to: f64,
         /// Nominal points: the largest continuation step is range / points.
         #[arg(long, default_value_t = 400)]
@@ -187,14 +208,15 @@ enum Command {
         mesh: Option<String>,
     },
     /// Impact-regime map over Omega (columns) and a parameter (rows).
+    #[command(allow_negative_numbers = true)]
     Map {
         #[command(flatten)]
         p: ParamArgs,
         /// First Omega.
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         omega_from: f64,
         /// Last Omega.
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         omega_to: f64,
         /// Number of Omega columns.
         #[arg(long, default_value_t = 100)]
@@ -203,10 +225,10 @@ enum Command {
         #[arg(long, default_value = "backlash_um")]
         key: String,
         /// First value of the row parameter.
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         value_from: f64,
         /// Last value of the row parameter.
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         value_to: f64,
         /// Number of rows.
         #[arg(long, default_value_t = 40)]
@@ -221,14 +243,15 @@ enum Command {
         shard: Option<String>,
     },
     /// Largest Lyapunov exponent of the Poincaré map over a sweep of Omega.
+    #[command(allow_negative_numbers = true)]
     Lyapunov {
         #[command(flatten)]
         p: ParamArgs,
         /// First Omega.
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         omega_from: f64,
         /// Last Omega.
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         omega_to: f64,
         /// Number of Omega points.
         #[arg(long, default_value_t = 50)]
@@ -243,25 +266,28 @@ enum Command {
     /// Parametric instability over Omega: the Floquet spectral radius of the
     /// linear system with every tooth pair in contact (above 1, motion large
     /// against the backlash grows without bound).
+    #[command(allow_negative_numbers = true)]
     Instability {
         #[command(flatten)]
         p: ParamArgs,
         /// First Omega.
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         omega_from: f64,
         /// Last Omega.
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         omega_to: f64,
         /// Number of Omega points.
         #[arg(long, default_value_t = 200)]
         points: u32,
     },
     /// Join the JSON outputs of all shards of one sweep.
+    #[command(allow_negative_numbers = true)]
     Merge {
         /// Shard outputs (JSON files).
         files: Vec<std::path::PathBuf>,
     },
     /// Measure the solver's speed (medians over repeats).
+    #[command(allow_negative_numbers = true)]
     Bench {
         /// Repeats per figure.
         #[arg(long, default_value_t = 5)]
@@ -278,8 +304,40 @@ struct Failure {
     message: String,
 }
 
+/// The solver's option names that are this program's flags (`--NAME`).
+const FLAGS: &[&str] = &[
+    "omega",
+    "omega-from",
+    "omega-to",
+    "points",
+    "omega-points",
+    "value-points",
+    "transient-periods",
+    "record-periods",
+    "periods",
+    "rtol",
+    "atol",
+    "chains",
+    "shard",
+    "harmonics",
+    "grid",
+];
+
 impl From<SolverError> for Failure {
     fn from(e: SolverError) -> Self {
+        // An option the user typed is named as typed: `--omega -1`.
+        if let SolverError::BadOption {
+            option,
+            value,
+            allowed,
+        } = &e
+        {
+            if FLAGS.contains(&option.as_str()) {
+                return usage(format!(
+                    "--{option} {value} is out of range: allowed {allowed}"
+                ));
+            }
+        }
         let code = match e {
             SolverError::StepSizeTooSmall { .. }
             | SolverError::NonFinite { .. }
@@ -298,21 +356,29 @@ impl From<SolverError> for Failure {
 }
 
 /// `points` equally spaced Omegas from `omega_from` to `omega_to` (both
-/// included), or a usage failure naming the bad option and its range.
+/// included, each in the solver's range 0.01 ..= 20), or a usage failure
+/// naming the bad option and its range.
 fn omega_grid(
     omega_from: f64,
     omega_to: f64,
     points: u32,
     max_points: u32,
 ) -> Result<Vec<f64>, Failure> {
-    if !(2..=max_points).contains(&points) {
-        return Err(usage(format!(
-            "--points {points}: allowed 2 ..= {max_points}"
-        )));
+    for (flag, v) in [("--omega-from", omega_from), ("--omega-to", omega_to)] {
+        if !(v.is_finite() && (0.01..=20.0).contains(&v)) {
+            return Err(usage(format!(
+                "{flag} {v} is out of range: allowed 0.01 ..= 20"
+            )));
+        }
     }
     if omega_to.partial_cmp(&omega_from) != Some(std::cmp::Ordering::Greater) {
         return Err(usage(format!(
             "--omega-to {omega_to}: must exceed --omega-from {omega_from}"
+        )));
+    }
+    if !(2..=max_points).contains(&points) {
+        return Err(usage(format!(
+            "--points {points}: allowed 2 ..= {max_points}"
         )));
     }
     Ok((0..points)
@@ -358,27 +424,203 @@ fn main() -> ExitCode {
     }
 }
 
-fn load_params(p: &ParamArgs) -> Result<ModelParams, Failure> {
-    let mut params = match &p.params {
-        Some(path) => {
-            let text = std::fs::read_to_string(path)
-                .map_err(|e| usage(format!("--params {}: {e}", path.display())))?;
-            keys::from_json_str(&text)
-                .map_err(|e| usage(format!("--params {}: {e}", path.display())))?
+/// Largest `--params` file (bytes): a parameter set is a few kB.
+const MAX_PARAMS_BYTES: u64 = 1 << 20;
+/// Largest shard file `merge` reads (bytes).
+const MAX_SHARD_BYTES: u64 = 256 << 20;
+/// Largest total of the files `merge` reads (bytes): parsed JSON takes
+/// several times its text in memory.
+const MAX_MERGE_BYTES: u64 = 1 << 30;
+
+/// A reader that fails once more than its limit has been read, so that no
+/// input (`/dev/zero`, a forged file) can grow memory without bound.
+struct Limited<R> {
+    inner: R,
+    left: u64,
+}
+
+impl<R: Read> Read for Limited<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        // Read one byte past the limit to tell "exactly the limit" from "more".
+        let want = buf
+            .len()
+            .min(usize::try_from(self.left.saturating_add(1)).unwrap_or(usize::MAX));
+        let n = self.inner.read(&mut buf[..want])?;
+        if n as u64 > self.left {
+            return Err(std::io::Error::other("over the size limit"));
         }
-        None => ModelParams::default(),
-    };
-    if let Some(m) = p.model {
-        let kind = match m {
-            ModelArg::Ravigneaux => ModelKind::Ravigneaux,
-            ModelArg::GearPair => ModelKind::GearPair,
-        };
-        keys::set(&mut params, "model", keys::Value::Text(kind.name().into()))?;
+        self.left -= n as u64;
+        Ok(n)
     }
+}
+
+/// Describes a size in words (e.g. "1 MiB").
+fn bytes_text(n: u64) -> String {
+    if n >= 1 << 30 && n.is_multiple_of(1 << 30) {
+        format!("{} GiB", n >> 30)
+    } else if n >= 1 << 20 && n.is_multiple_of(1 << 20) {
+        format!("{} MiB", n >> 20)
+    } else {
+        format!("{n} bytes")
+    }
+}
+
+/// Reads and parses a JSON file of at most `limit` bytes, returning the
+/// value and the bytes read; the failure names `what` (the flag or
+/// command), the file and `limit_text` (what the limit is).
+fn read_json(
+    path: &std::path::Path,
+    limit: u64,
+    what: &str,
+    limit_text: &str,
+) -> Result<(Value, u64), Failure> {
+    let shown = path.display();
+    let too_large = || usage(format!("{what} {shown}: larger than {limit_text}"));
+    let file = std::fs::File::open(path).map_err(|e| usage(format!("{what} {shown}: {e}")))?;
+    if file
+        .metadata()
+        .is_ok_and(|m| m.is_file() && m.len() > limit)
+    {
+        return Err(too_large());
+    }
+    let mut reader = Limited {
+        inner: std::io::BufReader::new(file),
+        left: limit,
+    };
+    let value = serde_json::from_reader(&mut reader).map_err(|e| {
+        if e.is_io() && e.to_string().contains("over the size limit") {
+            too_large()
+        } else if e.is_io() {
+            usage(format!("{what} {shown}: {e}"))
+        } else {
+            usage(format!("{what} {shown}: not JSON: {e}"))
+        }
+    })?;
+    Ok((value, limit - reader.left))
+}
+
+fn model_kind(m: ModelArg) -> ModelKind {
+    match m {
+        ModelArg::Ravigneaux => ModelKind::Ravigneaux,
+        ModelArg::GearPair => ModelKind::GearPair,
+    }
+}
+
+/// Builds the parameter set. The model is settled first, whichever of
+/// `--model`, `--set model=...` and the file's `model` names it (they must
+/// agree), because choosing a model resets every parameter to its
+/// defaults: applied in the order given, `--set backlash_um=50 --set
+/// model=gear-pair` would silently drop the backlash. Then the file's keys,
+/// then the `--set`s in order.
+fn load_params(p: &ParamArgs) -> Result<ModelParams, Failure> {
+    let mut chosen: Option<(String, ModelKind)> = p
+        .model
+        .map(|m| (format!("--model {}", model_kind(m).name()), model_kind(m)));
+    let mut sets = Vec::new();
     for assignment in &p.set {
+        let Some((name, text)) = assignment.split_once('=') else {
+            return Err(usage(format!(
+                "--set {}: not of the form KEY=VALUE",
+                keys::truncate(assignment, 60)
+            )));
+        };
+        if name.trim() != "model" {
+            sets.push(assignment);
+            continue;
+        }
+        keys::parse_value("model", text).map_err(|e| usage(format!("--set {e}")))?;
+        let kind = ModelKind::from_name(text.trim()).unwrap_or(ModelParams::default().kind());
+        let this = format!("--set model={}", kind.name());
+        if let Some((before, k)) = &chosen {
+            if *k != kind {
+                return Err(usage(format!(
+                    "{this} contradicts {before}: give one model"
+                )));
+            }
+        }
+        chosen = Some((this, kind));
+    }
+    let file = match &p.params {
+        Some(path) => {
+            let shown = path.display();
+            let limit = format!(
+                "the {} allowed for a parameter file",
+                bytes_text(MAX_PARAMS_BYTES)
+            );
+            match read_json(path, MAX_PARAMS_BYTES, "--params", &limit)?.0 {
+                Value::Object(map) => Some((shown.to_string(), map)),
+                _ => {
+                    return Err(usage(format!(
+                        "--params {shown}: the file must hold one flat JSON object of KEY: VALUE"
+                    )))
+                }
+            }
+        }
+        None => None,
+    };
+    let file_kind = match &file {
+        Some((shown, map)) => match map.get("model") {
+            Some(Value::String(m)) => {
+                keys::parse_value("model", m)
+                    .map_err(|e| usage(format!("--params {shown}: {e}")))?;
+                ModelKind::from_name(m.trim())
+            }
+            _ => None,
+        },
+        None => None,
+    };
+    if let (Some((shown, _)), Some(fk), Some((given, k))) = (&file, file_kind, &chosen) {
+        if fk != *k {
+            return Err(usage(format!(
+                "--params {shown} is a {} parameter set but {given} was given: its settings would be dropped",
+                fk.name()
+            )));
+        }
+    }
+    let kind = chosen
+        .map(|(_, k)| k)
+        .or(file_kind)
+        .unwrap_or(ModelParams::default().kind());
+    let mut params = ModelParams::defaults(kind);
+    if let Some((shown, map)) = &file {
+        keys::apply_json(&mut params, map).map_err(|e| usage(format!("--params {shown}: {e}")))?;
+    }
+    for assignment in sets {
         keys::set_assignment(&mut params, assignment).map_err(|e| usage(format!("--set {e}")))?;
     }
     Ok(params)
+}
+
+/// Caps on the work and memory of one command (one shard of a sharded
+/// run), as `map` caps its cells: each option has its own range, and these
+/// bound their product, so no combination runs for days or fills memory
+/// before writing anything.
+mod budget {
+    /// Most mesh periods one command integrates (some hours on one core at
+    /// the 20-70 us a period takes; split larger runs with `--shard`).
+    pub const MAX_PERIODS: u64 = 100_000_000;
+    /// Most Poincaré samples (points x directions x meshes x recorded
+    /// periods) one bifurcation command keeps for its output (some hundred
+    /// MB once written as JSON).
+    pub const MAX_SAMPLES: u64 = 2_000_000;
+    /// Most `--points x (2 --harmonics + 1)^3` of one frequency response: a
+    /// Newton step solves a dense system of (2 H + 1) unknowns per
+    /// coordinate, so its work grows like the cube; this allows every point
+    /// count up to H = 27 and some hours at H = 40.
+    pub const MAX_FRF_WORK: u64 = 2_000_000_000;
+}
+
+/// Checks `periods` (the product `formula` of the options) against
+/// [`budget::MAX_PERIODS`]; `split` says how to split a larger run.
+fn check_work(periods: u64, formula: &str, split: &str) -> Result<(), Failure> {
+    if periods > budget::MAX_PERIODS {
+        return Err(usage(format!(
+            "{formula} = {periods} mesh periods is more than the {} one command may integrate: \
+             use fewer points or periods, or {split}",
+            budget::MAX_PERIODS
+        )));
+    }
+    Ok(())
 }
 
 fn mesh_index(model: &Model, name: Option<&str>) -> Result<usize, Failure> {
@@ -416,6 +658,10 @@ fn parse_shard(s: &str) -> Result<(u32, u32), Failure> {
 fn output(format: Format, value: &Value, csv: fn(&Value) -> String) -> Result<(), Failure> {
     match format {
         Format::Json => emit(value),
+        Format::Jsonl => {
+            emit_line(value);
+            Ok(())
+        }
         Format::Csv => {
             emit_text(&csv(value));
             Ok(())
@@ -434,6 +680,47 @@ fn emit(value: &Value) -> Result<(), Failure> {
     Ok(())
 }
 
+/// Writes one JSON line and flushes it, so a reader (or a killed job's
+/// log) has every line written so far.
+fn emit_line(value: &Value) {
+    let mut out = std::io::stdout().lock();
+    let _ = writeln!(out, "{value}");
+    let _ = out.flush();
+}
+
+/// Streams a sweep as JSON lines when the format asks for it: the header
+/// at once, then [`Stream::item`] per result, then [`Stream::finish`].
+struct Stream {
+    on: bool,
+    items: usize,
+}
+
+impl Stream {
+    fn new(format: Format, header: impl FnOnce() -> Value) -> Self {
+        let on = format == Format::Jsonl;
+        if on {
+            emit_line(&header());
+        }
+        Stream { on, items: 0 }
+    }
+
+    /// Writes `value` if streaming; returns whether it did.
+    fn item(&mut self, value: impl FnOnce() -> Value) -> bool {
+        if self.on {
+            emit_line(&value());
+            self.items += 1;
+        }
+        self.on
+    }
+
+    /// The closing line, so a reader knows the stream is whole.
+    fn finish(self, what: &str) {
+        if self.on {
+            emit_line(&serde_json::json!({ "complete": true, what: self.items }));
+        }
+    }
+}
+
 fn emit_text(text: &str) {
     let mut out = std::io::stdout().lock();
     let _ = out.write_all(text.as_bytes());
@@ -447,6 +734,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
             Model::new(&params)?;
             match p.format {
                 Format::Json => emit(&Value::Object(keys::to_json(&params))),
+                Format::Jsonl => {
+                    emit_line(&Value::Object(keys::to_json(&params)));
+                    Ok(())
+                }
                 Format::Csv => {
                     emit_text(&csv::params(&params));
                     Ok(())
@@ -465,7 +756,9 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let params = load_params(&p)?;
             let model = Model::new(&params)?;
             match p.format {
-                Format::Json => emit(&report::modes_json(&model)),
+                Format::Json | Format::Jsonl => {
+                    output(p.format, &report::modes_json(&model), |_| String::new())
+                }
                 Format::Csv => {
                     emit_text(&csv::modes(&model));
                     Ok(())
@@ -490,9 +783,14 @@ fn run(cli: Cli) -> Result<(), Failure> {
                     "--max-order {max_order}: must be a positive number"
                 )));
             }
+            opts.validate()?;
             let ss = steady_state(&model, &opts, None)?;
             match p.format {
-                Format::Json => emit(&report::simulate_json(&model, &ss, j, max_order)),
+                Format::Json | Format::Jsonl => output(
+                    p.format,
+                    &report::simulate_json(&model, &ss, j, max_order),
+                    |_| String::new(),
+                ),
                 Format::Csv => {
                     emit_text(&csv::history(&ss, j));
                     Ok(())
@@ -539,13 +837,51 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 spec.chains = c;
             }
             let mut sweep = BifurcationSweep::new(model.clone(), spec.clone())?;
-            let mut bar = progress::Progress::new(sweep.total(), "points");
-            let mut pts = Vec::with_capacity(sweep.total());
+            let total = sweep.total() as u64;
+            let (transient, record) = (
+                u64::from(run.transient_periods),
+                u64::from(run.record_periods),
+            );
+            check_work(
+                total * (transient + record),
+                &format!(
+                    "{total} points (--points over --direction and --shard) x (--transient-periods {transient} + --record-periods {record})"
+                ),
+                "split the sweep with --shard i/n",
+            )?;
+            let samples = total * spec.meshes.len() as u64 * record;
+            // Streamed points are not kept, so only the work is capped then.
+            if samples > budget::MAX_SAMPLES && p.format != Format::Jsonl {
+                return Err(usage(format!(
+                    "{total} points x {} meshes (--mesh) x --record-periods {record} = {samples} Poincaré samples \
+                     is more than the {} one command may keep: use fewer points, meshes or recorded periods, \
+                     stream them with --format jsonl, or split the sweep with --shard i/n",
+                    spec.meshes.len(),
+                    budget::MAX_SAMPLES
+                )));
+            }
+            let mut bar = progress::Progress::new(sweep.total(), "points", p.progress);
+            let mut stream = Stream::new(p.format, || {
+                serde_json::json!({
+                    "model": model.system.model.name(),
+                    "params": Value::Object(keys::to_json(&params)),
+                    "spec": report::sweep_spec_json(&model, &spec),
+                })
+            });
+            let mut pts = Vec::new();
             while !sweep.is_finished() {
-                pts.extend(sweep.advance(1));
+                for pt in sweep.advance(1) {
+                    if !stream.item(|| report::sweep_point_json(&model, &pt)) {
+                        pts.push(pt);
+                    }
+                }
                 bar.update(sweep.done());
             }
             bar.finish();
+            if p.format == Format::Jsonl {
+                stream.finish("points");
+                return Ok(());
+            }
             canonical_order(&mut pts);
             let value = report::sweep_json(&model, &params, &spec, &pts);
             output(p.format, &value, csv::sweep)
@@ -584,8 +920,19 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 Some("all") => (0..model.system.meshes.len()).collect(),
                 other => vec![mesh_index(&model, other)?],
             };
+            // Larger H is refused by the solver's own check, naming it.
+            if harmonics <= 40 {
+                let work = u64::from(points) * (2 * harmonics as u64 + 1).pow(3);
+                if work > budget::MAX_FRF_WORK {
+                    return Err(usage(format!(
+                        "--points {points} x (2 x --harmonics {harmonics} + 1)^3 = {work} is more than the {} \
+                         one frequency response may take: use fewer points or harmonics",
+                        budget::MAX_FRF_WORK
+                    )));
+                }
+            }
             let mut c = FrfContinuation::new(&model, spec)?;
-            let mut bar = progress::Progress::new(1000, "per mille of the range");
+            let mut bar = progress::Progress::new(1000, "per mille of the range", p.progress);
             let mut branch = Vec::new();
             let mut failure = None;
             while !c.is_finished() {
@@ -633,10 +980,11 @@ fn run(cli: Cli) -> Result<(), Failure> {
         } => {
             let params = load_params(&p)?;
             let model = Model::new(&params)?;
+            // `+ 0.0` turns a typed -0 into 0, so the echoed spec reads 0.
             let mut spec = MapSpec::new(
                 (omega_from, omega_to, omega_points),
                 &key,
-                (value_from, value_to, value_points),
+                (value_from + 0.0, value_to + 0.0, value_points),
             );
             run.apply(&mut spec.steady);
             spec.mesh = match mesh.as_deref() {
@@ -647,13 +995,37 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 spec.shard = Some(parse_shard(s)?);
             }
             let mut map = RegimeMap::new(&params, spec.clone())?;
-            let mut bar = progress::Progress::new(map.total(), "cells");
-            let mut cells = Vec::with_capacity(map.total());
+            let total = map.total() as u64;
+            check_work(
+                total * (u64::from(run.transient_periods) + u64::from(run.record_periods)),
+                &format!(
+                    "{total} cells (--omega-points x --value-points over --shard) x (--transient-periods {} + --record-periods {})",
+                    run.transient_periods, run.record_periods
+                ),
+                "split the map with --shard i/n",
+            )?;
+            let mut bar = progress::Progress::new(map.total(), "cells", p.progress);
+            let mut stream = Stream::new(p.format, || {
+                serde_json::json!({
+                    "model": model.system.model.name(),
+                    "params": Value::Object(keys::to_json(&params)),
+                    "spec": report::map_spec_json(&model, &spec),
+                })
+            });
+            let mut cells = Vec::new();
             while !map.is_finished() {
-                cells.extend(map.advance(1));
+                for cell in map.advance(1) {
+                    if !stream.item(|| report::map_cell_json(&cell)) {
+                        cells.push(cell);
+                    }
+                }
                 bar.update(map.done());
             }
             bar.finish();
+            if p.format == Format::Jsonl {
+                stream.finish("cells");
+                return Ok(());
+            }
             let value = report::map_json(&model, &params, &spec, &cells);
             output(p.format, &value, csv::map)
         }
@@ -671,17 +1043,40 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let mut opts = LyapunovOptions::new(omega_from);
             opts.transient_periods = transient_periods;
             opts.periods = periods;
-            let mut bar = progress::Progress::new(omegas.len(), "points");
+            // Every option checked before the first point is computed.
+            opts.validate()?;
+            // The transient once, then two trajectories over the periods.
+            check_work(
+                u64::from(points) * (u64::from(transient_periods) + 2 * u64::from(periods)),
+                &format!(
+                    "--points {points} x (--transient-periods {transient_periods} + 2 x --periods {periods})"
+                ),
+                "split the Omega range over several runs",
+            )?;
+            let mut bar = progress::Progress::new(omegas.len(), "points", p.progress);
+            let mut stream = Stream::new(p.format, || {
+                serde_json::json!({
+                    "model": model.system.model.name(),
+                    "params": Value::Object(keys::to_json(&params)),
+                    "spec": report::lyapunov_spec_json(&opts),
+                })
+            });
             let mut out = Vec::new();
             let mut state: Option<Vec<f64>> = None;
             for (i, omega) in omegas.into_iter().enumerate() {
                 opts.omega = omega;
                 let l = largest_exponent(&model, &opts, state.as_deref())?;
                 state = Some(l.end_state.clone());
-                out.push(l);
+                if !stream.item(|| report::lyapunov_point_json(&l)) {
+                    out.push(l);
+                }
                 bar.update(i + 1);
             }
             bar.finish();
+            if p.format == Format::Jsonl {
+                stream.finish("points");
+                return Ok(());
+            }
             let value = report::lyapunov_json(&model, &params, &opts, &out);
             output(p.format, &value, csv::lyapunov)
         }
@@ -695,10 +1090,19 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let model = Model::new(&params)?;
             let omegas = omega_grid(omega_from, omega_to, points, 100_000)?;
             let engaged = Parametric::new(&model)?;
-            let mut bar = progress::Progress::new(omegas.len(), "points");
-            let mut out = Vec::with_capacity(omegas.len());
+            let mut bar = progress::Progress::new(omegas.len(), "points", p.progress);
+            let mut stream = Stream::new(p.format, || {
+                serde_json::json!({
+                    "model": model.system.model.name(),
+                    "params": Value::Object(keys::to_json(&params)),
+                })
+            });
+            let mut out = Vec::new();
             for (i, omega) in omegas.into_iter().enumerate() {
-                out.push(engaged.at(omega)?);
+                let point = engaged.at(omega)?;
+                if !stream.item(|| report::instability_point_json(&point)) {
+                    out.push(point);
+                }
                 bar.update(i + 1);
             }
             bar.finish();
@@ -715,6 +1119,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
                     text.join(", ")
                 }
             );
+            if p.format == Format::Jsonl {
+                stream.finish("points");
+                return Ok(());
+            }
             let value = report::instability_json(&model, &params, &out);
             output(p.format, &value, csv::instability)
         }
@@ -722,12 +1130,32 @@ fn run(cli: Cli) -> Result<(), Failure> {
             if files.is_empty() {
                 return Err(usage("merge: give the shard JSON files to join"));
             }
+            if files.len() as u64 > report::MAX_SHARDS {
+                return Err(usage(format!(
+                    "merge: {} files given: allowed at most {} shards",
+                    files.len(),
+                    report::MAX_SHARDS
+                )));
+            }
             let mut shards = Vec::new();
+            let mut left = MAX_MERGE_BYTES;
             for f in &files {
-                let text = std::fs::read_to_string(f)
-                    .map_err(|e| usage(format!("merge: {}: {e}", f.display())))?;
-                let v: Value = serde_json::from_str(&text)
-                    .map_err(|e| usage(format!("merge: {}: not JSON: {e}", f.display())))?;
+                let (limit, limit_text) = if left < MAX_SHARD_BYTES {
+                    (
+                        left,
+                        format!(
+                            "what is left of the {} allowed for all files together",
+                            bytes_text(MAX_MERGE_BYTES)
+                        ),
+                    )
+                } else {
+                    (
+                        MAX_SHARD_BYTES,
+                        format!("the {} allowed per file", bytes_text(MAX_SHARD_BYTES)),
+                    )
+                };
+                let (v, read) = read_json(f, limit, "merge:", &limit_text)?;
+                left -= read;
                 shards.push(v);
             }
             if shards.first().is_some_and(|v| v.get("cells").is_some()) {

@@ -5,7 +5,7 @@
 // Tests may panic: that is how they fail.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use serde_json::Value;
+use serde_json::{json, Value};
 use std::process::{Command, Output};
 
 fn gearshock(args: &[&str]) -> Output {
@@ -498,4 +498,600 @@ fn instability_finds_the_principal_parametric_resonance() {
     assert!(from > 1.0 && from < 2.0, "{from}");
     let bad = gearshock(&["instability", "--omega-from", "2", "--omega-to", "1"]);
     assert_eq!(bad.status.code(), Some(2));
+}
+
+/// Runs and expects exit 2 with one line on stderr containing every needle,
+/// no panic and nothing on stdout; returns the line.
+fn refused(args: &[&str], needles: &[&str]) -> String {
+    let out = gearshock(args);
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+    for n in needles {
+        assert!(err.contains(n), "{args:?}: `{n}` not in {err}");
+    }
+    assert!(!err.contains("panicked"), "{args:?}: {err}");
+    assert!(out.stdout.is_empty(), "{args:?}: no partial output");
+    err
+}
+
+fn temp_dir(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("gearshock-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    dir
+}
+
+fn write_json(dir: &std::path::Path, name: &str, v: &Value) -> String {
+    let file = dir.join(name);
+    std::fs::write(&file, v.to_string()).expect("write");
+    file.to_str().expect("path").to_string()
+}
+
+/// Two real shards of a tiny sweep (3 points, up and down).
+fn tiny_sweep_shards() -> Vec<Value> {
+    (0..2)
+        .map(|i| {
+            let shard = format!("{i}/2");
+            json(&[
+                "bifurcation",
+                "--model",
+                "gear-pair",
+                "--omega-from",
+                "0.5",
+                "--omega-to",
+                "0.7",
+                "--points",
+                "3",
+                "--direction",
+                "both",
+                "--transient-periods",
+                "5",
+                "--record-periods",
+                "2",
+                "--shard",
+                &shard,
+            ])
+        })
+        .collect()
+}
+
+#[test]
+fn merge_refuses_forged_shards_before_sizing_anything() {
+    let dir = temp_dir("forged");
+    let good = tiny_sweep_shards();
+    let merge = |shards: &[Value], needles: &[&str]| {
+        let files: Vec<String> = shards
+            .iter()
+            .enumerate()
+            .map(|(i, v)| write_json(&dir, &format!("s{i}.json"), v))
+            .collect();
+        let mut args = vec!["merge"];
+        args.extend(files.iter().map(String::as_str));
+        refused(&args, needles)
+    };
+    // The genuine shards merge.
+    let files: Vec<String> = good
+        .iter()
+        .enumerate()
+        .map(|(i, v)| write_json(&dir, &format!("g{i}.json"), v))
+        .collect();
+    let merged = json(&["merge", &files[0], &files[1]]);
+    assert_eq!(merged["points"].as_array().expect("points").len(), 6);
+
+    // A forged shard count sized memory: capacity overflow (exit 101) or abort (134).
+    for (chains, needle) in [
+        (json!(u64::MAX), "out of range"),
+        (json!(1_000_000_000_000u64), "out of range"),
+        (json!(3), "shard 2/3 is missing (chains = 3, 2 given)"),
+    ] {
+        let mut forged = good.clone();
+        for v in &mut forged {
+            v["spec"]["chains"] = chains.clone();
+        }
+        merge(&forged, &["chains", needle]);
+    }
+    let mut forged = good.clone();
+    for v in &mut forged {
+        v["spec"]["points"] = json!(u64::MAX);
+    }
+    merge(&forged, &["points", "out of range"]);
+    // A foreign point (omega 999) was copied into the output.
+    let mut forged = good.clone();
+    forged[0]["points"][0]["omega"] = json!(999.0);
+    merge(&forged, &["omega 999", "not on the sweep's grid"]);
+    let mut forged = good.clone();
+    forged[0]["points"][0]["index"] = json!(1);
+    merge(&forged, &["index 1", "not on the sweep's grid"]);
+    let mut forged = good.clone();
+    let extra = forged[0]["points"][0].clone();
+    forged[0]["points"]
+        .as_array_mut()
+        .expect("points")
+        .push(extra);
+    merge(&forged, &["given twice"]);
+    let mut forged = good.clone();
+    forged[1]["points"].as_array_mut().expect("points").pop();
+    merge(&forged, &["missing"]);
+    // A forged parameter set would be copied into the output.
+    let mut forged = good.clone();
+    for v in &mut forged {
+        v["params"]["backlash_um"] = json!(-5);
+    }
+    merge(&forged, &["params", "backlash_um"]);
+    // Step counts that wrapped when summed.
+    let mut forged = good.clone();
+    forged[0]["points"][0]["stats"]["steps"] = json!(u64::MAX);
+    merge(&forged, &["stats.steps", "out of range"]);
+
+    // Maps: forged shard count and a cell off the grid.
+    let map_shard = |i: u32| {
+        let shard = format!("{i}/2");
+        json(&[
+            "map",
+            "--model",
+            "gear-pair",
+            "--omega-from",
+            "0.5",
+            "--omega-to",
+            "0.6",
+            "--omega-points",
+            "2",
+            "--value-from",
+            "50",
+            "--value-to",
+            "60",
+            "--value-points",
+            "2",
+            "--transient-periods",
+            "5",
+            "--record-periods",
+            "2",
+            "--shard",
+            &shard,
+        ])
+    };
+    let maps = vec![map_shard(0), map_shard(1)];
+    let mut forged = maps.clone();
+    for v in &mut forged {
+        v["spec"]["shards"] = json!(4_000_000_000u64);
+    }
+    merge(&forged, &["shards", "out of range"]);
+    let mut forged = maps.clone();
+    forged[1]["cells"][0]["row"] = json!(999);
+    merge(&forged, &["row 999", "not on the map's grid"]);
+    let mut forged = maps.clone();
+    forged[1]["cells"][0]["value"] = json!(1e300);
+    merge(&forged, &["not on the map's grid"]);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn input_files_are_read_through_a_size_limit() {
+    // `--params /dev/zero` read until memory ran out.
+    refused(&["params", "--params", "/dev/zero"], &["/dev/zero"]);
+    let dir = temp_dir("big");
+    let big = dir.join("big.json");
+    let mut text = " ".repeat(2 << 20);
+    text.push_str("{}");
+    std::fs::write(&big, &text).expect("write");
+    let big = big.to_str().expect("path");
+    refused(
+        &["params", "--params", big],
+        &["--params", "larger than", "1 MiB"],
+    );
+    // A pipe (no size to look at first) is cut at the limit too.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_gearshock"))
+        .args(["params", "--params", "/dev/stdin"])
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("spawn");
+    let mut stdin = child.stdin.take().expect("stdin");
+    let writer = std::thread::spawn(move || {
+        use std::io::Write;
+        // The reader stops early: a broken pipe here is expected.
+        let _ = stdin.write_all(text.as_bytes());
+    });
+    let out = child.wait_with_output().expect("wait");
+    let _ = writer.join();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("larger than"), "{err}");
+    refused(&["merge", "/dev/zero"], &["merge", "/dev/zero"]);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn total_work_and_memory_are_capped_naming_the_options() {
+    // Each option within its range, the product not: these grew memory
+    // until they died, or ran for days.
+    refused(
+        &[
+            "bifurcation",
+            "--omega-from",
+            "0.1",
+            "--omega-to",
+            "2",
+            "--points",
+            "100000",
+            "--record-periods",
+            "100000",
+            "--mesh",
+            "all",
+        ],
+        &["--points", "--record-periods", "100000000", "--shard"],
+    );
+    refused(
+        &[
+            "bifurcation",
+            "--omega-from",
+            "0.1",
+            "--omega-to",
+            "2",
+            "--points",
+            "1000",
+            "--record-periods",
+            "10000",
+            "--transient-periods",
+            "0",
+            "--mesh",
+            "all",
+        ],
+        &["--mesh", "--record-periods", "Poincaré samples", "2000000"],
+    );
+    refused(
+        &[
+            "lyapunov",
+            "--omega-from",
+            "0.1",
+            "--omega-to",
+            "2",
+            "--points",
+            "10000",
+            "--transient-periods",
+            "1000000",
+            "--periods",
+            "100000",
+        ],
+        &["--points 10000", "--periods 100000", "100000000"],
+    );
+    refused(
+        &[
+            "map",
+            "--omega-from",
+            "0.1",
+            "--omega-to",
+            "2",
+            "--omega-points",
+            "2000",
+            "--value-from",
+            "10",
+            "--value-to",
+            "200",
+            "--value-points",
+            "500",
+        ],
+        &["--omega-points", "--value-points", "100000000"],
+    );
+    refused(
+        &[
+            "frf",
+            "--omega-from",
+            "0.1",
+            "--omega-to",
+            "2",
+            "--points",
+            "100000",
+            "--harmonics",
+            "40",
+        ],
+        &["--points 100000", "--harmonics 40", "2000000000"],
+    );
+    // The largest number the flag parses overflowed the budget's arithmetic.
+    refused(
+        &[
+            "frf",
+            "--omega-from",
+            "0.1",
+            "--omega-to",
+            "2",
+            "--harmonics",
+            "18446744073709551615",
+        ],
+        &["--harmonics 18446744073709551615", "1 ..= 40"],
+    );
+    for flag in ["--transient-periods", "--record-periods"] {
+        refused(
+            &[
+                "bifurcation",
+                "--omega-from",
+                "0.1",
+                "--omega-to",
+                "2",
+                flag,
+                "4294967295",
+            ],
+            &[flag, "4294967295"],
+        );
+    }
+}
+
+#[test]
+fn progress_lines_go_to_stderr_on_request_even_when_it_is_not_a_terminal() {
+    let args = [
+        "bifurcation",
+        "--model",
+        "gear-pair",
+        "--omega-from",
+        "0.5",
+        "--omega-to",
+        "0.7",
+        "--points",
+        "3",
+        "--transient-periods",
+        "5",
+        "--record-periods",
+        "2",
+    ];
+    let quiet = gearshock(&args);
+    assert!(quiet.status.success());
+    assert!(
+        quiet.stderr.is_empty(),
+        "no bar when stderr is not a terminal"
+    );
+    let mut with = args.to_vec();
+    with.push("--progress");
+    let out = gearshock(&with);
+    assert!(out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    let lines: Vec<&str> = err.lines().collect();
+    assert_eq!(lines.len(), 3, "one line per point here: {err}");
+    assert_eq!(lines[2], "gearshock: progress 3/3 points (100 %)");
+    // The result is unchanged.
+    let a: Value = serde_json::from_slice(&quiet.stdout).expect("json");
+    let b: Value = serde_json::from_slice(&out.stdout).expect("json");
+    assert_eq!(a, b);
+}
+
+#[test]
+fn negative_values_are_accepted_and_options_checked_before_any_work() {
+    // "unexpected argument '-1' found" before.
+    refused(
+        &["simulate", "--omega", "-1"],
+        &["--omega -1", "0.01 ..= 20"],
+    );
+    refused(
+        &["simulate", "--omega", "0.5", "--rtol", "-1e-6"],
+        &["--rtol -0.000001", "1e-13"],
+    );
+    let v = json(&[
+        "map",
+        "--model",
+        "gear-pair",
+        "--key",
+        "te_um",
+        "--value-from",
+        "-100",
+        "--value-to",
+        "-0",
+        "--value-points",
+        "2",
+        "--omega-from",
+        "0.5",
+        "--omega-to",
+        "0.6",
+        "--omega-points",
+        "2",
+        "--transient-periods",
+        "5",
+        "--record-periods",
+        "2",
+    ]);
+    assert_eq!(v["spec"]["value_from"], -100.0);
+    // A typed -0 is echoed as 0.
+    assert_eq!(v["spec"]["value_to"].to_string(), "0.0");
+    assert_eq!(v["cells"][0]["value"], -100.0);
+    // These computed every point and then named an internal grid value; a
+    // large --points shows they now stop before the first point.
+    refused(
+        &[
+            "lyapunov",
+            "--omega-from",
+            "0.1",
+            "--omega-to",
+            "20.001",
+            "--points",
+            "10000",
+            "--periods",
+            "10",
+            "--transient-periods",
+            "10",
+        ],
+        &["--omega-to 20.001", "0.01 ..= 20"],
+    );
+    refused(
+        &["instability", "--omega-from", "1", "--omega-to", "25"],
+        &["--omega-to 25", "0.01 ..= 20"],
+    );
+    refused(
+        &[
+            "lyapunov",
+            "--omega-from",
+            "0.5",
+            "--omega-to",
+            "1",
+            "--periods",
+            "0",
+        ],
+        &["--periods 0"],
+    );
+    refused(
+        &["bifurcation", "--omega-from", "-1", "--omega-to", "1"],
+        &["--omega-from -1"],
+    );
+}
+
+#[test]
+fn no_setting_is_silently_dropped_by_the_model_choice() {
+    // `model` reset every parameter, so the backlash given before it was lost.
+    let v = json(&[
+        "params",
+        "--set",
+        "backlash_um=50",
+        "--set",
+        "model=gear-pair",
+    ]);
+    assert_eq!(v["model"], "gear-pair");
+    assert_eq!(v["backlash_um"], 50);
+    refused(
+        &[
+            "params",
+            "--model",
+            "ravigneaux",
+            "--set",
+            "model=gear-pair",
+        ],
+        &["--set model=gear-pair", "--model ravigneaux"],
+    );
+    // A parameter file of the other model would be replaced by defaults.
+    let dir = temp_dir("model");
+    let file = write_json(
+        &dir,
+        "p.json",
+        &json!({"model": "ravigneaux", "planets": 4}),
+    );
+    refused(
+        &["params", "--params", &file, "--model", "gear-pair"],
+        &["--params", "ravigneaux", "--model gear-pair"],
+    );
+    let v = json(&["params", "--params", &file, "--set", "backlash_um=70"]);
+    assert_eq!(v["planets"], 4);
+    assert_eq!(v["backlash_rb_um"], 70);
+    let v = json(&["params", "--set", "te_um=-0"]);
+    assert_eq!(v["te_sin_s1a_um"].to_string(), "0");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The JSON lines of a run: every line parses.
+fn json_lines(args: &[&str]) -> Vec<Value> {
+    let out = gearshock(args);
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("one JSON value per line"))
+        .collect()
+}
+
+#[test]
+fn jsonl_streams_each_point_as_computed_with_the_same_results() {
+    let sweep = [
+        "bifurcation",
+        "--model",
+        "gear-pair",
+        "--omega-from",
+        "0.5",
+        "--omega-to",
+        "0.7",
+        "--points",
+        "3",
+        "--direction",
+        "both",
+        "--transient-periods",
+        "5",
+        "--record-periods",
+        "2",
+    ];
+    let whole = json(&sweep);
+    let mut args = sweep.to_vec();
+    args.extend(["--format", "jsonl"]);
+    let lines = json_lines(&args);
+    assert_eq!(lines.len(), 1 + 6 + 1);
+    assert_eq!(lines[0]["spec"], whole["spec"]);
+    assert_eq!(lines[0]["params"], whole["params"]);
+    assert_eq!(lines[7], json!({"complete": true, "points": 6}));
+    let key = |p: &Value| (p["direction"].to_string(), p["index"].as_u64());
+    let mut streamed: Vec<Value> = lines[1..7].to_vec();
+    let mut written: Vec<Value> = whole["points"].as_array().expect("points").clone();
+    streamed.sort_by_key(key);
+    written.sort_by_key(key);
+    assert_eq!(streamed, written);
+
+    let lyap = [
+        "lyapunov",
+        "--model",
+        "gear-pair",
+        "--omega-from",
+        "0.5",
+        "--omega-to",
+        "0.6",
+        "--points",
+        "2",
+        "--transient-periods",
+        "10",
+        "--periods",
+        "10",
+    ];
+    let whole = json(&lyap);
+    let mut args = lyap.to_vec();
+    args.extend(["--format", "jsonl"]);
+    let lines = json_lines(&args);
+    assert_eq!(lines[0]["spec"], whole["spec"]);
+    assert_eq!(lines[1..3], whole["points"].as_array().expect("points")[..]);
+    assert_eq!(lines[3], json!({"complete": true, "points": 2}));
+
+    let inst = [
+        "instability",
+        "--model",
+        "gear-pair",
+        "--omega-from",
+        "0.5",
+        "--omega-to",
+        "2",
+        "--points",
+        "3",
+    ];
+    let whole = json(&inst);
+    let mut args = inst.to_vec();
+    args.extend(["--format", "jsonl"]);
+    let lines = json_lines(&args);
+    assert_eq!(lines[1..4], whole["points"].as_array().expect("points")[..]);
+    assert_eq!(lines[4], json!({"complete": true, "points": 3}));
+
+    let map = [
+        "map",
+        "--model",
+        "gear-pair",
+        "--omega-from",
+        "0.5",
+        "--omega-to",
+        "0.6",
+        "--omega-points",
+        "2",
+        "--value-from",
+        "50",
+        "--value-to",
+        "60",
+        "--value-points",
+        "2",
+        "--transient-periods",
+        "5",
+        "--record-periods",
+        "2",
+    ];
+    let whole = json(&map);
+    let mut args = map.to_vec();
+    args.extend(["--format", "jsonl"]);
+    let lines = json_lines(&args);
+    assert_eq!(lines[0]["spec"], whole["spec"]);
+    assert_eq!(lines[1..5], whole["cells"].as_array().expect("cells")[..]);
+    assert_eq!(lines[5], json!({"complete": true, "cells": 4}));
+
+    // Other commands write their one document on one line.
+    let lines = json_lines(&["params", "--format", "jsonl"]);
+    assert_eq!(lines, vec![json(&["params"])]);
 }

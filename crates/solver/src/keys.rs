@@ -707,6 +707,11 @@ pub fn set(params: &mut ModelParams, name: &str, value: Value) -> Result<()> {
         Value::Text(t) => t.clone(),
     };
     check(spec, &value, &shown)?;
+    // A typed -0 is stored (and so written back in links) as 0.
+    let value = match value {
+        Value::Num(x) => Value::Num(x + 0.0),
+        v => v,
+    };
     if name == "model" {
         let kind = ModelKind::from_name(text(&value)).unwrap_or(ModelKind::Ravigneaux);
         if kind != params.kind() {

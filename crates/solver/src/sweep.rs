@@ -78,7 +78,7 @@ impl Directions {
         }
     }
 
-    fn list(self) -> &'static [Direction] {
+    pub(crate) fn list(self) -> &'static [Direction] {
         match self {
             Directions::Up => &[Direction::Up],
             Directions::Down => &[Direction::Down],
