@@ -1213,7 +1213,10 @@ impl FrfContinuation {
             step_prev = step;
             if at_floor || step <= NEWTON_TOL {
                 let scale = 1.0 + inf_norm(&y[..nx]);
-                if !at_floor {
+                // The residual before this last (tiny) step is already
+                // within the bound: the step only reduces it, and a second
+                // evaluation is saved. Otherwise check at the result.
+                if !at_floor && res > 1e-6 * scale {
                     self.asm.evaluate(&y[..nx], y[nx], &mut r, None);
                     self.stats.jacobians += 1;
                     if inf_norm(&r) > 1e-6 * scale {
