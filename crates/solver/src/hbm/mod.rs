@@ -352,6 +352,8 @@ pub struct FrfContinuation {
     divergence: f64,
     /// Parts of the range that no piece covers, and why.
     left_out: Vec<LeftOut>,
+    /// Omega of restarts whose first point Newton did not find.
+    failed_starts: Vec<f64>,
 }
 
 /// A part of the Omega range left out of the branch, reported.
@@ -416,6 +418,9 @@ const FOLD_ITERATIONS: usize = 12;
 const FOLD_TOL: f64 = 1e-10;
 /// Points without progress in Omega after which a piece has stalled.
 const STALL_WINDOW: u64 = 300;
+/// Where in a gap (as a fraction of it) restarts try to start, in turn,
+/// while Newton fails to find a first point.
+const GAP_STARTS: [f64; 3] = [0.5, 0.25, 0.75];
 /// Restarts of a branch that ends early.
 const MAX_RESTARTS: usize = 6;
 /// A piece has diverged when its largest coefficient exceeds this multiple
@@ -512,6 +517,7 @@ impl FrfContinuation {
             since_progress: 0,
             frontier: f64::NAN,
             left_out: Vec::new(),
+            failed_starts: Vec::new(),
             spec,
         })
     }
@@ -720,10 +726,14 @@ impl FrfContinuation {
                         && r.direction == Direction::Up
                         && (g.1 - r.start_omega).abs() <= tol
                 });
+                let inside = |w: f64| g.0 - tol <= w && w <= g.1 + tol;
+                let failed = self.failed_starts.iter().filter(|&&w| inside(w)).count();
                 !down_pending
-                    && self.restarts.iter().any(|r| {
-                        r.piece >= 2 && g.0 - tol <= r.start_omega && r.start_omega <= g.1 + tol
-                    })
+                    && (failed >= GAP_STARTS.len()
+                        || self
+                            .restarts
+                            .iter()
+                            .any(|r| r.piece >= 2 && inside(r.start_omega)))
             });
             match tried {
                 Some(g) => self.left_out.push(LeftOut {
@@ -770,7 +780,13 @@ impl FrfContinuation {
             (omega, Direction::Down)
         } else {
             let (a, b) = gaps[0];
-            (0.5 * (a + b), Direction::Up)
+            let failed = self
+                .failed_starts
+                .iter()
+                .filter(|&&w| a - tol <= w && w <= b + tol)
+                .count();
+            let frac = GAP_STARTS[failed.min(GAP_STARTS.len() - 1)];
+            (a + frac * (b - a), Direction::Up)
         };
         self.piece += 1;
         self.restarts.push(Restart {
@@ -809,13 +825,19 @@ impl FrfContinuation {
         let (x, iterations) = match found {
             Ok(found) => found,
             Err(e) if self.piece > 0 => {
-                // The piece covers nothing: the next restart tries elsewhere.
-                self.spans.push((f64::NAN, f64::NAN));
-                if self.restarts.len() >= MAX_RESTARTS {
-                    self.finished = true;
-                    return Err(e);
-                }
-                return self.end_piece(PieceEnd::Failed, omega);
+                // No piece: the restart is withdrawn and the next one tried
+                // (elsewhere in the same gap, or the next gap).
+                self.failed_starts.push(omega);
+                return match self.restarts.pop() {
+                    Some(r) => {
+                        self.piece -= 1;
+                        self.end_piece(r.reason, r.stopped_at)
+                    }
+                    None => {
+                        self.finished = true;
+                        Err(e)
+                    }
+                };
             }
             Err(e) => {
                 self.finished = true;
