@@ -17,7 +17,8 @@
 //! Omega Newton of the first and last points halves a step that does not
 //! reduce the residual (down to 1/128). The corrector has converged when
 //! the last step is below `1e-9` of the solution's scale (micrometres) and
-//! the residual at the result below `1e-6` of it, and fails with
+//! the residual below `1e-6` of it (at the iterate before that last tiny
+//! step, which only reduces it, or else at the result), and fails with
 //! [`SolverError::NotConverged`] carrying Omega and the residual otherwise —
 //! never a silent last iterate.
 //!
@@ -25,20 +26,49 @@
 //! harmonics (1, 2, ..., H) from the static equilibrium; if that fails (a
 //! resonance zone, contact loss), the branch is continued upward from
 //! Omega = 0.05, where the response is quasi-static, to the start frequency.
-//! A continuation that uses `20 points + 4000` points without leaving the
-//! range stops with [`SolverError::ContinuationStalled`].
+//! A continuation that uses `20 points + 4000` points in all stops with
+//! [`SolverError::ContinuationStalled`].
 //!
 //! Continuation. Pseudo-arclength in `(X / (a sqrt(n)), Omega / range)` with
-//! `a` three times the largest RMS coefficient seen (at least 1 um); the
-//! step adapts to the corrector's iterations (grows by 1.4 after quick
-//! convergence, shrinks by 0.6 after a slow one, halves after a failure or
-//! when the tangent turns by more than ~25 degrees) between
-//! `ds_max = 1 / points` and `1e-5 ds_max`: flat stretches get about
-//! `points` points over the range, resonances more. A sign
-//! change of the tangent's Omega component marks a fold (the branch turns
-//! back: a jump). Stability changes between consecutive points are labelled
-//! by the multiplier that crossed the unit circle: real +1 without a turn
+//! `a` three times the current RMS coefficient (at least 1 um), so that the
+//! metric measures relative changes of the orbit whatever its size. The
+//! step follows the curve's geometry ([`StepControl::Geometry`]): after
+//! each corrector, the predictor-corrector distance `d` and the tangent's
+//! turn `alpha` give the factor `f = max(sqrt(d / 1e-3), alpha / 0.1)` by
+//! which the step overshot its nominal size; `f > 2` rejects the step and
+//! retries it `f` times shorter (at most 4), otherwise the next step is
+//! `ds / f` (growth at most 2). A step also moves Omega by at most
+//! `range / points`, so `points` is a floor on the resolution of flat
+//! stretches; bends, resonances and folds get what their geometry needs.
+//! A sign change of the tangent's Omega component marks a fold (the branch
+//! turns back: a jump); the fold is then located on the branch by the
+//! Illinois variant of regula falsi on the step length (each trial a
+//! corrector) until Omega settles to `1e-10`, and inserted as a point of
+//! its own. Stability changes between consecutive points are labelled by
+//! the multiplier that crossed the unit circle: real +1 without a turn
 //! (branch point), real -1 (period doubling), complex pair (Neimark–Sacker).
+//! The control before issue 14 ([`StepControl::Iterations`]: the step
+//! adapted to the corrector's iteration count, capped at `1 / points` of
+//! arclength, folds labelled on the point after them) is kept for the
+//! benchmark's before/after comparison.
+//!
+//! Restarts. A piece of the branch ends early when it turns back and
+//! leaves the range at its start, diverges (its largest coefficient beyond
+//! 1000 times the static equilibrium's: the periodic response has a pole,
+//! e.g. at the edge of a parametric resonance of a linear mesh), stalls
+//! (300 points without a new farthest Omega: a tangle of close folds), or
+//! its corrector fails at the smallest step. While part of the range is
+//! not covered, the continuation restarts: first from the other end in the
+//! other direction, then inside the first gap (at its middle, upward, and
+//! from there downward; if Newton finds no first point there, at a quarter
+//! and three quarters). A restarted piece ends where the range is covered.
+//! A gap whose start lies beyond the divergence bound is a pole; a gap in
+//! which a restarted piece did not get across either (or three starts
+//! failed) is a tangle. Both are left out and reported
+//! ([`FrfContinuation::left_out`]), every restart too
+//! ([`FrfContinuation::restarts`]), each with a plain note
+//! ([`FrfContinuation::notes`]); every point carries its piece number, so
+//! that a curve is broken between pieces. Never a silent gap.
 
 pub mod assembly;
 pub mod harmonic;
