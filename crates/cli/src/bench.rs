@@ -6,7 +6,7 @@
 
 use serde_json::{json, Value};
 use solver::dynamics::MeshOde;
-use solver::hbm::{FrfContinuation, FrfSpec};
+use solver::hbm::{BranchPoint, FrfContinuation, FrfSpec, StepControl};
 use solver::map::{MapSpec, RegimeMap};
 use solver::ode::Ode;
 use solver::params::ModelParams;
@@ -155,8 +155,74 @@ pub fn run(repeats: u32, quick: bool) -> Result<Value, SolverError> {
         );
     }
 
+    // Issue 14: H = 7 over Omega 0.1 ..= 0.5 with stability, the step
+    // control before (on the corrector's iterations, 400 nominal points as
+    // the CLI's default) and after (on the curve's geometry, 50 nominal
+    // points), alternating in one run.
+    let runs = if quick { 1 } else { repeats.min(5) };
+    let mut before_s = Vec::new();
+    let mut after_s = Vec::new();
+    let mut before_points = 0;
+    let mut after_points = 0;
+    let mut before_branch = Vec::new();
+    let mut after_branch = Vec::new();
+    for _ in 0..runs {
+        for (control, nominal) in [(StepControl::Iterations, 400), (StepControl::Geometry, 50)] {
+            let mut spec = FrfSpec::new(0.1, 0.5, nominal);
+            spec.harmonics = 7;
+            spec.step_control = control;
+            let start = Instant::now();
+            let mut c = FrfContinuation::new(&model, spec)?;
+            let mut pts = Vec::new();
+            while !c.is_finished() {
+                pts.extend(c.advance(64)?);
+            }
+            let dt = start.elapsed().as_secs_f64();
+            if control == StepControl::Iterations {
+                before_s.push(dt);
+                before_points = pts.len();
+                before_branch = pts;
+            } else {
+                after_s.push(dt);
+                after_points = pts.len();
+                after_branch = pts;
+            }
+        }
+    }
+    let (before_med, after_med) = (median(before_s), median(after_s));
+    let folds = |pts: &[BranchPoint]| -> Vec<f64> {
+        pts.iter()
+            .filter(|p| p.bifurcation == Some(solver::hbm::Bifurcation::Fold))
+            .map(|p| p.omega)
+            .collect()
+    };
+    let issue14 = json!({
+        "harmonics": 7,
+        "omega_from": 0.1,
+        "omega_to": 0.5,
+        "before": {
+            "step_control": "iterations",
+            "nominal_points": 400,
+            "branch_points": before_points,
+            "median_ms": before_med * 1e3,
+            "folds": folds(&before_branch),
+        },
+        "after": {
+            "step_control": "geometry",
+            "nominal_points": 50,
+            "branch_points": after_points,
+            "median_ms": after_med * 1e3,
+            "folds": folds(&after_branch),
+        },
+        "speedup": before_med / after_med,
+        "point_ratio": before_points as f64 / after_points.max(1) as f64,
+        "pyharm_quoted_s": 5.0,
+        "speedup_vs_pyharm_quoted": 5.0 / after_med,
+    });
+
     Ok(json!({
         "hbm": Value::Object(hbm),
+        "hbm_issue14": issue14,
         "machine_threads": std::thread::available_parallelism().map_or(1, |n| n.get()),
         "repeats": repeats,
         "quick": quick,

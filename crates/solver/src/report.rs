@@ -599,6 +599,7 @@ pub fn branch_point_json(model: &Model, p: &crate::hbm::BranchPoint, meshes: &[u
         },
     );
     o.insert("newton_iterations".into(), json!(p.newton_iterations));
+    o.insert("piece".into(), json!(p.piece));
     Value::Object(o)
 }
 
@@ -625,6 +626,19 @@ pub fn frf_json(
         "meshes": names,
         "complete": error.is_none(),
         "left_range_at_start": continuation.left_at_start(),
+        "restarts": continuation.restarts().iter().map(|r| json!({
+            "piece": r.piece,
+            "reason": r.reason.name(),
+            "stopped_at_omega": num(r.stopped_at),
+            "start_omega": num(r.start_omega),
+            "direction": r.direction.name(),
+        })).collect::<Vec<_>>(),
+        "left_out": continuation.left_out().iter().map(|l| json!({
+            "omega_from": num(l.from),
+            "omega_to": num(l.to),
+            "reason": l.reason_name(),
+        })).collect::<Vec<_>>(),
+        "notes": continuation.notes(),
         "error": error.map_or(Value::Null, |e| Value::from(e.to_string())),
         "branch": branch.iter().map(|p| branch_point_json(model, p, meshes)).collect::<Vec<_>>(),
         "stats": {

@@ -6,7 +6,9 @@
 // Tests may panic: that is how they fail.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use solver::hbm::{Bifurcation, BranchPoint, FrfContinuation, FrfSpec, HbmModel, Method};
+use solver::hbm::{
+    Bifurcation, BranchPoint, FrfContinuation, FrfSpec, HbmModel, Method, PieceEnd, StepControl,
+};
 use solver::keys;
 use solver::modal::linear_receptance;
 use solver::params::ModelParams;
@@ -153,10 +155,11 @@ fn duffing_peak_and_folds_match_the_closed_form() {
         .map(|p| p.omega)
         .collect();
     assert_eq!(found.len(), 2, "folds found {found:?}");
-    // The upper fold is met first on the way up; each is located to within
-    // the step that passed it.
-    assert!((found[0] - folds[1]).abs() < 2e-3, "{found:?} vs {folds:?}");
-    assert!((found[1] - folds[0]).abs() < 2e-3, "{found:?} vs {folds:?}");
+    // The upper fold is met first on the way up; each is located on the
+    // branch (regula falsi on the tangent's Omega component), so it equals
+    // the closed form's up to the bisection's and the corrector's tolerance.
+    assert!((found[0] - folds[1]).abs() < 1e-6, "{found:?} vs {folds:?}");
+    assert!((found[1] - folds[0]).abs() < 1e-6, "{found:?} vs {folds:?}");
     // Between the folds the middle branch is unstable (a real multiplier > 1).
     let between: Vec<&BranchPoint> = pts
         .iter()
@@ -464,20 +467,76 @@ fn sequential_phasing_branch_crosses_the_range_and_turning_back_is_reported() {
     assert!(!c.left_at_start());
     // The gear pair from inside its hysteresis band (0.49..0.60): the
     // branch found at 0.55 ends at the upper fold, turns back and leaves
-    // the range through 0.55, which the continuation reports.
+    // the range through 0.55, which the continuation reports, and restarts
+    // from 0.7 downward to cover the rest of the range.
     let m = model(&["model=gear-pair"]);
     let mut spec = FrfSpec::new(0.55, 0.7, 100);
     spec.harmonics = 7;
     spec.stability = false;
     let mut c = FrfContinuation::new(&m, spec).unwrap();
     let pts = branch(&mut c);
-    assert!(c.left_at_start());
-    assert!(pts.last().unwrap().omega < 0.55);
-    let folds: Vec<f64> = pts
+    let first: Vec<&BranchPoint> = pts.iter().filter(|p| p.piece == 0).collect();
+    assert!(first.last().unwrap().omega < 0.55);
+    let folds: Vec<f64> = first
         .iter()
         .filter(|p| p.bifurcation == Some(Bifurcation::Fold))
         .map(|p| p.omega)
         .collect();
     assert_eq!(folds.len(), 1);
     assert!((0.59..0.62).contains(&folds[0]), "{folds:?}");
+    let r = c.restarts();
+    assert_eq!(r.len(), 1, "{r:?}");
+    assert_eq!(r[0].reason, PieceEnd::TurnedBack);
+    assert!((r[0].start_omega - 0.7).abs() < 1e-12 && r[0].direction == Direction::Down);
+    assert!(c.notes()[0].contains("turned back"), "{:?}", c.notes());
+    // The second piece starts at 0.7 and reaches below the upper fold.
+    let second: Vec<&BranchPoint> = pts.iter().filter(|p| p.piece == 1).collect();
+    assert!((second[0].omega - 0.7).abs() < 1e-12);
+    assert!(second.last().unwrap().omega < folds[0]);
+    assert!(!c.left_at_start());
+}
+
+#[test]
+fn geometric_step_control_halves_the_points_and_keeps_the_folds() {
+    // The gear pair's hysteresis band at H = 7: the step control on the
+    // predictor-corrector distance and the tangent's turn against the
+    // control on the corrector's iterations (the one before it), on the
+    // same branch. The old control located a fold only to within its step
+    // and needed 200 nominal points; the new one locates folds on the
+    // branch, and its `points` only caps the Omega step (at 0.006 here).
+    let m = model(&["model=gear-pair"]);
+    let run = |control, points| {
+        let mut spec = FrfSpec::new(0.4, 0.7, points);
+        spec.harmonics = 7;
+        spec.step_control = control;
+        let mut c = FrfContinuation::new(&m, spec).unwrap();
+        let pts = branch(&mut c);
+        let folds: Vec<f64> = pts
+            .iter()
+            .filter(|p| p.bifurcation == Some(Bifurcation::Fold))
+            .map(|p| p.omega)
+            .collect();
+        (pts, folds)
+    };
+    let (new, new_folds) = run(StepControl::Geometry, 50);
+    let (old, old_folds) = run(StepControl::Iterations, 200);
+    eprintln!(
+        "points {} (before {}), folds {new_folds:?} (before {old_folds:?})",
+        new.len(),
+        old.len()
+    );
+    assert_eq!(new_folds.len(), 2);
+    assert_eq!(old_folds.len(), 2);
+    for (a, b) in new_folds.iter().zip(&old_folds) {
+        assert!((a - b).abs() < 1e-4, "fold {a} vs {b} before");
+    }
+    assert!(2 * new.len() <= old.len(), "{} vs {}", new.len(), old.len());
+    // A located fold is a turning point: both neighbours lie on the same
+    // side of it in Omega.
+    for (i, p) in new.iter().enumerate() {
+        if p.bifurcation == Some(Bifurcation::Fold) {
+            let (a, b) = (new[i - 1].omega - p.omega, new[i + 1].omega - p.omega);
+            assert!(a * b > 0.0, "fold at {} not a turning point", p.omega);
+        }
+    }
 }

@@ -17,7 +17,8 @@
 //! Omega Newton of the first and last points halves a step that does not
 //! reduce the residual (down to 1/128). The corrector has converged when
 //! the last step is below `1e-9` of the solution's scale (micrometres) and
-//! the residual at the result below `1e-6` of it, and fails with
+//! the residual below `1e-6` of it (at the iterate before that last tiny
+//! step, which only reduces it, or else at the result), and fails with
 //! [`SolverError::NotConverged`] carrying Omega and the residual otherwise —
 //! never a silent last iterate.
 //!
@@ -25,20 +26,49 @@
 //! harmonics (1, 2, ..., H) from the static equilibrium; if that fails (a
 //! resonance zone, contact loss), the branch is continued upward from
 //! Omega = 0.05, where the response is quasi-static, to the start frequency.
-//! A continuation that uses `20 points + 4000` points without leaving the
-//! range stops with [`SolverError::ContinuationStalled`].
+//! A continuation that uses `20 points + 4000` points in all stops with
+//! [`SolverError::ContinuationStalled`].
 //!
 //! Continuation. Pseudo-arclength in `(X / (a sqrt(n)), Omega / range)` with
-//! `a` three times the largest RMS coefficient seen (at least 1 um); the
-//! step adapts to the corrector's iterations (grows by 1.4 after quick
-//! convergence, shrinks by 0.6 after a slow one, halves after a failure or
-//! when the tangent turns by more than ~25 degrees) between
-//! `ds_max = 1 / points` and `1e-5 ds_max`: flat stretches get about
-//! `points` points over the range, resonances more. A sign
-//! change of the tangent's Omega component marks a fold (the branch turns
-//! back: a jump). Stability changes between consecutive points are labelled
-//! by the multiplier that crossed the unit circle: real +1 without a turn
+//! `a` three times the current RMS coefficient (at least 1 um), so that the
+//! metric measures relative changes of the orbit whatever its size. The
+//! step follows the curve's geometry ([`StepControl::Geometry`]): after
+//! each corrector, the predictor-corrector distance `d` and the tangent's
+//! turn `alpha` give the factor `f = max(sqrt(d / 1e-3), alpha / 0.1)` by
+//! which the step overshot its nominal size; `f > 2` rejects the step and
+//! retries it `f` times shorter (at most 4), otherwise the next step is
+//! `ds / f` (growth at most 2). A step also moves Omega by at most
+//! `range / points`, so `points` is a floor on the resolution of flat
+//! stretches; bends, resonances and folds get what their geometry needs.
+//! A sign change of the tangent's Omega component marks a fold (the branch
+//! turns back: a jump); the fold is then located on the branch by the
+//! Illinois variant of regula falsi on the step length (each trial a
+//! corrector) until Omega settles to `1e-10`, and inserted as a point of
+//! its own. Stability changes between consecutive points are labelled by
+//! the multiplier that crossed the unit circle: real +1 without a turn
 //! (branch point), real -1 (period doubling), complex pair (Neimark–Sacker).
+//! The control before issue 14 ([`StepControl::Iterations`]: the step
+//! adapted to the corrector's iteration count, capped at `1 / points` of
+//! arclength, folds labelled on the point after them) is kept for the
+//! benchmark's before/after comparison.
+//!
+//! Restarts. A piece of the branch ends early when it turns back and
+//! leaves the range at its start, diverges (its largest coefficient beyond
+//! 1000 times the static equilibrium's: the periodic response has a pole,
+//! e.g. at the edge of a parametric resonance of a linear mesh), stalls
+//! (300 points without a new farthest Omega: a tangle of close folds), or
+//! its corrector fails at the smallest step. While part of the range is
+//! not covered, the continuation restarts: first from the other end in the
+//! other direction, then inside the first gap (at its middle, upward, and
+//! from there downward; if Newton finds no first point there, at a quarter
+//! and three quarters). A restarted piece ends where the range is covered.
+//! A gap whose start lies beyond the divergence bound is a pole; a gap in
+//! which a restarted piece did not get across either (or three starts
+//! failed) is a tangle. Both are left out and reported
+//! ([`FrfContinuation::left_out`]), every restart too
+//! ([`FrfContinuation::restarts`]), each with a plain note
+//! ([`FrfContinuation::notes`]); every point carries its piece number, so
+//! that a curve is broken between pieces. Never a silent gap.
 
 pub mod assembly;
 pub mod harmonic;
@@ -102,6 +132,20 @@ pub struct FrfSpec {
     pub stability: bool,
     /// Use the cyclic-symmetry reduction when the planets allow it.
     pub symmetric: bool,
+    /// How the continuation chooses its step.
+    pub step_control: StepControl,
+}
+
+/// The continuation's step-length control.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StepControl {
+    /// From the curve's geometry (the predictor-corrector distance and the
+    /// tangent's turn), folds located by regula falsi; the default.
+    Geometry,
+    /// From the corrector's iteration count with the arclength step capped
+    /// at `1 / points`, folds labelled on the point after them: the control
+    /// before issue 14, kept for the benchmark's before/after comparison.
+    Iterations,
 }
 
 impl FrfSpec {
@@ -118,6 +162,7 @@ impl FrfSpec {
             grid: None,
             stability: true,
             symmetric: true,
+            step_control: StepControl::Geometry,
         }
     }
 
@@ -192,6 +237,88 @@ pub struct BranchPoint {
     pub newton_iterations: usize,
     /// The solution's coefficients (scaled units; for continuation and checks).
     pub coefficients: Vec<f64>,
+    /// The piece of the branch this point belongs to: 0, then one more at
+    /// every automatic restart (a curve through the points is broken
+    /// between pieces).
+    pub piece: u32,
+}
+
+/// Why a piece of the branch ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PieceEnd {
+    /// It left the range through the far end.
+    Reached,
+    /// It turned back at a fold and left the range through the end it
+    /// started from.
+    TurnedBack,
+    /// The response grew without bound: the periodic solution passes through
+    /// infinity (a multiplier of the orbit's linearization at +1, such as the
+    /// edge of a parametric resonance of the linear mesh).
+    Diverged,
+    /// It made no progress in Omega over many points (a tangle of close folds).
+    Stalled,
+    /// The corrector failed at the smallest step.
+    Failed,
+}
+
+impl PieceEnd {
+    /// Name for output.
+    pub fn name(self) -> &'static str {
+        match self {
+            PieceEnd::Reached => "reached-end",
+            PieceEnd::TurnedBack => "turned-back",
+            PieceEnd::Diverged => "diverged",
+            PieceEnd::Stalled => "stalled",
+            PieceEnd::Failed => "corrector-failed",
+        }
+    }
+}
+
+/// An automatic restart of the continuation: where and why the previous
+/// piece ended and where the next one started.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Restart {
+    /// Index of the new piece (1, 2, ...).
+    pub piece: u32,
+    /// Why the previous piece ended.
+    pub reason: PieceEnd,
+    /// Omega where the previous piece ended.
+    pub stopped_at: f64,
+    /// Omega where the new piece started.
+    pub start_omega: f64,
+    /// Direction of the new piece.
+    pub direction: Direction,
+}
+
+impl Restart {
+    /// A plain sentence for the user.
+    pub fn note(&self) -> String {
+        let why = match self.reason {
+            PieceEnd::Reached => "ended".to_string(),
+            PieceEnd::TurnedBack => format!(
+                "turned back at a fold and left the range at Omega {:.4}",
+                self.stopped_at
+            ),
+            PieceEnd::Diverged => format!(
+                "grew without bound near Omega {:.4} (the periodic response has a pole there)",
+                self.stopped_at
+            ),
+            PieceEnd::Stalled => format!(
+                "wound through many close folds near Omega {:.4} without progress",
+                self.stopped_at
+            ),
+            PieceEnd::Failed => format!("could not be corrected at Omega {:.4}", self.stopped_at),
+        };
+        let dir = match self.direction {
+            Direction::Up => "upward",
+            Direction::Down => "downward",
+        };
+        format!(
+            "The branch {why}; it was restarted at Omega {:.4}, {dir} (piece {} of the curve).",
+            self.start_omega,
+            self.piece + 1
+        )
+    }
 }
 
 /// Work counters of a continuation.
@@ -232,9 +359,103 @@ pub struct FrfContinuation {
     /// A fine grid on which reconstructed orbits are sampled for their extremes.
     recon: harmonic::Grid,
     left_at_start: bool,
+    /// Direction and start of the current piece.
+    dir: Direction,
+    start_omega: f64,
+    /// Points computed but not yet returned.
+    queue: Vec<BranchPoint>,
+    /// A fold whose location failed: labelled on the next point.
+    pending_fold: bool,
+    /// The current piece's index.
+    piece: u32,
+    /// The Omega span `(lo, hi)` of every piece so far.
+    spans: Vec<(f64, f64)>,
+    /// Automatic restarts so far.
+    restarts: Vec<Restart>,
+    /// Whether a piece that ends early is followed by a restart.
+    restarts_allowed: bool,
+    /// Points of the current piece since it last advanced its frontier.
+    since_progress: u64,
+    /// The current piece's frontier: the farthest Omega in its direction.
+    frontier: f64,
+    /// An amplitude beyond which the piece has diverged.
+    divergence: f64,
+    /// Parts of the range that no piece covers, and why.
+    left_out: Vec<LeftOut>,
+    /// Omega of restarts whose first point Newton did not find.
+    failed_starts: Vec<f64>,
+}
+
+/// A part of the Omega range left out of the branch, reported.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LeftOut {
+    /// Lower Omega.
+    pub from: f64,
+    /// Upper Omega.
+    pub to: f64,
+    /// Why.
+    pub reason: LeftOutReason,
+}
+
+/// Why a part of the range has no branch points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LeftOutReason {
+    /// The response grows without bound from both sides (a pole of the
+    /// periodic solution), and a start inside is beyond the divergence bound.
+    Unbounded,
+    /// Pieces from both sides wound through many close folds there and a
+    /// start inside did not get across either.
+    Tangle,
+}
+
+impl LeftOut {
+    /// A plain sentence for the user.
+    pub fn note(&self) -> String {
+        match self.reason {
+            LeftOutReason::Unbounded => format!(
+                "Between Omega {:.5} and {:.5} the periodic response is unbounded \
+                 (it grows without bound from both sides): no point is drawn there.",
+                self.from, self.to
+            ),
+            LeftOutReason::Tangle => format!(
+                "Between Omega {:.5} and {:.5} the branch winds through many close folds \
+                 (a strongly impacting response, which a few harmonics resolve poorly) and \
+                 was not followed across: no point is drawn there; time integration shows \
+                 the motion.",
+                self.from, self.to
+            ),
+        }
+    }
+
+    /// Name of the reason for output.
+    pub fn reason_name(&self) -> &'static str {
+        match self.reason {
+            LeftOutReason::Unbounded => "unbounded",
+            LeftOutReason::Tangle => "tangle",
+        }
+    }
 }
 
 const NEWTON_MAX: usize = 12;
+/// Nominal predictor-corrector distance in the arclength metric.
+const D_NOM: f64 = 1e-3;
+/// Nominal turn of the tangent per step (radians).
+const ALPHA_NOM: f64 = 0.1;
+/// Largest step in the arclength metric.
+const DS_CAP: f64 = 0.25;
+/// Regula falsi steps locating a fold, and their tolerance on Omega.
+const FOLD_ITERATIONS: usize = 12;
+const FOLD_TOL: f64 = 1e-10;
+/// Points without progress in Omega after which a piece has stalled.
+const STALL_WINDOW: u64 = 300;
+/// Where in a gap (as a fraction of it) restarts try to start, in turn,
+/// while Newton fails to find a first point.
+const GAP_STARTS: [f64; 3] = [0.5, 0.25, 0.75];
+/// Restarts of a branch that ends early.
+const MAX_RESTARTS: usize = 6;
+/// A piece has diverged when its largest coefficient exceeds this multiple
+/// of the static equilibrium's (at least 1 um).
+const DIVERGENCE_FACTOR: f64 = 1e3;
 /// Where the fallback start begins its upward continuation.
 const START_OMEGA: f64 = 0.05;
 const NEWTON_TOL: f64 = 1e-9;
@@ -291,7 +512,9 @@ impl FrfContinuation {
         let asm = Assembly::new(hbm, h, spec.method, grid);
         // Arclength is measured with Omega in units of the range.
         let ds_max = 1.0 / f64::from(spec.points);
+        let divergence = DIVERGENCE_FACTOR * inf_norm(&x0).max(1.0);
         Ok(FrfContinuation {
+            divergence,
             max_points: 20 * u64::from(spec.points) + 4000,
             asm,
             y: Vec::new(),
@@ -310,6 +533,21 @@ impl FrfContinuation {
             mesh_to_channel,
             recon: harmonic::Grid::new(h, recon_samples(h)),
             left_at_start: false,
+            dir: spec.direction,
+            start_omega: match spec.direction {
+                Direction::Up => spec.omega_from,
+                Direction::Down => spec.omega_to,
+            },
+            queue: Vec::new(),
+            pending_fold: false,
+            piece: 0,
+            spans: Vec::new(),
+            restarts: Vec::new(),
+            restarts_allowed: true,
+            since_progress: 0,
+            frontier: f64::NAN,
+            left_out: Vec::new(),
+            failed_starts: Vec::new(),
             spec,
         })
     }
@@ -330,25 +568,67 @@ impl FrfContinuation {
     }
 
     /// Whether the finished branch turned back at a fold and left the range
-    /// through the end it started from, so that the rest of the range was
-    /// not reached (continue from the other end, in the other direction, to
-    /// see it).
+    /// through the end it started from, and the rest of the range was not
+    /// reached by a restart either (continue from the other end, in the
+    /// other direction, to see it).
     pub fn left_at_start(&self) -> bool {
         self.left_at_start
     }
 
+    /// The automatic restarts: where a piece of the branch ended early, why,
+    /// and where the next one started.
+    pub fn restarts(&self) -> &[Restart] {
+        &self.restarts
+    }
+
+    /// Plain sentences saying what the continuation did beyond following
+    /// one branch from end to end (empty when it did just that).
+    pub fn notes(&self) -> Vec<String> {
+        let mut notes: Vec<String> = self.restarts.iter().map(Restart::note).collect();
+        notes.extend(self.left_out.iter().map(LeftOut::note));
+        notes
+    }
+
+    /// The Omega intervals no piece covers, and why: a pole of the periodic
+    /// response, or a tangle of folds that no piece got across.
+    pub fn left_out(&self) -> &[LeftOut] {
+        &self.left_out
+    }
+
     /// Fraction of the Omega range covered so far, for progress bars.
     pub fn progress(&self) -> f64 {
-        if !self.started {
-            return 0.0;
+        if self.finished {
+            return 1.0;
         }
-        let omega = self.y[self.y.len() - 1];
         let range = self.spec.omega_to - self.spec.omega_from;
-        let done = match self.spec.direction {
-            Direction::Up => omega - self.spec.omega_from,
-            Direction::Down => self.spec.omega_to - omega,
-        };
-        (done / range).clamp(0.0, 1.0)
+        let covered: f64 = self.coverage_gaps().iter().map(|(a, b)| b - a).sum::<f64>();
+        ((range - covered) / range).clamp(0.0, 1.0)
+    }
+
+    /// The parts of the Omega range that no piece has covered yet, except
+    /// the poles (where pieces on both sides diverged).
+    fn coverage_gaps(&self) -> Vec<(f64, f64)> {
+        let mut spans = self.spans.clone();
+        spans.extend(self.left_out.iter().map(|l| (l.from, l.to)));
+        Self::gaps_of(&self.spec, spans)
+    }
+
+    /// The parts of the range that `spans` leave out.
+    fn gaps_of(spec: &FrfSpec, mut spans: Vec<(f64, f64)>) -> Vec<(f64, f64)> {
+        spans.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let tol = 1e-9 * (spec.omega_to - spec.omega_from);
+        let mut gaps = Vec::new();
+        let mut reached = spec.omega_from;
+        for (lo, hi) in spans {
+            if lo > reached + tol {
+                gaps.push((reached, lo.min(spec.omega_to)));
+            }
+            reached = reached.max(hi);
+        }
+        if reached < spec.omega_to - tol {
+            gaps.push((reached, spec.omega_to));
+        }
+        gaps
     }
 
     /// Physical generalized coordinates `q(theta)` are `transform x 1e-6`.
@@ -358,26 +638,45 @@ impl FrfContinuation {
 
     /// Computes up to `k` further points. On a solver failure the branch ends
     /// and the error is returned (the points already returned stay valid).
+    ///
+    /// A piece of the branch that ends before the far end of the range
+    /// (turned back, diverged, stalled in a tangle of folds, or a failed
+    /// corrector) is followed by an automatic restart while part of the
+    /// range is not covered: first from the other end in the other
+    /// direction, then from the middle of the first gap, upward; see
+    /// [`FrfContinuation::restarts`]. A restarted piece ends where the range
+    /// is covered.
     pub fn advance(&mut self, k: usize) -> Result<Vec<BranchPoint>> {
         let mut out = Vec::new();
-        while out.len() < k && !self.finished {
-            if self.stats.points >= self.max_points {
+        while out.len() + self.queue.len() < k && !self.finished {
+            let before = self.queue.len();
+            let outcome = if !self.started {
+                self.start()
+            } else if self.stats.points >= self.max_points {
+                let omega = self.y.last().copied().unwrap_or(f64::NAN);
                 self.finished = true;
-                return Err(SolverError::ContinuationStalled {
-                    omega: self.y.last().copied().unwrap_or(f64::NAN),
+                Err(SolverError::ContinuationStalled {
+                    omega,
                     points: self.stats.points,
-                });
-            }
-            let point = if self.started {
-                self.step()?
+                })
             } else {
-                self.start()?
+                match self.step() {
+                    // A corrector that fails at the smallest step ends the
+                    // piece; a restart may cover the rest.
+                    Err(e) if self.restarts_allowed && self.restarts.len() < MAX_RESTARTS => {
+                        let omega = self.y[self.n_x()];
+                        self.end_piece(PieceEnd::Failed, omega).map_err(|_| e)
+                    }
+                    other => other,
+                }
             };
-            if let Some(p) = point {
-                self.stats.points += 1;
-                out.push(p);
+            self.stats.points += (self.queue.len() - before) as u64;
+            if let Err(e) = outcome {
+                out.append(&mut self.queue);
+                return Err(e);
             }
         }
+        out.append(&mut self.queue);
         Ok(out)
     }
 
@@ -385,22 +684,217 @@ impl FrfContinuation {
         self.asm.n_x()
     }
 
-    /// The first point: Newton at fixed Omega, continued in the number of
-    /// harmonics (1, 2, ..., H, each solution padded with zeros as the next
-    /// guess) because a many-harmonic Newton from the static guess can wander
-    /// into the dead zone and stall.
-    fn start(&mut self) -> Result<Option<BranchPoint>> {
-        let omega = match self.spec.direction {
-            Direction::Up => self.spec.omega_from,
-            Direction::Down => self.spec.omega_to,
+    /// Records a new point of the current piece in its span and frontier,
+    /// queues it, and ends the piece when it has diverged, stalled or
+    /// (for a restarted piece) covered the rest of the range.
+    fn emit(&mut self, p: BranchPoint) -> Result<()> {
+        let omega = p.omega;
+        let piece = self.piece as usize;
+        if self.spans.len() <= piece {
+            self.spans.push((omega, omega));
+        }
+        let span = &mut self.spans[piece];
+        span.0 = span.0.min(omega).max(self.spec.omega_from);
+        span.1 = span.1.max(omega).min(self.spec.omega_to);
+        let ahead = match self.dir {
+            Direction::Up => omega > self.frontier,
+            Direction::Down => omega < self.frontier,
         };
+        if ahead || self.frontier.is_nan() {
+            self.frontier = omega;
+            self.since_progress = 0;
+        } else {
+            self.since_progress += 1;
+        }
+        let amplitude = inf_norm(&p.coefficients);
+        self.queue.push(p);
+        if self.finished || !self.started {
+            return Ok(());
+        }
+        if amplitude > self.divergence {
+            return self.end_piece(PieceEnd::Diverged, omega);
+        }
+        if self.since_progress > self.stall_window() {
+            return self.end_piece(PieceEnd::Stalled, omega);
+        }
+        if self.piece > 0 && self.coverage_gaps().is_empty() {
+            self.finished = true;
+        }
+        Ok(())
+    }
+
+    /// Points without progress in Omega after which a piece has stalled.
+    fn stall_window(&self) -> u64 {
+        STALL_WINDOW
+    }
+
+    /// The last point of a piece (reached an end of the range, or turned back).
+    fn finish_piece(
+        &mut self,
+        iterations: usize,
+        label: Option<Bifurcation>,
+        how: PieceEnd,
+    ) -> Result<()> {
+        let p = self.point(iterations, label);
+        let omega = p.omega;
+        self.started = false;
+        self.emit(p)?;
+        self.end_piece(how, omega)
+    }
+
+    /// Ends the current piece; restarts while the range is not covered.
+    fn end_piece(&mut self, how: PieceEnd, stopped_at: f64) -> Result<()> {
+        self.started = false;
+        let tol = 1e-9 * (self.spec.omega_to - self.spec.omega_from);
+        // A gap in which (or at whose edge) a restart already began, and
+        // that pieces from both sides could not cross: left out, reported.
+        loop {
+            let gaps = self.coverage_gaps();
+            let tried = gaps.iter().copied().find(|g| {
+                let down_pending = self.restarts.last().is_some_and(|r| {
+                    r.piece >= 2
+                        && r.direction == Direction::Up
+                        && (g.1 - r.start_omega).abs() <= tol
+                });
+                let inside = |w: f64| g.0 - tol <= w && w <= g.1 + tol;
+                let failed = self.failed_starts.iter().filter(|&&w| inside(w)).count();
+                !down_pending
+                    && (failed >= GAP_STARTS.len()
+                        || self
+                            .restarts
+                            .iter()
+                            .any(|r| r.piece >= 2 && inside(r.start_omega)))
+            });
+            match tried {
+                Some(g) => self.left_out.push(LeftOut {
+                    from: g.0,
+                    to: g.1,
+                    reason: LeftOutReason::Tangle,
+                }),
+                None => break,
+            }
+        }
+        let gaps = self.coverage_gaps();
+        if gaps.is_empty() {
+            self.finished = true;
+            return Ok(());
+        }
+        if !self.restarts_allowed || self.restarts.len() >= MAX_RESTARTS {
+            self.finished = true;
+            return match how {
+                PieceEnd::TurnedBack | PieceEnd::Reached => {
+                    self.left_at_start = how == PieceEnd::TurnedBack;
+                    Ok(())
+                }
+                PieceEnd::Diverged | PieceEnd::Stalled | PieceEnd::Failed => {
+                    Err(SolverError::ContinuationStalled {
+                        omega: stopped_at,
+                        points: self.stats.points + self.queue.len() as u64,
+                    })
+                }
+            };
+        }
+        // First from the other end, backward; then from the middle of the
+        // first gap, upward, and from the same start downward if the gap
+        // below it remains.
+        let down_again = self.restarts.last().and_then(|r| {
+            let below = gaps.iter().any(|g| (g.1 - r.start_omega).abs() <= tol);
+            (r.piece >= 2 && r.direction == Direction::Up && below).then_some(r.start_omega)
+        });
+        let (start_omega, dir) = if self.restarts.is_empty() {
+            match self.spec.direction {
+                Direction::Up => (self.spec.omega_to, Direction::Down),
+                Direction::Down => (self.spec.omega_from, Direction::Up),
+            }
+        } else if let Some(omega) = down_again {
+            (omega, Direction::Down)
+        } else {
+            let (a, b) = gaps[0];
+            let failed = self
+                .failed_starts
+                .iter()
+                .filter(|&&w| a - tol <= w && w <= b + tol)
+                .count();
+            let frac = GAP_STARTS[failed.min(GAP_STARTS.len() - 1)];
+            (a + frac * (b - a), Direction::Up)
+        };
+        self.piece += 1;
+        self.restarts.push(Restart {
+            piece: self.piece,
+            reason: how,
+            stopped_at,
+            start_omega,
+            direction: dir,
+        });
+        self.dir = dir;
+        self.start_omega = start_omega;
+        self.prev_stable = None;
+        self.prev_multipliers.clear();
+        self.since_fold = u32::MAX;
+        self.pending_fold = false;
+        self.ds = self.ds_max;
+        self.frontier = f64::NAN;
+        self.since_progress = 0;
+        Ok(())
+    }
+
+    /// The first point of a piece: Newton at fixed Omega, continued in the
+    /// number of harmonics (1, 2, ..., H, each solution padded with zeros as
+    /// the next guess) because a many-harmonic Newton from the static guess
+    /// can wander into the dead zone and stall.
+    fn start(&mut self) -> Result<()> {
+        let omega = self.start_omega;
         let nx = self.n_x();
-        let (x, iterations) = match self.start_in_h(omega) {
+        let found = match self.start_in_h(omega) {
+            Ok(found) => Ok(found),
+            // The fallback (a continuation from below) only for the first
+            // piece: a restart that cannot start directly tries the next.
+            Err(direct) if self.piece == 0 => self.start_from_below(omega).map_err(|_| direct),
+            Err(direct) => Err(direct),
+        };
+        let (x, iterations) = match found {
             Ok(found) => found,
-            Err(direct) => self.start_from_below(omega).map_err(|_| direct)?,
+            Err(e) if self.piece > 0 => {
+                // No piece: the restart is withdrawn and the next one tried
+                // (elsewhere in the same gap, or the next gap).
+                self.failed_starts.push(omega);
+                return match self.restarts.pop() {
+                    Some(r) => {
+                        self.piece -= 1;
+                        self.end_piece(r.reason, r.stopped_at)
+                    }
+                    None => {
+                        self.finished = true;
+                        Err(e)
+                    }
+                };
+            }
+            Err(e) => {
+                self.finished = true;
+                return Err(e);
+            }
         };
         let mut r = vec![0.0; nx];
         let mut jac = DMatrix::zeros(nx, nx + 1);
+        if self.piece > 0 && inf_norm(&x) > self.divergence {
+            // A start beyond the divergence bound lies in a gap where the
+            // response is unbounded: a pole, which the pieces on both sides
+            // approached. It is left out, and the next gap is tried.
+            if let (Some(r), Some(&gap)) = (
+                self.restarts.pop(),
+                self.coverage_gaps()
+                    .iter()
+                    .find(|g| g.0 <= omega && omega <= g.1),
+            ) {
+                self.piece -= 1;
+                self.left_out.push(LeftOut {
+                    from: gap.0,
+                    to: gap.1,
+                    reason: LeftOutReason::Unbounded,
+                });
+                return self.end_piece(r.reason, r.stopped_at);
+            }
+        }
         self.scale = (3.0 * rms(&x[self.asm.model.m..])).max(1.0);
         self.y = x;
         self.y.push(omega);
@@ -412,16 +906,13 @@ impl FrfContinuation {
         let tx = lu.solve(&rhs).ok_or_else(|| SolverError::Singular {
             what: format!("harmonic-balance Jacobian at Omega = {omega}"),
         })?;
-        let sign = if self.spec.direction == Direction::Up {
-            1.0
-        } else {
-            -1.0
-        };
+        let sign = if self.dir == Direction::Up { 1.0 } else { -1.0 };
         self.tangent = tx.iter().map(|v| v * sign).collect();
         self.tangent.push(sign);
         self.normalize_tangent();
         self.started = true;
-        Ok(Some(self.point(iterations, None)))
+        let p = self.point(iterations, None);
+        self.emit(p)
     }
 
     /// Newton at `omega` continued in the number of harmonics.
@@ -468,6 +959,7 @@ impl FrfContinuation {
             None,
             self.mesh_to_channel.clone(),
         )?;
+        inner.restarts_allowed = false;
         let mut last = None;
         while !inner.is_finished() {
             if let Some(p) = inner.advance(64)?.pop() {
@@ -506,7 +998,10 @@ impl FrfContinuation {
         let m = self.asm.model.m;
         let nx = self.n_x();
         let amp = 3.0 * rms(&self.y[m..nx]);
-        if amp > self.scale {
+        if self.spec.step_control == StepControl::Geometry {
+            self.scale = amp.max(1.0);
+            self.normalize_tangent();
+        } else if amp > self.scale {
             self.scale = amp;
             self.normalize_tangent();
         }
@@ -523,19 +1018,37 @@ impl FrfContinuation {
     }
 
     /// One predictor-corrector step; `None` when the branch has left the range.
-    fn step(&mut self) -> Result<Option<BranchPoint>> {
+    ///
+    /// The step length follows the curve's geometry: after a converged
+    /// corrector, the distance from the predictor to the solution (`d`, in
+    /// the arclength metric) and the angle between the old and new tangents
+    /// (`alpha`) give the factor `f = max(sqrt(d / D_NOM), alpha / ALPHA_NOM)`
+    /// by which the step overshot its nominal size (the distance grows as the
+    /// square of the step, the angle linearly). `f > 2` rejects the step
+    /// and retries with `ds / f`; otherwise the next step is `ds / f`,
+    /// growing by at most 2. The step is also capped so that Omega moves by
+    /// at most `range / points`.
+    fn step(&mut self) -> Result<()> {
         let nx = self.n_x();
         let n = nx + 1;
         let omega_now = self.y[nx];
         let ds_min = 1e-5 * self.ds_max;
         loop {
-            // Land on the end of the range instead of overshooting it.
             let t_om = self.tangent[nx];
-            let end = match self.spec.direction {
+            let end = match self.dir {
                 Direction::Up => self.spec.omega_to,
                 Direction::Down => self.spec.omega_from,
             };
-            let mut ds = self.ds;
+            // At most `range / points` in Omega per step.
+            let range = self.spec.omega_to - self.spec.omega_from;
+            let mut ds = match self.spec.step_control {
+                StepControl::Geometry => {
+                    let omega_cap = range / f64::from(self.spec.points) / t_om.abs().max(1e-300);
+                    self.ds.min(omega_cap).min(DS_CAP).max(ds_min)
+                }
+                StepControl::Iterations => self.ds,
+            };
+            // Land on the end of the range instead of overshooting it.
             let mut landing = false;
             if t_om != 0.0 {
                 let to_end = (end - omega_now) / t_om;
@@ -554,61 +1067,137 @@ impl FrfContinuation {
                     self.stats = stats;
                     self.y[..nx].copy_from_slice(&x);
                     self.y[nx] = end;
-                    self.finished = true;
-                    return Ok(Some(self.point(iterations, None)));
+                    return self.finish_piece(iterations, None, PieceEnd::Reached);
                 }
             }
             match self.correct(&pred) {
                 Ok((y_new, t_new, iterations)) => {
-                    let turn: f64 = (0..n)
+                    let cos: f64 = (0..n)
                         .map(|i| self.metric(i) * t_new[i] * self.tangent[i])
                         .sum();
-                    if turn < 0.9 && ds > ds_min {
-                        self.stats.rejected_steps += 1;
-                        self.ds = ds * 0.5;
-                        continue;
+                    let alpha = cos.clamp(-1.0, 1.0).acos();
+                    let dist = (0..n)
+                        .map(|i| self.metric(i) * (y_new[i] - pred[i]).powi(2))
+                        .sum::<f64>()
+                        .sqrt();
+                    let geometry = self.spec.step_control == StepControl::Geometry;
+                    if geometry {
+                        let f = (dist / D_NOM).sqrt().max(alpha / ALPHA_NOM).max(0.5);
+                        if f > 2.0 && ds > ds_min {
+                            self.stats.rejected_steps += 1;
+                            self.ds = (ds / f.min(4.0)).max(ds_min);
+                            continue;
+                        }
+                        self.ds = (ds / f).clamp(ds_min, DS_CAP);
+                    } else {
+                        // Before issue 14: the turn limits the step, the
+                        // corrector's iterations adapt it.
+                        if cos < 0.9 && ds > ds_min {
+                            self.stats.rejected_steps += 1;
+                            self.ds = ds * 0.5;
+                            continue;
+                        }
+                        self.ds = if iterations <= 2 {
+                            (ds * 1.4).min(self.ds_max)
+                        } else if iterations >= 5 {
+                            ds * 0.6
+                        } else {
+                            ds
+                        }
+                        .max(ds_min);
                     }
-                    let fold = t_new[nx].signum() != self.tangent[nx].signum();
+                    if t_new[nx].signum() != self.tangent[nx].signum() && !geometry {
+                        self.pending_fold = true;
+                    } else if t_new[nx].signum() != self.tangent[nx].signum() {
+                        // A fold between the two points: locate it, and
+                        // put it on the branch before the new point.
+                        if let Some((y_fold, t_fold, it)) = self.locate_fold(ds, t_new[nx]) {
+                            let (y_keep, t_keep) = (
+                                std::mem::replace(&mut self.y, y_fold),
+                                std::mem::replace(&mut self.tangent, t_fold),
+                            );
+                            let fold_point = self.point(it, Some(Bifurcation::Fold));
+                            self.y = y_keep;
+                            self.tangent = t_keep;
+                            self.emit(fold_point)?;
+                            if !self.started || self.finished {
+                                return Ok(());
+                            }
+                        } else {
+                            self.pending_fold = true;
+                        }
+                    }
                     self.y = y_new;
                     self.tangent = t_new;
                     self.update_scale();
-                    self.ds = if iterations <= 2 {
-                        (ds * 1.4).min(self.ds_max)
-                    } else if iterations >= 5 {
-                        ds * 0.6
-                    } else {
-                        ds
-                    }
-                    .max(ds_min);
                     let omega = self.y[nx];
-                    if landing
-                        || omega > self.spec.omega_to + 1e-12
-                        || omega < self.spec.omega_from - 1e-12
-                    {
-                        self.finished = true;
+                    let label = std::mem::take(&mut self.pending_fold).then_some(Bifurcation::Fold);
+                    if omega > self.spec.omega_to + 1e-12 || omega < self.spec.omega_from - 1e-12 {
                         // Left through the end it started from: the branch
                         // turned back at a fold and the rest of the range
                         // was not reached.
-                        let at_start = match self.spec.direction {
+                        let at_start = match self.dir {
                             Direction::Up => omega < self.spec.omega_from + 1e-9,
                             Direction::Down => omega > self.spec.omega_to - 1e-9,
                         };
-                        self.left_at_start = at_start && !landing;
+                        let how = if at_start {
+                            PieceEnd::TurnedBack
+                        } else {
+                            PieceEnd::Reached
+                        };
+                        return self.finish_piece(iterations, label, how);
                     }
-                    return Ok(Some(
-                        self.point(iterations, fold.then_some(Bifurcation::Fold)),
-                    ));
+                    let p = self.point(iterations, label);
+                    return self.emit(p);
                 }
                 Err(e) => {
                     self.stats.rejected_steps += 1;
                     if ds <= ds_min {
-                        self.finished = true;
                         return Err(e);
                     }
                     self.ds = (ds * 0.5).max(ds_min);
                 }
             }
         }
+    }
+
+    /// Locates a fold between the current point (`self.y`, tangent
+    /// `self.tangent`) and the solution a step `ds` further: the zero of the
+    /// tangent's Omega component along the branch, by the Illinois variant
+    /// of regula falsi on the step length, each trial a corrector on the
+    /// hyperplane normal to the current tangent. Returns the fold's solution,
+    /// tangent and the corrector's iterations; `None` if a corrector failed
+    /// (the fold is then labelled on the point after it).
+    fn locate_fold(&mut self, ds: f64, f_end: f64) -> Option<(Vec<f64>, Vec<f64>, usize)> {
+        let nx = self.n_x();
+        let n = nx + 1;
+        let (mut a, mut fa) = (0.0, self.tangent[nx]);
+        let (mut b, mut fb) = (ds, f_end);
+        if fa.signum() == fb.signum() {
+            return None;
+        }
+        let mut best = None;
+        let mut omega_prev = f64::NAN;
+        for _ in 0..FOLD_ITERATIONS {
+            let s = (a * fb - b * fa) / (fb - fa);
+            let pred: Vec<f64> = (0..n).map(|i| self.y[i] + s * self.tangent[i]).collect();
+            let (y, t, it) = self.correct(&pred).ok()?;
+            let fs = t[nx];
+            let omega = y[nx];
+            let converged = (omega - omega_prev).abs() <= FOLD_TOL * (1.0 + omega.abs());
+            omega_prev = omega;
+            best = Some((y, t, it));
+            if converged || fs == 0.0 {
+                break;
+            }
+            if fs.signum() != fb.signum() {
+                (a, fa) = (b, fb);
+            } else {
+                fa *= 0.5;
+            }
+            (b, fb) = (s, fs);
+        }
+        best
     }
 
     /// Newton on the bordered system from the predictor `pred`; returns the
@@ -676,7 +1265,10 @@ impl FrfContinuation {
             step_prev = step;
             if at_floor || step <= NEWTON_TOL {
                 let scale = 1.0 + inf_norm(&y[..nx]);
-                if !at_floor {
+                // The residual before this last (tiny) step is already
+                // within the bound: the step only reduces it, and a second
+                // evaluation is saved. Otherwise check at the result.
+                if !at_floor && res > 1e-6 * scale {
                     self.asm.evaluate(&y[..nx], y[nx], &mut r, None);
                     self.stats.jacobians += 1;
                     if inf_norm(&r) > 1e-6 * scale {
@@ -770,6 +1362,7 @@ impl FrfContinuation {
             bifurcation,
             newton_iterations,
             coefficients: x,
+            piece: self.piece,
         }
     }
 
