@@ -7,6 +7,7 @@
 
 mod bench;
 mod csv;
+mod presets;
 mod progress;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
@@ -261,6 +262,8 @@ enum Command {
         /// Shard outputs (JSON files).
         files: Vec<std::path::PathBuf>,
     },
+    /// Print every preset (the paper's figures as settings) as JSON.
+    Presets,
     /// Measure the solver's speed (medians over repeats).
     Bench {
         /// Repeats per figure.
@@ -723,6 +726,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 emit(&report::merge_shards(&shards)?)
             }
         }
+        Command::Presets => emit(&presets::all_json()),
         Command::Bench { repeats, quick } => {
             if repeats == 0 || repeats > 100 {
                 return Err(usage(format!("--repeats {repeats}: allowed 1 ..= 100")));
