@@ -247,9 +247,6 @@ fn backlash_and_the_higher_peaks_fig3() {
     assert_rows(&rows, &commands);
 }
 
-const GRID: &str =
-    "--omega-from 0.15 --omega-to 2 --points 38 --direction up --transient-periods 3000";
-
 /// Fig. 4's and Fig. 8's sweeps: `$b` and `$te` filled in.
 const BIFURCATION: &str = "gearshock bifurcation --set backlash_um=$b --set te_um=$te --mesh s1a1 --omega-from 0.15 --omega-to 2 --points 38 --direction up --transient-periods 3000";
 
