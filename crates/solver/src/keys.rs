@@ -233,7 +233,7 @@ fn build_keys() -> Vec<KeySpec> {
             "-",
             KeyType::Choice(&["s1a", "all"]),
             Ravigneaux,
-            "where te_um acts: the s1a meshes only (the seed's Table 1) or every mesh \
+            "where te_um acts: the s1a meshes only (the paper's Table 1) or every mesh \
              (its Fig. 2 'Ec_all' read as all meshes); switching copies or clears the other kinds' sine"
         ),
         key!(
@@ -410,7 +410,7 @@ fn build_keys() -> Vec<KeySpec> {
             },
             Ravigneaux,
             "radius at which ring_support_n_m acts; auto = the ring's base radius \
-             (157.9 mm by default; the seed prints 15.79 mm)"
+             (157.9 mm by default; the paper prints 15.79 mm)"
         ),
     ];
     keys.extend(per_kind_keys!(
