@@ -7,6 +7,7 @@
 
 mod bench;
 mod csv;
+mod figure;
 mod presets;
 mod progress;
 
@@ -264,6 +265,11 @@ enum Command {
     },
     /// Print every preset (the paper's figures as settings) as JSON.
     Presets,
+    /// Compute every panel of one of the paper's figures: SVG, JSON, CSV per panel.
+    Figure {
+        #[command(flatten)]
+        args: figure::FigureArgs,
+    },
     /// Measure the solver's speed (medians over repeats).
     Bench {
         /// Repeats per figure.
@@ -727,6 +733,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             }
         }
         Command::Presets => emit(&presets::all_json()),
+        Command::Figure { args } => emit(&figure::run(&args)?),
         Command::Bench { repeats, quick } => {
             if repeats == 0 || repeats > 100 {
                 return Err(usage(format!("--repeats {repeats}: allowed 1 ..= 100")));

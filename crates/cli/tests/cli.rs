@@ -539,3 +539,97 @@ fn presets_prints_every_figure_with_its_family_and_panels() {
     ]);
     assert!(out.status.success());
 }
+
+#[test]
+fn figure_fig5_writes_three_phase_portraits_and_three_poincare_sections() {
+    let dir = std::env::temp_dir().join(format!("gearshock-fig5-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = dir.to_str().expect("path");
+    let v = json(&[
+        "figure",
+        "fig5",
+        "--out",
+        out,
+        "--transient-periods",
+        "40",
+        "--record-periods",
+        "8",
+    ]);
+    let panels = v["panels"].as_array().expect("panels");
+    let names: Vec<&str> = panels
+        .iter()
+        .map(|p| p["panel"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        names,
+        ["fig5a", "fig5b", "fig5c", "fig5d", "fig5e", "fig5f"]
+    );
+    for (i, p) in panels.iter().enumerate() {
+        let view = if i < 3 { "phase" } else { "poincare" };
+        assert_eq!(p["view"], view);
+        // Panels a and d are TE 0 um, b and e 20 um, c and f 30 um (Fig. 5).
+        let te = ["te_um=0", "te_um=20", "te_um=30"][i % 3];
+        assert!(p["query"].as_str().unwrap().ends_with(te), "{p}");
+        assert!(p["query"].as_str().unwrap().contains("omega=0.5"));
+        let name = names[i];
+        let svg = std::fs::read_to_string(dir.join(format!("{name}.svg"))).expect("svg");
+        assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+        let title = if i < 3 {
+            "Phase portrait"
+        } else {
+            "Poincaré section"
+        };
+        assert!(svg.contains(title), "{name}");
+        assert!(
+            svg.contains(&format!("TE {} µm", [0, 20, 30][i % 3])),
+            "{name}"
+        );
+        let data: Value = serde_json::from_str(
+            &std::fs::read_to_string(dir.join(format!("{name}.json"))).unwrap(),
+        )
+        .unwrap();
+        assert_eq!(data["view"]["omega"], 0.5);
+        assert_eq!(data["view"]["backlash_um"], 200.0);
+        let csv = std::fs::read_to_string(dir.join(format!("{name}.csv"))).expect("csv");
+        // 8 recorded periods: 8 Poincaré samples, or 8 x 64 orbit samples.
+        let rows = csv.lines().count() - 1;
+        assert_eq!(rows, if i < 3 { 8 * 64 } else { 8 }, "{name}");
+    }
+    // A bifurcation figure: three panels, one sweep each, on a small grid.
+    let v = json(&[
+        "figure",
+        "fig8",
+        "--out",
+        out,
+        "--points",
+        "3",
+        "--transient-periods",
+        "20",
+        "--record-periods",
+        "4",
+    ]);
+    let panels = v["panels"].as_array().expect("panels");
+    assert_eq!(panels.len(), 3);
+    for (p, b) in panels.iter().zip([50, 100, 200]) {
+        assert_eq!(p["points"], 6, "3 points up and down");
+        assert!(p["query"]
+            .as_str()
+            .unwrap()
+            .ends_with(&format!("backlash_um={b}")));
+        let name = p["panel"].as_str().unwrap();
+        let svg = std::fs::read_to_string(dir.join(format!("{name}.svg"))).expect("svg");
+        assert!(svg.contains("Bifurcation diagram") && svg.contains(&format!("backlash {b} µm")));
+    }
+    // Not a figure, or not drawn yet: exit 2 naming it.
+    for (id, words) in [
+        ("fig99", "no such figure"),
+        ("table1", "not one of the paper's figures"),
+        ("fig2", "not drawn"),
+    ] {
+        let o = gearshock(&["figure", id, "--out", out]);
+        assert_eq!(o.status.code(), Some(2), "{id}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains(id) && err.contains(words), "{err}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
