@@ -77,7 +77,7 @@ fn write(path: &Path, text: &str) -> Result<(), Failure> {
     })
 }
 
-fn drawn(path: &Path, result: Result<(), String>) -> Result<(), Failure> {
+fn drawn<T>(path: &Path, result: Result<T, String>) -> Result<T, Failure> {
     result.map_err(|e| Failure {
         code: 1,
         message: format!("cannot draw {}: {e}", path.display()),
@@ -260,14 +260,8 @@ fn bifurcation_panels(
         let view = bif_view(m, &spec, &pts);
         let natural = app::views::natural_in_range(&m.model, spec.omega_from, spec.omega_to);
         let svg = args.out.join(format!("{name}.svg"));
-        {
-            let root = SVGBackend::new(&svg, SIZE).into_drawing_area();
-            drawn(
-                &svg,
-                app::plots::draw_bif(&root, &view, &natural, &member_label(p, i))
-                    .and_then(|(_, groups)| app::plots::draw_groups(&root, &groups)),
-            )?;
-        }
+        let text = drawn(&svg, bif_svg(&view, &natural, &member_label(p, i)))?;
+        write(&svg, &text)?;
         let failed = pts.iter().filter(|p| p.error.is_some()).count();
         out.push(json!({
             "panel": name,
@@ -280,6 +274,36 @@ fn bifurcation_panels(
     }
     bar.finish();
     Ok(out)
+}
+
+/// The bifurcation diagram as SVG text. The page draws the chart, then its
+/// dots in a fast pass; an SVG is complete once presented, so the dots are
+/// drawn into a second SVG whose body is appended to the chart's.
+fn bif_svg(
+    view: &BifView,
+    natural: &[app::views::NaturalFreq],
+    status: &str,
+) -> Result<String, String> {
+    let mut chart = String::new();
+    let groups = {
+        let root = SVGBackend::with_string(&mut chart, SIZE).into_drawing_area();
+        app::plots::draw_bif(&root, view, natural, status)?.1
+    };
+    let mut dots = String::new();
+    {
+        let root = SVGBackend::with_string(&mut dots, SIZE).into_drawing_area();
+        app::plots::draw_groups(&root, &groups)?;
+    }
+    let head = chart
+        .trim_end()
+        .strip_suffix("</svg>")
+        .ok_or("the chart is not a complete SVG")?;
+    let body = dots
+        .split_once('>')
+        .map(|(_, rest)| rest.trim_end())
+        .and_then(|rest| rest.strip_suffix("</svg>"))
+        .ok_or("the dots are not a complete SVG")?;
+    Ok(format!("{head}{body}</svg>\n"))
 }
 
 /// The page's bifurcation view of one sweep: Poincaré samples of x = delta - e.
@@ -307,7 +331,8 @@ fn bif_view(m: &Member, spec: &SweepSpec, pts: &[solver::sweep::SweepPoint]) -> 
     }
     BifView {
         mesh_label: def.name.clone(),
-        backlash_um: vec![def.backlash_m * 1e6],
+        // To the nanometre: the metre value read back in µm is not exact.
+        backlash_um: vec![(def.backlash_m * 1e9).round() / 1e3],
         points,
         omega_from: spec.omega_from,
         omega_to: spec.omega_to,

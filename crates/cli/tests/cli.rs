@@ -619,6 +619,10 @@ fn figure_fig5_writes_three_phase_portraits_and_three_poincare_sections() {
         let name = p["panel"].as_str().unwrap();
         let svg = std::fs::read_to_string(dir.join(format!("{name}.svg"))).expect("svg");
         assert!(svg.contains("Bifurcation diagram") && svg.contains(&format!("backlash {b} µm")));
+        // The dots: 6 sweep points x 4 Poincaré samples, one rectangle each,
+        // inside the one SVG document.
+        assert!(svg.matches("<rect").count() > 24, "{name}");
+        assert_eq!(svg.matches("</svg>").count(), 1, "{name}");
     }
     // Not a figure, or not drawn yet: exit 2 naming it.
     for (id, words) in [
