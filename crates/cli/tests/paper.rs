@@ -186,7 +186,7 @@ fn the_frequency_scale() {
             natural(&base, "rotational").join(", ")
         ),
         format!(
-            "| planet modes (planets in opposition, double) | {} |",
+            "| planet modes (suns, carrier and ring still; double) | {} |",
             natural(&base, "planet").join(", ")
         ),
         format!(
@@ -263,7 +263,15 @@ fn backlash_and_the_higher_peaks_fig3() {
             let v = gearshock(&fill(T, &[("$b", &b.to_string()), ("$w", omega)]));
             show(&mut commands, T);
             let amp = 0.5 * (f(&v["delta_max_m"]) - f(&v["delta_min_m"]));
-            cells.push(format!("{} ({})", um(amp), v["impact"].as_str().unwrap()));
+            let period = match v["period"].as_u64() {
+                Some(n) => format!("period {n}"),
+                None => "not periodic".into(),
+            };
+            cells.push(format!(
+                "{} ({}, {period})",
+                um(amp),
+                v["impact"].as_str().unwrap()
+            ));
         }
         rows.push(format!("| {b} µm | {} |", cells.join(" | ")));
     }
