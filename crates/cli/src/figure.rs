@@ -338,7 +338,12 @@ fn bif_view(m: &Member, spec: &SweepSpec, pts: &[solver::sweep::SweepPoint]) -> 
         omega_to: spec.omega_to,
         selected_omega: m.settings.view.omega,
         failed,
-        unstable_bands: Vec::new(),
+        // Shaded as on the page: where the engaged system is parametrically unstable.
+        unstable_bands: app::worker_core::unstable_bands(
+            &m.model,
+            (spec.omega_from, spec.omega_to),
+            app::worker_core::BAND_SAMPLES,
+        ),
         pinned: Vec::new(),
         pinned_backlash_um: Vec::new(),
         ab_labels: None,
