@@ -5,8 +5,10 @@
 //!
 //! Orbit figures (5-7, 9-11): panels a-c are the phase portraits of the
 //! family's members, d-f their Poincaré sections. Bifurcation figures (4, 8):
-//! panels a-c, one sweep per member. The frequency-response figures (2, 3)
-//! are not drawn yet: the command says so and names the settings to use.
+//! panels a-c, one sweep per member. Frequency-response figures (2, 3):
+//! panels a-d, one mesh kind each, every member's harmonic-balance branch in
+//! each panel's data; their SVGs wait for a drawing of a family of curves
+//! (the page's family view), so the summary gives `svg: null` for them.
 
 use crate::{progress, usage, Failure};
 use app::presets::{preset, Preset};
@@ -16,6 +18,7 @@ use app::worker_core::{omega_result, OmegaJob};
 use clap::Args;
 use plotters::prelude::{IntoDrawingArea, SVGBackend};
 use serde_json::{json, Value};
+use solver::hbm::{FrfContinuation, FrfSpec};
 use solver::steady::Model;
 use solver::sweep::{canonical_order, BifurcationSweep, Direction, SweepSpec};
 use std::path::{Path, PathBuf};
@@ -142,15 +145,107 @@ pub fn run(args: &FigureArgs) -> Result<Value, Failure> {
     } else if is("omega") {
         orbit_panels(p, &members, args)?
     } else {
-        return Err(usage(format!(
-            "figure {}: frequency-response figures are not drawn by this command yet; \
-             run `gearshock frf` with the settings of `gearshock presets`",
-            p.id
-        )));
+        frf_panels(p, &members, args)?
     };
     Ok(
         json!({ "id": p.id, "title": p.title, "out": args.out.display().to_string(), "panels": panels }),
     )
+}
+
+/// Panels a-d: one mesh each; every member's branch on every panel.
+fn frf_panels(p: &Preset, members: &[Member], args: &FigureArgs) -> Result<Vec<Value>, Failure> {
+    let names: &[&str] = p.meshes.unwrap_or(&[]);
+    let mut bar = progress::Progress::new(members.len() * 1000, "per mille of the branches");
+    // Per member: the JSON of its branch on each panel's mesh.
+    let mut per_panel: Vec<Vec<Value>> = vec![Vec::new(); names.len()];
+    let mut failures = Vec::new();
+    for (i, m) in members.iter().enumerate() {
+        let v = &m.settings.view;
+        let mut spec = FrfSpec::new(v.omega_from, v.omega_to, args.points.unwrap_or(v.fr_points));
+        spec.harmonics = v.harmonics as usize;
+        let mut c = FrfContinuation::new(&m.model, spec)?;
+        let mut branch = Vec::new();
+        let mut failure = None;
+        while !c.is_finished() {
+            match c.advance(16) {
+                Ok(pts) => branch.extend(pts),
+                Err(e) => {
+                    failure = Some(e);
+                    break;
+                }
+            }
+            bar.update(i * 1000 + (c.progress() * 1000.0) as usize);
+        }
+        if let Some(e) = &failure {
+            failures.push(format!("{}: {e}", m.query));
+        }
+        for (k, name) in names.iter().enumerate() {
+            let j =
+                m.model.system.mesh_index(name).ok_or_else(|| {
+                    usage(format!("figure {}: no mesh {name} in this model", p.id))
+                })?;
+            let mut data = solver::report::frf_json(
+                &m.model,
+                &m.settings.params,
+                &c,
+                &branch,
+                &[j],
+                failure.as_ref(),
+            );
+            data["query"] = json!(m.query);
+            data["member"] = json!(p.family.and_then(|f| f.values.get(i).copied()));
+            per_panel[k].push(data);
+        }
+    }
+    bar.finish();
+    let mut out = Vec::new();
+    for (k, (name, branches)) in names.iter().zip(per_panel).enumerate() {
+        let panel = format!("{}{}", p.id, panel_letter(k));
+        let mut csv =
+            String::from("member,omega,delta_max_m,delta_min_m,delta_amplitude_m,stable\n");
+        for b in &branches {
+            for pt in b["branch"].as_array().into_iter().flatten() {
+                csv.push_str(&format!(
+                    "{},{},{},{},{},{}\n",
+                    b["member"],
+                    pt["omega"],
+                    pt["delta_max_m"],
+                    pt["delta_min_m"],
+                    pt["delta_amplitude_m"],
+                    pt["stable"]
+                ));
+            }
+        }
+        let complete = branches.iter().all(|b| b["complete"] == true);
+        let data = json!({
+            "mesh": name,
+            "family": p.family.map(|f| json!({ "key": f.key, "values": f.values })),
+            "members": branches,
+        });
+        write(&args.out.join(format!("{panel}.json")), &data.to_string())?;
+        write(&args.out.join(format!("{panel}.csv")), &csv)?;
+        out.push(json!({
+            "panel": panel,
+            "view": "frequency-response",
+            "mesh": name,
+            "complete": complete,
+            "svg": null,
+            "files": [format!("{panel}.json"), format!("{panel}.csv")],
+        }));
+    }
+    if !failures.is_empty() {
+        // Reported, never shown as a result: the partial branches were
+        // written, marked incomplete.
+        return Err(Failure {
+            code: 1,
+            message: format!(
+                "figure {}: the branch stopped early for {} (the partial branches were written, marked incomplete)",
+                p.id,
+                failures.join("; ")
+            ),
+        });
+    }
+    Ok(out)
 }
 
 fn run_options(m: &Member, args: &FigureArgs) -> RunOptions {

@@ -624,11 +624,35 @@ fn figure_fig5_writes_three_phase_portraits_and_three_poincare_sections() {
         assert!(svg.matches("<rect").count() > 24, "{name}");
         assert_eq!(svg.matches("</svg>").count(), 1, "{name}");
     }
-    // Not a figure, or not drawn yet: exit 2 naming it.
+    // A frequency-response figure: four mesh panels, every member's branch
+    // in each (their drawing waits for the page's family view: no SVG yet).
+    let v = json(&["figure", "fig3", "--out", out, "--points", "10"]);
+    let panels = v["panels"].as_array().expect("panels");
+    let meshes: Vec<&str> = panels.iter().map(|p| p["mesh"].as_str().unwrap()).collect();
+    assert_eq!(meshes, ["s1a1", "s2b1", "a1b1", "rb1"]);
+    for p in panels {
+        assert!(p["svg"].is_null() && p["complete"] == true, "{p}");
+        let name = p["panel"].as_str().unwrap();
+        let data: Value = serde_json::from_str(
+            &std::fs::read_to_string(dir.join(format!("{name}.json"))).unwrap(),
+        )
+        .unwrap();
+        let members = data["members"].as_array().unwrap();
+        let b: Vec<f64> = members
+            .iter()
+            .map(|m| m["member"].as_f64().unwrap())
+            .collect();
+        assert_eq!(b, [50.0, 100.0, 150.0, 200.0]);
+        for m in members {
+            assert_eq!(m["params"]["te_sin_s1a_um"], 60);
+            assert_eq!(m["params"]["backlash_rb_um"].as_f64(), m["member"].as_f64());
+            assert!(m["branch"].as_array().unwrap().len() > 5);
+        }
+    }
+    // Not a figure: exit 2 naming it.
     for (id, words) in [
         ("fig99", "no such figure"),
         ("table1", "not one of the paper's figures"),
-        ("fig2", "not drawn"),
     ] {
         let o = gearshock(&["figure", id, "--out", out]);
         assert_eq!(o.status.code(), Some(2), "{id}");
