@@ -118,7 +118,7 @@ pub const PRESETS: &[Preset] = &[
         settings: &[MODEL],
         family: None,
         meshes: None,
-        note: "The paper's Table 1: three planet pairs, module 4 mm, teeth 36/48/21/84, mesh stiffness 1e9 N/m, 100 µm backlash, 20 µm eccentricity on sun s1, 2000 N m input. gearshock derives the radii from the tooth counts (the printed radii do not follow from them) and puts the 20 µm as a sine on the small-sun meshes.",
+        note: "The paper's Table 1: three planet pairs, module 4 mm, teeth 36/48/21/84, mesh stiffness 10⁹ N/m, 100 µm backlash, 20 µm eccentricity on sun s1, 2000 N m input. gearshock derives the radii from the tooth counts (the printed radii do not follow from them) and puts the 20 µm as a sine on the small-sun meshes.",
         pinned: None,
     },
     Preset {
