@@ -336,12 +336,13 @@ fn te_and_the_bifurcation_diagram_fig4() {
             .map(|p| f(&p["delta_min_m"]))
             .fold(f64::NAN, f64::min);
         rows.push(format!(
-            "| {te} µm | {} | {} | {} | {} | {first_not_p1} | {} | {} | {} |",
+            "| {te} µm | {} | {} | {} | {} | {first_not_p1} | {} | {} | {} | {} |",
             um(half_pp(at(&pts, 0.15))),
             um(half_pp(at(&pts, 0.25))),
             um(half_pp(at(&pts, 0.4))),
             um(high),
             um(lowest),
+            ranges(&pts, |p| p["impact"] != "none"),
             ranges(&pts, |p| f(&p["delta_min_m"]) < 0.0),
             ranges(&pts, |p| p["impact"] == "double-sided"),
         ));
