@@ -414,8 +414,21 @@ fn the_orbits_figs5_to_11() {
                 .iter()
                 .map(|s| f(s).abs())
                 .fold(0.0, f64::max);
+            // Other meshes whose back flanks touch (the backlash matters there).
+            let back: Vec<&str> = v["all_meshes"]
+                .as_object()
+                .unwrap()
+                .iter()
+                .filter(|(name, m)| *name != "s1a1" && m["impact"] == "double-sided")
+                .map(|(name, _)| name.as_str())
+                .collect();
+            let elsewhere = if back.is_empty() {
+                String::new()
+            } else {
+                format!("; back flanks touch on {}", back.join(", "))
+            };
             cells.push(format!(
-                "{period}, {}, {} µm, {:.2} m/s",
+                "{period}, {}, {} µm, {:.2} m/s{elsewhere}",
                 v["impact"].as_str().unwrap(),
                 um(amp),
                 vel
