@@ -184,6 +184,12 @@ fn every_figure_preset_holds_the_papers_family_and_panels() {
             (family.key == "te_um").then_some(family.values),
             fig.id,
         );
+        // The note says in words where the TE acts.
+        let words = match fig.te_meshes {
+            "all" => "every mesh",
+            _ => "small-sun meshes",
+        };
+        assert!(p.note.contains(words), "{}: {words}", fig.id);
         // Panels by mesh (Figs. 2, 3) or one mesh for every panel.
         if fig.meshes.len() > 1 {
             assert_eq!(p.meshes, Some(fig.meshes), "{}", fig.id);
@@ -215,6 +221,10 @@ fn every_figure_preset_holds_the_papers_family_and_panels() {
                     assert_eq!(d.settings.view.omega, omega, "{}", fig.id);
                     assert!(p.settings.contains(&("omega", &omega.to_string()[..])));
                 }
+                // The page's link of this member restores it exactly.
+                let again = decode(&app::link::encode(&d.settings));
+                assert!(again.issues.is_empty(), "{:?}", again.issues);
+                assert_eq!(again.settings, d.settings, "{}", fig.id);
                 if fig.bifurcation {
                     assert_eq!(d.settings.view.omega_to, 2.0, "{}", fig.id);
                     assert_eq!(d.settings.view.record_periods, 100, "{}", fig.id);
