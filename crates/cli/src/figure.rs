@@ -36,7 +36,8 @@ pub struct FigureArgs {
     /// Directory for the SVG, JSON and CSV files (created if missing).
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
-    /// Omega points of a bifurcation panel (default: the preset's, 100).
+    /// Omega points of a bifurcation panel, or the nominal points of a
+    /// frequency-response branch (default: the preset's, 100 or 150).
     #[arg(long)]
     points: Option<u32>,
     /// Maximum transient mesh periods (default: the preset's, 300).
@@ -121,13 +122,13 @@ pub fn run(args: &FigureArgs) -> Result<Value, Failure> {
             ids.join(", ")
         )));
     };
-    for (flag, value, max) in [
-        ("--points", args.points, solver::sweep::MAX_POINTS.min(2000)),
-        ("--transient-periods", args.transient_periods, 100_000),
-        ("--record-periods", args.record_periods, 10_000),
+    for (flag, value, min, max) in [
+        ("--points", args.points, 2, 2000),
+        ("--transient-periods", args.transient_periods, 1, 100_000),
+        ("--record-periods", args.record_periods, 1, 10_000),
     ] {
-        if let Some(v) = value.filter(|v| !(1..=max).contains(v)) {
-            return Err(usage(format!("{flag} {v}: allowed 1 ..= {max}")));
+        if let Some(v) = value.filter(|v| !(min..=max).contains(v)) {
+            return Err(usage(format!("{flag} {v}: allowed {min} ..= {max}")));
         }
     }
     let is = |key: &str| p.settings.iter().any(|(k, _)| *k == key);
