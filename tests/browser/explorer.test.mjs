@@ -216,13 +216,13 @@ test('exports: CSV and JSON of the views, and the CLI formats of simulate and bi
   await page.close();
 });
 
-test('a preset loads its settings and says what the seed states', async () => {
+test('a figure preset loads its first member and says what the paper shows', async () => {
   const { page, errors } = await open(h.browser, h.url, QUICK);
-  await page.selectOption('#preset', 'fig8a');
+  await page.selectOption('#preset', 'fig8');
   await page.waitForFunction(() => location.search.includes('backlash_um=50'));
   const note = await page.textContent('#preset-note');
-  assert.match(note, /The seed states/);
-  assert.match(note, /Assumed/);
+  assert.match(note, /The paper shows/);
+  assert.match(note, /gearshock assumes/);
   assert.equal(await page.inputValue('#num-backlash_um'), '50');
   assert.equal(await page.inputValue('#num-te_um'), '20');
   await page.selectOption('#preset', 'pair');

@@ -10,6 +10,8 @@
 
 mod bench;
 mod csv;
+mod figure;
+mod presets;
 mod progress;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
@@ -285,6 +287,13 @@ enum Command {
     Merge {
         /// Shard outputs (JSON files).
         files: Vec<std::path::PathBuf>,
+    },
+    /// Print every preset (the paper's figures as settings) as JSON.
+    Presets,
+    /// Compute every panel of one of the paper's figures: SVG, JSON, CSV per panel.
+    Figure {
+        #[command(flatten)]
+        args: figure::FigureArgs,
     },
     /// Measure the solver's speed (medians over repeats).
     #[command(allow_negative_numbers = true)]
@@ -1164,6 +1173,8 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 emit(&report::merge_shards(&shards)?)
             }
         }
+        Command::Presets => emit(&presets::all_json()),
+        Command::Figure { args } => emit(&figure::run(&args)?),
         Command::Bench { repeats, quick } => {
             if repeats == 0 || repeats > 100 {
                 return Err(usage(format!("--repeats {repeats}: allowed 1 ..= 100")));

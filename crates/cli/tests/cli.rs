@@ -1095,3 +1095,176 @@ fn jsonl_streams_each_point_as_computed_with_the_same_results() {
     let lines = json_lines(&["params", "--format", "jsonl"]);
     assert_eq!(lines, vec![json(&["params"])]);
 }
+
+#[test]
+fn presets_prints_every_figure_with_its_family_and_panels() {
+    let v = json(&["presets"]);
+    let list = v["presets"].as_array().expect("presets array");
+    let by_id = |id: &str| {
+        list.iter()
+            .find(|p| p["id"] == id)
+            .unwrap_or_else(|| panic!("no preset {id}"))
+    };
+    for p in list {
+        for field in ["id", "title", "settings", "family", "meshes"] {
+            assert!(p.get(field).is_some(), "{}: no {field}", p["id"]);
+        }
+        assert!(p["settings"]["model"].is_string(), "{}", p["id"]);
+    }
+    // Fig. 5: one Omega, TE 0 / 20 / 30 um across the panels, b = 200 um.
+    let f5 = by_id("fig5");
+    assert_eq!(f5["settings"]["omega"], 0.5);
+    assert_eq!(f5["settings"]["backlash_um"], 200);
+    assert_eq!(f5["settings"]["mesh"], "s1a1");
+    assert_eq!(f5["family"]["key"], "te_um");
+    assert_eq!(f5["family"]["values"], serde_json::json!([0, 20, 30]));
+    assert!(f5["meshes"].is_null());
+    // Fig. 2: four mesh kinds as panels, a TE family, no backlash.
+    let f2 = by_id("fig2");
+    assert_eq!(
+        f2["meshes"],
+        serde_json::json!(["s1a1", "s2b1", "a1b1", "rb1"])
+    );
+    assert_eq!(f2["settings"]["backlash_um"], 0);
+    assert_eq!(f2["settings"]["te_meshes"], "all");
+    assert_eq!(f2["family"]["values"][0], 5);
+    // Fig. 8: a backlash family at TE 20 um; the table defaults are no family.
+    assert_eq!(by_id("fig8")["family"]["key"], "backlash_um");
+    assert!(by_id("table1")["family"].is_null());
+    // Every member's settings are accepted by the other commands.
+    let s = &by_id("fig3")["settings"];
+    let out = gearshock(&[
+        "params",
+        "--set",
+        &format!("te_um={}", s["te_um"]),
+        "--set",
+        "backlash_um=150",
+    ]);
+    assert!(out.status.success());
+}
+
+#[test]
+fn figure_fig5_writes_three_phase_portraits_and_three_poincare_sections() {
+    let dir = std::env::temp_dir().join(format!("gearshock-fig5-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = dir.to_str().expect("path");
+    let v = json(&[
+        "figure",
+        "fig5",
+        "--out",
+        out,
+        "--transient-periods",
+        "40",
+        "--record-periods",
+        "8",
+    ]);
+    let panels = v["panels"].as_array().expect("panels");
+    let names: Vec<&str> = panels
+        .iter()
+        .map(|p| p["panel"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        names,
+        ["fig5a", "fig5b", "fig5c", "fig5d", "fig5e", "fig5f"]
+    );
+    for (i, p) in panels.iter().enumerate() {
+        let view = if i < 3 { "phase" } else { "poincare" };
+        assert_eq!(p["view"], view);
+        // Panels a and d are TE 0 um, b and e 20 um, c and f 30 um (Fig. 5).
+        let te = ["te_um=0", "te_um=20", "te_um=30"][i % 3];
+        assert!(p["query"].as_str().unwrap().ends_with(te), "{p}");
+        assert!(p["query"].as_str().unwrap().contains("omega=0.5"));
+        let name = names[i];
+        let svg = std::fs::read_to_string(dir.join(format!("{name}.svg"))).expect("svg");
+        assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+        let title = if i < 3 {
+            "Phase portrait"
+        } else {
+            "Poincaré section"
+        };
+        assert!(svg.contains(title), "{name}");
+        assert!(
+            svg.contains(&format!("TE {} µm", [0, 20, 30][i % 3])),
+            "{name}"
+        );
+        let data: Value = serde_json::from_str(
+            &std::fs::read_to_string(dir.join(format!("{name}.json"))).unwrap(),
+        )
+        .unwrap();
+        assert_eq!(data["view"]["omega"], 0.5);
+        assert_eq!(data["view"]["backlash_um"], 200.0);
+        let csv = std::fs::read_to_string(dir.join(format!("{name}.csv"))).expect("csv");
+        // 8 recorded periods: 8 Poincaré samples, or 8 x 64 orbit samples.
+        let rows = csv.lines().count() - 1;
+        assert_eq!(rows, if i < 3 { 8 * 64 } else { 8 }, "{name}");
+    }
+    // A bifurcation figure: three panels, one sweep each, on a small grid.
+    let v = json(&[
+        "figure",
+        "fig8",
+        "--out",
+        out,
+        "--points",
+        "3",
+        "--transient-periods",
+        "20",
+        "--record-periods",
+        "4",
+    ]);
+    let panels = v["panels"].as_array().expect("panels");
+    assert_eq!(panels.len(), 3);
+    for (p, b) in panels.iter().zip([50, 100, 200]) {
+        assert_eq!(p["points"], 6, "3 points up and down");
+        assert!(p["query"]
+            .as_str()
+            .unwrap()
+            .ends_with(&format!("backlash_um={b}")));
+        let name = p["panel"].as_str().unwrap();
+        let svg = std::fs::read_to_string(dir.join(format!("{name}.svg"))).expect("svg");
+        assert!(svg.contains("Bifurcation diagram") && svg.contains(&format!("backlash {b} µm")));
+        // The dots: 6 sweep points x 4 Poincaré samples, one rectangle each,
+        // inside the one SVG document.
+        assert!(svg.matches("<rect").count() > 24, "{name}");
+        assert_eq!(svg.matches("</svg>").count(), 1, "{name}");
+    }
+    // A frequency-response figure: four mesh panels, every member's branch
+    // in each (their drawing waits for the page's family view: no SVG yet).
+    let v = json(&["figure", "fig3", "--out", out, "--points", "10"]);
+    let panels = v["panels"].as_array().expect("panels");
+    let meshes: Vec<&str> = panels.iter().map(|p| p["mesh"].as_str().unwrap()).collect();
+    assert_eq!(meshes, ["s1a1", "s2b1", "a1b1", "rb1"]);
+    for p in panels {
+        assert!(p["svg"].is_null() && p["complete"] == true, "{p}");
+        let name = p["panel"].as_str().unwrap();
+        let data: Value = serde_json::from_str(
+            &std::fs::read_to_string(dir.join(format!("{name}.json"))).unwrap(),
+        )
+        .unwrap();
+        let members = data["members"].as_array().unwrap();
+        let b: Vec<f64> = members
+            .iter()
+            .map(|m| m["member"].as_f64().unwrap())
+            .collect();
+        assert_eq!(b, [50.0, 100.0, 150.0, 200.0]);
+        for m in members {
+            assert_eq!(m["params"]["te_sin_s1a_um"], 60);
+            assert_eq!(m["params"]["backlash_rb_um"].as_f64(), m["member"].as_f64());
+            assert!(m["branch"].as_array().unwrap().len() > 5);
+        }
+    }
+    // A bad option: exit 2 naming it and its range, before any work.
+    let o = gearshock(&["figure", "fig8", "--out", out, "--points", "1"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--points 1: allowed 2 ..= 2000"));
+    // Not a figure: exit 2 naming it.
+    for (id, words) in [
+        ("fig99", "no such figure"),
+        ("table1", "not one of the paper's figures"),
+    ] {
+        let o = gearshock(&["figure", id, "--out", out]);
+        assert_eq!(o.status.code(), Some(2), "{id}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains(id) && err.contains(words), "{err}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

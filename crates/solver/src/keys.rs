@@ -7,12 +7,19 @@
 //!
 //! Two keys of the compound model are shortcuts: `backlash_um` sets the
 //! backlash of all four mesh kinds and `te_um` is the TE sine amplitude on the
-//! `s1a` meshes (`te_sin_s1a_um`). When a JSON object holds both a shortcut and
-//! a per-kind key, the per-kind key wins whatever the order.
+//! meshes named by `te_meshes` (`te_sin_s1a_um` by default; every kind's
+//! `te_sin_*_um` with `te_meshes=all`). When a JSON object holds both a
+//! shortcut and a per-kind key, the per-kind key wins whatever the order.
+//!
+//! Two keys are readings of the seed paper where it is ambiguous:
+//! `te_meshes` (its Fig. 2 varies a TE written `Ec_all`: on every mesh, or on
+//! the s1a meshes as its Table 1's sun-s1 error) and `ring_support_radius_mm`
+//! (its Table 1 prints the ring's radius as 15.79 mm, which `MODEL.md` reads
+//! as a slip for the base radius 157.9 mm; the support spring acts there).
 
 use crate::error::{Result, SolverError};
 use crate::params::{
-    GearPairParams, MeshKind, ModelKind, ModelParams, PerKind, Phasing, RavigneauxParams,
+    GearPairParams, MeshKind, ModelKind, ModelParams, PerKind, Phasing, RavigneauxParams, TeMeshes,
 };
 use serde_json::{Map, Value as Json};
 
@@ -219,7 +226,15 @@ fn build_keys() -> Vec<KeySpec> {
             "um",
             TE,
             Both,
-            "transmission error sine amplitude (compound set: on the s1a meshes)"
+            "transmission error sine amplitude (compound set: on the meshes named by te_meshes)"
+        ),
+        key!(
+            "te_meshes",
+            "-",
+            KeyType::Choice(&["s1a", "all"]),
+            Ravigneaux,
+            "where te_um acts: the s1a meshes only (the paper's Table 1) or every mesh \
+             (its Fig. 2 'Ec_all' read as all meshes); switching copies or clears the other kinds' sine"
         ),
         key!(
             "stiffness_variation",
@@ -385,6 +400,17 @@ fn build_keys() -> Vec<KeySpec> {
             },
             Ravigneaux,
             "torsional support stiffness of the ring, on its base circle"
+        ),
+        key!(
+            "ring_support_radius_mm",
+            "mm",
+            KeyType::FloatOrAuto {
+                min: 1.0,
+                max: 1000.0
+            },
+            Ravigneaux,
+            "radius at which ring_support_n_m acts; auto = the ring's base radius \
+             (157.9 mm by default; the paper prints 15.79 mm)"
         ),
     ];
     keys.extend(per_kind_keys!(
@@ -654,6 +680,11 @@ fn get_ravigneaux(p: &RavigneauxParams, name: &str) -> Option<Value> {
             })
         }
         "te_um" => n(p.te_um[0].sin),
+        "te_meshes" => Some(Value::Text(p.te_meshes.name().into())),
+        "ring_support_radius_mm" => Some(match p.ring_support_radius_mm {
+            Some(r) => Value::Num(r),
+            None => Value::Text("auto".into()),
+        }),
         "stiffness_variation" => n(p.stiffness_variation),
         "damping_ratio" => n(p.damping_ratio),
         "torque_s1_nm" => n(p.torque_s1_nm),
@@ -757,7 +788,32 @@ fn set_gear_pair(p: &mut GearPairParams, name: &str, x: f64, int: u32) {
 fn set_ravigneaux(p: &mut RavigneauxParams, name: &str, value: &Value, x: f64, int: u32) {
     match name {
         "backlash_um" => p.backlash_um = PerKind::all(x),
-        "te_um" => p.te_um[0].sin = x,
+        "te_um" => match p.te_meshes {
+            TeMeshes::S1a => p.te_um[0].sin = x,
+            TeMeshes::All => p.te_um.iter_mut().for_each(|te| te.sin = x),
+        },
+        "te_meshes" => {
+            let now = if text(value) == "all" {
+                TeMeshes::All
+            } else {
+                TeMeshes::S1a
+            };
+            // Switching the reading moves the shortcut's amplitude with it:
+            // onto every kind, or off every kind but s1a.
+            if now != p.te_meshes {
+                let amplitude = p.te_um[0].sin;
+                for te in p.te_um.iter_mut().skip(1) {
+                    te.sin = if now == TeMeshes::All { amplitude } else { 0.0 };
+                }
+                p.te_meshes = now;
+            }
+        }
+        "ring_support_radius_mm" => {
+            p.ring_support_radius_mm = match value {
+                Value::Num(r) => Some(*r),
+                Value::Text(_) => None,
+            }
+        }
         "stiffness_variation" => p.stiffness_variation = x,
         "damping_ratio" => p.damping_ratio = x,
         "torque_s1_nm" => p.torque_s1_nm = x,

@@ -54,6 +54,29 @@ impl Phasing {
     }
 }
 
+/// Where the `te_um` shortcut puts the TE sine amplitude on the compound set.
+///
+/// The seed's Table 1 gives sun s1 a 20 um eccentricity error and zero
+/// elsewhere, but its Fig. 2 varies a TE it writes `Ec_all`, which can also
+/// be read as a TE on every mesh. This is that reading, as a setting.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TeMeshes {
+    /// On the `s1a` meshes only (`MODEL.md`'s reading, the default).
+    S1a,
+    /// The same sine amplitude on every mesh kind.
+    All,
+}
+
+impl TeMeshes {
+    /// The name used in keys.
+    pub fn name(self) -> &'static str {
+        match self {
+            TeMeshes::S1a => "s1a",
+            TeMeshes::All => "all",
+        }
+    }
+}
+
 /// One value per mesh kind of the compound set: `s1a`, `s2b`, `ab`, `rb`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PerKind {
@@ -191,6 +214,9 @@ pub struct RavigneauxParams {
     pub stiffness_n_m: PerKind,
     /// Torsional support stiffness of the ring, on its base circle (N/m).
     pub ring_support_n_m: f64,
+    /// Radius (mm) at which `ring_support_n_m` acts; `None` = the ring's base
+    /// radius (`MODEL.md`). The seed prints 15.79 mm, read there as a slip.
+    pub ring_support_radius_mm: Option<f64>,
     /// Stiffness fluctuation coefficient v (all meshes).
     pub stiffness_variation: f64,
     /// Mesh damping ratio xi (all meshes).
@@ -199,6 +225,8 @@ pub struct RavigneauxParams {
     pub backlash_um: PerKind,
     /// Transmission error per kind.
     pub te_um: [TeUm; 4],
+    /// Where the `te_um` shortcut writes (and which kinds it mirrors).
+    pub te_meshes: TeMeshes,
     /// Common phase offset gamma per kind (degrees), added to the phasing.
     pub phase_deg: PerKind,
     /// Input torque on the small sun (N m).
@@ -231,10 +259,12 @@ impl Default for RavigneauxParams {
             mass_b_kg: 3.139,
             stiffness_n_m: PerKind::all(1e9),
             ring_support_n_m: 1e9,
+            ring_support_radius_mm: None,
             stiffness_variation: 0.3,
             damping_ratio: 0.06,
             backlash_um: PerKind::all(100.0),
             te_um,
+            te_meshes: TeMeshes::S1a,
             phase_deg: PerKind::all(0.0),
             torque_s1_nm: 2000.0,
             torque_s2_nm: None,

@@ -631,7 +631,9 @@ fn build_ravigneaux(p: &RavigneauxParams) -> Result<MeshSystem> {
     project_load(&mut load, &u, &mass);
 
     let mut support = DMatrix::zeros(n, n);
-    support[(r, r)] = p.ring_support_n_m * g.rho_r_m.powi(2);
+    // The ring's support spring acts on its base circle unless a radius is given.
+    let support_radius_m = p.ring_support_radius_mm.map_or(g.rho_r_m, |r| r * 1e-3);
+    support[(r, r)] = p.ring_support_n_m * support_radius_m.powi(2);
 
     let mut warnings = g.interference(p);
     if p.phasing == Phasing::Sequential && !(p.teeth_r + p.teeth_s2).is_multiple_of(p.planets) {

@@ -124,3 +124,71 @@ proptest! {
         let _ = keys::from_json_str(&text);
     }
 }
+
+/// `te_meshes`: the TE reading of the seed's Fig. 2 ("Ec_all"). The shortcut
+/// `te_um` lands on the s1a meshes only, or on every kind, and the order of
+/// the two assignments does not matter.
+#[test]
+fn te_meshes_moves_the_shortcut_amplitude_in_either_order() {
+    let sines = |p: &ModelParams| match p {
+        ModelParams::Ravigneaux(r) => r.te_um.map(|t| t.sin),
+        ModelParams::GearPair(_) => panic!("compound set expected"),
+    };
+    let mut a = ModelParams::default();
+    keys::set_assignment(&mut a, "te_um=30").unwrap();
+    assert_eq!(sines(&a), [30.0, 0.0, 0.0, 0.0]);
+    keys::set_assignment(&mut a, "te_meshes=all").unwrap();
+    assert_eq!(sines(&a), [30.0; 4]);
+    let mut b = ModelParams::default();
+    keys::set_assignment(&mut b, "te_meshes=all").unwrap();
+    keys::set_assignment(&mut b, "te_um=30").unwrap();
+    assert_eq!(a, b);
+    // Back to the s1a reading: the other kinds lose the mirrored amplitude.
+    keys::set_assignment(&mut b, "te_meshes=s1a").unwrap();
+    assert_eq!(sines(&b), [30.0, 0.0, 0.0, 0.0]);
+    // Setting the same reading again changes nothing, so a per-kind value stays.
+    keys::set_assignment(&mut b, "te_sin_rb_um=5").unwrap();
+    keys::set_assignment(&mut b, "te_meshes=s1a").unwrap();
+    assert_eq!(sines(&b), [30.0, 0.0, 0.0, 5.0]);
+    // A JSON file round-trips the reading and the per-kind values.
+    let back = keys::from_json(&keys::to_json(&a)).unwrap();
+    assert_eq!(back, a);
+    assert_eq!(
+        keys::get(&back, "te_meshes"),
+        Some(Value::Text("all".into()))
+    );
+    let e = keys::set_assignment(&mut b, "te_meshes=some").unwrap_err();
+    assert!(e.to_string().contains("te_meshes"), "{e}");
+}
+
+/// `ring_support_radius_mm`: the ring's support torque stiffness is
+/// k_rt r^2 with r the base radius m z_r cos(alpha) / 2 by default, and the
+/// seed's printed 15.79 mm gives (15.79 / 157.868)^2 of it.
+#[test]
+fn ring_support_radius_scales_the_support_by_its_square() {
+    use solver::system::MeshSystem;
+    let support = |assignments: &[&str]| {
+        let mut p = ModelParams::default();
+        for a in assignments {
+            keys::set_assignment(&mut p, a).unwrap();
+        }
+        let sys = MeshSystem::build(&p).unwrap();
+        let r = sys.dof_names.iter().position(|n| n == "theta_r").unwrap();
+        let mut e = vec![0.0; sys.dof()];
+        e[r] = 1.0;
+        let mut out = vec![0.0; sys.dof()];
+        sys.support.mul(&e, &mut out);
+        out[r]
+    };
+    let rho_r = 4e-3 * 84.0 / 2.0 * 20f64.to_radians().cos();
+    let auto = support(&[]);
+    assert!((auto - 1e9 * rho_r * rho_r).abs() < 1e-9 * auto, "{auto}");
+    let printed = support(&["ring_support_radius_mm=15.79"]);
+    assert!((printed - 1e9 * 0.01579f64.powi(2)).abs() < 1e-9 * printed);
+    let explicit = support(&[&format!("ring_support_radius_mm={}", rho_r * 1e3)]);
+    assert!((explicit - auto).abs() < 1e-12 * auto);
+    let mut p = ModelParams::default();
+    keys::set_assignment(&mut p, "ring_support_radius_mm=15.79").unwrap();
+    keys::set_assignment(&mut p, "ring_support_radius_mm=auto").unwrap();
+    assert_eq!(p, ModelParams::default());
+}

@@ -347,7 +347,7 @@ impl Controller {
             self.issue(format!("no preset `{}`", keys::truncate(id, 30)));
             return Vec::new();
         };
-        let fx = self.load_query(p.query, now_ms);
+        let fx = self.load_query(&p.query(), now_ms);
         self.preset_note = Some(presets::note(p));
         fx
     }

@@ -1,0 +1,449 @@
+//! `gearshock figure ID --out DIR`: computes every panel of one of the
+//! paper's figures (a preset of `app::presets`, the page's own table) and
+//! writes, per panel, an SVG drawn by the page's plotting code (plotters'
+//! SVG backend) and the panel's data as JSON and CSV.
+//!
+//! Orbit figures (5-7, 9-11): panels a-c are the phase portraits of the
+//! family's members, d-f their Poincaré sections. Bifurcation figures (4, 8):
+//! panels a-c, one sweep per member. Frequency-response figures (2, 3):
+//! panels a-d, one mesh kind each, every member's harmonic-balance branch in
+//! each panel's data; their SVGs wait for a drawing of a family of curves
+//! (the page's family view), so the summary gives `svg: null` for them.
+
+use crate::{progress, usage, Failure};
+use app::presets::{preset, Preset};
+use app::protocol::RunOptions;
+use app::views::{BifPoint, BifView, OmegaView};
+use app::worker_core::{omega_result, OmegaJob};
+use clap::Args;
+use plotters::prelude::{IntoDrawingArea, SVGBackend};
+use serde_json::{json, Value};
+use solver::hbm::{FrfContinuation, FrfSpec};
+use solver::steady::Model;
+use solver::sweep::{canonical_order, BifurcationSweep, Direction, SweepSpec};
+use std::path::{Path, PathBuf};
+
+/// Size of each panel's SVG (pixels).
+const SIZE: (u32, u32) = (800, 500);
+/// History samples per mesh period of an orbit panel (as the page).
+const SAMPLES_PER_PERIOD: u32 = 64;
+
+/// Options of `gearshock figure`.
+#[derive(Debug, Args)]
+pub struct FigureArgs {
+    /// The figure's preset id, e.g. fig5 (see `gearshock presets`).
+    id: String,
+    /// Directory for the SVG, JSON and CSV files (created if missing).
+    #[arg(long, value_name = "DIR")]
+    out: PathBuf,
+    /// Omega points of a bifurcation panel, or the nominal points of a
+    /// frequency-response branch (default: the preset's, 100 or 150).
+    #[arg(long)]
+    points: Option<u32>,
+    /// Maximum transient mesh periods (default: the preset's, 300).
+    #[arg(long)]
+    transient_periods: Option<u32>,
+    /// Recorded mesh periods (default: the preset's, 100).
+    #[arg(long)]
+    record_periods: Option<u32>,
+}
+
+/// One member of the family: its link and decoded settings.
+struct Member {
+    query: String,
+    settings: app::settings::Settings,
+    model: Model,
+}
+
+fn members(p: &Preset) -> Result<Vec<Member>, Failure> {
+    let count = p.family.map_or(1, |f| f.values.len());
+    (0..count)
+        .map(|m| {
+            let query = p.member_query(m, 0);
+            let d = app::link::decode(&query);
+            if let Some(issue) = d.issues.first() {
+                return Err(usage(format!("figure {}: {issue}", p.id)));
+            }
+            let model = Model::new(&d.settings.params)?;
+            Ok(Member {
+                query,
+                settings: d.settings,
+                model,
+            })
+        })
+        .collect()
+}
+
+fn write(path: &Path, text: &str) -> Result<(), Failure> {
+    std::fs::write(path, text).map_err(|e| Failure {
+        code: 1,
+        message: format!("cannot write {}: {e}", path.display()),
+    })
+}
+
+fn drawn<T>(path: &Path, result: Result<T, String>) -> Result<T, Failure> {
+    result.map_err(|e| Failure {
+        code: 1,
+        message: format!("cannot draw {}: {e}", path.display()),
+    })
+}
+
+/// The member's value in words, for the panel's caption: ", TE 20 µm".
+fn member_label(p: &Preset, i: usize) -> String {
+    match p.family {
+        Some(f) => {
+            let what = match f.key {
+                "te_um" => "TE",
+                "backlash_um" => "backlash",
+                other => other,
+            };
+            let x = f.values.get(i).copied().unwrap_or(f64::NAN);
+            format!(", {what} {x} µm")
+        }
+        None => String::new(),
+    }
+}
+
+fn panel_letter(i: usize) -> char {
+    char::from(b'a' + (i % 26) as u8)
+}
+
+/// Runs the command; returns the list of panels and files written.
+pub fn run(args: &FigureArgs) -> Result<Value, Failure> {
+    let Some(p) = preset(&args.id) else {
+        let ids: Vec<&str> = app::presets::PRESETS
+            .iter()
+            .map(|p| p.id)
+            .filter(|id| id.starts_with("fig"))
+            .collect();
+        return Err(usage(format!(
+            "figure {}: no such figure; allowed {}",
+            solver::keys::truncate(&args.id, 30),
+            ids.join(", ")
+        )));
+    };
+    for (flag, value, min, max) in [
+        ("--points", args.points, 2, 2000),
+        ("--transient-periods", args.transient_periods, 1, 100_000),
+        ("--record-periods", args.record_periods, 1, 10_000),
+    ] {
+        if let Some(v) = value.filter(|v| !(min..=max).contains(v)) {
+            return Err(usage(format!("{flag} {v}: allowed {min} ..= {max}")));
+        }
+    }
+    let is = |key: &str| p.settings.iter().any(|(k, _)| *k == key);
+    if p.family.is_none() {
+        return Err(usage(format!(
+            "figure {}: not one of the paper's figures (no family of panels)",
+            p.id
+        )));
+    }
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| usage(format!("--out {}: {e}", args.out.display())))?;
+    let members = members(p)?;
+    let panels = if is("bif_dir") {
+        bifurcation_panels(p, &members, args)?
+    } else if is("omega") {
+        orbit_panels(p, &members, args)?
+    } else {
+        frf_panels(p, &members, args)?
+    };
+    Ok(
+        json!({ "id": p.id, "title": p.title, "out": args.out.display().to_string(), "panels": panels }),
+    )
+}
+
+/// Panels a-d: one mesh each; every member's branch on every panel.
+fn frf_panels(p: &Preset, members: &[Member], args: &FigureArgs) -> Result<Vec<Value>, Failure> {
+    let names: &[&str] = p.meshes.unwrap_or(&[]);
+    let mut bar = progress::Progress::new(members.len() * 1000, "per mille of the branches");
+    // Per member: the JSON of its branch on each panel's mesh.
+    let mut per_panel: Vec<Vec<Value>> = vec![Vec::new(); names.len()];
+    let mut failures = Vec::new();
+    for (i, m) in members.iter().enumerate() {
+        let v = &m.settings.view;
+        let mut spec = FrfSpec::new(v.omega_from, v.omega_to, args.points.unwrap_or(v.fr_points));
+        spec.harmonics = v.harmonics as usize;
+        let mut c = FrfContinuation::new(&m.model, spec)?;
+        let mut branch = Vec::new();
+        let mut failure = None;
+        while !c.is_finished() {
+            match c.advance(16) {
+                Ok(pts) => branch.extend(pts),
+                Err(e) => {
+                    failure = Some(e);
+                    break;
+                }
+            }
+            bar.update(i * 1000 + (c.progress() * 1000.0) as usize);
+        }
+        if let Some(e) = &failure {
+            failures.push(format!("{}: {e}", m.query));
+        }
+        for (k, name) in names.iter().enumerate() {
+            let j =
+                m.model.system.mesh_index(name).ok_or_else(|| {
+                    usage(format!("figure {}: no mesh {name} in this model", p.id))
+                })?;
+            let mut data = solver::report::frf_json(
+                &m.model,
+                &m.settings.params,
+                &c,
+                &branch,
+                &[j],
+                failure.as_ref(),
+            );
+            data["query"] = json!(m.query);
+            data["member"] = json!(p.family.and_then(|f| f.values.get(i).copied()));
+            per_panel[k].push(data);
+        }
+    }
+    bar.finish();
+    let mut out = Vec::new();
+    for (k, (name, branches)) in names.iter().zip(per_panel).enumerate() {
+        let panel = format!("{}{}", p.id, panel_letter(k));
+        let mut csv =
+            String::from("member,omega,delta_max_m,delta_min_m,delta_amplitude_m,stable\n");
+        for b in &branches {
+            for pt in b["branch"].as_array().into_iter().flatten() {
+                csv.push_str(&format!(
+                    "{},{},{},{},{},{}\n",
+                    b["member"],
+                    pt["omega"],
+                    pt["delta_max_m"],
+                    pt["delta_min_m"],
+                    pt["delta_amplitude_m"],
+                    pt["stable"]
+                ));
+            }
+        }
+        let complete = branches.iter().all(|b| b["complete"] == true);
+        let data = json!({
+            "mesh": name,
+            "family": p.family.map(|f| json!({ "key": f.key, "values": f.values })),
+            "members": branches,
+        });
+        write(&args.out.join(format!("{panel}.json")), &data.to_string())?;
+        write(&args.out.join(format!("{panel}.csv")), &csv)?;
+        out.push(json!({
+            "panel": panel,
+            "view": "frequency-response",
+            "mesh": name,
+            "complete": complete,
+            "svg": null,
+            "files": [format!("{panel}.json"), format!("{panel}.csv")],
+        }));
+    }
+    if !failures.is_empty() {
+        // Reported, never shown as a result: the partial branches were
+        // written, marked incomplete.
+        return Err(Failure {
+            code: 1,
+            message: format!(
+                "figure {}: the branch stopped early for {} (the partial branches were written, marked incomplete)",
+                p.id,
+                failures.join("; ")
+            ),
+        });
+    }
+    Ok(out)
+}
+
+fn run_options(m: &Member, args: &FigureArgs) -> RunOptions {
+    RunOptions {
+        transient_periods: args
+            .transient_periods
+            .unwrap_or(m.settings.view.transient_periods),
+        record_periods: args
+            .record_periods
+            .unwrap_or(m.settings.view.record_periods),
+    }
+}
+
+/// Panels a-c: phase portraits; d-f: Poincaré sections.
+fn orbit_panels(p: &Preset, members: &[Member], args: &FigureArgs) -> Result<Vec<Value>, Failure> {
+    let mut out = Vec::new();
+    let mut bar = progress::Progress::new(members.len(), "panels");
+    let n = members.len();
+    for (i, m) in members.iter().enumerate() {
+        let job = OmegaJob {
+            id: i as u64,
+            model: m.model.clone(),
+            omega: m.settings.view.omega,
+            mesh: m.settings.mesh_index(&m.model),
+            run: run_options(m, args),
+            samples_per_period: SAMPLES_PER_PERIOD,
+            max_order: 8.0,
+        };
+        let r = omega_result(&job, None).map_err(|message| Failure { code: 1, message })?;
+        let label = member_label(p, i);
+        for (k, view) in [(i, OmegaView::Phase), (n + i, OmegaView::Poincare)] {
+            let name = format!("{}{}", p.id, panel_letter(k));
+            let svg = args.out.join(format!("{name}.svg"));
+            {
+                let root = SVGBackend::new(&svg, SIZE).into_drawing_area();
+                drawn(
+                    &svg,
+                    match view {
+                        OmegaView::Poincare => app::plots::draw_poincare(&root, &r, &label),
+                        _ => app::plots::draw_phase(&root, &r, &label),
+                    },
+                )?;
+            }
+            let mut data = app::views::omega_json(&r, view);
+            data["query"] = json!(m.query);
+            write(&args.out.join(format!("{name}.json")), &data.to_string())?;
+            write(
+                &args.out.join(format!("{name}.csv")),
+                &app::views::omega_csv(&r, view),
+            )?;
+            out.push(json!({
+                "panel": name,
+                "view": if matches!(view, OmegaView::Poincare) { "poincare" } else { "phase" },
+                "query": m.query,
+                "period": r.period,
+                "impact": r.regime.solver_name(),
+                "files": [format!("{name}.svg"), format!("{name}.json"), format!("{name}.csv")],
+            }));
+        }
+        bar.update(i + 1);
+    }
+    bar.finish();
+    out.sort_by(|a, b| a["panel"].as_str().cmp(&b["panel"].as_str()));
+    Ok(out)
+}
+
+/// Panels a-c: one bifurcation diagram per member.
+fn bifurcation_panels(
+    p: &Preset,
+    members: &[Member],
+    args: &FigureArgs,
+) -> Result<Vec<Value>, Failure> {
+    let mut sweeps = Vec::new();
+    for m in members {
+        let v = &m.settings.view;
+        let mut spec = SweepSpec::new(
+            v.omega_from,
+            v.omega_to,
+            args.points.unwrap_or(v.bif_points),
+        );
+        let run = run_options(m, args);
+        spec.steady.transient_periods = run.transient_periods;
+        spec.steady.record_periods = run.record_periods;
+        spec.directions = v.bif_dir;
+        spec.meshes = vec![m.settings.mesh_index(&m.model).unwrap_or(0)];
+        sweeps.push((spec.clone(), BifurcationSweep::new(m.model.clone(), spec)?));
+    }
+    let total: usize = sweeps.iter().map(|(_, s)| s.total()).sum();
+    let mut bar = progress::Progress::new(total, "points");
+    let mut done = 0;
+    let mut out = Vec::new();
+    for (i, (m, (spec, mut sweep))) in members.iter().zip(sweeps).enumerate() {
+        let mut pts = Vec::with_capacity(sweep.total());
+        while !sweep.is_finished() {
+            pts.extend(sweep.advance(1));
+            bar.update(done + sweep.done());
+        }
+        done += sweep.total();
+        canonical_order(&mut pts);
+        let name = format!("{}{}", p.id, panel_letter(i));
+        let data = solver::report::sweep_json(&m.model, &m.settings.params, &spec, &pts);
+        write(&args.out.join(format!("{name}.json")), &data.to_string())?;
+        write(
+            &args.out.join(format!("{name}.csv")),
+            &crate::csv::sweep(&data),
+        )?;
+        let view = bif_view(m, &spec, &pts);
+        let natural = app::views::natural_in_range(&m.model, spec.omega_from, spec.omega_to);
+        let svg = args.out.join(format!("{name}.svg"));
+        let text = drawn(&svg, bif_svg(&view, &natural, &member_label(p, i)))?;
+        write(&svg, &text)?;
+        let failed = pts.iter().filter(|p| p.error.is_some()).count();
+        out.push(json!({
+            "panel": name,
+            "view": "bifurcation",
+            "query": m.query,
+            "points": pts.len(),
+            "failed": failed,
+            "files": [format!("{name}.svg"), format!("{name}.json"), format!("{name}.csv")],
+        }));
+    }
+    bar.finish();
+    Ok(out)
+}
+
+/// The bifurcation diagram as SVG text. The page draws the chart, then its
+/// dots in a fast pass; an SVG is complete once presented, so the dots are
+/// drawn into a second SVG whose body is appended to the chart's.
+fn bif_svg(
+    view: &BifView,
+    natural: &[app::views::NaturalFreq],
+    status: &str,
+) -> Result<String, String> {
+    let mut chart = String::new();
+    let groups = {
+        let root = SVGBackend::with_string(&mut chart, SIZE).into_drawing_area();
+        app::plots::draw_bif(&root, view, natural, status)?.1
+    };
+    let mut dots = String::new();
+    {
+        let root = SVGBackend::with_string(&mut dots, SIZE).into_drawing_area();
+        app::plots::draw_groups(&root, &groups)?;
+    }
+    let head = chart
+        .trim_end()
+        .strip_suffix("</svg>")
+        .ok_or("the chart is not a complete SVG")?;
+    let body = dots
+        .split_once('>')
+        .map(|(_, rest)| rest.trim_end())
+        .and_then(|rest| rest.strip_suffix("</svg>"))
+        .ok_or("the dots are not a complete SVG")?;
+    Ok(format!("{head}{body}</svg>\n"))
+}
+
+/// The page's bifurcation view of one sweep: Poincaré samples of x = delta - e.
+fn bif_view(m: &Member, spec: &SweepSpec, pts: &[solver::sweep::SweepPoint]) -> BifView {
+    let mesh = spec.meshes[0];
+    let def = &m.model.system.meshes[mesh];
+    let mut points = Vec::new();
+    let mut failed = Vec::new();
+    for p in pts {
+        if let Some(e) = &p.error {
+            failed.push((p.omega, e.clone()));
+            continue;
+        }
+        let w = p.omega * m.model.system.omega_ref_rad_s;
+        // The TE at the Poincaré phase (t = n T).
+        let (_, e0, _) = def.excitation(w, 1.0, 0.0);
+        for pm in &p.meshes {
+            points.extend(pm.poincare_delta_m.iter().map(|d| BifPoint {
+                omega: p.omega,
+                x_um: (d - e0) * 1e6,
+                regime: pm.impact.into(),
+                up: p.direction == Direction::Up,
+            }));
+        }
+    }
+    BifView {
+        mesh_label: def.name.clone(),
+        // To the nanometre: the metre value read back in µm is not exact.
+        backlash_um: vec![(def.backlash_m * 1e9).round() / 1e3],
+        points,
+        omega_from: spec.omega_from,
+        omega_to: spec.omega_to,
+        selected_omega: m.settings.view.omega,
+        failed,
+        // Shaded as on the page: where the engaged system is parametrically unstable.
+        unstable_bands: app::worker_core::unstable_bands(
+            &m.model,
+            (spec.omega_from, spec.omega_to),
+            app::worker_core::BAND_SAMPLES,
+        ),
+        pinned: Vec::new(),
+        pinned_backlash_um: Vec::new(),
+        ab_labels: None,
+        done: pts.len(),
+        total: pts.len(),
+    }
+}
