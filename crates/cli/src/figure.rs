@@ -11,10 +11,11 @@
 //! (the page's family view), so the summary gives `svg: null` for them.
 
 use crate::{progress, usage, Failure};
+use app::jobs::omega::{omega_result, OmegaJob};
 use app::presets::{preset, Preset};
 use app::protocol::RunOptions;
-use app::views::{BifPoint, BifView, OmegaView};
-use app::worker_core::{omega_result, OmegaJob};
+use app::views::bif::{BifPoint, BifView};
+use app::views::omega::OmegaView;
 use clap::Args;
 use plotters::prelude::{IntoDrawingArea, SVGBackend};
 use serde_json::{json, Value};
@@ -156,7 +157,7 @@ pub fn run(args: &FigureArgs) -> Result<Value, Failure> {
 /// Panels a-d: one mesh each; every member's branch on every panel.
 fn frf_panels(p: &Preset, members: &[Member], args: &FigureArgs) -> Result<Vec<Value>, Failure> {
     let names: &[&str] = p.meshes.unwrap_or(&[]);
-    let mut bar = progress::Progress::new(members.len() * 1000, "per mille of the branches");
+    let mut bar = progress::Progress::new(members.len() * 1000, "per mille of the branches", false);
     // Per member: the JSON of its branch on each panel's mesh.
     let mut per_panel: Vec<Vec<Value>> = vec![Vec::new(); names.len()];
     let mut failures = Vec::new();
@@ -263,7 +264,7 @@ fn run_options(m: &Member, args: &FigureArgs) -> RunOptions {
 /// Panels a-c: phase portraits; d-f: Poincaré sections.
 fn orbit_panels(p: &Preset, members: &[Member], args: &FigureArgs) -> Result<Vec<Value>, Failure> {
     let mut out = Vec::new();
-    let mut bar = progress::Progress::new(members.len(), "panels");
+    let mut bar = progress::Progress::new(members.len(), "panels", false);
     let n = members.len();
     for (i, m) in members.iter().enumerate() {
         let job = OmegaJob {
@@ -290,12 +291,12 @@ fn orbit_panels(p: &Preset, members: &[Member], args: &FigureArgs) -> Result<Vec
                     },
                 )?;
             }
-            let mut data = app::views::omega_json(&r, view);
+            let mut data = app::views::omega::omega_json(&r, view);
             data["query"] = json!(m.query);
             write(&args.out.join(format!("{name}.json")), &data.to_string())?;
             write(
                 &args.out.join(format!("{name}.csv")),
-                &app::views::omega_csv(&r, view),
+                &app::views::omega::omega_csv(&r, view),
             )?;
             out.push(json!({
                 "panel": name,
@@ -335,7 +336,7 @@ fn bifurcation_panels(
         sweeps.push((spec.clone(), BifurcationSweep::new(m.model.clone(), spec)?));
     }
     let total: usize = sweeps.iter().map(|(_, s)| s.total()).sum();
-    let mut bar = progress::Progress::new(total, "points");
+    let mut bar = progress::Progress::new(total, "points", false);
     let mut done = 0;
     let mut out = Vec::new();
     for (i, (m, (spec, mut sweep))) in members.iter().zip(sweeps).enumerate() {
@@ -353,7 +354,7 @@ fn bifurcation_panels(
             &args.out.join(format!("{name}.csv")),
             &crate::csv::sweep(&data),
         )?;
-        let view = bif_view(m, &spec, &pts);
+        let view = bif_view(m, &spec, &pts)?;
         let natural = app::views::natural_in_range(&m.model, spec.omega_from, spec.omega_to);
         let svg = args.out.join(format!("{name}.svg"));
         let text = drawn(&svg, bif_svg(&view, &natural, &member_label(p, i)))?;
@@ -403,7 +404,11 @@ fn bif_svg(
 }
 
 /// The page's bifurcation view of one sweep: Poincaré samples of x = delta - e.
-fn bif_view(m: &Member, spec: &SweepSpec, pts: &[solver::sweep::SweepPoint]) -> BifView {
+fn bif_view(
+    m: &Member,
+    spec: &SweepSpec,
+    pts: &[solver::sweep::SweepPoint],
+) -> Result<BifView, solver::SolverError> {
     let mesh = spec.meshes[0];
     let def = &m.model.system.meshes[mesh];
     let mut points = Vec::new();
@@ -425,7 +430,7 @@ fn bif_view(m: &Member, spec: &SweepSpec, pts: &[solver::sweep::SweepPoint]) -> 
             }));
         }
     }
-    BifView {
+    Ok(BifView {
         mesh_label: def.name.clone(),
         // To the nanometre: the metre value read back in µm is not exact.
         backlash_um: vec![(def.backlash_m * 1e9).round() / 1e3],
@@ -435,15 +440,16 @@ fn bif_view(m: &Member, spec: &SweepSpec, pts: &[solver::sweep::SweepPoint]) -> 
         selected_omega: m.settings.view.omega,
         failed,
         // Shaded as on the page: where the engaged system is parametrically unstable.
-        unstable_bands: app::worker_core::unstable_bands(
-            &m.model,
-            (spec.omega_from, spec.omega_to),
-            app::worker_core::BAND_SAMPLES,
-        ),
+        unstable_bands: solver::parametric::Parametric::new(&m.model).and_then(|p| {
+            p.unstable_bands(
+                (spec.omega_from, spec.omega_to),
+                app::jobs::bif::BAND_SAMPLES,
+            )
+        })?,
         pinned: Vec::new(),
         pinned_backlash_um: Vec::new(),
         ab_labels: None,
         done: pts.len(),
         total: pts.len(),
-    }
+    })
 }

@@ -179,3 +179,23 @@ pub fn draw_bif<DB: DrawingBackend>(
     root.present().map_err(err)?;
     Ok((frame, groups))
 }
+
+/// Draws the dots of [`draw_bif`] with plotters (the page fills them on the
+/// canvas directly, in a fast pass; the command line's SVG figures use this).
+pub fn draw_groups<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    groups: &[PointGroup],
+) -> Res<()> {
+    for g in groups {
+        for &(x, y) in &g.px {
+            let (x, y) = (x.round() as i32, y.round() as i32);
+            let shape = if g.filled {
+                Rectangle::new([(x - 1, y - 1), (x + 1, y + 1)], g.color.filled())
+            } else {
+                Rectangle::new([(x - 2, y - 2), (x + 2, y + 2)], g.color.stroke_width(1))
+            };
+            root.draw(&shape).map_err(err)?;
+        }
+    }
+    root.present().map_err(err)
+}

@@ -20,7 +20,7 @@ mod fr;
 pub mod maps;
 mod omega;
 
-pub use bif::{draw_bif, failed_label};
+pub use bif::{draw_bif, draw_groups, failed_label};
 pub use fr::draw_fr;
 pub use omega::{draw_phase, draw_poincare, draw_spectrum, draw_time};
 
