@@ -596,6 +596,11 @@ mod budget {
     /// periods) one bifurcation command keeps for its output (some hundred
     /// MB once written as JSON).
     pub const MAX_SAMPLES: u64 = 2_000_000;
+    /// Most `--points x (2 --harmonics + 1)^3` of one frequency response: a
+    /// Newton step solves a dense system of (2 H + 1) unknowns per
+    /// coordinate, so its work grows like the cube; this allows every point
+    /// count up to H = 27 and some hours at H = 40.
+    pub const MAX_FRF_WORK: u64 = 2_000_000_000;
 }
 
 /// Checks `periods` (the product `formula` of the options) against
@@ -837,6 +842,17 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 Some("all") => (0..model.system.meshes.len()).collect(),
                 other => vec![mesh_index(&model, other)?],
             };
+            // Larger H is refused by the solver's own check, naming it.
+            if harmonics <= 40 {
+                let work = u64::from(points) * (2 * harmonics as u64 + 1).pow(3);
+                if work > budget::MAX_FRF_WORK {
+                    return Err(usage(format!(
+                        "--points {points} x (2 x --harmonics {harmonics} + 1)^3 = {work} is more than the {} \
+                         one frequency response may take: use fewer points or harmonics",
+                        budget::MAX_FRF_WORK
+                    )));
+                }
+            }
             let mut c = FrfContinuation::new(&model, spec)?;
             let mut bar = progress::Progress::new(1000, "per mille of the range", p.progress);
             let mut branch = Vec::new();

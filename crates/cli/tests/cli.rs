@@ -761,6 +761,47 @@ fn total_work_and_memory_are_capped_naming_the_options() {
         ],
         &["--omega-points", "--value-points", "100000000"],
     );
+    refused(
+        &[
+            "frf",
+            "--omega-from",
+            "0.1",
+            "--omega-to",
+            "2",
+            "--points",
+            "100000",
+            "--harmonics",
+            "40",
+        ],
+        &["--points 100000", "--harmonics 40", "2000000000"],
+    );
+    // The largest number the flag parses overflowed the budget's arithmetic.
+    refused(
+        &[
+            "frf",
+            "--omega-from",
+            "0.1",
+            "--omega-to",
+            "2",
+            "--harmonics",
+            "18446744073709551615",
+        ],
+        &["--harmonics 18446744073709551615", "1 ..= 40"],
+    );
+    for flag in ["--transient-periods", "--record-periods"] {
+        refused(
+            &[
+                "bifurcation",
+                "--omega-from",
+                "0.1",
+                "--omega-to",
+                "2",
+                flag,
+                "4294967295",
+            ],
+            &[flag, "4294967295"],
+        );
+    }
 }
 
 #[test]
