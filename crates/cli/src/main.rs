@@ -35,10 +35,17 @@ struct Cli {
     command: Command,
 }
 
-#[derive(Debug, Clone, Copy, ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 enum Format {
+    /// One JSON document, written at the end.
     Json,
+    /// CSV tables.
     Csv,
+    /// JSON lines, streamed: for bifurcation, map, lyapunov and
+    /// instability a header line (model, params, spec), then one line per
+    /// point or cell as soon as it is computed, then `{"complete": true,
+    /// ...}`; for the other commands the JSON document on one line.
+    Jsonl,
 }
 
 #[derive(Debug, Clone, Copy, ValueEnum)]
@@ -59,7 +66,7 @@ struct ParamArgs {
     /// Set one parameter, e.g. `--set backlash_um=200` (repeatable).
     #[arg(long = "set", value_name = "KEY=VALUE")]
     set: Vec<String>,
-    /// Output format.
+    /// Output format (jsonl streams sweeps point by point).
     #[arg(long, value_enum, default_value = "json")]
     format: Format,
     /// Print progress lines on stderr even when it is not a terminal (logs,
@@ -651,6 +658,10 @@ fn parse_shard(s: &str) -> Result<(u32, u32), Failure> {
 fn output(format: Format, value: &Value, csv: fn(&Value) -> String) -> Result<(), Failure> {
     match format {
         Format::Json => emit(value),
+        Format::Jsonl => {
+            emit_line(value);
+            Ok(())
+        }
         Format::Csv => {
             emit_text(&csv(value));
             Ok(())
@@ -669,6 +680,47 @@ fn emit(value: &Value) -> Result<(), Failure> {
     Ok(())
 }
 
+/// Writes one JSON line and flushes it, so a reader (or a killed job's
+/// log) has every line written so far.
+fn emit_line(value: &Value) {
+    let mut out = std::io::stdout().lock();
+    let _ = writeln!(out, "{value}");
+    let _ = out.flush();
+}
+
+/// Streams a sweep as JSON lines when the format asks for it: the header
+/// at once, then [`Stream::item`] per result, then [`Stream::finish`].
+struct Stream {
+    on: bool,
+    items: usize,
+}
+
+impl Stream {
+    fn new(format: Format, header: impl FnOnce() -> Value) -> Self {
+        let on = format == Format::Jsonl;
+        if on {
+            emit_line(&header());
+        }
+        Stream { on, items: 0 }
+    }
+
+    /// Writes `value` if streaming; returns whether it did.
+    fn item(&mut self, value: impl FnOnce() -> Value) -> bool {
+        if self.on {
+            emit_line(&value());
+            self.items += 1;
+        }
+        self.on
+    }
+
+    /// The closing line, so a reader knows the stream is whole.
+    fn finish(self, what: &str) {
+        if self.on {
+            emit_line(&serde_json::json!({ "complete": true, what: self.items }));
+        }
+    }
+}
+
 fn emit_text(text: &str) {
     let mut out = std::io::stdout().lock();
     let _ = out.write_all(text.as_bytes());
@@ -682,6 +734,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
             Model::new(&params)?;
             match p.format {
                 Format::Json => emit(&Value::Object(keys::to_json(&params))),
+                Format::Jsonl => {
+                    emit_line(&Value::Object(keys::to_json(&params)));
+                    Ok(())
+                }
                 Format::Csv => {
                     emit_text(&csv::params(&params));
                     Ok(())
@@ -700,7 +756,9 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let params = load_params(&p)?;
             let model = Model::new(&params)?;
             match p.format {
-                Format::Json => emit(&report::modes_json(&model)),
+                Format::Json | Format::Jsonl => {
+                    output(p.format, &report::modes_json(&model), |_| String::new())
+                }
                 Format::Csv => {
                     emit_text(&csv::modes(&model));
                     Ok(())
@@ -728,7 +786,11 @@ fn run(cli: Cli) -> Result<(), Failure> {
             opts.validate()?;
             let ss = steady_state(&model, &opts, None)?;
             match p.format {
-                Format::Json => emit(&report::simulate_json(&model, &ss, j, max_order)),
+                Format::Json | Format::Jsonl => output(
+                    p.format,
+                    &report::simulate_json(&model, &ss, j, max_order),
+                    |_| String::new(),
+                ),
                 Format::Csv => {
                     emit_text(&csv::history(&ss, j));
                     Ok(())
@@ -788,22 +850,38 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 "split the sweep with --shard i/n",
             )?;
             let samples = total * spec.meshes.len() as u64 * record;
-            if samples > budget::MAX_SAMPLES {
+            // Streamed points are not kept, so only the work is capped then.
+            if samples > budget::MAX_SAMPLES && p.format != Format::Jsonl {
                 return Err(usage(format!(
                     "{total} points x {} meshes (--mesh) x --record-periods {record} = {samples} Poincaré samples \
                      is more than the {} one command may keep: use fewer points, meshes or recorded periods, \
-                     or split the sweep with --shard i/n",
+                     stream them with --format jsonl, or split the sweep with --shard i/n",
                     spec.meshes.len(),
                     budget::MAX_SAMPLES
                 )));
             }
             let mut bar = progress::Progress::new(sweep.total(), "points", p.progress);
-            let mut pts = Vec::with_capacity(sweep.total());
+            let mut stream = Stream::new(p.format, || {
+                serde_json::json!({
+                    "model": model.system.model.name(),
+                    "params": Value::Object(keys::to_json(&params)),
+                    "spec": report::sweep_spec_json(&model, &spec),
+                })
+            });
+            let mut pts = Vec::new();
             while !sweep.is_finished() {
-                pts.extend(sweep.advance(1));
+                for pt in sweep.advance(1) {
+                    if !stream.item(|| report::sweep_point_json(&model, &pt)) {
+                        pts.push(pt);
+                    }
+                }
                 bar.update(sweep.done());
             }
             bar.finish();
+            if p.format == Format::Jsonl {
+                stream.finish("points");
+                return Ok(());
+            }
             canonical_order(&mut pts);
             let value = report::sweep_json(&model, &params, &spec, &pts);
             output(p.format, &value, csv::sweep)
@@ -927,12 +1005,27 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 "split the map with --shard i/n",
             )?;
             let mut bar = progress::Progress::new(map.total(), "cells", p.progress);
-            let mut cells = Vec::with_capacity(map.total());
+            let mut stream = Stream::new(p.format, || {
+                serde_json::json!({
+                    "model": model.system.model.name(),
+                    "params": Value::Object(keys::to_json(&params)),
+                    "spec": report::map_spec_json(&model, &spec),
+                })
+            });
+            let mut cells = Vec::new();
             while !map.is_finished() {
-                cells.extend(map.advance(1));
+                for cell in map.advance(1) {
+                    if !stream.item(|| report::map_cell_json(&cell)) {
+                        cells.push(cell);
+                    }
+                }
                 bar.update(map.done());
             }
             bar.finish();
+            if p.format == Format::Jsonl {
+                stream.finish("cells");
+                return Ok(());
+            }
             let value = report::map_json(&model, &params, &spec, &cells);
             output(p.format, &value, csv::map)
         }
@@ -961,16 +1054,29 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 "split the Omega range over several runs",
             )?;
             let mut bar = progress::Progress::new(omegas.len(), "points", p.progress);
+            let mut stream = Stream::new(p.format, || {
+                serde_json::json!({
+                    "model": model.system.model.name(),
+                    "params": Value::Object(keys::to_json(&params)),
+                    "spec": report::lyapunov_spec_json(&opts),
+                })
+            });
             let mut out = Vec::new();
             let mut state: Option<Vec<f64>> = None;
             for (i, omega) in omegas.into_iter().enumerate() {
                 opts.omega = omega;
                 let l = largest_exponent(&model, &opts, state.as_deref())?;
                 state = Some(l.end_state.clone());
-                out.push(l);
+                if !stream.item(|| report::lyapunov_point_json(&l)) {
+                    out.push(l);
+                }
                 bar.update(i + 1);
             }
             bar.finish();
+            if p.format == Format::Jsonl {
+                stream.finish("points");
+                return Ok(());
+            }
             let value = report::lyapunov_json(&model, &params, &opts, &out);
             output(p.format, &value, csv::lyapunov)
         }
@@ -985,12 +1091,25 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let omegas = omega_grid(omega_from, omega_to, points, 100_000)?;
             let engaged = Parametric::new(&model)?;
             let mut bar = progress::Progress::new(omegas.len(), "points", p.progress);
-            let mut out = Vec::with_capacity(omegas.len());
+            let mut stream = Stream::new(p.format, || {
+                serde_json::json!({
+                    "model": model.system.model.name(),
+                    "params": Value::Object(keys::to_json(&params)),
+                })
+            });
+            let mut out = Vec::new();
             for (i, omega) in omegas.into_iter().enumerate() {
-                out.push(engaged.at(omega)?);
+                let point = engaged.at(omega)?;
+                if !stream.item(|| report::instability_point_json(&point)) {
+                    out.push(point);
+                }
                 bar.update(i + 1);
             }
             bar.finish();
+            if p.format == Format::Jsonl {
+                stream.finish("points");
+                return Ok(());
+            }
             let value = report::instability_json(&model, &params, &out);
             output(p.format, &value, csv::instability)
         }

@@ -959,3 +959,126 @@ fn no_setting_is_silently_dropped_by_the_model_choice() {
     assert_eq!(v["te_sin_s1a_um"].to_string(), "0");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The JSON lines of a run: every line parses.
+fn json_lines(args: &[&str]) -> Vec<Value> {
+    let out = gearshock(args);
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("one JSON value per line"))
+        .collect()
+}
+
+#[test]
+fn jsonl_streams_each_point_as_computed_with_the_same_results() {
+    let sweep = [
+        "bifurcation",
+        "--model",
+        "gear-pair",
+        "--omega-from",
+        "0.5",
+        "--omega-to",
+        "0.7",
+        "--points",
+        "3",
+        "--direction",
+        "both",
+        "--transient-periods",
+        "5",
+        "--record-periods",
+        "2",
+    ];
+    let whole = json(&sweep);
+    let mut args = sweep.to_vec();
+    args.extend(["--format", "jsonl"]);
+    let lines = json_lines(&args);
+    assert_eq!(lines.len(), 1 + 6 + 1);
+    assert_eq!(lines[0]["spec"], whole["spec"]);
+    assert_eq!(lines[0]["params"], whole["params"]);
+    assert_eq!(lines[7], json!({"complete": true, "points": 6}));
+    let key = |p: &Value| (p["direction"].to_string(), p["index"].as_u64());
+    let mut streamed: Vec<Value> = lines[1..7].to_vec();
+    let mut written: Vec<Value> = whole["points"].as_array().expect("points").clone();
+    streamed.sort_by_key(key);
+    written.sort_by_key(key);
+    assert_eq!(streamed, written);
+
+    let lyap = [
+        "lyapunov",
+        "--model",
+        "gear-pair",
+        "--omega-from",
+        "0.5",
+        "--omega-to",
+        "0.6",
+        "--points",
+        "2",
+        "--transient-periods",
+        "10",
+        "--periods",
+        "10",
+    ];
+    let whole = json(&lyap);
+    let mut args = lyap.to_vec();
+    args.extend(["--format", "jsonl"]);
+    let lines = json_lines(&args);
+    assert_eq!(lines[0]["spec"], whole["spec"]);
+    assert_eq!(lines[1..3], whole["points"].as_array().expect("points")[..]);
+    assert_eq!(lines[3], json!({"complete": true, "points": 2}));
+
+    let inst = [
+        "instability",
+        "--model",
+        "gear-pair",
+        "--omega-from",
+        "0.5",
+        "--omega-to",
+        "2",
+        "--points",
+        "3",
+    ];
+    let whole = json(&inst);
+    let mut args = inst.to_vec();
+    args.extend(["--format", "jsonl"]);
+    let lines = json_lines(&args);
+    assert_eq!(lines[1..4], whole["points"].as_array().expect("points")[..]);
+    assert_eq!(lines[4], json!({"complete": true, "points": 3}));
+
+    let map = [
+        "map",
+        "--model",
+        "gear-pair",
+        "--omega-from",
+        "0.5",
+        "--omega-to",
+        "0.6",
+        "--omega-points",
+        "2",
+        "--value-from",
+        "50",
+        "--value-to",
+        "60",
+        "--value-points",
+        "2",
+        "--transient-periods",
+        "5",
+        "--record-periods",
+        "2",
+    ];
+    let whole = json(&map);
+    let mut args = map.to_vec();
+    args.extend(["--format", "jsonl"]);
+    let lines = json_lines(&args);
+    assert_eq!(lines[0]["spec"], whole["spec"]);
+    assert_eq!(lines[1..5], whole["cells"].as_array().expect("cells")[..]);
+    assert_eq!(lines[5], json!({"complete": true, "cells": 4}));
+
+    // Other commands write their one document on one line.
+    let lines = json_lines(&["params", "--format", "jsonl"]);
+    assert_eq!(lines, vec![json(&["params"])]);
+}

@@ -774,12 +774,37 @@ pub fn instability_json(
     json!({
         "model": model.system.model.name(),
         "params": Value::Object(keys::to_json(params)),
-        "points": points.iter().map(|p| json!({
-            "omega": num(p.omega),
-            "spectral_radius": num(p.spectral_radius),
-            "growth_per_period": num(p.growth_per_period()),
-            "unstable": p.unstable(),
-        })).collect::<Vec<_>>(),
+        "points": points.iter().map(instability_point_json).collect::<Vec<_>>(),
+    })
+}
+
+/// One point of a parametric-instability scan.
+pub fn instability_point_json(p: &crate::parametric::EngagedStability) -> Value {
+    json!({
+        "omega": num(p.omega),
+        "spectral_radius": num(p.spectral_radius),
+        "growth_per_period": num(p.growth_per_period()),
+        "unstable": p.unstable(),
+    })
+}
+
+/// The options of a Lyapunov-exponent sweep.
+pub fn lyapunov_spec_json(opts: &crate::lyapunov::LyapunovOptions) -> Value {
+    json!({
+        "transient_periods": opts.transient_periods,
+        "periods": opts.periods,
+        "perturbation_m": num(opts.perturbation_um * 1e-6),
+        "rtol": num(opts.rtol),
+        "atol_m": num(opts.atol_m),
+    })
+}
+
+/// One point of a Lyapunov-exponent sweep.
+pub fn lyapunov_point_json(l: &crate::lyapunov::Lyapunov) -> Value {
+    json!({
+        "omega": num(l.omega),
+        "exponent_per_period": num(l.per_period),
+        "exponent_per_s": num(l.per_s),
     })
 }
 
@@ -793,17 +818,7 @@ pub fn lyapunov_json(
     json!({
         "model": model.system.model.name(),
         "params": Value::Object(keys::to_json(params)),
-        "spec": {
-            "transient_periods": opts.transient_periods,
-            "periods": opts.periods,
-            "perturbation_m": num(opts.perturbation_um * 1e-6),
-            "rtol": num(opts.rtol),
-            "atol_m": num(opts.atol_m),
-        },
-        "points": points.iter().map(|l| json!({
-            "omega": num(l.omega),
-            "exponent_per_period": num(l.per_period),
-            "exponent_per_s": num(l.per_s),
-        })).collect::<Vec<_>>(),
+        "spec": lyapunov_spec_json(opts),
+        "points": points.iter().map(lyapunov_point_json).collect::<Vec<_>>(),
     })
 }
