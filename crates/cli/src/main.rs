@@ -444,7 +444,7 @@ impl<R: Read> Read for Limited<R> {
         // Read one byte past the limit to tell "exactly the limit" from "more".
         let want = buf
             .len()
-            .min(usize::try_from(self.left + 1).unwrap_or(usize::MAX));
+            .min(usize::try_from(self.left.saturating_add(1)).unwrap_or(usize::MAX));
         let n = self.inner.read(&mut buf[..want])?;
         if n as u64 > self.left {
             return Err(std::io::Error::other("over the size limit"));
