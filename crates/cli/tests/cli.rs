@@ -605,6 +605,12 @@ fn merge_refuses_forged_shards_before_sizing_anything() {
     let mut forged = good.clone();
     forged[1]["points"].as_array_mut().expect("points").pop();
     merge(&forged, &["missing"]);
+    // A forged parameter set would be copied into the output.
+    let mut forged = good.clone();
+    for v in &mut forged {
+        v["params"]["backlash_um"] = json!(-5);
+    }
+    merge(&forged, &["params", "backlash_um"]);
     // Step counts that wrapped when summed.
     let mut forged = good.clone();
     forged[0]["points"][0]["stats"]["steps"] = json!(u64::MAX);

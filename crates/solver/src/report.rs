@@ -328,6 +328,13 @@ fn join_shards<'a>(
         }
     };
     let base = spec_of(first)?;
+    // The parameter set is copied to the output: it must be one gearshock reads.
+    match first.get("params") {
+        Some(Value::Object(p)) => {
+            keys::from_json(p).map_err(|e| bad(format!("the shards' params: {e}")))?;
+        }
+        _ => return Err(bad("a shard has no `params` object".into())),
+    }
     let n = base
         .get(count_key)
         .and_then(Value::as_u64)
