@@ -80,7 +80,15 @@ test('a slider change previews the selected-Omega views at once, then the full s
   });
   const sp = await waitStatus(page, (s) => s.omega_job.preview_ms >= t0 && s.last_draw_ms[2] >= s.omega_job.preview_ms, 10000, 'the preview');
   assert.ok(!sp.omega_job.finished_ms, 'the full run should still be computing');
-  assert.match(await page.textContent('#summary'), /^Preview \(20 \+ 10 periods continued from the previous state; the full run is computing\): Omega = /);
+  // The summary is updated by its own render, after the status and the
+  // canvas: wait for its text instead of reading it the moment the status
+  // says the preview was drawn (on a busy machine it still showed the
+  // previous state's summary then).
+  await page.waitForFunction(
+    () => /^Preview \(20 \+ 10 periods continued from the previous state; the full run is computing\): Omega = /.test(document.querySelector('#summary')?.textContent ?? ''),
+    null,
+    { timeout: 10000 },
+  );
   await shot(page.locator('#summary'), '03b-summary-preview');
   const previewStats = await canvasStats(page, 'canvas-phase');
   assert.notEqual(previewStats.hash, before.hash, 'the preview did not redraw the phase portrait');
