@@ -1,0 +1,38 @@
+// Long share links reach the page, which names what it ignored: the static
+// server answered links over about 16 kB with HTTP 431, so the page never
+// loaded to show its own message (the app reads links of up to 64 KiB).
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { start, open } from './harness.mjs';
+
+const QUICK = 'bif_points=16&transient_periods=120&record_periods=40&lyap_points=0&map_omega_points=2&map_value_points=1';
+
+let h;
+before(async () => {
+  h = await start();
+});
+after(async () => {
+  await h?.close();
+});
+
+test('a 20 kB link loads the page, which names the key it does not know', async () => {
+  const { page, errors } = await open(h.browser, h.url, `${QUICK}&backlash_um=120&note=${'y'.repeat(20 * 1024)}`);
+  const msg = page.locator('#messages');
+  await msg.waitFor({ state: 'visible' });
+  await page.waitForFunction(() => /unknown parameter key `note`/.test(document.querySelector('#messages')?.textContent ?? ''));
+  assert.equal(await page.inputValue('#num-backlash_um'), '120');
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('a link over 64 KiB loads the page, which says the rest was ignored', async () => {
+  const { page, errors } = await open(h.browser, h.url, `${QUICK}&backlash_um=130&note=${'z'.repeat(70 * 1024)}`);
+  await page.locator('#messages').waitFor({ state: 'visible' });
+  await page.waitForFunction(() =>
+    /the link is longer than 65536 characters; the rest was ignored/.test(document.querySelector('#messages')?.textContent ?? ''),
+  );
+  // What came before the cut still applies.
+  assert.equal(await page.inputValue('#num-backlash_um'), '130');
+  assert.deepEqual(errors, []);
+  await page.close();
+});
