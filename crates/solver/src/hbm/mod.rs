@@ -118,7 +118,9 @@ pub struct FrfSpec {
     pub omega_from: f64,
     /// End of the Omega range.
     pub omega_to: f64,
-    /// Nominal number of points: the largest arclength step is `range / points`.
+    /// Resolution: a step moves Omega by at most `range / points` (with
+    /// [`StepControl::Iterations`], the largest arclength step is
+    /// `1 / points` in the continuation's metric).
     pub points: u32,
     /// Continue upward from `omega_from` or downward from `omega_to`.
     pub direction: Direction,
