@@ -220,9 +220,63 @@ pub fn run(repeats: u32, quick: bool) -> Result<Value, SolverError> {
         "speedup_vs_pyharm_quoted": 5.0 / after_med,
     });
 
+    // The sliders' grid (issue 14): backlash x TE x damping ratio over
+    // Omega 0.1 ..= 2 at H = 5, 150 nominal points (the page's), once.
+    let mut grid = Vec::new();
+    let grid_start = Instant::now();
+    if !quick {
+        for zeta in [0.02, 0.06] {
+            for b in [0.0, 20.0, 50.0, 100.0, 200.0] {
+                for te in [0.0, 20.0, 60.0] {
+                    let mut p = ModelParams::default();
+                    for a in [
+                        format!("backlash_um={b}"),
+                        format!("te_um={te}"),
+                        format!("damping_ratio={zeta}"),
+                    ] {
+                        solver::keys::set_assignment(&mut p, &a)?;
+                    }
+                    let m = Model::new(&p)?;
+                    let start = Instant::now();
+                    let mut c = FrfContinuation::new(&m, FrfSpec::new(0.1, 2.0, 150))?;
+                    let mut n = 0;
+                    let mut error = None;
+                    while !c.is_finished() {
+                        match c.advance(64) {
+                            Ok(pts) => n += pts.len(),
+                            Err(e) => {
+                                error = Some(e.to_string());
+                                break;
+                            }
+                        }
+                    }
+                    grid.push(json!({
+                        "backlash_um": b,
+                        "te_um": te,
+                        "damping_ratio": zeta,
+                        "complete": error.is_none(),
+                        "error": error,
+                        "branch_points": n,
+                        "restarts": c.restarts().len(),
+                        "left_out": c.left_out().iter().map(|l| json!([l.from, l.to, l.reason_name()])).collect::<Vec<_>>(),
+                        "ms": start.elapsed().as_secs_f64() * 1e3,
+                    }));
+                }
+            }
+        }
+    }
+    let grid_s = grid_start.elapsed().as_secs_f64();
+    let grid_complete = grid.iter().filter(|g| g["complete"] == json!(true)).count();
+
     Ok(json!({
         "hbm": Value::Object(hbm),
         "hbm_issue14": issue14,
+        "hbm_slider_grid": {
+            "cases": grid.len(),
+            "complete": grid_complete,
+            "total_s": grid_s,
+            "runs": grid,
+        },
         "machine_threads": std::thread::available_parallelism().map_or(1, |n| n.get()),
         "repeats": repeats,
         "quick": quick,

@@ -540,3 +540,33 @@ fn geometric_step_control_halves_the_points_and_keeps_the_folds() {
         }
     }
 }
+
+#[test]
+fn advance_returns_at_most_the_points_asked_for() {
+    // A located fold and the point after it come from one step: with
+    // `advance(1)` the second waits for the next call, and the branch is
+    // the same as in chunks of 64.
+    let m = model(&["model=gear-pair"]);
+    let spec = || {
+        let mut s = FrfSpec::new(0.45, 0.65, 40);
+        s.harmonics = 3;
+        s.stability = false;
+        s
+    };
+    let mut c = FrfContinuation::new(&m, spec()).unwrap();
+    let mut one_by_one = Vec::new();
+    while !c.is_finished() {
+        let pts = c.advance(1).unwrap();
+        assert!(pts.len() <= 1);
+        one_by_one.extend(pts);
+    }
+    let chunked = branch(&mut FrfContinuation::new(&m, spec()).unwrap());
+    assert!(
+        one_by_one
+            .iter()
+            .filter(|p| p.bifurcation == Some(Bifurcation::Fold))
+            .count()
+            >= 2
+    );
+    assert_eq!(one_by_one, chunked);
+}

@@ -118,7 +118,9 @@ pub struct FrfSpec {
     pub omega_from: f64,
     /// End of the Omega range.
     pub omega_to: f64,
-    /// Nominal number of points: the largest arclength step is `range / points`.
+    /// Resolution: a step moves Omega by at most `range / points` (with
+    /// [`StepControl::Iterations`], the largest arclength step is
+    /// `1 / points` in the continuation's metric).
     pub points: u32,
     /// Continue upward from `omega_from` or downward from `omega_to`.
     pub direction: Direction,
@@ -384,6 +386,8 @@ pub struct FrfContinuation {
     left_out: Vec<LeftOut>,
     /// Omega of restarts whose first point Newton did not find.
     failed_starts: Vec<f64>,
+    /// A failure to report once the points before it are returned.
+    pending_error: Option<SolverError>,
 }
 
 /// A part of the Omega range left out of the branch, reported.
@@ -548,6 +552,7 @@ impl FrfContinuation {
             frontier: f64::NAN,
             left_out: Vec::new(),
             failed_starts: Vec::new(),
+            pending_error: None,
             spec,
         })
     }
@@ -564,7 +569,7 @@ impl FrfContinuation {
 
     /// Whether the branch has left the Omega range (or failed).
     pub fn is_finished(&self) -> bool {
-        self.finished
+        self.finished && self.queue.is_empty() && self.pending_error.is_none()
     }
 
     /// Whether the finished branch turned back at a fold and left the range
@@ -637,7 +642,8 @@ impl FrfContinuation {
     }
 
     /// Computes up to `k` further points. On a solver failure the branch ends
-    /// and the error is returned (the points already returned stay valid).
+    /// and the error is returned, after any points computed before it (the
+    /// points already returned stay valid).
     ///
     /// A piece of the branch that ends before the far end of the range
     /// (turned back, diverged, stalled in a tangle of folds, or a failed
@@ -647,8 +653,12 @@ impl FrfContinuation {
     /// [`FrfContinuation::restarts`]. A restarted piece ends where the range
     /// is covered.
     pub fn advance(&mut self, k: usize) -> Result<Vec<BranchPoint>> {
-        let mut out = Vec::new();
-        while out.len() + self.queue.len() < k && !self.finished {
+        if self.queue.is_empty() {
+            if let Some(e) = self.pending_error.take() {
+                return Err(e);
+            }
+        }
+        while self.queue.len() < k && !self.finished {
             let before = self.queue.len();
             let outcome = if !self.started {
                 self.start()
@@ -672,12 +682,20 @@ impl FrfContinuation {
             };
             self.stats.points += (self.queue.len() - before) as u64;
             if let Err(e) = outcome {
-                out.append(&mut self.queue);
-                return Err(e);
+                self.finished = true;
+                if self.queue.is_empty() {
+                    return Err(e);
+                }
+                // The points before the failure stay valid: they are
+                // returned first, the error by the call after them.
+                self.pending_error = Some(e);
+                break;
             }
         }
-        out.append(&mut self.queue);
-        Ok(out)
+        // At most `k` now; a located fold and the point after it can come
+        // in one step, and the second then waits for the next call.
+        let n = self.queue.len().min(k);
+        Ok(self.queue.drain(..n).collect())
     }
 
     fn n_x(&self) -> usize {
