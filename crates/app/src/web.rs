@@ -381,6 +381,11 @@ fn draw_view(p: &mut Page, v: ViewId) {
     }
 }
 
+/// The note under a view's plot.
+fn set_note(p: &Page, v: ViewId, text: &str) {
+    set_text(&p.doc, &format!("note-{}", v.key()), text);
+}
+
 fn not_computed(root: &Area, v: ViewId, e: &str) -> Result<(), String> {
     plots::draw_message(root, v.spec().title, &format!("Not computed: {e}"))
 }
@@ -388,7 +393,7 @@ fn not_computed(root: &Area, v: ViewId, e: &str) -> Result<(), String> {
 fn draw_fr(p: &mut Page, root: &Area) -> Result<(), String> {
     let st = &p.ctl.fr_status;
     let v = p.ctl.fr_view();
-    set_text(&p.doc, "note-fr", &crate::views::fr::fr_note(&v));
+    set_note(p, ViewId::Fr, &crate::views::fr::fr_note(&v));
     let has_data = v.branches.iter().any(|b| !b.points.is_empty()) || !v.overlay.is_empty();
     match (&st.error, has_data) {
         (Some(e), false) => not_computed(root, ViewId::Fr, e),
@@ -439,11 +444,8 @@ fn draw_bif(p: &mut Page, root: &Area, cv: &HtmlCanvasElement) -> Result<(), Str
 
 fn draw_map(p: &mut Page, root: &Area, cv: &HtmlCanvasElement) -> Result<(), String> {
     let st = &p.ctl.map_status;
-    set_text(
-        &p.doc,
-        "note-map",
-        &crate::views::map::map_note(&p.ctl.map, st.total),
-    );
+    let note = crate::views::map::map_note(&p.ctl.map, st.total);
+    set_note(p, ViewId::Map, &note);
     if p.ctl.map.done == 0 && (st.error.is_some() || p.ctl.map.grid.is_none()) {
         let msg = st.error.as_ref().map_or_else(
             || "Waiting for the Web Workers…".to_string(),
