@@ -373,7 +373,7 @@ fn draw_view(p: &mut Page, v: ViewId) {
         ExportKind::Map => draw_map(p, &root, &cv),
         ExportKind::Lyap => draw_lyap(p, &root),
     };
-    if let Err(e) = r {
+    if let Err(e) = r.map_err(|e| e.to_string()) {
         if !p.ctl.issues.contains(&e) {
             p.ctl.issues.push(e);
             refresh_messages(p);
@@ -386,11 +386,11 @@ fn set_note(p: &Page, v: ViewId, text: &str) {
     set_text(&p.doc, &format!("note-{}", v.key()), text);
 }
 
-fn not_computed(root: &Area, v: ViewId, e: &str) -> Result<(), String> {
+fn not_computed(root: &Area, v: ViewId, e: &str) -> plots::Res<()> {
     plots::draw_message(root, v.spec().title, &format!("Not computed: {e}"))
 }
 
-fn draw_fr(p: &mut Page, root: &Area) -> Result<(), String> {
+fn draw_fr(p: &mut Page, root: &Area) -> plots::Res<()> {
     let st = &p.ctl.fr_status;
     let v = p.ctl.fr_view();
     set_note(p, ViewId::Fr, &crate::views::fr::fr_note(&v));
@@ -427,7 +427,7 @@ fn fill_groups(ctx: &CanvasRenderingContext2d, groups: &[PointGroup]) {
     }
 }
 
-fn draw_bif(p: &mut Page, root: &Area, cv: &HtmlCanvasElement) -> Result<(), String> {
+fn draw_bif(p: &mut Page, root: &Area, cv: &HtmlCanvasElement) -> plots::Res<()> {
     let st = &p.ctl.bif_status;
     if let (Some(e), true) = (&st.error, p.ctl.bif.samples.is_empty()) {
         return not_computed(root, ViewId::Bif, e);
@@ -442,7 +442,7 @@ fn draw_bif(p: &mut Page, root: &Area, cv: &HtmlCanvasElement) -> Result<(), Str
     Ok(())
 }
 
-fn draw_map(p: &mut Page, root: &Area, cv: &HtmlCanvasElement) -> Result<(), String> {
+fn draw_map(p: &mut Page, root: &Area, cv: &HtmlCanvasElement) -> plots::Res<()> {
     let st = &p.ctl.map_status;
     let note = crate::views::map::map_note(&p.ctl.map, st.total);
     set_note(p, ViewId::Map, &note);
@@ -497,7 +497,7 @@ fn fill_map(ctx: &CanvasRenderingContext2d, f: &PlotFrame, o: &crate::plots::map
     ctx.stroke();
 }
 
-fn draw_lyap(p: &mut Page, root: &Area) -> Result<(), String> {
+fn draw_lyap(p: &mut Page, root: &Area) -> plots::Res<()> {
     let st = &p.ctl.lyap_status;
     let v = &p.ctl.settings.view;
     let title = ViewId::Lyap.spec().title;
@@ -522,7 +522,7 @@ fn draw_lyap(p: &mut Page, root: &Area) -> Result<(), String> {
     Ok(())
 }
 
-fn draw_omega_view(p: &mut Page, v: ViewId, root: &Area) -> Result<(), String> {
+fn draw_omega_view(p: &mut Page, v: ViewId, root: &Area) -> plots::Res<()> {
     let st = &p.ctl.omega_status;
     let mut time_frame = None;
     let r = match (&p.ctl.omega, &st.error) {
