@@ -554,16 +554,8 @@ fn refresh_messages(p: &Page) {
     let Some(box_) = by_id::<HtmlElement>(&p.doc, "messages") else {
         return;
     };
-    let issues = &p.ctl.issues;
-    box_.set_hidden(issues.is_empty());
-    let shown: Vec<&str> = issues.iter().take(8).map(String::as_str).collect();
-    let mut text = shown.join("\n");
-    if issues.len() > 8 {
-        text.push_str(&format!("\n… and {} more", issues.len() - 8));
-    }
-    if !issues.is_empty() {
-        text.push_str("\n(click to dismiss)");
-    }
+    let text = p.ctl.messages_text();
+    box_.set_hidden(text.is_empty());
     box_.set_text_content(Some(&text));
     if let Some(note) = by_id::<HtmlElement>(&p.doc, "preset-note") {
         note.set_hidden(p.ctl.preset_note.is_none());

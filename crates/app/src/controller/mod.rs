@@ -19,7 +19,8 @@ use crate::settings::{mesh_names, view_key, MeshSel, Settings};
 use crate::status::{Dirty, JobStatus};
 use crate::views::bif::{BifStore, BifView};
 use crate::views::fr::{fr_view, FrBranch, FrSource, FrStore, FrView, HbmStore};
-use crate::views::map::{LyapStore, MapGrid, MapStore, MapView};
+use crate::views::lyap::LyapStore;
+use crate::views::map::{MapGrid, MapStore, MapView};
 use crate::views::{distinct, natural_in_range, ViewContext};
 use solver::keys;
 use solver::steady::Model;
@@ -539,6 +540,22 @@ impl Controller {
             }
             _ => text,
         }
+    }
+
+    /// The messages box's text: the first eight messages, how many more,
+    /// and how to dismiss them; empty when there is none.
+    pub fn messages_text(&self) -> String {
+        let issues = &self.issues;
+        if issues.is_empty() {
+            return String::new();
+        }
+        let shown: Vec<&str> = issues.iter().take(8).map(String::as_str).collect();
+        let mut text = shown.join("\n");
+        if issues.len() > 8 {
+            text.push_str(&format!("\n… and {} more", issues.len() - 8));
+        }
+        text.push_str("\n(click to dismiss)");
+        text
     }
 
     /// The mesh the schematic highlights: the chosen one, or the worst of

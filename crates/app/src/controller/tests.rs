@@ -536,3 +536,18 @@ fn presets_links_and_model_switch() {
     let s: serde_json::Value = c.status(5.0);
     assert!(s["query"].as_str().unwrap().starts_with("model=ravigneaux"));
 }
+
+/// The messages box shows eight messages, counts the rest, and says how to
+/// dismiss them; cleared, it is empty.
+#[test]
+fn the_messages_box_shows_eight_and_counts_the_rest() {
+    let (mut c, _) = Controller::new("", 0.0);
+    assert_eq!(c.messages_text(), "");
+    c.issues = (1..=10).map(|i| format!("m{i}")).collect();
+    let text = c.messages_text();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines[..8], ["m1", "m2", "m3", "m4", "m5", "m6", "m7", "m8"]);
+    assert_eq!(lines[8..], ["… and 2 more", "(click to dismiss)"]);
+    c.clear_issues();
+    assert_eq!(c.messages_text(), "");
+}

@@ -13,7 +13,8 @@ use super::{
     DrawError, PlotFrame, Res, GRID, OMEGA_AXIS,
 };
 use crate::protocol::Regime;
-use crate::views::map::{lyap_kind, LyapKind, LyapStore, MapView, LYAP_ZERO_BAND};
+use crate::views::lyap::{lyap_kind, LyapKind, LyapStore, LYAP_ZERO_BAND};
+use crate::views::map::MapView;
 use crate::views::NaturalFreq;
 use plotters::coord::Shift;
 use plotters::prelude::*;
