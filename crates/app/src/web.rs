@@ -357,7 +357,8 @@ fn canvas(doc: &Document, view: ViewId) -> Option<HtmlCanvasElement> {
     by_id(doc, &format!("canvas-{}", view.key()))
 }
 
-/// Draws one view on its canvas; a plotting failure joins the messages.
+/// Draws one view on its canvas (or why it has nothing to draw); a
+/// plotting failure joins the messages.
 fn draw_view(p: &mut Page, v: ViewId) {
     let Some(cv) = canvas(&p.doc, v) else {
         return;
@@ -366,13 +367,35 @@ fn draw_view(p: &mut Page, v: ViewId) {
         return;
     };
     let root = b.into_drawing_area();
-    let r = match v.spec().data {
-        ExportKind::Fr => draw_fr(p, &root),
-        ExportKind::Bif => draw_bif(p, &root, &cv),
-        ExportKind::Omega => draw_omega_view(p, v, &root),
-        ExportKind::Map => draw_map(p, &root, &cv),
-        ExportKind::Lyap => draw_lyap(p, &root),
+    match v.spec().data {
+        ExportKind::Fr => set_note(p, v, &crate::views::fr::fr_note(&p.ctl.fr_view())),
+        ExportKind::Map => set_note(
+            p,
+            v,
+            &crate::views::map::map_note(&p.ctl.map, p.ctl.map_status.total),
+        ),
+        _ => {}
+    }
+    let r = match p.ctl.placeholder(v) {
+        Some(message) => {
+            // No plot, no frame to map clicks with (the Lyapunov curve
+            // drops its frame only when switched off).
+            if v == ViewId::Time || (v == ViewId::Lyap && p.ctl.lyap.id == 0) {
+                p.frames[v.slot()] = None;
+            }
+            plots::draw_message(&root, v.spec().title, &message)
+        }
+        None => match v.spec().data {
+            ExportKind::Fr => draw_fr(p, &root),
+            ExportKind::Bif => draw_bif(p, &root, &cv),
+            ExportKind::Omega => draw_omega_view(p, v, &root),
+            ExportKind::Map => draw_map(p, &root, &cv),
+            ExportKind::Lyap => draw_lyap(p, &root),
+        },
     };
+    if v == ViewId::Time {
+        p.anim.dirty = true;
+    }
     if let Err(e) = r.map_err(|e| e.to_string()) {
         if !p.ctl.issues.contains(&e) {
             p.ctl.issues.push(e);
@@ -386,23 +409,11 @@ fn set_note(p: &Page, v: ViewId, text: &str) {
     set_text(&p.doc, &format!("note-{}", v.key()), text);
 }
 
-fn not_computed(root: &Area, v: ViewId, e: &str) -> plots::Res<()> {
-    plots::draw_message(root, v.spec().title, &format!("Not computed: {e}"))
-}
-
 fn draw_fr(p: &mut Page, root: &Area) -> plots::Res<()> {
-    let st = &p.ctl.fr_status;
     let v = p.ctl.fr_view();
-    set_note(p, ViewId::Fr, &crate::views::fr::fr_note(&v));
-    let has_data = v.branches.iter().any(|b| !b.points.is_empty()) || !v.overlay.is_empty();
-    match (&st.error, has_data) {
-        (Some(e), false) => not_computed(root, ViewId::Fr, e),
-        _ => {
-            let suffix = crate::views::fr::fr_caption_suffix(st.running(), &v);
-            p.frames[ViewId::Fr.slot()] = Some(plots::draw_fr(root, &v, &suffix)?);
-            Ok(())
-        }
-    }
+    let suffix = crate::views::fr::fr_caption_suffix(p.ctl.fr_status.running(), &v);
+    p.frames[ViewId::Fr.slot()] = Some(plots::draw_fr(root, &v, &suffix)?);
+    Ok(())
 }
 
 fn fill_groups(ctx: &CanvasRenderingContext2d, groups: &[PointGroup]) {
@@ -428,13 +439,10 @@ fn fill_groups(ctx: &CanvasRenderingContext2d, groups: &[PointGroup]) {
 }
 
 fn draw_bif(p: &mut Page, root: &Area, cv: &HtmlCanvasElement) -> plots::Res<()> {
-    let st = &p.ctl.bif_status;
-    if let (Some(e), true) = (&st.error, p.ctl.bif.samples.is_empty()) {
-        return not_computed(root, ViewId::Bif, e);
-    }
     let v = p.ctl.bif_view();
     let natural = p.ctl.view_context().natural;
-    let (frame, groups) = plots::draw_bif(root, &v, &natural, &st.caption_suffix())?;
+    let suffix = p.ctl.bif_status.caption_suffix();
+    let (frame, groups) = plots::draw_bif(root, &v, &natural, &suffix)?;
     p.frames[ViewId::Bif.slot()] = Some(frame);
     if let Some(ctx) = ctx2d(cv) {
         fill_groups(&ctx, &groups);
@@ -444,15 +452,6 @@ fn draw_bif(p: &mut Page, root: &Area, cv: &HtmlCanvasElement) -> plots::Res<()>
 
 fn draw_map(p: &mut Page, root: &Area, cv: &HtmlCanvasElement) -> plots::Res<()> {
     let st = &p.ctl.map_status;
-    let note = crate::views::map::map_note(&p.ctl.map, st.total);
-    set_note(p, ViewId::Map, &note);
-    if p.ctl.map.done == 0 && (st.error.is_some() || p.ctl.map.grid.is_none()) {
-        let msg = st.error.as_ref().map_or_else(
-            || "Waiting for the Web Workers…".to_string(),
-            |e| format!("Not computed: {e}"),
-        );
-        return plots::draw_message(root, ViewId::Map.spec().title, &msg);
-    }
     let suffix = if st.running() {
         format!(" (computing {}/{} cells)", st.done, st.total)
     } else {
@@ -498,17 +497,7 @@ fn fill_map(ctx: &CanvasRenderingContext2d, f: &PlotFrame, o: &crate::plots::map
 }
 
 fn draw_lyap(p: &mut Page, root: &Area) -> plots::Res<()> {
-    let st = &p.ctl.lyap_status;
     let v = &p.ctl.settings.view;
-    let title = ViewId::Lyap.spec().title;
-    if p.ctl.lyap.id == 0 {
-        p.frames[ViewId::Lyap.slot()] = None;
-        let off = "Off: set Lyapunov Ω points above 0 (Regime map and Lyapunov exponent).";
-        return plots::draw_message(root, title, off);
-    }
-    if let (Some(e), true) = (&st.error, p.ctl.lyap.points.is_empty()) {
-        return not_computed(root, ViewId::Lyap, e);
-    }
     let natural = p.ctl.view_context().natural;
     let f = crate::plots::maps::draw_lyap(
         root,
@@ -516,38 +505,27 @@ fn draw_lyap(p: &mut Page, root: &Area) -> plots::Res<()> {
         (v.omega_from, v.omega_to),
         &natural,
         v.omega,
-        &st.caption_suffix(),
+        &p.ctl.lyap_status.caption_suffix(),
     )?;
     p.frames[ViewId::Lyap.slot()] = Some(f);
     Ok(())
 }
 
 fn draw_omega_view(p: &mut Page, v: ViewId, root: &Area) -> plots::Res<()> {
-    let st = &p.ctl.omega_status;
-    let mut time_frame = None;
-    let r = match (&p.ctl.omega, &st.error) {
-        (_, Some(e)) => not_computed(root, v, e),
-        (Some(res), None) => {
-            let stale = crate::views::omega::caption_suffix(res.preview, st.running());
-            match v {
-                ViewId::Phase => plots::draw_phase(root, res, stale),
-                ViewId::Poincare => plots::draw_poincare(root, res, stale),
-                ViewId::Time => plots::draw_time(root, res, stale).map(|f| {
-                    time_frame = Some(f);
-                }),
-                _ => plots::draw_spectrum(root, res, stale),
-            }
-        }
-        (None, None) => {
-            let msg = crate::views::omega::computing_message(p.ctl.settings.view.omega);
-            plots::draw_message(root, v.spec().title, &msg)
-        }
+    let Some(res) = &p.ctl.omega else {
+        return Ok(());
     };
-    if v == ViewId::Time {
-        p.frames[ViewId::Time.slot()] = time_frame;
-        p.anim.dirty = true;
+    let stale = crate::views::omega::caption_suffix(res.preview, p.ctl.omega_status.running());
+    match v {
+        ViewId::Phase => plots::draw_phase(root, res, stale),
+        ViewId::Poincare => plots::draw_poincare(root, res, stale),
+        ViewId::Time => {
+            let f = plots::draw_time(root, res, stale);
+            p.frames[v.slot()] = f.as_ref().ok().copied();
+            f.map(|_| ())
+        }
+        _ => plots::draw_spectrum(root, res, stale),
     }
-    r
 }
 
 fn refresh_messages(p: &Page) {
