@@ -367,14 +367,14 @@ fn draw_view(p: &mut Page, v: ViewId) {
         return;
     };
     let root = b.into_drawing_area();
-    match v.spec().data {
-        ExportKind::Fr => set_note(p, v, &crate::views::fr::fr_note(&p.ctl.fr_view())),
-        ExportKind::Map => set_note(
-            p,
-            v,
-            &crate::views::map::map_note(&p.ctl.map, p.ctl.map_status.total),
-        ),
-        _ => {}
+    // The frequency response's view model, built once for its note and plot.
+    let fr = (v == ViewId::Fr).then(|| p.ctl.fr_view());
+    if let Some(fr) = &fr {
+        set_note(p, v, &crate::views::fr::fr_note(fr));
+    }
+    if v == ViewId::Map {
+        let note = crate::views::map::map_note(&p.ctl.map, p.ctl.map_status.total);
+        set_note(p, v, &note);
     }
     let r = match p.ctl.placeholder(v) {
         Some(message) => {
@@ -386,7 +386,7 @@ fn draw_view(p: &mut Page, v: ViewId) {
             plots::draw_message(&root, v.spec().title, &message)
         }
         None => match v.spec().data {
-            ExportKind::Fr => draw_fr(p, &root),
+            ExportKind::Fr => fr.map_or(Ok(()), |fr| draw_fr(p, &root, &fr)),
             ExportKind::Bif => draw_bif(p, &root, &cv),
             ExportKind::Omega => draw_omega_view(p, v, &root),
             ExportKind::Map => draw_map(p, &root, &cv),
@@ -409,10 +409,9 @@ fn set_note(p: &Page, v: ViewId, text: &str) {
     set_text(&p.doc, &format!("note-{}", v.key()), text);
 }
 
-fn draw_fr(p: &mut Page, root: &Area) -> plots::Res<()> {
-    let v = p.ctl.fr_view();
-    let suffix = crate::views::fr::fr_caption_suffix(p.ctl.fr_status.running(), &v);
-    p.frames[ViewId::Fr.slot()] = Some(plots::draw_fr(root, &v, &suffix)?);
+fn draw_fr(p: &mut Page, root: &Area, v: &crate::views::fr::FrView) -> plots::Res<()> {
+    let suffix = crate::views::fr::fr_caption_suffix(p.ctl.fr_status.running(), v);
+    p.frames[ViewId::Fr.slot()] = Some(plots::draw_fr(root, v, &suffix)?);
     Ok(())
 }
 
