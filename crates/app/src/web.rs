@@ -450,12 +450,7 @@ fn draw_bif(p: &mut Page, root: &Area, cv: &HtmlCanvasElement) -> plots::Res<()>
 }
 
 fn draw_map(p: &mut Page, root: &Area, cv: &HtmlCanvasElement) -> plots::Res<()> {
-    let st = &p.ctl.map_status;
-    let suffix = if st.running() {
-        format!(" (computing {}/{} cells)", st.done, st.total)
-    } else {
-        String::new()
-    };
+    let suffix = crate::views::map::map_caption_suffix(&p.ctl.map_status);
     let (f, o) = crate::plots::maps::draw_map(root, &p.ctl.map_view(), &suffix)?;
     p.frames[ViewId::Map.slot()] = Some(f);
     if let Some(ctx) = ctx2d(cv) {
