@@ -451,6 +451,22 @@ impl AnimClock {
         }
     }
 
+    /// Moves to the time `t_periods` (mesh periods since the recording
+    /// began, the time history's axis) of a window of `len` samples that
+    /// starts at sample `start` of the record, `spp` samples per period;
+    /// pauses.
+    pub fn seek(&mut self, t_periods: f64, (start, spp): (u32, u32), len: usize) {
+        let pos = (t_periods * f64::from(spp.max(1))).round() - f64::from(start);
+        self.playing = false;
+        self.pos = pos.clamp(0.0, len.saturating_sub(1) as f64);
+    }
+
+    /// The time (mesh periods since the recording began) of the sample
+    /// shown, in a window that starts at sample `start`, `spp` per period.
+    pub fn time_periods(&self, (start, spp): (u32, u32)) -> f64 {
+        (f64::from(start) + self.pos.floor()) / f64::from(spp.max(1))
+    }
+
     /// The sample shown.
     pub fn sample(&self, len: usize) -> usize {
         if len == 0 {
@@ -613,5 +629,25 @@ mod tests {
             spin_rad: 0.0,
             phase_rad: 0.0,
         }
+    }
+
+    /// A click on the time history at t moves the clock to the sample of t
+    /// (rounded), clamped to the window, and pauses; the cursor then stands
+    /// at that sample's time.
+    #[test]
+    fn seeking_maps_time_history_clicks_to_samples_and_back() {
+        let mut c = AnimClock::default();
+        // Record of 20 periods at 32 samples per period; the window starts
+        // at sample 256 (period 8) and holds 384 samples.
+        let (start, spp, len) = (256, 32, 384);
+        c.seek(10.5, (start, spp), len);
+        assert!(!c.playing);
+        assert_eq!(c.pos, 10.5 * 32.0 - 256.0);
+        assert_eq!(c.time_periods((start, spp)), 10.5);
+        c.seek(3.0, (start, spp), len);
+        assert_eq!(c.pos, 0.0, "before the window: its first sample");
+        c.seek(99.0, (start, spp), len);
+        assert_eq!(c.pos, 383.0, "after it: its last");
+        assert_eq!(c.time_periods((start, spp)), (256.0 + 383.0) / 32.0);
     }
 }

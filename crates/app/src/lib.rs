@@ -2,15 +2,17 @@
 //!
 //! The page is split like egui/eframe: everything here is pure logic
 //! (settings and their link codec, presets, control specs, the worker
-//! protocol and job runner, the views' data and plots, the page controller),
-//! and one boundary module, `web`, compiled only for wasm32, touches
-//! `wasm_bindgen` and `web_sys`. Two binaries start it: `app` on the page's
-//! main thread and `worker` in each Web Worker.
+//! protocol, the jobs by kind and their runner, the views by kind with the
+//! redraw scheduler, the plots, the gear set's scene, the page controller),
+//! and one boundary, `web` (web.rs and web/), compiled only for wasm32,
+//! touches `wasm_bindgen` and `web_sys`. Two binaries start it: `app` on the
+//! page's main thread and `worker` in each Web Worker. ARCHITECTURE.md maps
+//! the modules and their invariants.
 //!
 //! Architecture invariant: heavy work (steady states, sweeps, the
-//! harmonic-balance continuation) runs only in
-//! the workers ([`worker_core`]); the main thread builds the small model for
-//! validation and natural frequencies, draws, and never blocks for long.
+//! harmonic-balance continuation) runs only in the workers ([`jobs`], run by
+//! [`worker_core`]); the main thread builds the small model for validation
+//! and natural frequencies, draws, and never blocks for long.
 
 #![warn(unreachable_pub)]
 

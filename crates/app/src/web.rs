@@ -357,7 +357,8 @@ fn canvas(doc: &Document, view: ViewId) -> Option<HtmlCanvasElement> {
     by_id(doc, &format!("canvas-{}", view.key()))
 }
 
-/// Draws one view on its canvas; a plotting failure joins the messages.
+/// Draws one view on its canvas (or why it has nothing to draw); a
+/// plotting failure joins the messages.
 fn draw_view(p: &mut Page, v: ViewId) {
     let Some(cv) = canvas(&p.doc, v) else {
         return;
@@ -366,14 +367,36 @@ fn draw_view(p: &mut Page, v: ViewId) {
         return;
     };
     let root = b.into_drawing_area();
-    let r = match v.spec().data {
-        ExportKind::Fr => draw_fr(p, &root),
-        ExportKind::Bif => draw_bif(p, &root, &cv),
-        ExportKind::Omega => draw_omega_view(p, v, &root),
-        ExportKind::Map => draw_map(p, &root, &cv),
-        ExportKind::Lyap => draw_lyap(p, &root),
+    // The frequency response's view model, built once for its note and plot.
+    let fr = (v == ViewId::Fr).then(|| p.ctl.fr_view());
+    if let Some(fr) = &fr {
+        set_note(p, v, &crate::views::fr::fr_note(fr));
+    }
+    if v == ViewId::Map {
+        let note = crate::views::map::map_note(&p.ctl.map, p.ctl.map_status.total);
+        set_note(p, v, &note);
+    }
+    let r = match p.ctl.placeholder(v) {
+        Some(message) => {
+            // No plot, no frame to map clicks with (the Lyapunov curve
+            // drops its frame only when switched off).
+            if v == ViewId::Time || (v == ViewId::Lyap && p.ctl.lyap.id == 0) {
+                p.frames[v.slot()] = None;
+            }
+            plots::draw_message(&root, v.spec().title, &message)
+        }
+        None => match v.spec().data {
+            ExportKind::Fr => fr.map_or(Ok(()), |fr| draw_fr(p, &root, &fr)),
+            ExportKind::Bif => draw_bif(p, &root, &cv),
+            ExportKind::Omega => draw_omega_view(p, v, &root),
+            ExportKind::Map => draw_map(p, &root, &cv),
+            ExportKind::Lyap => draw_lyap(p, &root),
+        },
     };
-    if let Err(e) = r {
+    if v == ViewId::Time {
+        p.anim.dirty = true;
+    }
+    if let Err(e) = r.map_err(|e| e.to_string()) {
         if !p.ctl.issues.contains(&e) {
             p.ctl.issues.push(e);
             refresh_messages(p);
@@ -381,23 +404,15 @@ fn draw_view(p: &mut Page, v: ViewId) {
     }
 }
 
-fn not_computed(root: &Area, v: ViewId, e: &str) -> Result<(), String> {
-    plots::draw_message(root, v.spec().title, &format!("Not computed: {e}"))
+/// The note under a view's plot.
+fn set_note(p: &Page, v: ViewId, text: &str) {
+    set_text(&p.doc, &format!("note-{}", v.key()), text);
 }
 
-fn draw_fr(p: &mut Page, root: &Area) -> Result<(), String> {
-    let st = &p.ctl.fr_status;
-    let v = p.ctl.fr_view();
-    set_text(&p.doc, "note-fr", &crate::views::fr::fr_note(&v));
-    let has_data = v.branches.iter().any(|b| !b.points.is_empty()) || !v.overlay.is_empty();
-    match (&st.error, has_data) {
-        (Some(e), false) => not_computed(root, ViewId::Fr, e),
-        _ => {
-            let suffix = crate::views::fr::fr_caption_suffix(st.running(), &v);
-            p.frames[ViewId::Fr.slot()] = Some(plots::draw_fr(root, &v, &suffix)?);
-            Ok(())
-        }
-    }
+fn draw_fr(p: &mut Page, root: &Area, v: &crate::views::fr::FrView) -> plots::Res<()> {
+    let suffix = crate::views::fr::fr_caption_suffix(p.ctl.fr_status.running(), v);
+    p.frames[ViewId::Fr.slot()] = Some(plots::draw_fr(root, v, &suffix)?);
+    Ok(())
 }
 
 fn fill_groups(ctx: &CanvasRenderingContext2d, groups: &[PointGroup]) {
@@ -422,14 +437,11 @@ fn fill_groups(ctx: &CanvasRenderingContext2d, groups: &[PointGroup]) {
     }
 }
 
-fn draw_bif(p: &mut Page, root: &Area, cv: &HtmlCanvasElement) -> Result<(), String> {
-    let st = &p.ctl.bif_status;
-    if let (Some(e), true) = (&st.error, p.ctl.bif.samples.is_empty()) {
-        return not_computed(root, ViewId::Bif, e);
-    }
+fn draw_bif(p: &mut Page, root: &Area, cv: &HtmlCanvasElement) -> plots::Res<()> {
     let v = p.ctl.bif_view();
     let natural = p.ctl.view_context().natural;
-    let (frame, groups) = plots::draw_bif(root, &v, &natural, &st.caption_suffix())?;
+    let suffix = p.ctl.bif_status.caption_suffix();
+    let (frame, groups) = plots::draw_bif(root, &v, &natural, &suffix)?;
     p.frames[ViewId::Bif.slot()] = Some(frame);
     if let Some(ctx) = ctx2d(cv) {
         fill_groups(&ctx, &groups);
@@ -437,25 +449,8 @@ fn draw_bif(p: &mut Page, root: &Area, cv: &HtmlCanvasElement) -> Result<(), Str
     Ok(())
 }
 
-fn draw_map(p: &mut Page, root: &Area, cv: &HtmlCanvasElement) -> Result<(), String> {
-    let st = &p.ctl.map_status;
-    set_text(
-        &p.doc,
-        "note-map",
-        &crate::views::map::map_note(&p.ctl.map, st.total),
-    );
-    if p.ctl.map.done == 0 && (st.error.is_some() || p.ctl.map.grid.is_none()) {
-        let msg = st.error.as_ref().map_or_else(
-            || "Waiting for the Web Workers…".to_string(),
-            |e| format!("Not computed: {e}"),
-        );
-        return plots::draw_message(root, ViewId::Map.spec().title, &msg);
-    }
-    let suffix = if st.running() {
-        format!(" (computing {}/{} cells)", st.done, st.total)
-    } else {
-        String::new()
-    };
+fn draw_map(p: &mut Page, root: &Area, cv: &HtmlCanvasElement) -> plots::Res<()> {
+    let suffix = crate::views::map::map_caption_suffix(&p.ctl.map_status);
     let (f, o) = crate::plots::maps::draw_map(root, &p.ctl.map_view(), &suffix)?;
     p.frames[ViewId::Map.slot()] = Some(f);
     if let Some(ctx) = ctx2d(cv) {
@@ -495,18 +490,8 @@ fn fill_map(ctx: &CanvasRenderingContext2d, f: &PlotFrame, o: &crate::plots::map
     ctx.stroke();
 }
 
-fn draw_lyap(p: &mut Page, root: &Area) -> Result<(), String> {
-    let st = &p.ctl.lyap_status;
+fn draw_lyap(p: &mut Page, root: &Area) -> plots::Res<()> {
     let v = &p.ctl.settings.view;
-    let title = ViewId::Lyap.spec().title;
-    if p.ctl.lyap.id == 0 {
-        p.frames[ViewId::Lyap.slot()] = None;
-        let off = "Off: set Lyapunov Ω points above 0 (Regime map and Lyapunov exponent).";
-        return plots::draw_message(root, title, off);
-    }
-    if let (Some(e), true) = (&st.error, p.ctl.lyap.points.is_empty()) {
-        return not_computed(root, ViewId::Lyap, e);
-    }
     let natural = p.ctl.view_context().natural;
     let f = crate::plots::maps::draw_lyap(
         root,
@@ -514,54 +499,35 @@ fn draw_lyap(p: &mut Page, root: &Area) -> Result<(), String> {
         (v.omega_from, v.omega_to),
         &natural,
         v.omega,
-        &st.caption_suffix(),
+        &p.ctl.lyap_status.caption_suffix(),
     )?;
     p.frames[ViewId::Lyap.slot()] = Some(f);
     Ok(())
 }
 
-fn draw_omega_view(p: &mut Page, v: ViewId, root: &Area) -> Result<(), String> {
-    let st = &p.ctl.omega_status;
-    let mut time_frame = None;
-    let r = match (&p.ctl.omega, &st.error) {
-        (_, Some(e)) => not_computed(root, v, e),
-        (Some(res), None) => {
-            let stale = crate::views::omega::caption_suffix(res.preview, st.running());
-            match v {
-                ViewId::Phase => plots::draw_phase(root, res, stale),
-                ViewId::Poincare => plots::draw_poincare(root, res, stale),
-                ViewId::Time => plots::draw_time(root, res, stale).map(|f| {
-                    time_frame = Some(f);
-                }),
-                _ => plots::draw_spectrum(root, res, stale),
-            }
-        }
-        (None, None) => {
-            let msg = crate::views::omega::computing_message(p.ctl.settings.view.omega);
-            plots::draw_message(root, v.spec().title, &msg)
-        }
+fn draw_omega_view(p: &mut Page, v: ViewId, root: &Area) -> plots::Res<()> {
+    let Some(res) = &p.ctl.omega else {
+        return Ok(());
     };
-    if v == ViewId::Time {
-        p.frames[ViewId::Time.slot()] = time_frame;
-        p.anim.dirty = true;
+    let stale = crate::views::omega::caption_suffix(res.preview, p.ctl.omega_status.running());
+    match v {
+        ViewId::Phase => plots::draw_phase(root, res, stale),
+        ViewId::Poincare => plots::draw_poincare(root, res, stale),
+        ViewId::Time => {
+            let f = plots::draw_time(root, res, stale);
+            p.frames[v.slot()] = f.as_ref().ok().copied();
+            f.map(|_| ())
+        }
+        _ => plots::draw_spectrum(root, res, stale),
     }
-    r
 }
 
 fn refresh_messages(p: &Page) {
     let Some(box_) = by_id::<HtmlElement>(&p.doc, "messages") else {
         return;
     };
-    let issues = &p.ctl.issues;
-    box_.set_hidden(issues.is_empty());
-    let shown: Vec<&str> = issues.iter().take(8).map(String::as_str).collect();
-    let mut text = shown.join("\n");
-    if issues.len() > 8 {
-        text.push_str(&format!("\n… and {} more", issues.len() - 8));
-    }
-    if !issues.is_empty() {
-        text.push_str("\n(click to dismiss)");
-    }
+    let text = p.ctl.messages_text();
+    box_.set_hidden(text.is_empty());
     box_.set_text_content(Some(&text));
     if let Some(note) = by_id::<HtmlElement>(&p.doc, "preset-note") {
         note.set_hidden(p.ctl.preset_note.is_none());

@@ -94,8 +94,8 @@ impl Controller {
             }
             ExportKind::Map if csv => crate::views::map::map_csv(&self.map),
             ExportKind::Map => crate::views::map::map_json(&self.map).to_string(),
-            ExportKind::Lyap if csv => crate::views::map::lyap_csv(&self.lyap),
-            ExportKind::Lyap => crate::views::map::lyap_json(&self.lyap).to_string(),
+            ExportKind::Lyap if csv => crate::views::lyap::lyap_csv(&self.lyap),
+            ExportKind::Lyap => crate::views::lyap::lyap_json(&self.lyap).to_string(),
             ExportKind::Omega => {
                 let r = self.exportable_omega()?;
                 let which = OmegaView::of(view).ok_or(ExportError::NoCliFormat)?;

@@ -19,7 +19,8 @@ use crate::settings::{mesh_names, view_key, MeshSel, Settings};
 use crate::status::{Dirty, JobStatus};
 use crate::views::bif::{BifStore, BifView};
 use crate::views::fr::{fr_view, FrBranch, FrSource, FrStore, FrView, HbmStore};
-use crate::views::map::{LyapStore, MapGrid, MapStore, MapView};
+use crate::views::lyap::LyapStore;
+use crate::views::map::{MapGrid, MapStore, MapView};
 use crate::views::{distinct, natural_in_range, ViewContext};
 use solver::keys;
 use solver::steady::Model;
@@ -539,6 +540,67 @@ impl Controller {
             }
             _ => text,
         }
+    }
+
+    /// What `view` shows instead of a plot, if it has nothing to plot: why
+    /// (its job failed before any data, it waits for the workers, it is
+    /// switched off, its first result is computing).
+    pub fn placeholder(&self, view: crate::views::ViewId) -> Option<String> {
+        use crate::views::ExportKind;
+        let st = self.view_status(view);
+        let not_computed = |e: &String| format!("Not computed: {e}");
+        match view.spec().data {
+            ExportKind::Fr => {
+                let e = st.error.as_ref()?;
+                let v = self.fr_view();
+                let has_data =
+                    v.branches.iter().any(|b| !b.points.is_empty()) || !v.overlay.is_empty();
+                (!has_data).then(|| not_computed(e))
+            }
+            ExportKind::Bif => st
+                .error
+                .as_ref()
+                .filter(|_| self.bif.samples.is_empty())
+                .map(not_computed),
+            ExportKind::Map => {
+                (self.map.done == 0 && (st.error.is_some() || self.map.grid.is_none())).then(|| {
+                    st.error
+                        .as_ref()
+                        .map_or_else(|| "Waiting for the Web Workers…".to_string(), not_computed)
+                })
+            }
+            ExportKind::Lyap if self.lyap.id == 0 => Some(
+                "Off: set Lyapunov Ω points above 0 (Regime map and Lyapunov exponent).".into(),
+            ),
+            ExportKind::Lyap => st
+                .error
+                .as_ref()
+                .filter(|_| self.lyap.points.is_empty())
+                .map(not_computed),
+            ExportKind::Omega => match (&self.omega, &st.error) {
+                (_, Some(e)) => Some(not_computed(e)),
+                (None, None) => Some(crate::views::omega::computing_message(
+                    self.settings.view.omega,
+                )),
+                (Some(_), None) => None,
+            },
+        }
+    }
+
+    /// The messages box's text: the first eight messages, how many more,
+    /// and how to dismiss them; empty when there is none.
+    pub fn messages_text(&self) -> String {
+        let issues = &self.issues;
+        if issues.is_empty() {
+            return String::new();
+        }
+        let shown: Vec<&str> = issues.iter().take(8).map(String::as_str).collect();
+        let mut text = shown.join("\n");
+        if issues.len() > 8 {
+            text.push_str(&format!("\n… and {} more", issues.len() - 8));
+        }
+        text.push_str("\n(click to dismiss)");
+        text
     }
 
     /// The mesh the schematic highlights: the chosen one, or the worst of

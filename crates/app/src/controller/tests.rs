@@ -536,3 +536,57 @@ fn presets_links_and_model_switch() {
     let s: serde_json::Value = c.status(5.0);
     assert!(s["query"].as_str().unwrap().starts_with("model=ravigneaux"));
 }
+
+/// The messages box shows eight messages, counts the rest, and says how to
+/// dismiss them; cleared, it is empty.
+#[test]
+fn the_messages_box_shows_eight_and_counts_the_rest() {
+    let (mut c, _) = Controller::new("", 0.0);
+    assert_eq!(c.messages_text(), "");
+    c.issues = (1..=10).map(|i| format!("m{i}")).collect();
+    let text = c.messages_text();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines[..8], ["m1", "m2", "m3", "m4", "m5", "m6", "m7", "m8"]);
+    assert_eq!(lines[8..], ["… and 2 more", "(click to dismiss)"]);
+    c.clear_issues();
+    assert_eq!(c.messages_text(), "");
+}
+
+/// A view with nothing to plot says why: computing, switched off, or its
+/// job's failure (only while it has no data); with data it plots.
+#[test]
+fn views_without_data_say_why() {
+    use crate::views::ViewId;
+    let (mut c, _) = Controller::new("lyap_points=0", 0.0);
+    ready(&mut c);
+    let omega = c.settings.view.omega;
+    assert_eq!(
+        c.placeholder(ViewId::Phase),
+        Some(format!(
+            "Computing the steady state at Ω = {omega} in a Web Worker…"
+        ))
+    );
+    assert!(c.placeholder(ViewId::Lyap).unwrap().starts_with("Off:"));
+    assert_eq!(c.placeholder(ViewId::Bif), None, "a running sweep plots");
+    let failed = |id| {
+        encode(&FromWorker::Failed {
+            id,
+            message: "no luck".into(),
+        })
+    };
+    c.worker_message(0, &failed(c.bif.id), 5.0);
+    assert_eq!(
+        c.placeholder(ViewId::Bif),
+        Some("Not computed: no luck".into())
+    );
+    c.worker_message(0, &failed(c.omega_status.id), 6.0);
+    for v in [
+        ViewId::Phase,
+        ViewId::Poincare,
+        ViewId::Time,
+        ViewId::Spectrum,
+    ] {
+        assert_eq!(c.placeholder(v), Some("Not computed: no luck".into()));
+    }
+    assert_eq!(c.placeholder(ViewId::Fr), None, "the branch still computes");
+}

@@ -118,17 +118,13 @@ impl BifJob {
             );
         match BifurcationSweep::new(model, spec) {
             Ok(sweep) => {
-                let total = sweep.total();
                 let job = BifJob {
                     id,
                     params,
                     sweep,
                     points: Vec::new(),
                 };
-                let out = bands
-                    .into_iter()
-                    .chain([FromWorker::Progress { id, done: 0, total }])
-                    .collect();
+                let out = bands.into_iter().chain([job.progress_message()]).collect();
                 Ok((job, out))
             }
             Err(e) => Err(failed(id, e.to_string())),
@@ -192,11 +188,7 @@ impl Job for BifJob {
                 points: samples,
             });
         }
-        out.push(FromWorker::Progress {
-            id: self.id,
-            done: self.sweep.done(),
-            total: self.sweep.total(),
-        });
+        out.push(self.progress_message());
         if self.sweep.is_finished() {
             out.push(FromWorker::Done { id: self.id });
         }

@@ -45,15 +45,6 @@ impl Chain {
     pub(crate) fn progress(&self) -> (usize, usize) {
         (self.next, self.omegas.len())
     }
-
-    /// The first message of a chain's job: nothing done yet.
-    pub(crate) fn started(&self, id: JobId) -> Vec<FromWorker> {
-        vec![FromWorker::Progress {
-            id,
-            done: 0,
-            total: self.omegas.len(),
-        }]
-    }
 }
 
 /// What one kind of chain computes at a grid point.
@@ -88,7 +79,6 @@ pub(crate) struct ChainJob<K> {
 impl<K: ChainKind> ChainJob<K> {
     /// Starts `chain` of `kind` on `model`, with its first message.
     pub(crate) fn start(id: JobId, model: Model, chain: Chain, kind: K) -> (Self, Vec<FromWorker>) {
-        let out = chain.started(id);
         let job = ChainJob {
             id,
             model,
@@ -96,6 +86,7 @@ impl<K: ChainKind> ChainJob<K> {
             state: None,
             kind,
         };
+        let out = vec![job.progress_message()];
         (job, out)
     }
 }
@@ -122,12 +113,7 @@ impl<K: ChainKind> Job for ChainJob<K> {
             };
             out.push(K::message(self.id, vec![sample]));
             if K::PROGRESS {
-                let (done, total) = self.chain.progress();
-                out.push(FromWorker::Progress {
-                    id: self.id,
-                    done,
-                    total,
-                });
+                out.push(self.progress_message());
             }
         }
         if self.finished() {

@@ -21,11 +21,9 @@ impl MapJob {
     ) -> Result<(Self, Vec<FromWorker>), FromWorker> {
         match RegimeMap::new(params, spec) {
             Ok(map) => {
-                let total = map.total();
-                Ok((
-                    MapJob { id, map },
-                    vec![FromWorker::Progress { id, done: 0, total }],
-                ))
+                let job = MapJob { id, map };
+                let out = vec![job.progress_message()];
+                Ok((job, out))
             }
             Err(e) => Err(failed(id, e.to_string())),
         }

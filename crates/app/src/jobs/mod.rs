@@ -32,6 +32,15 @@ pub trait Job {
     fn finished(&self) -> bool;
     /// Units done and in all (steady states, cells, per cent of the range).
     fn progress(&self) -> (usize, usize);
+    /// The progress as the message the page reads.
+    fn progress_message(&self) -> FromWorker {
+        let (done, total) = self.progress();
+        FromWorker::Progress {
+            id: self.id(),
+            done,
+            total,
+        }
+    }
     /// The finished job's data as the CLI's JSON (`other`: the other
     /// shards' JSON to merge), for kinds that export from the worker.
     fn export(&self, _mesh: Option<usize>, _other: &[String]) -> Option<FromWorker> {

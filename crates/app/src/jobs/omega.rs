@@ -41,6 +41,25 @@ pub const PREVIEW_RUN: RunOptions = RunOptions {
 /// preview and waits for the worker.
 pub const PREVIEW_STEPS_PER_PERIOD: u64 = 300;
 
+/// Why the selected-Omega run has no result.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum OmegaError {
+    /// The plotted mesh is not one of the model's.
+    #[error("mesh {0} does not exist in this model")]
+    NoMesh(usize),
+    /// The steady state failed.
+    #[error("Omega = {omega}: {source}")]
+    Solver {
+        /// The Omega of the run.
+        omega: f64,
+        /// The solver's reason.
+        source: solver::SolverError,
+    },
+    /// The run kept no history of the plotted mesh.
+    #[error("the run kept no history of the plotted mesh")]
+    NoHistory,
+}
+
 /// An Omega job in the worker: one step, then finished.
 pub(crate) struct OmegaRun {
     job: OmegaJob,
@@ -67,7 +86,7 @@ impl Job for OmegaRun {
                 id,
                 result: Box::new(result),
             },
-            Err(e) => failed(id, e),
+            Err(e) => failed(id, e.to_string()),
         };
         vec![msg, FromWorker::Done { id }]
     }
@@ -85,11 +104,14 @@ impl Job for OmegaRun {
 /// end state) it is the page's bounded preview run: it starts there, keeps
 /// to [`PREVIEW_STEPS_PER_PERIOD`], and carries no CLI JSON (the full run,
 /// from the static state as `gearshock simulate` starts, replaces it).
-pub fn omega_result(job: &OmegaJob, preview_from: Option<&[f64]>) -> Result<OmegaResult, String> {
+pub fn omega_result(
+    job: &OmegaJob,
+    preview_from: Option<&[f64]>,
+) -> Result<OmegaResult, OmegaError> {
     let model = &job.model;
     let n_mesh = model.system.meshes.len();
     if let Some(j) = job.mesh.filter(|&j| j >= n_mesh) {
-        return Err(format!("mesh {j} does not exist in this model"));
+        return Err(OmegaError::NoMesh(j));
     }
     let mut opts = SteadyOptions::new(job.omega);
     opts.transient_periods = job.run.transient_periods;
@@ -100,11 +122,13 @@ pub fn omega_result(job: &OmegaJob, preview_from: Option<&[f64]>) -> Result<Omeg
     }
     // Every mesh's history: the animated gear set colours every mesh.
     opts.history_meshes = (0..n_mesh).collect();
-    let ss = steady_state(model, &opts, preview_from)
-        .map_err(|e| format!("Omega = {}: {e}", job.omega))?;
+    let ss = steady_state(model, &opts, preview_from).map_err(|source| OmegaError::Solver {
+        omega: job.omega,
+        source,
+    })?;
     let j = job.mesh.unwrap_or_else(|| ss.worst_mesh());
     let Some(h) = ss.histories.iter().find(|h| h.mesh == j) else {
-        return Err("the run kept no history of the plotted mesh".into());
+        return Err(OmegaError::NoHistory);
     };
     let m = &ss.meshes[j];
     let w = ss.omega_rad_s;
@@ -186,4 +210,53 @@ pub fn omega_result(job: &OmegaJob, preview_from: Option<&[f64]>) -> Result<Omeg
         end_state: ss.end_state,
     };
     Ok(result)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn job(mesh: Option<usize>, params: &str) -> OmegaJob {
+        let s = crate::link::decode(params).settings;
+        OmegaJob {
+            id: 7,
+            model: Model::new(&s.params).unwrap(),
+            omega: 1.05,
+            mesh,
+            run: RunOptions {
+                transient_periods: 20,
+                record_periods: 4,
+            },
+            samples_per_period: 32,
+            max_order: 8.0,
+        }
+    }
+
+    /// A mesh the model lacks is refused by name before any integration;
+    /// the worker's reply is that failure for the job, never a result.
+    #[test]
+    fn a_missing_mesh_is_a_typed_failure() {
+        // The gear pair has one mesh: index 1 does not exist.
+        let j = job(Some(1), "model=gear-pair");
+        assert_eq!(omega_result(&j, None), Err(OmegaError::NoMesh(1)));
+        let mut run = OmegaRun::start(j);
+        let out = run.step();
+        assert!(
+            matches!(&out[0], FromWorker::Failed { id: 7, message } if message == "mesh 1 does not exist in this model"),
+            "{out:?}"
+        );
+        assert!(matches!(out[1], FromWorker::Done { id: 7 }) && run.finished());
+    }
+
+    /// The selected mesh's history is the plotted one; "worst" picks the
+    /// mesh with the largest dynamic factor.
+    #[test]
+    fn the_plotted_mesh_is_the_chosen_or_the_worst() {
+        let r = omega_result(&job(Some(2), ""), None).unwrap();
+        assert_eq!(r.mesh, 2);
+        let worst = omega_result(&job(None, ""), None).unwrap();
+        let df = |m: &MeshSummary| m.dynamic_factor.unwrap_or(0.0);
+        let best = worst.all_meshes.iter().map(df).fold(0.0, f64::max);
+        assert_eq!(df(&worst.all_meshes[worst.mesh]), best);
+    }
 }

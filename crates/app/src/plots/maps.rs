@@ -10,10 +10,11 @@
 
 use super::{
     err, frame_of, linear_chart, omega_decorations, padded_range, regime_color, small, Axes,
-    PlotFrame, Res, GRID, OMEGA_AXIS,
+    DrawError, PlotFrame, Res, GRID, OMEGA_AXIS,
 };
 use crate::protocol::Regime;
-use crate::views::map::{lyap_kind, LyapKind, LyapStore, MapView, LYAP_ZERO_BAND};
+use crate::views::lyap::{lyap_kind, LyapKind, LyapStore, LYAP_ZERO_BAND};
+use crate::views::map::MapView;
 use crate::views::NaturalFreq;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -46,7 +47,7 @@ pub fn draw_map<DB: DrawingBackend>(
 ) -> Res<(PlotFrame, MapOverlay)> {
     root.fill(&WHITE).map_err(err)?;
     let Some(g) = v.store.grid.as_ref() else {
-        return Err("drawing failed: no map grid".into());
+        return Err(DrawError("no map grid".into()));
     };
     let x = g.x_range();
     let y = g.y_range();

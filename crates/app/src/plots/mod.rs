@@ -37,15 +37,20 @@ pub const WIDTH: u32 = 760;
 /// Plot height in pixels.
 pub const HEIGHT: u32 = 400;
 
-pub(crate) type Res<T> = Result<T, String>;
+/// A plot that could not be drawn, with the backend's reason.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("drawing failed: {0}")]
+pub struct DrawError(pub String);
+
+pub(crate) type Res<T> = Result<T, DrawError>;
 pub(crate) type Chart<'a, DB> = ChartContext<
     'a,
     DB,
     Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
 >;
 
-pub(crate) fn err<E: std::fmt::Display>(e: E) -> String {
-    format!("drawing failed: {e}")
+pub(crate) fn err<E: std::fmt::Display>(e: E) -> DrawError {
+    DrawError(e.to_string())
 }
 
 /// Colour of an impact regime.

@@ -1,6 +1,5 @@
-//! The impact-regime map (view 7) and the Lyapunov curve under the
-//! bifurcation diagram: the grids, the stores that collect the workers'
-//! cells and points, and what the plots draw.
+//! The impact-regime map (view 7): its grid, the store that collects the
+//! workers' cells, what the plot draws, its note and its exports.
 //!
 //! A map is a grid of Omega columns (the page's frequency range) and rows of
 //! one parameter (`backlash_um` or `te_um`); rows are computed by the
@@ -8,7 +7,7 @@
 //! worker at once. A click on a cell is turned back into that cell's two
 //! values by [`MapGrid::cell_at`].
 
-use crate::protocol::{LyapSample, MapSample, Regime};
+use crate::protocol::{MapSample, Regime};
 use serde::Serialize;
 
 /// The grid of a map: what the job computes and the plot shows.
@@ -206,78 +205,6 @@ pub struct MapView<'a> {
     pub selected: (f64, Option<f64>),
 }
 
-/// Lyapunov points as they arrive from both chains, for one job.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct LyapStore {
-    /// The job (0: none, or the curve is off).
-    pub id: u64,
-    /// Points in arrival order.
-    pub points: Vec<LyapSample>,
-    /// Points in all.
-    pub total: usize,
-    /// Periods each exponent averages over.
-    pub periods: u32,
-}
-
-impl LyapStore {
-    /// An empty store for a new job.
-    pub fn new(id: u64, total: usize, periods: u32) -> Self {
-        LyapStore {
-            id,
-            points: Vec::new(),
-            total,
-            periods,
-        }
-    }
-
-    /// The computed exponents per mesh period, sorted by Omega.
-    pub fn curve(&self) -> Vec<(f64, f64)> {
-        let mut v: Vec<(f64, f64)> = self
-            .points
-            .iter()
-            .filter_map(|p| p.per_period.map(|l| (p.omega, l)))
-            .filter(|(_, l)| l.is_finite())
-            .collect();
-        v.sort_by(|a, b| a.0.total_cmp(&b.0));
-        v
-    }
-
-    /// The failed points (Omega, why).
-    pub fn failed(&self) -> Vec<(f64, String)> {
-        self.points
-            .iter()
-            .filter_map(|p| p.error.as_ref().map(|e| (p.omega, e.clone())))
-            .collect()
-    }
-}
-
-/// How an exponent of the map reads: the band around zero is
-/// [`LYAP_ZERO_BAND`] wide on each side.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum LyapKind {
-    /// Negative: a stable periodic response.
-    Periodic,
-    /// About zero: quasi-periodic (or at a bifurcation).
-    Neutral,
-    /// Positive: chaos.
-    Chaotic,
-}
-
-/// Half-width of the band of exponents read as zero (per mesh period): an
-/// average over ~100 periods is not sharper than this.
-pub const LYAP_ZERO_BAND: f64 = 0.01;
-
-/// Reads an exponent per mesh period.
-pub fn lyap_kind(per_period: f64) -> LyapKind {
-    if per_period > LYAP_ZERO_BAND {
-        LyapKind::Chaotic
-    } else if per_period < -LYAP_ZERO_BAND {
-        LyapKind::Periodic
-    } else {
-        LyapKind::Neutral
-    }
-}
-
 /// The map's cells as CSV, row by row (the format of `gearshock map --format csv`).
 pub fn map_csv(store: &MapStore) -> String {
     let key = store.grid.as_ref().map_or("value", |g| g.key.as_str());
@@ -323,31 +250,13 @@ pub fn map_json(store: &MapStore) -> serde_json::Value {
     serde_json::json!({ "grid": store.grid, "cells": cells })
 }
 
-/// The Lyapunov curve as CSV (the format of `gearshock lyapunov --format csv`).
-pub fn lyap_csv(store: &LyapStore) -> String {
-    let mut s = String::from("omega,exponent_per_period,exponent_per_s\n");
-    for p in &store.points {
-        let f = |x: Option<f64>| x.map_or(String::new(), |v| v.to_string());
-        s.push_str(&format!("{},{},{}\n", p.omega, f(p.per_period), f(p.per_s)));
+/// The caption's status of the map: the cells computed while it runs.
+pub fn map_caption_suffix(st: &crate::status::JobStatus) -> String {
+    if st.running() {
+        format!(" (computing {}/{} cells)", st.done, st.total)
+    } else {
+        String::new()
     }
-    s
-}
-
-/// The Lyapunov curve as JSON (field names as in `gearshock lyapunov`).
-pub fn lyap_json(store: &LyapStore) -> serde_json::Value {
-    let points: Vec<serde_json::Value> = store
-        .points
-        .iter()
-        .map(|p| {
-            serde_json::json!({
-                "omega": p.omega,
-                "exponent_per_period": p.per_period,
-                "exponent_per_s": p.per_s,
-                "error": p.error,
-            })
-        })
-        .collect();
-    serde_json::json!({ "periods": store.periods, "points": points })
 }
 
 /// The note under the map: cells done, counts per regime, failures with
@@ -439,13 +348,6 @@ mod tests {
     }
 
     #[test]
-    fn exponents_read_by_sign() {
-        assert_eq!(lyap_kind(-0.3), LyapKind::Periodic);
-        assert_eq!(lyap_kind(0.001), LyapKind::Neutral);
-        assert_eq!(lyap_kind(0.2), LyapKind::Chaotic);
-    }
-
-    #[test]
     fn exports_match_the_cli_formats() {
         let mut s = MapStore::new(7, grid(), "sig".into());
         s.add(vec![
@@ -479,18 +381,5 @@ mod tests {
         let j = map_json(&s);
         assert_eq!(j["grid"]["key"], "backlash_um");
         assert_eq!(j["cells"].as_array().map(Vec::len), Some(2));
-        let mut l = LyapStore::new(3, 2, 100);
-        l.points.push(LyapSample {
-            index: 0,
-            omega: 0.5,
-            per_period: Some(-0.25),
-            per_s: Some(-100.0),
-            error: None,
-        });
-        assert_eq!(
-            lyap_csv(&l),
-            "omega,exponent_per_period,exponent_per_s\n0.5,-0.25,-100\n"
-        );
-        assert_eq!(lyap_json(&l)["points"][0]["exponent_per_s"], -100.0);
     }
 }

@@ -8,6 +8,7 @@
 
 pub mod bif;
 pub mod fr;
+pub mod lyap;
 pub mod map;
 pub mod omega;
 pub mod redraw;

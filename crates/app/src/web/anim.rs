@@ -61,10 +61,8 @@ pub(super) fn build_anim_controls(page: &Shared) {
                 return;
             };
             let Some(q) = f.point_at(px, py) else { return };
-            let spp = f64::from(r.samples_per_period.max(1));
-            let pos = (q.x * spp).round() - f64::from(r.anim.start_sample);
-            p.anim.clock.playing = false;
-            p.anim.clock.pos = pos.clamp(0.0, len.saturating_sub(1) as f64);
+            let window = (r.anim.start_sample, r.samples_per_period);
+            p.anim.clock.seek(q.x, window, len);
             p.anim.dirty = true;
         });
     }
@@ -288,8 +286,10 @@ pub(super) fn draw_time_cursor(p: &Page) {
     let (Some(f), Some(r)) = (p.frames[ViewId::Time.slot()], p.ctl.omega.as_ref()) else {
         return;
     };
-    let spp = f64::from(r.samples_per_period.max(1));
-    let t = (f64::from(r.anim.start_sample) + p.anim.clock.pos.floor()) / spp;
+    let t = p
+        .anim
+        .clock
+        .time_periods((r.anim.start_sample, r.samples_per_period));
     let x = f.to_px(t, f.y_range.0).x;
     ctx.set_stroke_style_str("rgba(220,20,60,0.9)");
     ctx.set_line_width(2.0);

@@ -61,9 +61,9 @@ fn kind_slot(kind: JobKind) -> usize {
     }
 }
 
-fn model_from(params: &Map<String, Value>) -> Result<(ModelParams, Model), String> {
-    let p = keys::from_json(params).map_err(|e| e.to_string())?;
-    let model = Model::new(&p).map_err(|e| e.to_string())?;
+fn model_from(params: &Map<String, Value>) -> solver::Result<(ModelParams, Model)> {
+    let p = keys::from_json(params)?;
+    let model = Model::new(&p)?;
     Ok((p, model))
 }
 
@@ -120,7 +120,7 @@ impl WorkerCore {
         self.jobs[slot] = None;
         let (params, model) = match model_from(params) {
             Ok(x) => x,
-            Err(e) => return vec![failed(id, e)],
+            Err(e) => return vec![failed(id, e.to_string())],
         };
         match self.new_job(id, params, model, job) {
             Ok((job, out)) => {
