@@ -375,6 +375,10 @@ pub struct HbmSample {
     pub stable: Option<bool>,
     /// A bifurcation between the previous point and this one.
     pub bifurcation: Option<BranchBif>,
+    /// The piece of the branch (0, then one more after each automatic
+    /// restart of the continuation): the curve is broken between pieces.
+    #[serde(default)]
+    pub piece: u32,
 }
 
 /// One mesh's Poincaré samples at a swept point.
@@ -558,6 +562,10 @@ pub enum FromWorker {
         /// The solver failure that ended the branch, if it failed: the
         /// points before it stay valid, the branch is partial.
         error: Option<String>,
+        /// With the last chunk: what the continuation did to cover the range
+        /// (restarts, left-out gaps), in plain sentences.
+        #[serde(default)]
+        notes: Vec<String>,
     },
     /// The Omega bands of a bifurcation job's range where the set with every
     /// tooth pair in contact is parametrically unstable (sent by shard 0

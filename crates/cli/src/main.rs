@@ -957,6 +957,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
             bar.finish();
             let value = report::frf_json(&model, &params, &c, &branch, &meshes, failure.as_ref());
             output(p.format, &value, csv::frf)?;
+            // Restarts and left-out gaps are in the JSON; say them here too.
+            for n in c.notes() {
+                eprintln!("gearshock: note: {n}");
+            }
             if failure.is_none() && c.left_at_start() {
                 eprintln!(
                     "gearshock: note: the branch turned back at a fold and left the range at its start; \

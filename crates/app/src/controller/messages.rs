@@ -31,9 +31,13 @@ impl Controller {
                 progress,
                 finished,
                 error,
+                notes,
             } if id == self.hbm.id && id != 0 => {
                 let failure = error.clone();
                 self.hbm.add(points, progress, finished, error);
+                if !notes.is_empty() {
+                    self.hbm.notes = notes;
+                }
                 let st = &mut self.fr_status;
                 st.done = (100.0 * self.hbm.progress).floor() as usize;
                 if !self.hbm.points.is_empty() {

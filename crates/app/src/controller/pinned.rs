@@ -133,6 +133,7 @@ impl Controller {
                 progress,
                 finished,
                 error,
+                ..
             } if *id == p.hbm.id && *id != 0 => {
                 p.hbm
                     .add(points.clone(), *progress, *finished, error.clone());

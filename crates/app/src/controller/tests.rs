@@ -33,11 +33,13 @@ fn hbm_points(id: JobId, omegas: &[f64], finished: bool, error: Option<&str>) ->
                 }],
                 stable: Some(true),
                 bifurcation: None,
+                piece: 0,
             })
             .collect(),
         progress: omegas.last().map_or(0.0, |o| (o - 0.1) / 1.9),
         finished,
         error: error.map(str::to_string),
+        notes: Vec::new(),
     })
 }
 

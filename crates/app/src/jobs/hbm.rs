@@ -87,12 +87,18 @@ fn hbm_chunk(job: &mut HbmJob) -> FromWorker {
             }
         }
     }
+    let finished = error.is_some() || job.cont.is_finished();
     FromWorker::HbmPoints {
         id: job.id,
         points,
         progress: job.cont.progress(),
-        finished: error.is_some() || job.cont.is_finished(),
+        finished,
         error,
+        notes: if finished {
+            job.cont.notes()
+        } else {
+            Vec::new()
+        },
     }
 }
 
@@ -110,5 +116,6 @@ fn hbm_sample(p: &BranchPoint) -> HbmSample {
             .collect(),
         stable: p.stable,
         bifurcation: p.bifurcation.map(Into::into),
+        piece: p.piece,
     }
 }

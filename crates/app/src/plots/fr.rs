@@ -128,15 +128,19 @@ pub fn draw_fr<DB: DrawingBackend>(
             };
             let val = |p: &FrCurvePoint| if which { p.max_um } else { p.min_um };
             // Split into runs of equal stability: stable (or unknown) solid,
-            // unstable dashed; consecutive runs share their joining point.
+            // unstable dashed; consecutive runs of one piece share their
+            // joining point, and no line joins two pieces of the branch.
             let mut runs: Vec<(bool, Vec<(f64, f64)>)> = Vec::new();
+            let mut prev: Option<&FrCurvePoint> = None;
             for p in &br.points {
                 let unstable = p.stable == Some(false);
+                let joined = prev.is_none_or(|q| q.joins(p));
+                prev = Some(p);
                 match runs.last_mut() {
-                    Some((u, pts)) if *u == unstable => pts.push((p.omega, val(p))),
+                    Some((u, pts)) if *u == unstable && joined => pts.push((p.omega, val(p))),
                     _ => {
                         let mut pts = Vec::new();
-                        if let Some((_, prev)) = runs.last() {
+                        if let Some((_, prev)) = runs.last().filter(|_| joined) {
                             if let Some(&last) = prev.last() {
                                 pts.push(last);
                             }

@@ -612,7 +612,7 @@ fn regime_strip<'a, DB: DrawingBackend + 'a>(
         let (a, b) = (&w[0], &w[1]);
         let regime = b
             .regime
-            .filter(|_| a.stable != Some(false) && b.stable != Some(false));
+            .filter(|_| a.stable != Some(false) && b.stable != Some(false) && a.joins(b));
         let Some(r) = regime else {
             open = false;
             continue;

@@ -98,6 +98,7 @@ fn every_plot_draws_labels_units_and_legends() {
         regime: Some(Regime::NoImpact),
         period: Some(1),
         bifurcation: (k == 7).then_some(FrMarkerKind::Fold),
+        piece: 0,
     };
     let source = FrSource::Hbm { harmonics: 5 };
     let fr = FrView {
@@ -149,6 +150,7 @@ fn every_plot_draws_labels_units_and_legends() {
         done: 10,
         progress: 0.95,
         finished: true,
+        branch_notes: Vec::new(),
     };
     let mut frame = None;
     let s = svg(|root| {

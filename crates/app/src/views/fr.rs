@@ -60,6 +60,16 @@ pub struct FrCurvePoint {
     pub period: Option<u32>,
     /// A bifurcation detected between the previous point and this one (HBM).
     pub bifurcation: Option<FrMarkerKind>,
+    /// The piece of the branch it belongs to: a line joins only points of
+    /// one piece (a restarted continuation starts a new piece).
+    pub piece: u32,
+}
+
+impl FrCurvePoint {
+    /// Whether a line may join `self` to `next` (both on one piece).
+    pub fn joins(&self, next: &FrCurvePoint) -> bool {
+        self.piece == next.piece
+    }
 }
 
 /// A continuous branch of solutions.
@@ -175,6 +185,9 @@ pub struct FrView {
     pub progress: f64,
     /// Whether the branch has ended (range covered or failed).
     pub finished: bool,
+    /// What the continuation did to cover the range (restarts, left-out
+    /// gaps), in plain sentences.
+    pub branch_notes: Vec<String>,
 }
 
 /// The harmonic-balance branch as it arrives, for one job.
@@ -192,6 +205,8 @@ pub struct HbmStore {
     pub finished: bool,
     /// The failure that ended it, if it failed.
     pub error: Option<String>,
+    /// What the continuation did to cover the range (restarts, gaps).
+    pub notes: Vec<String>,
 }
 
 impl HbmStore {
@@ -251,6 +266,7 @@ impl HbmStore {
                 regime: Some(m.regime),
                 period: Some(1),
                 bifurcation: kind,
+                piece: s.piece,
             });
         }
         (pts, markers)
@@ -338,6 +354,7 @@ impl FrStore {
                 regime: Some(m.regime),
                 period: s.period,
                 bifurcation: None,
+                piece: 0,
             });
         }
         (pts, failed)
@@ -369,7 +386,7 @@ pub fn discrepancy(branch: &[FrCurvePoint], overlay: &[FrCurvePoint]) -> Discrep
         let mut best: Option<f64> = None;
         for w in branch.windows(2) {
             let (a, b) = (&w[0], &w[1]);
-            if a.stable == Some(false) || b.stable == Some(false) {
+            if a.stable == Some(false) || b.stable == Some(false) || !a.joins(b) {
                 continue;
             }
             let (lo, hi) = if a.omega <= b.omega {
@@ -475,6 +492,7 @@ pub fn fr_view(
         done: hbm.points.len(),
         progress: hbm.progress,
         finished: hbm.finished,
+        branch_notes: hbm.notes.clone(),
     }
 }
 
@@ -509,10 +527,15 @@ pub fn fr_note(v: &FrView) -> String {
     } else {
         " A time-integration overlay can be switched on under Analysis (fr_ti_points)."
     };
-    format!(
+    let mut note = format!(
         "Method: {} (mesh forces integrated in closed form between the contact switches), pseudo-arclength continuation upward in Ω with Floquet stability.{overlay}",
         v.method
-    )
+    );
+    for n in &v.branch_notes {
+        note.push(' ');
+        note.push_str(n);
+    }
+    note
 }
 
 /// The caption's status of view 1: progress over the Omega range while the
@@ -564,7 +587,45 @@ mod tests {
                 .collect(),
             stable: Some(stable),
             bifurcation: None,
+            piece: 0,
         }
+    }
+
+    #[test]
+    fn a_restarted_branch_is_not_joined_across_its_pieces() {
+        // Piece 0 runs up from 0.5 to 1.0; the restart (piece 1) comes down
+        // from 2.0 to 1.5. Nothing lies between 1.0 and 1.5.
+        let mut st = HbmStore::new(1, 5);
+        let mut pts: Vec<HbmSample> = [0.5, 1.0, 2.0, 1.5]
+            .iter()
+            .map(|&o| hbm_point(o, &[(80.0, 120.0)], true))
+            .collect();
+        pts[2].piece = 1;
+        pts[3].piece = 1;
+        st.add(pts, 1.0, true, None);
+        st.notes = vec!["The branch was restarted.".into()];
+        let (curve, _) = st.curve(Some(0));
+        assert_eq!(
+            curve.iter().map(|p| p.piece).collect::<Vec<_>>(),
+            [0, 0, 1, 1]
+        );
+        assert!(curve[0].joins(&curve[1]) && !curve[1].joins(&curve[2]));
+        // An overlay point in the gap is not compared with a line across it.
+        let q = |omega: f64| FrCurvePoint {
+            omega,
+            max_um: 500.0,
+            min_um: 0.0,
+            stable: None,
+            regime: None,
+            period: Some(1),
+            bifurcation: None,
+            piece: 0,
+        };
+        let d = discrepancy(&curve, &[q(1.2), q(1.7)]);
+        assert_eq!((d.compared, d.off_branch), (1, 1));
+        // The note says what the continuation did.
+        let v = fr_view(&st, None, None, Some(0), &[100.0], &ctx());
+        assert!(fr_note(&v).ends_with(" The branch was restarted."));
     }
 
     #[test]
@@ -667,6 +728,7 @@ mod tests {
                 regime: None,
                 period: Some(1),
                 bifurcation: None,
+                piece: 0,
             })
             .collect();
         assert_eq!(discrepancy(&stable, &v.overlay).max_um, Some(2.0));

@@ -290,6 +290,7 @@ fn hbm_job_streams_the_branch_in_chunks_and_a_newer_job_replaces_it() {
             progress,
             finished,
             error,
+            ..
         } = m
         else {
             panic!("unexpected {m:?}");
