@@ -82,7 +82,7 @@ fn write(path: &Path, text: &str) -> Result<(), Failure> {
     })
 }
 
-fn drawn<T>(path: &Path, result: Result<T, String>) -> Result<T, Failure> {
+fn drawn<T, E: std::fmt::Display>(path: &Path, result: Result<T, E>) -> Result<T, Failure> {
     result.map_err(|e| Failure {
         code: 1,
         message: format!("cannot draw {}: {e}", path.display()),
@@ -276,7 +276,10 @@ fn orbit_panels(p: &Preset, members: &[Member], args: &FigureArgs) -> Result<Vec
             samples_per_period: SAMPLES_PER_PERIOD,
             max_order: 8.0,
         };
-        let r = omega_result(&job, None).map_err(|message| Failure { code: 1, message })?;
+        let r = omega_result(&job, None).map_err(|e| Failure {
+            code: 1,
+            message: e.to_string(),
+        })?;
         let label = member_label(p, i);
         for (k, view) in [(i, OmegaView::Phase), (n + i, OmegaView::Poincare)] {
             let name = format!("{}{}", p.id, panel_letter(k));
@@ -384,12 +387,14 @@ fn bif_svg(
     let mut chart = String::new();
     let groups = {
         let root = SVGBackend::with_string(&mut chart, SIZE).into_drawing_area();
-        app::plots::draw_bif(&root, view, natural, status)?.1
+        app::plots::draw_bif(&root, view, natural, status)
+            .map_err(|e| e.to_string())?
+            .1
     };
     let mut dots = String::new();
     {
         let root = SVGBackend::with_string(&mut dots, SIZE).into_drawing_area();
-        app::plots::draw_groups(&root, &groups)?;
+        app::plots::draw_groups(&root, &groups).map_err(|e| e.to_string())?;
     }
     let head = chart
         .trim_end()
