@@ -8,7 +8,7 @@ use crate::protocol::{
     history_start, AnimHistory, FromWorker, JobId, MeshSummary, OmegaResult, RunOptions,
 };
 use solver::report;
-use solver::steady::{spectrum, steady_state, Model, SteadyOptions};
+use solver::steady::{spectrum, steady_state, Model, SteadyOptions, SteadyRun, SteadyState};
 
 /// An Omega job waiting for its one step (also the page's preview run).
 pub struct OmegaJob {
@@ -41,16 +41,29 @@ pub const PREVIEW_RUN: RunOptions = RunOptions {
 /// preview and waits for the worker.
 pub const PREVIEW_STEPS_PER_PERIOD: u64 = 300;
 
-/// An Omega job in the worker: one step, then finished.
+/// Integrator steps per step of the worker's Omega job (a few ms in the
+/// browser): a newer job or a cancel waits at most this long, however long
+/// the steady state runs.
+pub const OMEGA_SLICE_STEPS: u64 = 3000;
+
+/// An Omega job in the worker: its steady state in slices of
+/// [`OMEGA_SLICE_STEPS`] integrator steps, then the result.
 pub(crate) struct OmegaRun {
     job: OmegaJob,
-    done: bool,
+    /// The steady state in progress; `Err` holds a failure to report at
+    /// the next step (bad options or mesh), `None` once finished.
+    run: Option<Result<SteadyRun, String>>,
 }
 
 impl OmegaRun {
-    /// Starts `job`.
+    /// Starts `job` (no integration yet).
     pub(crate) fn start(job: OmegaJob) -> Self {
-        OmegaRun { job, done: false }
+        let run = omega_options(&job, false)
+            .and_then(|opts| SteadyRun::new(&job.model, &opts, None).map_err(|e| e.to_string()));
+        OmegaRun {
+            job,
+            run: Some(run),
+        }
     }
 }
 
@@ -60,9 +73,18 @@ impl Job for OmegaRun {
     }
 
     fn step(&mut self) -> Vec<FromWorker> {
-        self.done = true;
         let id = self.job.id;
-        let msg = match omega_result(&self.job, None) {
+        let result = match self.run.as_mut() {
+            None => return Vec::new(),
+            Some(Err(e)) => Err(e.clone()),
+            Some(Ok(run)) => match run.advance(&self.job.model, OMEGA_SLICE_STEPS) {
+                Ok(None) => return Vec::new(),
+                Ok(Some(ss)) => omega_result_of(&self.job, ss, false),
+                Err(e) => Err(format!("Omega = {}: {e}", self.job.omega)),
+            },
+        };
+        self.run = None;
+        let msg = match result {
             Ok(result) => FromWorker::Omega {
                 id,
                 result: Box::new(result),
@@ -73,21 +95,17 @@ impl Job for OmegaRun {
     }
 
     fn finished(&self) -> bool {
-        self.done
+        self.run.is_none()
     }
 
     fn progress(&self) -> (usize, usize) {
-        (usize::from(self.done), 1)
+        (usize::from(self.run.is_none()), 1)
     }
 }
 
-/// The selected-Omega views' data. With `preview_from` (a previous result's
-/// end state) it is the page's bounded preview run: it starts there, keeps
-/// to [`PREVIEW_STEPS_PER_PERIOD`], and carries no CLI JSON (the full run,
-/// from the static state as `gearshock simulate` starts, replaces it).
-pub fn omega_result(job: &OmegaJob, preview_from: Option<&[f64]>) -> Result<OmegaResult, String> {
-    let model = &job.model;
-    let n_mesh = model.system.meshes.len();
+/// The steady-state options of `job` (`preview`: the page's bounded run).
+fn omega_options(job: &OmegaJob, preview: bool) -> Result<SteadyOptions, String> {
+    let n_mesh = job.model.system.meshes.len();
     if let Some(j) = job.mesh.filter(|&j| j >= n_mesh) {
         return Err(format!("mesh {j} does not exist in this model"));
     }
@@ -95,13 +113,32 @@ pub fn omega_result(job: &OmegaJob, preview_from: Option<&[f64]>) -> Result<Omeg
     opts.transient_periods = job.run.transient_periods;
     opts.record_periods = job.run.record_periods;
     opts.samples_per_period = job.samples_per_period.clamp(8, 256);
-    if preview_from.is_some() {
+    if preview {
         opts.max_steps_per_period = PREVIEW_STEPS_PER_PERIOD;
     }
     // Every mesh's history: the animated gear set colours every mesh.
     opts.history_meshes = (0..n_mesh).collect();
-    let ss = steady_state(model, &opts, preview_from)
+    Ok(opts)
+}
+
+/// The selected-Omega views' data. With `preview_from` (a previous result's
+/// end state) it is the page's bounded preview run: it starts there, keeps
+/// to [`PREVIEW_STEPS_PER_PERIOD`], and carries no CLI JSON (the full run,
+/// from the static state as `gearshock simulate` starts, replaces it).
+pub fn omega_result(job: &OmegaJob, preview_from: Option<&[f64]>) -> Result<OmegaResult, String> {
+    let opts = omega_options(job, preview_from.is_some())?;
+    let ss = steady_state(&job.model, &opts, preview_from)
         .map_err(|e| format!("Omega = {}: {e}", job.omega))?;
+    omega_result_of(job, ss, preview_from.is_some())
+}
+
+/// The selected-Omega views' data of `job`'s steady state `ss` (`preview`:
+/// the page's bounded run, without CLI JSON).
+fn omega_result_of(job: &OmegaJob, ss: SteadyState, preview: bool) -> Result<OmegaResult, String> {
+    let model = &job.model;
+    let n_mesh = model.system.meshes.len();
+    let samples_per_period = job.samples_per_period.clamp(8, 256);
+    let record_periods = job.run.record_periods;
     let j = job.mesh.unwrap_or_else(|| ss.worst_mesh());
     let Some(h) = ss.histories.iter().find(|h| h.mesh == j) else {
         return Err("the run kept no history of the plotted mesh".into());
@@ -115,17 +152,13 @@ pub fn omega_result(job: &OmegaJob, preview_from: Option<&[f64]>) -> Result<Omeg
         .map(|(v, &t)| v - excitation_at(model, j, w, t).1)
         .collect();
     let (e0, de0) = excitation_at(model, j, w, 0.0);
-    let spec = spectrum(
-        &h.rel_m,
-        opts.samples_per_period,
-        opts.record_periods,
-        job.max_order,
-    );
-    let cli_json = match preview_from {
-        Some(_) => String::new(),
-        None => report::simulate_json(model, &ss, j, job.max_order).to_string(),
+    let spec = spectrum(&h.rel_m, samples_per_period, record_periods, job.max_order);
+    let cli_json = if preview {
+        String::new()
+    } else {
+        report::simulate_json(model, &ss, j, job.max_order).to_string()
     };
-    let start = history_start(h.rel_m.len(), opts.samples_per_period, opts.record_periods);
+    let start = history_start(h.rel_m.len(), samples_per_period, record_periods);
     let mut anim_x = vec![Vec::new(); n_mesh];
     for hist in &ss.histories {
         if let Some(slot) = anim_x.get_mut(hist.mesh) {
@@ -156,8 +189,8 @@ pub fn omega_result(job: &OmegaJob, preview_from: Option<&[f64]>) -> Result<Omeg
         mesh_freq_hz: ss.mesh_freq_hz,
         transient_periods_run: ss.stats.transient_periods_run,
         settled: ss.stats.settled,
-        samples_per_period: opts.samples_per_period,
-        record_periods: opts.record_periods,
+        samples_per_period,
+        record_periods,
         x_um: h.rel_m.iter().map(|x| round_um(x * 1e6)).collect(),
         xdot_m_s: xdot_m_s.iter().map(|v| (v * 1e9).round() / 1e9).collect(),
         poincare_x_um: m
@@ -182,7 +215,7 @@ pub fn omega_result(job: &OmegaJob, preview_from: Option<&[f64]>) -> Result<Omeg
         anim,
         steps: ss.stats.integrator.steps,
         cli_json,
-        preview: preview_from.is_some(),
+        preview,
         end_state: ss.end_state,
     };
     Ok(result)
