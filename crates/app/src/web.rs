@@ -148,10 +148,17 @@ pub fn start_app() {
     };
     let query = window.location().search().unwrap_or_default();
     let t = now(&window);
-    // A worker per logical core but one (the page's), within the pool's bounds.
+    // A worker per logical core but one (the page's), within the pool's
+    // bounds; `window.gearshockWorkers` (set by the benchmark) overrides it.
     let cores = window.navigator().hardware_concurrency();
     let cores = (cores.is_finite() && cores >= 1.0).then_some(cores as u32);
-    let (ctl, effects) = Controller::with_workers(&query, t, pool_size(cores));
+    let forced = js_sys::Reflect::get(&window, &JsValue::from_str("gearshockWorkers"))
+        .ok()
+        .and_then(|v| v.as_f64())
+        .filter(|n| n.is_finite() && *n >= 1.0)
+        .map(|n| n as usize);
+    let workers = forced.unwrap_or_else(|| pool_size(cores));
+    let (ctl, effects) = Controller::with_workers(&query, t, workers);
     let page = Rc::new(RefCell::new(Page {
         ctl,
         window: window.clone(),

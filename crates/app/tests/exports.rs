@@ -160,7 +160,7 @@ fn every_export_is_the_same_whatever_the_pool_size() {
     assert_eq!(app::controller::chain_count(150), 3);
     let two = exports_of(&link, 2);
     assert!(two.contains("gearshock-bifurcation"), "no CLI sweep export");
-    for workers in [3, 8] {
+    for workers in [1, 3, 8] {
         let got = exports_of(&link, workers);
         assert!(
             got == two,

@@ -159,9 +159,10 @@ impl Controller {
     }
 
     /// Starts from a link's query string with a pool of `workers` workers
-    /// (clamped to [`MIN_WORKERS`] ..= [`MAX_WORKERS`]).
+    /// (clamped to 1 ..= [`MAX_WORKERS`]; one worker only for the
+    /// benchmark's scaling figure, the page runs [`pool_size`]).
     pub fn with_workers(query: &str, now_ms: f64, workers: usize) -> (Self, Vec<Effect>) {
-        let workers = workers.clamp(MIN_WORKERS, MAX_WORKERS);
+        let workers = workers.clamp(1, MAX_WORKERS);
         let decoded = link::decode(query);
         let pinned = decoded.pinned;
         let mut c = Controller {

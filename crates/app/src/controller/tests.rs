@@ -565,7 +565,7 @@ fn the_pool_leaves_one_core_to_the_page_within_two_to_eight_workers() {
         assert_eq!(chain_count(points), chains, "{points} points");
     }
     // Out-of-range pools are clamped.
-    assert_eq!(Controller::with_workers("", 0.0, 1).0.workers(), 2);
+    assert_eq!(Controller::with_workers("", 0.0, 0).0.workers(), 1);
     assert_eq!(Controller::with_workers("", 0.0, 30).0.workers(), 8);
 }
 

@@ -136,22 +136,26 @@ impl WorkerCore {
             }
         }
         if other.is_empty() && !texts.is_empty() {
-            // Several shards here, to be merged by the first worker.
             let Some(FromWorker::Export { text, .. }) = first.export(mesh, &[]) else {
                 return failed(id, "the bifurcation sweep has not finished yet");
             };
-            texts.insert(0, text);
-            let values: Result<Vec<Value>, _> = texts
-                .iter()
+            let values: Result<Vec<Value>, _> = std::iter::once(&text)
+                .chain(&texts)
                 .map(|t| serde_json::from_str::<Value>(t))
                 .collect();
-            return match values {
-                Ok(v) => FromWorker::Export {
-                    id,
-                    text: Value::Array(v).to_string(),
-                },
-                Err(e) => failed(id, format!("cannot read a shard: {e}")),
+            let values = match values {
+                Ok(v) => v,
+                Err(e) => return failed(id, format!("cannot read a shard: {e}")),
             };
+            let chains = values[0]["spec"]["chains"].as_u64();
+            if chains != Some(values.len() as u64) {
+                // Several shards here, to be merged by the first worker.
+                return FromWorker::Export {
+                    id,
+                    text: Value::Array(values).to_string(),
+                };
+            }
+            // A pool of one: every chain is here; merge them.
         }
         texts.extend(other.iter().cloned());
         first
