@@ -1,6 +1,6 @@
 // Benchmark of the explorer page in headless chromium (not part of the test
 // command): bundle sizes, first paint, slider-input-to-redraw latency and the
-// bifurcation sweep time with two workers. Prints medians as Markdown for
+// bifurcation sweep time on one and two workers (window.gearshockWorkers). Prints medians as Markdown for
 // docs/browser-bench.md. Needs a release build in dist/:
 //
 //   scripts/setup.sh && source scripts/env.sh && trunk build --release --offline
@@ -100,23 +100,31 @@ try {
       await page.close();
     }
 
-    // Bifurcation: 200 Omega points x (300 + 100) periods, two workers.
+    // Bifurcation: 200 Omega points x (300 + 100) periods (4 chains), on 1
+    // and 2 workers: the pool's scaling on this 2-core machine.
     {
       const points = QUICK ? 20 : 200;
-      const total = [];
-      const first = [];
       const reps = QUICK ? 1 : Math.min(REPEATS, 3);
-      for (let i = 0; i < reps; i++) {
-        // fr_points=2: the coarsest harmonic-balance branch, so that it takes
-        // little time from the worker it shares with a bifurcation shard.
-        const { page } = await open(h.browser, h.url, `bif_points=${points}&bif_dir=up&fr_points=2&transient_periods=300&record_periods=100&omega_from=0.1&omega_to=2`);
-        const s = await waitStatus(page, (s) => s.bif.finished_ms, 600000, 'bifurcation');
-        total.push(s.bif.finished_ms - s.bif.started_ms);
-        first.push(s.bif.first_data_ms - s.bif.started_ms);
-        await page.close();
+      const medians = {};
+      for (const workers of [1, 2]) {
+        const total = [];
+        const first = [];
+        for (let i = 0; i < reps; i++) {
+          // fr_points=2: the coarsest harmonic-balance branch, so that it takes
+          // little time from the worker it shares with the bifurcation chains.
+          const { page } = await open(h.browser, h.url, `bif_points=${points}&bif_dir=up&fr_points=2&transient_periods=300&record_periods=100&omega_from=0.1&omega_to=2&lyap_points=0`, workers);
+          const s = await waitStatus(page, (s) => s.bif.finished_ms, 900000, 'bifurcation');
+          if (s.workers !== workers) throw new Error(`asked for ${workers} workers, the page runs ${s.workers}`);
+          total.push(s.bif.finished_ms - s.bif.started_ms);
+          first.push(s.bif.first_data_ms - s.bif.started_ms);
+          await page.close();
+        }
+        medians[workers] = median(total);
+        row(`bifurcation: ${points} points x (300 + 100) periods, ${workers} worker${workers > 1 ? 's' : ''}`, total, 'ms', 'upward sweep, Omega 0.1..2, default model');
+        row(`bifurcation: first partial frame, ${workers} worker${workers > 1 ? 's' : ''}`, first, 'ms', 'from job start');
       }
-      row(`bifurcation: ${points} points x (300 + 100) periods, 2 workers`, total, 'ms', 'upward sweep, Omega 0.1..2, default model');
-      row('bifurcation: first partial frame', first, 'ms', 'from job start');
+      results.push({ what: 'bifurcation: speed-up of 2 workers over 1', median: medians[1] / medians[2], unit: 'x', note: 'ratio of the medians', n: 1, ratio: true });
+      console.error(`bifurcation speed-up 1 -> 2 workers: ${(medians[1] / medians[2]).toFixed(2)}x`);
     }
   }
 
@@ -148,5 +156,6 @@ console.log('| measurement | median | unit | range (n) | note |');
 console.log('|---|---:|---|---|---|');
 for (const r of results) {
   const range = r.n > 1 ? `${fmt(r.min)} .. ${fmt(r.max)} (${r.n})` : '';
-  console.log(`| ${r.what} | ${fmt(r.median)} | ${r.unit} | ${range} | ${r.note} |`);
+  const value = r.ratio ? r.median.toFixed(2) : fmt(r.median);
+  console.log(`| ${r.what} | ${value} | ${r.unit} | ${range} | ${r.note} |`);
 }

@@ -428,6 +428,7 @@ pub fn steady_state(
 }
 
 /// Where a [`SteadyRun`] stands.
+#[derive(Debug, Clone)]
 enum Phase {
     /// Integrating transient period `p` (1-based).
     Transient { p: u32 },
@@ -446,6 +447,7 @@ enum Phase {
 /// integrator's state, so a caller (the page's worker) can serve newer work
 /// between slices. Any sequence of slices computes the same bits as
 /// [`steady_state`], which is one unlimited slice.
+#[derive(Debug, Clone)]
 pub struct SteadyRun {
     opts: SteadyOptions,
     ode: MeshOde,
@@ -734,6 +736,7 @@ pub fn detect_period(points: &[Vec<f64>], tol: f64) -> Option<u32> {
 }
 
 /// Running range of all mesh deflections (for the settle tolerance).
+#[derive(Debug, Clone)]
 struct SpanTracker {
     lo: Vec<f64>,
     hi: Vec<f64>,
@@ -770,6 +773,7 @@ impl SpanTracker {
 }
 
 /// Accumulates the recorded window.
+#[derive(Debug, Clone)]
 struct Recorder {
     n_mesh: usize,
     t_rec: f64,

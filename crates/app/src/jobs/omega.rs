@@ -3,7 +3,7 @@
 //! history, spectrum and gear-set animation ([`OmegaResult`]); also the
 //! page's bounded preview run ([`omega_result`] with a start state).
 
-use super::{excitation_at, failed, round_um, Job};
+use super::{excitation_at, failed, round_um, Job, SLICE_STEPS};
 use crate::protocol::{
     history_start, AnimHistory, FromWorker, JobId, MeshSummary, OmegaResult, RunOptions,
 };
@@ -41,13 +41,8 @@ pub const PREVIEW_RUN: RunOptions = RunOptions {
 /// preview and waits for the worker.
 pub const PREVIEW_STEPS_PER_PERIOD: u64 = 300;
 
-/// Integrator steps per step of the worker's Omega job (a few ms in the
-/// browser): a newer job or a cancel waits at most this long, however long
-/// the steady state runs.
-pub const OMEGA_SLICE_STEPS: u64 = 3000;
-
 /// An Omega job in the worker: its steady state in slices of
-/// [`OMEGA_SLICE_STEPS`] integrator steps, then the result.
+/// [`SLICE_STEPS`] integrator steps, then the result.
 pub(crate) struct OmegaRun {
     job: OmegaJob,
     /// The steady state in progress; `Err` holds a failure to report at
@@ -77,7 +72,7 @@ impl Job for OmegaRun {
         let result = match self.run.as_mut() {
             None => return Vec::new(),
             Some(Err(e)) => Err(e.clone()),
-            Some(Ok(run)) => match run.advance(&self.job.model, OMEGA_SLICE_STEPS) {
+            Some(Ok(run)) => match run.advance(&self.job.model, SLICE_STEPS) {
                 Ok(None) => return Vec::new(),
                 Ok(Some(ss)) => omega_result_of(&self.job, ss, false),
                 Err(e) => Err(format!("Omega = {}: {e}", self.job.omega)),

@@ -458,7 +458,8 @@ fn steps_to_omega(core: &mut WorkerCore) -> (Vec<FromWorker>, usize) {
 
 #[test]
 fn a_new_omega_job_preempts_a_running_steady_state_within_one_slice() {
-    use crate::jobs::omega::{omega_result, OmegaJob, OMEGA_SLICE_STEPS};
+    use crate::jobs::omega::{omega_result, OmegaJob};
+    use crate::jobs::SLICE_STEPS;
     let mut core = WorkerCore::new();
     let p = ModelParams::default();
     let run = RunOptions {
@@ -483,9 +484,16 @@ fn a_new_omega_job_preempts_a_running_steady_state_within_one_slice() {
             directions: "up".into(),
             chains: 1,
             shard: 0,
-            run: quick(),
+            run,
         },
     ));
+    // The sweep's first point pauses after a slice, inside its steady state.
+    let out = core.step();
+    assert!(
+        out.iter()
+            .all(|m| !matches!(m, FromWorker::BifPoints { .. })),
+        "one slice computed a whole sweep point"
+    );
     core.handle(&run_msg(1, &p, omega_job(0.9)));
     // The old steady state is paused after a slice, mid-run.
     let first = core.step();
@@ -505,7 +513,7 @@ fn a_new_omega_job_preempts_a_running_steady_state_within_one_slice() {
         .expect("an Omega result");
     assert_eq!(result.0, 2, "the old job's result arrived");
     // Every step went to the new run: as many as its slices, no more.
-    let slices = result.1.steps.div_ceil(OMEGA_SLICE_STEPS) as usize;
+    let slices = result.1.steps.div_ceil(SLICE_STEPS) as usize;
     assert_eq!(
         steps, slices,
         "steps taken by other jobs before the new run's result"
