@@ -104,8 +104,7 @@ fn a_finished_or_failed_run_does_no_more_work() {
     // Bad options are refused when the run is made, naming the option.
     opts.record_periods = 0;
     let msg = SteadyRun::new(&m, &opts, None)
-        .err()
-        .expect("refused")
+        .expect_err("refused")
         .to_string();
     assert!(msg.contains("record-periods"), "{msg}");
 }
