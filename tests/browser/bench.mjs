@@ -1,10 +1,10 @@
 // Benchmark of the explorer page in headless chromium (not part of the test
 // command): bundle sizes, first paint, slider-input-to-redraw latency and the
-// bifurcation sweep time with two workers. Prints medians as Markdown for
+// bifurcation sweep time on one and two workers (window.gearshockWorkers). Prints medians as Markdown for
 // docs/browser-bench.md. Needs a release build in dist/:
 //
 //   scripts/setup.sh && source scripts/env.sh && trunk build --release --offline
-//   node tests/browser/bench.mjs [--repeats N] [--quick] [--map]
+//   node tests/browser/bench.mjs [--repeats N] [--quick] [--map] [--pool-only]
 import fs from 'node:fs';
 import path from 'node:path';
 import zlib from 'node:zlib';
@@ -17,6 +17,8 @@ const QUICK = args.includes('--quick');
 // a minute per run, --repeats runs at most 3); --map-only measures nothing else.
 const MAP_ONLY = args.includes('--map-only');
 const MAP = MAP_ONLY || args.includes('--map');
+// --pool-only measures only the bifurcation sweep on 1 and 2 workers.
+const POOL_ONLY = args.includes('--pool-only');
 
 const median = (xs) => {
   const s = [...xs].sort((a, b) => a - b);
@@ -44,7 +46,7 @@ const h = await start();
 try {
   // First paint from a cold load: navigation start to the first drawn frame
   // of the frequency-response axes, and to its first computed points.
-  if (!MAP_ONLY) {
+  if (!MAP_ONLY && !POOL_ONLY) {
     const paint = [];
     const firstFr = [];
     for (let i = 0; i < REPEATS; i++) {
@@ -99,25 +101,37 @@ try {
       row('slider input to first bifurcation points (restarted sweep)', bifFirst, 'ms');
       await page.close();
     }
+  }
 
-    // Bifurcation: 200 Omega points x (300 + 100) periods, two workers.
-    {
-      const points = QUICK ? 20 : 200;
-      const total = [];
-      const first = [];
-      const reps = QUICK ? 1 : Math.min(REPEATS, 3);
-      for (let i = 0; i < reps; i++) {
+  // Bifurcation: 200 Omega points x (300 + 100) periods (4 chains), on 1
+  // and 2 workers (window.gearshockWorkers): the pool's scaling on this
+  // 2-core machine. The two pool sizes alternate, so that the shared
+  // machine's load falls on both alike.
+  if (!MAP_ONLY) {
+    const points = QUICK ? 20 : 200;
+    const reps = QUICK ? 1 : POOL_ONLY ? REPEATS : Math.min(REPEATS, 3);
+    const total = { 1: [], 2: [] };
+    const first = { 1: [], 2: [] };
+    for (let i = 0; i < reps; i++) {
+      for (const workers of [1, 2]) {
         // fr_points=2: the coarsest harmonic-balance branch, so that it takes
-        // little time from the worker it shares with a bifurcation shard.
-        const { page } = await open(h.browser, h.url, `bif_points=${points}&bif_dir=up&fr_points=2&transient_periods=300&record_periods=100&omega_from=0.1&omega_to=2`);
-        const s = await waitStatus(page, (s) => s.bif.finished_ms, 600000, 'bifurcation');
-        total.push(s.bif.finished_ms - s.bif.started_ms);
-        first.push(s.bif.first_data_ms - s.bif.started_ms);
+        // little time from the worker it shares with the bifurcation chains.
+        const { page } = await open(h.browser, h.url, `bif_points=${points}&bif_dir=up&fr_points=2&transient_periods=300&record_periods=100&omega_from=0.1&omega_to=2&lyap_points=0`, workers);
+        const s = await waitStatus(page, (s) => s.bif.finished_ms, 900000, 'bifurcation');
+        if (s.workers !== workers) throw new Error(`asked for ${workers} workers, the page runs ${s.workers}`);
+        total[workers].push(s.bif.finished_ms - s.bif.started_ms);
+        first[workers].push(s.bif.first_data_ms - s.bif.started_ms);
         await page.close();
       }
-      row(`bifurcation: ${points} points x (300 + 100) periods, 2 workers`, total, 'ms', 'upward sweep, Omega 0.1..2, default model');
-      row('bifurcation: first partial frame', first, 'ms', 'from job start');
     }
+    for (const workers of [1, 2]) {
+      const w = `${workers} worker${workers > 1 ? 's' : ''}`;
+      row(`bifurcation: ${points} points x (300 + 100) periods, ${w}`, total[workers], 'ms', 'upward sweep, Omega 0.1..2, default model, 4 chains');
+      row(`bifurcation: first partial frame, ${w}`, first[workers], 'ms', 'from job start');
+    }
+    const ratio = median(total[1]) / median(total[2]);
+    results.push({ what: 'bifurcation: speed-up of 2 workers over 1', median: ratio, unit: 'x', note: 'ratio of the medians', n: 1, ratio: true });
+    console.error(`bifurcation speed-up 1 -> 2 workers: ${ratio.toFixed(2)}x`);
   }
 
   // Regime map: 100 x 40 cells x (300 + 100) periods, two workers (opt-in).
@@ -148,5 +162,6 @@ console.log('| measurement | median | unit | range (n) | note |');
 console.log('|---|---:|---|---|---|');
 for (const r of results) {
   const range = r.n > 1 ? `${fmt(r.min)} .. ${fmt(r.max)} (${r.n})` : '';
-  console.log(`| ${r.what} | ${fmt(r.median)} | ${r.unit} | ${range} | ${r.note} |`);
+  const value = r.ratio ? r.median.toFixed(2) : fmt(r.median);
+  console.log(`| ${r.what} | ${value} | ${r.unit} | ${range} | ${r.note} |`);
 }

@@ -51,14 +51,22 @@ export async function start() {
   };
 }
 
-/** Opens a page at `query`, recording console errors and page errors. */
-export async function open(browser, url, query = '') {
+/**
+ * Opens a page at `query`, recording console errors and page errors;
+ * `workers` (optional) sets the page's worker pool (window.gearshockWorkers).
+ */
+export async function open(browser, url, query = '', workers = undefined) {
   const page = await browser.newPage();
   const errors = [];
   page.on('console', (m) => {
     if (m.type() === 'error') errors.push(m.text());
   });
   page.on('pageerror', (e) => errors.push(String(e)));
+  if (workers !== undefined) {
+    await page.addInitScript((n) => {
+      window.gearshockWorkers = n;
+    }, workers);
+  }
   await page.goto(url + (query ? `?${query}` : ''));
   await page.waitForFunction(() => typeof window.gearshockStatus === 'function');
   return { page, errors };

@@ -3,15 +3,18 @@
 //! Protocol. A worker posts [`FromWorker::Ready`] once its wasm has loaded;
 //! the page queues jobs until then (messages posted earlier would be lost).
 //! Every job carries an id. A worker holds at most one job of each
-//! [`JobKind`]: a newer job of a kind replaces (cancels) the older one, and the
+//! [`JobKind`] (further `Run` messages with the same id are more shards of
+//! it): a newer job of a kind replaces (cancels) the older one, and the
 //! page ignores replies whose id is not the current one of that kind. Workers
-//! compute in bounded chunks (one steady state per chunk) and yield to their
-//! event loop between chunks, so a newer job or a cancel arrives within one
-//! chunk. Bifurcation sweeps and the time-integration overlay of the
-//! frequency response are split over two workers as interleaved continuation
-//! chains (`chains = 2`, `shard = w`); the merged result equals an unsharded
-//! run with two chains. The harmonic-balance branch ([`JobSpec::Hbm`]) is one
-//! continuation on one worker, advanced a few points per chunk.
+//! compute in bounded chunks (a slice of a steady state, one steady state or
+//! map cell) and yield to their event loop between chunks, so a newer job or
+//! a cancel arrives within one chunk. Bifurcation sweeps, the Lyapunov curve
+//! and the time-integration overlay of the frequency response are split into
+//! interleaved continuation chains (`chains` fixed by the points, one
+//! message per `shard`, dealt over the pool); the merged result equals an
+//! unsharded run with as many chains. The harmonic-balance branch
+//! ([`JobSpec::Hbm`]) is one continuation on one worker, advanced a few
+//! points per chunk.
 //!
 //! These are the serializable DTOs of the boundary; solver types stay inside
 //! the worker.

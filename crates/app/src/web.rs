@@ -13,7 +13,7 @@
 //! Text from links and workers reaches the page only through `textContent`
 //! and attribute setters, never `innerHTML`. A DOM call whose failure
 //! leaves the page usable is passed to [`check`], which logs the failure.
-use crate::controller::{Controller, Effect, ExportError, Format, WORKERS};
+use crate::controller::{pool_size, Controller, Effect, ExportError, Format};
 use crate::controls::{controls, field_text, shown_for, Group, Target, Widget};
 use crate::gearset::{AnimClock, GearSet};
 use crate::plots::{self, PlotFrame, PointGroup};
@@ -148,7 +148,17 @@ pub fn start_app() {
     };
     let query = window.location().search().unwrap_or_default();
     let t = now(&window);
-    let (ctl, effects) = Controller::new(&query, t);
+    // A worker per logical core but one (the page's), within the pool's
+    // bounds; `window.gearshockWorkers` (set by the benchmark) overrides it.
+    let cores = window.navigator().hardware_concurrency();
+    let cores = (cores.is_finite() && cores >= 1.0).then_some(cores as u32);
+    let forced = js_sys::Reflect::get(&window, &JsValue::from_str("gearshockWorkers"))
+        .ok()
+        .and_then(|v| v.as_f64())
+        .filter(|n| n.is_finite() && *n >= 1.0)
+        .map(|n| n as usize);
+    let workers = forced.unwrap_or_else(|| pool_size(cores));
+    let (ctl, effects) = Controller::with_workers(&query, t, workers);
     let page = Rc::new(RefCell::new(Page {
         ctl,
         window: window.clone(),
@@ -191,7 +201,8 @@ pub fn start_app() {
     request_frame(&page);
 }
 fn start_workers(page: &Shared) {
-    for w in 0..WORKERS {
+    let workers = page.borrow().ctl.workers();
+    for w in 0..workers {
         let worker = match Worker::new("./worker_loader.js") {
             Ok(worker) => worker,
             Err(_) => {

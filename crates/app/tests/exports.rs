@@ -10,7 +10,7 @@
 // Tests may panic: that is how they fail.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use app::controller::{Controller, Effect, WORKERS};
+use app::controller::{Controller, Effect};
 use app::protocol::encode;
 use app::worker_core::WorkerCore;
 
@@ -58,11 +58,17 @@ fn settle(c: &mut Controller, cores: &mut [WorkerCore], mut fx: Vec<Effect>) -> 
 }
 
 fn exports() -> String {
-    let (mut c, fx) = Controller::new(LINK, 0.0);
+    exports_of(LINK, 2)
+}
+
+/// Every export of link `link` computed by a pool of `workers` workers.
+fn exports_of(link: &str, workers: usize) -> String {
+    let (mut c, fx) = Controller::with_workers(link, 0.0, workers);
+    assert_eq!(c.workers(), workers);
     assert!(c.issues.is_empty(), "{:?}", c.issues);
-    let mut cores: Vec<WorkerCore> = (0..WORKERS).map(|_| WorkerCore::new()).collect();
+    let mut cores: Vec<WorkerCore> = (0..workers).map(|_| WorkerCore::new()).collect();
     let mut fx = fx;
-    for w in 0..WORKERS {
+    for w in 0..workers {
         fx.extend(c.worker_message(w, r#"{"type":"ready"}"#, 1.0));
     }
     let downloads = settle(&mut c, &mut cores, fx);
@@ -135,6 +141,30 @@ fn the_exports_of_a_fixed_link_are_unchanged() {
             first + 1,
             got.lines().nth(first),
             want.lines().nth(first)
+        );
+    }
+}
+
+#[test]
+fn every_export_is_the_same_whatever_the_pool_size() {
+    // 400 sweep points make 8 chains (3 Lyapunov chains, 3 overlay chains),
+    // dealt unevenly over 3 workers and one each over 8: each chain must
+    // continue from the same states, and the shards merge into the same
+    // CLI JSON, as with 2 workers.
+    let link = LINK
+        .replace("bif_points=6", "bif_points=400")
+        .replace("fr_ti_points=4", "fr_ti_points=150");
+    assert!(link.contains("bif_points=400") && link.contains("fr_ti_points=150"));
+    let link = format!("{link}&lyap_points=150");
+    assert_eq!(app::controller::chain_count(400), 8);
+    assert_eq!(app::controller::chain_count(150), 3);
+    let two = exports_of(&link, 2);
+    assert!(two.contains("gearshock-bifurcation"), "no CLI sweep export");
+    for workers in [1, 3, 8] {
+        let got = exports_of(&link, workers);
+        assert!(
+            got == two,
+            "the exports of {workers} workers differ from 2 workers'"
         );
     }
 }

@@ -412,101 +412,246 @@ pub(crate) fn tolerances(
 }
 
 /// Runs one steady-state response from `start` (or the static equilibrium).
+///
+/// The one-shot form of [`SteadyRun`]: the same run, without pauses.
 pub fn steady_state(
     model: &Model,
     opts: &SteadyOptions,
     start: Option<&[f64]>,
 ) -> Result<SteadyState> {
-    opts.validate()?;
-    let sys = &model.system;
-    let omega_rad_s = opts.omega * sys.omega_ref_rad_s;
-    let period = 2.0 * PI / omega_rad_s;
-    let mut ode = MeshOde::new(sys, omega_rad_s);
-    let y0 = match start {
-        Some(y) if y.len() == 2 * sys.dof() && y.iter().all(|v| v.is_finite()) => y.to_vec(),
-        _ => model.static_state(),
-    };
-    let tol = tolerances(sys, opts.omega, opts.rtol, opts.atol_m, period, 1e-13);
-    let mut int = Dopri5::new(&mut ode, 0.0, &y0, period / 200.0, tol);
-    let bound_m = model.divergence_bound_m();
-    let n_mesh = sys.meshes.len();
-    let budget = opts
-        .max_steps_per_period
-        .saturating_mul(u64::from(opts.transient_periods) + u64::from(opts.record_periods) + 1);
-
-    // Transient. The slowest modal decay per period bounds how fast any
-    // transient can die (see `has_settled`).
-    let rho_modal = (-model.modes.slowest_decay_rate(sys.omega_ref_rad_s) * period).exp();
-    let mut poincare_hist: Vec<Vec<f64>> = Vec::new();
-    let mut span = SpanTracker::new(n_mesh);
-    let mut deflections = vec![0.0; n_mesh];
-    let mut periods_run = 0;
-    let mut settled = false;
-    for p in 1..=opts.transient_periods {
-        let t_end = f64::from(p) * period;
-        while int.t() < t_end {
-            int.step(&mut ode, t_end)
-                .map_err(|e| model.explain_failure(&ode, &int, e))?;
-            guard(&int, budget)?;
-            if opts.early_settle {
-                ode.deflections(&int.y()[..sys.dof()], &mut deflections);
-                span.add(&deflections);
-            }
+    let mut run = SteadyRun::new(model, opts, start)?;
+    loop {
+        if let Some(ss) = run.advance(model, u64::MAX)? {
+            return Ok(ss);
         }
-        periods_run = p;
-        model.check_bounded(&ode, int.t(), int.y(), bound_m)?;
-        if opts.early_settle {
-            poincare_hist.push(poincare_point(&ode, int.t(), int.y(), omega_rad_s));
-            if poincare_hist.len() > SETTLE_DISTANCES * 8 + 1 {
-                poincare_hist.remove(0);
+    }
+}
+
+/// Where a [`SteadyRun`] stands.
+#[derive(Debug, Clone)]
+enum Phase {
+    /// Integrating transient period `p` (1-based).
+    Transient { p: u32 },
+    /// Integrating recorded period `r` (1-based) of the window starting at `t_rec`.
+    Record {
+        r: u32,
+        t_rec: f64,
+        rec: Box<Recorder>,
+    },
+    /// Finished or failed: nothing left to do.
+    Done,
+}
+
+/// A steady-state run that can pause and resume: [`SteadyRun::advance`]
+/// takes at most a given number of integrator steps and returns, keeping the
+/// integrator's state, so a caller (the page's worker) can serve newer work
+/// between slices. Any sequence of slices computes the same bits as
+/// [`steady_state`], which is one unlimited slice.
+#[derive(Debug, Clone)]
+pub struct SteadyRun {
+    opts: SteadyOptions,
+    ode: MeshOde,
+    int: Dopri5,
+    omega_rad_s: f64,
+    period: f64,
+    bound_m: f64,
+    budget: u64,
+    /// The slowest modal decay per period (see `has_settled`).
+    rho_modal: f64,
+    poincare_hist: Vec<Vec<f64>>,
+    span: SpanTracker,
+    deflections: Vec<f64>,
+    periods_run: u32,
+    settled: bool,
+    phase: Phase,
+}
+
+impl SteadyRun {
+    /// A run of `model` with `opts` from `start` (or the static
+    /// equilibrium), before its first step; bad options are refused here.
+    pub fn new(model: &Model, opts: &SteadyOptions, start: Option<&[f64]>) -> Result<Self> {
+        opts.validate()?;
+        let sys = &model.system;
+        let omega_rad_s = opts.omega * sys.omega_ref_rad_s;
+        let period = 2.0 * PI / omega_rad_s;
+        let mut ode = MeshOde::new(sys, omega_rad_s);
+        let y0 = match start {
+            Some(y) if y.len() == 2 * sys.dof() && y.iter().all(|v| v.is_finite()) => y.to_vec(),
+            _ => model.static_state(),
+        };
+        let tol = tolerances(sys, opts.omega, opts.rtol, opts.atol_m, period, 1e-13);
+        let int = Dopri5::new(&mut ode, 0.0, &y0, period / 200.0, tol);
+        let n_mesh = sys.meshes.len();
+        let budget = opts
+            .max_steps_per_period
+            .saturating_mul(u64::from(opts.transient_periods) + u64::from(opts.record_periods) + 1);
+        Ok(SteadyRun {
+            opts: opts.clone(),
+            ode,
+            int,
+            omega_rad_s,
+            period,
+            bound_m: model.divergence_bound_m(),
+            budget,
+            rho_modal: (-model.modes.slowest_decay_rate(sys.omega_ref_rad_s) * period).exp(),
+            poincare_hist: Vec::new(),
+            span: SpanTracker::new(n_mesh),
+            deflections: vec![0.0; n_mesh],
+            periods_run: 0,
+            settled: false,
+            phase: Phase::Transient { p: 1 },
+        })
+    }
+
+    /// Integrator steps taken so far.
+    pub fn steps(&self) -> u64 {
+        self.int.stats.steps
+    }
+
+    /// Whether the run has returned its result or failed.
+    pub fn is_done(&self) -> bool {
+        matches!(self.phase, Phase::Done)
+    }
+
+    /// Continues the run for at most `max_steps` integrator steps (at least
+    /// one): `Ok(Some(state))` once it is complete, `Ok(None)` if paused.
+    /// `model` must be the run's own (the one given to [`SteadyRun::new`]).
+    /// After the result or an error the run is done, and further calls
+    /// return `Ok(None)` without work.
+    pub fn advance(&mut self, model: &Model, max_steps: u64) -> Result<Option<SteadyState>> {
+        let r = self.advance_inner(model, max_steps.max(1));
+        if !matches!(r, Ok(None)) {
+            self.phase = Phase::Done;
+        }
+        r
+    }
+
+    fn advance_inner(&mut self, model: &Model, max_steps: u64) -> Result<Option<SteadyState>> {
+        let dof = model.system.dof();
+        let mut steps = 0u64;
+        loop {
+            match &mut self.phase {
+                Phase::Done => return Ok(None),
+                Phase::Transient { p } if *p > self.opts.transient_periods => {
+                    self.start_recording(model);
+                }
+                Phase::Transient { p } => {
+                    let p_now = *p;
+                    let t_end = f64::from(p_now) * self.period;
+                    while self.int.t() < t_end {
+                        if steps >= max_steps {
+                            return Ok(None);
+                        }
+                        self.int
+                            .step(&mut self.ode, t_end)
+                            .map_err(|e| model.explain_failure(&self.ode, &self.int, e))?;
+                        steps += 1;
+                        guard(&self.int, self.budget)?;
+                        if self.opts.early_settle {
+                            self.ode
+                                .deflections(&self.int.y()[..dof], &mut self.deflections);
+                            self.span.add(&self.deflections);
+                        }
+                    }
+                    self.periods_run = p_now;
+                    model.check_bounded(&self.ode, self.int.t(), self.int.y(), self.bound_m)?;
+                    self.phase = Phase::Transient { p: p_now + 1 };
+                    if self.opts.early_settle {
+                        let hist = &mut self.poincare_hist;
+                        hist.push(poincare_point(
+                            &self.ode,
+                            self.int.t(),
+                            self.int.y(),
+                            self.omega_rad_s,
+                        ));
+                        if hist.len() > SETTLE_DISTANCES * 8 + 1 {
+                            hist.remove(0);
+                        }
+                        let tol = settle_tol_um(self.span.span_um());
+                        if p_now >= 5 && has_settled(hist, tol, self.rho_modal) {
+                            self.settled = true;
+                            self.start_recording(model);
+                            continue;
+                        }
+                        self.span.reset_keep_last();
+                    }
+                }
+                Phase::Record { r, t_rec, rec } => {
+                    let t_end = *t_rec + f64::from(*r) * self.period;
+                    while self.int.t() < t_end {
+                        if steps >= max_steps {
+                            return Ok(None);
+                        }
+                        let info = self
+                            .int
+                            .step(&mut self.ode, t_end)
+                            .map_err(|e| model.explain_failure(&self.ode, &self.int, e))?;
+                        steps += 1;
+                        guard(&self.int, self.budget)?;
+                        rec.on_step(&self.ode, &self.int, info);
+                    }
+                    model.check_bounded(&self.ode, self.int.t(), self.int.y(), self.bound_m)?;
+                    rec.on_period(&self.ode, self.int.t(), self.int.y(), self.omega_rad_s);
+                    if *r < self.opts.record_periods {
+                        *r += 1;
+                    } else {
+                        let t_rec = *t_rec;
+                        let Phase::Record { rec, .. } =
+                            std::mem::replace(&mut self.phase, Phase::Done)
+                        else {
+                            return Ok(None);
+                        };
+                        return Ok(Some(self.finish(model, t_rec, *rec)));
+                    }
+                }
             }
-            if p >= 5 && has_settled(&poincare_hist, settle_tol_um(span.span_um()), rho_modal) {
-                settled = true;
-                break;
-            }
-            span.reset_keep_last();
         }
     }
 
-    // Recording.
-    let t_rec = f64::from(periods_run) * period;
-    let mut rec = Recorder::new(model, &ode, opts, t_rec, period, int.y());
-    for r in 1..=opts.record_periods {
-        let t_end = t_rec + f64::from(r) * period;
-        while int.t() < t_end {
-            let info = int
-                .step(&mut ode, t_end)
-                .map_err(|e| model.explain_failure(&ode, &int, e))?;
-            guard(&int, budget)?;
-            rec.on_step(&ode, &int, info);
-        }
-        model.check_bounded(&ode, int.t(), int.y(), bound_m)?;
-        rec.on_period(&ode, int.t(), int.y(), omega_rad_s);
+    /// Ends the transient: the recorded window starts at the last whole period.
+    fn start_recording(&mut self, model: &Model) {
+        let t_rec = f64::from(self.periods_run) * self.period;
+        let rec = Recorder::new(
+            model,
+            &self.ode,
+            &self.opts,
+            t_rec,
+            self.period,
+            self.int.y(),
+        );
+        self.phase = Phase::Record {
+            r: 1,
+            t_rec,
+            rec: Box::new(rec),
+        };
     }
-    let end_state = int.y().to_vec();
-    let (meshes, histories, times, pc_points) = rec.finish(model);
-    let span_um = meshes
-        .iter()
-        .map(|m| (m.delta_max_m - m.delta_min_m) * 1e6)
-        .fold(0.0, f64::max);
-    let period_detected = detect_period(&pc_points, 10.0 * settle_tol_um(span_um));
-    Ok(SteadyState {
-        omega: opts.omega,
-        omega_rad_s,
-        mesh_freq_hz: omega_rad_s / (2.0 * PI),
-        period_s: period,
-        record_start_s: t_rec,
-        meshes,
-        sample_times_s: times,
-        histories,
-        end_state,
-        period: period_detected,
-        stats: SteadyStats {
-            transient_periods_run: periods_run,
-            settled,
-            integrator: int.stats,
-        },
-    })
+
+    fn finish(&self, model: &Model, t_rec: f64, rec: Recorder) -> SteadyState {
+        let end_state = self.int.y().to_vec();
+        let (meshes, histories, times, pc_points) = rec.finish(model);
+        let span_um = meshes
+            .iter()
+            .map(|m| (m.delta_max_m - m.delta_min_m) * 1e6)
+            .fold(0.0, f64::max);
+        let period_detected = detect_period(&pc_points, 10.0 * settle_tol_um(span_um));
+        SteadyState {
+            omega: self.opts.omega,
+            omega_rad_s: self.omega_rad_s,
+            mesh_freq_hz: self.omega_rad_s / (2.0 * PI),
+            period_s: self.period,
+            record_start_s: t_rec,
+            meshes,
+            sample_times_s: times,
+            histories,
+            end_state,
+            period: period_detected,
+            stats: SteadyStats {
+                transient_periods_run: self.periods_run,
+                settled: self.settled,
+                integrator: self.int.stats,
+            },
+        }
+    }
 }
 
 fn guard(int: &Dopri5, budget: u64) -> Result<()> {
@@ -591,6 +736,7 @@ pub fn detect_period(points: &[Vec<f64>], tol: f64) -> Option<u32> {
 }
 
 /// Running range of all mesh deflections (for the settle tolerance).
+#[derive(Debug, Clone)]
 struct SpanTracker {
     lo: Vec<f64>,
     hi: Vec<f64>,
@@ -627,6 +773,7 @@ impl SpanTracker {
 }
 
 /// Accumulates the recorded window.
+#[derive(Debug, Clone)]
 struct Recorder {
     n_mesh: usize,
     t_rec: f64,

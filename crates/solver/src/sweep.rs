@@ -17,7 +17,7 @@
 //! follow a branch.
 
 use crate::error::{Result, SolverError};
-use crate::steady::{steady_state, Impact, Model, SteadyOptions, SteadyStats};
+use crate::steady::{Impact, Model, SteadyOptions, SteadyRun, SteadyState, SteadyStats};
 
 /// Direction of one swept point.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -258,6 +258,8 @@ pub struct BifurcationSweep {
     tasks: Vec<Task>,
     next: usize,
     chain_state: Vec<Option<Vec<f64>>>,
+    /// The point in progress of [`Self::advance_steps`] and its run.
+    pending: Option<(Task, SteadyRun)>,
 }
 
 impl BifurcationSweep {
@@ -303,6 +305,7 @@ impl BifurcationSweep {
             tasks,
             next: 0,
             chain_state: vec![None; n_chains],
+            pending: None,
         })
     }
 
@@ -335,19 +338,48 @@ impl BifurcationSweep {
     pub fn advance(&mut self, max_points: usize) -> Vec<SweepPoint> {
         let mut out = Vec::with_capacity(max_points.min(self.tasks.len() - self.next));
         while out.len() < max_points && self.next < self.tasks.len() {
-            let task = self.tasks[self.next];
-            self.next += 1;
-            out.push(self.compute(task));
+            if let Some(p) = self.advance_steps(u64::MAX) {
+                out.push(p);
+            }
         }
         out
     }
 
-    fn compute(&mut self, task: Task) -> SweepPoint {
+    /// Continues the next point's steady state for at most `max_steps`
+    /// integrator steps ([`SteadyRun::advance`]): the point once it is
+    /// complete, `None` while it is paused or when the sweep is finished.
+    /// Points are the same bits as [`Self::advance`]'s, whatever the slices.
+    pub fn advance_steps(&mut self, max_steps: u64) -> Option<SweepPoint> {
+        if self.pending.is_none() {
+            let task = *self.tasks.get(self.next)?;
+            let mut opts = self.spec.steady.clone();
+            opts.omega = self.spec.omega(task.index);
+            let start = self.chain_state[task.chain as usize].take();
+            match SteadyRun::new(&self.model, &opts, start.as_deref()) {
+                Ok(run) => self.pending = Some((task, run)),
+                Err(e) => {
+                    self.next += 1;
+                    return Some(self.point(task, Err(e)));
+                }
+            }
+        }
+        let (task, run) = self.pending.as_mut()?;
+        let result = match run.advance(&self.model, max_steps) {
+            Ok(None) => return None,
+            Ok(Some(ss)) => Ok(ss),
+            Err(e) => Err(e),
+        };
+        let task = *task;
+        self.pending = None;
+        self.next += 1;
+        Some(self.point(task, result))
+    }
+
+    /// The sweep point of `task` from its steady state (or failure); a
+    /// success's end state continues the task's chain.
+    fn point(&mut self, task: Task, result: Result<SteadyState>) -> SweepPoint {
         let omega = self.spec.omega(task.index);
-        let mut opts = self.spec.steady.clone();
-        opts.omega = omega;
-        let start = self.chain_state[task.chain as usize].take();
-        match steady_state(&self.model, &opts, start.as_deref()) {
+        match result {
             Ok(ss) => {
                 self.chain_state[task.chain as usize] = Some(ss.end_state.clone());
                 let worst_mesh = ss.worst_mesh();

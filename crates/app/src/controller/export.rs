@@ -142,26 +142,41 @@ impl Controller {
         }
     }
 
-    /// Starts assembling the bifurcation JSON in the CLI's format: the last
-    /// shard exports first, then worker 0 merges the others into its own.
+    /// Starts assembling the bifurcation JSON in the CLI's format: every
+    /// worker but the first sends its shards, then worker 0 (which holds
+    /// chain 0) merges them with its own.
     fn request_bif_export(&mut self) -> Result<Vec<Effect>, ExportError> {
         if self.bif_status.finished_ms.is_none() {
             return Err(ExportError::SweepRunning);
         }
         let (mesh, _) = self.mesh_and_backlash();
         let id = self.bif.id;
-        self.export = Some(PendingExport { id, mesh });
-        let chains = (WORKERS as u32).min(self.settings.view.bif_points) as usize;
+        let chains = chain_count(self.settings.view.bif_points);
+        let holders: Vec<usize> = (1..self.workers())
+            .filter(|&w| self.chains_on(w, chains) > 0)
+            .collect();
+        self.export = Some(PendingExport {
+            id,
+            mesh,
+            collected: Vec::new(),
+            expected: chains as usize - self.chains_on(0, chains),
+        });
         let msg = ToWorker::ExportBif {
             id,
             mesh,
             other: Vec::new(),
         };
-        Ok(self.post(chains - 1, &msg))
+        if holders.is_empty() {
+            return Ok(self.post(0, &msg));
+        }
+        Ok(holders
+            .into_iter()
+            .flat_map(|w| self.post(w, &msg))
+            .collect())
     }
 
     pub(super) fn export_reply(&mut self, worker: usize, id: JobId, text: String) -> Vec<Effect> {
-        let Some(pending) = self.export.clone().filter(|e| e.id == id) else {
+        let Some(pending) = self.export.as_mut().filter(|e| e.id == id) else {
             return Vec::new();
         };
         if worker == 0 {
@@ -172,10 +187,20 @@ impl Controller {
                 text,
             }];
         }
+        // A worker with several shards sends them as a JSON array.
+        match serde_json::from_str::<serde_json::Value>(&text) {
+            Ok(serde_json::Value::Array(shards)) => pending
+                .collected
+                .extend(shards.iter().map(serde_json::Value::to_string)),
+            _ => pending.collected.push(text),
+        }
+        if pending.collected.len() < pending.expected {
+            return Vec::new();
+        }
         let msg = ToWorker::ExportBif {
             id,
             mesh: pending.mesh,
-            other: vec![text],
+            other: std::mem::take(&mut pending.collected),
         };
         self.post(0, &msg)
     }
@@ -196,7 +221,7 @@ impl Controller {
                 .map_or_else(|| m.system.meshes[0].name.clone(), |r| r.mesh_name.clone()),
             (Err(_), MeshSel::Worst) => "s1a1".into(),
         };
-        let chains = (WORKERS as u32).min(v.bif_points);
+        let chains = chain_count(v.bif_points);
         let frf_mesh = match &v.mesh {
             MeshSel::Named(n) => n.as_str(),
             MeshSel::Worst => "all",

@@ -87,6 +87,40 @@ impl Controller {
         }
     }
 
+    /// Workers in the pool.
+    pub fn workers(&self) -> usize {
+        self.workers.len()
+    }
+
+    /// The worker that runs the harmonic-balance branch: the last.
+    pub fn hbm_worker(&self) -> usize {
+        self.workers.len() - 1
+    }
+
+    /// The worker that runs A's harmonic-balance branch: the one before the
+    /// last when the pool has more than two (so both branches compute at
+    /// once), else the last.
+    pub fn pinned_hbm_worker(&self) -> usize {
+        let n = self.workers.len();
+        if n > 2 {
+            n - 2
+        } else {
+            n - 1
+        }
+    }
+
+    /// The worker of chain (or share) `shard`: chains are dealt round robin.
+    pub fn shard_worker(&self, shard: u32) -> usize {
+        shard as usize % self.workers.len()
+    }
+
+    /// How many of `chains` chains worker `worker` holds.
+    pub(super) fn chains_on(&self, worker: usize, chains: u32) -> usize {
+        (0..chains)
+            .filter(|&c| self.shard_worker(c) == worker)
+            .count()
+    }
+
     pub(super) fn run_options(&self, record: u32) -> RunOptions {
         RunOptions {
             transient_periods: self.settings.view.transient_periods,
@@ -130,8 +164,8 @@ impl Controller {
         self.next_id
     }
 
-    /// Posts the job of each of `chains` shards (`job(shard)`), one per
-    /// worker, for the current state or (`pinned`) for A.
+    /// Posts the job of each of `chains` shards (`job(shard)`), dealt round
+    /// robin over the workers, for the current state or (`pinned`) for A.
     pub(super) fn post_shards(
         &mut self,
         id: JobId,
@@ -147,7 +181,7 @@ impl Controller {
             } else {
                 ToWorker::Run { id, params, job }
             };
-            fx.extend(self.post(w as usize, &msg));
+            fx.extend(self.post(self.shard_worker(w), &msg));
         }
         fx
     }
@@ -172,7 +206,7 @@ impl Controller {
 
     /// Cancels the jobs of `kind` on every worker.
     fn cancel(&mut self, kind: JobKind) -> Vec<Effect> {
-        (0..WORKERS)
+        (0..self.workers.len())
             .flat_map(|w| self.post(w, &ToWorker::Cancel { kind }))
             .collect()
     }
@@ -261,7 +295,7 @@ impl Controller {
             params: params.clone(),
             job,
         };
-        self.post(HBM_WORKER, &msg)
+        self.post(self.hbm_worker(), &msg)
     }
 
     fn start_overlay(&mut self, params: &Params, now_ms: f64) -> Vec<Effect> {
@@ -276,7 +310,7 @@ impl Controller {
         let n = v.fr_ti_points;
         let id = self.begin(JobKind::Fr, n as usize, now_ms);
         self.fr = FrStore::new(id, n, v.transient_periods, v.fr_record_periods);
-        let chains = (WORKERS as u32).min(n);
+        let chains = chain_count(n);
         let run = self.run_options(v.fr_record_periods);
         self.post_shards(id, params, (chains, false), |shard| JobSpec::Fr {
             omega_from: v.omega_from,
@@ -306,7 +340,7 @@ impl Controller {
         v: &crate::settings::ViewOptions,
         pinned: bool,
     ) -> Vec<Effect> {
-        let chains = (WORKERS as u32).min(v.bif_points);
+        let chains = chain_count(v.bif_points);
         let run = RunOptions {
             transient_periods: v.transient_periods,
             record_periods: v.record_periods,
@@ -378,7 +412,8 @@ impl Controller {
             transient_periods: v.map_transient_periods,
             record_periods: v.map_record_periods,
         };
-        let shards = (WORKERS as u32).min(grid.value_points);
+        // Rows are independent: every worker takes a share.
+        let shards = (self.workers.len() as u32).min(grid.value_points);
         let mesh = self.settings.mesh_index(model);
         let fx = self.post_shards(id, params, (shards, false), |shard| JobSpec::Map {
             key: grid.key.clone(),
@@ -410,7 +445,7 @@ impl Controller {
         let n = v.lyap_points;
         let id = self.begin(JobKind::Lyap, n as usize, now_ms);
         self.lyap = LyapStore::new(id, n as usize, v.lyap_periods);
-        let chains = (WORKERS as u32).min(n);
+        let chains = chain_count(n);
         self.post_shards(id, params, (chains, false), |shard| JobSpec::Lyap {
             omega_from: v.omega_from,
             omega_to: v.omega_to,

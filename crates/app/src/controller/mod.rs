@@ -7,7 +7,13 @@
 //! everything, the frequency range the sweeps, the harmonics only the
 //! harmonic-balance branch, the selected Omega or plotted mesh only the
 //! selected-Omega job. The harmonic-balance branch of view 1 runs on the last
-//! worker (worker 0 serves the selected-Omega job first). The web layer redraws the views
+//! worker (worker 0 serves the selected-Omega job first).
+//!
+//! The page runs a pool of workers sized to the machine ([`pool_size`]).
+//! Sweeps along continuation chains use a number of chains fixed by their
+//! point count alone ([`chain_count`]), dealt round robin over the pool, so
+//! their results are the same bits on any machine; map rows are
+//! independent and shared by every worker. The web layer redraws the views
 //! whose `dirty` flag is set, once per animation frame.
 
 use crate::link;
@@ -25,14 +31,37 @@ use crate::views::{distinct, natural_in_range, ViewContext};
 use solver::keys;
 use solver::steady::Model;
 
-/// Number of Web Workers the page runs.
-pub const WORKERS: usize = 2;
+/// The fewest Web Workers the page runs (also the pool of [`Controller::new`]).
+pub const MIN_WORKERS: usize = 2;
+/// The most Web Workers the page runs.
+pub const MAX_WORKERS: usize = 8;
+/// A continuation chain's fewest grid points (see [`chain_count`]).
+pub const MIN_CHAIN_POINTS: u32 = 50;
+
+/// The worker pool for a machine with `hardware_concurrency` logical cores
+/// (`navigator.hardwareConcurrency`; `None` or 0 when the browser does not
+/// say): one core left to the page's main thread, at least
+/// [`MIN_WORKERS`] and at most [`MAX_WORKERS`] workers.
+pub fn pool_size(hardware_concurrency: Option<u32>) -> usize {
+    let cores = hardware_concurrency.unwrap_or(0) as usize;
+    cores.saturating_sub(1).clamp(MIN_WORKERS, MAX_WORKERS)
+}
+
+/// Interleaved continuation chains of a sweep of `points` grid points:
+/// one per [`MIN_CHAIN_POINTS`] points, at least 2 and at most
+/// [`MAX_WORKERS`] (never more than the points). It depends on the points
+/// only, never on the pool, so that each chain continues from the same
+/// states and a sweep gives the same bits on any machine.
+pub fn chain_count(points: u32) -> u32 {
+    (points / MIN_CHAIN_POINTS)
+        .clamp(2, MAX_WORKERS as u32)
+        .min(points)
+        .max(1)
+}
 /// Samples per mesh period of the selected-Omega history.
 pub const SAMPLES_PER_PERIOD: u32 = 64;
 /// Highest mesh order of the spectrum.
 pub const MAX_ORDER: f64 = 8.0;
-/// The worker that runs the harmonic-balance branch.
-pub const HBM_WORKER: usize = WORKERS - 1;
 /// How a failure of the harmonic-balance branch starts in the messages (a
 /// new branch clears the old branch's failure).
 const HBM_FAILURE: &str = "Frequency response: the harmonic-balance solver failed";
@@ -68,6 +97,10 @@ struct WorkerSlot {
 struct PendingExport {
     id: JobId,
     mesh: Option<usize>,
+    /// The other workers' shards received so far (one JSON text each).
+    collected: Vec<String>,
+    /// How many shards the other workers hold.
+    expected: usize,
 }
 
 /// The page's state.
@@ -111,7 +144,7 @@ pub struct Controller {
     pub pinned: Option<Pinned>,
     /// Views to redraw.
     pub dirty: Dirty,
-    workers: [WorkerSlot; WORKERS],
+    workers: Vec<WorkerSlot>,
     next_id: JobId,
     export: Option<PendingExport>,
     /// The parametric-instability bands of the bifurcation sweep's range,
@@ -120,8 +153,17 @@ pub struct Controller {
 }
 
 impl Controller {
-    /// Starts from a link's query string (all jobs queued until the workers are ready).
+    /// Starts from a link's query string with [`MIN_WORKERS`] workers (all
+    /// jobs queued until the workers are ready).
     pub fn new(query: &str, now_ms: f64) -> (Self, Vec<Effect>) {
+        Self::with_workers(query, now_ms, MIN_WORKERS)
+    }
+
+    /// Starts from a link's query string with a pool of `workers` workers
+    /// (clamped to 1 ..= [`MAX_WORKERS`]; one worker only for the
+    /// benchmark's scaling figure, the page runs [`pool_size`]).
+    pub fn with_workers(query: &str, now_ms: f64, workers: usize) -> (Self, Vec<Effect>) {
+        let workers = workers.clamp(1, MAX_WORKERS);
         let decoded = link::decode(query);
         let pinned = decoded.pinned;
         let mut c = Controller {
@@ -144,7 +186,7 @@ impl Controller {
             lyap_status: JobStatus::default(),
             pinned: None,
             dirty: Dirty::default(),
-            workers: Default::default(),
+            workers: vec![WorkerSlot::default(); workers],
             next_id: 0,
             export: None,
             bands: Vec::new(),
@@ -493,6 +535,7 @@ impl Controller {
             "bif_progress": self.bif_status.progress(now_ms),
             "omega_progress": self.omega_status.progress(now_ms),
             "workers_ready": self.workers.iter().filter(|w| w.ready).count(),
+            "workers": self.workers.len(),
             "omega_result": self.omega.as_ref().map(|r| serde_json::json!({
                 "omega": r.omega, "mesh": r.mesh_name, "impact": r.regime.solver_name(), "period": r.period,
             })),

@@ -75,7 +75,7 @@ impl Controller {
         let mut fx = Vec::new();
         if running {
             for kind in [JobKind::Hbm, JobKind::Bif] {
-                for w in 0..WORKERS {
+                for w in 0..self.workers.len() {
                     fx.extend(self.post(w, &ToWorker::CancelPinned { kind }));
                 }
             }
@@ -110,7 +110,7 @@ impl Controller {
             params: params.clone(),
             job: hbm_job(v),
         };
-        fx.extend(self.post(HBM_WORKER, &msg));
+        fx.extend(self.post(self.pinned_hbm_worker(), &msg));
         self.next_id += 1;
         let id = self.next_id;
         let total = bif_total(v);

@@ -1,8 +1,8 @@
 //! The bifurcation sweep (view 2): one worker's shard of the sweep's
-//! chains, one steady state per step, kept when finished for the CLI JSON
+//! chains, a slice of a steady state per step, kept when finished for the CLI JSON
 //! export; shard 0 first sends the parametric-instability bands of the range.
 
-use super::{excitation_at, failed, round_um, Job};
+use super::{excitation_at, failed, round_um, Job, SLICE_STEPS};
 use crate::protocol::{BifMesh, BifSample, FromWorker, JobId, RunOptions};
 use serde_json::Value;
 use solver::keys;
@@ -179,15 +179,19 @@ impl Job for BifJob {
 
     fn step(&mut self) -> Vec<FromWorker> {
         let mut out = Vec::new();
-        let pts = self.sweep.advance(1);
+        // A slice of the next point's steady state: a newer job waits at
+        // most SLICE_STEPS integrator steps.
+        let pts: Vec<SweepPoint> = self.sweep.advance_steps(SLICE_STEPS).into_iter().collect();
         let samples: Vec<BifSample> = pts.iter().map(|p| bif_sample(&self.sweep, p)).collect();
         self.points.extend(pts);
-        if !samples.is_empty() {
-            out.push(FromWorker::BifPoints {
-                id: self.id,
-                points: samples,
-            });
+        if samples.is_empty() {
+            // Paused inside a steady state: nothing to say yet.
+            return out;
         }
+        out.push(FromWorker::BifPoints {
+            id: self.id,
+            points: samples,
+        });
         out.push(self.progress_message());
         if self.sweep.is_finished() {
             out.push(FromWorker::Done { id: self.id });

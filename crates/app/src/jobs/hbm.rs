@@ -16,6 +16,9 @@ pub(crate) struct HbmJob {
     id: JobId,
     cont: FrfContinuation,
     finished: bool,
+    /// Points the continuation returned beyond a chunk (a restart's piece
+    /// arrives whole), sent with the next chunks.
+    pending: std::collections::VecDeque<HbmSample>,
 }
 
 impl HbmJob {
@@ -38,6 +41,7 @@ impl HbmJob {
                     id,
                     cont,
                     finished: false,
+                    pending: std::collections::VecDeque::new(),
                 },
                 vec![FromWorker::Progress {
                     id,
@@ -71,23 +75,26 @@ impl Job for HbmJob {
 }
 
 /// Advances the branch by up to [`HBM_CHUNK`] points, one at a time so that
-/// a failure keeps every point before it.
+/// a failure keeps every point before it; points beyond the chunk (a
+/// restart's piece) wait for the next chunks.
 fn hbm_chunk(job: &mut HbmJob) -> FromWorker {
-    let mut points = Vec::new();
     let mut error = None;
-    for _ in 0..HBM_CHUNK {
-        if job.cont.is_finished() {
-            break;
-        }
+    while job.pending.len() < HBM_CHUNK && !job.cont.is_finished() {
         match job.cont.advance(1) {
-            Ok(pts) => points.extend(pts.iter().map(hbm_sample)),
+            Ok(pts) => job.pending.extend(pts.iter().map(hbm_sample)),
             Err(e) => {
                 error = Some(e.to_string());
                 break;
             }
         }
     }
-    let finished = error.is_some() || job.cont.is_finished();
+    let n = if error.is_some() {
+        job.pending.len()
+    } else {
+        job.pending.len().min(HBM_CHUNK)
+    };
+    let points: Vec<HbmSample> = job.pending.drain(..n).collect();
+    let finished = error.is_some() || (job.cont.is_finished() && job.pending.is_empty());
     FromWorker::HbmPoints {
         id: job.id,
         points,

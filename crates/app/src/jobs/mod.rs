@@ -7,9 +7,10 @@
 //! dropping it; the runner ([`crate::worker_core::WorkerCore`]) keeps at
 //! most one job of each kind and loops over the kinds in its priority order.
 //!
-//! Architecture invariant: a job's step is bounded (one steady state, or
-//! [`hbm::HBM_CHUNK`] branch points), so a newer job or a cancel waits at
-//! most one step.
+//! Architecture invariant: a job's step is bounded ([`SLICE_STEPS`]
+//! integrator steps of the selected-Omega run or of a bifurcation point,
+//! one steady state of the other chains and maps, or [`hbm::HBM_CHUNK`]
+//! branch points), so a newer job or a cancel waits at most one step.
 
 pub mod bif;
 pub mod chain;
@@ -21,6 +22,11 @@ pub mod overlay;
 
 use crate::protocol::{FromWorker, JobId};
 use solver::steady::Model;
+
+/// Integrator steps per step of a sliced steady state (the selected-Omega
+/// run, a bifurcation point): a few ms in the browser, so a newer job or a
+/// cancel waits at most that long, however long the steady state runs.
+pub const SLICE_STEPS: u64 = 3000;
 
 /// A job of one kind in progress in a worker.
 pub trait Job {

@@ -3,12 +3,12 @@
 //! history, spectrum and gear-set animation ([`OmegaResult`]); also the
 //! page's bounded preview run ([`omega_result`] with a start state).
 
-use super::{excitation_at, failed, round_um, Job};
+use super::{excitation_at, failed, round_um, Job, SLICE_STEPS};
 use crate::protocol::{
     history_start, AnimHistory, FromWorker, JobId, MeshSummary, OmegaResult, RunOptions,
 };
 use solver::report;
-use solver::steady::{spectrum, steady_state, Model, SteadyOptions};
+use solver::steady::{spectrum, steady_state, Model, SteadyOptions, SteadyRun, SteadyState};
 
 /// An Omega job waiting for its one step (also the page's preview run).
 pub struct OmegaJob {
@@ -60,16 +60,33 @@ pub enum OmegaError {
     NoHistory,
 }
 
-/// An Omega job in the worker: one step, then finished.
+impl OmegaError {
+    fn solver(job: &OmegaJob) -> impl FnOnce(solver::SolverError) -> Self + '_ {
+        move |source| OmegaError::Solver {
+            omega: job.omega,
+            source,
+        }
+    }
+}
+
+/// An Omega job in the worker: its steady state in slices of
+/// [`SLICE_STEPS`] integrator steps, then the result.
 pub(crate) struct OmegaRun {
     job: OmegaJob,
-    done: bool,
+    /// The steady state in progress; `Err` holds a failure to report at
+    /// the next step (bad options or mesh), `None` once finished.
+    run: Option<Result<SteadyRun, OmegaError>>,
 }
 
 impl OmegaRun {
-    /// Starts `job`.
+    /// Starts `job` (no integration yet).
     pub(crate) fn start(job: OmegaJob) -> Self {
-        OmegaRun { job, done: false }
+        let run = omega_options(&job, false)
+            .and_then(|opts| SteadyRun::new(&job.model, &opts, None).map_err(OmegaError::solver(&job)));
+        OmegaRun {
+            job,
+            run: Some(run),
+        }
     }
 }
 
@@ -79,9 +96,18 @@ impl Job for OmegaRun {
     }
 
     fn step(&mut self) -> Vec<FromWorker> {
-        self.done = true;
         let id = self.job.id;
-        let msg = match omega_result(&self.job, None) {
+        let result = match self.run.as_mut() {
+            None => return Vec::new(),
+            Some(Err(e)) => Err(e.clone()),
+            Some(Ok(run)) => match run.advance(&self.job.model, SLICE_STEPS) {
+                Ok(None) => return Vec::new(),
+                Ok(Some(ss)) => omega_result_of(&self.job, ss, false),
+                Err(e) => Err(OmegaError::solver(&self.job)(e)),
+            },
+        };
+        self.run = None;
+        let msg = match result {
             Ok(result) => FromWorker::Omega {
                 id,
                 result: Box::new(result),
@@ -92,12 +118,30 @@ impl Job for OmegaRun {
     }
 
     fn finished(&self) -> bool {
-        self.done
+        self.run.is_none()
     }
 
     fn progress(&self) -> (usize, usize) {
-        (usize::from(self.done), 1)
+        (usize::from(self.run.is_none()), 1)
     }
+}
+
+/// The steady-state options of `job` (`preview`: the page's bounded run).
+fn omega_options(job: &OmegaJob, preview: bool) -> Result<SteadyOptions, OmegaError> {
+    let n_mesh = job.model.system.meshes.len();
+    if let Some(j) = job.mesh.filter(|&j| j >= n_mesh) {
+        return Err(OmegaError::NoMesh(j));
+    }
+    let mut opts = SteadyOptions::new(job.omega);
+    opts.transient_periods = job.run.transient_periods;
+    opts.record_periods = job.run.record_periods;
+    opts.samples_per_period = job.samples_per_period.clamp(8, 256);
+    if preview {
+        opts.max_steps_per_period = PREVIEW_STEPS_PER_PERIOD;
+    }
+    // Every mesh's history: the animated gear set colours every mesh.
+    opts.history_meshes = (0..n_mesh).collect();
+    Ok(opts)
 }
 
 /// The selected-Omega views' data. With `preview_from` (a previous result's
@@ -108,24 +152,22 @@ pub fn omega_result(
     job: &OmegaJob,
     preview_from: Option<&[f64]>,
 ) -> Result<OmegaResult, OmegaError> {
+    let opts = omega_options(job, preview_from.is_some())?;
+    let ss = steady_state(&job.model, &opts, preview_from).map_err(OmegaError::solver(job))?;
+    omega_result_of(job, ss, preview_from.is_some())
+}
+
+/// The selected-Omega views' data of `job`'s steady state `ss` (`preview`:
+/// the page's bounded run, without CLI JSON).
+fn omega_result_of(
+    job: &OmegaJob,
+    ss: SteadyState,
+    preview: bool,
+) -> Result<OmegaResult, OmegaError> {
     let model = &job.model;
     let n_mesh = model.system.meshes.len();
-    if let Some(j) = job.mesh.filter(|&j| j >= n_mesh) {
-        return Err(OmegaError::NoMesh(j));
-    }
-    let mut opts = SteadyOptions::new(job.omega);
-    opts.transient_periods = job.run.transient_periods;
-    opts.record_periods = job.run.record_periods;
-    opts.samples_per_period = job.samples_per_period.clamp(8, 256);
-    if preview_from.is_some() {
-        opts.max_steps_per_period = PREVIEW_STEPS_PER_PERIOD;
-    }
-    // Every mesh's history: the animated gear set colours every mesh.
-    opts.history_meshes = (0..n_mesh).collect();
-    let ss = steady_state(model, &opts, preview_from).map_err(|source| OmegaError::Solver {
-        omega: job.omega,
-        source,
-    })?;
+    let samples_per_period = job.samples_per_period.clamp(8, 256);
+    let record_periods = job.run.record_periods;
     let j = job.mesh.unwrap_or_else(|| ss.worst_mesh());
     let Some(h) = ss.histories.iter().find(|h| h.mesh == j) else {
         return Err(OmegaError::NoHistory);
@@ -139,17 +181,13 @@ pub fn omega_result(
         .map(|(v, &t)| v - excitation_at(model, j, w, t).1)
         .collect();
     let (e0, de0) = excitation_at(model, j, w, 0.0);
-    let spec = spectrum(
-        &h.rel_m,
-        opts.samples_per_period,
-        opts.record_periods,
-        job.max_order,
-    );
-    let cli_json = match preview_from {
-        Some(_) => String::new(),
-        None => report::simulate_json(model, &ss, j, job.max_order).to_string(),
+    let spec = spectrum(&h.rel_m, samples_per_period, record_periods, job.max_order);
+    let cli_json = if preview {
+        String::new()
+    } else {
+        report::simulate_json(model, &ss, j, job.max_order).to_string()
     };
-    let start = history_start(h.rel_m.len(), opts.samples_per_period, opts.record_periods);
+    let start = history_start(h.rel_m.len(), samples_per_period, record_periods);
     let mut anim_x = vec![Vec::new(); n_mesh];
     for hist in &ss.histories {
         if let Some(slot) = anim_x.get_mut(hist.mesh) {
@@ -180,8 +218,8 @@ pub fn omega_result(
         mesh_freq_hz: ss.mesh_freq_hz,
         transient_periods_run: ss.stats.transient_periods_run,
         settled: ss.stats.settled,
-        samples_per_period: opts.samples_per_period,
-        record_periods: opts.record_periods,
+        samples_per_period,
+        record_periods,
         x_um: h.rel_m.iter().map(|x| round_um(x * 1e6)).collect(),
         xdot_m_s: xdot_m_s.iter().map(|v| (v * 1e9).round() / 1e9).collect(),
         poincare_x_um: m
@@ -206,57 +244,8 @@ pub fn omega_result(
         anim,
         steps: ss.stats.integrator.steps,
         cli_json,
-        preview: preview_from.is_some(),
+        preview,
         end_state: ss.end_state,
     };
     Ok(result)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn job(mesh: Option<usize>, params: &str) -> OmegaJob {
-        let s = crate::link::decode(params).settings;
-        OmegaJob {
-            id: 7,
-            model: Model::new(&s.params).unwrap(),
-            omega: 1.05,
-            mesh,
-            run: RunOptions {
-                transient_periods: 20,
-                record_periods: 4,
-            },
-            samples_per_period: 32,
-            max_order: 8.0,
-        }
-    }
-
-    /// A mesh the model lacks is refused by name before any integration;
-    /// the worker's reply is that failure for the job, never a result.
-    #[test]
-    fn a_missing_mesh_is_a_typed_failure() {
-        // The gear pair has one mesh: index 1 does not exist.
-        let j = job(Some(1), "model=gear-pair");
-        assert_eq!(omega_result(&j, None), Err(OmegaError::NoMesh(1)));
-        let mut run = OmegaRun::start(j);
-        let out = run.step();
-        assert!(
-            matches!(&out[0], FromWorker::Failed { id: 7, message } if message == "mesh 1 does not exist in this model"),
-            "{out:?}"
-        );
-        assert!(matches!(out[1], FromWorker::Done { id: 7 }) && run.finished());
-    }
-
-    /// The selected mesh's history is the plotted one; "worst" picks the
-    /// mesh with the largest dynamic factor.
-    #[test]
-    fn the_plotted_mesh_is_the_chosen_or_the_worst() {
-        let r = omega_result(&job(Some(2), ""), None).unwrap();
-        assert_eq!(r.mesh, 2);
-        let worst = omega_result(&job(None, ""), None).unwrap();
-        let df = |m: &MeshSummary| m.dynamic_factor.unwrap_or(0.0);
-        let best = worst.all_meshes.iter().map(df).fold(0.0, f64::max);
-        assert_eq!(df(&worst.all_meshes[worst.mesh]), best);
-    }
 }

@@ -75,7 +75,19 @@ impl BifStore {
     pub fn view(&self, mesh: Option<usize>, backlash_um: &[f64], ctx: &ViewContext) -> BifView {
         let mut points = Vec::new();
         let mut failed = Vec::new();
-        for s in &self.samples {
+        // In the sweep's order (up by rising Omega, then down by falling
+        // Omega), whatever order the workers' samples arrived in, so that
+        // the export is the same on any pool.
+        let mut samples: Vec<&BifSample> = self.samples.iter().collect();
+        samples.sort_by_key(|s| {
+            let i = i64::from(s.index);
+            if s.up {
+                (0, i)
+            } else {
+                (1, -i)
+            }
+        });
+        for s in samples {
             if let Some(e) = &s.error {
                 failed.push((s.omega, e.clone()));
                 continue;

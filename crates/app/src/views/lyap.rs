@@ -28,6 +28,14 @@ impl LyapStore {
         }
     }
 
+    /// Every point by rising Omega, whatever order the workers' chains
+    /// delivered them in (so the exports are the same on any pool).
+    fn by_omega(&self) -> Vec<&LyapSample> {
+        let mut v: Vec<&LyapSample> = self.points.iter().collect();
+        v.sort_by(|a, b| a.omega.total_cmp(&b.omega));
+        v
+    }
+
     /// The computed exponents per mesh period, sorted by Omega.
     pub fn curve(&self) -> Vec<(f64, f64)> {
         let mut v: Vec<(f64, f64)> = self
@@ -79,7 +87,7 @@ pub fn lyap_kind(per_period: f64) -> LyapKind {
 /// The Lyapunov curve as CSV (the format of `gearshock lyapunov --format csv`).
 pub fn lyap_csv(store: &LyapStore) -> String {
     let mut s = String::from("omega,exponent_per_period,exponent_per_s\n");
-    for p in &store.points {
+    for p in store.by_omega() {
         let f = |x: Option<f64>| x.map_or(String::new(), |v| v.to_string());
         s.push_str(&format!("{},{},{}\n", p.omega, f(p.per_period), f(p.per_s)));
     }
@@ -89,8 +97,8 @@ pub fn lyap_csv(store: &LyapStore) -> String {
 /// The Lyapunov curve as JSON (field names as in `gearshock lyapunov`).
 pub fn lyap_json(store: &LyapStore) -> serde_json::Value {
     let points: Vec<serde_json::Value> = store
-        .points
-        .iter()
+        .by_omega()
+        .into_iter()
         .map(|p| {
             serde_json::json!({
                 "omega": p.omega,

@@ -34,13 +34,17 @@ use solver::steady::Model;
 const TAKING_TURNS: [JobKind; 2] = [JobKind::Fr, JobKind::Bif];
 const WHEN_IDLE: [JobKind; 2] = [JobKind::Lyap, JobKind::Map];
 
-/// The worker's state: at most one job of each kind.
+/// The worker's state: at most one job of each kind, which may hold
+/// several shards (chains) of that job: the page spreads a fixed number of
+/// chains over however many workers it runs.
 #[derive(Default)]
 pub struct WorkerCore {
-    /// The running job of each kind, by [`kind_slot`].
-    jobs: [Option<Box<dyn Job>>; 6],
-    /// The last finished job that exports from the worker (a bifurcation shard).
-    finished: Option<Box<dyn Job>>,
+    /// The running shards of each kind's job (all of one id), by [`kind_slot`].
+    jobs: [Vec<Box<dyn Job>>; 6],
+    /// The next shard to step of each kind (its shards take turns).
+    next_shard: [usize; 6],
+    /// The finished shards of the last bifurcation sweep (kept for its export).
+    finished: Vec<Box<dyn Job>>,
     turn: usize,
     /// The jobs of the pinned state A of an A/B comparison.
     pinned: Option<Box<WorkerCore>>,
@@ -79,7 +83,7 @@ impl WorkerCore {
     }
 
     fn has_own_work(&self) -> bool {
-        self.jobs.iter().any(Option::is_some)
+        self.jobs.iter().any(|shards| !shards.is_empty())
     }
 
     /// Handles one message from the page (JSON text).
@@ -91,7 +95,7 @@ impl WorkerCore {
         match msg {
             ToWorker::Run { id, params, job } => self.start(id, &params, job),
             ToWorker::Cancel { kind } => {
-                self.jobs[kind_slot(kind)] = None;
+                self.jobs[kind_slot(kind)].clear();
                 Vec::new()
             }
             ToWorker::RunPinned { id, params, job } => self
@@ -100,31 +104,79 @@ impl WorkerCore {
                 .start(id, &params, job),
             ToWorker::CancelPinned { kind } => {
                 if let Some(p) = self.pinned.as_mut() {
-                    p.jobs[kind_slot(kind)] = None;
+                    p.jobs[kind_slot(kind)].clear();
                 }
                 Vec::new()
             }
-            ToWorker::ExportBif { id, mesh, other } => {
-                let job = self.finished.as_ref().filter(|j| j.id() == id);
-                match job.and_then(|j| j.export(mesh, &other)) {
-                    Some(reply) => vec![reply],
-                    None => vec![failed(id, "the bifurcation sweep has not finished yet")],
-                }
-            }
+            ToWorker::ExportBif { id, mesh, other } => vec![self.export_bif(id, mesh, &other)],
         }
     }
 
+    /// The finished bifurcation shards of job `id` as CLI JSON. Without
+    /// `other` (every worker but the first): this worker's shards, one
+    /// shard's JSON or, for several, a JSON array of them. With `other` (the
+    /// first worker, given the others' shards): every shard merged into the
+    /// sweep's JSON.
+    fn export_bif(&self, id: JobId, mesh: Option<usize>, other: &[String]) -> FromWorker {
+        let mine: Vec<&dyn Job> = self
+            .finished
+            .iter()
+            .filter(|j| j.id() == id)
+            .map(|j| &**j)
+            .collect();
+        let Some((first, rest)) = mine.split_first() else {
+            return failed(id, "the bifurcation sweep has not finished yet");
+        };
+        let mut texts = Vec::new();
+        for j in rest {
+            match j.export(mesh, &[]) {
+                Some(FromWorker::Export { text, .. }) => texts.push(text),
+                Some(reply) => return reply,
+                None => return failed(id, "the bifurcation sweep has not finished yet"),
+            }
+        }
+        if other.is_empty() && !texts.is_empty() {
+            let Some(FromWorker::Export { text, .. }) = first.export(mesh, &[]) else {
+                return failed(id, "the bifurcation sweep has not finished yet");
+            };
+            let values: Result<Vec<Value>, _> = std::iter::once(&text)
+                .chain(&texts)
+                .map(|t| serde_json::from_str::<Value>(t))
+                .collect();
+            let values = match values {
+                Ok(v) => v,
+                Err(e) => return failed(id, format!("cannot read a shard: {e}")),
+            };
+            let chains = values[0]["spec"]["chains"].as_u64();
+            if chains != Some(values.len() as u64) {
+                // Several shards here, to be merged by the first worker.
+                return FromWorker::Export {
+                    id,
+                    text: Value::Array(values).to_string(),
+                };
+            }
+            // A pool of one: every chain is here; merge them.
+        }
+        texts.extend(other.iter().cloned());
+        first
+            .export(mesh, &texts)
+            .unwrap_or_else(|| failed(id, "the bifurcation sweep has not finished yet"))
+    }
+
     fn start(&mut self, id: JobId, params: &Map<String, Value>, job: JobSpec) -> Vec<FromWorker> {
-        // A new job replaces the old one of its kind, even if it fails.
+        // A new job replaces the old one of its kind, even if it fails; a
+        // further shard of the running job joins it.
         let slot = kind_slot(job.kind());
-        self.jobs[slot] = None;
+        if self.jobs[slot].iter().any(|j| j.id() != id) {
+            self.jobs[slot].clear();
+        }
         let (params, model) = match model_from(params) {
             Ok(x) => x,
             Err(e) => return vec![failed(id, e.to_string())],
         };
         match self.new_job(id, params, model, job) {
             Ok((job, out)) => {
-                self.jobs[slot] = Some(job);
+                self.jobs[slot].push(job);
                 out
             }
             Err(reply) => vec![reply],
@@ -249,16 +301,28 @@ impl WorkerCore {
         }
     }
 
-    /// One step of the job of `kind`, if there is one; a finished job is
-    /// dropped (a bifurcation shard is kept for its export).
+    /// One step of the job of `kind`, if there is one (its shards take
+    /// turns); a finished shard is dropped (a bifurcation shard is kept for
+    /// its export).
     fn step_kind(&mut self, kind: JobKind) -> Option<Vec<FromWorker>> {
-        let slot = &mut self.jobs[kind_slot(kind)];
-        let out = slot.as_mut()?.step();
-        if slot.as_ref().is_some_and(|j| j.finished()) {
-            let job = slot.take();
+        let k = kind_slot(kind);
+        let shards = &mut self.jobs[k];
+        if shards.is_empty() {
+            return None;
+        }
+        let i = self.next_shard[k] % shards.len();
+        let out = shards[i].step();
+        if shards[i].finished() {
+            let job = shards.remove(i);
+            self.next_shard[k] = i;
             if kind == JobKind::Bif {
-                self.finished = job;
+                if self.finished.iter().any(|j| j.id() != job.id()) {
+                    self.finished.clear();
+                }
+                self.finished.push(job);
             }
+        } else {
+            self.next_shard[k] = i + 1;
         }
         Some(out)
     }

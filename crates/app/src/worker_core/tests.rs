@@ -439,3 +439,105 @@ fn exported_shards_merge_into_the_cli_format() {
         FromWorker::Failed { .. }
     ));
 }
+
+/// The messages of `core`'s steps until one carries an Omega result: the
+/// result and the number of steps taken.
+fn steps_to_omega(core: &mut WorkerCore) -> (Vec<FromWorker>, usize) {
+    let mut out = Vec::new();
+    for n in 1..100_000 {
+        let msgs = core.step();
+        let got = msgs
+            .iter()
+            .any(|m| matches!(m, FromWorker::Omega { .. } | FromWorker::Failed { .. }));
+        out.extend(msgs);
+        if got {
+            return (out, n);
+        }
+    }
+    panic!("no Omega result");
+}
+
+#[test]
+fn a_new_omega_job_preempts_a_running_steady_state_within_one_slice() {
+    use crate::jobs::omega::{omega_result, OmegaJob};
+    use crate::jobs::SLICE_STEPS;
+    let mut core = WorkerCore::new();
+    let p = ModelParams::default();
+    let run = RunOptions {
+        transient_periods: 300,
+        record_periods: 40,
+    };
+    let omega_job = |omega| JobSpec::Omega {
+        omega,
+        mesh: None,
+        run,
+        samples_per_period: 32,
+        max_order: 8.0,
+    };
+    // A bifurcation shard waits behind the Omega jobs.
+    core.handle(&run_msg(
+        7,
+        &p,
+        JobSpec::Bif {
+            omega_from: 0.5,
+            omega_to: 1.5,
+            points: 4,
+            directions: "up".into(),
+            chains: 1,
+            shard: 0,
+            run,
+        },
+    ));
+    // The sweep's first point pauses after a slice, inside its steady state.
+    let out = core.step();
+    assert!(
+        out.iter()
+            .all(|m| !matches!(m, FromWorker::BifPoints { .. })),
+        "one slice computed a whole sweep point"
+    );
+    core.handle(&run_msg(1, &p, omega_job(0.9)));
+    // The old steady state is paused after a slice, mid-run.
+    let first = core.step();
+    assert!(
+        first.iter().all(|m| !matches!(m, FromWorker::Omega { .. })),
+        "one slice finished the whole run: make the run longer"
+    );
+    // The slider moves: the next step already works on the new job.
+    core.handle(&run_msg(2, &p, omega_job(1.1)));
+    let (out, steps) = steps_to_omega(&mut core);
+    let result = out
+        .iter()
+        .find_map(|m| match m {
+            FromWorker::Omega { id, result } => Some((*id, result)),
+            _ => None,
+        })
+        .expect("an Omega result");
+    assert_eq!(result.0, 2, "the old job's result arrived");
+    // Every step went to the new run: as many as its slices, no more.
+    let slices = result.1.steps.div_ceil(SLICE_STEPS) as usize;
+    assert_eq!(
+        steps, slices,
+        "steps taken by other jobs before the new run's result"
+    );
+    assert!(slices > 1, "the run fits one slice: it tests no pause");
+    assert!(out
+        .iter()
+        .all(|m| !matches!(m, FromWorker::BifPoints { .. })));
+    // Sliced, the result is the one-shot run's, bit for bit.
+    let model = Model::new(&p).expect("model");
+    let job = OmegaJob {
+        id: 2,
+        model,
+        omega: 1.1,
+        mesh: None,
+        run,
+        samples_per_period: 32,
+        max_order: 8.0,
+    };
+    let whole = omega_result(&job, None).expect("one-shot run");
+    assert_eq!(*result.1.as_ref(), whole);
+    // Then the sweep runs.
+    assert!(drain(&mut core)
+        .iter()
+        .any(|m| matches!(m, FromWorker::BifPoints { id: 7, .. })));
+}
