@@ -589,6 +589,8 @@ fn views_without_data_say_why() {
         assert_eq!(c.placeholder(v), Some("Not computed: no luck".into()));
     }
     assert_eq!(c.placeholder(ViewId::Fr), None, "the branch still computes");
+}
+
 #[test]
 fn the_pool_leaves_one_core_to_the_page_within_two_to_eight_workers() {
     // (logical cores, workers): one core for the page's main thread.

@@ -81,8 +81,9 @@ pub(crate) struct OmegaRun {
 impl OmegaRun {
     /// Starts `job` (no integration yet).
     pub(crate) fn start(job: OmegaJob) -> Self {
-        let run = omega_options(&job, false)
-            .and_then(|opts| SteadyRun::new(&job.model, &opts, None).map_err(OmegaError::solver(&job)));
+        let run = omega_options(&job, false).and_then(|opts| {
+            SteadyRun::new(&job.model, &opts, None).map_err(OmegaError::solver(&job))
+        });
         OmegaRun {
             job,
             run: Some(run),
