@@ -16,6 +16,7 @@
 
 pub mod controller;
 pub mod controls;
+pub mod family;
 pub mod gearset;
 pub mod jobs;
 pub mod link;

@@ -34,6 +34,7 @@ use web_sys::{
 };
 
 mod anim;
+mod family;
 mod panel;
 mod worker;
 
@@ -168,6 +169,7 @@ pub fn start_app() {
     }));
     build_controls(&page);
     build_toolbar(&page);
+    family::build_family_bar(&page);
     build_exports(&page);
     build_canvas_events(&page);
     start_workers(&page);
@@ -343,6 +345,7 @@ fn draw_dirty(page: &Shared, p: &mut Page) {
         }
         set_text(&p.doc, "cli-command", &p.ctl.cli_commands());
         refresh_ab(p);
+        family::refresh_family_bar(p);
     }
     highlight_mesh(p);
     if p.redraw.pending() {
@@ -423,6 +426,9 @@ fn fill_groups(ctx: &CanvasRenderingContext2d, groups: &[PointGroup]) {
 }
 
 fn draw_bif(p: &mut Page, root: &Area, cv: &HtmlCanvasElement) -> Result<(), String> {
+    if p.ctl.family.is_some() {
+        return family::draw_bif_family(p, root, cv);
+    }
     let st = &p.ctl.bif_status;
     if let (Some(e), true) = (&st.error, p.ctl.bif.samples.is_empty()) {
         return not_computed(root, ViewId::Bif, e);
@@ -521,6 +527,9 @@ fn draw_lyap(p: &mut Page, root: &Area) -> Result<(), String> {
 }
 
 fn draw_omega_view(p: &mut Page, v: ViewId, root: &Area) -> Result<(), String> {
+    if p.ctl.family.is_some() && matches!(v, ViewId::Phase | ViewId::Poincare) {
+        return family::draw_omega_family(p, v, root);
+    }
     let st = &p.ctl.omega_status;
     let mut time_frame = None;
     let r = match (&p.ctl.omega, &st.error) {

@@ -74,6 +74,9 @@ pub struct FrBranch {
     /// The pinned state A of an A/B comparison (drawn in A's colours).
     #[serde(default)]
     pub pinned: bool,
+    /// A parameter family's member (drawn in that member's colour).
+    #[serde(default)]
+    pub member: Option<usize>,
 }
 
 /// A bifurcation found along a branch.
@@ -425,6 +428,7 @@ pub fn fr_view(
             points: prev.curve(mesh).0,
             faded: true,
             pinned: false,
+            member: None,
         });
     }
     let branch_error = hbm.error.as_ref().map(|e| {
@@ -454,6 +458,7 @@ pub fn fr_view(
         points,
         faded: false,
         pinned: false,
+        member: None,
     });
     FrView {
         source,
