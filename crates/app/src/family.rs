@@ -252,6 +252,6 @@ mod tests {
         let e = parse("te_um", &b).unwrap_err();
         assert!(e.contains("parameter:values"), "{e}");
         // Words only in the allowed range, no key syntax there.
-        assert_eq!(family_key("te_um").unwrap().allowed(), "0 to 1000 µm");
+        assert_eq!(family_key("te_um").unwrap().allowed(), "-1000 to 1000 µm");
     }
 }

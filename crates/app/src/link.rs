@@ -623,7 +623,10 @@ mod tests {
         let f = d.family.clone().unwrap();
         assert_eq!(f.values, vec![0.0, 20.5, 30.0]);
         // The first member is the current state.
-        assert_eq!(keys::get(&d.settings.params, "te_um"), Some(Value::Num(0.0)));
+        assert_eq!(
+            keys::get(&d.settings.params, "te_um"),
+            Some(Value::Num(0.0))
+        );
         let q = encode_all(&d.settings, None, Some(&f));
         assert!(q.ends_with("&family=te_um%3A0%2C20.5%2C30"), "{q}");
         let again = decode(&q);

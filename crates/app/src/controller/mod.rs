@@ -618,4 +618,6 @@ mod pinned;
 pub use pinned::Pinned;
 
 #[cfg(test)]
+mod family_tests;
+#[cfg(test)]
 mod tests;

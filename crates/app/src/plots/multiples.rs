@@ -22,7 +22,11 @@ pub fn bif_ranges(panels: &[Panel<BifView>]) -> ((f64, f64), (f64, f64)) {
     let levels: Vec<f64> = ok()
         .flat_map(|v| contact_levels(&v.backlash_um, &[]))
         .collect();
-    let y = padded_range(ok().flat_map(|v| v.points.iter().map(|p| p.x_um)), &levels, 20.0);
+    let y = padded_range(
+        ok().flat_map(|v| v.points.iter().map(|p| p.x_um)),
+        &levels,
+        20.0,
+    );
     (x, y)
 }
 
@@ -168,10 +172,20 @@ pub fn draw_bif_panels<DB: DrawingBackend>(
         if v.done < v.total {
             t.push_str(&format!(" ({}/{})", v.done, v.total));
         }
-        let mut chart = panel_chart(area, &t, (x, y), ("Ω", "Poincaré samples of x (µm)"), k == 0)?;
+        let mut chart = panel_chart(
+            area,
+            &t,
+            (x, y),
+            ("Ω", "Poincaré samples of x (µm)"),
+            k == 0,
+        )?;
         for &b in &v.backlash_um {
             for level in [b, -b] {
-                dashed(&mut chart, vec![(x.0, level), (x.1, level)], RGBColor(90, 90, 90))?;
+                dashed(
+                    &mut chart,
+                    vec![(x.0, level), (x.1, level)],
+                    RGBColor(90, 90, 90),
+                )?;
             }
         }
         let s = v.selected_omega;
@@ -256,7 +270,11 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
         let mut chart = panel_chart(area, &t, (x, y), ("x (µm)", "ẋ (m/s)"), k == 0)?;
         let b = r.backlash_um;
         for level in [b, -b] {
-            dashed(&mut chart, vec![(level, y.0), (level, y.1)], RGBColor(90, 90, 90))?;
+            dashed(
+                &mut chart,
+                vec![(level, y.0), (level, y.1)],
+                RGBColor(90, 90, 90),
+            )?;
         }
         let color = family_color(k);
         if !poincare {

@@ -114,8 +114,7 @@ pub(super) fn draw_bif_family(
     let panels = p.ctl.bif_panels();
     let mesh = p.ctl.view_context().mesh_label;
     let running = p.ctl.bif_status.running()
-        || p
-            .ctl
+        || p.ctl
             .family
             .as_ref()
             .is_some_and(|f| f.members.iter().any(|m| m.bif_status.running()));
@@ -136,8 +135,7 @@ pub(super) fn draw_omega_family(p: &mut Page, v: ViewId, root: &Area) -> Result<
     let n = p.ctl.family.as_ref().map_or(0, |f| f.spec.values.len());
     let panels = p.ctl.omega_panels(if poincare { n } else { 0 });
     let running = p.ctl.omega_status.running()
-        || p
-            .ctl
+        || p.ctl
             .family
             .as_ref()
             .is_some_and(|f| f.members.iter().any(|m| m.omega_status.running()));
