@@ -14,6 +14,7 @@
 
 #![warn(unreachable_pub)]
 
+pub mod claims;
 pub mod controller;
 pub mod controls;
 pub mod family;

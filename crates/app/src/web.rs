@@ -34,6 +34,7 @@ use web_sys::{
 };
 
 mod anim;
+mod claims;
 mod family;
 mod panel;
 mod worker;
@@ -170,6 +171,7 @@ pub fn start_app() {
     build_controls(&page);
     build_toolbar(&page);
     family::build_family_bar(&page);
+    claims::build_claims(&page);
     build_exports(&page);
     build_canvas_events(&page);
     start_workers(&page);

@@ -438,9 +438,12 @@ impl Controller {
                 } else {
                     ""
                 };
+                // Each member's bifurcations sit on its own curve.
+                let (points, markers) = m.hbm.curve(mesh);
+                v.markers.extend(markers);
                 v.branches.push(FrBranch {
                     label: format!("{}{partial}", f.spec.label(i + 1)),
-                    points: m.hbm.curve(mesh).0,
+                    points,
                     faded: false,
                     pinned: false,
                     member: Some(i + 1),

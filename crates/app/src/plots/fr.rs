@@ -62,10 +62,12 @@ pub fn draw_fr<DB: DrawingBackend>(
         format!("selected Ω = {:.3}", v.selected_omega),
     ));
     let mut seen = [false; 4];
+    // The regime strip is drawn under the current state's branch only (not
+    // a family's members): its key only then.
     for r in v
         .branches
         .iter()
-        .filter(|b| !b.faded)
+        .filter(|b| !b.faded && b.member.is_none())
         .flat_map(|b| b.points.iter().filter_map(|p| p.regime))
         .chain(v.overlay.iter().filter_map(|p| p.regime))
     {
@@ -109,8 +111,8 @@ pub fn draw_fr<DB: DrawingBackend>(
     let (upper, _) = root.split_vertically(HEIGHT as i32 - key_h);
     let caption = if v.branches.iter().any(|b| b.member.is_some()) {
         format!(
-            "Frequency response, mesh {}: max and min x per value ({}){status}",
-            v.mesh_label, v.method
+            "Frequency response, mesh {}: max and min x per value{status}",
+            v.mesh_label
         )
     } else {
         format!(

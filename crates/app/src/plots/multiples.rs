@@ -85,12 +85,26 @@ fn panel_chart<'a, DB: DrawingBackend>(
         .y_label_area_size(if first { 58 } else { 44 })
         .build_cartesian_2d(x.0..x.1, y.0..y.1)
         .map_err(err)?;
+    let fmt = |span: f64| {
+        move |v: &f64| -> String {
+            if span >= 20.0 {
+                format!("{v:.0}")
+            } else if span >= 2.0 {
+                format!("{v:.1}")
+            } else {
+                format!("{v:.2}")
+            }
+        }
+    };
+    let (fx, fy) = (fmt(x.1 - x.0), fmt(y.1 - y.0));
     chart
         .configure_mesh()
         .light_line_style(GRID.mix(0.5))
         .bold_line_style(GRID)
-        .x_labels(5)
+        .x_labels(4)
         .y_labels(6)
+        .x_label_formatter(&fx)
+        .y_label_formatter(&fy)
         .x_desc(x_desc)
         .y_desc(if first { y_desc } else { "" })
         .label_style(("sans-serif", 11).into_font().color(&RGBColor(50, 50, 50)))

@@ -256,6 +256,8 @@ fn a_family_overlays_one_colour_per_value_named_in_words() {
     // Words only: one legend entry per value, no "max x (...)" pairs.
     assert!(!s.contains("max x (TE"), "{s}");
     assert!(s.contains("max and min x per value"));
+    // No regime strip under a family, so no key for one.
+    assert!(!s.contains("regime strip"), "{s}");
 }
 
 #[test]
