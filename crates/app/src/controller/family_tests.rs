@@ -147,6 +147,8 @@ fn member_replies_become_coloured_curves_labelled_in_words() {
         ]
     );
     assert_eq!(v.branches[1].points[0].max_um, 20.0);
+    // A TE family shares one backlash: one pair of ±b lines.
+    assert_eq!(v.backlash_um, vec![100.0]);
     let st = c.status(4.0);
     assert_eq!(st["family"]["members"][0]["fr_branch_points"], 2);
     assert_eq!(st["family"]["members"][1]["fr_branch_points"], 0);
@@ -195,6 +197,8 @@ fn the_small_multiples_share_their_axes_and_letter_their_panels() {
         .map(|p| p.data.as_ref().unwrap().backlash_um.clone())
         .collect();
     assert_eq!(b, vec![vec![50.0], vec![100.0], vec![200.0]]);
+    // The overlay draws every member's ±b.
+    assert_eq!(c.fr_view().backlash_um, vec![50.0, 100.0, 200.0]);
     // One range for all: it holds panel c's -700 µm and panel a's +50 µm line.
     let (x, y) = crate::plots::multiples::bif_ranges(&panels);
     assert_eq!(x, (c.settings.view.omega_from, c.settings.view.omega_to));

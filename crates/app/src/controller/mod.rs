@@ -423,6 +423,18 @@ impl Controller {
         let previous = previous.filter(|_| self.family.is_none());
         let mut v = fr_view(&self.hbm, previous, overlay, mesh, &b, &ctx);
         if let Some(f) = &self.family {
+            // Every member's ±b (a backlash family has one pair per value).
+            let mut levels = v.backlash_um.clone();
+            for m in &f.members {
+                if let Ok(p) = &m.params {
+                    let s = Settings {
+                        params: p.clone(),
+                        view: self.settings.view.clone(),
+                    };
+                    levels.extend(distinct(&pinned_backlash(&s), mesh));
+                }
+            }
+            v.backlash_um = distinct(&levels, None);
             for br in v.branches.iter_mut().filter(|b| !b.faded) {
                 let partial = if self.hbm.error.is_some() {
                     "; partial"

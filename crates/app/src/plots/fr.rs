@@ -24,7 +24,13 @@ pub fn draw_fr<DB: DrawingBackend>(
     let extra = contact_levels(&v.backlash_um, &v.pinned_backlash_um);
     // Room at the top for the legend (two lines per branch, the faded
     // branch, the unstable dash, the failure line).
-    let entries = v.branches.iter().filter(|b| !b.faded).count() * 2
+    // (A family's member has one line: its max and min share a colour.)
+    let entries = v
+        .branches
+        .iter()
+        .filter(|b| !b.faded)
+        .map(|b| if b.member.is_some() { 1 } else { 2 })
+        .sum::<usize>()
         + usize::from(v.branches.iter().any(|b| b.faded))
         + usize::from(v.branch_error.is_some())
         + 1;
