@@ -36,6 +36,11 @@ test('a family typed on the page overlays one coloured curve per value on the fr
   await page.locator('#view-fr').scrollIntoViewIfNeeded();
   await shot(page.locator('#view-fr'), '30-family-fr');
   assert.ok((await canvasStats(page, 'canvas-fr')).ink > 5000);
+  // The bifurcation diagram: one panel per value, side by side.
+  const sb = await waitStatus(page, (x) => x.bif.finished_ms && x.family.members.every((m) => m.bif.finished_ms), 120000, 'the three sweeps');
+  for (const m of sb.family.members) assert.equal(m.bif_points, 6, JSON.stringify(m));
+  await page.locator('#view-bif').scrollIntoViewIfNeeded();
+  await shot(page.locator('#view-bif'), '34-family-bif');
 
   // Bad input: a plain message naming the value and the range; the last good state stays.
   await page.fill('#family-values', '0, 20, 5000');

@@ -10,7 +10,7 @@ use crate::views::family::Panel;
 
 /// Room for the title above the panels and the key under them (pixels).
 const TOP: u32 = 28;
-const BOTTOM: u32 = 26;
+const BOTTOM: u32 = 40;
 
 /// The shared axes of bifurcation panels: the Omega range of the first
 /// panel with data, and one x range holding every panel's dots and ±b.
@@ -58,12 +58,15 @@ fn layout<DB: DrawingBackend>(
     let (_, h) = root.dim_in_pixel();
     root.draw(&Text::new(title.to_string(), (10, 6), caption_font()))
         .map_err(err)?;
-    root.draw(&Text::new(
-        key.to_string(),
-        (10, h as i32 - BOTTOM as i32 + 6),
-        small(),
-    ))
-    .map_err(err)?;
+    // The key in at most two lines under the panels.
+    for (k, line) in wrap(key, 110).iter().take(2).enumerate() {
+        root.draw(&Text::new(
+            line.clone(),
+            (10, h as i32 - BOTTOM as i32 + 4 + 16 * k as i32),
+            small(),
+        ))
+        .map_err(err)?;
+    }
     let (_, rest) = root.split_vertically(TOP);
     let (middle, _) = rest.split_vertically(h.saturating_sub(TOP + BOTTOM));
     Ok(middle.split_evenly((1, n.max(1))))
@@ -167,7 +170,7 @@ pub fn draw_bif_panels<DB: DrawingBackend>(
         .map(|r| r.label())
         .collect();
     let key = format!(
-        "Dots: Poincaré samples (filled: upward sweep, open: downward), coloured by regime ({}); dashed: ±b; red line: selected Ω",
+        "Dots: Poincaré samples coloured by regime ({}); filled: upward sweep, open: downward. Dashed grey: ±b; dashed red: selected Ω.",
         if regimes.is_empty() { "none yet".to_string() } else { regimes.join(", ") }
     );
     let areas = layout(root, &title, &key, panels.len())?;
