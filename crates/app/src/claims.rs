@@ -19,6 +19,9 @@ pub struct Claim {
     pub figure: Option<&'static str>,
     /// The command that reproduces the numbers (the document's).
     pub command: &'static str,
+    /// The values of the command's placeholders, as the document gives
+    /// them (with its backticks; empty if none).
+    pub with: &'static str,
 }
 
 const SIMULATE_TE: &str = "gearshock simulate --set backlash_um=200 --set te_um=$x --mesh s1a1 --omega $w --transient-periods 3000";
@@ -35,6 +38,7 @@ pub const CLAIMS: &[Claim] = &[
         evidence: "The peaks grow with the TE. But no peak appears: the small peak near Ω 0.12 (half the first natural frequency, a superharmonic resonance of the stiffness variation) is there at 5 µm already.",
         figure: Some("fig2"),
         command: "gearshock frf --set backlash_um=0 --set te_meshes=$reading --set te_um=$te --mesh s1a1 --omega-from 0.1 --omega-to 2",
+        with: "`reading` = all or s1a, `te` = 5 or 30",
     },
     Claim {
         id: "2",
@@ -43,6 +47,7 @@ pub const CLAIMS: &[Claim] = &[
         evidence: "At Ω 1.4 the amplitude rises from 90.9 to 154.4 µm, and gearshock shows why: with 50 and 100 µm the teeth strike their back flanks, which stops the swing; with more backlash they have room to swing further.",
         figure: Some("fig3"),
         command: "gearshock simulate --set backlash_um=$b --set te_um=60 --mesh s1a1 --omega $w --transient-periods 3000",
+        with: "`b` = 50, 100, 150, 200; `w` = 0.4, 1.2, 1.4",
     },
     Claim {
         id: "3",
@@ -51,6 +56,7 @@ pub const CLAIMS: &[Claim] = &[
         evidence: "gearshock's amplitude grows from 2.9 to 30.4 µm at Ω 0.25, close to the paper's 2.9 to 26. But it grows as much at Ω 0.15, below the first natural frequency (0.232), where the amplitude nearly equals the TE",
         figure: Some("fig4"),
         command: SWEEP,
+        with: "with `b` = 200 and `te` = 0, 20, 30",
     },
     Claim {
         id: "4",
@@ -59,6 +65,7 @@ pub const CLAIMS: &[Claim] = &[
         evidence: "the largest amplitude at Ω ≥ 1.2 grows from 8.8 µm (no TE) to 79.9 (20 µm) and 116.7 µm (30 µm)",
         figure: Some("fig4"),
         command: SWEEP,
+        with: "with `b` = 200 and `te` = 0, 20, 30",
     },
     Claim {
         id: "5",
@@ -67,6 +74,7 @@ pub const CLAIMS: &[Claim] = &[
         evidence: "the lowest deflection over Ω 0.15–2 is 195.3, 99.2 and 40.4 µm for TE 0, 20 and 30 µm: never negative, and the back flanks never touch.",
         figure: Some("fig4"),
         command: SWEEP,
+        with: "with `b` = 200 and `te` = 0, 20, 30",
     },
     Claim {
         id: "6",
@@ -75,6 +83,7 @@ pub const CLAIMS: &[Claim] = &[
         evidence: "At Ω 0.84 and 1.97 the TE destroys the period-1 motion, and the velocity grows with the TE at all three frequencies, as the paper says.",
         figure: Some("fig5"),
         command: SIMULATE_TE,
+        with: "`x` = 0, 20, 30; `w` = 0.5, 0.84, 1.97",
     },
     Claim {
         id: "7",
@@ -83,6 +92,7 @@ pub const CLAIMS: &[Claim] = &[
         evidence: "At Ω 0.5 the three amplitudes are identical (43.4 µm)",
         figure: Some("fig9"),
         command: "gearshock simulate --set te_um=20 --set backlash_um=$x --mesh s1a1 --omega $w --transient-periods 3000",
+        with: "`x` = 50, 100, 200; `w` = 0.5, 0.84, 1.97",
     },
     Claim {
         id: "8",
@@ -91,6 +101,7 @@ pub const CLAIMS: &[Claim] = &[
         evidence: "period-1 motion ends at Ω 0.50 for 50, 100 and 200 µm alike, and the Lyapunov exponent turns positive at Ω 0.50, 0.50 and 0.55.",
         figure: Some("fig8"),
         command: LYAPUNOV,
+        with: "with `b` = 50, 100, 200 and `te` = 20",
     },
     Claim {
         id: "9",
@@ -99,6 +110,7 @@ pub const CLAIMS: &[Claim] = &[
         evidence: "the back flanks touch only with the smallest backlash, 50 µm",
         figure: Some("fig8"),
         command: SWEEP,
+        with: "with `b` = 50, 100, 200 and `te` = 20",
     },
     Claim {
         id: "10",
@@ -107,6 +119,7 @@ pub const CLAIMS: &[Claim] = &[
         evidence: "the first band of parametric instability lies at 0.460–0.465; so below Ω 0.8 is not a safe range there, below about 0.45 is.",
         figure: Some("fig8"),
         command: LYAPUNOV,
+        with: "with `b` = 50, 100, 200 and `te` = 20",
     },
     Claim {
         id: "scale",
@@ -115,6 +128,7 @@ pub const CLAIMS: &[Claim] = &[
         evidence: "the paper's 1.2 and 1.4 fall within 0.01 of gearshock's modes at 1.199 (all planets alike) and 1.394 (a planet mode). What does not: nothing lies near 0.4",
         figure: Some("fig2"),
         command: "gearshock modes",
+        with: "",
     },
     Claim {
         id: "impact",
@@ -123,8 +137,14 @@ pub const CLAIMS: &[Claim] = &[
         evidence: "with 50 µm, the deflection is negative over Ω 0.85–1.60 but the back flanks touch only at 1.30.",
         figure: Some("fig8"),
         command: SWEEP,
+        with: "with `b` = 50, 100, 200 and `te` = 20",
     },
 ];
+
+/// The placeholders' values in plain text: "with b = 200 and te = 0, 20, 30".
+pub fn with_text(c: &Claim) -> String {
+    c.with.replace('`', "")
+}
 
 /// A claim's heading on the page: "Claim 3", "The frequency scale", ...
 pub fn heading(c: &Claim) -> String {

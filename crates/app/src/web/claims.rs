@@ -52,6 +52,12 @@ pub(super) fn build_claims(page: &Shared) {
                 code.set_text_content(Some(c.command));
                 check(td.append_child(&code));
             }
+            if !c.with.is_empty() {
+                if let Some(note) = el(&doc, "div") {
+                    note.set_text_content(Some(&crate::claims::with_text(c)));
+                    check(td.append_child(&note));
+                }
+            }
             check(tr.append_child(&td));
         }
         check(body.append_child(&tr));
