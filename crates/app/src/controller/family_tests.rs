@@ -153,6 +153,10 @@ fn member_replies_become_coloured_curves_labelled_in_words() {
     assert_eq!(st["family"]["members"][0]["fr_branch_points"], 2);
     assert_eq!(st["family"]["members"][1]["fr_branch_points"], 0);
     assert_eq!(st["family"]["labels"][2], "TE 30 µm");
+    // The CSV export says which value each row belongs to.
+    let csv = crate::views::fr::fr_csv(&c.fr_view());
+    assert!(csv.contains("\nhbm (TE 0 µm),0.5,10,-10,"), "{csv}");
+    assert!(csv.contains("\nhbm (TE 20 µm),1,20,-20,"), "{csv}");
     c.worker_message(0, &hbm(m2, 30.0), 5.0);
     assert_eq!(c.fr_view().branches[2].points.len(), 2);
 }

@@ -487,10 +487,20 @@ pub fn fr_view(
 /// continuation order), then the time-integration overlay, if on.
 pub fn fr_csv(v: &FrView) -> String {
     let mut s = String::from("branch,omega,x_max_um,x_min_um,stable,regime,period,bifurcation\n");
-    let current = v.branches.iter().filter(|b| !b.faded).map(|b| ("hbm", b));
-    let overlay = v.overlay.iter().map(|p| ("time-integration", p));
+    // A family's curves say whose they are: "hbm (TE 20 µm)".
+    let current = v.branches.iter().filter(|b| !b.faded).map(|b| {
+        let name = match b.member {
+            Some(_) => format!("hbm ({})", b.label.replace(',', ";")),
+            None => "hbm".to_string(),
+        };
+        (name, b)
+    });
+    let overlay = v
+        .overlay
+        .iter()
+        .map(|p| ("time-integration".to_string(), p));
     let rows = current
-        .flat_map(|(name, b)| b.points.iter().map(move |p| (name, p)))
+        .flat_map(|(name, b)| b.points.iter().map(move |p| (name.clone(), p)))
         .chain(overlay);
     for (name, p) in rows {
         s.push_str(&format!(
