@@ -84,6 +84,7 @@ fn panel_chart<'a, DB: DrawingBackend>(
     let mut chart = ChartBuilder::on(area)
         .caption(title, ("sans-serif", 15).into_font().color(&BLACK))
         .margin(6)
+        .margin_right(16)
         .x_label_area_size(36)
         .y_label_area_size(if first { 58 } else { 44 })
         .build_cartesian_2d(x.0..x.1, y.0..y.1)
