@@ -398,7 +398,8 @@ fn draw_fr(p: &mut Page, root: &Area) -> Result<(), String> {
     match (&st.error, has_data) {
         (Some(e), false) => not_computed(root, ViewId::Fr, e),
         _ => {
-            let suffix = crate::views::fr::fr_caption_suffix(st.running(), &v);
+            let running = st.running() || p.ctl.members_running(crate::protocol::JobKind::Hbm);
+            let suffix = crate::views::fr::fr_caption_suffix(running, &v);
             p.frames[ViewId::Fr.slot()] = Some(plots::draw_fr(root, &v, &suffix)?);
             Ok(())
         }

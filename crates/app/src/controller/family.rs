@@ -354,6 +354,18 @@ impl Controller {
         out
     }
 
+    /// Whether a family member's job of `kind` (its branch, sweep or
+    /// selected-Omega run) is still computing.
+    pub fn members_running(&self, kind: JobKind) -> bool {
+        self.family.as_ref().is_some_and(|f| {
+            f.members.iter().any(|m| match kind {
+                JobKind::Hbm => m.fr_status.running(),
+                JobKind::Bif => m.bif_status.running(),
+                _ => m.omega_status.running(),
+            })
+        })
+    }
+
     /// The family's part of the status the tests read.
     pub(super) fn family_status(&self) -> serde_json::Value {
         let Some(f) = &self.family else {

@@ -157,8 +157,10 @@ fn member_replies_become_coloured_curves_labelled_in_words() {
     let csv = crate::views::fr::fr_csv(&c.fr_view());
     assert!(csv.contains("\nhbm (TE 0 µm),0.5,10,-10,"), "{csv}");
     assert!(csv.contains("\nhbm (TE 20 µm),1,20,-20,"), "{csv}");
+    assert!(c.members_running(JobKind::Hbm));
     c.worker_message(0, &hbm(m2, 30.0), 5.0);
     assert_eq!(c.fr_view().branches[2].points.len(), 2);
+    assert!(!c.members_running(JobKind::Hbm));
 }
 
 #[test]

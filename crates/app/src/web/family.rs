@@ -5,6 +5,7 @@
 
 use super::*;
 use crate::family::FAMILY_KEYS;
+use crate::protocol::JobKind;
 
 pub(super) fn build_family_bar(page: &Shared) {
     let doc = page.borrow().doc.clone();
@@ -113,11 +114,7 @@ pub(super) fn draw_bif_family(
 ) -> Result<(), String> {
     let panels = p.ctl.bif_panels();
     let mesh = p.ctl.view_context().mesh_label;
-    let running = p.ctl.bif_status.running()
-        || p.ctl
-            .family
-            .as_ref()
-            .is_some_and(|f| f.members.iter().any(|m| m.bif_status.running()));
+    let running = p.ctl.bif_status.running() || p.ctl.members_running(JobKind::Bif);
     let status = if running { " (computing…)" } else { "" };
     let (frames, groups) = plots::multiples::draw_bif_panels(root, &panels, &mesh, status)?;
     // Clicks pick Omega on the first panel's axis (all share it).
@@ -134,11 +131,7 @@ pub(super) fn draw_omega_family(p: &mut Page, v: ViewId, root: &Area) -> Result<
     let poincare = v == ViewId::Poincare;
     let n = p.ctl.family.as_ref().map_or(0, |f| f.spec.values.len());
     let panels = p.ctl.omega_panels(if poincare { n } else { 0 });
-    let running = p.ctl.omega_status.running()
-        || p.ctl
-            .family
-            .as_ref()
-            .is_some_and(|f| f.members.iter().any(|m| m.omega_status.running()));
+    let running = p.ctl.omega_status.running() || p.ctl.members_running(JobKind::Omega);
     let status = if running { " (computing…)" } else { "" };
     plots::multiples::draw_phase_panels(root, &panels, poincare, status)
 }
