@@ -16,8 +16,10 @@
 
 #![warn(unreachable_pub)]
 
+pub mod claims;
 pub mod controller;
 pub mod controls;
+pub mod family;
 pub mod gearset;
 pub mod jobs;
 pub mod link;

@@ -19,6 +19,7 @@
 //! its default while the others apply. The text of a link is untrusted: the
 //! page shows these messages with `textContent` only.
 
+use crate::family::{FamilySpec, FAMILY_KEY};
 use crate::settings::{fmt_exact, mesh_names, view_key, Settings};
 use solver::keys::{self, Value};
 use solver::params::{ModelKind, ModelParams};
@@ -38,6 +39,9 @@ pub struct Decoded {
     pub issues: Vec<String>,
     /// The pinned state A of an A/B comparison, if the link carries one.
     pub pinned: Option<Settings>,
+    /// The parameter family (`family=KEY:V1,V2,...`), if the link carries a
+    /// valid one; its first value is applied to `settings`.
+    pub family: Option<FamilySpec>,
 }
 
 /// The key that carries the pinned state A.
@@ -132,6 +136,12 @@ fn apply_param(params: &mut ModelParams, key: &str, text: &str) -> Result<(), St
 pub fn decode(query: &str) -> Decoded {
     let mut issues = Vec::new();
     let mut all = pairs(query, &mut issues);
+    let family_text = all
+        .iter()
+        .rev()
+        .find(|(k, _)| k == FAMILY_KEY)
+        .map(|(_, v)| v.clone());
+    all.retain(|(k, _)| k != FAMILY_KEY);
     let mut pinned = None;
     if let Some(pos) = all.iter().rposition(|(k, _)| k == PINNED_KEY) {
         let (_, inner) = all.remove(pos);
@@ -147,12 +157,32 @@ pub fn decode(query: &str) -> Decoded {
             ));
         }
     }
-    let (settings, more) = decode_one_pairs(all);
+    let (mut settings, more) = decode_one_pairs(all);
     issues.extend(more);
+    let family = family_text.and_then(|t| match crate::family::parse(&t, &settings.params) {
+        Ok(f) => {
+            // The first member is the current state.
+            match f.member_params(&settings.params, 0) {
+                Ok(p) => {
+                    settings.params = p;
+                    Some(f)
+                }
+                Err(e) => {
+                    issues.push(e);
+                    None
+                }
+            }
+        }
+        Err(e) => {
+            issues.push(e);
+            None
+        }
+    });
     Decoded {
         settings,
         issues,
         pinned,
+        family,
     }
 }
 
@@ -304,6 +334,20 @@ pub fn encode_ab(settings: &Settings, pinned: Option<&Settings>) -> String {
     let mut q = encode(settings);
     if let Some(a) = pinned {
         q.push_str(&format!("&{PINNED_KEY}={}", percent_encode(&encode(a))));
+    }
+    q
+}
+
+/// Encodes the current state, the pinned state A (in `a`) if any, and
+/// the parameter family (in `family`) if any.
+pub fn encode_all(
+    settings: &Settings,
+    pinned: Option<&Settings>,
+    family: Option<&FamilySpec>,
+) -> String {
+    let mut q = encode_ab(settings, pinned);
+    if let Some(f) = family {
+        q.push_str(&format!("&{FAMILY_KEY}={}", percent_encode(&f.encode())));
     }
     q
 }
@@ -573,6 +617,36 @@ mod tests {
     }
 
     #[test]
+    fn a_family_rides_along_and_restores_exactly() {
+        let d = decode("te_um=5&backlash_um=200&family=te_um%3A0%2C20.5%2C30");
+        assert!(d.issues.is_empty(), "{:?}", d.issues);
+        let f = d.family.clone().unwrap();
+        assert_eq!(f.values, vec![0.0, 20.5, 30.0]);
+        // The first member is the current state.
+        assert_eq!(
+            keys::get(&d.settings.params, "te_um"),
+            Some(Value::Num(0.0))
+        );
+        let q = encode_all(&d.settings, None, Some(&f));
+        assert!(q.ends_with("&family=te_um%3A0%2C20.5%2C30"), "{q}");
+        let again = decode(&q);
+        assert!(again.issues.is_empty(), "{:?}", again.issues);
+        assert_eq!(again.family, d.family);
+        assert_eq!(again.settings, d.settings);
+        // Unencoded too, as a person types it.
+        assert_eq!(decode("family=te_um:0,20.5,30").family, d.family);
+        // A bad family is named and dropped; the rest of the link applies.
+        let d = decode("backlash_um=150&family=backlash_um:50,5000");
+        assert_eq!(d.family, None);
+        assert_eq!(d.issues.len(), 1, "{:?}", d.issues);
+        assert!(d.issues[0].contains("backlash 5000"), "{:?}", d.issues);
+        assert_eq!(
+            keys::get(&d.settings.params, "backlash_um"),
+            Some(Value::Num(150.0))
+        );
+    }
+
+    #[test]
     fn percent_codec_round_trips_and_tolerates_garbage() {
         for s in ["a b&c=d", "µm Ω 漢字", "%%%", "100%"] {
             assert_eq!(percent_decode(&percent_encode(s)), s);
@@ -610,6 +684,7 @@ mod tests {
                         Just("map_value_points".to_string()),
                         Just("lyap_points".to_string()),
                         Just("a".to_string()),
+                        Just("family".to_string()),
                         Just("teeth_r".to_string()),
                         "[a-z_%0-9]{0,12}",
                         "\\PC{0,8}",
@@ -625,6 +700,8 @@ mod tests {
                         Just("gear-pair".to_string()),
                         Just("%FF%FE".to_string()),
                         Just("worst".to_string()),
+                        Just("te_um:0,20,30".to_string()),
+                        Just("backlash_um:50,1e9".to_string()),
                         any::<f64>().prop_map(|x| x.to_string()),
                         any::<i64>().prop_map(|x| x.to_string()),
                         "\\PC{0,20}",
@@ -647,10 +724,11 @@ mod tests {
             prop_assert!(v.map_value_points <= crate::settings::MAX_MAP_VALUE_POINTS);
             prop_assert!(crate::settings::MAP_KEYS.contains(&v.map_key.as_str()));
             // And it round-trips, with its pinned state if it had one.
-            let again = decode(&encode_ab(&d.settings, d.pinned.as_ref()));
+            let again = decode(&encode_all(&d.settings, d.pinned.as_ref(), d.family.as_ref()));
             prop_assert!(again.issues.is_empty(), "{:?}", again.issues);
             prop_assert_eq!(again.settings, d.settings);
             prop_assert_eq!(again.pinned, d.pinned);
+            prop_assert_eq!(again.family, d.family);
         }
 
         #[test]

@@ -13,9 +13,9 @@
 //! s1 eccentricity) and `ring_support_radius_mm` (left at `auto`, the ring's
 //! base circle, 157.9 mm; the paper prints 15.79 mm).
 //!
-//! Until the page draws families, loading a preset loads its first member
-//! on its first panel's mesh ([`Preset::query`]); every member's link is
-//! [`Preset::member_query`].
+//! Loading a preset loads its whole family (the page's controller adds the
+//! family to [`Preset::query`], the first member on the first panel's
+//! mesh); every member's link alone is [`Preset::member_query`].
 
 /// One parameter taking several values across a figure's curves or panels.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -244,11 +244,14 @@ pub fn preset(id: &str) -> Option<&'static Preset> {
 
 /// The note shown when a preset is loaded.
 pub fn note(p: &Preset) -> String {
-    let shown = match (&p.family, p.meshes) {
-        (Some(_), _) | (_, Some(_)) => {
-            " Until the page draws whole figures, it shows the first curve or panel; change the setting to see the others."
-        }
-        _ => "",
+    let shown = match p.meshes {
+        Some(m) if m.len() > 1 => format!(
+            " The page shows panel a (mesh {}); choose the mesh {} in the settings for panels b-{}.",
+            m[0],
+            m[1..].join(", "),
+            char::from(b'a' + (m.len() - 1).min(25) as u8)
+        ),
+        _ => String::new(),
     };
     format!("{}. {}{shown}", p.title, p.note)
 }

@@ -227,6 +227,24 @@ pub enum ToWorker {
         /// Which kind.
         kind: JobKind,
     },
+    /// Start a job for member `member` (1, 2, ...) of a parameter family: it
+    /// runs beside the current state's job of the same kind (the worker keeps
+    /// a set of jobs per member), replacing only that member's job of that kind.
+    RunMember {
+        /// The family member (member 0 is the current state itself).
+        member: u32,
+        /// Job id.
+        id: JobId,
+        /// The member's parameter set (flat keys).
+        params: Map<String, Value>,
+        /// What to compute.
+        job: JobSpec,
+    },
+    /// Drop every family member's job of a kind (or all their jobs).
+    CancelMembers {
+        /// Which kind, or every kind.
+        kind: Option<JobKind>,
+    },
     /// The finished bifurcation shard as the CLI's JSON (`gearshock
     /// bifurcation`), restricted to one mesh (or all meshes if `None`). With
     /// `other`, the other shard's JSON text is merged in (`report::merge_shards`).

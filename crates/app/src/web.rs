@@ -34,6 +34,8 @@ use web_sys::{
 };
 
 mod anim;
+mod claims;
+mod family;
 mod panel;
 mod worker;
 
@@ -178,6 +180,8 @@ pub fn start_app() {
     }));
     build_controls(&page);
     build_toolbar(&page);
+    family::build_family_bar(&page);
+    claims::build_claims(&page);
     build_exports(&page);
     build_canvas_events(&page);
     start_workers(&page);
@@ -354,6 +358,7 @@ fn draw_dirty(page: &Shared, p: &mut Page) {
         }
         set_text(&p.doc, "cli-command", &p.ctl.cli_commands());
         refresh_ab(p);
+        family::refresh_family_bar(p);
     }
     highlight_mesh(p);
     if p.redraw.pending() {
@@ -421,7 +426,9 @@ fn set_note(p: &Page, v: ViewId, text: &str) {
 }
 
 fn draw_fr(p: &mut Page, root: &Area, v: &crate::views::fr::FrView) -> plots::Res<()> {
-    let suffix = crate::views::fr::fr_caption_suffix(p.ctl.fr_status.running(), v);
+    let running =
+        p.ctl.fr_status.running() || p.ctl.members_running(crate::protocol::JobKind::Hbm);
+    let suffix = crate::views::fr::fr_caption_suffix(running, v);
     p.frames[ViewId::Fr.slot()] = Some(plots::draw_fr(root, v, &suffix)?);
     Ok(())
 }
@@ -449,6 +456,9 @@ fn fill_groups(ctx: &CanvasRenderingContext2d, groups: &[PointGroup]) {
 }
 
 fn draw_bif(p: &mut Page, root: &Area, cv: &HtmlCanvasElement) -> plots::Res<()> {
+    if p.ctl.family.is_some() {
+        return family::draw_bif_family(p, root, cv);
+    }
     let v = p.ctl.bif_view();
     let natural = p.ctl.view_context().natural;
     let suffix = p.ctl.bif_status.caption_suffix();
@@ -517,6 +527,9 @@ fn draw_lyap(p: &mut Page, root: &Area) -> plots::Res<()> {
 }
 
 fn draw_omega_view(p: &mut Page, v: ViewId, root: &Area) -> plots::Res<()> {
+    if p.ctl.family.is_some() && matches!(v, ViewId::Phase | ViewId::Poincare) {
+        return family::draw_omega_family(p, v, root);
+    }
     let Some(res) = &p.ctl.omega else {
         return Ok(());
     };

@@ -7,8 +7,9 @@
 //! family's members, d-f their Poincaré sections. Bifurcation figures (4, 8):
 //! panels a-c, one sweep per member. Frequency-response figures (2, 3):
 //! panels a-d, one mesh kind each, every member's harmonic-balance branch in
-//! each panel's data; their SVGs wait for a drawing of a family of curves
-//! (the page's family view), so the summary gives `svg: null` for them.
+//! each panel's data and every member's curve overlaid in its SVG, one
+//! colour per value named in words, as the page's frequency response draws
+//! a family.
 
 use crate::{progress, usage, Failure};
 use app::jobs::omega::{omega_result, OmegaJob};
@@ -158,8 +159,10 @@ pub fn run(args: &FigureArgs) -> Result<Value, Failure> {
 fn frf_panels(p: &Preset, members: &[Member], args: &FigureArgs) -> Result<Vec<Value>, Failure> {
     let names: &[&str] = p.meshes.unwrap_or(&[]);
     let mut bar = progress::Progress::new(members.len() * 1000, "per mille of the branches", false);
-    // Per member: the JSON of its branch on each panel's mesh.
+    // Per member: the JSON of its branch on each panel's mesh, and the
+    // branch as the page's store (for the SVG's overlaid curves).
     let mut per_panel: Vec<Vec<Value>> = vec![Vec::new(); names.len()];
+    let mut stores: Vec<app::views::fr::HbmStore> = Vec::new();
     let mut failures = Vec::new();
     for (i, m) in members.iter().enumerate() {
         let v = &m.settings.view;
@@ -181,6 +184,14 @@ fn frf_panels(p: &Preset, members: &[Member], args: &FigureArgs) -> Result<Vec<V
         if let Some(e) = &failure {
             failures.push(format!("{}: {e}", m.query));
         }
+        stores.push(app::views::fr::HbmStore {
+            id: i as u64 + 1,
+            harmonics: v.harmonics,
+            points: branch.iter().map(app::jobs::hbm::hbm_sample).collect(),
+            progress: c.progress(),
+            finished: true,
+            error: failure.as_ref().map(ToString::to_string),
+        });
         for (k, name) in names.iter().enumerate() {
             let j =
                 m.model.system.mesh_index(name).ok_or_else(|| {
@@ -219,6 +230,15 @@ fn frf_panels(p: &Preset, members: &[Member], args: &FigureArgs) -> Result<Vec<V
             }
         }
         let complete = branches.iter().all(|b| b["complete"] == true);
+        let svg = args.out.join(format!("{panel}.svg"));
+        let view = frf_view(p, members, &stores, name)?;
+        let mut text = String::new();
+        {
+            let size = (app::plots::WIDTH, app::plots::HEIGHT);
+            let root = SVGBackend::with_string(&mut text, size).into_drawing_area();
+            drawn(&svg, app::plots::draw_fr(&root, &view, "").map(|_| ()))?;
+        }
+        write(&svg, &text)?;
         let data = json!({
             "mesh": name,
             "family": p.family.map(|f| json!({ "key": f.key, "values": f.values })),
@@ -231,8 +251,8 @@ fn frf_panels(p: &Preset, members: &[Member], args: &FigureArgs) -> Result<Vec<V
             "view": "frequency-response",
             "mesh": name,
             "complete": complete,
-            "svg": null,
-            "files": [format!("{panel}.json"), format!("{panel}.csv")],
+            "svg": format!("{panel}.svg"),
+            "files": [format!("{panel}.svg"), format!("{panel}.json"), format!("{panel}.csv")],
         }));
     }
     if !failures.is_empty() {
@@ -248,6 +268,69 @@ fn frf_panels(p: &Preset, members: &[Member], args: &FigureArgs) -> Result<Vec<V
         });
     }
     Ok(out)
+}
+
+/// The page's frequency-response view of one panel: every member's branch
+/// on mesh `name`, one colour each, named in words ("TE 20 µm"), with every
+/// member's ±b.
+fn frf_view(
+    p: &Preset,
+    members: &[Member],
+    stores: &[app::views::fr::HbmStore],
+    name: &str,
+) -> Result<app::views::fr::FrView, Failure> {
+    let first = members
+        .first()
+        .ok_or_else(|| usage(format!("figure {}: no members", p.id)))?;
+    let mesh = |m: &Member| {
+        m.model
+            .system
+            .mesh_index(name)
+            .ok_or_else(|| usage(format!("figure {}: no mesh {name} in this model", p.id)))
+    };
+    let j = mesh(first)?;
+    let v = &first.settings.view;
+    let ctx = app::views::ViewContext {
+        omega_from: v.omega_from,
+        omega_to: v.omega_to,
+        selected_omega: v.omega,
+        mesh_label: name.to_string(),
+        natural: app::views::natural_in_range(&first.model, v.omega_from, v.omega_to),
+    };
+    let b_um = |m: &Member, j: usize| (m.model.system.meshes[j].backlash_m * 1e9).round() / 1e3;
+    let mut levels = Vec::new();
+    for m in members {
+        levels.push(b_um(m, mesh(m)?));
+    }
+    let store = stores
+        .first()
+        .ok_or_else(|| usage(format!("figure {}: no branches", p.id)))?;
+    let mut view = app::views::fr::fr_view(store, None, None, Some(j), &levels, &ctx);
+    view.backlash_um = app::views::distinct(&levels, None);
+    let label = |i: usize| match p.family {
+        Some(f) => {
+            let x = f.values.get(i).copied().unwrap_or(f64::NAN);
+            app::family::family_key(f.key).map_or_else(|| format!("{} {x}", f.key), |k| k.label(x))
+        }
+        None => String::new(),
+    };
+    let partial = |s: &app::views::fr::HbmStore| if s.error.is_some() { "; partial" } else { "" };
+    for br in view.branches.iter_mut() {
+        br.member = Some(0);
+        br.label = format!("{}{}", label(0), partial(store));
+    }
+    for (i, (m, s)) in members.iter().zip(stores).enumerate().skip(1) {
+        let (points, markers) = s.curve(Some(mesh(m)?));
+        view.markers.extend(markers);
+        view.branches.push(app::views::fr::FrBranch {
+            label: format!("{}{}", label(i), partial(s)),
+            points,
+            faded: false,
+            pinned: false,
+            member: Some(i),
+        });
+    }
+    Ok(view)
 }
 
 fn run_options(m: &Member, args: &FigureArgs) -> RunOptions {

@@ -1228,14 +1228,30 @@ fn figure_fig5_writes_three_phase_portraits_and_three_poincare_sections() {
         assert_eq!(svg.matches("</svg>").count(), 1, "{name}");
     }
     // A frequency-response figure: four mesh panels, every member's branch
-    // in each (their drawing waits for the page's family view: no SVG yet).
+    // in each, overlaid in the SVG one colour per value, named in words.
     let v = json(&["figure", "fig3", "--out", out, "--points", "10"]);
     let panels = v["panels"].as_array().expect("panels");
     let meshes: Vec<&str> = panels.iter().map(|p| p["mesh"].as_str().unwrap()).collect();
     assert_eq!(meshes, ["s1a1", "s2b1", "a1b1", "rb1"]);
     for p in panels {
-        assert!(p["svg"].is_null() && p["complete"] == true, "{p}");
         let name = p["panel"].as_str().unwrap();
+        assert!(
+            p["svg"] == format!("{name}.svg") && p["complete"] == true,
+            "{p}"
+        );
+        let svg = std::fs::read_to_string(dir.join(format!("{name}.svg"))).expect("svg");
+        assert!(
+            svg.contains(&format!("mesh {}", p["mesh"].as_str().unwrap())),
+            "{name}"
+        );
+        for (i, b) in [50, 100, 150, 200].iter().enumerate() {
+            assert!(svg.contains(&format!("backlash {b} µm")), "{name}: {b}");
+            let c = app::plots::family_color(i);
+            let hex = format!("#{:02X}{:02X}{:02X}", c.0, c.1, c.2);
+            assert!(svg.contains(&hex), "{name}: the colour of backlash {b} µm");
+        }
+        // Every member's ±b: the key names all four.
+        assert!(svg.contains("b = 50, 100, 150, 200 µm"), "{name}");
         let data: Value = serde_json::from_str(
             &std::fs::read_to_string(dir.join(format!("{name}.json"))).unwrap(),
         )

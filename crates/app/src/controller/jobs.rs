@@ -238,6 +238,7 @@ impl Controller {
                     fx.extend(self.cancel(kind));
                 }
                 self.map.signature.clear();
+                fx.extend(self.cancel_members(None));
                 self.dirty.fr = true;
                 self.dirty.bif = true;
                 self.dirty.omega = true;
@@ -257,6 +258,7 @@ impl Controller {
                 JobKind::Lyap => self.restart_lyap(&params, now_ms),
             });
         }
+        fx.extend(self.restart_members(what, now_ms));
         self.dirty.url = true;
         fx
     }

@@ -14,6 +14,7 @@ impl Controller {
             }
         };
         self.pinned_message(&msg, now_ms);
+        self.family_message(&msg, now_ms);
         match msg {
             FromWorker::Ready => {
                 let Some(slot) = self.workers.get_mut(worker) else {

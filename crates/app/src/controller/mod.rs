@@ -142,6 +142,8 @@ pub struct Controller {
     pub lyap_status: JobStatus,
     /// The pinned state A of an A/B comparison.
     pub pinned: Option<Pinned>,
+    /// The parameter family shown, if any (member 0 is the current state).
+    pub family: Option<Family>,
     /// Views to redraw.
     pub dirty: Dirty,
     workers: Vec<WorkerSlot>,
@@ -166,6 +168,10 @@ impl Controller {
         let workers = workers.clamp(1, MAX_WORKERS);
         let decoded = link::decode(query);
         let pinned = decoded.pinned;
+        let family = decoded.family.map(|spec| Family {
+            spec,
+            members: Vec::new(),
+        });
         let mut c = Controller {
             model: Err("not built yet".into()),
             settings: decoded.settings,
@@ -185,6 +191,7 @@ impl Controller {
             lyap: LyapStore::default(),
             lyap_status: JobStatus::default(),
             pinned: None,
+            family,
             dirty: Dirty::default(),
             workers: vec![WorkerSlot::default(); workers],
             next_id: 0,
@@ -206,7 +213,11 @@ impl Controller {
 
     /// The current link query (without `?`), with the pinned state A if any.
     pub fn query(&self) -> String {
-        link::encode_ab(&self.settings, self.pinned.as_ref().map(|p| &p.settings))
+        link::encode_all(
+            &self.settings,
+            self.pinned.as_ref().map(|p| &p.settings),
+            self.family.as_ref().map(|f| &f.spec),
+        )
     }
 
     /// The mesh names of the current model.
@@ -339,6 +350,11 @@ impl Controller {
         self.rebuild_model();
         self.hbm_previous = None;
         let mut fx = self.clear_a();
+        fx.extend(self.clear_family());
+        self.family = d.family.map(|spec| Family {
+            spec,
+            members: Vec::new(),
+        });
         if let Some(a) = d.pinned {
             fx.extend(self.start_pinned(a, now_ms));
         }
@@ -390,7 +406,16 @@ impl Controller {
             self.issue(format!("no preset `{}`", keys::truncate(id, 30)));
             return Vec::new();
         };
-        let fx = self.load_query(&p.query(), now_ms);
+        let mut query = p.query();
+        if let Some(f) = &p.family {
+            let v: Vec<String> = f
+                .values
+                .iter()
+                .map(|x| crate::settings::fmt_exact(*x))
+                .collect();
+            query.push_str(&format!("&family={}:{}", f.key, v.join(",")));
+        }
+        let fx = self.load_query(&query, now_ms);
         self.preset_note = Some(presets::note(p));
         fx
     }
@@ -438,7 +463,48 @@ impl Controller {
         // after it has ended (complete or failed).
         let previous = self.hbm_previous.as_ref().filter(|_| !self.hbm.finished);
         let overlay = Some(&self.fr).filter(|f| f.id != 0);
+        let previous = previous.filter(|_| self.family.is_none());
         let mut v = fr_view(&self.hbm, previous, overlay, mesh, &b, &ctx);
+        if let Some(f) = &self.family {
+            // Every member's ±b (a backlash family has one pair per value).
+            let mut levels = v.backlash_um.clone();
+            for m in &f.members {
+                if let Ok(p) = &m.params {
+                    let s = Settings {
+                        params: p.clone(),
+                        view: self.settings.view.clone(),
+                    };
+                    levels.extend(distinct(&pinned_backlash(&s), mesh));
+                }
+            }
+            v.backlash_um = distinct(&levels, None);
+            for br in v.branches.iter_mut().filter(|b| !b.faded) {
+                let partial = if self.hbm.error.is_some() {
+                    "; partial"
+                } else {
+                    ""
+                };
+                br.label = format!("{}{partial}", f.spec.label(0));
+                br.member = Some(0);
+            }
+            for (i, m) in f.members.iter().enumerate() {
+                let partial = if m.hbm.error.is_some() {
+                    "; partial"
+                } else {
+                    ""
+                };
+                // Each member's bifurcations sit on its own curve.
+                let (points, markers) = m.hbm.curve(mesh);
+                v.markers.extend(markers);
+                v.branches.push(FrBranch {
+                    label: format!("{}{partial}", f.spec.label(i + 1)),
+                    points,
+                    faded: false,
+                    pinned: false,
+                    member: Some(i + 1),
+                });
+            }
+        }
         if let Some(p) = &self.pinned {
             let (ta, tb) = link::ab_difference(&p.settings, &self.settings, 3);
             for br in v.branches.iter_mut().filter(|b| !b.faded) {
@@ -457,6 +523,7 @@ impl Controller {
                     points: p.hbm.curve(mesh).0,
                     faded: false,
                     pinned: true,
+                    member: None,
                 },
             );
         }
@@ -530,6 +597,7 @@ impl Controller {
                 "bif_points": p.bif.samples.len(),
             })),
             "ab_labels": self.ab_labels(),
+            "family": self.family_status(),
             "fr_progress": self.fr_status.progress(now_ms),
             "fr_overlay_progress": self.ti_status.progress(now_ms),
             "bif_progress": self.bif_status.progress(now_ms),
@@ -659,6 +727,8 @@ impl Controller {
 
 mod export;
 pub use export::{ExportError, Format};
+mod family;
+pub use family::{Family, Member};
 mod jobs;
 use jobs::{Restart, ALL, NONE};
 use pinned::pinned_backlash;
@@ -667,5 +737,7 @@ mod pinned;
 
 pub use pinned::Pinned;
 
+#[cfg(test)]
+mod family_tests;
 #[cfg(test)]
 mod tests;

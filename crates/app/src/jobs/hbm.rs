@@ -109,7 +109,9 @@ fn hbm_chunk(job: &mut HbmJob) -> FromWorker {
     }
 }
 
-fn hbm_sample(p: &BranchPoint) -> HbmSample {
+/// A branch point as the page's message carries it (µm, rounded as the
+/// page shows them); the command line's figures use it too.
+pub fn hbm_sample(p: &BranchPoint) -> HbmSample {
     HbmSample {
         omega: p.omega,
         meshes: p

@@ -24,7 +24,13 @@ pub fn draw_fr<DB: DrawingBackend>(
     let extra = contact_levels(&v.backlash_um, &v.pinned_backlash_um);
     // Room at the top for the legend (two lines per branch, the faded
     // branch, the unstable dash, the failure line).
-    let entries = v.branches.iter().filter(|b| !b.faded).count() * 2
+    // (A family's member has one line: its max and min share a colour.)
+    let entries = v
+        .branches
+        .iter()
+        .filter(|b| !b.faded)
+        .map(|b| if b.member.is_some() { 1 } else { 2 })
+        .sum::<usize>()
         + usize::from(v.branches.iter().any(|b| b.faded))
         + usize::from(v.branch_error.is_some())
         + 1;
@@ -62,10 +68,12 @@ pub fn draw_fr<DB: DrawingBackend>(
         format!("selected Ω = {:.3}", v.selected_omega),
     ));
     let mut seen = [false; 4];
+    // The regime strip is drawn under the current state's branch only (not
+    // a family's members): its key only then.
     for r in v
         .branches
         .iter()
-        .filter(|b| !b.faded)
+        .filter(|b| !b.faded && b.member.is_none())
         .flat_map(|b| b.points.iter().filter_map(|p| p.regime))
         .chain(v.overlay.iter().filter_map(|p| p.regime))
     {
@@ -107,10 +115,17 @@ pub fn draw_fr<DB: DrawingBackend>(
     let (at, rows) = key_layout(root, &items, 76);
     let key_h = 8 + KEY_ROW * rows;
     let (upper, _) = root.split_vertically(HEIGHT as i32 - key_h);
-    let caption = format!(
-        "Frequency response, mesh {} ({}){status}",
-        v.mesh_label, v.method
-    );
+    let caption = if v.branches.iter().any(|b| b.member.is_some()) {
+        format!(
+            "Frequency response, mesh {}: max and min x per value{status}",
+            v.mesh_label
+        )
+    } else {
+        format!(
+            "Frequency response, mesh {} ({}){status}",
+            v.mesh_label, v.method
+        )
+    };
     let axes = Axes::new(OMEGA_AXIS, "x = δ − e (µm)");
     let mut chart = linear_chart(&upper, &caption, (x, y), &axes)?;
     // These three go in the key under the chart, keeping the legend short.
@@ -120,10 +135,11 @@ pub fn draw_fr<DB: DrawingBackend>(
     let mut any_unstable = false;
     for br in &v.branches {
         for (which, color, label) in [(true, MAX_COLOR, "max x"), (false, MIN_COLOR, "min x")] {
-            let color = match (br.faded, br.pinned, which) {
-                (true, _, _) => FADED,
-                (false, true, true) => A_MAX,
-                (false, true, false) => A_MIN,
+            let color = match (br.faded, br.pinned, which, br.member) {
+                (true, _, _, _) => FADED,
+                (false, true, true, _) => A_MAX,
+                (false, true, false, _) => A_MIN,
+                (false, false, _, Some(m)) => family_color(m),
                 _ => color,
             };
             let val = |p: &FrCurvePoint| if which { p.max_um } else { p.min_um };
@@ -151,8 +167,9 @@ pub fn draw_fr<DB: DrawingBackend>(
                 }
             }
             let style = ShapeStyle::from(&color).stroke_width(2);
-            // The faded branch is labelled once, not per extreme.
-            let mut labelled = br.faded && !which;
+            // The faded branch and a family member are labelled once, not
+            // per extreme (a member's max and min share its colour).
+            let mut labelled = (br.faded || br.member.is_some()) && !which;
             for (unstable, pts) in runs {
                 let s = if unstable {
                     any_unstable |= !br.faded;
@@ -167,6 +184,8 @@ pub fn draw_fr<DB: DrawingBackend>(
                 if !labelled {
                     let text = if br.faded {
                         "previous settings (updating)".to_string()
+                    } else if br.member.is_some() {
+                        br.label.clone()
                     } else {
                         format!("{label} ({})", br.label)
                     };
@@ -180,7 +199,7 @@ pub fn draw_fr<DB: DrawingBackend>(
                 continue;
             }
         }
-        if !br.faded && !br.pinned {
+        if !br.faded && !br.pinned && br.member.is_none() {
             regime_strip(&mut chart, &br.points, y)?;
         }
     }

@@ -18,6 +18,7 @@
 mod bif;
 mod fr;
 pub mod maps;
+pub mod multiples;
 mod omega;
 
 pub use bif::{draw_bif, draw_groups, failed_label};
@@ -75,6 +76,22 @@ const FADED: RGBColor = RGBColor(200, 200, 205);
 const A_MAX: RGBColor = RGBColor(150, 40, 150);
 const A_MIN: RGBColor = RGBColor(200, 110, 200);
 const A_DOTS: RGBColor = RGBColor(185, 120, 200);
+
+/// The colours of a parameter family's members, in order (Okabe–Ito:
+/// distinct for colour-blind readers too).
+pub const FAMILY_COLORS: [RGBColor; 6] = [
+    RGBColor(0, 114, 178),
+    RGBColor(213, 94, 0),
+    RGBColor(0, 158, 115),
+    RGBColor(204, 121, 167),
+    RGBColor(230, 159, 0),
+    RGBColor(86, 180, 233),
+];
+
+/// The colour of family member `m`.
+pub fn family_color(m: usize) -> RGBColor {
+    FAMILY_COLORS[m % FAMILY_COLORS.len()]
+}
 
 /// Where the data lie on the canvas, to map clicks back to Omega.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -3,7 +3,7 @@
 use super::*;
 use crate::protocol::OmegaResult;
 use crate::views::fr::FrView;
-use crate::views::fr::{FrBranch, FrMarker, FrSource};
+use crate::views::fr::{FrBranch, FrCurvePoint, FrMarker, FrSource};
 
 fn svg<F: FnOnce(&DrawingArea<SVGBackend, Shift>) -> Res<()>>(f: F) -> String {
     let mut s = String::new();
@@ -113,12 +113,14 @@ fn every_plot_draws_labels_units_and_legends() {
                 points: (0..10).map(point).collect(),
                 faded: false,
                 pinned: true,
+                member: None,
             },
             FrBranch {
                 label: "B: backlash_um=150; HBM, H = 5".into(),
                 points: (0..10).map(point).collect(),
                 faded: false,
                 pinned: false,
+                member: None,
             },
         ],
         markers: vec![FrMarker {
@@ -192,4 +194,107 @@ fn every_plot_draws_labels_units_and_legends() {
 #[test]
 fn wrap_breaks_at_spaces() {
     assert_eq!(wrap("aa bb cc", 5), vec!["aa bb", "cc"]);
+}
+
+fn hex(c: RGBColor) -> String {
+    format!("#{:02X}{:02X}{:02X}", c.0, c.1, c.2)
+}
+
+#[test]
+fn a_family_overlays_one_colour_per_value_named_in_words() {
+    let curve = |a: f64| -> Vec<FrCurvePoint> {
+        (0..10)
+            .map(|k| FrCurvePoint {
+                omega: 0.2 + 0.1 * f64::from(k),
+                max_um: a,
+                min_um: -a,
+                stable: Some(true),
+                regime: Some(Regime::NoImpact),
+                period: Some(1),
+                bifurcation: None,
+            })
+            .collect()
+    };
+    let source = FrSource::Hbm { harmonics: 5 };
+    let fr = FrView {
+        method: source.label(),
+        source,
+        mesh_label: "s1a1".into(),
+        backlash_um: vec![200.0],
+        pinned_backlash_um: vec![],
+        branches: [0.0, 20.0, 30.0]
+            .iter()
+            .enumerate()
+            .map(|(m, te)| FrBranch {
+                label: format!("TE {te} µm"),
+                points: curve(40.0 + te),
+                faded: false,
+                pinned: false,
+                member: Some(m),
+            })
+            .collect(),
+        markers: vec![],
+        overlay: vec![],
+        overlay_source: None,
+        discrepancy: crate::views::fr::Discrepancy::default(),
+        natural: vec![],
+        omega_from: 0.1,
+        omega_to: 2.0,
+        selected_omega: 0.84,
+        branch_error: None,
+        failed: vec![],
+        done: 10,
+        progress: 1.0,
+        finished: true,
+    };
+    let s = svg(|root| draw_fr(root, &fr, "").map(|_| ()));
+    for (m, text) in ["TE 0 µm", "TE 20 µm", "TE 30 µm"].iter().enumerate() {
+        assert!(s.contains(text), "{text} missing from the legend: {s}");
+        assert!(
+            s.contains(&hex(family_color(m))),
+            "member {m}'s colour missing"
+        );
+    }
+    // Words only: one legend entry per value, no "max x (...)" pairs.
+    assert!(!s.contains("max x (TE"), "{s}");
+    assert!(s.contains("max and min x per value"));
+    // No regime strip under a family, so no key for one.
+    assert!(!s.contains("regime strip"), "{s}");
+}
+
+#[test]
+fn small_multiples_draw_every_panel_with_its_title() {
+    use crate::views::family::Panel;
+    let mut other = result();
+    other.x_um.iter_mut().for_each(|x| *x -= 400.0);
+    other.period = None;
+    let panels = vec![
+        Panel {
+            title: "(a) TE 0 µm".into(),
+            data: Ok(result()),
+        },
+        Panel {
+            title: "(b) TE 20 µm".into(),
+            data: Ok(other),
+        },
+        Panel {
+            title: "(c) TE 30 µm".into(),
+            data: Err("Computing the steady state…".into()),
+        },
+    ];
+    // Shared axes: one x range holds both orbits (110 ± 30 and -290 ± 30 µm).
+    let (x, _) = multiples::phase_ranges(&panels);
+    assert!(x.0 < -320.0 && x.1 > 140.0, "{x:?}");
+    for poincare in [false, true] {
+        let s = svg(|root| multiples::draw_phase_panels(root, &panels, poincare, ""));
+        for text in [
+            "(a) TE 0 µm: period 1",
+            "(b) TE 20 µm: not periodic",
+            "(c) TE 30 µm",
+            "Computing",
+        ] {
+            assert!(s.contains(text), "{text} missing");
+        }
+        assert!(s.contains("shared axes"));
+    }
 }

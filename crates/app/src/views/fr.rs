@@ -84,6 +84,9 @@ pub struct FrBranch {
     /// The pinned state A of an A/B comparison (drawn in A's colours).
     #[serde(default)]
     pub pinned: bool,
+    /// A parameter family's member (drawn in that member's colour).
+    #[serde(default)]
+    pub member: Option<usize>,
 }
 
 /// A bifurcation found along a branch.
@@ -442,6 +445,7 @@ pub fn fr_view(
             points: prev.curve(mesh).0,
             faded: true,
             pinned: false,
+            member: None,
         });
     }
     let branch_error = hbm.error.as_ref().map(|e| {
@@ -471,6 +475,7 @@ pub fn fr_view(
         points,
         faded: false,
         pinned: false,
+        member: None,
     });
     FrView {
         source,
@@ -500,10 +505,20 @@ pub fn fr_view(
 /// continuation order), then the time-integration overlay, if on.
 pub fn fr_csv(v: &FrView) -> String {
     let mut s = String::from("branch,omega,x_max_um,x_min_um,stable,regime,period,bifurcation\n");
-    let current = v.branches.iter().filter(|b| !b.faded).map(|b| ("hbm", b));
-    let overlay = v.overlay.iter().map(|p| ("time-integration", p));
+    // A family's curves say whose they are: "hbm (TE 20 µm)".
+    let current = v.branches.iter().filter(|b| !b.faded).map(|b| {
+        let name = match b.member {
+            Some(_) => format!("hbm ({})", b.label.replace(',', ";")),
+            None => "hbm".to_string(),
+        };
+        (name, b)
+    });
+    let overlay = v
+        .overlay
+        .iter()
+        .map(|p| ("time-integration".to_string(), p));
     let rows = current
-        .flat_map(|(name, b)| b.points.iter().map(move |p| (name, p)))
+        .flat_map(|(name, b)| b.points.iter().map(move |p| (name.clone(), p)))
         .chain(overlay);
     for (name, p) in rows {
         s.push_str(&format!(

@@ -7,6 +7,7 @@
 //! export formats come from [`VIEWS`] and nowhere else.
 
 pub mod bif;
+pub mod family;
 pub mod fr;
 pub mod lyap;
 pub mod map;

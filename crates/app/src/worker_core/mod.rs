@@ -49,6 +49,10 @@ pub struct WorkerCore {
     /// The jobs of the pinned state A of an A/B comparison.
     pinned: Option<Box<WorkerCore>>,
     pinned_turn: bool,
+    /// The jobs of a parameter family's members 1, 2, ... (index = member - 1).
+    members: Vec<WorkerCore>,
+    /// Which of the main state (0) and the members (1..) steps next.
+    member_turn: usize,
     /// The last parametric-instability bands and their inputs.
     bands: BandsCache,
 }
@@ -79,7 +83,9 @@ impl WorkerCore {
 
     /// Whether a job waits for [`Self::step`].
     pub fn has_work(&self) -> bool {
-        self.has_own_work() || self.pinned.as_ref().is_some_and(|p| p.has_work())
+        self.has_own_work()
+            || self.pinned.as_ref().is_some_and(|p| p.has_work())
+            || self.members.iter().any(WorkerCore::has_work)
     }
 
     fn has_own_work(&self) -> bool {
@@ -105,6 +111,32 @@ impl WorkerCore {
             ToWorker::CancelPinned { kind } => {
                 if let Some(p) = self.pinned.as_mut() {
                     p.jobs[kind_slot(kind)].clear();
+                }
+                Vec::new()
+            }
+            ToWorker::RunMember {
+                member,
+                id,
+                params,
+                job,
+            } => {
+                let Some(i) = (member as usize)
+                    .checked_sub(1)
+                    .filter(|i| *i < crate::family::MAX_MEMBERS)
+                else {
+                    return vec![failed(id, format!("no family member {member}"))];
+                };
+                if self.members.len() <= i {
+                    self.members.resize_with(i + 1, WorkerCore::default);
+                }
+                self.members[i].start(id, &params, job)
+            }
+            ToWorker::CancelMembers { kind } => {
+                for m in &mut self.members {
+                    match kind {
+                        Some(k) => m.jobs[kind_slot(k)] = None,
+                        None => m.jobs = Default::default(),
+                    }
                 }
                 Vec::new()
             }
@@ -332,6 +364,33 @@ impl WorkerCore {
         if let Some(out) = self.step_kind(JobKind::Omega) {
             return out;
         }
+        // The members' selected-Omega runs next (the panels of a figure),
+        // then the main state and each member take turns, one chunk each.
+        if let Some(out) = self
+            .members
+            .iter_mut()
+            .find_map(|m| m.step_kind(JobKind::Omega))
+        {
+            return out;
+        }
+        let n = self.members.len() + 1;
+        for k in 0..n {
+            let turn = (self.member_turn + k) % n;
+            if turn == 0 {
+                if self.has_own_work() || self.pinned.as_ref().is_some_and(|p| p.has_work()) {
+                    self.member_turn = 1 % n;
+                    return self.step_main();
+                }
+            } else if self.members[turn - 1].has_work() {
+                self.member_turn = (turn + 1) % n;
+                return self.members[turn - 1].step();
+            }
+        }
+        Vec::new()
+    }
+
+    /// One chunk of the main state's (or the pinned state's) jobs.
+    fn step_main(&mut self) -> Vec<FromWorker> {
         // The pinned state's jobs take every other chunk.
         self.pinned_turn = !self.pinned_turn;
         if let Some(p) = self

@@ -540,4 +540,54 @@ fn a_new_omega_job_preempts_a_running_steady_state_within_one_slice() {
     assert!(drain(&mut core)
         .iter()
         .any(|m| matches!(m, FromWorker::BifPoints { id: 7, .. })));
+
+#[test]
+fn family_members_run_beside_the_current_state_and_cancel_together() {
+    let mut core = WorkerCore::new();
+    let p = ModelParams::defaults(solver::ModelKind::GearPair);
+    let job = || JobSpec::Fr {
+        omega_from: 0.5,
+        omega_to: 1.0,
+        points: 2,
+        chains: 1,
+        shard: 0,
+        run: quick(),
+    };
+    let member = |member, id| {
+        encode(&ToWorker::RunMember {
+            member,
+            id,
+            params: params(&p),
+            job: job(),
+        })
+    };
+    // The current state's job and two members' jobs of the same kind all run.
+    core.handle(&run_msg(1, &p, job()));
+    core.handle(&member(1, 2));
+    core.handle(&member(2, 3));
+    let out = drain(&mut core);
+    for id in [1, 2, 3] {
+        assert!(
+            out.iter()
+                .any(|m| matches!(m, FromWorker::Done { id: i } if *i == id)),
+            "job {id} did not finish"
+        );
+    }
+    // Cancelling the members leaves the current state's job alone.
+    core.handle(&run_msg(4, &p, job()));
+    core.handle(&member(1, 5));
+    core.handle(&encode(&ToWorker::CancelMembers { kind: None }));
+    let out = drain(&mut core);
+    assert!(out.iter().any(|m| matches!(m, FromWorker::Done { id: 4 })));
+    assert!(!out
+        .iter()
+        .any(|m| matches!(m, FromWorker::FrPoints { id: 5, .. })));
+    // Member 0 is the current state; a member past the cap is refused.
+    for bad in [0, 99] {
+        let out = core.handle(&member(bad, 6));
+        assert!(
+            matches!(&out[..], [FromWorker::Failed { id: 6, .. }]),
+            "{out:?}"
+        );
+    }
 }

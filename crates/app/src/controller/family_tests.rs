@@ -1,0 +1,267 @@
+//! The family's tests: the fan-out of member jobs, the routing of their
+//! replies into the overlay and the small multiples, presets that load a
+//! whole family, and bad family input refused with the last state kept.
+
+use super::*;
+use crate::protocol::{BifMesh, BifSample, HbmMesh, HbmSample, Regime};
+
+fn posts(fx: &[Effect]) -> Vec<(usize, ToWorker)> {
+    fx.iter()
+        .filter_map(|e| match e {
+            Effect::Post { worker, text } => Some((*worker, serde_json::from_str(text).unwrap())),
+            Effect::Download { .. } => None,
+        })
+        .collect()
+}
+
+fn ready(c: &mut Controller) -> Vec<(usize, ToWorker)> {
+    let mut fx = c.worker_message(0, r#"{"type":"ready"}"#, 1.0);
+    fx.extend(c.worker_message(1, r#"{"type":"ready"}"#, 1.0));
+    posts(&fx)
+}
+
+/// The member jobs posted: (member, kind, worker, its TE in µm).
+fn member_jobs(p: &[(usize, ToWorker)]) -> Vec<(u32, JobKind, usize, f64)> {
+    p.iter()
+        .filter_map(|(w, m)| match m {
+            ToWorker::RunMember {
+                member,
+                params,
+                job,
+                ..
+            } => {
+                let mp = keys::from_json(params).unwrap();
+                let te = match keys::get(&mp, "te_um") {
+                    Some(keys::Value::Num(x)) => x,
+                    other => panic!("{other:?}"),
+                };
+                Some((*member, job.kind(), *w, te))
+            }
+            _ => None,
+        })
+        .collect()
+}
+
+fn member_id(c: &Controller, i: usize, kind: JobKind) -> JobId {
+    let m = &c.family.as_ref().unwrap().members[i];
+    match kind {
+        JobKind::Hbm => m.hbm.id,
+        JobKind::Bif => m.bif.id,
+        _ => m.omega_status.id,
+    }
+}
+
+fn hbm(id: JobId, amplitude: f64) -> String {
+    encode(&FromWorker::HbmPoints {
+        id,
+        points: [0.5, 1.0]
+            .iter()
+            .map(|&omega| HbmSample {
+                omega,
+                meshes: vec![HbmMesh {
+                    rel_min_um: -amplitude,
+                    rel_max_um: amplitude,
+                    regime: Regime::NoImpact,
+                }],
+                stable: Some(true),
+                bifurcation: None,
+            })
+            .collect(),
+        progress: 1.0,
+        finished: true,
+        error: None,
+    })
+}
+
+#[test]
+fn a_family_link_fans_out_member_jobs_and_restores_exactly() {
+    let q = "model=ravigneaux&backlash_um=200&family=te_um%3A0%2C20%2C30";
+    let (mut c, fx) = Controller::new(q, 0.0);
+    assert!(fx.is_empty());
+    assert!(c.issues.is_empty(), "{:?}", c.issues);
+    // Member 0 is the current state.
+    assert_eq!(
+        keys::get(&c.settings.params, "te_um"),
+        Some(keys::Value::Num(0.0))
+    );
+    let p = ready(&mut c);
+    let jobs = member_jobs(&p);
+    // Members 1 and 2: one branch, two sweep shards (one per worker) and
+    // one selected-Omega run each, with their own TE.
+    for (member, te) in [(1, 20.0), (2, 30.0)] {
+        let mine: Vec<_> = jobs.iter().filter(|j| j.0 == member).collect();
+        assert_eq!(mine.len(), 4, "{mine:?}");
+        assert!(mine.iter().all(|j| j.3 == te), "{mine:?}");
+        let bif_workers: Vec<usize> = mine
+            .iter()
+            .filter(|j| j.1 == JobKind::Bif)
+            .map(|j| j.2)
+            .collect();
+        assert_eq!(bif_workers, vec![0, 1]);
+        assert_eq!(mine.iter().filter(|j| j.1 == JobKind::Hbm).count(), 1);
+        assert_eq!(mine.iter().filter(|j| j.1 == JobKind::Omega).count(), 1);
+    }
+    // The two members' branches go to different workers.
+    let hbm_workers: Vec<usize> = jobs
+        .iter()
+        .filter(|j| j.1 == JobKind::Hbm)
+        .map(|j| j.2)
+        .collect();
+    assert_eq!(hbm_workers.len(), 2);
+    assert_ne!(hbm_workers[0], hbm_workers[1]);
+    // The link carries the family and restores it exactly.
+    let link = c.query();
+    assert!(link.contains("family=te_um%3A0%2C20%2C30"), "{link}");
+    let (again, _) = Controller::new(&link, 0.0);
+    assert_eq!(
+        again.family.as_ref().unwrap().spec,
+        c.family.as_ref().unwrap().spec
+    );
+    assert_eq!(again.settings, c.settings);
+    assert_eq!(again.query(), link);
+}
+
+#[test]
+fn member_replies_become_coloured_curves_labelled_in_words() {
+    let (mut c, _) = Controller::new("family=te_um:0,20,30", 0.0);
+    ready(&mut c);
+    let main = c.hbm.id;
+    c.worker_message(1, &hbm(main, 10.0), 2.0);
+    let m1 = member_id(&c, 0, JobKind::Hbm);
+    let m2 = member_id(&c, 1, JobKind::Hbm);
+    c.worker_message(0, &hbm(m1, 20.0), 3.0);
+    // A stale id (an older job) is ignored.
+    c.worker_message(0, &hbm(m2 + 1000, 99.0), 3.0);
+    let v = c.fr_view();
+    let curves: Vec<(String, Option<usize>, usize)> = v
+        .branches
+        .iter()
+        .map(|b| (b.label.clone(), b.member, b.points.len()))
+        .collect();
+    assert_eq!(
+        curves,
+        vec![
+            ("TE 0 µm".to_string(), Some(0), 2),
+            ("TE 20 µm".to_string(), Some(1), 2),
+            ("TE 30 µm".to_string(), Some(2), 0),
+        ]
+    );
+    assert_eq!(v.branches[1].points[0].max_um, 20.0);
+    // A TE family shares one backlash: one pair of ±b lines.
+    assert_eq!(v.backlash_um, vec![100.0]);
+    let st = c.status(4.0);
+    assert_eq!(st["family"]["members"][0]["fr_branch_points"], 2);
+    assert_eq!(st["family"]["members"][1]["fr_branch_points"], 0);
+    assert_eq!(st["family"]["labels"][2], "TE 30 µm");
+    // The CSV export says which value each row belongs to.
+    let csv = crate::views::fr::fr_csv(&c.fr_view());
+    assert!(csv.contains("\nhbm (TE 0 µm),0.5,10,-10,"), "{csv}");
+    assert!(csv.contains("\nhbm (TE 20 µm),1,20,-20,"), "{csv}");
+    assert!(c.members_running(JobKind::Hbm));
+    c.worker_message(0, &hbm(m2, 30.0), 5.0);
+    assert_eq!(c.fr_view().branches[2].points.len(), 2);
+    assert!(!c.members_running(JobKind::Hbm));
+}
+
+#[test]
+fn the_small_multiples_share_their_axes_and_letter_their_panels() {
+    let (mut c, _) = Controller::new("family=backlash_um:50,100,200", 0.0);
+    ready(&mut c);
+    let sample = |omega: f64, x: f64| BifSample {
+        index: 0,
+        omega,
+        up: true,
+        meshes: vec![BifMesh {
+            x_um: vec![x],
+            regime: Regime::SingleSided,
+        }],
+        worst_mesh: 0,
+        period: Some(1),
+        error: None,
+    };
+    let bif = |id, x| {
+        encode(&FromWorker::BifPoints {
+            id,
+            points: vec![sample(0.5, x)],
+        })
+    };
+    c.worker_message(0, &bif(c.bif.id, 10.0), 2.0);
+    c.worker_message(0, &bif(member_id(&c, 1, JobKind::Bif), -700.0), 2.0);
+    let panels = c.bif_panels();
+    let titles: Vec<&str> = panels.iter().map(|p| p.title.as_str()).collect();
+    assert_eq!(
+        titles,
+        vec![
+            "(a) backlash 50 µm",
+            "(b) backlash 100 µm",
+            "(c) backlash 200 µm"
+        ]
+    );
+    // Each panel's ±b is its own member's backlash.
+    let b: Vec<Vec<f64>> = panels
+        .iter()
+        .map(|p| p.data.as_ref().unwrap().backlash_um.clone())
+        .collect();
+    assert_eq!(b, vec![vec![50.0], vec![100.0], vec![200.0]]);
+    // The overlay draws every member's ±b.
+    assert_eq!(c.fr_view().backlash_um, vec![50.0, 100.0, 200.0]);
+    // One range for all: it holds panel c's -700 µm and panel a's +50 µm line.
+    let (x, y) = crate::plots::multiples::bif_ranges(&panels);
+    assert_eq!(x, (c.settings.view.omega_from, c.settings.view.omega_to));
+    assert!(y.0 < -700.0 && y.1 > 50.0, "{y:?}");
+    // The Poincaré panels are lettered d-f.
+    let omega = c.omega_panels(3);
+    assert_eq!(omega[0].title, "(d) backlash 50 µm");
+    assert!(
+        omega.iter().all(|p| p.data.is_err()),
+        "nothing computed yet"
+    );
+}
+
+#[test]
+fn a_figure_preset_loads_its_whole_family_and_bad_input_keeps_the_last_state() {
+    let (mut c, _) = Controller::new("", 0.0);
+    ready(&mut c);
+    let fx = c.apply_preset("fig5", 1.0);
+    let f = c.family.as_ref().unwrap();
+    assert_eq!(
+        (f.spec.key.key, f.spec.values.clone()),
+        ("te_um", vec![0.0, 20.0, 30.0])
+    );
+    assert_eq!(member_jobs(&posts(&fx)).len(), 8);
+    assert!(c.query().contains("family=te_um%3A0%2C20%2C30"));
+    assert_eq!(c.settings.view.omega, 0.5);
+    let before = c.query();
+    for (key, values, words) in [
+        ("te_um", "0, 20, 5000", "TE 5000"),
+        ("te_um", "0, NaN", "TE NaN"),
+        ("te_um", "1,2,3,4,5,6,7", "2 to 6"),
+        ("foo", "1, 2", "cannot vary"),
+    ] {
+        let e = c.set_family_text(key, values, 2.0).unwrap_err();
+        assert!(e.contains(words), "{e}");
+        assert_eq!(c.query(), before, "the last good state is kept");
+    }
+    // A good one replaces it; the current state takes its first value.
+    let fx = c.set_family_text("backlash_um", "50, 100", 3.0).unwrap();
+    assert_eq!(member_jobs(&posts(&fx)).len(), 4);
+    assert_eq!(
+        keys::get(&c.settings.params, "backlash_um"),
+        Some(keys::Value::Num(50.0))
+    );
+    // Moving the family's own control moves the first member.
+    c.set_key("backlash_um", "60", 4.0).unwrap();
+    assert_eq!(c.family.as_ref().unwrap().spec.values, vec![60.0, 100.0]);
+    // One value only: the members' jobs are cancelled.
+    let fx = c.clear_family();
+    assert!(posts(&fx)
+        .iter()
+        .all(|(_, m)| matches!(m, ToWorker::CancelMembers { kind: None })));
+    assert!(!c.query().contains("family"));
+    // A/B stays: pinning still works beside a family.
+    c.set_family_text("te_um", "0, 30", 5.0).unwrap();
+    c.pin_a(6.0);
+    assert!(c.pinned.is_some() && c.family.is_some());
+    let d = link::decode(&c.query());
+    assert!(d.pinned.is_some() && d.family.is_some(), "{:?}", d.issues);
+}

@@ -1,0 +1,109 @@
+// Browser tests of parameter families (issue 12): the frequency response
+// overlaid in colour per value, a figure preset's small multiples (Fig. 5:
+// three phase portraits and three Poincaré sections), the family link's
+// round trip and bad family input. Small grids keep the suite quick.
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { start, open, waitStatus, canvasStats, shot } from './harness.mjs';
+
+const QUICK = 'bif_points=6&transient_periods=120&record_periods=30&fr_points=120&lyap_points=0&map_omega_points=2&map_value_points=1&bif_dir=up';
+
+let h;
+before(async () => {
+  h = await start();
+});
+after(async () => {
+  await h?.close();
+});
+
+const allBranches = (s) => s.family && s.fr.finished_ms && s.family.members.every((m) => m.fr.finished_ms);
+
+test('a family typed on the page overlays one coloured curve per value on the frequency response, and its link restores it', async () => {
+  const { page, errors } = await open(h.browser, h.url, `${QUICK}&backlash_um=200`);
+  await waitStatus(page, (s) => s.workers_ready === 2, 30000, 'the workers');
+  await page.selectOption('#family-key', 'te_um');
+  await page.fill('#family-values', '0, 20, 30');
+  await page.click('#family-apply');
+  const s = await waitStatus(page, allBranches, 120000, 'the three branches');
+  assert.deepEqual(s.family.labels, ['TE 0 µm', 'TE 20 µm', 'TE 30 µm']);
+  assert.deepEqual(s.family.values, [0, 20, 30]);
+  assert.ok(s.fr_branch_points > 20, `${s.fr_branch_points}`);
+  for (const m of s.family.members) assert.ok(m.fr_branch_points > 20, JSON.stringify(m));
+  assert.match(s.query, /&family=te_um%3A0%2C20%2C30$/);
+  assert.match(s.query, /te_um=0/);
+  await page.waitForFunction(() => /Showing TE 0 µm, TE 20 µm, TE 30 µm/.test(document.querySelector('#family-status')?.textContent ?? ''));
+  await page.locator('#family-clear').waitFor({ state: 'visible', timeout: 10000 });
+  await page.locator('#view-fr').scrollIntoViewIfNeeded();
+  await shot(page.locator('#view-fr'), '30-family-fr');
+  assert.ok((await canvasStats(page, 'canvas-fr')).ink > 5000);
+  // The bifurcation diagram: one panel per value, side by side.
+  const sb = await waitStatus(page, (x) => x.bif.finished_ms && x.family.members.every((m) => m.bif.finished_ms), 120000, 'the three sweeps');
+  for (const m of sb.family.members) assert.equal(m.bif_points, 6, JSON.stringify(m));
+  await page.locator('#view-bif').scrollIntoViewIfNeeded();
+  await shot(page.locator('#view-bif'), '34-family-bif');
+
+  // Bad input: a plain message naming the value and the range; the last good state stays.
+  await page.fill('#family-values', '0, 20, 5000');
+  await page.click('#family-apply');
+  await page.waitForFunction(() => /TE 5000/.test(document.querySelector('#family-error')?.textContent ?? ''));
+  const err = await page.textContent('#family-error');
+  assert.match(err, /-1000 to 1000 µm/);
+  const kept = await waitStatus(page, (x) => x.family, 5000, 'the family kept');
+  assert.equal(kept.query, s.query);
+  await page.fill('#family-values', '1, 2, 3, 4, 5, 6, 7');
+  await page.press('#family-values', 'Enter');
+  await page.waitForFunction(() => /2 to 6 values/.test(document.querySelector('#family-error')?.textContent ?? ''));
+
+  // The link restores the family exactly, and computes it again.
+  const again = await open(h.browser, h.url, s.query);
+  const s2 = await waitStatus(again.page, allBranches, 120000, 'the restored family');
+  assert.equal(s2.query, s.query);
+  assert.deepEqual(s2.family.values, [0, 20, 30]);
+  assert.deepEqual(s2.issues, []);
+  assert.equal(await again.page.inputValue('#family-key'), 'te_um');
+  assert.equal(await again.page.inputValue('#family-values'), '0, 20, 30');
+  // One value only: the link no longer carries the family.
+  await again.page.click('#family-clear');
+  await again.page.waitForFunction(() => !location.search.includes('family='));
+  assert.deepEqual(again.errors, []);
+  await again.page.close();
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('the Fig. 5 preset shows three phase portraits and three Poincaré sections side by side', async () => {
+  const { page, errors } = await open(h.browser, h.url, QUICK);
+  await page.selectOption('#preset', 'fig5');
+  const s = await waitStatus(
+    page,
+    (s) => s.family && s.family.key === 'te_um' && s.omega_job.finished_ms && !s.omega_result?.preview
+      && s.omega_result?.omega === 0.5 && s.family.members.length === 2
+      && s.family.members.every((m) => m.omega_job.finished_ms),
+    180000,
+    'the three orbits at Omega 0.5',
+  );
+  assert.deepEqual(s.family.labels, ['TE 0 µm', 'TE 20 µm', 'TE 30 µm']);
+  assert.match(s.query, /family=te_um%3A0%2C20%2C30/);
+  assert.match(s.query, /omega=0\.5/);
+  for (const m of s.family.members) assert.equal(m.omega_job.error, null, JSON.stringify(m));
+  // The preset's note no longer says only the first member is shown.
+  assert.doesNotMatch(await page.textContent('#preset-note'), /first curve or panel/);
+  for (const v of ['phase', 'poincare']) {
+    await page.locator(`#view-${v}`).scrollIntoViewIfNeeded();
+    assert.ok((await canvasStats(page, `canvas-${v}`)).ink > 3000, v);
+  }
+  await shot(page.locator('#view-phase'), '31-fig5-phase-panels');
+  await shot(page.locator('#view-poincare'), '32-fig5-poincare-panels');
+  // The claims section lists every claim of docs/paper.md; a claim's figure
+  // button loads that figure's whole family.
+  await page.locator('#claims summary').click();
+  assert.equal(await page.locator('#claims-rows tr').count(), 12);
+  assert.match(await page.textContent('#claim-8'), /chaos starts at Ω 0\.50–0\.55 for every backlash/);
+  assert.match(await page.textContent('#claim-8'), /gearshock lyapunov/);
+  await shot(page.locator('#claims'), '33-claims');
+  await page.locator('#claim-8 button').click();
+  const s8 = await waitStatus(page, (x) => x.family && x.family.key === 'backlash_um', 10000, 'the Fig. 8 family');
+  assert.deepEqual(s8.family.values, [50, 100, 200]);
+  assert.deepEqual(errors, []);
+  await page.close();
+});
