@@ -426,8 +426,7 @@ fn set_note(p: &Page, v: ViewId, text: &str) {
 }
 
 fn draw_fr(p: &mut Page, root: &Area, v: &crate::views::fr::FrView) -> plots::Res<()> {
-    let running =
-        p.ctl.fr_status.running() || p.ctl.members_running(crate::protocol::JobKind::Hbm);
+    let running = p.ctl.fr_status.running() || p.ctl.members_running(crate::protocol::JobKind::Hbm);
     let suffix = crate::views::fr::fr_caption_suffix(running, v);
     p.frames[ViewId::Fr.slot()] = Some(plots::draw_fr(root, v, &suffix)?);
     Ok(())

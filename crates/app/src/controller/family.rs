@@ -94,7 +94,7 @@ impl Controller {
     }
 
     pub(super) fn cancel_members(&mut self, kind: Option<JobKind>) -> Vec<Effect> {
-        (0..WORKERS)
+        (0..self.workers())
             .flat_map(|w| self.post(w, &ToWorker::CancelMembers { kind }))
             .collect()
     }
@@ -132,6 +132,8 @@ impl Controller {
             }
         }
         let v = self.settings.view.clone();
+        let pool = self.workers();
+        let hbm_worker = self.hbm_worker();
         let kinds = [
             (what.fr, JobKind::Hbm),
             (what.bif, JobKind::Bif),
@@ -170,12 +172,14 @@ impl Controller {
                 let (job, total, workers): (Vec<JobSpec>, usize, Vec<usize>) = match kind {
                     JobKind::Hbm => {
                         m.hbm = HbmStore::new(id, v.harmonics);
-                        (vec![hbm_job(&v)], 100, vec![(HBM_WORKER + i + 1) % WORKERS])
+                        (vec![hbm_job(&v)], 100, vec![(hbm_worker + i + 1) % pool])
                     }
                     JobKind::Bif => {
                         let total = bif_total(&v);
                         m.bif = BifStore::new(id, total);
-                        let chains = (WORKERS as u32).min(v.bif_points);
+                        // As many chains as the current state's sweep, dealt
+                        // round robin: the same results on any pool.
+                        let chains = super::chain_count(v.bif_points);
                         let run = RunOptions {
                             transient_periods: v.transient_periods,
                             record_periods: v.record_periods,
@@ -191,7 +195,11 @@ impl Controller {
                                 run,
                             })
                             .collect();
-                        (jobs, total, (0..chains as usize).collect())
+                        (
+                            jobs,
+                            total,
+                            (0..chains as usize).map(|c| c % pool).collect(),
+                        )
                     }
                     _ => {
                         m.omega = None;
@@ -202,7 +210,7 @@ impl Controller {
                             samples_per_period: SAMPLES_PER_PERIOD,
                             max_order: MAX_ORDER,
                         };
-                        (vec![job], 1, vec![(i + 1) % WORKERS])
+                        (vec![job], 1, vec![(i + 1) % pool])
                     }
                 };
                 let st = match kind {
@@ -239,6 +247,7 @@ impl Controller {
                     progress,
                     finished,
                     error,
+                    ..
                 } if *id == m.hbm.id && *id != 0 => {
                     m.hbm
                         .add(points.clone(), *progress, *finished, error.clone());

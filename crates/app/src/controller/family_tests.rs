@@ -65,11 +65,13 @@ fn hbm(id: JobId, amplitude: f64) -> String {
                 }],
                 stable: Some(true),
                 bifurcation: None,
+                piece: 0,
             })
             .collect(),
         progress: 1.0,
         finished: true,
         error: None,
+        notes: Vec::new(),
     })
 }
 

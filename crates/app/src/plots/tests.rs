@@ -212,6 +212,7 @@ fn a_family_overlays_one_colour_per_value_named_in_words() {
                 regime: Some(Regime::NoImpact),
                 period: Some(1),
                 bifurcation: None,
+                piece: 0,
             })
             .collect()
     };
@@ -246,6 +247,7 @@ fn a_family_overlays_one_colour_per_value_named_in_words() {
         done: 10,
         progress: 1.0,
         finished: true,
+        branch_notes: Vec::new(),
     };
     let s = svg(|root| draw_fr(root, &fr, "").map(|_| ()));
     for (m, text) in ["TE 0 µm", "TE 20 µm", "TE 30 µm"].iter().enumerate() {

@@ -107,11 +107,7 @@ pub(super) fn refresh_family_bar(p: &Page) {
 }
 
 /// The bifurcation diagrams of the family's members side by side.
-pub(super) fn draw_bif_family(
-    p: &mut Page,
-    root: &Area,
-    cv: &HtmlCanvasElement,
-) -> Result<(), String> {
+pub(super) fn draw_bif_family(p: &mut Page, root: &Area, cv: &HtmlCanvasElement) -> plots::Res<()> {
     let panels = p.ctl.bif_panels();
     let mesh = p.ctl.view_context().mesh_label;
     let running = p.ctl.bif_status.running() || p.ctl.members_running(JobKind::Bif);
@@ -127,7 +123,7 @@ pub(super) fn draw_bif_family(
 
 /// The phase portraits (view Phase) or Poincaré sections of the family's
 /// members side by side.
-pub(super) fn draw_omega_family(p: &mut Page, v: ViewId, root: &Area) -> Result<(), String> {
+pub(super) fn draw_omega_family(p: &mut Page, v: ViewId, root: &Area) -> plots::Res<()> {
     let poincare = v == ViewId::Poincare;
     let n = p.ctl.family.as_ref().map_or(0, |f| f.spec.values.len());
     let panels = p.ctl.omega_panels(if poincare { n } else { 0 });

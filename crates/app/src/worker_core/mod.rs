@@ -134,7 +134,7 @@ impl WorkerCore {
             ToWorker::CancelMembers { kind } => {
                 for m in &mut self.members {
                     match kind {
-                        Some(k) => m.jobs[kind_slot(k)] = None,
+                        Some(k) => m.jobs[kind_slot(k)].clear(),
                         None => m.jobs = Default::default(),
                     }
                 }

@@ -540,6 +540,7 @@ fn a_new_omega_job_preempts_a_running_steady_state_within_one_slice() {
     assert!(drain(&mut core)
         .iter()
         .any(|m| matches!(m, FromWorker::BifPoints { id: 7, .. })));
+}
 
 #[test]
 fn family_members_run_beside_the_current_state_and_cancel_together() {
