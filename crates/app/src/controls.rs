@@ -292,7 +292,7 @@ pub fn controls() -> Vec<Control> {
         view("fr_points", "HBM points (nominal)", (2.0, 400.0, 1.0)),
         view(
             "fr_ti_points",
-            "Time-integration overlay points (0 = off)",
+            "Own time-integration dots (0 = the bifurcation sweep's)",
             (0.0, 60.0, 1.0),
         ),
         view(

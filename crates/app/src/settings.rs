@@ -133,7 +133,7 @@ pub const VIEW_KEYS: &[ViewKey] = &[
             min: 0,
             max: MAX_FR_TI_POINTS,
         },
-        description: "Omega points of the time-integration steady states overlaid on the frequency response as dots (0 = no overlay)",
+        description: "Omega points of a time-integration run of its own for the frequency response's dots (0: the dots are the bifurcation sweep's steady states)",
     },
     ViewKey {
         name: "fr_record_periods",

@@ -80,6 +80,8 @@ impl Controller {
                 self.bif.samples.extend(points);
                 self.bif_status.record(self.bif.samples.len(), now_ms);
                 self.dirty.bif = true;
+                // Without its own overlay job the frequency response shows these.
+                self.dirty.fr |= self.fr.id == 0;
                 Vec::new()
             }
             FromWorker::MapCells { id, cells } if id == self.map.id && id != 0 => {

@@ -394,7 +394,16 @@ impl Controller {
         // The previous branch is context while the new one computes, not
         // after it has ended (complete or failed).
         let previous = self.hbm_previous.as_ref().filter(|_| !self.hbm.finished);
-        let overlay = Some(&self.fr).filter(|f| f.id != 0);
+        // The time-integration dots: the overlay job's when it is on, else
+        // the bifurcation sweep's steady states (the same computation, free).
+        let swept;
+        let overlay = if self.fr.id != 0 {
+            Some(&self.fr)
+        } else {
+            let v = &self.settings.view;
+            swept = FrStore::from_sweep(&self.bif.samples, v.transient_periods, v.record_periods);
+            Some(&swept).filter(|s| !s.points.is_empty())
+        };
         let mut v = fr_view(&self.hbm, previous, overlay, mesh, &b, &ctx);
         if let Some(p) = &self.pinned {
             let (ta, tb) = link::ab_difference(&p.settings, &self.settings, 3);

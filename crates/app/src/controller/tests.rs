@@ -292,6 +292,58 @@ fn the_time_integration_overlay_runs_on_both_workers_when_asked() {
     assert!(c.fr_view().overlay_source.is_none());
 }
 
+/// Truth by default: with no overlay job (the defaults), the frequency
+/// response's dots are the bifurcation sweep's upward steady states, and
+/// each arriving sweep point marks the frequency response for a redraw.
+#[test]
+fn at_the_defaults_the_frequency_response_shows_the_sweeps_steady_states() {
+    use crate::protocol::{BifMesh, BifSample, Regime};
+    let (mut c, _) = Controller::new("", 0.0);
+    ready(&mut c);
+    assert_eq!(c.fr.id, 0, "no overlay job at the defaults");
+    let id = c.bif.id;
+    let sample = |index: u32, omega: f64, up: bool, lo: f64, hi: f64| BifSample {
+        index,
+        omega,
+        up,
+        meshes: vec![BifMesh {
+            x_um: vec![lo],
+            rel_min_um: lo,
+            rel_max_um: hi,
+            regime: Regime::SingleSided,
+        }],
+        worst_mesh: 0,
+        period: None,
+        error: None,
+    };
+    c.dirty.fr = false;
+    let points = vec![
+        sample(1, 1.0, true, 2.0, 9.0),
+        sample(0, 0.5, true, 10.0, 70.0),
+        sample(0, 0.5, false, 0.0, 5.0),
+    ];
+    c.worker_message(0, &encode(&FromWorker::BifPoints { id, points }), 10.0);
+    assert!(c.dirty.fr);
+    let v = c.fr_view();
+    assert!(
+        matches!(v.overlay_source, Some(FrSource::Sweep { .. })),
+        "{:?}",
+        v.overlay_source
+    );
+    let got: Vec<(f64, f64, f64)> = v
+        .overlay
+        .iter()
+        .map(|p| (p.omega, p.min_um, p.max_um))
+        .collect();
+    assert_eq!(got, vec![(0.5, 10.0, 70.0), (1.0, 2.0, 9.0)]);
+    // An overlay job of its own replaces them.
+    c.set_key("fr_ti_points", "4", 20.0).unwrap();
+    assert!(matches!(
+        c.fr_view().overlay_source,
+        Some(FrSource::TimeIntegration { .. })
+    ));
+}
+
 fn map_cells(id: JobId, cells: &[(u32, u32, crate::protocol::Regime, Option<u32>)]) -> String {
     encode(&FromWorker::MapCells {
         id,

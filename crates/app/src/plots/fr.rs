@@ -3,6 +3,7 @@
 
 use super::*;
 use crate::views::fr::{FrCurvePoint, FrMarkerKind, FrView};
+use crate::views::unstable::{strip_from_overlay, unstable_ranges, unstable_sentence};
 
 /// View 1: the frequency response (harmonic-balance branch, stable solid,
 /// unstable dashed, bifurcation markers, optional time-integration dots).
@@ -77,7 +78,7 @@ pub fn draw_fr<DB: DrawingBackend>(
     for (i, r) in Regime::ALL.iter().enumerate() {
         if seen[i] {
             let text = if first {
-                format!("regime strip (stable): {}", r.label())
+                format!("regime strip: {}", r.label())
             } else {
                 r.label().to_string()
             };
@@ -105,7 +106,9 @@ pub fn draw_fr<DB: DrawingBackend>(
         items.push((KeyIcon::Overlay, text));
     }
     let (at, rows) = key_layout(root, &items, 76);
-    let key_h = 8 + KEY_ROW * rows;
+    // The plain sentence under the key when the branch is unstable over a range.
+    let sentence: Vec<String> = unstable_sentence(v).map_or(Vec::new(), |t| wrap(&t, 100));
+    let key_h = 8 + KEY_ROW * (rows + sentence.len() as i32);
     let (upper, _) = root.split_vertically(HEIGHT as i32 - key_h);
     let caption = format!(
         "Frequency response, mesh {} ({}){status}",
@@ -177,7 +180,9 @@ pub fn draw_fr<DB: DrawingBackend>(
             }
         }
         if !br.faded && !br.pinned {
-            regime_strip(&mut chart, &br.points, y)?;
+            // Where no stretch is stable, the strip shows the dots' regimes.
+            let filled = strip_from_overlay(&unstable_ranges(&br.points), &v.overlay);
+            regime_strip(&mut chart, &br.points, &filled, y)?;
         }
     }
     if any_unstable {
@@ -219,6 +224,15 @@ pub fn draw_fr<DB: DrawingBackend>(
     let frame = frame_of(&chart, x, y);
 
     key_row(root, &items, &at, HEIGHT as i32 - key_h + 12)?;
+    for (k, line) in sentence.iter().enumerate() {
+        let y0 = HEIGHT as i32 - key_h + 5 + KEY_ROW * (rows + k as i32);
+        root.draw(&Text::new(
+            line.clone(),
+            (76, y0),
+            ("sans-serif", 13).into_font().style(FontStyle::Bold),
+        ))
+        .map_err(err)?;
+    }
     let mut notes = Vec::new();
     if let Some((at, e)) = &v.branch_error {
         let text = format!(

@@ -596,6 +596,7 @@ fn draw_marker_px<DB: DrawingBackend>(
 fn regime_strip<'a, DB: DrawingBackend + 'a>(
     chart: &mut Chart<'a, DB>,
     points: &[FrCurvePoint],
+    filled: &[(Regime, f64, f64)],
     y: (f64, f64),
 ) -> Res<()> {
     let (lo, hi) = (y.0, y.0 + 0.025 * (y.1 - y.0));
@@ -624,9 +625,11 @@ fn regime_strip<'a, DB: DrawingBackend + 'a>(
     }
     chart
         .draw_series(
-            runs.into_iter().map(|(r, from, to)| {
-                Rectangle::new([(from, lo), (to, hi)], regime_color(r).filled())
-            }),
+            runs.into_iter()
+                .chain(filled.iter().copied())
+                .map(|(r, from, to)| {
+                    Rectangle::new([(from, lo), (to, hi)], regime_color(r).filled())
+                }),
         )
         .map_err(err)?;
     Ok(())

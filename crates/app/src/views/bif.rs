@@ -146,6 +146,8 @@ mod tests {
             up: false,
             meshes: vec![BifMesh {
                 x_um: vec![1.0, 2.0],
+                rel_min_um: 0.5,
+                rel_max_um: 2.5,
                 regime: Regime::DoubleSided,
             }],
             worst_mesh: 0,

@@ -12,6 +12,7 @@ pub mod map;
 pub mod omega;
 pub mod redraw;
 mod table;
+pub mod unstable;
 
 pub use table::{ExportKind, ViewId, ViewSpec, DRAW_ORDER, VIEWS};
 
