@@ -39,9 +39,11 @@ test('the page loads without console errors and draws every canvas', async () =>
     assert.ok(st.ink > st.total * 0.02, `canvas-${id} looks blank (${st.ink} of ${st.total} pixels drawn)`);
   }
   // The summary names the regime and period; the schematic marks the plotted mesh.
+  // Two sentences for students, the figures for experts behind a disclosure.
   const summary = await page.textContent('#summary');
   assert.match(summary, /impact|no contact/);
-  assert.match(summary, /Natural frequencies in range/);
+  assert.match(summary, /Dynamic factor [\d.]+: the largest tooth force is/);
+  assert.match(await page.textContent('#summary-expert'), /Natural frequencies in range/);
   assert.equal(await page.getAttribute('#mesh-s1a1', 'class'), 'mesh selected');
   await shot(page, '01-loaded');
   assert.deepEqual(errors, []);
@@ -85,7 +87,7 @@ test('a slider change previews the selected-Omega views at once, then the full s
   // says the preview was drawn (on a busy machine it still showed the
   // previous state's summary then).
   await page.waitForFunction(
-    () => /^Preview \(20 \+ 10 periods continued from the previous state; the full run is computing\): Omega = /.test(document.querySelector('#summary')?.textContent ?? ''),
+    () => /^Preview \(20 \+ 10 periods continued from the previous state; the full run is computing\): Ω = /.test(document.querySelector('#summary-expert')?.textContent ?? ''),
     null,
     { timeout: 10000 },
   );
@@ -95,7 +97,7 @@ test('a slider change previews the selected-Omega views at once, then the full s
   await shot(page.locator('#view-phase'), '03a-phase-preview');
   const s = await waitStatus(page, (s) => s.omega_job.finished_ms && s.omega_job.started_ms >= t0, 90000, 'the full run');
   assert.ok(s.omega_job.finished_ms > sp.omega_job.preview_ms);
-  const summary = await page.textContent('#summary');
+  const summary = await page.textContent('#summary-expert');
   assert.ok(!summary.startsWith('Preview'), summary);
   assert.deepEqual(errors, []);
   await page.close();
@@ -161,9 +163,9 @@ test('a malformed link shows a message naming the key and range, and the page st
   const msg = page.locator('#messages');
   await msg.waitFor({ state: 'visible' });
   const text = await msg.textContent();
-  assert.match(text, /backlash_um = 5000 is out of range: allowed 0 \.\.= 1000/);
-  assert.match(text, /omega = NaN is out of range: allowed 0\.01 \.\.= 20/);
-  assert.match(text, /bif_points/);
+  assert.match(text, /Backlash must be between 0 and 1000 µm \(not 5000\)/);
+  assert.match(text, /Selected Ω must be between 0\.01 and 20 \(not NaN\)/);
+  assert.match(text, /Bifurcation points must be a whole number between 2 and 1000/);
   assert.match(text, /<img src=x onerror=alert\(1\)>/, 'the hostile key is shown as text');
   // Nothing from the link became markup.
   assert.equal(await page.locator('#messages img, #messages b').count(), 0);

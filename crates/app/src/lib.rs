@@ -26,6 +26,7 @@ pub mod scene;
 pub mod settings;
 pub mod status;
 pub mod views;
+pub mod words;
 pub mod worker_core;
 
 #[cfg(target_arch = "wasm32")]

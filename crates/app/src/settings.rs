@@ -500,7 +500,7 @@ impl ViewOptions {
         if self.omega_to <= self.omega_from {
             let d = ViewOptions::default();
             msgs.push(format!(
-                "omega_from = {} must be below omega_to = {}; the range was reset to {} ..= {}",
+                "The frequency range must start below its end (from Ω {} to Ω {}); it was reset to Ω {} to {}",
                 self.omega_from, self.omega_to, d.omega_from, d.omega_to
             ));
             self.omega_from = d.omega_from;
@@ -509,7 +509,7 @@ impl ViewOptions {
         if self.map_to <= self.map_from {
             let (lo, hi) = map_default_range(&self.map_key);
             msgs.push(format!(
-                "map_from = {} must be below map_to = {}; the map's range was reset to {lo} ..= {hi}",
+                "The map's range must start below its end ({} to {} µm); it was reset to {lo} to {hi} µm",
                 self.map_from, self.map_to
             ));
             self.map_from = lo;
@@ -606,7 +606,10 @@ mod tests {
         v.map_from = 50.0;
         v.map_to = 10.0;
         let e = v.check_range().unwrap();
-        assert!(e.contains("map_from"), "{e}");
+        assert!(
+            e.contains("map's range") && e.contains("0 to 200 µm"),
+            "{e}"
+        );
         assert_eq!((v.map_from, v.map_to), (0.0, 200.0));
     }
 
@@ -621,7 +624,10 @@ mod tests {
             ..ViewOptions::default()
         };
         let e = v.check_range().unwrap();
-        assert!(e.contains("omega_from") && e.contains("map_from"), "{e}");
+        assert!(
+            e.contains("frequency range") && e.contains("map's range"),
+            "{e}"
+        );
         let d = ViewOptions::default();
         assert_eq!((v.omega_from, v.omega_to), (d.omega_from, d.omega_to));
         assert_eq!((v.map_from, v.map_to), (d.map_from, d.map_to));

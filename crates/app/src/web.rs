@@ -321,7 +321,8 @@ fn draw_dirty(page: &Shared, p: &mut Page) {
     }
     p.redraw.mark(&d);
     if d.omega {
-        set_text(&p.doc, "summary", &p.ctl.summary_text());
+        set_text(&p.doc, "summary", &p.ctl.student_summary());
+        set_text(&p.doc, "summary-expert", &p.ctl.summary_text());
     }
     for v in DRAW_ORDER {
         let start = now(&p.window);

@@ -193,7 +193,10 @@ impl Controller {
         if view_key(key).is_some() {
             let before = self.settings.view.clone();
             let meshes = self.mesh_names();
-            self.settings.view.set(key, text, &meshes)?;
+            self.settings
+                .view
+                .set(key, text, &meshes)
+                .map_err(|_| crate::words::must_be(key, text))?;
             if key == "map_key" && self.settings.view.map_key != before.map_key {
                 // A new axis gets that key's own default range.
                 let (lo, hi) = crate::settings::map_default_range(&self.settings.view.map_key);
@@ -250,9 +253,12 @@ impl Controller {
             self.dirty.url = true;
             return Ok(self.restart(what, now_ms));
         }
-        let value = keys::parse_value(key, text).map_err(|e| e.to_string())?;
+        // The message in a sentence with the allowed range ("Backlash b must be
+        // between 0 and 1000 µm"), not the CLI's key syntax.
+        let plain = |_| crate::words::must_be(key, text);
+        let value = keys::parse_value(key, text).map_err(plain)?;
         let mut params = self.settings.params.clone();
-        keys::set(&mut params, key, value).map_err(|e| e.to_string())?;
+        keys::set(&mut params, key, value).map_err(plain)?;
         if params == self.settings.params {
             return Ok(Vec::new());
         }
@@ -517,6 +523,17 @@ impl Controller {
             crate::views::ExportKind::Omega => &self.omega_status,
             crate::views::ExportKind::Map => &self.map_status,
             crate::views::ExportKind::Lyap => &self.lyap_status,
+        }
+    }
+
+    /// The two-sentence summary for students at the selected Omega (the
+    /// regime, whether the motion repeats, the dynamic factor explained);
+    /// the expert figures are [`Controller::summary_text`].
+    pub fn student_summary(&self) -> String {
+        match (&self.omega, &self.omega_status.error) {
+            (_, Some(e)) => format!("Not computed: {e}"),
+            (Some(r), None) => crate::views::omega::student_summary(r),
+            (None, None) => "Computing the motion at the selected Ω…".into(),
         }
     }
 

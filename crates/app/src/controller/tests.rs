@@ -117,9 +117,9 @@ fn slider_change_restarts_and_stale_replies_are_ignored() {
     assert!(c.query().contains("backlash_um=150"));
     c.worker_message(1, &hbm_points(old, &[0.1], false, None), 11.0);
     assert!(c.hbm.points.is_empty());
-    // Out of range: refused with the key and range named; nothing restarts.
+    // Out of range: refused in a sentence naming the setting and its range; nothing restarts.
     let e = c.set_key("backlash_um", "5000", 12.0).unwrap_err();
-    assert!(e.contains("backlash_um") && e.contains("1000"), "{e}");
+    assert_eq!(e, "Backlash must be between 0 and 1000 µm (not 5000).");
     // The selected Omega restarts only the Omega job.
     let fx = c.select_omega(1.23456, 13.0);
     let p = posts(&fx);
@@ -519,10 +519,10 @@ fn a_link_with_a_pinned_state_computes_both_and_pinning_keeps_a() {
     let v = c.fr_view();
     let labels: Vec<&str> = v.branches.iter().map(|b| b.label.as_str()).collect();
     assert!(
-        labels[0].starts_with("A: backlash_um=100") && v.branches[0].pinned,
+        labels[0].starts_with("A: backlash 100 µm") && v.branches[0].pinned,
         "{labels:?}"
     );
-    assert!(labels[1].starts_with("B: backlash_um=150"), "{labels:?}");
+    assert!(labels[1].starts_with("B: backlash 150 µm"), "{labels:?}");
     assert!(
         c.query().contains("&a=model%3Dravigneaux%26omega%3D0.5%26"),
         "{}",
@@ -556,7 +556,7 @@ fn pin_as_a_keeps_finished_results_while_b_changes() {
     let (ta, tb) = c.ab_labels().unwrap();
     assert_eq!(
         (ta.as_str(), tb.as_str()),
-        ("backlash_um=100", "backlash_um=150")
+        ("backlash 100 µm", "backlash 150 µm")
     );
     assert!(c.bif_view().ab_labels.is_some());
 }
@@ -564,7 +564,7 @@ fn pin_as_a_keeps_finished_results_while_b_changes() {
 #[test]
 fn presets_links_and_model_switch() {
     let (mut c, _) = Controller::new("backlash_um=oops&te_um=25", 0.0);
-    assert!(c.issues.iter().any(|i| i.contains("backlash_um")));
+    assert!(c.issues.iter().any(|i| i.contains("Backlash must be")));
     assert!(c.query().contains("te_um=25"));
     c.apply_preset("pair", 1.0);
     assert!(c.preset_note.is_some());
