@@ -14,7 +14,7 @@ pub mod redraw;
 mod table;
 pub mod unstable;
 
-pub use table::{ExportKind, ViewId, ViewSpec, DRAW_ORDER, VIEWS};
+pub use table::{part_number, ExportKind, PagePart, ViewId, ViewSpec, DRAW_ORDER, PAGE, VIEWS};
 
 use serde::Serialize;
 use solver::modal::ModeKind;
