@@ -323,6 +323,9 @@ fn draw_dirty(page: &Shared, p: &mut Page) {
     if d.omega {
         set_text(&p.doc, "summary", &p.ctl.student_summary());
         set_text(&p.doc, "summary-expert", &p.ctl.summary_text());
+        if let Some(e) = p.doc.get_element_by_id("canvas-anim") {
+            check(e.set_attribute("aria-label", &p.ctl.anim_label()));
+        }
     }
     for v in DRAW_ORDER {
         let start = now(&p.window);
@@ -374,6 +377,7 @@ fn draw_view(p: &mut Page, v: ViewId) {
         ExportKind::Map => draw_map(p, &root, &cv),
         ExportKind::Lyap => draw_lyap(p, &root),
     };
+    check(cv.set_attribute("aria-label", &p.ctl.canvas_label(v)));
     if let Err(e) = r {
         if !p.ctl.issues.contains(&e) {
             p.ctl.issues.push(e);

@@ -526,6 +526,37 @@ impl Controller {
         }
     }
 
+    /// The text alternative of a view's canvas (its `aria-label`), from
+    /// the data it draws.
+    pub fn canvas_label(&self, view: crate::views::ViewId) -> String {
+        use crate::views::{labels, ExportKind};
+        let title = view.spec().title;
+        match view.spec().data {
+            ExportKind::Fr => labels::fr_label(&self.fr_view()),
+            ExportKind::Bif => labels::bif_label(&self.bif_view()),
+            ExportKind::Map => labels::map_label(&self.map),
+            ExportKind::Lyap => labels::lyap_label(&self.lyap.curve()),
+            ExportKind::Omega => match (&self.omega, &self.omega_status.error) {
+                (_, Some(e)) => format!("{title}: not computed: {e}"),
+                (Some(r), None) => labels::omega_label(title, r),
+                (None, None) => format!("{title}: computing."),
+            },
+        }
+    }
+
+    /// The text alternative of the gear-set animation.
+    pub fn anim_label(&self) -> String {
+        match &self.omega {
+            Some(r) => format!(
+                "The gear set in slow motion at Ω {}, each mesh coloured by its contact state; mesh {}: {}.",
+                crate::views::unstable::short(r.omega),
+                r.mesh_name,
+                r.regime.label()
+            ),
+            None => "The gear set in slow motion: computing the motion.".into(),
+        }
+    }
+
     /// The two-sentence summary for students at the selected Omega (the
     /// regime, whether the motion repeats, the dynamic factor explained);
     /// the expert figures are [`Controller::summary_text`].

@@ -8,6 +8,7 @@
 
 pub mod bif;
 pub mod fr;
+pub mod labels;
 pub mod map;
 pub mod omega;
 pub mod redraw;

@@ -236,6 +236,19 @@ impl ViewId {
         }
     }
 
+    /// An export button's name, by what it exports: "Export the frequency
+    /// response as CSV" (`what` is "CSV", "JSON", "a PNG image", ...).
+    pub fn export_name(self, what: &str) -> String {
+        let t = self.spec().title;
+        let mut c = t.chars();
+        // Names stay capitalized (Poincaré); other titles read in lower case.
+        let lower: String = match c.next() {
+            Some(f) if !t.starts_with("Poincaré") => f.to_lowercase().chain(c).collect(),
+            _ => t.to_string(),
+        };
+        format!("Export the {lower} as {what}")
+    }
+
     /// The CLI-format export's button title, for the views that have one.
     pub fn cli_export_title(self) -> Option<&'static str> {
         match self.spec().data {
@@ -305,6 +318,18 @@ mod tests {
         }
         assert!(refs >= 3, "the help texts refer to other views by number");
         assert!(!lower.contains("views 3") && !lower.contains("view 6)") && !lower.contains("5a"));
+    }
+
+    #[test]
+    fn export_buttons_say_what_they_export() {
+        assert_eq!(
+            ViewId::Fr.export_name("CSV"),
+            "Export the frequency response as CSV"
+        );
+        assert_eq!(
+            ViewId::Poincare.export_name("a PNG image"),
+            "Export the Poincaré section as a PNG image"
+        );
     }
 
     /// The page's HTML has every view's canvas, export bar, progress bar and

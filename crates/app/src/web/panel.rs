@@ -335,6 +335,7 @@ pub(super) fn add_button(
     };
     check(b.set_attribute("type", "button"));
     check(b.set_attribute("title", title));
+    check(b.set_attribute("aria-label", title));
     b.set_text_content(Some(text));
     check(parent.append_child(&b));
     listen(&b.into(), "click", on_click);
@@ -347,29 +348,25 @@ pub(super) fn build_exports(page: &Shared) {
             continue;
         };
         let page2 = page.clone();
-        add_button(
-            page,
-            &bar,
-            "PNG",
-            "Save this plot as a PNG image",
-            move |_| {
-                let doc = page2.borrow().doc.clone();
-                if let Some(url) = canvas(&doc, v).and_then(|cv| cv.to_data_url().ok()) {
-                    download_url(&doc, &format!("gearshock-{}.png", v.key()), &url);
-                }
-            },
-        );
+        let png = v.export_name("a PNG image");
+        add_button(page, &bar, "PNG", &png, move |_| {
+            let doc = page2.borrow().doc.clone();
+            if let Some(url) = canvas(&doc, v).and_then(|cv| cv.to_data_url().ok()) {
+                download_url(&doc, &format!("gearshock-{}.png", v.key()), &url);
+            }
+        });
         for fmt in Format::ALL {
-            let title = format!("Download the data behind this plot as {}", fmt.label());
+            let title = v.export_name(fmt.label());
             let page2 = page.clone();
             add_button(page, &bar, fmt.label(), &title, move |_| {
                 let r = page2.borrow().ctl.export(v, fmt);
                 finish_export(&page2, r.map(|e| vec![e]));
             });
         }
-        if let Some(title) = v.cli_export_title() {
+        if v.cli_export_title().is_some() {
             let page2 = page.clone();
-            add_button(page, &bar, "CLI JSON", title, move |_| {
+            let title = v.export_name("JSON for the command-line tool");
+            add_button(page, &bar, "CLI JSON", &title, move |_| {
                 let r = page2.borrow_mut().ctl.export_cli(v);
                 finish_export(&page2, r);
             });
@@ -382,7 +379,7 @@ pub(super) fn build_exports(page: &Shared) {
             page,
             &sec,
             text,
-            "The parameters as the CLI's --params file",
+            "Download the parameters as JSON for the command-line tool",
             move |_| {
                 let fx = vec![page2.borrow().ctl.export_params()];
                 run_effects(&page2, fx);
