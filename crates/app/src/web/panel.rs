@@ -269,6 +269,33 @@ pub(super) fn build_toolbar(page: &Shared) {
     }
 }
 
+/// Shows `text` next to the Copy link button for about two seconds (the
+/// status line is rewritten every frame, so it has its own element).
+fn confirm(window: &web_sys::Window, doc: &web_sys::Document, text: &str) {
+    let Some(e) = doc.get_element_by_id("copy-done") else {
+        return;
+    };
+    e.set_text_content(Some(text));
+    check(e.remove_attribute("hidden"));
+    let stamp = format!("{}", js_sys::Date::now());
+    check(e.set_attribute("data-shown", &stamp));
+    let hide = Closure::<dyn FnMut()>::new(move || {
+        // A later click restarts the two seconds: only its own timer hides it.
+        if e.get_attribute("data-shown").as_deref() == Some(stamp.as_str()) {
+            check(e.set_attribute("hidden", ""));
+        }
+    });
+    check(
+        window
+            .set_timeout_with_callback_and_timeout_and_arguments_0(
+                hide.as_ref().unchecked_ref(),
+                2000,
+            )
+            .map(|_| ()),
+    );
+    hide.forget();
+}
+
 pub(super) fn copy_link(page: &Shared) {
     let (window, doc) = {
         let p = page.borrow();
@@ -276,15 +303,15 @@ pub(super) fn copy_link(page: &Shared) {
     };
     let href = window.location().href().unwrap_or_default();
     let clipboard = window.navigator().clipboard();
-    let ok_doc = doc.clone();
+    let (ok_doc, ok_win) = (doc.clone(), window.clone());
     let ok = Closure::<dyn FnMut(JsValue)>::new(move |_v: JsValue| {
-        set_text(&ok_doc, "status", "Link copied to the clipboard.");
+        confirm(&ok_win, &ok_doc, "Link copied to the clipboard.");
     });
-    let fail_doc = doc.clone();
+    let (fail_doc, fail_win) = (doc.clone(), window.clone());
     let fail = Closure::<dyn FnMut(JsValue)>::new(move |_v: JsValue| {
-        set_text(
+        confirm(
+            &fail_win,
             &fail_doc,
-            "status",
             "Could not copy; the link is in the address bar.",
         );
     });
