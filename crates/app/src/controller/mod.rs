@@ -484,6 +484,10 @@ impl Controller {
             "fr_partial": self.hbm.error,
             "fr_overlay": self.ti_status,
             "fr_discrepancy": self.fr_view().discrepancy,
+            // The frequency response's time-integration dots and the
+            // sentence under it where the branch is unstable.
+            "fr_dots": self.fr_view().overlay.len(),
+            "fr_sentence": crate::views::unstable::unstable_sentence(&self.fr_view()),
             "bif": self.bif_status,
             "bif_bands": self.instability_bands(),
             "omega_job": self.omega_status,
