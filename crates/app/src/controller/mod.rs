@@ -620,6 +620,8 @@ use jobs::{Restart, ALL, NONE};
 use pinned::pinned_backlash;
 mod messages;
 mod pinned;
+mod svg;
+pub use svg::view_size;
 
 pub use pinned::Pinned;
 

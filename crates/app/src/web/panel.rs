@@ -348,6 +348,56 @@ pub(super) fn download_url(doc: &Document, name: &str, url: &str) {
     a.click();
 }
 
+/// Saves a view as a PNG at twice its size: its SVG picture (the same
+/// drawing) rasterized onto an offscreen canvas of twice the canvas's size;
+/// the canvas itself if the picture cannot be drawn.
+fn png_2x(page: &Shared, v: ViewId) {
+    let (doc, svg) = {
+        let p = page.borrow();
+        (p.doc.clone(), p.ctl.plot_svg(v))
+    };
+    let name = format!("gearshock-{}.png", v.key());
+    let (Ok(svg), Ok(img)) = (svg, web_sys::HtmlImageElement::new()) else {
+        if let Some(url) = canvas(&doc, v).and_then(|cv| cv.to_data_url().ok()) {
+            download_url(&doc, &name, &url);
+        }
+        return;
+    };
+    let (w, h) = crate::controller::view_size(v);
+    let src = format!(
+        "data:image/svg+xml;charset=utf-8,{}",
+        String::from(js_sys::encode_uri_component(&svg))
+    );
+    let img2 = img.clone();
+    let onload = Closure::<dyn FnMut()>::new(move || {
+        let Some(cv) = doc
+            .create_element("canvas")
+            .ok()
+            .and_then(|e| e.dyn_into::<HtmlCanvasElement>().ok())
+        else {
+            return;
+        };
+        cv.set_width(2 * w);
+        cv.set_height(2 * h);
+        if let Some(ctx) = ctx2d(&cv) {
+            check(ctx.draw_image_with_html_image_element_and_dw_and_dh(
+                &img2,
+                0.0,
+                0.0,
+                f64::from(2 * w),
+                f64::from(2 * h),
+            ));
+        }
+        if let Ok(url) = cv.to_data_url() {
+            download_url(&doc, &name, &url);
+        }
+    });
+    img.set_onload(Some(onload.as_ref().unchecked_ref()));
+    // One per click, small: leaked rather than tracked.
+    onload.forget();
+    img.set_src(&src);
+}
+
 /// A button added to `parent` that calls `on_click`.
 pub(super) fn add_button(
     page: &Shared,
@@ -375,13 +425,22 @@ pub(super) fn build_exports(page: &Shared) {
             continue;
         };
         let page2 = page.clone();
-        let png = v.export_name("a PNG image");
-        add_button(page, &bar, "PNG", &png, move |_| {
-            let doc = page2.borrow().doc.clone();
-            if let Some(url) = canvas(&doc, v).and_then(|cv| cv.to_data_url().ok()) {
-                download_url(&doc, &format!("gearshock-{}.png", v.key()), &url);
-            }
-        });
+        let png = v.export_name("a PNG image at twice the size");
+        add_button(page, &bar, "PNG", &png, move |_| png_2x(&page2, v));
+        let page2 = page.clone();
+        add_button(
+            page,
+            &bar,
+            "SVG",
+            &v.export_name("an SVG picture"),
+            move |_| {
+                let r = page2.borrow().ctl.export_svg(v);
+                match r {
+                    Ok(e) => run_effects(&page2, vec![e]),
+                    Err(e) => set_text(&page2.borrow().doc, "status", &e),
+                }
+            },
+        );
         for fmt in Format::ALL {
             let title = v.export_name(fmt.label());
             let page2 = page.clone();
