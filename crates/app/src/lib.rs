@@ -25,6 +25,7 @@ pub mod protocol;
 pub mod scene;
 pub mod settings;
 pub mod status;
+pub mod tour;
 pub mod views;
 pub mod words;
 pub mod worker_core;

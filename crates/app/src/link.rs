@@ -114,7 +114,7 @@ fn pairs(query: &str, issues: &mut Vec<String>) -> Vec<(String, String)> {
     out
 }
 
-fn value_text(v: &Value) -> String {
+pub(crate) fn value_text(v: &Value) -> String {
     match v {
         Value::Num(x) => fmt_exact(*x),
         Value::Text(t) => t.clone(),

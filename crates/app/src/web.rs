@@ -35,6 +35,7 @@ use web_sys::{
 
 mod anim;
 mod panel;
+mod tour;
 mod worker;
 
 use anim::{build_anim_controls, observe_anim_visibility, start_anim_loop};
@@ -169,6 +170,7 @@ pub fn start_app() {
     build_controls(&page);
     build_toolbar(&page);
     build_exports(&page);
+    tour::build_tour(&page);
     build_canvas_events(&page);
     start_workers(&page);
     run_effects(&page, effects);

@@ -116,12 +116,15 @@ pub struct Controller {
     /// The parametric-instability bands of the bifurcation sweep's range,
     /// from its shard-0 worker (kept until a newer job's arrive).
     bands: Vec<(f64, f64)>,
+    /// The "Start here" tour's step (0-based), if it is running.
+    pub tour: Option<usize>,
 }
 
 impl Controller {
     /// Starts from a link's query string (all jobs queued until the workers are ready).
     pub fn new(query: &str, now_ms: f64) -> (Self, Vec<Effect>) {
-        let decoded = link::decode(query);
+        let (tour, query) = crate::tour::split_tour(query);
+        let decoded = link::decode(&query);
         let pinned = decoded.pinned;
         let mut c = Controller {
             model: Err("not built yet".into()),
@@ -147,6 +150,7 @@ impl Controller {
             next_id: 0,
             export: None,
             bands: Vec::new(),
+            tour,
         };
         c.rebuild_model();
         let mut fx = c.restart(ALL, now_ms);
@@ -163,7 +167,37 @@ impl Controller {
 
     /// The current link query (without `?`), with the pinned state A if any.
     pub fn query(&self) -> String {
-        link::encode_ab(&self.settings, self.pinned.as_ref().map(|p| &p.settings))
+        let q = link::encode_ab(&self.settings, self.pinned.as_ref().map(|p| &p.settings));
+        match self.tour {
+            Some(step) => format!("{q}&tour={}", step + 1),
+            None => q,
+        }
+    }
+
+    /// Goes to tour step `step` (0-based; `None` ends the tour): makes the
+    /// step's settings as the controls would and puts the step in the link.
+    pub fn tour_go(&mut self, step: Option<usize>, now_ms: f64) -> Vec<Effect> {
+        let step = step.filter(|&s| s < crate::tour::TOUR.len());
+        self.tour = step;
+        self.dirty.url = true;
+        let mut fx = Vec::new();
+        if let Some(s) = step {
+            for (k, v) in crate::tour::TOUR[s].set {
+                let current =
+                    self.settings.view.get(k).or_else(|| {
+                        keys::get(&self.settings.params, k).map(|x| link::value_text(&x))
+                    });
+                if current.as_deref() == Some(*v) {
+                    continue;
+                }
+                match self.set_key(k, v, now_ms) {
+                    Ok(more) => fx.extend(more),
+                    Err(e) => self.issue(e),
+                }
+                self.dirty.controls = true;
+            }
+        }
+        fx
     }
 
     /// The mesh names of the current model.
@@ -295,7 +329,9 @@ impl Controller {
 
     /// Replaces the whole state by a link's (or preset's) query.
     pub fn load_query(&mut self, query: &str, now_ms: f64) -> Vec<Effect> {
-        let d = link::decode(query);
+        let (tour, query) = crate::tour::split_tour(query);
+        self.tour = tour;
+        let d = link::decode(&query);
         self.settings = d.settings;
         self.issues = d.issues;
         self.preset_note = None;

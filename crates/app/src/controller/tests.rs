@@ -344,6 +344,27 @@ fn at_the_defaults_the_frequency_response_shows_the_sweeps_steady_states() {
     ));
 }
 
+/// The tour's step sets its state and rides in the link; ending it takes
+/// it out; a link with a step starts the tour there.
+#[test]
+fn the_tour_sets_each_steps_state_and_its_step_is_in_the_link() {
+    let (mut c, _) = Controller::new("", 0.0);
+    ready(&mut c);
+    let fx = c.tour_go(Some(3), 10.0);
+    assert_eq!(c.settings.view.omega, 1.2);
+    assert!(!posts(&fx).is_empty(), "the new Ω starts its run");
+    assert!(c.query().ends_with("&tour=4"), "{}", c.query());
+    // A step whose state is already there restarts nothing.
+    assert!(c.tour_go(Some(1), 20.0).is_empty());
+    assert!(c.query().ends_with("&tour=2"));
+    c.tour_go(None, 30.0);
+    assert!(!c.query().contains("tour="));
+    let (d, _) = Controller::new("omega=0.5&tour=5", 0.0);
+    assert_eq!(d.tour, Some(4));
+    assert!(d.issues.is_empty(), "{:?}", d.issues);
+    assert_eq!(d.settings.view.omega, 0.5);
+}
+
 fn map_cells(id: JobId, cells: &[(u32, u32, crate::protocol::Regime, Option<u32>)]) -> String {
     encode(&FromWorker::MapCells {
         id,
