@@ -5,6 +5,7 @@
 // go to tests/browser/screenshots/ for a human to look at.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
+import fs from 'node:fs';
 import { start, open, status, waitStatus, shot } from './harness.mjs';
 
 const QUICK = 'bif_points=16&transient_periods=120&record_periods=40&map_omega_points=8&map_value_points=4&lyap_points=8';
@@ -146,6 +147,75 @@ test('Copy link confirms for about two seconds', async () => {
   await shot(page.locator('header'), 'teach-06-copy-link');
   // And then it goes.
   await toast.waitFor({ state: 'hidden', timeout: 5000 });
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('the Start here tour runs through all its steps, each pointing at its view, and its step is in the link', async () => {
+  const { page, errors } = await open(h.browser, h.url, QUICK);
+  await page.setViewportSize({ width: 1366, height: 768 });
+  await page.click('#tour-start');
+  const expected = [
+    { target: 'schematic', title: /gear set and its meshes/ },
+    { target: 'view-fr', title: /Backlash and the frequency response/ },
+    { target: 'view-map', title: /double-sided/ },
+    { target: 'view-bif', title: /periodic to chaotic/ },
+    { target: 'copy-link', title: /Share/ },
+  ];
+  for (const [i, step] of expected.entries()) {
+    await page.waitForFunction((n) => document.getElementById('tour')?.dataset.step === String(n), i + 1);
+    assert.match(await page.textContent('#tour-title'), step.title);
+    assert.equal(await page.textContent('#tour-count'), `Step ${i + 1} of ${expected.length}`);
+    // The step's view is highlighted and on screen.
+    const target = await page.evaluate(() => [...document.querySelectorAll('.tour-target')].map((e) => e.id));
+    assert.deepEqual(target, [step.target]);
+    await page.waitForFunction((id) => {
+      const r = document.getElementById(id).getBoundingClientRect();
+      return r.bottom > 0 && r.top < window.innerHeight;
+    }, step.target);
+    await page.waitForFunction((n) => location.search.includes(`tour=${n}`), i + 1);
+    if (i === 3) {
+      // This step sets its state: the motion at Ω 1.2.
+      await waitStatus(page, (x) => x.omega === 1.2, 10000, 'Ω 1.2');
+      await shot(page, 'teach-07-tour-step-4');
+    }
+    await page.click('#tour-next');
+  }
+  // Finished: the panel is gone and the link no longer carries a step.
+  await page.locator('#tour').waitFor({ state: 'hidden' });
+  await page.waitForFunction(() => !location.search.includes('tour='));
+  // A link with a step opens the tour there; Skip ends it; Start restarts it.
+  const again = await open(h.browser, h.url, `${QUICK}&tour=3`);
+  await again.page.locator('#tour').waitFor({ state: 'visible' });
+  assert.match(await again.page.textContent('#tour-title'), /double-sided/);
+  await again.page.click('#tour-skip');
+  await again.page.locator('#tour').waitFor({ state: 'hidden' });
+  await again.page.click('#tour-start');
+  await again.page.waitForFunction(() => document.getElementById('tour')?.dataset.step === '1');
+  assert.deepEqual(again.errors, []);
+  await again.page.close();
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('PNG exports are twice the canvas size and SVG exports are the same drawing', async () => {
+  const { page, errors } = await open(h.browser, h.url, QUICK);
+  await waitStatus(page, (x) => x.fr.finished_ms, 120000, 'the frequency response');
+  const [png] = await Promise.all([
+    page.waitForEvent('download'),
+    page.click('#exports-fr button[aria-label="Export the frequency response as a PNG image at twice the size"]'),
+  ]);
+  const buf = await fs.promises.readFile(await png.path());
+  // PNG header: width and height, big-endian, at bytes 16 and 20.
+  assert.equal(buf.readUInt32BE(16), 1520);
+  assert.equal(buf.readUInt32BE(20), 800);
+  const [svg] = await Promise.all([
+    page.waitForEvent('download'),
+    page.click('#exports-fr button[aria-label="Export the frequency response as an SVG picture"]'),
+  ]);
+  assert.match(svg.suggestedFilename(), /^gearshock-fr-s1a1\.svg$/);
+  const text = await fs.promises.readFile(await svg.path(), 'utf8');
+  assert.ok(text.startsWith('<svg') && text.includes('Frequency response'), text.slice(0, 200));
   assert.deepEqual(errors, []);
   await page.close();
 });
