@@ -37,8 +37,16 @@ pub fn unstable_ranges(points: &[FrCurvePoint]) -> Vec<(f64, f64)> {
     if hi > reach {
         gaps.push((reach, hi));
     }
-    gaps.retain(|&(a, b)| b - a >= 0.02 * (hi - lo));
-    gaps
+    // Stable islands narrower than 2 % of the reach do not split a range.
+    let mut merged: Vec<(f64, f64)> = Vec::new();
+    for g in gaps {
+        match merged.last_mut() {
+            Some(last) if g.0 - last.1 < 0.02 * (hi - lo) => last.1 = g.1,
+            _ => merged.push(g),
+        }
+    }
+    merged.retain(|&(a, b)| b - a >= 0.02 * (hi - lo));
+    merged
 }
 
 /// A number for a sentence: at most two decimals, no trailing zeros (0.45, 1.7, 2).
@@ -202,6 +210,18 @@ mod tests {
             pt(2.0, s, r),
         ];
         assert!(unstable_ranges(&tiny2).is_empty());
+        // A stable island under 2 % of the reach does not split a range.
+        let island = vec![
+            pt(0.0, s, r),
+            pt(0.5, s, r),
+            pt(0.8, u, r),
+            pt(0.81, s, r),
+            pt(0.82, s, r),
+            pt(1.5, u, r),
+            pt(1.6, s, r),
+            pt(2.0, s, r),
+        ];
+        assert_eq!(unstable_ranges(&island), vec![(0.5, 1.6)]);
         assert_eq!(short(0.45), "0.45");
         assert_eq!(short(1.7), "1.7");
         assert_eq!(short(2.0), "2");
