@@ -270,6 +270,12 @@ pub const VIEW_KEYS: &[ViewKey] = &[
         },
         description: "mesh periods over which the Lyapunov exponent is averaged",
     },
+    ViewKey {
+        name: "clearance",
+        unit: "-",
+        ty: ViewType::Choice(&["fit", "whole"]),
+        description: "the axes of x: fit the data (the ±b lines drawn where they fall in range) or show the whole clearance from −b to +b",
+    },
 ];
 
 /// Looks up a view key.
@@ -343,6 +349,8 @@ pub struct ViewOptions {
     pub lyap_transient_periods: u32,
     /// Periods each exponent averages over.
     pub lyap_periods: u32,
+    /// The axes of x show the whole clearance ±b (else they fit the data).
+    pub whole_clearance: bool,
 }
 
 impl Default for ViewOptions {
@@ -370,6 +378,7 @@ impl Default for ViewOptions {
             lyap_points: 40,
             lyap_transient_periods: 150,
             lyap_periods: 100,
+            whole_clearance: false,
         }
     }
 }
@@ -393,6 +402,7 @@ impl ViewOptions {
             "fr_record_periods" => self.fr_record_periods.to_string(),
             "bif_points" => self.bif_points.to_string(),
             "bif_dir" => self.bif_dir.name().to_string(),
+            "clearance" => if self.whole_clearance { "whole" } else { "fit" }.to_string(),
             "transient_periods" => self.transient_periods.to_string(),
             "record_periods" => self.record_periods.to_string(),
             "harmonics" => self.harmonics.to_string(),
@@ -471,6 +481,10 @@ impl ViewOptions {
             }
             ViewType::Choice(words) => match name {
                 "bif_dir" => self.bif_dir = Directions::from_name(text).ok_or_else(bad)?,
+                "clearance" => {
+                    let w = words.iter().find(|w| **w == text).ok_or_else(bad)?;
+                    self.whole_clearance = *w == "whole";
+                }
                 _ => {
                     let w = words.iter().find(|w| **w == text).ok_or_else(bad)?;
                     self.map_key = (*w).to_string();
@@ -578,6 +592,7 @@ mod tests {
             ("lyap_points", "0"),
             ("lyap_transient_periods", "250"),
             ("lyap_periods", "200"),
+            ("clearance", "whole"),
         ] {
             v.set(k, t, &meshes).unwrap();
             assert_eq!(v.get(k).unwrap(), t, "{k}");

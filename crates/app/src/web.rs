@@ -529,15 +529,16 @@ fn draw_lyap(p: &mut Page, root: &Area) -> Result<(), String> {
 
 fn draw_omega_view(p: &mut Page, v: ViewId, root: &Area) -> Result<(), String> {
     let st = &p.ctl.omega_status;
+    let whole = p.ctl.settings.view.whole_clearance;
     let mut time_frame = None;
     let r = match (&p.ctl.omega, &st.error) {
         (_, Some(e)) => not_computed(root, v, e),
         (Some(res), None) => {
             let stale = crate::views::omega::caption_suffix(res.preview, st.running());
             match v {
-                ViewId::Phase => plots::draw_phase(root, res, stale),
-                ViewId::Poincare => plots::draw_poincare(root, res, stale),
-                ViewId::Time => plots::draw_time(root, res, stale).map(|f| {
+                ViewId::Phase => plots::draw_phase_with(root, res, stale, whole),
+                ViewId::Poincare => plots::draw_poincare_with(root, res, stale, whole),
+                ViewId::Time => plots::draw_time_with(root, res, stale, whole).map(|f| {
                     time_frame = Some(f);
                 }),
                 _ => plots::draw_spectrum(root, res, stale),

@@ -451,5 +451,6 @@ fn bif_view(
         ab_labels: None,
         done: pts.len(),
         total: pts.len(),
+        whole_clearance: true,
     })
 }

@@ -272,6 +272,11 @@ impl Controller {
                 "fr_points" | "harmonics" => Restart { fr: true, ..NONE },
                 "fr_ti_points" | "fr_record_periods" => Restart { ti: true, ..NONE },
                 "bif_points" | "bif_dir" => Restart { bif: true, ..NONE },
+                // Only the axes change: every view of x is redrawn.
+                "clearance" => {
+                    self.dirty.omega = true;
+                    NONE
+                }
                 "record_periods" => Restart {
                     bif: true,
                     omega: true,
@@ -447,6 +452,7 @@ impl Controller {
             Some(&swept).filter(|s| !s.points.is_empty())
         };
         let mut v = fr_view(&self.hbm, previous, overlay, mesh, &b, &ctx);
+        v.whole_clearance = self.settings.view.whole_clearance;
         if let Some(p) = &self.pinned {
             let (ta, tb) = link::ab_difference(&p.settings, &self.settings, 3);
             for br in v.branches.iter_mut().filter(|b| !b.faded) {
@@ -491,6 +497,7 @@ impl Controller {
         let (mesh, b) = self.mesh_and_backlash();
         let ctx = self.view_context();
         let mut v = self.bif.view(mesh, &b, &ctx);
+        v.whole_clearance = self.settings.view.whole_clearance;
         v.unstable_bands = self.instability_bands();
         if let Some(p) = &self.pinned {
             v.pinned = p.bif.view(mesh, &b, &ctx).points;

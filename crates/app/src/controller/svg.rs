@@ -25,6 +25,7 @@ impl Controller {
             let root = SVGBackend::with_string(&mut s, view_size(view)).into_drawing_area();
             let natural = self.view_context().natural;
             let v = &self.settings.view;
+            let whole = v.whole_clearance;
             match view.spec().data {
                 ExportKind::Fr => {
                     plots::draw_fr(&root, &self.fr_view(), "")?;
@@ -83,10 +84,10 @@ impl Controller {
                         .as_ref()
                         .ok_or("the motion at the selected Ω is still computing")?;
                     match view {
-                        ViewId::Phase => plots::draw_phase(&root, r, "")?,
-                        ViewId::Poincare => plots::draw_poincare(&root, r, "")?,
+                        ViewId::Phase => plots::draw_phase_with(&root, r, "", whole)?,
+                        ViewId::Poincare => plots::draw_poincare_with(&root, r, "", whole)?,
                         ViewId::Time => {
-                            plots::draw_time(&root, r, "")?;
+                            plots::draw_time_with(&root, r, "", whole)?;
                         }
                         _ => plots::draw_spectrum(&root, r, "")?,
                     }

@@ -22,7 +22,7 @@ pub fn draw_fr<DB: DrawingBackend>(
         .chain(v.overlay.iter())
         .filter(|p| in_range(p.omega))
         .flat_map(|p| [p.max_um, p.min_um]);
-    let extra = contact_levels(&v.backlash_um, &v.pinned_backlash_um);
+    let extra = contact_levels(&v.backlash_um, &v.pinned_backlash_um, v.whole_clearance);
     // Room at the top for the legend (two lines per branch, the faded
     // branch, the unstable dash, the failure line).
     let entries = v.branches.iter().filter(|b| !b.faded).count() * 2

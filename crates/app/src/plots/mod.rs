@@ -22,7 +22,10 @@ mod omega;
 
 pub use bif::{draw_bif, draw_groups, failed_label};
 pub use fr::draw_fr;
-pub use omega::{draw_phase, draw_poincare, draw_spectrum, draw_time};
+pub use omega::{
+    draw_phase, draw_phase_with, draw_poincare, draw_poincare_with, draw_spectrum, draw_time,
+    draw_time_with,
+};
 
 use crate::protocol::Regime;
 use crate::views::fr::{FrCurvePoint, FrMarkerKind};
@@ -142,9 +145,13 @@ pub fn with_headroom(r: (f64, f64), fraction: f64) -> (f64, f64) {
     (r.0, r.1 + fraction * (r.1 - r.0))
 }
 
-/// The levels a plot of x must show whatever the data: ±b of the current
-/// state's and A's meshes, and zero.
-pub(crate) fn contact_levels(backlash_um: &[f64], pinned_um: &[f64]) -> Vec<f64> {
+/// The levels a plot of x must show whatever the data: with the whole
+/// clearance, ±b of the current state's and A's meshes, and zero; else
+/// none (the axes fit the data and the ±b lines show where they fall in it).
+pub(crate) fn contact_levels(backlash_um: &[f64], pinned_um: &[f64], whole: bool) -> Vec<f64> {
+    if !whole {
+        return Vec::new();
+    }
     let mut extra: Vec<f64> = backlash_um
         .iter()
         .chain(pinned_um.iter())
@@ -409,7 +416,8 @@ fn pinned_contact_lines<'a, DB: DrawingBackend + 'a>(
         .iter()
         .filter(|b| !current_um.iter().any(|c| (*c - **b).abs() < 1e-9))
     {
-        for v in [b, -b] {
+        let shown = chart.y_range();
+        for v in [b, -b].into_iter().filter(|v| shown.contains(v)) {
             chart
                 .draw_series(DashedLineSeries::new(vec![(x.0, v), (x.1, v)], 6, 4, style))
                 .map_err(err)?;
@@ -429,8 +437,14 @@ fn contact_lines<'a, DB: DrawingBackend + 'a>(
 ) -> Res<()> {
     let style = ShapeStyle::from(&CONTACT).stroke_width(1);
     let mut first = in_legend;
+    // Only the lines that fall in the axes' range (they fit the data).
+    let shown = if horizontal {
+        chart.y_range()
+    } else {
+        chart.x_range()
+    };
     for &b in backlash_um {
-        for v in [b, -b] {
+        for v in [b, -b].into_iter().filter(|v| shown.contains(v)) {
             let pts = if horizontal {
                 vec![(x.0, v), (x.1, v)]
             } else {

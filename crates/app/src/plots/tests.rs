@@ -149,6 +149,7 @@ fn every_plot_draws_labels_units_and_legends() {
         done: 10,
         progress: 0.95,
         finished: true,
+        whole_clearance: true,
     };
     let mut frame = None;
     let s = svg(|root| {
@@ -190,4 +191,20 @@ fn every_plot_draws_labels_units_and_legends() {
 #[test]
 fn wrap_breaks_at_spaces() {
     assert_eq!(wrap("aa bb cc", 5), vec!["aa bb", "cc"]);
+}
+
+/// The axes fit the data unless the whole clearance is asked for: then
+/// both ±b and zero are in range, and the plots differ.
+#[test]
+fn axes_fit_the_data_or_show_the_whole_clearance() {
+    assert!(contact_levels(&[100.0], &[50.0], false).is_empty());
+    let whole = contact_levels(&[100.0], &[50.0], true);
+    for v in [100.0, -100.0, 50.0, -50.0, 0.0] {
+        assert!(whole.contains(&v), "{v}");
+    }
+    let r = result();
+    let fit = svg(|root| draw_phase_with(root, &r, "", false));
+    let all = svg(|root| draw_phase_with(root, &r, "", true));
+    assert_ne!(fit, all);
+    assert_eq!(all, svg(|root| draw_phase(root, &r, "")));
 }

@@ -48,6 +48,9 @@ pub struct BifView {
     pub done: usize,
     /// Swept points in all.
     pub total: usize,
+    /// The axis of x shows the whole clearance ±b (else it fits the data).
+    #[serde(skip)]
+    pub whole_clearance: bool,
 }
 
 /// Bifurcation points as they arrive from both workers, for one job.
@@ -103,6 +106,7 @@ impl BifStore {
             ab_labels: None,
             done: self.samples.len(),
             total: self.total,
+            whole_clearance: true,
         }
     }
 }

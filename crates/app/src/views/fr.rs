@@ -186,6 +186,9 @@ pub struct FrView {
     pub progress: f64,
     /// Whether the branch has ended (range covered or failed).
     pub finished: bool,
+    /// The axis of x shows the whole clearance ±b (else it fits the data).
+    #[serde(skip)]
+    pub whole_clearance: bool,
 }
 
 /// The harmonic-balance branch as it arrives, for one job.
@@ -532,6 +535,7 @@ pub fn fr_view(
         done: hbm.points.len(),
         progress: hbm.progress,
         finished: hbm.finished,
+        whole_clearance: true,
     }
 }
 
