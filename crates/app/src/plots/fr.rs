@@ -107,7 +107,7 @@ pub fn draw_fr<DB: DrawingBackend>(
     }
     let (at, rows) = key_layout(root, &items, 76);
     // The plain sentence under the key when the branch is unstable over a range.
-    let sentence: Vec<String> = unstable_sentence(v).map_or(Vec::new(), |t| wrap(&t, 100));
+    let sentence: Vec<String> = unstable_sentence(v).map_or(Vec::new(), |t| wrap(&t, 86));
     let key_h = 8 + KEY_ROW * (rows + sentence.len() as i32);
     let (upper, _) = root.split_vertically(HEIGHT as i32 - key_h);
     let caption = format!(
