@@ -303,7 +303,7 @@ test('the frequency response is the harmonic-balance branch at the default setti
   assert.equal(d.compared + d.off_branch, 12);
   assert.ok(d.compared > 0 && typeof d.max_um === 'number');
   console.log(`# time-integration overlay: 12 points; ${d.compared} under a stable stretch of the branch, largest distance ${d.max_um.toFixed(2)} um; ${d.off_branch} where the branch is unstable or absent`);
-  assert.match(await o.page.textContent('#note-fr'), /Hollow dots: time-integration steady states/);
+  assert.match(await o.page.textContent('#note-fr'), /Hollow dots: the actual response, from time integration \(upward sweep\)/);
   await shot(o.page.locator('#view-fr'), '09-fr-hbm-with-time-integration');
   assert.deepEqual(errors, []);
   assert.deepEqual(o.errors, []);
