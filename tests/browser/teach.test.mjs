@@ -41,7 +41,11 @@ test('at the Table 1 defaults the frequency response shows time-integration dots
   assert.equal(s.fr_overlay.id, 0, 'no overlay job of its own at the defaults');
   assert.match(s.query, /^model=ravigneaux&omega=/, 'the defaults');
   // The branch is unstable over a range at the defaults: the plot says so in words.
-  assert.match(s.fr_sentence ?? '', /^No stable periodic motion between Ω [\d.]+ and [\d.]+: the dots are the actual response\.$/);
+  const sentence = s.fr_sentence ?? '';
+  assert.match(sentence, /^No stable periodic motion between Ω [\d.]+ and [\d.]+( and between [\d.]+ and [\d.]+)*: the dots are the actual response\.$/);
+  // The issue's finding: no periodic motion is stable over Ω 1.0-1.6 at the defaults.
+  const ranges = [...sentence.matchAll(/([\d.]+) and ([\d.]+)/g)].map((m) => [Number(m[1]), Number(m[2])]);
+  assert.ok(ranges.some(([a, b]) => a <= 1.0 && b >= 1.6), sentence);
   // The canvas's text alternative says the same, from the same data.
   await page.waitForFunction(
     () => /Frequency response of s1a1: peak \d+ µm at Ω [\d.]+.*No stable periodic motion between Ω/.test(document.getElementById('canvas-fr').getAttribute('aria-label') ?? ''),
