@@ -199,7 +199,10 @@ test('exports: CSV and JSON of the views, and the CLI formats of simulate and bi
   assert.equal(csv.name, 'gearshock-fr-s1a1.csv');
   assert.match(csv.text, /^branch,omega,x_max_um,x_min_um,stable,regime,period,bifurcation\nhbm,0\.1,/);
   const frJson = JSON.parse((await grab('fr', 'JSON')).text);
-  assert.equal(csv.text.trim().split('\n').length, frJson.branches[0].points.length + 1);
+  // The branch, then the dots: at the defaults the bifurcation sweep's upward steady states.
+  assert.equal(frJson.overlay_source.method, 'sweep');
+  assert.equal(frJson.overlay.length, 16);
+  assert.equal(csv.text.trim().split('\n').length, frJson.branches[0].points.length + frJson.overlay.length + 1);
   assert.equal(frJson.source.method, 'hbm');
   assert.equal(frJson.source.harmonics, 5);
   assert.equal(frJson.method, 'harmonic balance, H = 5, exact');

@@ -517,6 +517,7 @@ impl Controller {
 
     /// Everything the tests and the benchmark read.
     pub fn status(&self, now_ms: f64) -> serde_json::Value {
+        let fr = self.fr_view();
         serde_json::json!({
             "query": self.query(),
             "issues": self.issues,
@@ -526,11 +527,11 @@ impl Controller {
             "fr_branch_points": self.hbm.points.len(),
             "fr_partial": self.hbm.error,
             "fr_overlay": self.ti_status,
-            "fr_discrepancy": self.fr_view().discrepancy,
+            "fr_discrepancy": fr.discrepancy,
             // The frequency response's time-integration dots and the
             // sentence under it where the branch is unstable.
-            "fr_dots": self.fr_view().overlay.len(),
-            "fr_sentence": crate::views::unstable::unstable_sentence(&self.fr_view()),
+            "fr_dots": fr.overlay.len(),
+            "fr_sentence": crate::views::unstable::unstable_sentence(&fr),
             "bif": self.bif_status,
             "bif_bands": self.instability_bands(),
             "omega_job": self.omega_status,

@@ -322,8 +322,12 @@ fn at_the_defaults_the_frequency_response_shows_the_sweeps_steady_states() {
         sample(0, 0.5, true, 10.0, 70.0),
         sample(0, 0.5, false, 0.0, 5.0),
     ];
+    c.bif.total = 3;
     c.worker_message(0, &encode(&FromWorker::BifPoints { id, points }), 10.0);
-    assert!(c.dirty.fr);
+    assert!(
+        c.dirty.fr,
+        "the sweep's last point redraws the frequency response"
+    );
     let v = c.fr_view();
     assert!(
         matches!(v.overlay_source, Some(FrSource::Sweep { .. })),
