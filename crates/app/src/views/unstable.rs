@@ -108,12 +108,17 @@ pub fn strip_from_overlay(
         let Some(&(a, b)) = ranges.iter().find(|r| p.omega >= r.0 && p.omega <= r.1) else {
             continue;
         };
-        let left = if i > 0 {
-            0.5 * (pts[i - 1].omega + p.omega)
-        } else {
-            a
+        // Half-way to each neighbour; at either end of the dots as far as
+        // the spacing on the other side, so that a sweep still running
+        // does not colour Omegas it has not reached.
+        let prev = i.checked_sub(1).map(|j| pts[j].omega);
+        let next = pts.get(i + 1).map(|q| q.omega);
+        let (left, right) = match (prev, next) {
+            (Some(l), Some(r)) => (0.5 * (l + p.omega), 0.5 * (r + p.omega)),
+            (None, Some(r)) => (p.omega - 0.5 * (r - p.omega), 0.5 * (r + p.omega)),
+            (Some(l), None) => (0.5 * (l + p.omega), p.omega + 0.5 * (p.omega - l)),
+            (None, None) => (a, b),
         };
-        let right = pts.get(i + 1).map_or(b, |q| 0.5 * (q.omega + p.omega));
         let (from, to) = (left.max(a), right.min(b));
         if let (Some(r), true) = (p.regime, to > from) {
             out.push((r, from, to));
@@ -244,6 +249,14 @@ mod tests {
         assert_eq!(runs[1].0, Regime::DoubleSided);
         assert!((runs[1].1 - 0.8).abs() < 1e-12 && (runs[1].2 - 1.1).abs() < 1e-12);
         assert!(strip_from_overlay(&[], &dots).is_empty());
+        // The last dot of a sweep still running colours half a spacing
+        // beyond it, not the rest of the range.
+        let partial = strip_from_overlay(&[(0.5, 1.9)], &dots[..3]);
+        let last = partial.last().unwrap();
+        assert!(
+            (last.1 - 0.8).abs() < 1e-12 && (last.2 - 1.2).abs() < 1e-12,
+            "{last:?}"
+        );
     }
 
     /// The sentence names the range and says what the dots are, or that
