@@ -6,7 +6,11 @@
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
-import { start, open, status, waitStatus, shot } from './harness.mjs';
+import path from 'node:path';
+import { start, open, status, waitStatus, shot, SHOTS } from './harness.mjs';
+
+/** A screenshot of what the window shows (not the whole page). */
+const screen = (page, name) => page.screenshot({ path: path.join(SHOTS, `${name}.png`) });
 
 const QUICK = 'bif_points=16&transient_periods=120&record_periods=40&map_omega_points=8&map_value_points=4&lyap_points=8';
 const KEY_NAMES = ['backlash_um', 'fr_ti_points', '..=', 'MODEL.md', 'the seed'];
@@ -55,6 +59,8 @@ test('at the Table 1 defaults the frequency response shows time-integration dots
   await page.waitForFunction(() => /the dots are the actual response/.test(document.getElementById('note-fr').textContent) || /Hollow dots: the actual response/.test(document.getElementById('note-fr').textContent), null, { timeout: 10000 });
   await shot(page.locator('#view-fr'), 'teach-01-fr-defaults-dots');
   await shot(page, 'teach-02-page-1366x768');
+  await page.evaluate(() => window.scrollTo(0, 0));
+  await screen(page, 'teach-02b-first-screen-1366x768');
   const text = await visibleText(page);
   for (const k of KEY_NAMES) assert.ok(!text.includes(k), `visible text contains ${k}`);
   // The student summary: two sentences, the dynamic factor explained; the figures behind a disclosure.
@@ -82,6 +88,8 @@ test('no visible text uses key names or code syntax, in the controls, a comparis
   for (const k of KEY_NAMES) assert.ok(!text.includes(k), `visible text contains ${k}: …${text.slice(Math.max(0, text.indexOf(k) - 80), text.indexOf(k) + 40)}…`);
   assert.ok(!/\d um\b/.test(text), 'a unit written as um');
   await shot(page, 'teach-03-page-1920x1080-comparison');
+  await page.evaluate(() => window.scrollTo(0, 0));
+  await screen(page, 'teach-03b-first-screen-1920x1080');
   assert.deepEqual(errors, []);
   await page.close();
 });
@@ -133,7 +141,7 @@ test('on a phone (390x844) nothing scrolls sideways, the settings are a closed d
   await page.waitForFunction(() => location.hash === '#views');
   await page.evaluate(() => window.scrollTo(0, 0));
   await shot(page, 'teach-04-phone-390x844');
-  await page.screenshot({ path: 'tests/browser/screenshots/teach-05-phone-first-screen.png' });
+  await screen(page, 'teach-05-phone-first-screen');
   await page.close();
 });
 
