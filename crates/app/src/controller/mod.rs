@@ -636,7 +636,7 @@ impl Controller {
                 }
                 s
             }
-            (None, None) => "Computing the steady state at the selected Omega…".into(),
+            (None, None) => "Computing the steady state at the selected Ω…".into(),
         };
         match &self.model {
             Ok(m) if !m.system.warnings.is_empty() => {

@@ -392,7 +392,7 @@ pub(crate) fn omega_decorations<'a, DB: DrawingBackend + 'a>(
         return Ok(());
     }
     cursor
-        .label(format!("selected Omega = {selected:.3}"))
+        .label(format!("selected Ω = {selected:.3}"))
         .legend(|(x, yy)| {
             PathElement::new(
                 vec![(x, yy), (x + 16, yy)],
