@@ -43,9 +43,7 @@ pub enum ExportError {
     )]
     Preview,
     /// The selected-Omega steady state has not arrived yet.
-    #[error(
-        "The steady state at the selected Ω is still computing; export once it has arrived."
-    )]
+    #[error("The steady state at the selected Ω is still computing; export once it has arrived.")]
     NotComputed,
     /// The bifurcation sweep is still running.
     #[error("the bifurcation sweep has not finished yet")]

@@ -93,15 +93,18 @@ pub fn draw_fr<DB: DrawingBackend>(
     }
     if v.overlay_source.is_some() {
         let d = &v.discrepancy;
-        let mut text = format!("time integration ({} pts)", v.overlay.len());
+        let mut text = format!(
+            "time integration, the actual response ({} points)",
+            v.overlay.len()
+        );
         if let Some(m) = d.max_um {
             text.push_str(&format!(
-                ": max |Δx| {m:.2} µm at {} on the stable branch",
+                ": within {m:.2} µm of the stable branch at {}",
                 d.compared
             ));
         }
         if d.off_branch > 0 {
-            text.push_str(&format!("; {} where none is stable", d.off_branch));
+            text.push_str(&format!("; {} where no stretch is stable", d.off_branch));
         }
         items.push((KeyIcon::Overlay, text));
     }

@@ -164,7 +164,7 @@ fn every_plot_draws_labels_units_and_legends() {
         "harmonic balance, H = 5, exact",
         "unstable (Floquet): dashed",
         "fold (jump)",
-        "time integration (1 pts): max |Δx| 1.50 µm at 1 on the stable branch; 2 where none is stable",
+        "time integration, the actual response (1 points): within 1.50 µm of the stable branch at 1; 2 where no stretch is stable",
         "Solver failure after Ω = 1.9000",
         "(partial)",
         "max x (A: backlash_um=100)",
