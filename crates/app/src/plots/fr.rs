@@ -156,6 +156,11 @@ pub fn draw_fr<DB: DrawingBackend>(
             // The faded branch is labelled once, not per extreme.
             let mut labelled = br.faded && !which;
             for (unstable, pts) in runs {
+                // A branch has about a thousand points, most less than a
+                // pixel apart: drawing each (every dash a stroke) made a
+                // redraw take 100 ms. Points closer than 2 px to the last
+                // one kept are left out; the ends always stay.
+                let pts = thin(pts, |p| chart.backend_coord(p), 2);
                 let s = if unstable {
                     any_unstable |= !br.faded;
                     chart
@@ -286,4 +291,39 @@ pub fn draw_fr<DB: DrawingBackend>(
     }
     root.present().map_err(err)?;
     Ok(frame)
+}
+
+/// The points of a polyline at least `min_px` pixels (Chebyshev distance)
+/// from the last point kept, with both ends kept.
+fn thin(
+    pts: Vec<(f64, f64)>,
+    to_px: impl Fn(&(f64, f64)) -> (i32, i32),
+    min_px: i32,
+) -> Vec<(f64, f64)> {
+    let n = pts.len();
+    let mut out: Vec<(f64, f64)> = Vec::with_capacity(n);
+    let mut last: Option<(i32, i32)> = None;
+    for (i, p) in pts.into_iter().enumerate() {
+        let px = to_px(&p);
+        let far = last.is_none_or(|l| (px.0 - l.0).abs().max((px.1 - l.1).abs()) >= min_px);
+        if far || i + 1 == n {
+            out.push(p);
+            last = Some(px);
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    /// Thinning keeps both ends and drops points under the pixel distance.
+    #[test]
+    fn thin_keeps_the_ends_and_drops_near_points() {
+        let pts: Vec<(f64, f64)> = (0..=10).map(|k| (f64::from(k), 0.0)).collect();
+        let out = super::thin(pts, |p| (p.0 as i32, p.1 as i32), 3);
+        assert_eq!(
+            out.iter().map(|p| p.0).collect::<Vec<_>>(),
+            vec![0.0, 3.0, 6.0, 9.0, 10.0]
+        );
+    }
 }
