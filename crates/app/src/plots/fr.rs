@@ -93,19 +93,19 @@ pub fn draw_fr<DB: DrawingBackend>(
     }
     if v.overlay_source.is_some() {
         let d = &v.discrepancy;
+        // Short enough for one row of the key: the points off the stable
+        // branch are what the sentence under the key is about.
         let mut text = format!(
-            "time integration, the actual response ({} points)",
+            "time integration: the actual response ({} points",
             v.overlay.len()
         );
         if let Some(m) = d.max_um {
             text.push_str(&format!(
-                ": within {m:.2} µm of the stable branch at {}",
+                "; within {m:.1} µm of the stable branch at {}",
                 d.compared
             ));
         }
-        if d.off_branch > 0 {
-            text.push_str(&format!("; {} where no stretch is stable", d.off_branch));
-        }
+        text.push(')');
         items.push((KeyIcon::Overlay, text));
     }
     let (at, rows) = key_layout(root, &items, 76);

@@ -164,7 +164,7 @@ fn every_plot_draws_labels_units_and_legends() {
         "harmonic balance, H = 5, exact",
         "unstable (Floquet): dashed",
         "fold (jump)",
-        "time integration, the actual response (1 points): within 1.50 µm of the stable branch at 1; 2 where no stretch is stable",
+        "time integration: the actual response (1 points; within 1.5 µm of the stable branch at 1)",
         "Solver failure after Ω = 1.9000",
         "(partial)",
         "max x (A: backlash_um=100)",
