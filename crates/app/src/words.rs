@@ -63,11 +63,22 @@ fn upper_first(s: &str) -> String {
     }
 }
 
+/// A number for a sentence: at most two decimals, no trailing zeros (0.45, 1.7, 2).
+pub fn short(x: f64) -> String {
+    let s = format!("{x:.2}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".into()
+    } else {
+        s.to_string()
+    }
+}
+
 fn num(x: f64) -> String {
     if x != 0.0 && (x.abs() >= 1e6 || x.abs() < 1e-3) {
         let e = x.log10().floor();
         let m = x / 10f64.powf(e);
-        format!("{}×10^{}", crate::views::unstable::short(m), e as i32)
+        format!("{}×10^{}", short(m), e as i32)
     } else {
         format!("{x}")
     }

@@ -49,16 +49,7 @@ pub fn unstable_ranges(points: &[FrCurvePoint]) -> Vec<(f64, f64)> {
     merged
 }
 
-/// A number for a sentence: at most two decimals, no trailing zeros (0.45, 1.7, 2).
-pub fn short(x: f64) -> String {
-    let s = format!("{x:.2}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s == "-0" {
-        "0".into()
-    } else {
-        s.to_string()
-    }
-}
+pub use crate::words::short;
 
 /// Ranges in words: "between Ω 0.45 and 1.7" (joined by "and" when several).
 fn ranges_text(ranges: &[(f64, f64)]) -> String {
