@@ -83,11 +83,11 @@ impl Controller {
                 self.bif_status.record(after, now_ms);
                 self.dirty.bif = true;
                 // Without its own overlay job the frequency response shows
-                // these: redrawn at each quarter of the sweep and at its end,
-                // not per point (a frequency-response draw with its long
-                // branch costs more than a frame while the sweep streams).
-                let quarter = (self.bif.total / 4).max(1);
-                let batch = before / quarter != after / quarter || after >= self.bif.total;
+                // these: redrawn at each tenth of the sweep and at its end,
+                // not per point (a frequency-response draw costs more than a
+                // sweep point's message).
+                let tenth = (self.bif.total / 10).max(1);
+                let batch = before / tenth != after / tenth || after >= self.bif.total;
                 self.dirty.fr |= self.fr.id == 0 && batch;
                 Vec::new()
             }
