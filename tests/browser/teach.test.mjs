@@ -44,6 +44,8 @@ test('at the Table 1 defaults the frequency response shows time-integration dots
   const s = await waitStatus(page, (x) => x.fr.finished_ms && x.fr_dots >= 10, 240000, 'the branch and ten dots');
   assert.equal(s.fr_overlay.id, 0, 'no overlay job of its own at the defaults');
   assert.match(s.query, /^model=ravigneaux&omega=/, 'the defaults');
+  // The plot catches up with the dots (it redraws at each tenth of the sweep).
+  await waitStatus(page, (x) => x.draws[0] > s.draws[0], 120000, 'a redraw with the dots');
   // The branch is unstable over a range at the defaults: the plot says so in words.
   const sentence = s.fr_sentence ?? '';
   assert.match(sentence, /^No stable periodic motion between Ω [\d.]+ and [\d.]+( and between [\d.]+ and [\d.]+)*: the dots are the actual response\.$/);
