@@ -39,9 +39,11 @@ test('the page loads without console errors and draws every canvas', async () =>
     assert.ok(st.ink > st.total * 0.02, `canvas-${id} looks blank (${st.ink} of ${st.total} pixels drawn)`);
   }
   // The summary names the regime and period; the schematic marks the plotted mesh.
+  // Two sentences for students, the figures for experts behind a disclosure.
   const summary = await page.textContent('#summary');
   assert.match(summary, /impact|no contact/);
-  assert.match(summary, /Natural frequencies in range/);
+  assert.match(summary, /Dynamic factor [\d.]+: the largest tooth force is/);
+  assert.match(await page.textContent('#summary-expert'), /Natural frequencies in range/);
   assert.equal(await page.getAttribute('#mesh-s1a1', 'class'), 'mesh selected');
   await shot(page, '01-loaded');
   assert.deepEqual(errors, []);
@@ -85,7 +87,7 @@ test('a slider change previews the selected-Omega views at once, then the full s
   // says the preview was drawn (on a busy machine it still showed the
   // previous state's summary then).
   await page.waitForFunction(
-    () => /^Preview \(20 \+ 10 periods continued from the previous state; the full run is computing\): Omega = /.test(document.querySelector('#summary')?.textContent ?? ''),
+    () => /^Preview \(20 \+ 10 periods continued from the previous state; the full run is computing\): Ω = /.test(document.querySelector('#summary-expert')?.textContent ?? ''),
     null,
     { timeout: 10000 },
   );
@@ -95,7 +97,7 @@ test('a slider change previews the selected-Omega views at once, then the full s
   await shot(page.locator('#view-phase'), '03a-phase-preview');
   const s = await waitStatus(page, (s) => s.omega_job.finished_ms && s.omega_job.started_ms >= t0, 90000, 'the full run');
   assert.ok(s.omega_job.finished_ms > sp.omega_job.preview_ms);
-  const summary = await page.textContent('#summary');
+  const summary = await page.textContent('#summary-expert');
   assert.ok(!summary.startsWith('Preview'), summary);
   assert.deepEqual(errors, []);
   await page.close();
@@ -161,9 +163,9 @@ test('a malformed link shows a message naming the key and range, and the page st
   const msg = page.locator('#messages');
   await msg.waitFor({ state: 'visible' });
   const text = await msg.textContent();
-  assert.match(text, /backlash_um = 5000 is out of range: allowed 0 \.\.= 1000/);
-  assert.match(text, /omega = NaN is out of range: allowed 0\.01 \.\.= 20/);
-  assert.match(text, /bif_points/);
+  assert.match(text, /Backlash must be between 0 and 1000 µm \(not 5000\)/);
+  assert.match(text, /Selected Ω must be between 0\.01 and 20 \(not NaN\)/);
+  assert.match(text, /Bifurcation points must be a whole number between 2 and 1000/);
   assert.match(text, /<img src=x onerror=alert\(1\)>/, 'the hostile key is shown as text');
   // Nothing from the link became markup.
   assert.equal(await page.locator('#messages img, #messages b').count(), 0);
@@ -197,7 +199,10 @@ test('exports: CSV and JSON of the views, and the CLI formats of simulate and bi
   assert.equal(csv.name, 'gearshock-fr-s1a1.csv');
   assert.match(csv.text, /^branch,omega,x_max_um,x_min_um,stable,regime,period,bifurcation\nhbm,0\.1,/);
   const frJson = JSON.parse((await grab('fr', 'JSON')).text);
-  assert.equal(csv.text.trim().split('\n').length, frJson.branches[0].points.length + 1);
+  // The branch, then the dots: at the defaults the bifurcation sweep's upward steady states.
+  assert.equal(frJson.overlay_source.method, 'sweep');
+  assert.equal(frJson.overlay.length, 16);
+  assert.equal(csv.text.trim().split('\n').length, frJson.branches[0].points.length + frJson.overlay.length + 1);
   assert.equal(frJson.source.method, 'hbm');
   assert.equal(frJson.source.harmonics, 5);
   assert.equal(frJson.method, 'harmonic balance, H = 5, exact');
@@ -301,7 +306,7 @@ test('the frequency response is the harmonic-balance branch at the default setti
   assert.equal(d.compared + d.off_branch, 12);
   assert.ok(d.compared > 0 && typeof d.max_um === 'number');
   console.log(`# time-integration overlay: 12 points; ${d.compared} under a stable stretch of the branch, largest distance ${d.max_um.toFixed(2)} um; ${d.off_branch} where the branch is unstable or absent`);
-  assert.match(await o.page.textContent('#note-fr'), /Hollow dots: time-integration steady states/);
+  assert.match(await o.page.textContent('#note-fr'), /Hollow dots: the actual response, from time integration \(upward sweep\)/);
   await shot(o.page.locator('#view-fr'), '09-fr-hbm-with-time-integration');
   assert.deepEqual(errors, []);
   assert.deepEqual(o.errors, []);

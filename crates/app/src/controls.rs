@@ -177,6 +177,8 @@ fn view_in(
                             let text = match *w {
                                 "backlash_um" => "backlash b (µm)",
                                 "te_um" => "TE amplitude (µm)",
+                                "fit" => "fit the data",
+                                "whole" => "show the whole clearance ±b",
                                 other => other,
                             };
                             (w.to_string(), text.to_string())
@@ -292,7 +294,7 @@ pub fn controls() -> Vec<Control> {
         view("fr_points", "HBM points (nominal)", (2.0, 400.0, 1.0)),
         view(
             "fr_ti_points",
-            "Time-integration overlay points (0 = off)",
+            "Own time-integration dots (0 = the bifurcation sweep's)",
             (0.0, 60.0, 1.0),
         ),
         view(
@@ -302,6 +304,7 @@ pub fn controls() -> Vec<Control> {
         ),
         view("bif_points", "Bifurcation points", (2.0, 400.0, 1.0)),
         view("bif_dir", "Bifurcation sweep", (0.0, 0.0, 0.0)),
+        view("clearance", "Axes of x", (0.0, 0.0, 0.0)),
         view(
             "transient_periods",
             "Transient periods (max)",

@@ -29,7 +29,9 @@ pub mod protocol;
 pub mod scene;
 pub mod settings;
 pub mod status;
+pub mod tour;
 pub mod views;
+pub mod words;
 pub mod worker_core;
 
 #[cfg(target_arch = "wasm32")]

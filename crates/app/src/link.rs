@@ -118,7 +118,7 @@ fn pairs(query: &str, issues: &mut Vec<String>) -> Vec<(String, String)> {
     out
 }
 
-fn value_text(v: &Value) -> String {
+pub(crate) fn value_text(v: &Value) -> String {
     match v {
         Value::Num(x) => fmt_exact(*x),
         Value::Text(t) => t.clone(),
@@ -209,6 +209,25 @@ fn decode_one(query: &str) -> (Settings, Vec<String>) {
     (settings, issues)
 }
 
+/// A link's bad value in a sentence ("From the link: Backlash must be
+/// between 0 and 1000 µm (not 5000); the default was kept."); other
+/// problems (a key the model does not take, an unknown key) as they are.
+fn plain_issue(k: &str, v: &str, e: String) -> String {
+    let out_of_range = match keys::spec(k) {
+        Some(_) => keys::parse_value(k, v).is_err(),
+        None => view_key(k).is_some_and(|vk| !matches!(vk.ty, crate::settings::ViewType::Mesh)),
+    };
+    if out_of_range {
+        let m = crate::words::must_be(k, v);
+        format!(
+            "From the link: {}; the default was kept.",
+            m.trim_end_matches('.')
+        )
+    } else {
+        e
+    }
+}
+
 fn decode_one_pairs(all: Vec<(String, String)>) -> (Settings, Vec<String>) {
     let mut issues = Vec::new();
     let mut settings = Settings::default();
@@ -228,7 +247,7 @@ fn decode_one_pairs(all: Vec<(String, String)>) -> (Settings, Vec<String>) {
     for pair in param_pairs {
         match apply_param(&mut settings.params, &pair.0, &pair.1) {
             Ok(()) => applied.push(pair),
-            Err(e) => issues.push(e),
+            Err(e) => issues.push(plain_issue(&pair.0, &pair.1, e)),
         }
     }
     // Cross-key rules (tooth counts, torque balance): if the combination
@@ -260,7 +279,7 @@ fn decode_one_pairs(all: Vec<(String, String)>) -> (Settings, Vec<String>) {
     }
     for (k, v) in all.iter().filter(|(k, _)| view_key(k).is_some()) {
         if let Err(e) = settings.view.set(k, v, &meshes) {
-            issues.push(e);
+            issues.push(plain_issue(k, v, e));
         }
     }
     if let Some(e) = settings.view.check_range() {
@@ -392,7 +411,7 @@ pub fn ab_difference(a: &Settings, b: &Settings, max: usize) -> (String, String)
         let mut t: Vec<String> = keys_seen
             .iter()
             .take(max)
-            .map(|k| format!("{k}={}", value_in(v, s, k)))
+            .map(|k| crate::words::setting(k, &value_in(v, s, k)))
             .collect();
         if more > 0 {
             t.push(format!("+{more} more"));
@@ -477,15 +496,19 @@ mod tests {
         let d = decode("?backlash_um=5000&te_um=30&omega=abc&bif_points=100000000&damping_ratio=NaN&foo=1&oops");
         let all = d.issues.join("\n");
         assert!(
-            all.contains("backlash_um") && all.contains("0 ..= 1000"),
+            all.contains("Backlash must be between 0 and 1000 µm (not 5000)"),
             "{all}"
         );
         assert!(
-            all.contains("omega") && all.contains("0.01 ..= 20"),
+            all.contains("Selected Ω must be between 0.01 and 20 (not abc)"),
             "{all}"
         );
-        assert!(all.contains("bif_points") && all.contains("1000"), "{all}");
-        assert!(all.contains("damping_ratio"), "{all}");
+        assert!(
+            all.contains("Bifurcation points must be a whole number between 2 and 1000"),
+            "{all}"
+        );
+        assert!(all.contains("Damping ratio ξ must be"), "{all}");
+        assert!(!all.contains("..="), "{all}");
         assert!(all.contains("foo"), "{all}");
         assert!(all.contains("oops"), "{all}");
         assert_eq!(
@@ -537,11 +560,11 @@ mod tests {
         // The difference names the keys that differ, per side.
         let (ta, tb) = ab_difference(&a, &b, 3);
         assert!(
-            ta.contains("backlash_um=100") && tb.contains("backlash_um=150"),
+            ta.contains("backlash 100 µm") && tb.contains("backlash 150 µm"),
             "{ta} | {tb}"
         );
         assert!(
-            ta.contains("omega=0.5") && tb.contains("te_um=35"),
+            ta.contains("selected Ω 0.5") && tb.contains("TE amplitude 35 µm"),
             "{ta} | {tb}"
         );
         assert_eq!(ab_difference(&a, &a, 3).0, "same settings");
@@ -592,7 +615,7 @@ mod tests {
         assert_eq!((v.map_from, v.map_to), (def.map_from, def.map_to));
         let all = d.issues.join("\n");
         assert!(
-            all.contains("omega_from") && all.contains("map_from"),
+            all.contains("frequency range") && all.contains("map's range"),
             "{all}"
         );
         // Only the map's range inverted: the same reset.

@@ -407,6 +407,13 @@ pub struct HbmSample {
 pub struct BifMesh {
     /// Poincaré samples of x = delta - e (um), one per recorded period.
     pub x_um: Vec<f64>,
+    /// Smallest x = delta - e over the recorded periods (um): the sweep's
+    /// steady state doubles as a time-integration point of the frequency response.
+    #[serde(default)]
+    pub rel_min_um: f64,
+    /// Largest x over the recorded periods (um).
+    #[serde(default)]
+    pub rel_max_um: f64,
     /// Impact regime.
     pub regime: Regime,
 }

@@ -133,7 +133,7 @@ pub const VIEW_KEYS: &[ViewKey] = &[
             min: 0,
             max: MAX_FR_TI_POINTS,
         },
-        description: "Omega points of the time-integration steady states overlaid on the frequency response as dots (0 = no overlay)",
+        description: "Omega points of a time-integration run of its own for the frequency response's dots (0: the dots are the bifurcation sweep's steady states)",
     },
     ViewKey {
         name: "fr_record_periods",
@@ -270,6 +270,12 @@ pub const VIEW_KEYS: &[ViewKey] = &[
         },
         description: "mesh periods over which the Lyapunov exponent is averaged",
     },
+    ViewKey {
+        name: "clearance",
+        unit: "-",
+        ty: ViewType::Choice(&["fit", "whole"]),
+        description: "the axes of x: fit the data (the ±b lines drawn where they fall in range) or show the whole clearance from −b to +b",
+    },
 ];
 
 /// Looks up a view key.
@@ -343,6 +349,8 @@ pub struct ViewOptions {
     pub lyap_transient_periods: u32,
     /// Periods each exponent averages over.
     pub lyap_periods: u32,
+    /// The axes of x show the whole clearance ±b (else they fit the data).
+    pub whole_clearance: bool,
 }
 
 impl Default for ViewOptions {
@@ -370,6 +378,7 @@ impl Default for ViewOptions {
             lyap_points: 40,
             lyap_transient_periods: 150,
             lyap_periods: 100,
+            whole_clearance: false,
         }
     }
 }
@@ -393,6 +402,7 @@ impl ViewOptions {
             "fr_record_periods" => self.fr_record_periods.to_string(),
             "bif_points" => self.bif_points.to_string(),
             "bif_dir" => self.bif_dir.name().to_string(),
+            "clearance" => if self.whole_clearance { "whole" } else { "fit" }.to_string(),
             "transient_periods" => self.transient_periods.to_string(),
             "record_periods" => self.record_periods.to_string(),
             "harmonics" => self.harmonics.to_string(),
@@ -471,6 +481,10 @@ impl ViewOptions {
             }
             ViewType::Choice(words) => match name {
                 "bif_dir" => self.bif_dir = Directions::from_name(text).ok_or_else(bad)?,
+                "clearance" => {
+                    let w = words.iter().find(|w| **w == text).ok_or_else(bad)?;
+                    self.whole_clearance = *w == "whole";
+                }
                 _ => {
                     let w = words.iter().find(|w| **w == text).ok_or_else(bad)?;
                     self.map_key = (*w).to_string();
@@ -500,7 +514,7 @@ impl ViewOptions {
         if self.omega_to <= self.omega_from {
             let d = ViewOptions::default();
             msgs.push(format!(
-                "omega_from = {} must be below omega_to = {}; the range was reset to {} ..= {}",
+                "The frequency range must start below its end (from Ω {} to Ω {}); it was reset to Ω {} to {}",
                 self.omega_from, self.omega_to, d.omega_from, d.omega_to
             ));
             self.omega_from = d.omega_from;
@@ -509,7 +523,7 @@ impl ViewOptions {
         if self.map_to <= self.map_from {
             let (lo, hi) = map_default_range(&self.map_key);
             msgs.push(format!(
-                "map_from = {} must be below map_to = {}; the map's range was reset to {lo} ..= {hi}",
+                "The map's range must start below its end ({} to {} µm); it was reset to {lo} to {hi} µm",
                 self.map_from, self.map_to
             ));
             self.map_from = lo;
@@ -578,6 +592,7 @@ mod tests {
             ("lyap_points", "0"),
             ("lyap_transient_periods", "250"),
             ("lyap_periods", "200"),
+            ("clearance", "whole"),
         ] {
             v.set(k, t, &meshes).unwrap();
             assert_eq!(v.get(k).unwrap(), t, "{k}");
@@ -606,7 +621,10 @@ mod tests {
         v.map_from = 50.0;
         v.map_to = 10.0;
         let e = v.check_range().unwrap();
-        assert!(e.contains("map_from"), "{e}");
+        assert!(
+            e.contains("map's range") && e.contains("0 to 200 µm"),
+            "{e}"
+        );
         assert_eq!((v.map_from, v.map_to), (0.0, 200.0));
     }
 
@@ -621,7 +639,10 @@ mod tests {
             ..ViewOptions::default()
         };
         let e = v.check_range().unwrap();
-        assert!(e.contains("omega_from") && e.contains("map_from"), "{e}");
+        assert!(
+            e.contains("frequency range") && e.contains("map's range"),
+            "{e}"
+        );
         let d = ViewOptions::default();
         assert_eq!((v.omega_from, v.omega_to), (d.omega_from, d.omega_to));
         assert_eq!((v.map_from, v.map_to), (d.map_from, d.map_to));

@@ -37,6 +37,7 @@ mod anim;
 mod claims;
 mod family;
 mod panel;
+mod tour;
 mod worker;
 
 use anim::{build_anim_controls, observe_anim_visibility, start_anim_loop};
@@ -183,6 +184,7 @@ pub fn start_app() {
     family::build_family_bar(&page);
     claims::build_claims(&page);
     build_exports(&page);
+    tour::build_tour(&page);
     build_canvas_events(&page);
     start_workers(&page);
     run_effects(&page, effects);
@@ -336,7 +338,11 @@ fn draw_dirty(page: &Shared, p: &mut Page) {
     }
     p.redraw.mark(&d);
     if d.omega {
-        set_text(&p.doc, "summary", &p.ctl.summary_text());
+        set_text(&p.doc, "summary", &p.ctl.student_summary());
+        set_text(&p.doc, "summary-expert", &p.ctl.summary_text());
+        if let Some(e) = p.doc.get_element_by_id("canvas-anim") {
+            check(e.set_attribute("aria-label", &p.ctl.anim_label()));
+        }
     }
     for v in DRAW_ORDER {
         let start = now(&p.window);
@@ -412,6 +418,7 @@ fn draw_view(p: &mut Page, v: ViewId) {
     if v == ViewId::Time {
         p.anim.dirty = true;
     }
+    check(cv.set_attribute("aria-label", &p.ctl.canvas_label(v)));
     if let Err(e) = r.map_err(|e| e.to_string()) {
         if !p.ctl.issues.contains(&e) {
             p.ctl.issues.push(e);
@@ -532,12 +539,13 @@ fn draw_omega_view(p: &mut Page, v: ViewId, root: &Area) -> plots::Res<()> {
     let Some(res) = &p.ctl.omega else {
         return Ok(());
     };
+    let whole = p.ctl.settings.view.whole_clearance;
     let stale = crate::views::omega::caption_suffix(res.preview, p.ctl.omega_status.running());
     match v {
-        ViewId::Phase => plots::draw_phase(root, res, stale),
-        ViewId::Poincare => plots::draw_poincare(root, res, stale),
+        ViewId::Phase => plots::draw_phase_with(root, res, stale, whole),
+        ViewId::Poincare => plots::draw_poincare_with(root, res, stale, whole),
         ViewId::Time => {
-            let f = plots::draw_time(root, res, stale);
+            let f = plots::draw_time_with(root, res, stale, whole);
             p.frames[v.slot()] = f.as_ref().ok().copied();
             f.map(|_| ())
         }

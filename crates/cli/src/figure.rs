@@ -539,5 +539,6 @@ fn bif_view(
         ab_labels: None,
         done: pts.len(),
         total: pts.len(),
+        whole_clearance: true,
     })
 }

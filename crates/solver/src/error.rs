@@ -92,9 +92,12 @@ pub enum SolverError {
     /// The response grows without bound: a mesh deflection left the range a
     /// bounded response can reach.
     #[error(
-        "the response grows without bound: mesh {mesh} deflected {delta_m:.3e} m at t = {t_s:.6e} s, \
-         beyond {bound_m:.3e} m (100 times the static deflection, backlash and TE, more under light damping); \
-         the time-varying mesh stiffness makes the motion parametrically unstable here"
+        "the response grows without bound: mesh {mesh} deflected {:.2} mm after {:.2} ms, \
+         beyond {:.2} mm (100 times the static deflection, backlash and TE, more under light damping); \
+         the time-varying mesh stiffness makes the motion parametrically unstable here",
+        delta_m * 1e3,
+        t_s * 1e3,
+        bound_m * 1e3
     )]
     Diverged {
         /// The mesh.

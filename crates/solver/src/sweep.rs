@@ -204,6 +204,10 @@ pub struct PointMesh {
     pub delta_min_m: f64,
     /// Largest delta (m).
     pub delta_max_m: f64,
+    /// Smallest relative displacement x = delta - e over the recorded periods (m).
+    pub rel_min_m: f64,
+    /// Largest relative displacement x = delta - e (m).
+    pub rel_max_m: f64,
     /// Impact regime.
     pub impact: Impact,
     /// max F / F_static.
@@ -405,6 +409,8 @@ impl BifurcationSweep {
                                 poincare_velocity_m_s: m.poincare_velocity_m_s.clone(),
                                 delta_min_m: m.delta_min_m,
                                 delta_max_m: m.delta_max_m,
+                                rel_min_m: m.rel_min_m,
+                                rel_max_m: m.rel_max_m,
                                 impact: m.impact,
                                 dynamic_factor: m.dynamic_factor,
                             }

@@ -329,6 +329,8 @@ impl Controller {
         let total = bif_total(&v);
         let id = self.begin(JobKind::Bif, total, now_ms);
         self.bif = BifStore::new(id, total);
+        // The sweep's steady states are also the frequency response's dots.
+        self.dirty.fr = true;
         self.export = None;
         self.dirty.bif = true;
         self.post_bif(id, params, &v, false)

@@ -82,9 +82,18 @@ impl Controller {
                 Vec::new()
             }
             FromWorker::BifPoints { id, points } if id == self.bif.id => {
+                let before = self.bif.samples.len();
                 self.bif.samples.extend(points);
-                self.bif_status.record(self.bif.samples.len(), now_ms);
+                let after = self.bif.samples.len();
+                self.bif_status.record(after, now_ms);
                 self.dirty.bif = true;
+                // Without its own overlay job the frequency response shows
+                // these: redrawn at each tenth of the sweep and at its end,
+                // not per point (a frequency-response draw costs more than a
+                // sweep point's message).
+                let tenth = (self.bif.total / 10).max(1);
+                let batch = before / tenth != after / tenth || after >= self.bif.total;
+                self.dirty.fr |= self.fr.id == 0 && batch;
                 Vec::new()
             }
             FromWorker::MapCells { id, cells } if id == self.map.id && id != 0 => {

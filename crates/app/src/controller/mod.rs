@@ -152,6 +152,8 @@ pub struct Controller {
     /// The parametric-instability bands of the bifurcation sweep's range,
     /// from its shard-0 worker (kept until a newer job's arrive).
     bands: Vec<(f64, f64)>,
+    /// The "Start here" tour's step (0-based), if it is running.
+    pub tour: Option<usize>,
 }
 
 impl Controller {
@@ -166,7 +168,8 @@ impl Controller {
     /// benchmark's scaling figure, the page runs [`pool_size`]).
     pub fn with_workers(query: &str, now_ms: f64, workers: usize) -> (Self, Vec<Effect>) {
         let workers = workers.clamp(1, MAX_WORKERS);
-        let decoded = link::decode(query);
+        let (tour, query) = crate::tour::split_tour(query);
+        let decoded = link::decode(&query);
         let pinned = decoded.pinned;
         let family = decoded.family.map(|spec| Family {
             spec,
@@ -197,6 +200,7 @@ impl Controller {
             next_id: 0,
             export: None,
             bands: Vec::new(),
+            tour,
         };
         c.rebuild_model();
         let mut fx = c.restart(ALL, now_ms);
@@ -213,11 +217,41 @@ impl Controller {
 
     /// The current link query (without `?`), with the pinned state A if any.
     pub fn query(&self) -> String {
-        link::encode_all(
+        let q = link::encode_all(
             &self.settings,
             self.pinned.as_ref().map(|p| &p.settings),
             self.family.as_ref().map(|f| &f.spec),
-        )
+        );
+        match self.tour {
+            Some(step) => format!("{q}&tour={}", step + 1),
+            None => q,
+        }
+    }
+
+    /// Goes to tour step `step` (0-based; `None` ends the tour): makes the
+    /// step's settings as the controls would and puts the step in the link.
+    pub fn tour_go(&mut self, step: Option<usize>, now_ms: f64) -> Vec<Effect> {
+        let step = step.filter(|&s| s < crate::tour::TOUR.len());
+        self.tour = step;
+        self.dirty.url = true;
+        let mut fx = Vec::new();
+        if let Some(s) = step {
+            for (k, v) in crate::tour::TOUR[s].set {
+                let current =
+                    self.settings.view.get(k).or_else(|| {
+                        keys::get(&self.settings.params, k).map(|x| link::value_text(&x))
+                    });
+                if current.as_deref() == Some(*v) {
+                    continue;
+                }
+                match self.set_key(k, v, now_ms) {
+                    Ok(more) => fx.extend(more),
+                    Err(e) => self.issue(e),
+                }
+                self.dirty.controls = true;
+            }
+        }
+        fx
     }
 
     /// The mesh names of the current model.
@@ -247,7 +281,10 @@ impl Controller {
         if view_key(key).is_some() {
             let before = self.settings.view.clone();
             let meshes = self.mesh_names();
-            self.settings.view.set(key, text, &meshes)?;
+            self.settings
+                .view
+                .set(key, text, &meshes)
+                .map_err(|_| crate::words::must_be(key, text))?;
             if key == "map_key" && self.settings.view.map_key != before.map_key {
                 // A new axis gets that key's own default range.
                 let (lo, hi) = crate::settings::map_default_range(&self.settings.view.map_key);
@@ -289,6 +326,11 @@ impl Controller {
                 "fr_points" | "harmonics" => Restart { fr: true, ..NONE },
                 "fr_ti_points" | "fr_record_periods" => Restart { ti: true, ..NONE },
                 "bif_points" | "bif_dir" => Restart { bif: true, ..NONE },
+                // Only the axes change: every view of x is redrawn.
+                "clearance" => {
+                    self.dirty.omega = true;
+                    NONE
+                }
                 "record_periods" => Restart {
                     bif: true,
                     omega: true,
@@ -304,9 +346,12 @@ impl Controller {
             self.dirty.url = true;
             return Ok(self.restart(what, now_ms));
         }
-        let value = keys::parse_value(key, text).map_err(|e| e.to_string())?;
+        // The message in a sentence with the allowed range ("Backlash b must be
+        // between 0 and 1000 µm"), not the CLI's key syntax.
+        let plain = |_| crate::words::must_be(key, text);
+        let value = keys::parse_value(key, text).map_err(plain)?;
         let mut params = self.settings.params.clone();
-        keys::set(&mut params, key, value).map_err(|e| e.to_string())?;
+        keys::set(&mut params, key, value).map_err(plain)?;
         if params == self.settings.params {
             return Ok(Vec::new());
         }
@@ -343,7 +388,9 @@ impl Controller {
 
     /// Replaces the whole state by a link's (or preset's) query.
     pub fn load_query(&mut self, query: &str, now_ms: f64) -> Vec<Effect> {
-        let d = link::decode(query);
+        let (tour, query) = crate::tour::split_tour(query);
+        self.tour = tour;
+        let d = link::decode(&query);
         self.settings = d.settings;
         self.issues = d.issues;
         self.preset_note = None;
@@ -462,9 +509,19 @@ impl Controller {
         // The previous branch is context while the new one computes, not
         // after it has ended (complete or failed).
         let previous = self.hbm_previous.as_ref().filter(|_| !self.hbm.finished);
-        let overlay = Some(&self.fr).filter(|f| f.id != 0);
+        // The time-integration dots: the overlay job's when it is on, else
+        // the bifurcation sweep's steady states (the same computation, free).
+        let swept;
+        let overlay = if self.fr.id != 0 {
+            Some(&self.fr)
+        } else {
+            let v = &self.settings.view;
+            swept = FrStore::from_sweep(&self.bif.samples, v.transient_periods, v.record_periods);
+            Some(&swept).filter(|s| !s.points.is_empty())
+        };
         let previous = previous.filter(|_| self.family.is_none());
         let mut v = fr_view(&self.hbm, previous, overlay, mesh, &b, &ctx);
+        v.whole_clearance = self.settings.view.whole_clearance;
         if let Some(f) = &self.family {
             // Every member's ±b (a backlash family has one pair per value).
             let mut levels = v.backlash_um.clone();
@@ -550,6 +607,7 @@ impl Controller {
         let (mesh, b) = self.mesh_and_backlash();
         let ctx = self.view_context();
         let mut v = self.bif.view(mesh, &b, &ctx);
+        v.whole_clearance = self.settings.view.whole_clearance;
         v.unstable_bands = self.instability_bands();
         if let Some(p) = &self.pinned {
             v.pinned = p.bif.view(mesh, &b, &ctx).points;
@@ -569,6 +627,7 @@ impl Controller {
 
     /// Everything the tests and the benchmark read.
     pub fn status(&self, now_ms: f64) -> serde_json::Value {
+        let fr = self.fr_view();
         serde_json::json!({
             "query": self.query(),
             "issues": self.issues,
@@ -578,7 +637,11 @@ impl Controller {
             "fr_branch_points": self.hbm.points.len(),
             "fr_partial": self.hbm.error,
             "fr_overlay": self.ti_status,
-            "fr_discrepancy": self.fr_view().discrepancy,
+            "fr_discrepancy": fr.discrepancy,
+            // The frequency response's time-integration dots and the
+            // sentence under it where the branch is unstable.
+            "fr_dots": fr.overlay.len(),
+            "fr_sentence": crate::views::unstable::unstable_sentence(&fr),
             "bif": self.bif_status,
             "bif_bands": self.instability_bands(),
             "omega_job": self.omega_status,
@@ -623,6 +686,48 @@ impl Controller {
         }
     }
 
+    /// The text alternative of a view's canvas (its `aria-label`), from
+    /// the data it draws.
+    pub fn canvas_label(&self, view: crate::views::ViewId) -> String {
+        use crate::views::{labels, ExportKind};
+        let title = view.spec().title;
+        match view.spec().data {
+            ExportKind::Fr => labels::fr_label(&self.fr_view()),
+            ExportKind::Bif => labels::bif_label(&self.bif_view()),
+            ExportKind::Map => labels::map_label(&self.map),
+            ExportKind::Lyap => labels::lyap_label(&self.lyap.curve()),
+            ExportKind::Omega => match (&self.omega, &self.omega_status.error) {
+                (_, Some(e)) => format!("{title}: not computed: {e}"),
+                (Some(r), None) => labels::omega_label(title, r),
+                (None, None) => format!("{title}: computing."),
+            },
+        }
+    }
+
+    /// The text alternative of the gear-set animation.
+    pub fn anim_label(&self) -> String {
+        match &self.omega {
+            Some(r) => format!(
+                "The gear set in slow motion at Ω {}, each mesh coloured by its contact state; mesh {}: {}.",
+                crate::views::unstable::short(r.omega),
+                r.mesh_name,
+                r.regime.label()
+            ),
+            None => "The gear set in slow motion: computing the motion.".into(),
+        }
+    }
+
+    /// The two-sentence summary for students at the selected Omega (the
+    /// regime, whether the motion repeats, the dynamic factor explained);
+    /// the expert figures are [`Controller::summary_text`].
+    pub fn student_summary(&self) -> String {
+        match (&self.omega, &self.omega_status.error) {
+            (_, Some(e)) => format!("Not computed: {e}"),
+            (Some(r), None) => crate::views::omega::student_summary(r),
+            (None, None) => "Computing the motion at the selected Ω…".into(),
+        }
+    }
+
     /// The summary line at the selected Omega: the result's figures and the
     /// planet phasing clause, or why there is none yet; the model's warnings.
     pub fn summary_text(&self) -> String {
@@ -643,7 +748,7 @@ impl Controller {
                 }
                 s
             }
-            (None, None) => "Computing the steady state at the selected Omega…".into(),
+            (None, None) => "Computing the steady state at the selected Ω…".into(),
         };
         match &self.model {
             Ok(m) if !m.system.warnings.is_empty() => {
@@ -734,6 +839,8 @@ use jobs::{Restart, ALL, NONE};
 use pinned::pinned_backlash;
 mod messages;
 mod pinned;
+mod svg;
+pub use svg::view_size;
 
 pub use pinned::Pinned;
 

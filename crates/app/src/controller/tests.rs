@@ -119,9 +119,9 @@ fn slider_change_restarts_and_stale_replies_are_ignored() {
     assert!(c.query().contains("backlash_um=150"));
     c.worker_message(1, &hbm_points(old, &[0.1], false, None), 11.0);
     assert!(c.hbm.points.is_empty());
-    // Out of range: refused with the key and range named; nothing restarts.
+    // Out of range: refused in a sentence naming the setting and its range; nothing restarts.
     let e = c.set_key("backlash_um", "5000", 12.0).unwrap_err();
-    assert!(e.contains("backlash_um") && e.contains("1000"), "{e}");
+    assert_eq!(e, "Backlash must be between 0 and 1000 µm (not 5000).");
     // The selected Omega restarts only the Omega job.
     let fx = c.select_omega(1.23456, 13.0);
     let p = posts(&fx);
@@ -290,6 +290,83 @@ fn the_time_integration_overlay_runs_on_both_workers_when_asked() {
         .iter()
         .all(|(_, m)| matches!(m, ToWorker::Cancel { kind: JobKind::Fr })));
     assert!(c.fr_view().overlay_source.is_none());
+}
+
+/// Truth by default: with no overlay job (the defaults), the frequency
+/// response's dots are the bifurcation sweep's upward steady states, and
+/// each arriving sweep point marks the frequency response for a redraw.
+#[test]
+fn at_the_defaults_the_frequency_response_shows_the_sweeps_steady_states() {
+    use crate::protocol::{BifMesh, BifSample, Regime};
+    let (mut c, _) = Controller::new("", 0.0);
+    ready(&mut c);
+    assert_eq!(c.fr.id, 0, "no overlay job at the defaults");
+    let id = c.bif.id;
+    let sample = |index: u32, omega: f64, up: bool, lo: f64, hi: f64| BifSample {
+        index,
+        omega,
+        up,
+        meshes: vec![BifMesh {
+            x_um: vec![lo],
+            rel_min_um: lo,
+            rel_max_um: hi,
+            regime: Regime::SingleSided,
+        }],
+        worst_mesh: 0,
+        period: None,
+        error: None,
+    };
+    c.dirty.fr = false;
+    let points = vec![
+        sample(1, 1.0, true, 2.0, 9.0),
+        sample(0, 0.5, true, 10.0, 70.0),
+        sample(0, 0.5, false, 0.0, 5.0),
+    ];
+    c.bif.total = 3;
+    c.worker_message(0, &encode(&FromWorker::BifPoints { id, points }), 10.0);
+    assert!(
+        c.dirty.fr,
+        "the sweep's last point redraws the frequency response"
+    );
+    let v = c.fr_view();
+    assert!(
+        matches!(v.overlay_source, Some(FrSource::Sweep { .. })),
+        "{:?}",
+        v.overlay_source
+    );
+    let got: Vec<(f64, f64, f64)> = v
+        .overlay
+        .iter()
+        .map(|p| (p.omega, p.min_um, p.max_um))
+        .collect();
+    assert_eq!(got, vec![(0.5, 10.0, 70.0), (1.0, 2.0, 9.0)]);
+    // An overlay job of its own replaces them.
+    c.set_key("fr_ti_points", "4", 20.0).unwrap();
+    assert!(matches!(
+        c.fr_view().overlay_source,
+        Some(FrSource::TimeIntegration { .. })
+    ));
+}
+
+/// The tour's step sets its state and rides in the link; ending it takes
+/// it out; a link with a step starts the tour there.
+#[test]
+fn the_tour_sets_each_steps_state_and_its_step_is_in_the_link() {
+    let (mut c, _) = Controller::new("", 0.0);
+    ready(&mut c);
+    let fx = c.tour_go(Some(3), 10.0);
+    assert_eq!(c.settings.view.omega, 1.2);
+    assert!(!posts(&fx).is_empty(), "the new Ω starts its run");
+    assert!(c.query().ends_with("&tour=4"), "{}", c.query());
+    // A step whose state is already there restarts nothing.
+    assert!(c.tour_go(Some(1), 20.0).is_empty());
+    assert!(c.query().ends_with("&tour=2"));
+    c.tour_go(None, 30.0);
+    assert!(!c.query().contains("tour="));
+    let (d, _) = Controller::new("omega=0.5&tour=5", 0.0);
+    assert_eq!(d.tour, Some(4));
+    assert!(d.issues.is_empty(), "{:?}", d.issues);
+    assert_eq!(d.settings.view.omega, 0.5);
 }
 
 fn map_cells(id: JobId, cells: &[(u32, u32, crate::protocol::Regime, Option<u32>)]) -> String {
@@ -467,10 +544,10 @@ fn a_link_with_a_pinned_state_computes_both_and_pinning_keeps_a() {
     let v = c.fr_view();
     let labels: Vec<&str> = v.branches.iter().map(|b| b.label.as_str()).collect();
     assert!(
-        labels[0].starts_with("A: backlash_um=100") && v.branches[0].pinned,
+        labels[0].starts_with("A: backlash 100 µm") && v.branches[0].pinned,
         "{labels:?}"
     );
-    assert!(labels[1].starts_with("B: backlash_um=150"), "{labels:?}");
+    assert!(labels[1].starts_with("B: backlash 150 µm"), "{labels:?}");
     assert!(
         c.query().contains("&a=model%3Dravigneaux%26omega%3D0.5%26"),
         "{}",
@@ -504,7 +581,7 @@ fn pin_as_a_keeps_finished_results_while_b_changes() {
     let (ta, tb) = c.ab_labels().unwrap();
     assert_eq!(
         (ta.as_str(), tb.as_str()),
-        ("backlash_um=100", "backlash_um=150")
+        ("backlash 100 µm", "backlash 150 µm")
     );
     assert!(c.bif_view().ab_labels.is_some());
 }
@@ -512,7 +589,7 @@ fn pin_as_a_keeps_finished_results_while_b_changes() {
 #[test]
 fn presets_links_and_model_switch() {
     let (mut c, _) = Controller::new("backlash_um=oops&te_um=25", 0.0);
-    assert!(c.issues.iter().any(|i| i.contains("backlash_um")));
+    assert!(c.issues.iter().any(|i| i.contains("Backlash must be")));
     assert!(c.query().contains("te_um=25"));
     c.apply_preset("pair", 1.0);
     assert!(c.preset_note.is_some());

@@ -230,6 +230,8 @@ fn bif_sample(sweep: &BifurcationSweep, p: &SweepPoint) -> BifSample {
                         .iter()
                         .map(|d| round_um((d - e0) * 1e6))
                         .collect(),
+                    rel_min_um: round_um(m.rel_min_m * 1e6),
+                    rel_max_um: round_um(m.rel_max_m * 1e6),
                     regime: m.impact.into(),
                 }
             })

@@ -58,7 +58,7 @@ pub fn draw_bif<DB: DrawingBackend>(
 ) -> Res<(PlotFrame, Vec<PointGroup>)> {
     root.fill(&WHITE).map_err(err)?;
     let x = (v.omega_from, v.omega_to);
-    let extra = contact_levels(&v.backlash_um, &v.pinned_backlash_um);
+    let extra = contact_levels(&v.backlash_um, &v.pinned_backlash_um, v.whole_clearance);
     let y = with_headroom(
         padded_range(
             v.points.iter().chain(v.pinned.iter()).map(|p| p.x_um),

@@ -3,6 +3,7 @@
 
 use super::*;
 use crate::views::fr::{FrCurvePoint, FrMarkerKind, FrView};
+use crate::views::unstable::{strip_from_overlay, unstable_ranges, unstable_sentence};
 
 /// View 1: the frequency response (harmonic-balance branch, stable solid,
 /// unstable dashed, bifurcation markers, optional time-integration dots).
@@ -21,7 +22,7 @@ pub fn draw_fr<DB: DrawingBackend>(
         .chain(v.overlay.iter())
         .filter(|p| in_range(p.omega))
         .flat_map(|p| [p.max_um, p.min_um]);
-    let extra = contact_levels(&v.backlash_um, &v.pinned_backlash_um);
+    let extra = contact_levels(&v.backlash_um, &v.pinned_backlash_um, v.whole_clearance);
     // Room at the top for the legend (two lines per branch, the faded
     // branch, the unstable dash, the failure line).
     // (A family's member has one line: its max and min share a colour.)
@@ -85,7 +86,7 @@ pub fn draw_fr<DB: DrawingBackend>(
     for (i, r) in Regime::ALL.iter().enumerate() {
         if seen[i] {
             let text = if first {
-                format!("regime strip (stable): {}", r.label())
+                format!("regime strip: {}", r.label())
             } else {
                 r.label().to_string()
             };
@@ -100,20 +101,25 @@ pub fn draw_fr<DB: DrawingBackend>(
     }
     if v.overlay_source.is_some() {
         let d = &v.discrepancy;
-        let mut text = format!("time integration ({} pts)", v.overlay.len());
+        // Short enough for one row of the key: the points off the stable
+        // branch are what the sentence under the key is about.
+        let mut text = format!(
+            "time integration: the actual response ({} points",
+            v.overlay.len()
+        );
         if let Some(m) = d.max_um {
             text.push_str(&format!(
-                ": max |Δx| {m:.2} µm at {} on the stable branch",
+                "; within {m:.1} µm of the stable branch at {}",
                 d.compared
             ));
         }
-        if d.off_branch > 0 {
-            text.push_str(&format!("; {} where none is stable", d.off_branch));
-        }
+        text.push(')');
         items.push((KeyIcon::Overlay, text));
     }
     let (at, rows) = key_layout(root, &items, 76);
-    let key_h = 8 + KEY_ROW * rows;
+    // The plain sentence under the key when the branch is unstable over a range.
+    let sentence: Vec<String> = unstable_sentence(v).map_or(Vec::new(), |t| wrap(&t, 86));
+    let key_h = 8 + KEY_ROW * (rows + sentence.len() as i32);
     let (upper, _) = root.split_vertically(HEIGHT as i32 - key_h);
     let caption = if v.branches.iter().any(|b| b.member.is_some()) {
         format!(
@@ -171,6 +177,11 @@ pub fn draw_fr<DB: DrawingBackend>(
             // per extreme (a member's max and min share its colour).
             let mut labelled = (br.faded || br.member.is_some()) && !which;
             for (unstable, pts) in runs {
+                // A branch has about a thousand points, most less than a
+                // pixel apart: drawing each (every dash a stroke) made a
+                // redraw take 100 ms. Points closer than 2 px to the last
+                // one kept are left out; the ends always stay.
+                let pts = thin(pts, |p| chart.backend_coord(p), 2);
                 let s = if unstable {
                     any_unstable |= !br.faded;
                     chart
@@ -200,7 +211,9 @@ pub fn draw_fr<DB: DrawingBackend>(
             }
         }
         if !br.faded && !br.pinned && br.member.is_none() {
-            regime_strip(&mut chart, &br.points, y)?;
+            // Where no stretch is stable, the strip shows the dots' regimes.
+            let filled = strip_from_overlay(&unstable_ranges(&br.points), &v.overlay);
+            regime_strip(&mut chart, &br.points, &filled, y)?;
         }
     }
     if any_unstable {
@@ -242,6 +255,15 @@ pub fn draw_fr<DB: DrawingBackend>(
     let frame = frame_of(&chart, x, y);
 
     key_row(root, &items, &at, HEIGHT as i32 - key_h + 12)?;
+    for (k, line) in sentence.iter().enumerate() {
+        let y0 = HEIGHT as i32 - key_h + 5 + KEY_ROW * (rows + k as i32);
+        root.draw(&Text::new(
+            line.clone(),
+            (76, y0),
+            ("sans-serif", 13).into_font().style(FontStyle::Bold),
+        ))
+        .map_err(err)?;
+    }
     let mut notes = Vec::new();
     if let Some((at, e)) = &v.branch_error {
         let text = format!(
@@ -292,4 +314,39 @@ pub fn draw_fr<DB: DrawingBackend>(
     }
     root.present().map_err(err)?;
     Ok(frame)
+}
+
+/// The points of a polyline at least `min_px` pixels (Chebyshev distance)
+/// from the last point kept, with both ends kept.
+fn thin(
+    pts: Vec<(f64, f64)>,
+    to_px: impl Fn(&(f64, f64)) -> (i32, i32),
+    min_px: i32,
+) -> Vec<(f64, f64)> {
+    let n = pts.len();
+    let mut out: Vec<(f64, f64)> = Vec::with_capacity(n);
+    let mut last: Option<(i32, i32)> = None;
+    for (i, p) in pts.into_iter().enumerate() {
+        let px = to_px(&p);
+        let far = last.is_none_or(|l| (px.0 - l.0).abs().max((px.1 - l.1).abs()) >= min_px);
+        if far || i + 1 == n {
+            out.push(p);
+            last = Some(px);
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    /// Thinning keeps both ends and drops points under the pixel distance.
+    #[test]
+    fn thin_keeps_the_ends_and_drops_near_points() {
+        let pts: Vec<(f64, f64)> = (0..=10).map(|k| (f64::from(k), 0.0)).collect();
+        let out = super::thin(pts, |p| (p.0 as i32, p.1 as i32), 3);
+        assert_eq!(
+            out.iter().map(|p| p.0).collect::<Vec<_>>(),
+            vec![0.0, 3.0, 6.0, 9.0, 10.0]
+        );
+    }
 }

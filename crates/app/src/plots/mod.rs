@@ -23,7 +23,10 @@ mod omega;
 
 pub use bif::{draw_bif, draw_groups, failed_label};
 pub use fr::draw_fr;
-pub use omega::{draw_phase, draw_poincare, draw_spectrum, draw_time};
+pub use omega::{
+    draw_phase, draw_phase_with, draw_poincare, draw_poincare_with, draw_spectrum, draw_time,
+    draw_time_with,
+};
 
 use crate::protocol::Regime;
 use crate::views::fr::{FrCurvePoint, FrMarkerKind};
@@ -164,9 +167,13 @@ pub fn with_headroom(r: (f64, f64), fraction: f64) -> (f64, f64) {
     (r.0, r.1 + fraction * (r.1 - r.0))
 }
 
-/// The levels a plot of x must show whatever the data: ±b of the current
-/// state's and A's meshes, and zero.
-pub(crate) fn contact_levels(backlash_um: &[f64], pinned_um: &[f64]) -> Vec<f64> {
+/// The levels a plot of x must show whatever the data: with the whole
+/// clearance, ±b of the current state's and A's meshes, and zero; else
+/// none (the axes fit the data and the ±b lines show where they fall in it).
+pub(crate) fn contact_levels(backlash_um: &[f64], pinned_um: &[f64], whole: bool) -> Vec<f64> {
+    if !whole {
+        return Vec::new();
+    }
     let mut extra: Vec<f64> = backlash_um
         .iter()
         .chain(pinned_um.iter())
@@ -407,7 +414,7 @@ pub(crate) fn omega_decorations<'a, DB: DrawingBackend + 'a>(
         return Ok(());
     }
     cursor
-        .label(format!("selected Omega = {selected:.3}"))
+        .label(format!("selected Ω = {selected:.3}"))
         .legend(|(x, yy)| {
             PathElement::new(
                 vec![(x, yy), (x + 16, yy)],
@@ -431,7 +438,8 @@ fn pinned_contact_lines<'a, DB: DrawingBackend + 'a>(
         .iter()
         .filter(|b| !current_um.iter().any(|c| (*c - **b).abs() < 1e-9))
     {
-        for v in [b, -b] {
+        let shown = chart.y_range();
+        for v in [b, -b].into_iter().filter(|v| shown.contains(v)) {
             chart
                 .draw_series(DashedLineSeries::new(vec![(x.0, v), (x.1, v)], 6, 4, style))
                 .map_err(err)?;
@@ -451,8 +459,14 @@ fn contact_lines<'a, DB: DrawingBackend + 'a>(
 ) -> Res<()> {
     let style = ShapeStyle::from(&CONTACT).stroke_width(1);
     let mut first = in_legend;
+    // Only the lines that fall in the axes' range (they fit the data).
+    let shown = if horizontal {
+        chart.y_range()
+    } else {
+        chart.x_range()
+    };
     for &b in backlash_um {
-        for v in [b, -b] {
+        for v in [b, -b].into_iter().filter(|v| shown.contains(v)) {
             let pts = if horizontal {
                 vec![(x.0, v), (x.1, v)]
             } else {
@@ -618,6 +632,7 @@ fn draw_marker_px<DB: DrawingBackend>(
 fn regime_strip<'a, DB: DrawingBackend + 'a>(
     chart: &mut Chart<'a, DB>,
     points: &[FrCurvePoint],
+    filled: &[(Regime, f64, f64)],
     y: (f64, f64),
 ) -> Res<()> {
     let (lo, hi) = (y.0, y.0 + 0.025 * (y.1 - y.0));
@@ -646,9 +661,11 @@ fn regime_strip<'a, DB: DrawingBackend + 'a>(
     }
     chart
         .draw_series(
-            runs.into_iter().map(|(r, from, to)| {
-                Rectangle::new([(from, lo), (to, hi)], regime_color(r).filled())
-            }),
+            runs.into_iter()
+                .chain(filled.iter().copied())
+                .map(|(r, from, to)| {
+                    Rectangle::new([(from, lo), (to, hi)], regime_color(r).filled())
+                }),
         )
         .map_err(err)?;
     Ok(())

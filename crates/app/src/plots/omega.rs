@@ -4,9 +4,18 @@
 use super::*;
 use crate::protocol::{history_start, OmegaResult, HISTORY_PERIODS};
 
-fn phase_ranges(r: &OmegaResult) -> ((f64, f64), (f64, f64)) {
-    let b = r.backlash_um;
-    let x = padded_range(r.x_um.iter().copied(), &[b, -b], 20.0);
+/// The ±b levels an axis of x must include: both with the whole clearance,
+/// none when the axes fit the data.
+fn levels(r: &OmegaResult, whole: bool) -> Vec<f64> {
+    if whole {
+        vec![r.backlash_um, -r.backlash_um]
+    } else {
+        Vec::new()
+    }
+}
+
+fn phase_ranges(r: &OmegaResult, whole: bool) -> ((f64, f64), (f64, f64)) {
+    let x = padded_range(r.x_um.iter().copied(), &levels(r, whole), 20.0);
     let vmax = r.xdot_m_s.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
     let y = padded_range(r.xdot_m_s.iter().copied(), &[], (vmax * 0.2).max(1e-3));
     (x, with_headroom(y, 0.25))
@@ -23,9 +32,10 @@ fn phase_plane<'a, DB: DrawingBackend>(
     r: &OmegaResult,
     (what, x_desc): (&str, &str),
     status: &str,
+    whole: bool,
 ) -> Res<Chart<'a, DB>> {
     root.fill(&WHITE).map_err(err)?;
-    let (x, y) = phase_ranges(r);
+    let (x, y) = phase_ranges(r, whole);
     let caption = omega_caption(what, r, status);
     let mut chart = linear_chart(root, &caption, (x, y), &Axes::new(x_desc, "ẋ (m/s)"))?;
     contact_lines(&mut chart, &[r.backlash_um], y, false, true)?;
@@ -38,8 +48,18 @@ pub fn draw_phase<DB: DrawingBackend>(
     r: &OmegaResult,
     status: &str,
 ) -> Res<()> {
+    draw_phase_with(root, r, status, true)
+}
+
+/// The phase portrait, its x axis fitting the data unless `whole` (the whole clearance ±b).
+pub fn draw_phase_with<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    r: &OmegaResult,
+    status: &str,
+    whole: bool,
+) -> Res<()> {
     let what = ("Phase portrait", "x = δ − e (µm)");
-    let mut chart = phase_plane(root, r, what, status)?;
+    let mut chart = phase_plane(root, r, what, status, whole)?;
     let orbit = ShapeStyle::from(&ORBIT.mix(0.7)).stroke_width(1);
     chart
         .draw_series(LineSeries::new(
@@ -69,11 +89,21 @@ pub fn draw_poincare<DB: DrawingBackend>(
     r: &OmegaResult,
     status: &str,
 ) -> Res<()> {
+    draw_poincare_with(root, r, status, true)
+}
+
+/// The Poincaré section, its x axis fitting the data unless `whole`.
+pub fn draw_poincare_with<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    r: &OmegaResult,
+    status: &str,
+    whole: bool,
+) -> Res<()> {
     let what = (
         "Poincaré section",
         "x = δ − e (µm), sampled once per mesh period",
     );
-    let mut chart = phase_plane(root, r, what, status)?;
+    let mut chart = phase_plane(root, r, what, status, whole)?;
     let period = match r.period {
         Some(p) => format!("period {p}"),
         None => "not periodic".into(),
@@ -101,6 +131,16 @@ pub fn draw_time<DB: DrawingBackend>(
     r: &OmegaResult,
     status: &str,
 ) -> Res<PlotFrame> {
+    draw_time_with(root, r, status, true)
+}
+
+/// The time history, its x axis fitting the data unless `whole`.
+pub fn draw_time_with<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    r: &OmegaResult,
+    status: &str,
+    whole: bool,
+) -> Res<PlotFrame> {
     root.fill(&WHITE).map_err(err)?;
     let spp = r.samples_per_period.max(1) as usize;
     let shown = HISTORY_PERIODS.min(r.record_periods) as usize;
@@ -110,7 +150,7 @@ pub fn draw_time<DB: DrawingBackend>(
     let x = (t0, t1.max(t0 + 1e-9));
     let b = r.backlash_um;
     let y = with_headroom(
-        padded_range(r.x_um[start..].iter().copied(), &[b, -b], 20.0),
+        padded_range(r.x_um[start..].iter().copied(), &levels(r, whole), 20.0),
         0.2,
     );
     let caption = omega_caption("Time history", r, status);

@@ -153,6 +153,7 @@ fn every_plot_draws_labels_units_and_legends() {
         progress: 0.95,
         finished: true,
         branch_notes: Vec::new(),
+        whole_clearance: true,
     };
     let mut frame = None;
     let s = svg(|root| {
@@ -167,7 +168,7 @@ fn every_plot_draws_labels_units_and_legends() {
         "harmonic balance, H = 5, exact",
         "unstable (Floquet): dashed",
         "fold (jump)",
-        "time integration (1 pts): max |Δx| 1.50 µm at 1 on the stable branch; 2 where none is stable",
+        "time integration: the actual response (1 points; within 1.5 µm of the stable branch at 1)",
         "Solver failure after Ω = 1.9000",
         "(partial)",
         "max x (A: backlash_um=100)",
@@ -299,4 +300,18 @@ fn small_multiples_draw_every_panel_with_its_title() {
         }
         assert!(s.contains("shared axes"));
     }
+/// The axes fit the data unless the whole clearance is asked for: then
+/// both ±b and zero are in range, and the plots differ.
+#[test]
+fn axes_fit_the_data_or_show_the_whole_clearance() {
+    assert!(contact_levels(&[100.0], &[50.0], false).is_empty());
+    let whole = contact_levels(&[100.0], &[50.0], true);
+    for v in [100.0, -100.0, 50.0, -50.0, 0.0] {
+        assert!(whole.contains(&v), "{v}");
+    }
+    let r = result();
+    let fit = svg(|root| draw_phase_with(root, &r, "", false));
+    let all = svg(|root| draw_phase_with(root, &r, "", true));
+    assert_ne!(fit, all);
+    assert_eq!(all, svg(|root| draw_phase(root, &r, "")));
 }

@@ -48,6 +48,9 @@ pub struct BifView {
     pub done: usize,
     /// Swept points in all.
     pub total: usize,
+    /// The axis of x shows the whole clearance ±b (else it fits the data).
+    #[serde(skip)]
+    pub whole_clearance: bool,
 }
 
 /// Bifurcation points as they arrive from both workers, for one job.
@@ -115,6 +118,7 @@ impl BifStore {
             ab_labels: None,
             done: self.samples.len(),
             total: self.total,
+            whole_clearance: true,
         }
     }
 }
@@ -158,6 +162,8 @@ mod tests {
             up: false,
             meshes: vec![BifMesh {
                 x_um: vec![1.0, 2.0],
+                rel_min_um: 0.5,
+                rel_max_um: 2.5,
                 regime: Regime::DoubleSided,
             }],
             worst_mesh: 0,

@@ -12,7 +12,7 @@
 //! discrepancy figure.
 
 use super::{csv_num, csv_opt, distinct, NaturalFreq, ViewContext};
-use crate::protocol::{BranchBif, FrSample, HbmSample, Regime};
+use crate::protocol::{BifSample, BranchBif, FrSample, HbmSample, MeshExtremes, Regime};
 use serde::Serialize;
 
 /// Where a frequency response comes from.
@@ -21,6 +21,14 @@ use serde::Serialize;
 pub enum FrSource {
     /// Extremes of time-integration steady states on a grid (upward continuation).
     TimeIntegration {
+        /// Maximum transient periods per point.
+        transient_periods: u32,
+        /// Recorded periods per point.
+        record_periods: u32,
+    },
+    /// The bifurcation sweep's steady states (its upward sweep, else its
+    /// downward one): the same time integration, at no extra cost.
+    Sweep {
         /// Maximum transient periods per point.
         transient_periods: u32,
         /// Recorded periods per point.
@@ -38,6 +46,9 @@ impl FrSource {
     pub fn label(&self) -> String {
         match self {
             FrSource::TimeIntegration { .. } => "time-integration steady states".into(),
+            FrSource::Sweep { .. } => {
+                "time-integration steady states of the bifurcation sweep".into()
+            }
             FrSource::Hbm { harmonics } => format!("harmonic balance, H = {harmonics}, exact"),
         }
     }
@@ -191,6 +202,9 @@ pub struct FrView {
     /// What the continuation did to cover the range (restarts, left-out
     /// gaps), in plain sentences.
     pub branch_notes: Vec<String>,
+    /// The axis of x shows the whole clearance ±b (else it fits the data).
+    #[serde(skip)]
+    pub whole_clearance: bool,
 }
 
 /// The harmonic-balance branch as it arrives, for one job.
@@ -287,6 +301,8 @@ pub struct FrStore {
     pub transient_periods: u32,
     /// Recorded periods used.
     pub record_periods: u32,
+    /// The points are the bifurcation sweep's steady states.
+    pub from_sweep: bool,
 }
 
 /// Picks the plotted mesh of a set: the given one, or the one with the
@@ -310,6 +326,44 @@ impl FrStore {
             points: vec![None; points as usize],
             transient_periods,
             record_periods,
+            from_sweep: false,
+        }
+    }
+
+    /// The bifurcation sweep's steady states as overlay points: the upward
+    /// sweep's (the way the overlay job runs), or the downward one's when
+    /// the sweep runs only down. Each carries every mesh's extremes of x.
+    pub fn from_sweep(samples: &[BifSample], transient_periods: u32, record_periods: u32) -> Self {
+        let up = samples.iter().any(|s| s.up);
+        let mut chosen: Vec<&BifSample> = samples.iter().filter(|s| s.up == up).collect();
+        chosen.sort_by_key(|s| s.index);
+        let points = chosen
+            .into_iter()
+            .map(|s| {
+                Some(FrSample {
+                    index: s.index,
+                    omega: s.omega,
+                    meshes: s
+                        .meshes
+                        .iter()
+                        .map(|m| MeshExtremes {
+                            rel_min_um: m.rel_min_um,
+                            rel_max_um: m.rel_max_um,
+                            regime: m.regime,
+                            dynamic_factor: None,
+                        })
+                        .collect(),
+                    period: s.period,
+                    error: s.error.clone(),
+                })
+            })
+            .collect();
+        FrStore {
+            id: 0,
+            points,
+            transient_periods,
+            record_periods,
+            from_sweep: true,
         }
     }
 
@@ -329,6 +383,12 @@ impl FrStore {
 
     /// How the points were computed.
     pub fn source(&self) -> FrSource {
+        if self.from_sweep {
+            return FrSource::Sweep {
+                transient_periods: self.transient_periods,
+                record_periods: self.record_periods,
+            };
+        }
         FrSource::TimeIntegration {
             transient_periods: self.transient_periods,
             record_periods: self.record_periods,
@@ -498,6 +558,7 @@ pub fn fr_view(
         progress: hbm.progress,
         finished: hbm.finished,
         branch_notes: hbm.notes.clone(),
+        whole_clearance: true,
     }
 }
 
@@ -537,10 +598,12 @@ pub fn fr_csv(v: &FrView) -> String {
 
 /// The note under view 1: the method, and how to see the overlay.
 pub fn fr_note(v: &FrView) -> String {
-    let overlay = if v.overlay_source.is_some() {
-        " Hollow dots: time-integration steady states (upward sweep) for comparison."
-    } else {
-        " A time-integration overlay can be switched on under Analysis (fr_ti_points)."
+    let overlay = match v.overlay_source {
+        Some(FrSource::Sweep { .. }) => {
+            " Hollow dots: the actual response, from time integration (the bifurcation diagram's steady states)."
+        }
+        Some(_) => " Hollow dots: the actual response, from time integration (upward sweep).",
+        None => " Hollow dots, when the bifurcation diagram has run: the actual response, from time integration.",
     };
     let mut note = format!(
         "Method: {} (mesh forces integrated in closed form between the contact switches), pseudo-arclength continuation upward in Ω with Floquet stability.{overlay}",

@@ -272,9 +272,9 @@ pub fn map_note(store: &MapStore, total: usize) -> String {
         if let Some(c) = store.first_failure() {
             let key = store.grid.as_ref().map_or("", |g| g.key.as_str());
             note.push_str(&format!(
-                ", e.g. Omega {:.4}, {key} {:.4}: {}",
-                c.omega,
-                c.value,
+                ", e.g. at Ω {}, {}: {}",
+                super::unstable::short(c.omega),
+                crate::words::setting(key, &super::unstable::short(c.value)),
                 c.error.as_deref().unwrap_or("")
             ));
         }

@@ -10,12 +10,14 @@ pub mod bif;
 pub mod family;
 pub mod fr;
 pub mod lyap;
+pub mod labels;
 pub mod map;
 pub mod omega;
 pub mod redraw;
 mod table;
+pub mod unstable;
 
-pub use table::{ExportKind, ViewId, ViewSpec, DRAW_ORDER, VIEWS};
+pub use table::{part_number, ExportKind, PagePart, ViewId, ViewSpec, DRAW_ORDER, PAGE, VIEWS};
 
 use serde::Serialize;
 use solver::modal::ModeKind;

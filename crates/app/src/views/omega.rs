@@ -3,7 +3,7 @@
 //! history's and spectrum's CSV and JSON exports.
 
 use super::{csv_num, NaturalFreq};
-use crate::protocol::OmegaResult;
+use crate::protocol::{OmegaResult, Regime};
 use solver::params::MeshKind;
 use solver::steady::Model;
 
@@ -32,7 +32,7 @@ pub fn summary_line(r: &OmegaResult, natural: &[NaturalFreq]) -> String {
         String::new()
     };
     format!(
-        "{preview}Omega = {:.4} ({:.0} Hz mesh frequency), mesh {}: {}, {}, dynamic factor {}. Natural frequencies in range (Omega): {}.",
+        "{preview}Ω = {:.4} ({:.0} Hz mesh frequency), mesh {}: {}, {}, dynamic factor {}. Natural frequencies in range (Ω): {}.",
         r.omega,
         r.mesh_freq_hz,
         r.mesh_name,
@@ -41,6 +41,44 @@ pub fn summary_line(r: &OmegaResult, natural: &[NaturalFreq]) -> String {
         df,
         nat
     )
+}
+
+/// The summary for students: two sentences at the selected Omega, what
+/// the teeth do (the regime in words), whether the motion repeats, and the
+/// dynamic factor explained.
+pub fn student_summary(r: &OmegaResult) -> String {
+    let what = match r.regime {
+        Regime::NoImpact => "the teeth stay in contact all the time (no impact)",
+        Regime::SingleSided => {
+            "the teeth separate once a cycle and strike the driving flank again (single-sided impact)"
+        }
+        Regime::DoubleSided => {
+            "the teeth cross the whole backlash and also hit the back flank (double-sided impact)"
+        }
+        Regime::NoContact => "the teeth never touch (no contact)",
+    };
+    let repeats = match r.period {
+        Some(1) => "the motion repeats every mesh period".to_string(),
+        Some(n) => format!("the motion repeats every {n} mesh periods (period {n})"),
+        None => {
+            "the motion does not repeat within the recorded periods (quasi-periodic or chaotic)"
+                .to_string()
+        }
+    };
+    let preview = if r.preview { "Preview: " } else { "" };
+    let first = format!(
+        "{preview}At Ω {} ({:.0} Hz mesh frequency) on mesh {}, {what}; {repeats}.",
+        crate::views::unstable::short(r.omega),
+        r.mesh_freq_hz,
+        r.mesh_name
+    );
+    let second = match r.dynamic_factor {
+        Some(d) => format!(
+            " Dynamic factor {d:.2}: the largest tooth force is {d:.2} times the force of the steady load alone."
+        ),
+        None => String::new(),
+    };
+    format!("{first}{second}")
 }
 
 /// Highest mesh order of the phasing numbers.

@@ -7,21 +7,21 @@
 /// `last_draw_ms`, ...).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum ViewId {
-    /// 1. Frequency response (harmonic balance, with the time-integration overlay).
+    /// Frequency response (harmonic balance, with the time-integration dots).
     Fr,
-    /// 2. Bifurcation diagram.
+    /// Bifurcation diagram.
     Bif,
-    /// 3. Phase portrait at the selected Omega.
+    /// Phase portrait at the selected Omega.
     Phase,
-    /// 4. Poincaré section at the selected Omega.
+    /// Poincaré section at the selected Omega.
     Poincare,
-    /// 5a. Time history at the selected Omega.
+    /// Time history at the selected Omega.
     Time,
-    /// 5b. Spectrum at the selected Omega.
+    /// Spectrum at the selected Omega.
     Spectrum,
-    /// 7. Impact-regime map.
+    /// Impact-regime map.
     Map,
-    /// 2b. Largest Lyapunov exponent over Omega (under the bifurcation diagram).
+    /// Largest Lyapunov exponent over Omega (under the bifurcation diagram).
     Lyap,
 }
 
@@ -48,8 +48,6 @@ pub struct ViewSpec {
     /// Its key in element ids (`canvas-KEY`, `exports-KEY`, `progress-KEY`)
     /// and file names (`gearshock-KEY-MESH.csv`).
     pub key: &'static str,
-    /// Its number on the page.
-    pub number: &'static str,
     /// Its title (the heading starts with it; the plot's title when it has no data).
     pub title: &'static str,
     /// Whose data it shows.
@@ -63,7 +61,6 @@ pub const VIEWS: [ViewSpec; 8] = [
     ViewSpec {
         id: ViewId::Fr,
         key: "fr",
-        number: "1",
         title: "Frequency response",
         data: ExportKind::Fr,
         progressive: true,
@@ -71,7 +68,6 @@ pub const VIEWS: [ViewSpec; 8] = [
     ViewSpec {
         id: ViewId::Bif,
         key: "bif",
-        number: "2",
         title: "Bifurcation diagram",
         data: ExportKind::Bif,
         progressive: true,
@@ -79,7 +75,6 @@ pub const VIEWS: [ViewSpec; 8] = [
     ViewSpec {
         id: ViewId::Phase,
         key: "phase",
-        number: "3",
         title: "Phase portrait",
         data: ExportKind::Omega,
         progressive: false,
@@ -87,7 +82,6 @@ pub const VIEWS: [ViewSpec; 8] = [
     ViewSpec {
         id: ViewId::Poincare,
         key: "poincare",
-        number: "4",
         title: "Poincaré section",
         data: ExportKind::Omega,
         progressive: false,
@@ -95,7 +89,6 @@ pub const VIEWS: [ViewSpec; 8] = [
     ViewSpec {
         id: ViewId::Time,
         key: "time",
-        number: "5a",
         title: "Time history",
         data: ExportKind::Omega,
         progressive: false,
@@ -103,7 +96,6 @@ pub const VIEWS: [ViewSpec; 8] = [
     ViewSpec {
         id: ViewId::Spectrum,
         key: "spectrum",
-        number: "5b",
         title: "Spectrum",
         data: ExportKind::Omega,
         progressive: false,
@@ -111,7 +103,6 @@ pub const VIEWS: [ViewSpec; 8] = [
     ViewSpec {
         id: ViewId::Map,
         key: "map",
-        number: "7",
         title: "Impact-regime map",
         data: ExportKind::Map,
         progressive: true,
@@ -119,12 +110,70 @@ pub const VIEWS: [ViewSpec; 8] = [
     ViewSpec {
         id: ViewId::Lyap,
         key: "lyap",
-        number: "2b",
         title: "Largest Lyapunov exponent",
         data: ExportKind::Lyap,
         progressive: true,
     },
 ];
+
+/// One numbered part of the page, in page order: the views of [`VIEWS`]
+/// and the gear set's animation (drawn by `web::anim`, not a [`ViewId`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PagePart {
+    /// The key of the part's element (`view-KEY`).
+    pub key: &'static str,
+    /// Its title, as in the heading.
+    pub title: &'static str,
+}
+
+/// The page's numbered parts in page order: the question-answering views
+/// first (what the response is, when impact becomes double-sided, when the
+/// motion stops repeating), then the views of the motion at the selected
+/// Omega. A part's number is its place here; `index.html` is checked
+/// against it (order, headings and every "view N" in the help texts).
+pub const PAGE: [PagePart; 9] = [
+    PagePart {
+        key: "fr",
+        title: "Frequency response",
+    },
+    PagePart {
+        key: "map",
+        title: "Impact-regime map",
+    },
+    PagePart {
+        key: "bif",
+        title: "Bifurcation diagram",
+    },
+    PagePart {
+        key: "lyap",
+        title: "Largest Lyapunov exponent",
+    },
+    PagePart {
+        key: "phase",
+        title: "Phase portrait",
+    },
+    PagePart {
+        key: "poincare",
+        title: "Poincaré section",
+    },
+    PagePart {
+        key: "time",
+        title: "Time history",
+    },
+    PagePart {
+        key: "anim",
+        title: "The gear set in motion",
+    },
+    PagePart {
+        key: "spectrum",
+        title: "Spectrum",
+    },
+];
+
+/// The number of the page part with key `key` (1-based), if there is one.
+pub fn part_number(key: &str) -> Option<usize> {
+    PAGE.iter().position(|p| p.key == key).map(|i| i + 1)
+}
 
 /// The order in which dirty views are drawn: the views a slider drag
 /// watches first (the frequency response, then the phase portrait).
@@ -167,9 +216,14 @@ impl ViewId {
         self.spec().key
     }
 
+    /// The view's number on the page (its place in [`PAGE`]).
+    pub fn number(self) -> usize {
+        part_number(self.key()).unwrap_or(0)
+    }
+
     /// The heading: number and title.
     pub fn heading(self) -> String {
-        format!("{}. {}", self.spec().number, self.spec().title)
+        format!("{}. {}", self.number(), self.spec().title)
     }
 
     /// The progress bar's label at `done` of `total`.
@@ -180,6 +234,19 @@ impl ViewId {
             ExportKind::Map => format!("computing {done}/{total} cells"),
             ExportKind::Omega => "computing…".into(),
         }
+    }
+
+    /// An export button's name, by what it exports: "Export the frequency
+    /// response as CSV" (`what` is "CSV", "JSON", "a PNG image", ...).
+    pub fn export_name(self, what: &str) -> String {
+        let t = self.spec().title;
+        let mut c = t.chars();
+        // Names stay capitalized (Poincaré); other titles read in lower case.
+        let lower: String = match c.next() {
+            Some(f) if !t.starts_with("Poincaré") => f.to_lowercase().chain(c).collect(),
+            _ => t.to_string(),
+        };
+        format!("Export the {lower} as {what}")
     }
 
     /// The CLI-format export's button title, for the views that have one.
@@ -211,6 +278,58 @@ mod tests {
         let mut order: Vec<usize> = DRAW_ORDER.iter().map(|v| v.slot()).collect();
         order.sort_unstable();
         assert_eq!(order, (0..VIEWS.len()).collect::<Vec<_>>());
+    }
+
+    /// The page's parts appear in [`PAGE`] order with their numbered
+    /// headings, and every "view N" of the help texts names an existing
+    /// part, right after its title ("the phase portrait (view 5)").
+    #[test]
+    fn the_page_order_numbering_and_references_follow_the_table() {
+        let html = include_str!("../../../../index.html");
+        let mut last = 0;
+        for (i, part) in PAGE.iter().enumerate() {
+            let at = html
+                .find(&format!("id=\"view-{}\"", part.key))
+                .unwrap_or_else(|| panic!("index.html lacks view-{}", part.key));
+            assert!(at > last, "view-{} is out of order", part.key);
+            last = at;
+            let heading = format!(">{}. {}", i + 1, part.title);
+            assert!(html[at..].contains(&heading), "no heading {heading}");
+        }
+        for v in VIEWS {
+            assert!(v.id.number() >= 1, "{} is not on the page", v.key);
+        }
+        let lower = html.to_lowercase();
+        let mut refs = 0;
+        for (at, _) in lower.match_indices("(view ") {
+            let digits: String = lower[at + 6..]
+                .chars()
+                .take_while(|c| c.is_ascii_digit())
+                .collect();
+            let n: usize = digits.parse().expect("a number after (view");
+            assert!(n >= 1 && n <= PAGE.len(), "view {n} does not exist");
+            let title = PAGE[n - 1].title.to_lowercase();
+            let before = &lower[at.saturating_sub(60)..at];
+            assert!(
+                before.contains(&title),
+                "(view {n}) does not follow \"{title}\": {before}"
+            );
+            refs += 1;
+        }
+        assert!(refs >= 3, "the help texts refer to other views by number");
+        assert!(!lower.contains("views 3") && !lower.contains("view 6)") && !lower.contains("5a"));
+    }
+
+    #[test]
+    fn export_buttons_say_what_they_export() {
+        assert_eq!(
+            ViewId::Fr.export_name("CSV"),
+            "Export the frequency response as CSV"
+        );
+        assert_eq!(
+            ViewId::Poincare.export_name("a PNG image"),
+            "Export the Poincaré section as a PNG image"
+        );
     }
 
     /// The page's HTML has every view's canvas, export bar, progress bar and

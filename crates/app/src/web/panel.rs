@@ -269,6 +269,33 @@ pub(super) fn build_toolbar(page: &Shared) {
     }
 }
 
+/// Shows `text` next to the Copy link button for about two seconds (the
+/// status line is rewritten every frame, so it has its own element).
+fn confirm(window: &web_sys::Window, doc: &web_sys::Document, text: &str) {
+    let Some(e) = doc.get_element_by_id("copy-done") else {
+        return;
+    };
+    e.set_text_content(Some(text));
+    check(e.remove_attribute("hidden"));
+    let stamp = format!("{}", js_sys::Date::now());
+    check(e.set_attribute("data-shown", &stamp));
+    let hide = Closure::<dyn FnMut()>::new(move || {
+        // A later click restarts the two seconds: only its own timer hides it.
+        if e.get_attribute("data-shown").as_deref() == Some(stamp.as_str()) {
+            check(e.set_attribute("hidden", ""));
+        }
+    });
+    check(
+        window
+            .set_timeout_with_callback_and_timeout_and_arguments_0(
+                hide.as_ref().unchecked_ref(),
+                2000,
+            )
+            .map(|_| ()),
+    );
+    hide.forget();
+}
+
 pub(super) fn copy_link(page: &Shared) {
     let (window, doc) = {
         let p = page.borrow();
@@ -276,15 +303,15 @@ pub(super) fn copy_link(page: &Shared) {
     };
     let href = window.location().href().unwrap_or_default();
     let clipboard = window.navigator().clipboard();
-    let ok_doc = doc.clone();
+    let (ok_doc, ok_win) = (doc.clone(), window.clone());
     let ok = Closure::<dyn FnMut(JsValue)>::new(move |_v: JsValue| {
-        set_text(&ok_doc, "status", "Link copied to the clipboard.");
+        confirm(&ok_win, &ok_doc, "Link copied to the clipboard.");
     });
-    let fail_doc = doc.clone();
+    let (fail_doc, fail_win) = (doc.clone(), window.clone());
     let fail = Closure::<dyn FnMut(JsValue)>::new(move |_v: JsValue| {
-        set_text(
+        confirm(
+            &fail_win,
             &fail_doc,
-            "status",
             "Could not copy; the link is in the address bar.",
         );
     });
@@ -321,6 +348,56 @@ pub(super) fn download_url(doc: &Document, name: &str, url: &str) {
     a.click();
 }
 
+/// Saves a view as a PNG at twice its size: its SVG picture (the same
+/// drawing) rasterized onto an offscreen canvas of twice the canvas's size;
+/// the canvas itself if the picture cannot be drawn.
+fn png_2x(page: &Shared, v: ViewId) {
+    let (doc, svg) = {
+        let p = page.borrow();
+        (p.doc.clone(), p.ctl.plot_svg(v))
+    };
+    let name = format!("gearshock-{}.png", v.key());
+    let (Ok(svg), Ok(img)) = (svg, web_sys::HtmlImageElement::new()) else {
+        if let Some(url) = canvas(&doc, v).and_then(|cv| cv.to_data_url().ok()) {
+            download_url(&doc, &name, &url);
+        }
+        return;
+    };
+    let (w, h) = crate::controller::view_size(v);
+    let src = format!(
+        "data:image/svg+xml;charset=utf-8,{}",
+        String::from(js_sys::encode_uri_component(&svg))
+    );
+    let img2 = img.clone();
+    let onload = Closure::<dyn FnMut()>::new(move || {
+        let Some(cv) = doc
+            .create_element("canvas")
+            .ok()
+            .and_then(|e| e.dyn_into::<HtmlCanvasElement>().ok())
+        else {
+            return;
+        };
+        cv.set_width(2 * w);
+        cv.set_height(2 * h);
+        if let Some(ctx) = ctx2d(&cv) {
+            check(ctx.draw_image_with_html_image_element_and_dw_and_dh(
+                &img2,
+                0.0,
+                0.0,
+                f64::from(2 * w),
+                f64::from(2 * h),
+            ));
+        }
+        if let Ok(url) = cv.to_data_url() {
+            download_url(&doc, &name, &url);
+        }
+    });
+    img.set_onload(Some(onload.as_ref().unchecked_ref()));
+    // One per click, small: leaked rather than tracked.
+    onload.forget();
+    img.set_src(&src);
+}
+
 /// A button added to `parent` that calls `on_click`.
 pub(super) fn add_button(
     page: &Shared,
@@ -335,6 +412,7 @@ pub(super) fn add_button(
     };
     check(b.set_attribute("type", "button"));
     check(b.set_attribute("title", title));
+    check(b.set_attribute("aria-label", title));
     b.set_text_content(Some(text));
     check(parent.append_child(&b));
     listen(&b.into(), "click", on_click);
@@ -347,29 +425,34 @@ pub(super) fn build_exports(page: &Shared) {
             continue;
         };
         let page2 = page.clone();
+        let png = v.export_name("a PNG image at twice the size");
+        add_button(page, &bar, "PNG", &png, move |_| png_2x(&page2, v));
+        let page2 = page.clone();
         add_button(
             page,
             &bar,
-            "PNG",
-            "Save this plot as a PNG image",
+            "SVG",
+            &v.export_name("an SVG picture"),
             move |_| {
-                let doc = page2.borrow().doc.clone();
-                if let Some(url) = canvas(&doc, v).and_then(|cv| cv.to_data_url().ok()) {
-                    download_url(&doc, &format!("gearshock-{}.png", v.key()), &url);
+                let r = page2.borrow().ctl.export_svg(v);
+                match r {
+                    Ok(e) => run_effects(&page2, vec![e]),
+                    Err(e) => set_text(&page2.borrow().doc, "status", &e),
                 }
             },
         );
         for fmt in Format::ALL {
-            let title = format!("Download the data behind this plot as {}", fmt.label());
+            let title = v.export_name(fmt.label());
             let page2 = page.clone();
             add_button(page, &bar, fmt.label(), &title, move |_| {
                 let r = page2.borrow().ctl.export(v, fmt);
                 finish_export(&page2, r.map(|e| vec![e]));
             });
         }
-        if let Some(title) = v.cli_export_title() {
+        if v.cli_export_title().is_some() {
             let page2 = page.clone();
-            add_button(page, &bar, "CLI JSON", title, move |_| {
+            let title = v.export_name("JSON for the command-line tool");
+            add_button(page, &bar, "CLI JSON", &title, move |_| {
                 let r = page2.borrow_mut().ctl.export_cli(v);
                 finish_export(&page2, r);
             });
@@ -382,7 +465,7 @@ pub(super) fn build_exports(page: &Shared) {
             page,
             &sec,
             text,
-            "The parameters as the CLI's --params file",
+            "Download the parameters as JSON for the command-line tool",
             move |_| {
                 let fx = vec![page2.borrow().ctl.export_params()];
                 run_effects(&page2, fx);

@@ -1,0 +1,140 @@
+//! A view as an SVG picture: the same plotters drawing functions as the
+//! canvases, on plotters' SVG backend (for slides and papers; the page
+//! also rasterizes it at twice the size for its PNG export).
+
+use super::*;
+use crate::plots::{self, maps};
+use crate::views::{ExportKind, ViewId};
+use plotters::prelude::*;
+
+/// A view's drawing size in pixels (its canvas's size on the page).
+pub fn view_size(view: ViewId) -> (u32, u32) {
+    match view {
+        ViewId::Map => (plots::WIDTH, 460),
+        ViewId::Lyap => (plots::WIDTH, 240),
+        _ => (plots::WIDTH, plots::HEIGHT),
+    }
+}
+
+impl Controller {
+    /// The view drawn as SVG text, as the page shows it (without the
+    /// progress captions).
+    pub fn plot_svg(&self, view: ViewId) -> Result<String, String> {
+        let mut s = String::new();
+        {
+            let root = SVGBackend::with_string(&mut s, view_size(view)).into_drawing_area();
+            let natural = self.view_context().natural;
+            let v = &self.settings.view;
+            let whole = v.whole_clearance;
+            match view.spec().data {
+                ExportKind::Fr => {
+                    plots::draw_fr(&root, &self.fr_view(), "")?;
+                }
+                ExportKind::Bif => {
+                    let (_, groups) = plots::draw_bif(&root, &self.bif_view(), &natural, "")?;
+                    plots::draw_groups(&root, &groups)?;
+                }
+                ExportKind::Map => {
+                    let (f, o) = maps::draw_map(&root, &self.map_view(), "")?;
+                    for (c, rects) in &o.cells {
+                        for r in rects {
+                            let (x, y) = (r[0].round() as i32, r[1].round() as i32);
+                            let (w, h) = (r[2].round() as i32, r[3].round() as i32);
+                            root.draw(&Rectangle::new([(x, y), (x + w, y + h)], c.filled()))
+                                .map_err(plots::err)?;
+                        }
+                    }
+                    for d in &o.dots {
+                        let c = (d[0].round() as i32, d[1].round() as i32);
+                        root.draw(&Circle::new(c, o.dot_radius.round() as i32, BLACK.filled()))
+                            .map_err(plots::err)?;
+                    }
+                    let line = BLACK.mix(0.7).stroke_width(1);
+                    let (t, b) = (f.top_left, f.bottom_right);
+                    if let Some(x) = o.cursor.0 {
+                        let x = x.round() as i32;
+                        root.draw(&PathElement::new(
+                            vec![(x, t.y as i32), (x, b.y as i32)],
+                            line,
+                        ))
+                        .map_err(plots::err)?;
+                    }
+                    if let Some(y) = o.cursor.1 {
+                        let y = y.round() as i32;
+                        root.draw(&PathElement::new(
+                            vec![(t.x as i32, y), (b.x as i32, y)],
+                            line,
+                        ))
+                        .map_err(plots::err)?;
+                    }
+                }
+                ExportKind::Lyap => {
+                    maps::draw_lyap(
+                        &root,
+                        &self.lyap,
+                        (v.omega_from, v.omega_to),
+                        &natural,
+                        v.omega,
+                        "",
+                    )?;
+                }
+                ExportKind::Omega => {
+                    let r = self
+                        .omega
+                        .as_ref()
+                        .ok_or("the motion at the selected Ω is still computing")?;
+                    match view {
+                        ViewId::Phase => plots::draw_phase_with(&root, r, "", whole)?,
+                        ViewId::Poincare => plots::draw_poincare_with(&root, r, "", whole)?,
+                        ViewId::Time => {
+                            plots::draw_time_with(&root, r, "", whole)?;
+                        }
+                        _ => plots::draw_spectrum(&root, r, "")?,
+                    }
+                }
+            }
+            root.present().map_err(plots::err)?;
+        }
+        Ok(s)
+    }
+
+    /// The view as an SVG file to download.
+    pub fn export_svg(&self, view: ViewId) -> Result<Effect, String> {
+        Ok(Effect::Download {
+            name: format!("gearshock-{}-{}.svg", view.key(), self.mesh_file_label()),
+            mime: "image/svg+xml".into(),
+            text: self.plot_svg(view)?,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every view draws as SVG of its canvas's size with its title's words,
+    /// even before any data (the message plot) — and with data, its data.
+    #[test]
+    fn every_view_exports_as_svg() {
+        let (c, _) = Controller::new("", 0.0);
+        for v in ViewId::ALL {
+            match c.plot_svg(v) {
+                Ok(s) => {
+                    let (w, h) = view_size(v);
+                    assert!(
+                        s.starts_with("<svg")
+                            && s.contains(&format!("width=\"{w}\""))
+                            && s.contains(&format!("height=\"{h}\"")),
+                        "{}",
+                        v.key()
+                    );
+                }
+                Err(e) => assert_eq!(v.spec().data, ExportKind::Omega, "{}: {e}", v.key()),
+            }
+        }
+        let (mut c, _) = Controller::new("", 0.0);
+        c.worker_message(0, r#"{"type":"ready"}"#, 1.0);
+        let s = c.plot_svg(ViewId::Fr).unwrap();
+        assert!(s.contains("Frequency response"), "{s}");
+    }
+}

@@ -1,0 +1,282 @@
+//! The canvases' text alternatives (their `aria-label`, with `role="img"`):
+//! one sentence per view built from the data it draws, so a screen reader
+//! hears what the plot shows ("Frequency response of s1a1: peak 140 µm at
+//! Ω 0.23; single-sided impact from Ω 0.45 to 2"), and the text changes
+//! whenever the data does.
+
+use super::bif::BifView;
+use super::fr::FrView;
+use super::map::MapStore;
+use super::unstable::{short, strip_from_overlay, unstable_ranges, unstable_sentence};
+use crate::protocol::{OmegaResult, Regime};
+
+/// Runs of one regime along Omega as "single-sided impact from Ω 0.45 to
+/// 2", joined by "; " (runs shorter than 2 % of the range are left out).
+fn regime_runs(mut runs: Vec<(Regime, f64, f64)>, span: f64) -> String {
+    runs.sort_by(|a, b| a.1.total_cmp(&b.1));
+    let mut merged: Vec<(Regime, f64, f64)> = Vec::new();
+    for (r, a, b) in runs {
+        match merged.last_mut() {
+            Some(last) if last.0 == r && a <= last.2 + 1e-9 => last.2 = last.2.max(b),
+            _ => merged.push((r, a, b)),
+        }
+    }
+    merged
+        .into_iter()
+        .filter(|(_, a, b)| b - a >= 0.02 * span)
+        .map(|(r, a, b)| format!("{} from Ω {} to {}", r.label(), short(a), short(b)))
+        .collect::<Vec<_>>()
+        .join("; ")
+}
+
+/// The frequency response: the peak of the current branch, the regimes
+/// along Omega (stable stretches, and the dots where none is stable), and
+/// the unstable ranges.
+pub fn fr_label(v: &FrView) -> String {
+    let Some(br) = v.branches.iter().rfind(|b| !b.faded && !b.pinned) else {
+        return format!("Frequency response of {}: computing.", v.mesh_label);
+    };
+    let Some(peak) = br
+        .points
+        .iter()
+        .chain(v.overlay.iter())
+        .max_by(|a, b| a.max_um.total_cmp(&b.max_um))
+    else {
+        return format!("Frequency response of {}: computing.", v.mesh_label);
+    };
+    let mut runs: Vec<(Regime, f64, f64)> = br
+        .points
+        .windows(2)
+        .filter(|w| w[0].stable != Some(false) && w[1].stable != Some(false))
+        .filter_map(|w| {
+            let (a, b) = (w[0].omega.min(w[1].omega), w[0].omega.max(w[1].omega));
+            w[1].regime.map(|r| (r, a, b))
+        })
+        .collect();
+    runs.extend(strip_from_overlay(&unstable_ranges(&br.points), &v.overlay));
+    let regimes = regime_runs(runs, v.omega_to - v.omega_from);
+    let mut s = format!(
+        "Frequency response of {}: peak {:.0} µm at Ω {}",
+        v.mesh_label,
+        peak.max_um,
+        short(peak.omega)
+    );
+    if !regimes.is_empty() {
+        s.push_str("; ");
+        s.push_str(&regimes);
+    }
+    s.push('.');
+    if let Some(u) = unstable_sentence(v) {
+        s.push(' ');
+        s.push_str(&u);
+    }
+    s
+}
+
+/// The bifurcation diagram: how many Omegas, the spread of the Poincaré
+/// samples, and where the motion is not period 1 (many distinct samples).
+pub fn bif_label(v: &BifView) -> String {
+    if v.points.is_empty() {
+        return format!("Bifurcation diagram of {}: computing.", v.mesh_label);
+    }
+    let lo = v
+        .points
+        .iter()
+        .map(|p| p.x_um)
+        .fold(f64::INFINITY, f64::min);
+    let hi = v
+        .points
+        .iter()
+        .map(|p| p.x_um)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let mut omegas: Vec<f64> = v.points.iter().map(|p| p.omega).collect();
+    omegas.sort_by(f64::total_cmp);
+    omegas.dedup();
+    let regimes = {
+        let mut by: Vec<(Regime, f64, f64)> = Vec::new();
+        let mut pts: Vec<_> = v.points.iter().filter(|p| p.up).collect();
+        pts.sort_by(|a, b| a.omega.total_cmp(&b.omega));
+        let step = (v.omega_to - v.omega_from) / omegas.len().max(1) as f64;
+        for p in pts {
+            by.push((p.regime, p.omega - 0.5 * step, p.omega + 0.5 * step));
+        }
+        regime_runs(by, v.omega_to - v.omega_from)
+    };
+    let mut s = format!(
+        "Bifurcation diagram of {}: Poincaré samples at {} values of Ω from {} to {}, x from {:.0} to {:.0} µm",
+        v.mesh_label,
+        omegas.len(),
+        short(v.omega_from),
+        short(v.omega_to),
+        lo,
+        hi
+    );
+    if !regimes.is_empty() {
+        s.push_str("; upward sweep: ");
+        s.push_str(&regimes);
+    }
+    s.push_str(&format!(" ({} of {} points computed).", v.done, v.total));
+    s
+}
+
+/// The impact-regime map: its axes, how many cells of each regime, and
+/// how many are not period 1.
+pub fn map_label(map: &MapStore) -> String {
+    let Some(g) = &map.grid else {
+        return "Impact-regime map: waiting for the workers.".into();
+    };
+    let (by, not_p1, failed) = map.counts();
+    let axis = if g.key == "te_um" {
+        "TE amplitude"
+    } else {
+        "backlash"
+    };
+    let parts: Vec<String> = Regime::ALL
+        .iter()
+        .zip(by)
+        .filter(|(_, n)| *n > 0)
+        .map(|(r, n)| format!("{n} {}", r.label()))
+        .collect();
+    let mut s = format!(
+        "Impact-regime map over Ω {} to {} and {axis} {} to {} µm, {} of {} cells",
+        short(g.omega_from),
+        short(g.omega_to),
+        short(g.value_from),
+        short(g.value_to),
+        map.done,
+        g.omega_points * g.value_points
+    );
+    if !parts.is_empty() {
+        s.push_str(": ");
+        s.push_str(&parts.join(", "));
+    }
+    if not_p1 > 0 {
+        s.push_str(&format!("; {not_p1} not period 1"));
+    }
+    if failed > 0 {
+        s.push_str(&format!("; {failed} failed"));
+    }
+    s.push('.');
+    s
+}
+
+/// The Lyapunov curve: its largest exponent and where the motion is chaotic.
+pub fn lyap_label(curve: &[(f64, f64)]) -> String {
+    let Some(&(om, top)) = curve.iter().max_by(|a, b| a.1.total_cmp(&b.1)) else {
+        return "Largest Lyapunov exponent: computing or off.".into();
+    };
+    let chaotic = curve.iter().filter(|(_, l)| *l > 0.01).count();
+    format!(
+        "Largest Lyapunov exponent at {} values of Ω: highest {top:.3} per mesh period at Ω {}; {}.",
+        curve.len(),
+        short(om),
+        if chaotic == 0 {
+            "no chaos (no clearly positive exponent)".to_string()
+        } else {
+            format!("positive (chaos) at {chaotic} of them")
+        }
+    )
+}
+
+/// A view of the motion at the selected Omega (`title` names it): the
+/// range of x, the regime and the period.
+pub fn omega_label(title: &str, r: &OmegaResult) -> String {
+    let lo = r.x_um.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = r.x_um.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let period = match r.period {
+        Some(p) => format!("period {p}"),
+        None => "not periodic within the record".into(),
+    };
+    let range = if lo.is_finite() && hi.is_finite() {
+        format!(
+            ", x from {lo:.0} to {hi:.0} µm (backlash {:.0} µm)",
+            r.backlash_um
+        )
+    } else {
+        String::new()
+    };
+    let preview = if r.preview { " (preview)" } else { "" };
+    format!(
+        "{title} of {} at Ω {}{preview}: {}, {period}{range}.",
+        r.mesh_name,
+        short(r.omega),
+        r.regime.label()
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::protocol::{HbmMesh, HbmSample};
+    use crate::views::fr::{fr_view, HbmStore};
+    use crate::views::ViewContext;
+
+    fn ctx() -> ViewContext {
+        ViewContext {
+            omega_from: 0.1,
+            omega_to: 2.0,
+            selected_omega: 0.5,
+            mesh_label: "s1a1".into(),
+            natural: vec![],
+        }
+    }
+
+    fn point(omega: f64, hi: f64, regime: Regime, stable: bool) -> HbmSample {
+        HbmSample {
+            omega,
+            meshes: vec![HbmMesh {
+                rel_min_um: 0.0,
+                rel_max_um: hi,
+                regime,
+            }],
+            stable: Some(stable),
+            bifurcation: None,
+        }
+    }
+
+    /// The label names the peak and the regimes along Omega, and changes
+    /// when the data does.
+    #[test]
+    fn the_frequency_response_label_says_what_the_plot_shows() {
+        let mut st = HbmStore::new(1, 5);
+        st.add(
+            vec![
+                point(0.1, 100.0, Regime::NoImpact, true),
+                point(0.23, 140.0, Regime::NoImpact, true),
+                point(0.45, 120.0, Regime::SingleSided, true),
+                point(2.0, 110.0, Regime::SingleSided, true),
+            ],
+            1.0,
+            true,
+            None,
+        );
+        let v = fr_view(&st, None, None, Some(0), &[100.0], &ctx());
+        let text = fr_label(&v);
+        assert_eq!(
+            text,
+            "Frequency response of s1a1: peak 140 µm at Ω 0.23; no impact from Ω 0.1 to 0.23; single-sided impact from Ω 0.23 to 2."
+        );
+        let mut more = st.clone();
+        more.add(
+            vec![point(2.0, 300.0, Regime::DoubleSided, true)],
+            1.0,
+            true,
+            None,
+        );
+        let v2 = fr_view(&more, None, None, Some(0), &[100.0], &ctx());
+        assert_ne!(fr_label(&v2), text);
+        assert!(fr_label(&v2).contains("peak 300 µm at Ω 2"));
+        let empty = fr_view(&HbmStore::new(2, 5), None, None, Some(0), &[], &ctx());
+        assert_eq!(fr_label(&empty), "Frequency response of s1a1: computing.");
+    }
+
+    #[test]
+    fn the_lyapunov_label_counts_chaos() {
+        assert!(lyap_label(&[]).contains("computing"));
+        let t = lyap_label(&[(0.5, -0.2), (1.0, 0.3), (1.5, 0.05)]);
+        assert_eq!(
+            t,
+            "Largest Lyapunov exponent at 3 values of Ω: highest 0.300 per mesh period at Ω 1; positive (chaos) at 2 of them."
+        );
+    }
+}

@@ -1,0 +1,303 @@
+//! Where the frequency response's branch is unstable: the Omega ranges no
+//! stable stretch covers, the plain sentence the plot shows there ("no
+//! stable periodic motion between Ω 0.45 and 1.7: the dots are the actual
+//! response") and the regime strip filled from the time-integration dots.
+
+use super::fr::{FrCurvePoint, FrView};
+use crate::protocol::Regime;
+
+/// The Omega ranges, within the branch's reach, where no stretch of the
+/// branch is stable (stretches of unknown stability count as stable): there
+/// the gears do not follow any periodic solution the branch holds. Ranges
+/// narrower than 2 % of the branch's reach are left out.
+pub fn unstable_ranges(points: &[FrCurvePoint]) -> Vec<(f64, f64)> {
+    let lo = points.iter().map(|p| p.omega).fold(f64::INFINITY, f64::min);
+    let hi = points
+        .iter()
+        .map(|p| p.omega)
+        .fold(f64::NEG_INFINITY, f64::max);
+    if points.len() < 2 || hi <= lo {
+        return Vec::new();
+    }
+    let ok = |p: &FrCurvePoint| p.stable != Some(false);
+    let mut stable: Vec<(f64, f64)> = points
+        .windows(2)
+        .filter(|w| ok(&w[0]) && ok(&w[1]))
+        .map(|w| (w[0].omega.min(w[1].omega), w[0].omega.max(w[1].omega)))
+        .collect();
+    stable.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut gaps = Vec::new();
+    let mut reach = lo;
+    for (a, b) in stable {
+        if a > reach {
+            gaps.push((reach, a));
+        }
+        reach = reach.max(b);
+    }
+    if hi > reach {
+        gaps.push((reach, hi));
+    }
+    // Stable islands narrower than 2 % of the reach do not split a range.
+    let mut merged: Vec<(f64, f64)> = Vec::new();
+    for g in gaps {
+        match merged.last_mut() {
+            Some(last) if g.0 - last.1 < 0.02 * (hi - lo) => last.1 = g.1,
+            _ => merged.push(g),
+        }
+    }
+    merged.retain(|&(a, b)| b - a >= 0.02 * (hi - lo));
+    merged
+}
+
+pub use crate::words::short;
+
+/// Ranges in words: "between Ω 0.45 and 1.7" (joined by "and" when several).
+fn ranges_text(ranges: &[(f64, f64)]) -> String {
+    let parts: Vec<String> = ranges
+        .iter()
+        .enumerate()
+        .map(|(i, &(a, b))| {
+            let omega = if i == 0 { "Ω " } else { "" };
+            format!("between {omega}{} and {}", short(a), short(b))
+        })
+        .collect();
+    parts.join(" and ")
+}
+
+/// The plain sentence the plot shows when the current branch is unstable
+/// over a range: no periodic motion the branch holds is stable there, and
+/// the dots are what the gears actually do.
+pub fn unstable_sentence(v: &FrView) -> Option<String> {
+    let br = v.branches.iter().rfind(|b| !b.faded && !b.pinned)?;
+    let ranges = unstable_ranges(&br.points);
+    if ranges.is_empty() {
+        return None;
+    }
+    let tail = if v.overlay.is_empty() {
+        "the actual response (time integration) is being computed"
+    } else {
+        "the dots are the actual response"
+    };
+    Some(format!(
+        "No stable periodic motion {}: {tail}.",
+        ranges_text(&ranges)
+    ))
+}
+
+/// The regime strip where the branch is unstable, from the time-integration
+/// points inside those ranges: each point's regime over the Omegas nearer
+/// to it than to its neighbours, clipped to the range. Returns (regime,
+/// from, to) runs.
+pub fn strip_from_overlay(
+    ranges: &[(f64, f64)],
+    overlay: &[FrCurvePoint],
+) -> Vec<(Regime, f64, f64)> {
+    let mut pts: Vec<&FrCurvePoint> = overlay.iter().filter(|p| p.regime.is_some()).collect();
+    pts.sort_by(|a, b| a.omega.total_cmp(&b.omega));
+    let mut out = Vec::new();
+    for (i, p) in pts.iter().enumerate() {
+        let Some(&(a, b)) = ranges.iter().find(|r| p.omega >= r.0 && p.omega <= r.1) else {
+            continue;
+        };
+        // Half-way to each neighbour; at either end of the dots as far as
+        // the spacing on the other side, so that a sweep still running
+        // does not colour Omegas it has not reached.
+        let prev = i.checked_sub(1).map(|j| pts[j].omega);
+        let next = pts.get(i + 1).map(|q| q.omega);
+        let (left, right) = match (prev, next) {
+            (Some(l), Some(r)) => (0.5 * (l + p.omega), 0.5 * (r + p.omega)),
+            (None, Some(r)) => (p.omega - 0.5 * (r - p.omega), 0.5 * (r + p.omega)),
+            (Some(l), None) => (0.5 * (l + p.omega), p.omega + 0.5 * (p.omega - l)),
+            (None, None) => (a, b),
+        };
+        let (from, to) = (left.max(a), right.min(b));
+        if let (Some(r), true) = (p.regime, to > from) {
+            out.push((r, from, to));
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::protocol::{FrSample, HbmMesh, HbmSample, MeshExtremes};
+    use crate::views::fr::{fr_view, FrStore, HbmStore};
+    use crate::views::ViewContext;
+
+    fn ctx() -> ViewContext {
+        ViewContext {
+            omega_from: 0.1,
+            omega_to: 2.0,
+            selected_omega: 0.5,
+            mesh_label: "s1a1".into(),
+            natural: vec![],
+        }
+    }
+
+    fn hbm_point(omega: f64, meshes: &[(f64, f64)], stable: bool) -> HbmSample {
+        HbmSample {
+            omega,
+            meshes: meshes
+                .iter()
+                .map(|&(lo, hi)| HbmMesh {
+                    rel_min_um: lo,
+                    rel_max_um: hi,
+                    regime: Regime::NoImpact,
+                })
+                .collect(),
+            stable: Some(stable),
+            bifurcation: None,
+        }
+    }
+
+    fn ext(lo: f64, hi: f64) -> MeshExtremes {
+        MeshExtremes {
+            rel_min_um: lo,
+            rel_max_um: hi,
+            regime: Regime::SingleSided,
+            dynamic_factor: None,
+        }
+    }
+
+    fn pt(omega: f64, stable: Option<bool>, regime: Regime) -> FrCurvePoint {
+        FrCurvePoint {
+            omega,
+            max_um: 1.0,
+            min_um: 0.0,
+            stable,
+            regime: Some(regime),
+            period: None,
+            bifurcation: None,
+        }
+    }
+
+    /// The unstable ranges are the Omegas no stable stretch covers: a fold
+    /// whose upper stretch is stable covers its Omegas even though the
+    /// middle stretch there is unstable; tiny gaps are left out.
+    #[test]
+    fn unstable_ranges_are_where_no_stretch_is_stable() {
+        let s = Some(true);
+        let u = Some(false);
+        let r = Regime::NoImpact;
+        // Stable 0.1..0.4, unstable 0.4..1.0 then 1.0..1.7, stable again to 2.
+        let branch: Vec<FrCurvePoint> =
+            [(0.1, s), (0.4, s), (0.7, u), (1.0, u), (1.7, s), (2.0, s)]
+                .iter()
+                .map(|&(o, st)| pt(o, st, r))
+                .collect();
+        assert_eq!(unstable_ranges(&branch), vec![(0.4, 1.7)]);
+        // A fold: up 0.1..0.8 stable, back 0.8..0.5 unstable, up 0.5..2 stable.
+        let fold: Vec<FrCurvePoint> = [(0.1, s), (0.8, s), (0.5, u), (0.5, s), (2.0, s)]
+            .iter()
+            .map(|&(o, st)| pt(o, st, r))
+            .collect();
+        assert!(unstable_ranges(&fold).is_empty());
+        // Unknown stability counts as stable; a gap under 2 % is dropped.
+        let unknown = vec![pt(0.1, None, r), pt(2.0, None, r)];
+        assert!(unstable_ranges(&unknown).is_empty());
+        let tiny = vec![pt(0.0, s, r), pt(1.0, s, r), pt(1.01, u, r), pt(2.0, s, r)];
+        assert_eq!(unstable_ranges(&tiny), vec![(1.0, 2.0)]);
+        let tiny2 = vec![
+            pt(0.0, s, r),
+            pt(1.0, s, r),
+            pt(1.01, u, r),
+            pt(1.02, s, r),
+            pt(2.0, s, r),
+        ];
+        assert!(unstable_ranges(&tiny2).is_empty());
+        // A stable island under 2 % of the reach does not split a range.
+        let island = vec![
+            pt(0.0, s, r),
+            pt(0.5, s, r),
+            pt(0.8, u, r),
+            pt(0.81, s, r),
+            pt(0.82, s, r),
+            pt(1.5, u, r),
+            pt(1.6, s, r),
+            pt(2.0, s, r),
+        ];
+        assert_eq!(unstable_ranges(&island), vec![(0.5, 1.6)]);
+        assert_eq!(short(0.45), "0.45");
+        assert_eq!(short(1.7), "1.7");
+        assert_eq!(short(2.0), "2");
+    }
+
+    /// Inside an unstable range the strip takes each dot's regime over the
+    /// Omegas nearest to it, clipped to the range; dots outside are unused.
+    #[test]
+    fn the_strip_is_filled_from_the_dots_where_the_branch_is_unstable() {
+        let dots = vec![
+            pt(0.2, None, Regime::NoImpact),
+            pt(0.6, None, Regime::SingleSided),
+            pt(1.0, None, Regime::DoubleSided),
+            pt(1.4, None, Regime::SingleSided),
+        ];
+        let runs = strip_from_overlay(&[(0.5, 1.1)], &dots);
+        assert_eq!(runs.len(), 2);
+        assert_eq!(runs[0].0, Regime::SingleSided);
+        assert!((runs[0].1 - 0.5).abs() < 1e-12 && (runs[0].2 - 0.8).abs() < 1e-12);
+        assert_eq!(runs[1].0, Regime::DoubleSided);
+        assert!((runs[1].1 - 0.8).abs() < 1e-12 && (runs[1].2 - 1.1).abs() < 1e-12);
+        assert!(strip_from_overlay(&[], &dots).is_empty());
+        // The last dot of a sweep still running colours half a spacing
+        // beyond it, not the rest of the range.
+        let partial = strip_from_overlay(&[(0.5, 1.9)], &dots[..3]);
+        let last = partial.last().unwrap();
+        assert!(
+            (last.1 - 0.8).abs() < 1e-12 && (last.2 - 1.2).abs() < 1e-12,
+            "{last:?}"
+        );
+    }
+
+    /// The sentence names the range and says what the dots are, or that
+    /// they are coming; a branch stable everywhere gets none.
+    #[test]
+    fn the_plot_says_where_no_periodic_motion_is_stable() {
+        let mut st = HbmStore::new(1, 5);
+        st.add(
+            vec![
+                hbm_point(0.1, &[(80.0, 120.0)], true),
+                hbm_point(0.45, &[(80.0, 120.0)], true),
+                hbm_point(1.0, &[(60.0, 140.0)], false),
+                hbm_point(1.7, &[(80.0, 120.0)], true),
+                hbm_point(2.0, &[(80.0, 120.0)], true),
+            ],
+            1.0,
+            true,
+            None,
+        );
+        let v = fr_view(&st, None, None, Some(0), &[100.0], &ctx());
+        assert_eq!(
+            unstable_sentence(&v).as_deref(),
+            Some("No stable periodic motion between Ω 0.45 and 1.7: the actual response (time integration) is being computed.")
+        );
+        let mut ti = FrStore::new(2, 1, 300, 30);
+        ti.add(vec![FrSample {
+            index: 0,
+            omega: 1.2,
+            meshes: vec![ext(0.0, 10.0)],
+            period: None,
+            error: None,
+        }]);
+        let v = fr_view(&st, None, Some(&ti), Some(0), &[100.0], &ctx());
+        assert_eq!(
+            unstable_sentence(&v).as_deref(),
+            Some("No stable periodic motion between Ω 0.45 and 1.7: the dots are the actual response.")
+        );
+        let mut ok = HbmStore::new(1, 5);
+        ok.add(
+            vec![
+                hbm_point(0.1, &[(1.0, 2.0)], true),
+                hbm_point(2.0, &[(1.0, 2.0)], true),
+            ],
+            1.0,
+            true,
+            None,
+        );
+        assert_eq!(
+            unstable_sentence(&fr_view(&ok, None, None, Some(0), &[100.0], &ctx())),
+            None
+        );
+    }
+}

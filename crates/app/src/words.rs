@@ -1,0 +1,192 @@
+//! Plain words for what a user reads: a key's name as a label ("backlash"),
+//! a setting with its unit ("backlash 60 µm"), an allowed range in a
+//! sentence ("between 0 and 1000 µm") and the message for a value out of
+//! range ("Backlash must be between 0 and 1000 µm."). Key names and Rust
+//! ranges stay in links, JSON and the CLI; the page shows these.
+
+use crate::settings::{view_key, ViewType};
+use solver::keys::{self, KeyType};
+
+/// A unit as people write it (`µm`, `N m`), empty for dimensionless keys.
+pub fn unit(key: &str) -> &'static str {
+    let u = keys::spec(key)
+        .map(|s| s.unit)
+        .or_else(|| view_key(key).map(|v| v.unit))
+        .unwrap_or("-");
+    match u {
+        "-" => "",
+        "um" => "µm",
+        "nm" | "N m" => "N m",
+        other => other,
+    }
+}
+
+/// A key's label for sentences, lower case: the control's label without
+/// its parenthesis ("backlash b"), else the key in words with its unit
+/// suffix dropped ("torque s2").
+pub fn label(key: &str) -> String {
+    if key == "model" {
+        return "model".into();
+    }
+    if let Some(c) = crate::controls::controls()
+        .into_iter()
+        .find(|c| c.key == key)
+    {
+        let l = c.label.split(" (").next().unwrap_or(&c.label).trim();
+        return lower_first(l);
+    }
+    let mut k = key;
+    for suffix in ["_um", "_nm", "_deg", "_n_m", "_kg_m2", "_kg"] {
+        if let Some(s) = k.strip_suffix(suffix) {
+            k = s;
+            break;
+        }
+    }
+    k.replace('_', " ")
+}
+
+fn lower_first(s: &str) -> String {
+    let mut c = s.chars();
+    match c.next() {
+        // Keep symbols and abbreviations (Ω, TE, HBM) as written.
+        Some(_) if c.clone().next().is_some_and(|n| n.is_uppercase()) => s.to_string(),
+        Some(f) => f.to_lowercase().chain(c).collect(),
+        None => String::new(),
+    }
+}
+
+fn upper_first(s: &str) -> String {
+    let mut c = s.chars();
+    match c.next() {
+        Some(f) => f.to_uppercase().chain(c).collect(),
+        None => String::new(),
+    }
+}
+
+/// A number for a sentence: at most two decimals, no trailing zeros (0.45, 1.7, 2).
+pub fn short(x: f64) -> String {
+    let s = format!("{x:.2}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".into()
+    } else {
+        s.to_string()
+    }
+}
+
+fn num(x: f64) -> String {
+    if x != 0.0 && (x.abs() >= 1e6 || x.abs() < 1e-3) {
+        let e = x.log10().floor();
+        let m = x / 10f64.powf(e);
+        format!("{}×10^{}", short(m), e as i32)
+    } else {
+        format!("{x}")
+    }
+}
+
+/// [`label`] without a trailing one-letter symbol: "backlash 60 µm", not
+/// "backlash b 60 µm" (the letter reads as part of the number); Ω and ξ stay.
+fn short_label(key: &str) -> String {
+    let l = label(key);
+    match l.rsplit_once(' ') {
+        Some((head, sym)) if sym.len() == 1 && sym.chars().all(|c| c.is_ascii_alphabetic()) => {
+            head.to_string()
+        }
+        _ => l,
+    }
+}
+
+/// A setting in words: "backlash 60 µm", "bifurcation sweep both".
+pub fn setting(key: &str, value: &str) -> String {
+    let u = unit(key);
+    let v = match value.parse::<f64>() {
+        Ok(x) => num(x),
+        Err(_) => value.to_string(),
+    };
+    let l = short_label(key);
+    if u.is_empty() || value == "auto" {
+        format!("{l} {v}")
+    } else {
+        format!("{l} {v} {u}")
+    }
+}
+
+/// What a key allows, in words: "between 0 and 1000 µm", "a whole number
+/// between 2 and 400", "one of up, down, both".
+pub fn allowed(key: &str) -> String {
+    let u = unit(key);
+    let with_unit = |x: String| if u.is_empty() { x } else { format!("{x} {u}") };
+    if let Some(s) = keys::spec(key) {
+        return match s.ty {
+            KeyType::Float { min, max } => {
+                with_unit(format!("between {} and {}", num(min), num(max)))
+            }
+            KeyType::Int { min, max } => format!("a whole number between {min} and {max}"),
+            KeyType::Choice(w) => format!("one of {}", w.join(", ")),
+            KeyType::FloatOrAuto { min, max } => {
+                with_unit(format!("auto or between {} and {}", num(min), num(max)))
+            }
+        };
+    }
+    match view_key(key).map(|v| v.ty) {
+        Some(ViewType::Float { min, max }) => {
+            with_unit(format!("between {} and {}", num(min), num(max)))
+        }
+        Some(ViewType::Int { min, max }) => format!("a whole number between {min} and {max}"),
+        Some(ViewType::Choice(w)) => format!("one of {}", w.join(", ")),
+        Some(ViewType::Mesh) => "one of the model's meshes, or the worst".into(),
+        None => "a known setting".into(),
+    }
+}
+
+/// The message for a value a key does not allow, in a sentence:
+/// "Backlash must be between 0 and 1000 µm (not 5000)."
+pub fn must_be(key: &str, typed: &str) -> String {
+    let typed = typed.trim();
+    let shown = keys::truncate(typed, 40);
+    let not = if typed.is_empty() {
+        String::new()
+    } else {
+        format!(" (not {shown})")
+    };
+    format!(
+        "{} must be {}{not}.",
+        upper_first(&short_label(key)),
+        allowed(key)
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every key the page can set reads without key names or Rust ranges.
+    #[test]
+    fn settings_and_messages_read_as_sentences() {
+        assert_eq!(setting("backlash_um", "60"), "backlash 60 µm");
+        assert_eq!(
+            must_be("backlash_um", "5000"),
+            "Backlash must be between 0 and 1000 µm (not 5000)."
+        );
+        assert_eq!(
+            must_be("bif_points", "1.5"),
+            "Bifurcation points must be a whole number between 2 and 1000 (not 1.5)."
+        );
+        assert_eq!(unit("damping_ratio"), "");
+        assert!(setting("damping_ratio", "0.1").starts_with("damping ratio ξ"));
+        for k in keys::KEYS
+            .iter()
+            .map(|k| k.name)
+            .chain(crate::settings::VIEW_KEYS.iter().map(|k| k.name))
+        {
+            for text in [must_be(k, "x"), setting(k, "1")] {
+                assert!(
+                    !text.contains("..=")
+                        && (!k.contains('_') || !text.contains(k))
+                        && !text.contains(" um"),
+                    "{text}"
+                );
+            }
+        }
+    }
+}

@@ -1,0 +1,235 @@
+// Browser tests of issue 13, "a page that teaches": the truth by default
+// (time-integration dots on the frequency response with no setting
+// changed), plain words, phones, text alternatives of the canvases and the
+// Copy link confirmation. Screenshots at 1366x768, 1920x1080 and 390x844
+// go to tests/browser/screenshots/ for a human to look at.
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import path from 'node:path';
+import { start, open, status, waitStatus, shot, SHOTS } from './harness.mjs';
+
+/** A screenshot of what the window shows (not the whole page). */
+const screen = (page, name) => page.screenshot({ path: path.join(SHOTS, `${name}.png`) });
+
+const QUICK = 'bif_points=16&transient_periods=120&record_periods=40&map_omega_points=8&map_value_points=4&lyap_points=8';
+const KEY_NAMES = ['backlash_um', 'fr_ti_points', '..=', 'MODEL.md', 'the seed'];
+
+let h;
+before(async () => {
+  h = await start();
+});
+after(async () => {
+  await h?.close();
+});
+
+/** The canvases a screen reader meets: every canvas not hidden from it. */
+async function canvasLabels(page) {
+  return page.evaluate(() =>
+    [...document.querySelectorAll('canvas')]
+      .filter((c) => c.getAttribute('aria-hidden') !== 'true')
+      .map((c) => ({ id: c.id, role: c.getAttribute('role'), label: c.getAttribute('aria-label') ?? '' })),
+  );
+}
+
+/** The page's visible text (closed disclosures and hidden elements excluded). */
+async function visibleText(page) {
+  return page.evaluate(() => document.body.innerText);
+}
+
+test('at the Table 1 defaults the frequency response shows time-integration dots and says where no periodic motion is stable', async () => {
+  const { page, errors } = await open(h.browser, h.url, '');
+  await page.setViewportSize({ width: 1366, height: 768 });
+  // No setting changed: the dots come from the bifurcation sweep's steady states.
+  const s = await waitStatus(page, (x) => x.fr.finished_ms && x.fr_dots >= 10, 240000, 'the branch and ten dots');
+  assert.equal(s.fr_overlay.id, 0, 'no overlay job of its own at the defaults');
+  assert.match(s.query, /^model=ravigneaux&omega=/, 'the defaults');
+  // The plot catches up with the dots (it redraws at each tenth of the sweep).
+  await waitStatus(page, (x) => x.draws[0] > s.draws[0], 120000, 'a redraw with the dots');
+  // The branch is unstable over a range at the defaults: the plot says so in words.
+  const sentence = s.fr_sentence ?? '';
+  assert.match(sentence, /^No stable periodic motion between Ω [\d.]+ and [\d.]+( and between [\d.]+ and [\d.]+)*: the dots are the actual response\.$/);
+  // The issue's finding: no periodic motion is stable over Ω 1.0-1.6 at the defaults.
+  const ranges = [...sentence.matchAll(/([\d.]+) and ([\d.]+)/g)].map((m) => [Number(m[1]), Number(m[2])]);
+  assert.ok(ranges.some(([a, b]) => a <= 1.0 && b >= 1.6), sentence);
+  // The canvas's text alternative says the same, from the same data.
+  await page.waitForFunction(
+    () => /Frequency response of s1a1: peak \d+ µm at Ω [\d.]+.*No stable periodic motion between Ω/.test(document.getElementById('canvas-fr').getAttribute('aria-label') ?? ''),
+    null,
+    { timeout: 30000 },
+  );
+  await page.waitForFunction(() => /the dots are the actual response/.test(document.getElementById('note-fr').textContent) || /Hollow dots: the actual response/.test(document.getElementById('note-fr').textContent), null, { timeout: 10000 });
+  await shot(page.locator('#view-fr'), 'teach-01-fr-defaults-dots');
+  await shot(page, 'teach-02-page-1366x768');
+  await page.evaluate(() => window.scrollTo(0, 0));
+  await screen(page, 'teach-02b-first-screen-1366x768');
+  const text = await visibleText(page);
+  for (const k of KEY_NAMES) assert.ok(!text.includes(k), `visible text contains ${k}`);
+  // The student summary: two sentences, the dynamic factor explained; the figures behind a disclosure.
+  await waitStatus(page, (x) => x.omega_job.finished_ms, 120000, 'the selected-Ω run');
+  await page.waitForFunction(() => /Dynamic factor [\d.]+: the largest tooth force is/.test(document.getElementById('summary').textContent), null, { timeout: 10000 });
+  assert.equal(await page.locator('#summary-expert').isVisible(), false, 'the expert figures start folded');
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('no visible text uses key names or code syntax, in the controls, a comparison and a bad link', async () => {
+  const bad = `backlash_um=5000&${QUICK}`;
+  const { page, errors } = await open(h.browser, h.url, bad);
+  await page.setViewportSize({ width: 1920, height: 1080 });
+  await page.locator('#messages').waitFor({ state: 'visible' });
+  assert.match(await page.textContent('#messages'), /Backlash must be between 0 and 1000 µm \(not 5000\)/);
+  // Every group of controls open, then the comparison A/B.
+  await page.evaluate(() => document.querySelectorAll('details').forEach((d) => { if (!d.classList.contains('howto')) d.open = true; }));
+  await page.click('#pin-a');
+  await page.fill('#num-backlash_um', '160');
+  await page.press('#num-backlash_um', 'Enter');
+  const s = await waitStatus(page, (x) => x.pinned && x.fr.finished_ms && x.bif.finished_ms && x.omega_job.finished_ms, 120000, 'the comparison');
+  assert.deepEqual(s.ab_labels, ['backlash 100 µm', 'backlash 160 µm']);
+  const text = await visibleText(page);
+  for (const k of KEY_NAMES) assert.ok(!text.includes(k), `visible text contains ${k}: …${text.slice(Math.max(0, text.indexOf(k) - 80), text.indexOf(k) + 40)}…`);
+  assert.ok(!/\d um\b/.test(text), 'a unit written as um');
+  await shot(page, 'teach-03-page-1920x1080-comparison');
+  await page.evaluate(() => window.scrollTo(0, 0));
+  await screen(page, 'teach-03b-first-screen-1920x1080');
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('every canvas is an image with a text alternative that follows the data', async () => {
+  const { page, errors } = await open(h.browser, h.url, QUICK);
+  await waitStatus(page, (x) => x.fr.finished_ms && x.bif.finished_ms && x.omega_job.finished_ms && x.map.finished_ms, 180000, 'all views');
+  await page.waitForFunction(() => !document.getElementById('canvas-map').getAttribute('aria-label').includes('waiting'), null, { timeout: 10000 });
+  const before = await canvasLabels(page);
+  assert.ok(before.length >= 9, `${before.length} canvases`);
+  for (const c of before) {
+    assert.equal(c.role, 'img', `${c.id} has no role=img`);
+    assert.ok(c.label.length > 20 && c.label !== 'Loading…', `${c.id}: "${c.label}"`);
+  }
+  // New data, new words: a larger backlash changes the response.
+  const id0 = (await status(page)).fr.id;
+  await page.fill('#num-backlash_um', '40');
+  await page.press('#num-backlash_um', 'Enter');
+  await waitStatus(page, (x) => x.fr.id > id0 && x.fr.finished_ms && x.bif.finished_ms && x.omega_job.finished_ms && x.map.finished_ms, 180000, 'the new state');
+  const changed = ['canvas-fr', 'canvas-bif', 'canvas-phase', 'canvas-time'];
+  await page.waitForFunction(
+    ({ ids, old }) => ids.every((id) => document.getElementById(id).getAttribute('aria-label') !== old[id]),
+    { ids: changed, old: Object.fromEntries(before.map((c) => [c.id, c.label])) },
+    { timeout: 20000 },
+  );
+  // Export buttons say what they export.
+  const names = await page.evaluate(() => [...document.querySelectorAll('.exports button')].map((b) => b.getAttribute('aria-label')));
+  assert.ok(names.includes('Export the frequency response as CSV'), names.join(' | '));
+  assert.ok(names.every((n) => n && n.startsWith('Export the ')), names.join(' | '));
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('on a phone (390x844) nothing scrolls sideways, the settings are a closed drawer and a skip link leads to the plots', async () => {
+  const page = await h.browser.newPage();
+  await page.setViewportSize({ width: 390, height: 844 });
+  await page.goto(`${h.url}?${QUICK}`);
+  await page.waitForFunction(() => typeof window.gearshockStatus === 'function');
+  await waitStatus(page, (x) => x.fr.finished_ms && x.omega_job.finished_ms, 120000, 'the first views');
+  const w = await page.evaluate(() => ({ scroll: document.documentElement.scrollWidth, body: document.body.scrollWidth, view: window.innerWidth }));
+  assert.ok(w.scroll <= 390 && w.body <= 390, JSON.stringify(w));
+  assert.equal(await page.evaluate(() => document.getElementById('drawer').open), false);
+  const skip = page.locator('a.skip-link');
+  assert.equal(await skip.getAttribute('href'), '#views');
+  // The skip link is the first Tab stop and takes the focus to the plots.
+  await page.keyboard.press('Tab');
+  assert.equal(await page.evaluate(() => document.activeElement.className), 'skip-link');
+  await page.keyboard.press('Enter');
+  await page.waitForFunction(() => location.hash === '#views');
+  await page.evaluate(() => window.scrollTo(0, 0));
+  await shot(page, 'teach-04-phone-390x844');
+  await screen(page, 'teach-05-phone-first-screen');
+  await page.close();
+});
+
+test('Copy link confirms for about two seconds', async () => {
+  await h.browser.grantPermissions(['clipboard-read', 'clipboard-write']);
+  const { page, errors } = await open(h.browser, h.url, QUICK);
+  await page.click('#copy-link');
+  const clicked = await page.evaluate(() => performance.now());
+  const toast = page.locator('#copy-done');
+  await toast.waitFor({ state: 'visible', timeout: 5000 });
+  await shot(page.locator('header'), 'teach-06-copy-link');
+  assert.match(await toast.textContent(), /Link copied/);
+  // The state one second after the click: still shown.
+  await page.waitForFunction((t0) => performance.now() - t0 >= 1000, clicked);
+  assert.equal(await toast.isVisible(), true, 'the confirmation is gone within a second');
+  // And then it goes.
+  await toast.waitFor({ state: 'hidden', timeout: 5000 });
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('the Start here tour runs through all its steps, each pointing at its view, and its step is in the link', async () => {
+  const { page, errors } = await open(h.browser, h.url, QUICK);
+  await page.setViewportSize({ width: 1366, height: 768 });
+  await page.click('#tour-start');
+  const expected = [
+    { target: 'schematic', title: /gear set and its meshes/ },
+    { target: 'view-fr', title: /Backlash and the frequency response/ },
+    { target: 'view-map', title: /double-sided/ },
+    { target: 'view-bif', title: /periodic to chaotic/ },
+    { target: 'copy-link', title: /Share/ },
+  ];
+  for (const [i, step] of expected.entries()) {
+    await page.waitForFunction((n) => document.getElementById('tour')?.dataset.step === String(n), i + 1);
+    assert.match(await page.textContent('#tour-title'), step.title);
+    assert.equal(await page.textContent('#tour-count'), `Step ${i + 1} of ${expected.length}`);
+    // The step's view is highlighted and on screen.
+    const target = await page.evaluate(() => [...document.querySelectorAll('.tour-target')].map((e) => e.id));
+    assert.deepEqual(target, [step.target]);
+    await page.waitForFunction((id) => {
+      const r = document.getElementById(id).getBoundingClientRect();
+      return r.bottom > 0 && r.top < window.innerHeight;
+    }, step.target);
+    await page.waitForFunction((n) => location.search.includes(`tour=${n}`), i + 1);
+    if (i === 3) {
+      // This step sets its state: the motion at Ω 1.2.
+      await waitStatus(page, (x) => x.omega === 1.2, 10000, 'Ω 1.2');
+      await shot(page, 'teach-07-tour-step-4');
+    }
+    await page.click('#tour-next');
+  }
+  // Finished: the panel is gone and the link no longer carries a step.
+  await page.locator('#tour').waitFor({ state: 'hidden' });
+  await page.waitForFunction(() => !location.search.includes('tour='));
+  // A link with a step opens the tour there; Skip ends it; Start restarts it.
+  const again = await open(h.browser, h.url, `${QUICK}&tour=3`);
+  await again.page.locator('#tour').waitFor({ state: 'visible' });
+  assert.match(await again.page.textContent('#tour-title'), /double-sided/);
+  await again.page.click('#tour-skip');
+  await again.page.locator('#tour').waitFor({ state: 'hidden' });
+  await again.page.click('#tour-start');
+  await again.page.waitForFunction(() => document.getElementById('tour')?.dataset.step === '1');
+  assert.deepEqual(again.errors, []);
+  await again.page.close();
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('PNG exports are twice the canvas size and SVG exports are the same drawing', async () => {
+  const { page, errors } = await open(h.browser, h.url, QUICK);
+  await waitStatus(page, (x) => x.fr.finished_ms, 120000, 'the frequency response');
+  const [png] = await Promise.all([
+    page.waitForEvent('download'),
+    page.click('#exports-fr button[aria-label="Export the frequency response as a PNG image at twice the size"]'),
+  ]);
+  const buf = await fs.promises.readFile(await png.path());
+  // PNG header: width and height, big-endian, at bytes 16 and 20.
+  assert.equal(buf.readUInt32BE(16), 1520);
+  assert.equal(buf.readUInt32BE(20), 800);
+  const [svg] = await Promise.all([
+    page.waitForEvent('download'),
+    page.click('#exports-fr button[aria-label="Export the frequency response as an SVG picture"]'),
+  ]);
+  assert.match(svg.suggestedFilename(), /^gearshock-fr-s1a1\.svg$/);
+  const text = await fs.promises.readFile(await svg.path(), 'utf8');
+  assert.ok(text.startsWith('<svg') && text.includes('Frequency response'), text.slice(0, 200));
+  assert.deepEqual(errors, []);
+  await page.close();
+});
