@@ -175,6 +175,8 @@ fn the_small_multiples_share_their_axes_and_letter_their_panels() {
         up: true,
         meshes: vec![BifMesh {
             x_um: vec![x],
+            rel_min_um: x,
+            rel_max_um: x,
             regime: Regime::SingleSided,
         }],
         worst_mesh: 0,

@@ -20,7 +20,7 @@ pub fn bif_ranges(panels: &[Panel<BifView>]) -> ((f64, f64), (f64, f64)) {
         .next()
         .map_or((0.0, 1.0), |v| (v.omega_from, v.omega_to));
     let levels: Vec<f64> = ok()
-        .flat_map(|v| contact_levels(&v.backlash_um, &[]))
+        .flat_map(|v| contact_levels(&v.backlash_um, &[], false))
         .collect();
     let y = padded_range(
         ok().flat_map(|v| v.points.iter().map(|p| p.x_um)),

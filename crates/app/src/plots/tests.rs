@@ -249,6 +249,7 @@ fn a_family_overlays_one_colour_per_value_named_in_words() {
         progress: 1.0,
         finished: true,
         branch_notes: Vec::new(),
+        whole_clearance: true,
     };
     let s = svg(|root| draw_fr(root, &fr, "").map(|_| ()));
     for (m, text) in ["TE 0 µm", "TE 20 µm", "TE 30 µm"].iter().enumerate() {
@@ -300,6 +301,8 @@ fn small_multiples_draw_every_panel_with_its_title() {
         }
         assert!(s.contains("shared axes"));
     }
+}
+
 /// The axes fit the data unless the whole clearance is asked for: then
 /// both ±b and zero are in range, and the plots differ.
 #[test]

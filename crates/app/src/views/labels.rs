@@ -231,6 +231,7 @@ mod tests {
             }],
             stable: Some(stable),
             bifurcation: None,
+            piece: 0,
         }
     }
 

@@ -9,8 +9,8 @@
 pub mod bif;
 pub mod family;
 pub mod fr;
-pub mod lyap;
 pub mod labels;
+pub mod lyap;
 pub mod map;
 pub mod omega;
 pub mod redraw;

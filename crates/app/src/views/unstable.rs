@@ -148,6 +148,7 @@ mod tests {
                 .collect(),
             stable: Some(stable),
             bifurcation: None,
+            piece: 0,
         }
     }
 
@@ -169,6 +170,7 @@ mod tests {
             regime: Some(regime),
             period: None,
             bifurcation: None,
+            piece: 0,
         }
     }
 
