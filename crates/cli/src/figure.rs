@@ -191,6 +191,7 @@ fn frf_panels(p: &Preset, members: &[Member], args: &FigureArgs) -> Result<Vec<V
             progress: c.progress(),
             finished: true,
             error: failure.as_ref().map(ToString::to_string),
+            notes: c.notes(),
         });
         for (k, name) in names.iter().enumerate() {
             let j =
