@@ -1,0 +1,161 @@
+//! What the page says about the controller's state in words: each view's
+//! status and text alternative, the student summary and the expert details,
+//! what a view without data shows, the messages box and the highlighted mesh.
+
+use super::*;
+
+impl Controller {
+    /// The status of the job whose data `view` shows.
+    pub fn view_status(&self, view: crate::views::ViewId) -> &JobStatus {
+        match view.spec().data {
+            crate::views::ExportKind::Fr => &self.fr_status,
+            crate::views::ExportKind::Bif => &self.bif_status,
+            crate::views::ExportKind::Omega => &self.omega_status,
+            crate::views::ExportKind::Map => &self.map_status,
+            crate::views::ExportKind::Lyap => &self.lyap_status,
+        }
+    }
+
+    /// The text alternative of a view's canvas (its `aria-label`), from
+    /// the data it draws.
+    pub fn canvas_label(&self, view: crate::views::ViewId) -> String {
+        use crate::views::{labels, ExportKind};
+        let title = view.spec().title;
+        match view.spec().data {
+            ExportKind::Fr => labels::fr_label(&self.fr_view()),
+            ExportKind::Bif => labels::bif_label(&self.bif_view()),
+            ExportKind::Map => labels::map_label(&self.map),
+            ExportKind::Lyap => labels::lyap_label(&self.lyap.curve()),
+            ExportKind::Omega => match (&self.omega, &self.omega_status.error) {
+                (_, Some(e)) => format!("{title}: not computed: {e}"),
+                (Some(r), None) => labels::omega_label(title, r),
+                (None, None) => format!("{title}: computing."),
+            },
+        }
+    }
+
+    /// The text alternative of the gear-set animation.
+    pub fn anim_label(&self) -> String {
+        match &self.omega {
+            Some(r) => format!(
+                "The gear set in slow motion at Ω {}, each mesh coloured by its contact state; mesh {}: {}.",
+                crate::views::unstable::short(r.omega),
+                r.mesh_name,
+                r.regime.label()
+            ),
+            None => "The gear set in slow motion: computing the motion.".into(),
+        }
+    }
+
+    /// The two-sentence summary for students at the selected Omega (the
+    /// regime, whether the motion repeats, the dynamic factor explained);
+    /// the expert figures are [`Controller::summary_text`].
+    pub fn student_summary(&self) -> String {
+        match (&self.omega, &self.omega_status.error) {
+            (_, Some(e)) => format!("Not computed: {e}"),
+            (Some(r), None) => crate::views::omega::student_summary(r),
+            (None, None) => "Computing the motion at the selected Ω…".into(),
+        }
+    }
+
+    /// The summary line at the selected Omega: the result's figures and the
+    /// planet phasing clause, or why there is none yet; the model's warnings.
+    pub fn summary_text(&self) -> String {
+        let natural = self.view_context().natural;
+        let text = match (&self.omega, &self.omega_status.error) {
+            (_, Some(e)) => format!("Not computed: {e}"),
+            (Some(r), None) => {
+                let mut s = crate::views::omega::summary_line(r, &natural);
+                if let Ok(m) = &self.model {
+                    let line = crate::views::omega::phasing_line(m, &self.settings.params, Some(r));
+                    if let Some(line) = line {
+                        s.push(' ');
+                        s.push_str(&line);
+                    }
+                }
+                if self.omega_status.running() && !r.preview {
+                    s.push_str(" Updating…");
+                }
+                s
+            }
+            (None, None) => "Computing the steady state at the selected Ω…".into(),
+        };
+        match &self.model {
+            Ok(m) if !m.system.warnings.is_empty() => {
+                format!("{text} Model warnings: {}", m.system.warnings.join("; "))
+            }
+            _ => text,
+        }
+    }
+
+    /// What `view` shows instead of a plot, if it has nothing to plot: why
+    /// (its job failed before any data, it waits for the workers, it is
+    /// switched off, its first result is computing).
+    pub fn placeholder(&self, view: crate::views::ViewId) -> Option<String> {
+        use crate::views::ExportKind;
+        let st = self.view_status(view);
+        let not_computed = |e: &String| format!("Not computed: {e}");
+        match view.spec().data {
+            ExportKind::Fr => {
+                let e = st.error.as_ref()?;
+                let v = self.fr_view();
+                let has_data =
+                    v.branches.iter().any(|b| !b.points.is_empty()) || !v.overlay.is_empty();
+                (!has_data).then(|| not_computed(e))
+            }
+            ExportKind::Bif => st
+                .error
+                .as_ref()
+                .filter(|_| self.bif.samples.is_empty())
+                .map(not_computed),
+            ExportKind::Map => {
+                (self.map.done == 0 && (st.error.is_some() || self.map.grid.is_none())).then(|| {
+                    st.error
+                        .as_ref()
+                        .map_or_else(|| "Waiting for the Web Workers…".to_string(), not_computed)
+                })
+            }
+            ExportKind::Lyap if self.lyap.id == 0 => Some(
+                "Off: set Lyapunov Ω points above 0 (Regime map and Lyapunov exponent).".into(),
+            ),
+            ExportKind::Lyap => st
+                .error
+                .as_ref()
+                .filter(|_| self.lyap.points.is_empty())
+                .map(not_computed),
+            ExportKind::Omega => match (&self.omega, &st.error) {
+                (_, Some(e)) => Some(not_computed(e)),
+                (None, None) => Some(crate::views::omega::computing_message(
+                    self.settings.view.omega,
+                )),
+                (Some(_), None) => None,
+            },
+        }
+    }
+
+    /// The messages box's text: the first eight messages, how many more,
+    /// and how to dismiss them; empty when there is none.
+    pub fn messages_text(&self) -> String {
+        let issues = &self.issues;
+        if issues.is_empty() {
+            return String::new();
+        }
+        let shown: Vec<&str> = issues.iter().take(8).map(String::as_str).collect();
+        let mut text = shown.join("\n");
+        if issues.len() > 8 {
+            text.push_str(&format!("\n… and {} more", issues.len() - 8));
+        }
+        text.push_str("\n(click to dismiss)");
+        text
+    }
+
+    /// The mesh the schematic highlights: the chosen one, or the worst of
+    /// the last result.
+    pub fn highlighted_mesh(&self) -> String {
+        match (&self.settings.view.mesh, &self.omega) {
+            (MeshSel::Named(n), _) => n.clone(),
+            (MeshSel::Worst, Some(r)) => r.mesh_name.clone(),
+            _ => String::new(),
+        }
+    }
+}
