@@ -33,8 +33,16 @@ async function canvasLabels(page) {
 }
 
 /** The page's visible text (closed disclosures and hidden elements excluded). */
+// The page's visible words, less command lines (<code>, <pre>): those are
+// the command line's own syntax, which may name keys (as links and JSON do).
 async function visibleText(page) {
-  return page.evaluate(() => document.body.innerText);
+  return page.evaluate(() => {
+    const code = [...document.querySelectorAll('code, pre')].map((e) => [e, e.style.display]);
+    code.forEach(([e]) => { e.style.display = 'none'; });
+    const text = document.body.innerText;
+    code.forEach(([e, d]) => { e.style.display = d; });
+    return text;
+  });
 }
 
 test('at the Table 1 defaults the frequency response shows time-integration dots and says where no periodic motion is stable', async () => {
