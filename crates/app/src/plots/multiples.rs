@@ -31,10 +31,15 @@ pub fn bif_ranges(panels: &[Panel<BifView>]) -> ((f64, f64), (f64, f64)) {
 }
 
 /// The shared axes of phase-plane panels: one x range holding every
-/// orbit and ±b, one velocity range holding every orbit.
+/// orbit, one velocity range holding every orbit.
 pub fn phase_ranges(panels: &[Panel<OmegaResult>]) -> ((f64, f64), (f64, f64)) {
     let ok = || panels.iter().filter_map(|p| p.data.as_ref().ok());
-    let levels: Vec<f64> = ok().flat_map(|r| [r.backlash_um, -r.backlash_um]).collect();
+    // The axes fit the orbits, as every plot's do (the ±b lines are drawn
+    // where they fall in range): at b = 200 µm an orbit near +b would
+    // otherwise fill a sliver of a panel that spans the whole clearance.
+    let levels: Vec<f64> = ok()
+        .flat_map(|r| contact_levels(&[r.backlash_um], &[], false))
+        .collect();
     let x = padded_range(ok().flat_map(|r| r.x_um.iter().copied()), &levels, 20.0);
     let vmax = ok()
         .flat_map(|r| r.xdot_m_s.iter())
@@ -198,7 +203,7 @@ pub fn draw_bif_panels<DB: DrawingBackend>(
             k == 0,
         )?;
         for &b in &v.backlash_um {
-            for level in [b, -b] {
+            for level in [b, -b].into_iter().filter(|l| (y.0..=y.1).contains(l)) {
                 dashed(
                     &mut chart,
                     vec![(x.0, level), (x.1, level)],
@@ -287,7 +292,8 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
         let t = format!("{}: {period}", p.title);
         let mut chart = panel_chart(area, &t, (x, y), ("x (µm)", "ẋ (m/s)"), k == 0)?;
         let b = r.backlash_um;
-        for level in [b, -b] {
+        // The contact lines where they fall in range (the axes fit the data).
+        for level in [b, -b].into_iter().filter(|l| (x.0..=x.1).contains(l)) {
             dashed(
                 &mut chart,
                 vec![(level, y.0), (level, y.1)],
