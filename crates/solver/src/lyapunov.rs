@@ -23,8 +23,8 @@
 
 use crate::dynamics::MeshOde;
 use crate::error::{Result, SolverError};
-use crate::ode::Dopri5;
-use crate::steady::{steady_state, Model, SteadyOptions};
+use crate::ode::{Dopri5, Tolerances};
+use crate::steady::{Model, SteadyOptions, SteadyRun};
 use std::f64::consts::PI;
 
 /// Options of a Lyapunov-exponent computation.
@@ -131,134 +131,320 @@ fn dist2(a: &[f64], b: &[f64]) -> f64 {
 
 /// Computes the largest Lyapunov exponent of the stroboscopic map at
 /// `opts.omega`, from `start` (or the static equilibrium).
+///
+/// The one-shot form of [`LyapunovRun`]: the same run, without pauses.
 pub fn largest_exponent(
     model: &Model,
     opts: &LyapunovOptions,
     start: Option<&[f64]>,
 ) -> Result<Lyapunov> {
-    opts.validate()?;
-    let sys = &model.system;
-    let omega_rad_s = opts.omega * sys.omega_ref_rad_s;
-    let period = 2.0 * PI / omega_rad_s;
-    // The transient, by the steady-state run (it ends at a whole period).
-    let mut so = SteadyOptions::new(opts.omega);
-    so.transient_periods = opts.transient_periods;
-    so.record_periods = 1;
-    so.samples_per_period = 0;
-    let ss = steady_state(model, &so, start)?;
-    let y0 = ss.end_state;
-
-    let tol = crate::steady::tolerances(sys, opts.omega, opts.rtol, opts.atol_m, period, 1e-14);
-    let lengths = sys.dof_length_m();
-    let n = y0.len();
-    let dof = sys.dof();
-
-    // The neighbour: displaced along a fixed mixed direction (every
-    // coordinate, positions and rates), scaled to d0 in mesh space.
-    let mut ode_a = MeshOde::new(sys, omega_rad_s);
-    let mut ode_b = MeshOde::new(sys, omega_rad_s);
-    let mut pa = Vec::new();
-    let mut pb = Vec::new();
-    mesh_point(&ode_a, 0.0, &y0, omega_rad_s, &mut pa);
-    let mut y1 = y0.clone();
-    for (i, v) in y1.iter_mut().enumerate() {
-        let scale = if i < dof {
-            lengths[i]
-        } else {
-            lengths[i - dof] * omega_rad_s
-        };
-        *v += scale * 1e-6 * (1.0 + 0.37 * i as f64).sin();
+    let mut run = LyapunovRun::new(model, opts, start)?;
+    loop {
+        if let Some(l) = run.advance(model, u64::MAX)? {
+            return Ok(l);
+        }
     }
-    mesh_point(&ode_b, 0.0, &y1, omega_rad_s, &mut pb);
-    let d_init = dist2(&pa, &pb);
-    if !(d_init > 0.0 && d_init.is_finite()) {
-        return Err(SolverError::Singular {
-            what: "Lyapunov: the initial perturbation has no mesh-space component".into(),
-        });
-    }
-    let d0 = opts.perturbation_um;
-    for i in 0..n {
-        y1[i] = y0[i] + (y1[i] - y0[i]) * d0 / d_init;
+}
+
+/// A Lyapunov-exponent computation that can pause and resume:
+/// [`LyapunovRun::advance`] takes at most a given number of integrator
+/// steps (of the transient's run and of both trajectories together) and
+/// returns, keeping the integrators' states, the accumulated logarithms and
+/// the period count, so a caller (the page's worker) can serve newer work
+/// between slices. Any sequence of slices computes the same bits as
+/// [`largest_exponent`], which is one unlimited slice.
+#[derive(Debug, Clone)]
+pub struct LyapunovRun {
+    opts: LyapunovOptions,
+    steps: u64,
+    phase: Phase,
+}
+
+/// Where a [`LyapunovRun`] stands.
+#[derive(Debug, Clone)]
+enum Phase {
+    /// The transient, by a steady-state run (it ends at a whole period).
+    Transient(Box<SteadyRun>),
+    /// The two trajectories, measured period by period.
+    Measure(Box<Measure>),
+    /// Finished or failed: nothing left to do.
+    Done,
+}
+
+/// The rigid-body mode `phi`, `M phi` and `phi' M phi`, to remove a
+/// separation along the free rotation (M-orthogonally).
+#[derive(Debug, Clone)]
+struct Rigid {
+    phi: Vec<f64>,
+    m_phi: Vec<f64>,
+    norm: f64,
+}
+
+impl Rigid {
+    fn of(model: &Model) -> Option<Self> {
+        let sys = &model.system;
+        let dof = sys.dof();
+        let phi = model
+            .modes
+            .modes
+            .iter()
+            .find(|m| m.kind == crate::modal::ModeKind::RigidBody)
+            .map(|m| m.shape.clone())?;
+        let m_phi: Vec<f64> = (0..dof)
+            .map(|i| (0..dof).map(|k| sys.mass[(i, k)] * phi[k]).sum())
+            .collect();
+        let norm: f64 = (0..dof).map(|i| phi[i] * m_phi[i]).sum();
+        Some(Rigid { phi, m_phi, norm })
     }
 
-    // The free rigid-body rotation: a separation along it is invisible in
-    // mesh space and never decays, and the pull-back would inflate it
-    // without bound; it is removed (M-orthogonally) at every pull-back.
-    let rigid: Option<Vec<f64>> = model
-        .modes
-        .modes
-        .iter()
-        .find(|m| m.kind == crate::modal::ModeKind::RigidBody)
-        .map(|m| m.shape.clone());
-    let project_out_rigid = |dy: &mut [f64]| {
-        if let Some(phi) = &rigid {
-            let m_phi: Vec<f64> = (0..dof)
-                .map(|i| (0..dof).map(|k| sys.mass[(i, k)] * phi[k]).sum())
-                .collect();
-            let norm: f64 = (0..dof).map(|i| phi[i] * m_phi[i]).sum();
-            if norm > 0.0 {
-                for half in [0, dof] {
-                    let c: f64 = (0..dof).map(|i| m_phi[i] * dy[half + i]).sum::<f64>() / norm;
-                    for i in 0..dof {
-                        dy[half + i] -= c * phi[i];
-                    }
+    /// Removes the rigid-body component of positions and rates of `dy`.
+    fn project_out(rigid: Option<&Self>, dy: &mut [f64]) {
+        let Some(r) = rigid else { return };
+        let dof = r.phi.len();
+        if r.norm > 0.0 {
+            for half in [0, dof] {
+                let c: f64 = (0..dof).map(|i| r.m_phi[i] * dy[half + i]).sum::<f64>() / r.norm;
+                for i in 0..dof {
+                    dy[half + i] -= c * r.phi[i];
                 }
             }
         }
-    };
-    {
+    }
+}
+
+/// The measured phase: the reference `a`, the neighbour `b`, and the sums.
+#[derive(Debug, Clone)]
+struct Measure {
+    ode_a: MeshOde,
+    ode_b: MeshOde,
+    a: Dopri5,
+    b: Dopri5,
+    tol: Tolerances,
+    rigid: Option<Rigid>,
+    omega_rad_s: f64,
+    period: f64,
+    d0: f64,
+    budget: u64,
+    bound_m: f64,
+    /// The period being integrated (1-based).
+    p: u32,
+    /// Whether `a` has reached the end of period `p` and been checked.
+    a_done: bool,
+    sum: f64,
+    running: Vec<f64>,
+    pa: Vec<f64>,
+    pb: Vec<f64>,
+}
+
+impl LyapunovRun {
+    /// A run of `model` with `opts` from `start` (or the static
+    /// equilibrium), before its first step; bad options are refused here.
+    pub fn new(model: &Model, opts: &LyapunovOptions, start: Option<&[f64]>) -> Result<Self> {
+        opts.validate()?;
+        let mut so = SteadyOptions::new(opts.omega);
+        so.transient_periods = opts.transient_periods;
+        so.record_periods = 1;
+        so.samples_per_period = 0;
+        let transient = SteadyRun::new(model, &so, start)?;
+        Ok(LyapunovRun {
+            opts: opts.clone(),
+            steps: 0,
+            phase: Phase::Transient(Box::new(transient)),
+        })
+    }
+
+    /// Integrator steps taken so far (the transient's and both trajectories').
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    /// Whether the run has returned its result or failed.
+    pub fn is_done(&self) -> bool {
+        matches!(self.phase, Phase::Done)
+    }
+
+    /// Continues the run for at most `max_steps` integrator steps (at least
+    /// one): `Ok(Some(result))` once it is complete, `Ok(None)` if paused.
+    /// `model` must be the run's own (the one given to [`LyapunovRun::new`]).
+    /// After the result or an error the run is done, and further calls
+    /// return `Ok(None)` without work.
+    pub fn advance(&mut self, model: &Model, max_steps: u64) -> Result<Option<Lyapunov>> {
+        let r = self.advance_inner(model, max_steps.max(1));
+        if !matches!(r, Ok(None)) {
+            self.phase = Phase::Done;
+        }
+        r
+    }
+
+    fn advance_inner(&mut self, model: &Model, max_steps: u64) -> Result<Option<Lyapunov>> {
+        let mut left = max_steps;
+        loop {
+            match &mut self.phase {
+                Phase::Done => return Ok(None),
+                Phase::Transient(run) => {
+                    if left == 0 {
+                        return Ok(None);
+                    }
+                    let before = run.steps();
+                    let out = run.advance(model, left);
+                    let taken = run.steps() - before;
+                    self.steps += taken;
+                    left -= taken.min(left);
+                    match out? {
+                        None => return Ok(None),
+                        Some(ss) => {
+                            let m = Measure::start(model, &self.opts, &ss.end_state)?;
+                            self.phase = Phase::Measure(Box::new(m));
+                        }
+                    }
+                }
+                Phase::Measure(m) => {
+                    return m.advance(model, &self.opts, &mut self.steps, left);
+                }
+            }
+        }
+    }
+}
+
+impl Measure {
+    /// The measured phase from the transient's end state `y0` (at a whole
+    /// period, taken as time 0): the neighbour displaced along a fixed mixed
+    /// direction (every coordinate, positions and rates), scaled to the
+    /// separation in mesh space, without a rigid-body component.
+    fn start(model: &Model, opts: &LyapunovOptions, y0: &[f64]) -> Result<Self> {
+        let sys = &model.system;
+        let omega_rad_s = opts.omega * sys.omega_ref_rad_s;
+        let period = 2.0 * PI / omega_rad_s;
+        let tol = crate::steady::tolerances(sys, opts.omega, opts.rtol, opts.atol_m, period, 1e-14);
+        let lengths = sys.dof_length_m();
+        let n = y0.len();
+        let dof = sys.dof();
+        let mut ode_a = MeshOde::new(sys, omega_rad_s);
+        let mut ode_b = MeshOde::new(sys, omega_rad_s);
+        let mut pa = Vec::new();
+        let mut pb = Vec::new();
+        mesh_point(&ode_a, 0.0, y0, omega_rad_s, &mut pa);
+        let mut y1 = y0.to_vec();
+        for (i, v) in y1.iter_mut().enumerate() {
+            let scale = if i < dof {
+                lengths[i]
+            } else {
+                lengths[i - dof] * omega_rad_s
+            };
+            *v += scale * 1e-6 * (1.0 + 0.37 * i as f64).sin();
+        }
+        mesh_point(&ode_b, 0.0, &y1, omega_rad_s, &mut pb);
+        let d_init = dist2(&pa, &pb);
+        if !(d_init > 0.0 && d_init.is_finite()) {
+            return Err(SolverError::Singular {
+                what: "Lyapunov: the initial perturbation has no mesh-space component".into(),
+            });
+        }
+        let d0 = opts.perturbation_um;
+        for i in 0..n {
+            y1[i] = y0[i] + (y1[i] - y0[i]) * d0 / d_init;
+        }
+        // The free rigid-body rotation: a separation along it is invisible
+        // in mesh space and never decays, and the pull-back would inflate it
+        // without bound; it is removed (M-orthogonally) at every pull-back.
+        let rigid = Rigid::of(model);
         let mut dy: Vec<f64> = (0..n).map(|i| y1[i] - y0[i]).collect();
-        project_out_rigid(&mut dy);
+        Rigid::project_out(rigid.as_ref(), &mut dy);
         for i in 0..n {
             y1[i] = y0[i] + dy[i];
         }
+        let a = Dopri5::new(&mut ode_a, 0.0, y0, period / 200.0, tol.clone());
+        let b = Dopri5::new(&mut ode_b, 0.0, &y1, period / 200.0, tol.clone());
+        Ok(Measure {
+            ode_a,
+            ode_b,
+            a,
+            b,
+            tol,
+            rigid,
+            omega_rad_s,
+            period,
+            d0,
+            budget: 200_000u64 * (u64::from(opts.periods) + 1),
+            bound_m: model.divergence_bound_m(),
+            p: 1,
+            a_done: false,
+            sum: 0.0,
+            running: Vec::with_capacity(opts.periods as usize),
+            pa,
+            pb,
+        })
     }
 
-    let budget = 200_000u64 * (u64::from(opts.periods) + 1);
-    let mut a = Dopri5::new(&mut ode_a, 0.0, &y0, period / 200.0, tol.clone());
-    let mut b = Dopri5::new(&mut ode_b, 0.0, &y1, period / 200.0, tol.clone());
-    let bound_m = model.divergence_bound_m();
-    let mut sum = 0.0;
-    let mut running = Vec::with_capacity(opts.periods as usize);
-    for p in 1..=opts.periods {
-        let t_end = f64::from(p) * period;
-        while a.t() < t_end {
-            a.step(&mut ode_a, t_end)
-                .map_err(|e| model.explain_failure(&ode_a, &a, e))?;
+    /// Continues for at most `left` integrator steps, counted in `steps`.
+    fn advance(
+        &mut self,
+        model: &Model,
+        opts: &LyapunovOptions,
+        steps: &mut u64,
+        mut left: u64,
+    ) -> Result<Option<Lyapunov>> {
+        let n = self.a.y().len();
+        while self.p <= opts.periods {
+            let t_end = f64::from(self.p) * self.period;
+            if !self.a_done {
+                while self.a.t() < t_end {
+                    if left == 0 {
+                        return Ok(None);
+                    }
+                    self.a
+                        .step(&mut self.ode_a, t_end)
+                        .map_err(|e| model.explain_failure(&self.ode_a, &self.a, e))?;
+                    left -= 1;
+                    *steps += 1;
+                }
+                model.check_bounded(&self.ode_a, t_end, self.a.y(), self.bound_m)?;
+                self.a_done = true;
+            }
+            while self.b.t() < t_end {
+                if left == 0 {
+                    return Ok(None);
+                }
+                self.b
+                    .step(&mut self.ode_b, t_end)
+                    .map_err(|e| model.explain_failure(&self.ode_b, &self.b, e))?;
+                left -= 1;
+                *steps += 1;
+            }
+            if self.a.stats.steps > self.budget || self.b.stats.steps > self.budget {
+                return Err(SolverError::TooManySteps {
+                    max_steps: self.budget,
+                    t_s: t_end,
+                });
+            }
+            let w = self.omega_rad_s;
+            mesh_point(&self.ode_a, t_end, self.a.y(), w, &mut self.pa);
+            mesh_point(&self.ode_b, t_end, self.b.y(), w, &mut self.pb);
+            let d = dist2(&self.pa, &self.pb);
+            if !(d.is_finite() && d > 0.0) {
+                return Err(SolverError::NonFinite { t_s: t_end });
+            }
+            self.sum += (d / self.d0).ln();
+            self.running.push(self.sum / f64::from(self.p));
+            // Pull the neighbour back to d0 along the separation and
+            // restart its integrator there.
+            let ya = self.a.y();
+            let yb = self.b.y();
+            let mut dy: Vec<f64> = (0..n).map(|i| (yb[i] - ya[i]) * self.d0 / d).collect();
+            Rigid::project_out(self.rigid.as_ref(), &mut dy);
+            let yb: Vec<f64> = (0..n).map(|i| ya[i] + dy[i]).collect();
+            let h = self.b.h();
+            self.b = Dopri5::new(&mut self.ode_b, t_end, &yb, h, self.tol.clone());
+            self.p += 1;
+            self.a_done = false;
         }
-        model.check_bounded(&ode_a, t_end, a.y(), bound_m)?;
-        while b.t() < t_end {
-            b.step(&mut ode_b, t_end)
-                .map_err(|e| model.explain_failure(&ode_b, &b, e))?;
-        }
-        if a.stats.steps > budget || b.stats.steps > budget {
-            return Err(SolverError::TooManySteps {
-                max_steps: budget,
-                t_s: t_end,
-            });
-        }
-        mesh_point(&ode_a, t_end, a.y(), omega_rad_s, &mut pa);
-        mesh_point(&ode_b, t_end, b.y(), omega_rad_s, &mut pb);
-        let d = dist2(&pa, &pb);
-        if !(d.is_finite() && d > 0.0) {
-            return Err(SolverError::NonFinite { t_s: t_end });
-        }
-        sum += (d / d0).ln();
-        running.push(sum / f64::from(p));
-        // Pull the neighbour back to d0 along the separation and restart
-        // its integrator there.
-        let ya = a.y().to_vec();
-        let mut dy: Vec<f64> = (0..n).map(|i| (b.y()[i] - ya[i]) * d0 / d).collect();
-        project_out_rigid(&mut dy);
-        let yb: Vec<f64> = (0..n).map(|i| ya[i] + dy[i]).collect();
-        b = Dopri5::new(&mut ode_b, t_end, &yb, b.h(), tol.clone());
+        let per_period = self.sum / f64::from(opts.periods);
+        Ok(Some(Lyapunov {
+            omega: opts.omega,
+            per_period,
+            per_s: per_period / self.period,
+            running: std::mem::take(&mut self.running),
+            end_state: self.a.y().to_vec(),
+        }))
     }
-    let per_period = sum / f64::from(opts.periods);
-    Ok(Lyapunov {
-        omega: opts.omega,
-        per_period,
-        per_s: per_period / period,
-        running,
-        end_state: a.y().to_vec(),
-    })
 }

@@ -7,12 +7,14 @@
 //! Rows are independent: shard `i` of `n` computes rows `i, i + n, ...`, so
 //! workers or cluster jobs split a map by rows and [`canonical_cells`]
 //! restores the order. Work per call is bounded: [`RegimeMap::advance`]
-//! computes at most `k` cells.
+//! computes at most `k` cells, and [`RegimeMap::advance_steps`] at most a
+//! given number of integrator steps of one cell's steady state (paused and
+//! resumed without changing a bit).
 
 use crate::error::{Result, SolverError};
 use crate::keys::{self, Value};
 use crate::params::ModelParams;
-use crate::steady::{steady_state, Impact, Model, SteadyOptions};
+use crate::steady::{Impact, Model, SteadyOptions, SteadyRun};
 use crate::sweep::severity;
 
 /// What to compute.
@@ -145,6 +147,8 @@ pub struct RegimeMap {
     next_column: u32,
     model: Option<Model>,
     state: Option<Vec<f64>>,
+    /// The cell in progress of [`Self::advance_steps`].
+    pending: Option<SteadyRun>,
     done: usize,
 }
 
@@ -169,6 +173,7 @@ impl RegimeMap {
             next_column: 0,
             model: None,
             state: None,
+            pending: None,
             done: 0,
         })
     }
@@ -196,84 +201,115 @@ impl RegimeMap {
     /// Computes up to `k` further cells. A failing cell is reported in its
     /// `error` field and the row goes on from the static equilibrium.
     pub fn advance(&mut self, k: usize) -> Vec<MapCell> {
-        let mut out = Vec::with_capacity(k);
+        let mut out = Vec::with_capacity(k.min(self.total() - self.done));
         while out.len() < k && !self.is_finished() {
-            let row = self.rows[self.next_row];
-            let value = self.spec.value(row);
-            let column = self.next_column;
-            let omega = self.spec.omega(column);
-            let cell = |impact, period, error| MapCell {
-                row,
-                column,
-                omega,
-                value,
-                impact,
-                period,
-                error,
-            };
-            if self.model.is_none() {
-                let mut p = self.base.clone();
-                let built = keys::set(&mut p, &self.spec.key, Value::Num(value))
-                    .and_then(|()| Model::new(&p));
-                match built {
-                    Ok(m) => self.model = Some(m),
-                    Err(e) => {
-                        // Skip the row: every cell carries the error.
-                        for c in column..self.spec.omega_points {
-                            let omega = self.spec.omega(c);
-                            out.push(MapCell {
-                                row,
-                                column: c,
-                                omega,
-                                value,
-                                impact: Impact::None,
-                                period: None,
-                                error: Some(e.to_string()),
-                            });
-                            self.done += 1;
-                        }
-                        self.finish_row();
-                        continue;
-                    }
-                }
-            }
-            let Some(model) = self.model.as_ref() else {
-                break;
-            };
-            let mut opts = self.spec.steady.clone();
-            opts.omega = omega;
-            opts.samples_per_period = 0;
-            opts.history_meshes.clear();
-            let result = steady_state(model, &opts, self.state.as_deref());
-            out.push(match result {
-                Ok(ss) => {
-                    let impact = match self.spec.mesh {
-                        Some(j) => ss.meshes.get(j).map_or(Impact::None, |m| m.impact),
-                        None => ss
-                            .meshes
-                            .iter()
-                            .map(|m| m.impact)
-                            .max_by_key(|&i| severity(i))
-                            .unwrap_or(Impact::None),
-                    };
-                    self.state = Some(ss.end_state);
-                    cell(impact, ss.period, None)
-                }
-                Err(e) => {
-                    self.state = None;
-                    cell(Impact::None, None, Some(e.to_string()))
-                }
-            });
-            self.done += 1;
-            self.next_column += 1;
-            if self.next_column >= self.spec.omega_points {
-                self.finish_row();
-            }
+            out.extend(self.advance_steps(u64::MAX));
         }
         out
     }
 
+    /// Continues the next cell's steady state for at most `max_steps`
+    /// integrator steps ([`SteadyRun::advance`]): the cells completed (one,
+    /// or a whole row's when its model cannot be built), none while the
+    /// cell is paused or when the map is finished. Cells are the same bits
+    /// as [`Self::advance`]'s, whatever the slices.
+    pub fn advance_steps(&mut self, max_steps: u64) -> Vec<MapCell> {
+        if self.is_finished() {
+            return Vec::new();
+        }
+        let row = self.rows[self.next_row];
+        let value = self.spec.value(row);
+        let column = self.next_column;
+        let omega = self.spec.omega(column);
+        let cell = |impact, period, error| MapCell {
+            row,
+            column,
+            omega,
+            value,
+            impact,
+            period,
+            error,
+        };
+        if self.model.is_none() {
+            let mut p = self.base.clone();
+            let built =
+                keys::set(&mut p, &self.spec.key, Value::Num(value)).and_then(|()| Model::new(&p));
+            match built {
+                Ok(m) => self.model = Some(m),
+                Err(e) => {
+                    // Skip the row: every cell carries the error.
+                    let cells: Vec<MapCell> = (column..self.spec.omega_points)
+                        .map(|c| MapCell {
+                            row,
+                            column: c,
+                            omega: self.spec.omega(c),
+                            value,
+                            impact: Impact::None,
+                            period: None,
+                            error: Some(e.to_string()),
+                        })
+                        .collect();
+                    self.done += cells.len();
+                    self.finish_row();
+                    return cells;
+                }
+            }
+        }
+        let Some(model) = self.model.as_ref() else {
+            return Vec::new();
+        };
+        let run = match self.pending.as_mut() {
+            Some(run) => run,
+            None => {
+                let mut opts = self.spec.steady.clone();
+                opts.omega = omega;
+                opts.samples_per_period = 0;
+                opts.history_meshes.clear();
+                match SteadyRun::new(model, &opts, self.state.as_deref()) {
+                    Ok(run) => self.pending.insert(run),
+                    Err(e) => {
+                        return vec![
+                            self.cell_done(cell(Impact::None, None, Some(e.to_string())), None)
+                        ]
+                    }
+                }
+            }
+        };
+        let c = match run.advance(model, max_steps) {
+            Ok(None) => return Vec::new(),
+            Ok(Some(ss)) => {
+                let impact = match self.spec.mesh {
+                    Some(j) => ss.meshes.get(j).map_or(Impact::None, |m| m.impact),
+                    None => ss
+                        .meshes
+                        .iter()
+                        .map(|m| m.impact)
+                        .max_by_key(|&i| severity(i))
+                        .unwrap_or(Impact::None),
+                };
+                let c = cell(impact, ss.period, None);
+                self.cell_done(c, Some(ss.end_state))
+            }
+            Err(e) => self.cell_done(cell(Impact::None, None, Some(e.to_string())), None),
+        };
+        vec![c]
+    }
+
+    /// Records cell `c` as done; the row goes on from `end` (the static
+    /// equilibrium after a failure).
+    fn cell_done(&mut self, c: MapCell, end: Option<Vec<f64>>) -> MapCell {
+        self.pending = None;
+        self.state = end;
+        self.done += 1;
+        self.next_column += 1;
+        if self.next_column >= self.spec.omega_points {
+            self.finish_row();
+        }
+        c
+    }
+
     fn finish_row(&mut self) {
+        self.pending = None;
         self.next_row += 1;
         self.next_column = 0;
         self.model = None;

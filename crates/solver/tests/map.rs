@@ -94,3 +94,44 @@ fn bad_input_is_named() {
     .to_string();
     assert!(e.contains("omega-points"), "{e}");
 }
+
+#[test]
+fn a_map_in_slices_of_steps_is_the_same_as_cell_by_cell() {
+    // The compound set (long steady states), and cells that fail (a step
+    // budget too small) so that the rows go on from the static state.
+    for budget in [200_000, 3] {
+        let mut spec = MapSpec::new((0.5, 1.1, 3), "backlash_um", (50.0, 100.0, 2));
+        spec.steady.transient_periods = 60;
+        spec.steady.record_periods = 10;
+        spec.steady.max_steps_per_period = budget;
+        let base = ModelParams::default();
+        let want = run(&mut RegimeMap::new(&base, spec.clone()).unwrap());
+        assert_eq!(want.len(), 6);
+        // `advance(usize::MAX)` is the whole map (and allocates no more).
+        let whole = RegimeMap::new(&base, spec.clone())
+            .unwrap()
+            .advance(usize::MAX);
+        assert_eq!(whole, want);
+        assert_eq!(
+            want.iter().all(|c| c.error.is_some()),
+            budget == 3,
+            "budget {budget}"
+        );
+        for slice in [1, 7, 3000] {
+            let mut map = RegimeMap::new(&base, spec.clone()).unwrap();
+            let mut cells = Vec::new();
+            let mut pauses = 0u64;
+            while !map.is_finished() {
+                let got = map.advance_steps(slice);
+                pauses += u64::from(got.is_empty());
+                cells.extend(got);
+                assert!(pauses < 10_000_000, "the map never ends");
+            }
+            assert_eq!(cells, want, "slices of {slice} steps, budget {budget}");
+            assert_eq!(map.done(), 6);
+            if budget > 3 && slice < 3000 {
+                assert!(pauses > 6, "slices of {slice}: no pause inside a cell");
+            }
+        }
+    }
+}

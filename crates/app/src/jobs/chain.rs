@@ -1,9 +1,10 @@
 //! Jobs that walk a chain of Omega grid points, each continued from the
 //! previous point's end state: the time-integration overlay and the
 //! Lyapunov curve. One [`ChainJob`] runs the chain; its kind
-//! ([`ChainKind`]) computes one point.
+//! ([`ChainKind`]) computes one point as a run paused and resumed every
+//! [`SLICE_STEPS`] integrator steps, so a newer job waits at most one slice.
 
-use super::Job;
+use super::{Job, SLICE_STEPS};
 use crate::protocol::{FromWorker, JobId};
 use solver::steady::Model;
 
@@ -30,10 +31,13 @@ impl Chain {
     }
 
     /// The next grid point `(index, omega)`, if any is left.
-    pub(crate) fn advance(&mut self) -> Option<(u32, f64)> {
-        let p = self.omegas.get(self.next).copied();
-        self.next += usize::from(p.is_some());
-        p
+    pub(crate) fn peek(&self) -> Option<(u32, f64)> {
+        self.omegas.get(self.next).copied()
+    }
+
+    /// Marks the next grid point done.
+    pub(crate) fn advance(&mut self) {
+        self.next = (self.next + 1).min(self.omegas.len());
     }
 
     /// Whether every point is done.
@@ -51,16 +55,27 @@ impl Chain {
 pub(crate) trait ChainKind {
     /// One point's data.
     type Sample;
+    /// One point's computation in progress (paused between slices).
+    type Run;
     /// Whether each point is followed by a progress message.
     const PROGRESS: bool;
-    /// Grid point `index` at `omega`, continued from `from` (the previous
-    /// point's end state; the static state if `None`): its sample and end state.
-    fn compute(
+    /// Starts grid point `at` (index, omega), continued from `from` (the
+    /// previous point's end state; the static state if `None`).
+    fn start(
         &self,
         model: &Model,
         from: Option<&[f64]>,
         at: (u32, f64),
-    ) -> solver::Result<(Self::Sample, Vec<f64>)>;
+    ) -> solver::Result<Self::Run>;
+    /// Continues `run` for at most `max_steps` integrator steps: the
+    /// point's sample and end state once it is complete, `None` if paused.
+    fn advance(
+        &self,
+        model: &Model,
+        run: &mut Self::Run,
+        at: (u32, f64),
+        max_steps: u64,
+    ) -> solver::Result<Option<(Self::Sample, Vec<f64>)>>;
     /// The sample of a point whose computation failed, saying why.
     fn failed(at: (u32, f64), error: String) -> Self::Sample;
     /// The message that carries samples.
@@ -68,11 +83,13 @@ pub(crate) trait ChainKind {
 }
 
 /// A chain of one kind in progress.
-pub(crate) struct ChainJob<K> {
+pub(crate) struct ChainJob<K: ChainKind> {
     id: JobId,
     model: Model,
     chain: Chain,
     state: Option<Vec<f64>>,
+    /// The point in progress, paused between slices.
+    pending: Option<K::Run>,
     kind: K,
 }
 
@@ -84,10 +101,28 @@ impl<K: ChainKind> ChainJob<K> {
             model,
             chain,
             state: None,
+            pending: None,
             kind,
         };
         let out = vec![job.progress_message()];
         (job, out)
+    }
+
+    /// A slice of the point `at`: its result once complete, `None` if paused.
+    fn slice(&mut self, at: (u32, f64)) -> Option<solver::Result<(K::Sample, Vec<f64>)>> {
+        let run = match self.pending.as_mut() {
+            Some(run) => run,
+            None => match self.kind.start(&self.model, self.state.as_deref(), at) {
+                Ok(run) => self.pending.insert(run),
+                Err(e) => return Some(Err(e)),
+            },
+        };
+        let out = self
+            .kind
+            .advance(&self.model, run, at, SLICE_STEPS)
+            .transpose()?;
+        self.pending = None;
+        Some(out)
     }
 }
 
@@ -98,8 +133,13 @@ impl<K: ChainKind> Job for ChainJob<K> {
 
     fn step(&mut self) -> Vec<FromWorker> {
         let mut out = Vec::new();
-        if let Some(at) = self.chain.advance() {
-            let sample = match self.kind.compute(&self.model, self.state.as_deref(), at) {
+        if let Some(at) = self.chain.peek() {
+            let Some(result) = self.slice(at) else {
+                // Paused inside the point: nothing to say yet.
+                return out;
+            };
+            self.chain.advance();
+            let sample = match result {
                 Ok((sample, end)) => {
                     self.state = Some(end);
                     sample

@@ -1,11 +1,11 @@
 //! The largest Lyapunov exponent over Omega (under view 2): one chain of
 //! Benettin runs over its share of the Omega grid, each continued from the
-//! previous end state.
+//! previous end state and computed in slices ([`LyapunovRun`]).
 
 use super::chain::{Chain, ChainJob, ChainKind};
 use super::failed;
 use crate::protocol::{FromWorker, JobId, LyapSample};
-use solver::lyapunov::{largest_exponent, LyapunovOptions};
+use solver::lyapunov::{LyapunovOptions, LyapunovRun};
 use solver::steady::Model;
 
 /// Benettin runs of `periods` after `transient_periods`.
@@ -41,18 +41,31 @@ pub(crate) fn start(
 
 impl ChainKind for Lyap {
     type Sample = LyapSample;
+    type Run = LyapunovRun;
     const PROGRESS: bool = false;
 
-    fn compute(
+    fn start(
         &self,
         model: &Model,
         from: Option<&[f64]>,
-        (index, omega): (u32, f64),
-    ) -> solver::Result<(LyapSample, Vec<f64>)> {
+        (_, omega): (u32, f64),
+    ) -> solver::Result<LyapunovRun> {
         let mut opts = LyapunovOptions::new(omega);
         opts.transient_periods = self.transient_periods;
         opts.periods = self.periods;
-        let l = largest_exponent(model, &opts, from)?;
+        LyapunovRun::new(model, &opts, from)
+    }
+
+    fn advance(
+        &self,
+        model: &Model,
+        run: &mut LyapunovRun,
+        (index, omega): (u32, f64),
+        max_steps: u64,
+    ) -> solver::Result<Option<(LyapSample, Vec<f64>)>> {
+        let Some(l) = run.advance(model, max_steps)? else {
+            return Ok(None);
+        };
         let sample = LyapSample {
             index,
             omega,
@@ -60,7 +73,7 @@ impl ChainKind for Lyap {
             per_s: Some(l.per_s),
             error: None,
         };
-        Ok((sample, l.end_state))
+        Ok(Some((sample, l.end_state)))
     }
 
     fn failed((index, omega): (u32, f64), error: String) -> LyapSample {

@@ -1,7 +1,7 @@
-//! The impact-regime map (view 7): one worker's share of the rows, one
-//! cell per step.
+//! The impact-regime map (view 7): one worker's share of the rows, a slice
+//! of one cell's steady state per step.
 
-use super::{failed, Job};
+use super::{failed, Job, SLICE_STEPS};
 use crate::protocol::{FromWorker, JobId, MapSample};
 use solver::map::{MapSpec, RegimeMap};
 use solver::params::ModelParams;
@@ -39,7 +39,7 @@ impl Job for MapJob {
         let mut out = Vec::new();
         let cells: Vec<MapSample> = self
             .map
-            .advance(1)
+            .advance_steps(SLICE_STEPS)
             .into_iter()
             .map(|c| MapSample {
                 row: c.row,

@@ -2,15 +2,17 @@
 //!
 //! Each kind's module turns its [`crate::protocol::JobSpec`] into a job
 //! (`start`), and the job computes one bounded chunk per [`Job::step`]
-//! (one steady state, a few harmonic-balance points, one map cell), posting
-//! its data and progress as [`FromWorker`] messages. Cancelling a job is
-//! dropping it; the runner ([`crate::worker_core::WorkerCore`]) keeps at
-//! most one job of each kind and loops over the kinds in its priority order.
+//! (a slice of a steady state or of a Lyapunov run, or a few
+//! harmonic-balance points), posting its data and progress as
+//! [`FromWorker`] messages. Cancelling a job is dropping it; the runner
+//! ([`crate::worker_core::WorkerCore`]) keeps at most one job of each kind
+//! and loops over the kinds in its priority order.
 //!
-//! Architecture invariant: a job's step is bounded ([`SLICE_STEPS`]
-//! integrator steps of the selected-Omega run or of a bifurcation point,
-//! one steady state of the other chains and maps, or [`hbm::HBM_CHUNK`]
-//! branch points), so a newer job or a cancel waits at most one step.
+//! Architecture invariant: a job's step is bounded: [`SLICE_STEPS`]
+//! integrator steps of the point in progress (the selected-Omega run, a
+//! bifurcation point, an overlay point, a Lyapunov point, a map cell; the
+//! run pauses and resumes without changing a bit), or [`hbm::HBM_CHUNK`]
+//! branch points. A newer job or a cancel waits at most one step.
 
 pub mod bif;
 pub mod chain;
@@ -23,9 +25,10 @@ pub mod overlay;
 use crate::protocol::{FromWorker, JobId};
 use solver::steady::Model;
 
-/// Integrator steps per step of a sliced steady state (the selected-Omega
-/// run, a bifurcation point): a few ms in the browser, so a newer job or a
-/// cancel waits at most that long, however long the steady state runs.
+/// Integrator steps per step of a sliced run (the selected-Omega run, a
+/// bifurcation, overlay or Lyapunov point, a map cell): a few ms in the
+/// browser, so a newer job or a cancel waits at most that long, however
+/// long the point's run is.
 pub const SLICE_STEPS: u64 = 3000;
 
 /// A job of one kind in progress in a worker.

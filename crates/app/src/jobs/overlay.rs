@@ -1,10 +1,11 @@
 //! The time-integration overlay of the frequency response (view 1): one
-//! continuation chain of steady states over its share of the Omega grid.
+//! continuation chain of steady states over its share of the Omega grid,
+//! each computed in slices ([`SteadyRun`]).
 
 use super::chain::{Chain, ChainJob, ChainKind};
 use super::{failed, round_um};
 use crate::protocol::{FrSample, FromWorker, JobId, MeshExtremes, RunOptions};
-use solver::steady::{steady_state, Model, SteadyOptions};
+use solver::steady::{Model, SteadyOptions, SteadyRun};
 use solver::sweep::SweepSpec;
 
 /// Steady states for the overlay, `run` periods each.
@@ -35,19 +36,32 @@ pub(crate) fn start(
 
 impl ChainKind for Overlay {
     type Sample = FrSample;
+    type Run = SteadyRun;
     const PROGRESS: bool = true;
 
-    fn compute(
+    fn start(
         &self,
         model: &Model,
         from: Option<&[f64]>,
-        (index, omega): (u32, f64),
-    ) -> solver::Result<(FrSample, Vec<f64>)> {
+        (_, omega): (u32, f64),
+    ) -> solver::Result<SteadyRun> {
         let mut opts = SteadyOptions::new(omega);
         opts.transient_periods = self.run.transient_periods;
         opts.record_periods = self.run.record_periods;
         opts.samples_per_period = 0;
-        let ss = steady_state(model, &opts, from)?;
+        SteadyRun::new(model, &opts, from)
+    }
+
+    fn advance(
+        &self,
+        model: &Model,
+        run: &mut SteadyRun,
+        (index, omega): (u32, f64),
+        max_steps: u64,
+    ) -> solver::Result<Option<(FrSample, Vec<f64>)>> {
+        let Some(ss) = run.advance(model, max_steps)? else {
+            return Ok(None);
+        };
         let meshes = ss
             .meshes
             .iter()
@@ -65,7 +79,7 @@ impl ChainKind for Overlay {
             period: ss.period,
             error: None,
         };
-        Ok((sample, ss.end_state))
+        Ok(Some((sample, ss.end_state)))
     }
 
     fn failed((index, omega): (u32, f64), error: String) -> FrSample {

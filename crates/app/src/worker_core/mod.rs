@@ -11,7 +11,7 @@
 //! Omega update even while a long sweep runs; then the harmonic-balance
 //! branch of the frequency response (the view a slider drag watches, and the
 //! quickest sweep); the time-integration overlay grid and the bifurcation
-//! sweep then take turns, one steady state each; the Lyapunov curve and
+//! sweep then take turns, one slice each; the Lyapunov curve and
 //! then the impact-regime map run when those are idle.
 
 use crate::jobs::bif::{BandsCache, BifJob, BifSpec};

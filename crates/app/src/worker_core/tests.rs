@@ -592,3 +592,5 @@ fn family_members_run_beside_the_current_state_and_cancel_together() {
         );
     }
 }
+
+mod slices;

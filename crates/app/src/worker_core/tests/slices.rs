@@ -1,0 +1,203 @@
+//! Every long job yields to a newer selected-Omega job within one slice:
+//! the Lyapunov curve, the time-integration overlay and the regime map
+//! pause inside a point, and their points are the bits of the unsliced
+//! solver runs.
+
+use super::{drain, run_msg, steps_to_omega};
+use crate::jobs::SLICE_STEPS;
+use crate::protocol::{FromWorker, JobSpec, LyapSample, MapSample, MeshExtremes, RunOptions};
+use crate::worker_core::WorkerCore;
+use solver::lyapunov::{largest_exponent, LyapunovOptions};
+use solver::map::{MapSpec, RegimeMap};
+use solver::params::ModelParams;
+use solver::steady::{steady_state, Model, SteadyOptions};
+use solver::sweep::SweepSpec;
+
+/// Starts `job` (id 7) and steps it once: it must pause inside its first
+/// point (`is_data` sees no data). Then an Omega job arrives: every step
+/// goes to it until its result. Returns the first job's messages once the
+/// worker is idle.
+fn yields_to_a_new_omega_job(job: JobSpec, is_data: fn(&FromWorker) -> bool) -> Vec<FromWorker> {
+    let mut core = WorkerCore::new();
+    let p = ModelParams::default();
+    let mut out = core.handle(&run_msg(7, &p, job));
+    let first = core.step();
+    assert!(
+        !first.iter().any(is_data),
+        "one slice computed a whole point: make the point longer"
+    );
+    out.extend(first);
+    let run = RunOptions {
+        transient_periods: 300,
+        record_periods: 40,
+    };
+    let omega_job = JobSpec::Omega {
+        omega: 1.1,
+        mesh: None,
+        run,
+        samples_per_period: 32,
+        max_order: 8.0,
+    };
+    core.handle(&run_msg(1, &p, omega_job));
+    let (msgs, steps) = steps_to_omega(&mut core);
+    let result = msgs
+        .iter()
+        .find_map(|m| match m {
+            FromWorker::Omega { id: 1, result } => Some(result),
+            _ => None,
+        })
+        .expect("the new Omega result");
+    assert_eq!(
+        steps,
+        result.steps.div_ceil(SLICE_STEPS) as usize,
+        "steps taken by the older job before the new run's result"
+    );
+    assert!(!msgs.iter().any(is_data));
+    out.extend(drain(&mut core));
+    assert!(out.iter().any(|m| matches!(m, FromWorker::Done { id: 7 })));
+    out
+}
+
+fn model() -> Model {
+    Model::new(&ModelParams::default()).expect("default model")
+}
+
+#[test]
+fn a_lyapunov_point_pauses_for_a_new_omega_job_and_keeps_its_bits() {
+    let (from, to, points) = (0.8, 1.3, 3);
+    let out = yields_to_a_new_omega_job(
+        JobSpec::Lyap {
+            omega_from: from,
+            omega_to: to,
+            points,
+            chains: 1,
+            shard: 0,
+            transient_periods: 100,
+            periods: 40,
+        },
+        |m| matches!(m, FromWorker::LyapPoints { .. }),
+    );
+    let got: Vec<LyapSample> = out
+        .into_iter()
+        .flat_map(|m| match m {
+            FromWorker::LyapPoints { points, .. } => points,
+            _ => Vec::new(),
+        })
+        .collect();
+    // The same chain, one-shot: each point continued from the last.
+    let m = model();
+    let mut state: Option<Vec<f64>> = None;
+    assert_eq!(got.len(), points as usize);
+    for (i, s) in got.iter().enumerate() {
+        let omega = from + (to - from) / f64::from(points - 1) * i as f64;
+        let mut o = LyapunovOptions::new(omega);
+        o.transient_periods = 100;
+        o.periods = 40;
+        let l = largest_exponent(&m, &o, state.as_deref()).expect("one-shot run");
+        assert_eq!(s.omega.to_bits(), omega.to_bits());
+        assert_eq!(s.per_period.map(f64::to_bits), Some(l.per_period.to_bits()));
+        assert_eq!(s.per_s.map(f64::to_bits), Some(l.per_s.to_bits()));
+        state = Some(l.end_state);
+    }
+}
+
+#[test]
+fn an_overlay_point_pauses_for_a_new_omega_job_and_keeps_its_bits() {
+    let run = RunOptions {
+        transient_periods: 300,
+        record_periods: 40,
+    };
+    let out = yields_to_a_new_omega_job(
+        JobSpec::Fr {
+            omega_from: 0.5,
+            omega_to: 0.9,
+            points: 3,
+            chains: 1,
+            shard: 0,
+            run,
+        },
+        |m| matches!(m, FromWorker::FrPoints { .. }),
+    );
+    let got: Vec<_> = out
+        .into_iter()
+        .flat_map(|m| match m {
+            FromWorker::FrPoints { points, .. } => points,
+            _ => Vec::new(),
+        })
+        .collect();
+    let m = model();
+    let spec = SweepSpec::new(0.5, 0.9, 3);
+    let mut state: Option<Vec<f64>> = None;
+    assert_eq!(got.len(), 3);
+    for (i, s) in got.iter().enumerate() {
+        let mut o = SteadyOptions::new(spec.omega(i as u32));
+        o.transient_periods = run.transient_periods;
+        o.record_periods = run.record_periods;
+        o.samples_per_period = 0;
+        let ss = steady_state(&m, &o, state.as_deref()).expect("one-shot run");
+        let want: Vec<MeshExtremes> = ss
+            .meshes
+            .iter()
+            .map(|x| MeshExtremes {
+                rel_min_um: crate::jobs::round_um(x.rel_min_m * 1e6),
+                rel_max_um: crate::jobs::round_um(x.rel_max_m * 1e6),
+                regime: x.impact.into(),
+                dynamic_factor: x.dynamic_factor,
+            })
+            .collect();
+        assert_eq!(s.meshes, want, "point {i}");
+        assert_eq!(s.period, ss.period);
+        state = Some(ss.end_state);
+    }
+}
+
+#[test]
+fn a_map_cell_pauses_for_a_new_omega_job_and_keeps_its_bits() {
+    let run = RunOptions {
+        transient_periods: 300,
+        record_periods: 40,
+    };
+    let out = yields_to_a_new_omega_job(
+        JobSpec::Map {
+            key: "backlash_um".into(),
+            omega_from: 0.5,
+            omega_to: 0.9,
+            omega_points: 2,
+            value_from: 50.0,
+            value_to: 100.0,
+            value_points: 2,
+            mesh: None,
+            shards: 1,
+            shard: 0,
+            run,
+        },
+        |m| matches!(m, FromWorker::MapCells { .. }),
+    );
+    let got: Vec<MapSample> = out
+        .into_iter()
+        .flat_map(|m| match m {
+            FromWorker::MapCells { cells, .. } => cells,
+            _ => Vec::new(),
+        })
+        .collect();
+    let mut spec = MapSpec::new((0.5, 0.9, 2), "backlash_um", (50.0, 100.0, 2));
+    spec.steady.transient_periods = run.transient_periods;
+    spec.steady.record_periods = run.record_periods;
+    spec.shard = Some((0, 1));
+    let mut map = RegimeMap::new(&ModelParams::default(), spec).expect("map");
+    let want: Vec<MapSample> = map
+        .advance(usize::MAX)
+        .into_iter()
+        .map(|c| MapSample {
+            row: c.row,
+            column: c.column,
+            omega: c.omega,
+            value: c.value,
+            regime: c.impact.into(),
+            period: c.period,
+            error: c.error,
+        })
+        .collect();
+    assert_eq!(want.len(), 4);
+    assert_eq!(got, want);
+}
