@@ -17,16 +17,28 @@ pub fn view_size(view: ViewId) -> (u32, u32) {
 }
 
 impl Controller {
+    /// A view's drawing size now: [`view_size`], except the frequency
+    /// response's mesh panels, which take a taller canvas.
+    pub fn canvas_size(&self, view: ViewId) -> (u32, u32) {
+        match (&self.panels, view) {
+            (Some(p), ViewId::Fr) => plots::multiples::fr_panels_size(p.len()),
+            _ => view_size(view),
+        }
+    }
+
     /// The view drawn as SVG text, as the page shows it (without the
     /// progress captions).
     pub fn plot_svg(&self, view: ViewId) -> Result<String, String> {
         let mut s = String::new();
         {
-            let root = SVGBackend::with_string(&mut s, view_size(view)).into_drawing_area();
+            let root = SVGBackend::with_string(&mut s, self.canvas_size(view)).into_drawing_area();
             let natural = self.view_context().natural;
             let v = &self.settings.view;
             let whole = v.whole_clearance;
             match view.spec().data {
+                ExportKind::Fr if self.panels.is_some() => {
+                    plots::multiples::draw_fr_panels(&root, &self.fr_panels(), "")?;
+                }
                 ExportKind::Fr => {
                     plots::draw_fr(&root, &self.fr_view(), "")?;
                 }
