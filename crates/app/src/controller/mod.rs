@@ -713,7 +713,7 @@ use pinned::pinned_backlash;
 mod messages;
 mod pinned;
 mod svg;
-pub use svg::view_size;
+pub use svg::{view_size, SvgError};
 
 pub use pinned::Pinned;
 

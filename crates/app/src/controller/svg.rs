@@ -3,7 +3,7 @@
 //! also rasterizes it at twice the size for its PNG export).
 
 use super::*;
-use crate::plots::{self, maps};
+use crate::plots::{self, maps, DrawError};
 use crate::views::{ExportKind, ViewId};
 use plotters::prelude::*;
 
@@ -14,6 +14,17 @@ pub fn view_size(view: ViewId) -> (u32, u32) {
         ViewId::Lyap => (plots::WIDTH, 240),
         _ => (plots::WIDTH, plots::HEIGHT),
     }
+}
+
+/// Why a view cannot be drawn as SVG now.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SvgError {
+    /// The view's data is not there yet (the selected-Ω motion computing).
+    #[error(transparent)]
+    NotReady(#[from] ExportError),
+    /// The drawing itself failed.
+    #[error(transparent)]
+    Draw(#[from] DrawError),
 }
 
 impl Controller {
@@ -28,7 +39,7 @@ impl Controller {
 
     /// The view drawn as SVG text, as the page shows it (without the
     /// progress captions).
-    pub fn plot_svg(&self, view: ViewId) -> Result<String, String> {
+    pub fn plot_svg(&self, view: ViewId) -> Result<String, SvgError> {
         let mut s = String::new();
         {
             let root = SVGBackend::with_string(&mut s, self.canvas_size(view)).into_drawing_area();
@@ -91,10 +102,7 @@ impl Controller {
                     )?;
                 }
                 ExportKind::Omega => {
-                    let r = self
-                        .omega
-                        .as_ref()
-                        .ok_or("the motion at the selected Ω is still computing")?;
+                    let r = self.omega.as_ref().ok_or(ExportError::NotComputed)?;
                     match view {
                         ViewId::Phase => plots::draw_phase_with(&root, r, "", whole)?,
                         ViewId::Poincare => plots::draw_poincare_with(&root, r, "", whole)?,
@@ -111,7 +119,7 @@ impl Controller {
     }
 
     /// The view as an SVG file to download.
-    pub fn export_svg(&self, view: ViewId) -> Result<Effect, String> {
+    pub fn export_svg(&self, view: ViewId) -> Result<Effect, SvgError> {
         Ok(Effect::Download {
             name: format!("gearshock-{}-{}.svg", view.key(), self.mesh_file_label()),
             mime: "image/svg+xml".into(),

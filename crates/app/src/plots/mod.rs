@@ -46,12 +46,6 @@ pub const HEIGHT: u32 = 400;
 #[error("drawing failed: {0}")]
 pub struct DrawError(pub String);
 
-impl From<DrawError> for String {
-    fn from(e: DrawError) -> String {
-        e.to_string()
-    }
-}
-
 pub(crate) type Res<T> = Result<T, DrawError>;
 pub(crate) type Chart<'a, DB> = ChartContext<
     'a,

@@ -437,7 +437,7 @@ pub(super) fn build_exports(page: &Shared) {
                 let r = page2.borrow().ctl.export_svg(v);
                 match r {
                     Ok(e) => run_effects(&page2, vec![e]),
-                    Err(e) => set_text(&page2.borrow().doc, "status", &e),
+                    Err(e) => set_text(&page2.borrow().doc, "status", &e.to_string()),
                 }
             },
         );
