@@ -52,27 +52,7 @@ fn member_id(c: &Controller, i: usize, kind: JobKind) -> JobId {
 }
 
 fn hbm(id: JobId, amplitude: f64) -> String {
-    encode(&FromWorker::HbmPoints {
-        id,
-        points: [0.5, 1.0]
-            .iter()
-            .map(|&omega| HbmSample {
-                omega,
-                meshes: vec![HbmMesh {
-                    rel_min_um: -amplitude,
-                    rel_max_um: amplitude,
-                    regime: Regime::NoImpact,
-                }],
-                stable: Some(true),
-                bifurcation: None,
-                piece: 0,
-            })
-            .collect(),
-        progress: 1.0,
-        finished: true,
-        error: None,
-        notes: Vec::new(),
-    })
+    hbm_meshes(id, 1, |_| amplitude)
 }
 
 #[test]

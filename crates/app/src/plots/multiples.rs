@@ -5,6 +5,7 @@
 //! responses of several meshes (the paper's Figs. 2 and 3, panels a-d),
 //! every family member's curve in each.
 
+use super::bif::{failed_crosses, group_dots};
 use super::fr::{branch_color, stability_runs, thin};
 use super::*;
 use crate::protocol::OmegaResult;
@@ -160,6 +161,29 @@ fn dashed<'a, DB: DrawingBackend + 'a>(
     Ok(())
 }
 
+/// A panel over Ω: the ±b lines of `backlash_um` where they fall in the
+/// y range, and the selected Ω where it falls in the x range (dashed).
+fn omega_guides<'a, DB: DrawingBackend + 'a>(
+    chart: &mut Chart<'a, DB>,
+    backlash_um: &[f64],
+    selected: f64,
+    (x, y): ((f64, f64), (f64, f64)),
+) -> Res<()> {
+    for &b in backlash_um {
+        for level in [b, -b].into_iter().filter(|l| (y.0..=y.1).contains(l)) {
+            dashed(
+                chart,
+                vec![(x.0, level), (x.1, level)],
+                RGBColor(90, 90, 90),
+            )?;
+        }
+    }
+    if (x.0..=x.1).contains(&selected) {
+        dashed(chart, vec![(selected, y.0), (selected, y.1)], CURSOR)?;
+    }
+    Ok(())
+}
+
 /// The bifurcation diagrams of a family side by side. Returns each
 /// panel's frame (`None` without data) and the dots in pixels for the
 /// caller to draw, as [`draw_bif`] does.
@@ -208,46 +232,10 @@ pub fn draw_bif_panels<DB: DrawingBackend>(
             ("Ω", "Poincaré samples of x (µm)"),
             k == 0,
         )?;
-        for &b in &v.backlash_um {
-            for level in [b, -b].into_iter().filter(|l| (y.0..=y.1).contains(l)) {
-                dashed(
-                    &mut chart,
-                    vec![(x.0, level), (x.1, level)],
-                    RGBColor(90, 90, 90),
-                )?;
-            }
-        }
-        let s = v.selected_omega;
-        if s >= x.0 && s <= x.1 {
-            dashed(&mut chart, vec![(s, y.0), (s, y.1)], CURSOR)?;
-        }
-        if !v.failed.is_empty() {
-            let grey = RGBColor(90, 90, 90);
-            chart
-                .draw_series(
-                    v.failed
-                        .iter()
-                        .map(|&(omega, _)| Cross::new((omega, y.0), 4, grey.stroke_width(2))),
-                )
-                .map_err(err)?;
-        }
+        omega_guides(&mut chart, &v.backlash_um, v.selected_omega, (x, y))?;
+        failed_crosses(&mut chart, &v.failed, y.0, 4)?;
         let frame = frame_of(&chart, x, y);
-        for pt in &v.points {
-            let color = regime_color(pt.regime);
-            let q = frame.to_px(pt.omega, pt.x_um);
-            let px = (q.x as f32, q.y as f32);
-            match groups
-                .iter_mut()
-                .find(|g| g.color == color && g.filled == pt.up)
-            {
-                Some(g) => g.px.push(px),
-                None => groups.push(PointGroup {
-                    color,
-                    filled: pt.up,
-                    px: vec![px],
-                }),
-            }
-        }
+        group_dots(&mut groups, &v.points, &frame);
         frames.push(Some(frame));
     }
     root.present().map_err(err)?;
@@ -437,19 +425,13 @@ pub fn draw_fr_panels<DB: DrawingBackend>(
             ("Ω", "x = δ − e (µm)"),
             k % cols == 0,
         )?;
-        for &b in v.backlash_um.iter().chain(&v.pinned_backlash_um) {
-            for level in [b, -b].into_iter().filter(|l| (y.0..=y.1).contains(l)) {
-                dashed(
-                    &mut chart,
-                    vec![(x.0, level), (x.1, level)],
-                    RGBColor(90, 90, 90),
-                )?;
-            }
-        }
-        let s = v.selected_omega;
-        if in_range(s) {
-            dashed(&mut chart, vec![(s, y.0), (s, y.1)], CURSOR)?;
-        }
+        let levels: Vec<f64> = v
+            .backlash_um
+            .iter()
+            .chain(&v.pinned_backlash_um)
+            .copied()
+            .collect();
+        omega_guides(&mut chart, &levels, v.selected_omega, (x, y))?;
         for br in v.branches.iter() {
             for which in [true, false] {
                 let color =
