@@ -712,6 +712,7 @@ use jobs::{Restart, ALL, NONE};
 use pinned::pinned_backlash;
 mod messages;
 mod pinned;
+mod replies;
 mod svg;
 pub use svg::{view_size, SvgError};
 
