@@ -133,6 +133,7 @@ test('the Fig. 2 preset link shows its four mesh panels at once, every TE curve 
     assert.ok(label.includes(m), `${m} in ${label}`);
   }
   assert.equal(await page.getAttribute('#canvas-fr', 'height'), '680');
+  assert.match(await page.textContent('#note-fr'), /one panel per mesh/);
   assert.ok((await canvasStats(page, 'canvas-fr')).ink > 8000);
   await page.locator('#view-fr').scrollIntoViewIfNeeded();
   await shot(page.locator('#view-fr'), '35-fig2-fr-panels');

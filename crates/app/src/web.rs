@@ -398,7 +398,11 @@ fn draw_view(p: &mut Page, v: ViewId) {
     // The frequency response's view model, built once for its note and plot.
     let fr = (v == ViewId::Fr).then(|| p.ctl.fr_view());
     if let Some(fr) = &fr {
-        set_note(p, v, &crate::views::fr::fr_note(fr));
+        let note = match p.ctl.panels {
+            Some(_) => crate::views::fr::fr_panels_note(fr),
+            None => crate::views::fr::fr_note(fr),
+        };
+        set_note(p, v, &note);
     }
     if v == ViewId::Map {
         let note = crate::views::map::map_note(&p.ctl.map, p.ctl.map_status.total);

@@ -325,6 +325,10 @@ fn fig2_shows_its_four_mesh_panels_as_a_projection_of_the_same_branches() {
         assert_eq!(v.branches[0].points[0].max_um, j as f64 + 1.0);
         assert_eq!(v.branches[2].points[1].min_um, -(200.0 + j as f64));
     }
+    // The note says the panels hold the branches only (the dots are the
+    // plotted mesh's alone).
+    let note = crate::views::fr::fr_panels_note(&c.fr_view());
+    assert!(note.contains("one panel per mesh") && !note.contains("Hollow dots"));
     // The text alternative and the SVG name all four meshes.
     let label = c.canvas_label(crate::views::ViewId::Fr);
     let svg = c.plot_svg(crate::views::ViewId::Fr).unwrap();
