@@ -726,9 +726,8 @@ fn bifurcation_panels(
     Ok(out)
 }
 
-/// The bifurcation diagram as SVG text. The page draws the chart, then its
-/// dots in a fast pass; an SVG is complete once presented, so the dots are
-/// drawn into a second SVG whose body is appended to the chart's.
+/// The bifurcation diagram as SVG text, its dots inside (as the page's
+/// SVG export draws it).
 fn bif_svg(
     view: &BifView,
     natural: &[app::views::NaturalFreq],
@@ -741,21 +740,7 @@ fn bif_svg(
             .map_err(|e| e.to_string())?
             .1
     };
-    let mut dots = String::new();
-    {
-        let root = SVGBackend::with_string(&mut dots, SIZE).into_drawing_area();
-        app::plots::draw_groups(&root, &groups).map_err(|e| e.to_string())?;
-    }
-    let head = chart
-        .trim_end()
-        .strip_suffix("</svg>")
-        .ok_or("the chart is not a complete SVG")?;
-    let body = dots
-        .split_once('>')
-        .map(|(_, rest)| rest.trim_end())
-        .and_then(|rest| rest.strip_suffix("</svg>"))
-        .ok_or("the dots are not a complete SVG")?;
-    Ok(format!("{head}{body}</svg>\n"))
+    app::plots::svg_with_dots(&chart, SIZE, &groups).map_err(|e| e.to_string())
 }
 
 /// The page's bifurcation view of one sweep: Poincaré samples of x = delta - e.

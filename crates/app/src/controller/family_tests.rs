@@ -201,6 +201,15 @@ fn the_small_multiples_share_their_axes_and_letter_their_panels() {
         omega.iter().all(|p| p.data.is_err()),
         "nothing computed yet"
     );
+    // The SVG picture: the three panels with both panels' dots inside the
+    // one SVG document (plotters closes it when the chart is presented).
+    let svg = c.plot_svg(crate::views::ViewId::Bif).unwrap();
+    assert!(svg.contains("(c) backlash 200 µm"));
+    assert_eq!(svg.matches("</svg>").count(), 1);
+    assert!(svg.trim_end().ends_with("</svg>"));
+    let c = crate::plots::regime_color(Regime::SingleSided);
+    let orange = format!("#{:02X}{:02X}{:02X}", c.0, c.1, c.2);
+    assert_eq!(svg.matches(&orange).count(), 2, "two single-sided dots");
 }
 
 #[test]
@@ -343,6 +352,31 @@ fn fig2_shows_its_four_mesh_panels_as_a_projection_of_the_same_branches() {
     assert_eq!(again.query(), link);
     c.set_key("mesh", "s2b1", 4.0).unwrap();
     assert!(c.panels.is_none() && !c.query().contains("panels"));
+}
+
+#[test]
+fn a_familys_svg_pictures_are_its_small_multiples() {
+    let (mut c, _) = Controller::new("family=te_um:0,20,30", 0.0);
+    ready(&mut c);
+    for view in [
+        crate::views::ViewId::Bif,
+        crate::views::ViewId::Phase,
+        crate::views::ViewId::Poincare,
+    ] {
+        let svg = c.plot_svg(view).unwrap();
+        let offset = if view == crate::views::ViewId::Poincare {
+            3
+        } else {
+            0
+        };
+        for (k, te) in [0, 20, 30].iter().enumerate() {
+            let letter = char::from(b'a' + (k + offset) as u8);
+            assert!(
+                svg.contains(&format!("({letter}) TE {te} µm")),
+                "{view:?}: {letter}"
+            );
+        }
+    }
 }
 
 #[test]

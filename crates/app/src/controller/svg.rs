@@ -41,6 +41,8 @@ impl Controller {
     /// progress captions).
     pub fn plot_svg(&self, view: ViewId) -> Result<String, SvgError> {
         let mut s = String::new();
+        // The bifurcation diagram's dots, drawn after the chart is closed.
+        let mut dots = Vec::new();
         {
             let root = SVGBackend::with_string(&mut s, self.canvas_size(view)).into_drawing_area();
             let natural = self.view_context().natural;
@@ -53,9 +55,14 @@ impl Controller {
                 ExportKind::Fr => {
                     plots::draw_fr(&root, &self.fr_view(), "")?;
                 }
+                // A family: its small multiples, as the page draws them.
+                ExportKind::Bif if self.family.is_some() => {
+                    let mesh = self.view_context().mesh_label;
+                    let panels = self.bif_panels();
+                    dots = plots::multiples::draw_bif_panels(&root, &panels, &mesh, "")?.1;
+                }
                 ExportKind::Bif => {
-                    let (_, groups) = plots::draw_bif(&root, &self.bif_view(), &natural, "")?;
-                    plots::draw_groups(&root, &groups)?;
+                    dots = plots::draw_bif(&root, &self.bif_view(), &natural, "")?.1;
                 }
                 ExportKind::Map => {
                     let (f, o) = maps::draw_map(&root, &self.map_view(), "")?;
@@ -101,6 +108,15 @@ impl Controller {
                         "",
                     )?;
                 }
+                ExportKind::Omega
+                    if self.family.is_some()
+                        && matches!(view, ViewId::Phase | ViewId::Poincare) =>
+                {
+                    let poincare = view == ViewId::Poincare;
+                    let n = self.family.as_ref().map_or(0, |f| f.spec.values.len());
+                    let panels = self.omega_panels(if poincare { n } else { 0 });
+                    plots::multiples::draw_phase_panels(&root, &panels, poincare, "")?;
+                }
                 ExportKind::Omega => {
                     let r = self.omega.as_ref().ok_or(ExportError::NotComputed)?;
                     match view {
@@ -115,7 +131,10 @@ impl Controller {
             }
             root.present().map_err(plots::err)?;
         }
-        Ok(s)
+        if dots.is_empty() {
+            return Ok(s);
+        }
+        Ok(plots::svg_with_dots(&s, self.canvas_size(view), &dots)?)
     }
 
     /// The view as an SVG file to download.

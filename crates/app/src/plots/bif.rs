@@ -199,6 +199,27 @@ pub fn draw_bif<DB: DrawingBackend>(
     Ok((frame, groups))
 }
 
+/// A bifurcation chart's SVG text with its dots: plotters closes an SVG
+/// when the chart is presented, so the dots are drawn into a second SVG of
+/// the same `size` whose body goes inside the first, before its end.
+pub fn svg_with_dots(chart: &str, size: (u32, u32), groups: &[PointGroup]) -> Res<String> {
+    let mut dots = String::new();
+    {
+        let root = plotters::prelude::SVGBackend::with_string(&mut dots, size).into_drawing_area();
+        draw_groups(&root, groups)?;
+    }
+    let head = chart
+        .trim_end()
+        .strip_suffix("</svg>")
+        .ok_or_else(|| DrawError("the chart is not a complete SVG".into()))?;
+    let body = dots
+        .split_once('>')
+        .map(|(_, rest)| rest.trim_end())
+        .and_then(|rest| rest.strip_suffix("</svg>"))
+        .ok_or_else(|| DrawError("the dots are not a complete SVG".into()))?;
+    Ok(format!("{head}{body}</svg>\n"))
+}
+
 /// Draws the dots of [`draw_bif`] with plotters (the page fills them on the
 /// canvas directly, in a fast pass; the command line's SVG figures use this).
 pub fn draw_groups<DB: DrawingBackend>(
