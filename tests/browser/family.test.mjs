@@ -107,3 +107,40 @@ test('the Fig. 5 preset shows three phase portraits and three Poincaré sections
   assert.deepEqual(errors, []);
   await page.close();
 });
+
+test('the Fig. 2 preset link shows its four mesh panels at once, every TE curve in each', async () => {
+  // The preset's own link (as the menu makes it), then the same link with
+  // fewer harmonics and points so six branches finish quickly.
+  const first = await open(h.browser, h.url, QUICK);
+  await first.page.selectOption('#preset', 'fig2');
+  const p = await waitStatus(first.page, (s) => s.family && s.family.values.length === 6 && s.fr_panels, 10000, 'the Fig. 2 family');
+  assert.deepEqual(p.fr_panels, ['s1a1', 's2b1', 'a1b1', 'rb1']);
+  assert.match(p.query, /&panels=s1a1%2Cs2b1%2Ca1b1%2Crb1/);
+  await first.page.close();
+  const { page, errors } = await open(h.browser, h.url, `${p.query}&harmonics=3&fr_points=40&${QUICK}`);
+  const s = await waitStatus(page, allBranches, 240000, 'the six branches');
+  assert.deepEqual(s.fr_panels, ['s1a1', 's2b1', 'a1b1', 'rb1']);
+  assert.deepEqual(s.family.labels, ['TE 5 µm', 'TE 10 µm', 'TE 15 µm', 'TE 20 µm', 'TE 25 µm', 'TE 30 µm']);
+  assert.deepEqual(s.issues, []);
+  // Drawn after the last branch arrived: the text alternative names the
+  // four meshes in words, each with its highest peak.
+  await page.waitForFunction(() => {
+    const l = document.querySelector('#canvas-fr')?.getAttribute('aria-label') ?? '';
+    return /4 meshes side by side/.test(l) && !/computing/.test(l);
+  }, null, { timeout: 30000 });
+  const label = await page.getAttribute('#canvas-fr', 'aria-label');
+  for (const m of ['s1a1 (small sun – short planet a1)', 's2b1 (large sun – long planet b1)', 'a1b1 (short planet a1 – long planet b1)', 'rb1 (ring – long planet b1)']) {
+    assert.ok(label.includes(m), `${m} in ${label}`);
+  }
+  assert.equal(await page.getAttribute('#canvas-fr', 'height'), '680');
+  assert.match(await page.textContent('#note-fr'), /one panel per mesh/);
+  assert.ok((await canvasStats(page, 'canvas-fr')).ink > 8000);
+  await page.locator('#view-fr').scrollIntoViewIfNeeded();
+  await shot(page.locator('#view-fr'), '35-fig2-fr-panels');
+  // Choosing a mesh shows it alone, and the link drops the panels.
+  await page.selectOption('#sel-mesh', 's2b1');
+  await page.waitForFunction(() => !location.search.includes('panels='));
+  assert.equal(await page.getAttribute('#canvas-fr', 'height'), '400');
+  assert.deepEqual(errors, []);
+  await page.close();
+});

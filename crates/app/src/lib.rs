@@ -23,6 +23,7 @@ pub mod family;
 pub mod gearset;
 pub mod jobs;
 pub mod link;
+pub mod panels;
 pub mod plots;
 pub mod presets;
 pub mod protocol;

@@ -20,6 +20,7 @@
 //! page shows these messages with `textContent` only.
 
 use crate::family::{FamilySpec, FAMILY_KEY};
+use crate::panels::PANELS_KEY;
 use crate::settings::{fmt_exact, mesh_names, view_key, Settings};
 use solver::keys::{self, Value};
 use solver::params::{ModelKind, ModelParams};
@@ -42,6 +43,9 @@ pub struct Decoded {
     /// The parameter family (`family=KEY:V1,V2,...`), if the link carries a
     /// valid one; its first value is applied to `settings`.
     pub family: Option<FamilySpec>,
+    /// The meshes of the frequency response's side-by-side panels
+    /// (`panels=MESH,MESH,...`), if the link carries valid ones.
+    pub panels: Option<Vec<String>>,
 }
 
 /// The key that carries the pinned state A.
@@ -142,6 +146,12 @@ pub fn decode(query: &str) -> Decoded {
         .find(|(k, _)| k == FAMILY_KEY)
         .map(|(_, v)| v.clone());
     all.retain(|(k, _)| k != FAMILY_KEY);
+    let panels_text = all
+        .iter()
+        .rev()
+        .find(|(k, _)| k == PANELS_KEY)
+        .map(|(_, v)| v.clone());
+    all.retain(|(k, _)| k != PANELS_KEY);
     let mut pinned = None;
     if let Some(pos) = all.iter().rposition(|(k, _)| k == PINNED_KEY) {
         let (_, inner) = all.remove(pos);
@@ -178,11 +188,17 @@ pub fn decode(query: &str) -> Decoded {
             None
         }
     });
+    let panels = panels_text.and_then(|t| {
+        crate::panels::parse(&t, &mesh_names(&settings.params))
+            .map_err(|e| issues.push(e))
+            .ok()
+    });
     Decoded {
         settings,
         issues,
         pinned,
         family,
+        panels,
     }
 }
 
@@ -357,16 +373,22 @@ pub fn encode_ab(settings: &Settings, pinned: Option<&Settings>) -> String {
     q
 }
 
-/// Encodes the current state, the pinned state A (in `a`) if any, and
-/// the parameter family (in `family`) if any.
+/// Encodes the current state, the pinned state A (in `a`) if any, the
+/// parameter family (in `family`) if any and the frequency response's
+/// mesh panels (in `panels`) if any.
 pub fn encode_all(
     settings: &Settings,
     pinned: Option<&Settings>,
     family: Option<&FamilySpec>,
+    panels: Option<&[String]>,
 ) -> String {
     let mut q = encode_ab(settings, pinned);
     if let Some(f) = family {
         q.push_str(&format!("&{FAMILY_KEY}={}", percent_encode(&f.encode())));
+    }
+    if let Some(p) = panels {
+        let text = crate::panels::encode(p);
+        q.push_str(&format!("&{PANELS_KEY}={}", percent_encode(&text)));
     }
     q
 }
@@ -650,7 +672,7 @@ mod tests {
             keys::get(&d.settings.params, "te_um"),
             Some(Value::Num(0.0))
         );
-        let q = encode_all(&d.settings, None, Some(&f));
+        let q = encode_all(&d.settings, None, Some(&f), None);
         assert!(q.ends_with("&family=te_um%3A0%2C20.5%2C30"), "{q}");
         let again = decode(&q);
         assert!(again.issues.is_empty(), "{:?}", again.issues);
@@ -708,6 +730,7 @@ mod tests {
                         Just("lyap_points".to_string()),
                         Just("a".to_string()),
                         Just("family".to_string()),
+                        Just("panels".to_string()),
                         Just("teeth_r".to_string()),
                         "[a-z_%0-9]{0,12}",
                         "\\PC{0,8}",
@@ -724,6 +747,7 @@ mod tests {
                         Just("%FF%FE".to_string()),
                         Just("worst".to_string()),
                         Just("te_um:0,20,30".to_string()),
+                        Just("s1a1,rb1".to_string()),
                         Just("backlash_um:50,1e9".to_string()),
                         any::<f64>().prop_map(|x| x.to_string()),
                         any::<i64>().prop_map(|x| x.to_string()),
@@ -747,11 +771,17 @@ mod tests {
             prop_assert!(v.map_value_points <= crate::settings::MAX_MAP_VALUE_POINTS);
             prop_assert!(crate::settings::MAP_KEYS.contains(&v.map_key.as_str()));
             // And it round-trips, with its pinned state if it had one.
-            let again = decode(&encode_all(&d.settings, d.pinned.as_ref(), d.family.as_ref()));
+            let again = decode(&encode_all(
+                &d.settings,
+                d.pinned.as_ref(),
+                d.family.as_ref(),
+                d.panels.as_deref(),
+            ));
             prop_assert!(again.issues.is_empty(), "{:?}", again.issues);
             prop_assert_eq!(again.settings, d.settings);
             prop_assert_eq!(again.pinned, d.pinned);
             prop_assert_eq!(again.family, d.family);
+            prop_assert_eq!(again.panels, d.panels);
         }
 
         #[test]

@@ -246,10 +246,10 @@ pub fn preset(id: &str) -> Option<&'static Preset> {
 pub fn note(p: &Preset) -> String {
     let shown = match p.meshes {
         Some(m) if m.len() > 1 => format!(
-            " The page shows panel a (mesh {}); choose the mesh {} in the settings for panels b-{}.",
-            m[0],
-            m[1..].join(", "),
-            char::from(b'a' + (m.len() - 1).min(25) as u8)
+            " The frequency response shows panels a-{} side by side (meshes {}); the other views show mesh {}, and choosing a mesh in the settings shows that mesh alone.",
+            char::from(b'a' + (m.len() - 1).min(25) as u8),
+            m.join(", "),
+            m[0]
         ),
         _ => String::new(),
     };

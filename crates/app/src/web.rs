@@ -385,6 +385,12 @@ fn draw_view(p: &mut Page, v: ViewId) {
     let Some(cv) = canvas(&p.doc, v) else {
         return;
     };
+    // The frequency response's mesh panels take a taller canvas.
+    let (w, h) = p.ctl.canvas_size(v);
+    if (cv.width(), cv.height()) != (w, h) {
+        cv.set_width(w);
+        cv.set_height(h);
+    }
     let Some(b) = CanvasBackend::with_canvas_object(cv.clone()) else {
         return;
     };
@@ -392,7 +398,11 @@ fn draw_view(p: &mut Page, v: ViewId) {
     // The frequency response's view model, built once for its note and plot.
     let fr = (v == ViewId::Fr).then(|| p.ctl.fr_view());
     if let Some(fr) = &fr {
-        set_note(p, v, &crate::views::fr::fr_note(fr));
+        let note = match p.ctl.panels {
+            Some(_) => crate::views::fr::fr_panels_note(fr),
+            None => crate::views::fr::fr_note(fr),
+        };
+        set_note(p, v, &note);
     }
     if v == ViewId::Map {
         let note = crate::views::map::map_note(&p.ctl.map, p.ctl.map_status.total);
@@ -435,6 +445,9 @@ fn set_note(p: &Page, v: ViewId, text: &str) {
 fn draw_fr(p: &mut Page, root: &Area, v: &crate::views::fr::FrView) -> plots::Res<()> {
     let running = p.ctl.fr_status.running() || p.ctl.members_running(crate::protocol::JobKind::Hbm);
     let suffix = crate::views::fr::fr_caption_suffix(running, v);
+    if p.ctl.panels.is_some() {
+        return family::draw_fr_panels(p, root, &suffix);
+    }
     p.frames[ViewId::Fr.slot()] = Some(plots::draw_fr(root, v, &suffix)?);
     Ok(())
 }

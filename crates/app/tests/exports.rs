@@ -57,8 +57,17 @@ fn settle(c: &mut Controller, cores: &mut [WorkerCore], mut fx: Vec<Effect>) -> 
     panic!("the jobs did not finish");
 }
 
+/// The same page with a family of three TE values: every export holds
+/// every member (issue 12).
+fn family_link() -> String {
+    format!("{LINK}&family=te_um:0,20,30")
+}
+
 fn exports() -> String {
-    exports_of(LINK, 2)
+    let mut out = exports_of(LINK, 2);
+    out.push_str("##### the same link with a family of three TE values\n");
+    out.push_str(&exports_of(&family_link(), 2));
+    out
 }
 
 /// Every export of link `link` computed by a pool of `workers` workers.
@@ -143,6 +152,61 @@ fn the_exports_of_a_fixed_link_are_unchanged() {
             want.lines().nth(first)
         );
     }
+}
+
+/// One file of an export listing (`===== name` then its text).
+fn file_text<'a>(all: &'a str, name: &str) -> &'a str {
+    let head = format!("===== {name}\n");
+    let start = all.find(&head).map(|i| i + head.len()).expect(name);
+    let rest = &all[start..];
+    &rest[..rest.find("\n===== ").unwrap_or(rest.len())]
+}
+
+#[test]
+fn a_familys_exports_hold_every_member() {
+    let all = exports_of(&family_link(), 2);
+    let labels = ["TE 0 µm", "TE 20 µm", "TE 30 µm"];
+    for name in [
+        "gearshock-bif-s1a1.csv",
+        "gearshock-phase-s1a1.csv",
+        "gearshock-poincare-s1a1.csv",
+        "gearshock-time-s1a1.csv",
+        "gearshock-spectrum-s1a1.csv",
+    ] {
+        let csv = file_text(&all, name);
+        assert!(csv.starts_with("member,"), "{name}: {csv}");
+        let mut seen: Vec<&str> = csv
+            .lines()
+            .skip(1)
+            .filter_map(|l| l.split(',').next())
+            .collect();
+        seen.dedup();
+        assert_eq!(seen, labels, "{name}");
+    }
+    for name in [
+        "gearshock-bif-s1a1.json",
+        "gearshock-phase-s1a1.json",
+        "gearshock-spectrum-s1a1.json",
+    ] {
+        let j: serde_json::Value = serde_json::from_str(file_text(&all, name)).expect(name);
+        assert_eq!(j["family"]["values"], serde_json::json!([0.0, 20.0, 30.0]));
+        let members = j["members"].as_array().expect(name);
+        assert_eq!(members.len(), 3, "{name}");
+        for (m, label) in members.iter().zip(labels) {
+            assert_eq!(m["member"], label, "{name}");
+            assert!(m.get("error").is_none(), "{name}: {m}");
+        }
+    }
+    // Each member is its own computation: the bifurcation rows differ.
+    let bif = file_text(&all, "gearshock-bif-s1a1.csv");
+    let rows = |l: &str| -> Vec<String> {
+        bif.lines()
+            .filter(|r| r.starts_with(l))
+            .map(|r| r[l.len()..].to_string())
+            .collect()
+    };
+    assert_eq!(rows("TE 0 µm,").len(), rows("TE 30 µm,").len());
+    assert_ne!(rows("TE 0 µm,"), rows("TE 30 µm,"));
 }
 
 #[test]

@@ -10,6 +10,13 @@
 //! each panel's data and every member's curve overlaid in its SVG, one
 //! colour per value named in words, as the page's frequency response draws
 //! a family.
+//!
+//! Sharding (the heavy figures, 4-11): `--shard i/n` computes the panels of
+//! members i, i + n, ... only and prints them, files and all, as one JSON
+//! shard; `gearshock merge --out DIR` checks that the shards are all of one
+//! figure, computed with the same options, each member exactly once, and
+//! writes the same files as the unsharded run, byte for byte. Figs. 2 and 3
+//! are not sharded: each of their panels holds every member's branch.
 
 use crate::{progress, usage, Failure};
 use app::jobs::omega::{omega_result, OmegaJob};
@@ -35,9 +42,10 @@ const SAMPLES_PER_PERIOD: u32 = 64;
 pub struct FigureArgs {
     /// The figure's preset id, e.g. fig5 (see `gearshock presets`).
     id: String,
-    /// Directory for the SVG, JSON and CSV files (created if missing).
+    /// Directory for the SVG, JSON and CSV files (created if missing);
+    /// not with --shard, whose JSON goes to `gearshock merge --out DIR`.
     #[arg(long, value_name = "DIR")]
-    out: PathBuf,
+    out: Option<PathBuf>,
     /// Omega points of a bifurcation panel, or the nominal points of a
     /// frequency-response branch (default: the preset's, 100 or 150).
     #[arg(long)]
@@ -48,7 +56,15 @@ pub struct FigureArgs {
     /// Recorded mesh periods (default: the preset's, 100).
     #[arg(long)]
     record_periods: Option<u32>,
+    /// Compute only shard i of n (the panels of members i, i + n, ...) of
+    /// a bifurcation or orbit figure and print it as JSON; join the shards
+    /// with `gearshock merge --out DIR`.
+    #[arg(long, value_name = "I/N")]
+    shard: Option<String>,
 }
+
+/// The files of a figure's panels, in order: (file name, contents).
+type Files = Vec<(String, String)>;
 
 /// One member of the family: its link and decoded settings.
 struct Member {
@@ -83,10 +99,10 @@ fn write(path: &Path, text: &str) -> Result<(), Failure> {
     })
 }
 
-fn drawn<T, E: std::fmt::Display>(path: &Path, result: Result<T, E>) -> Result<T, Failure> {
+fn drawn<T, E: std::fmt::Display>(name: &str, result: Result<T, E>) -> Result<T, Failure> {
     result.map_err(|e| Failure {
         code: 1,
-        message: format!("cannot draw {}: {e}", path.display()),
+        message: format!("cannot draw {name}: {e}"),
     })
 }
 
@@ -140,23 +156,259 @@ pub fn run(args: &FigureArgs) -> Result<Value, Failure> {
             p.id
         )));
     }
-    std::fs::create_dir_all(&args.out)
-        .map_err(|e| usage(format!("--out {}: {e}", args.out.display())))?;
     let members = members(p)?;
-    let panels = if is("bif_dir") {
-        bifurcation_panels(p, &members, args)?
-    } else if is("omega") {
-        orbit_panels(p, &members, args)?
-    } else {
-        frf_panels(p, &members, args)?
+    let heavy = is("bif_dir") || is("omega");
+    let shard = match &args.shard {
+        None => None,
+        Some(_) if !heavy => {
+            return Err(usage(format!(
+                "figure {} --shard: not sharded (each panel holds every member's branch); allowed for figures 4-11",
+                p.id
+            )))
+        }
+        Some(_) if args.out.is_some() => {
+            return Err(usage(
+                "figure --shard prints its shard as JSON: give --out to `gearshock merge --out DIR` instead",
+            ))
+        }
+        Some(text) => {
+            let (i, n) = crate::parse_shard(text)?;
+            if n as usize > members.len() {
+                return Err(usage(format!(
+                    "--shard {text}: figure {} has {} members (one per panel), so at most {} shards",
+                    p.id,
+                    members.len(),
+                    members.len()
+                )));
+            }
+            Some((i as usize, n as usize))
+        }
     };
-    Ok(
-        json!({ "id": p.id, "title": p.title, "out": args.out.display().to_string(), "panels": panels }),
-    )
+    if let Some((i, n)) = shard {
+        // One shard: its members' panels, files and all, as JSON.
+        let only = |m: usize| m % n == i;
+        let mut files = Files::new();
+        let panels = if is("bif_dir") {
+            bifurcation_panels(p, &members, args, &only, &mut files)?
+        } else {
+            orbit_panels(p, &members, args, &only, &mut files)?
+        };
+        return Ok(shard_json(p, args, (i, n), members.len(), panels, &files));
+    }
+    let out = args
+        .out
+        .as_ref()
+        .ok_or_else(|| usage("figure: --out DIR is required (or --shard i/n)"))?;
+    let mut files = Files::new();
+    let all = |_: usize| true;
+    let panels = if is("bif_dir") {
+        bifurcation_panels(p, &members, args, &all, &mut files)?
+    } else if is("omega") {
+        orbit_panels(p, &members, args, &all, &mut files)?
+    } else {
+        frf_panels(p, &members, args, &mut files)?
+    };
+    write_all(out, &files)?;
+    Ok(listing(p, out, panels))
+}
+
+/// The command's report: the figure and its panels, sorted a, b, c, ...
+fn listing(p: &Preset, out: &Path, mut panels: Vec<Value>) -> Value {
+    panels.sort_by(|a, b| a["panel"].as_str().cmp(&b["panel"].as_str()));
+    json!({ "id": p.id, "title": p.title, "out": out.display().to_string(), "panels": panels })
+}
+
+/// Creates `out` and writes the files into it.
+fn write_all(out: &Path, files: &Files) -> Result<(), Failure> {
+    std::fs::create_dir_all(out).map_err(|e| usage(format!("--out {}: {e}", out.display())))?;
+    for (name, text) in files {
+        write(&out.join(name), text)?;
+    }
+    Ok(())
+}
+
+/// The options a shard was computed with: every shard of one figure must
+/// carry the same.
+fn options_json(args: &FigureArgs) -> Value {
+    json!({
+        "points": args.points,
+        "transient_periods": args.transient_periods,
+        "record_periods": args.record_periods,
+    })
+}
+
+/// One shard as JSON: what it is, its panels' listing and their files.
+fn shard_json(
+    p: &Preset,
+    args: &FigureArgs,
+    (i, n): (usize, usize),
+    count: usize,
+    panels: Vec<Value>,
+    files: &Files,
+) -> Value {
+    let members: Vec<usize> = (i..count).step_by(n).collect();
+    json!({
+        "figure_shard": {
+            "id": p.id,
+            "shard": i,
+            "shards": n,
+            "members": members,
+            "options": options_json(args),
+        },
+        "panels": panels,
+        "files": files.iter().map(|(name, text)| json!({ "name": name, "text": text })).collect::<Vec<_>>(),
+    })
+}
+
+/// The file names of member `m`'s panels of figure `p` with `count`
+/// members: a bifurcation figure's panel m; an orbit figure's m and
+/// count + m (the Poincaré sections).
+fn member_files(p: &Preset, m: usize, count: usize) -> Vec<String> {
+    let bif = p.settings.iter().any(|(k, _)| *k == "bif_dir");
+    let letters = if bif { vec![m] } else { vec![m, count + m] };
+    letters
+        .into_iter()
+        .flat_map(|k| {
+            let panel = format!("{}{}", p.id, panel_letter(k));
+            ["svg", "json", "csv"].map(|ext| format!("{panel}.{ext}"))
+        })
+        .collect()
+}
+
+/// `gearshock merge --out DIR` of figure shards: checks that they are all
+/// the shards of one figure computed with the same options, each member's
+/// panels exactly once and nothing else, then writes the files as the
+/// unsharded run does and returns its report. Every refusal names the
+/// shard and why (exit 2).
+pub fn merge(shards: &[Value], out: Option<&Path>) -> Result<Value, Failure> {
+    let bad = |k: usize, why: String| usage(format!("merge: shard file {}: {why}", k + 1));
+    let head = |k: usize, v: &Value| -> Result<(String, u64, u64, Value), Failure> {
+        let h = v
+            .get("figure_shard")
+            .ok_or_else(|| bad(k, "not a figure shard (no figure_shard)".into()))?;
+        let id = h["id"]
+            .as_str()
+            .ok_or_else(|| bad(k, "no figure id".into()))?;
+        let (Some(i), Some(n)) = (h["shard"].as_u64(), h["shards"].as_u64()) else {
+            return Err(bad(k, "no shard i/n".into()));
+        };
+        Ok((id.to_string(), i, n, h["options"].clone()))
+    };
+    let (id, _, n, options) = head(0, &shards[0])?;
+    let p = preset(&id)
+        .filter(|p| p.family.is_some() && p.meshes.is_none())
+        .ok_or_else(|| {
+            bad(
+                0,
+                format!(
+                    "{} is not a sharded figure",
+                    solver::keys::truncate(&id, 30)
+                ),
+            )
+        })?;
+    let Some(out) = out else {
+        return Err(usage(
+            "merge: figure shards need --out DIR for the figure's files",
+        ));
+    };
+    let count = p.family.map_or(1, |f| f.values.len());
+    if n == 0 || n as usize > count || shards.len() as u64 != n {
+        return Err(usage(format!(
+            "merge: figure {id} was split into {n} shards; {} files were given",
+            shards.len()
+        )));
+    }
+    let mut seen = vec![false; n as usize];
+    let mut files = Files::new();
+    let mut panels = Vec::new();
+    for (k, v) in shards.iter().enumerate() {
+        let (kid, i, kn, kopt) = head(k, v)?;
+        if kid != id {
+            return Err(bad(
+                k,
+                format!("of figure {} (not {id})", solver::keys::truncate(&kid, 30)),
+            ));
+        }
+        if kn != n || i >= n {
+            return Err(bad(k, format!("shard {i}/{kn}, not one of {n} shards")));
+        }
+        if kopt != options {
+            return Err(bad(
+                k,
+                format!("computed with other options ({kopt}, not {options})"),
+            ));
+        }
+        if std::mem::replace(&mut seen[i as usize], true) {
+            return Err(bad(k, format!("shard {i}/{n} is given twice")));
+        }
+        // Exactly the files of this shard's members, each once.
+        let mut want: Vec<String> = (i as usize..count)
+            .step_by(n as usize)
+            .flat_map(|m| member_files(p, m, count))
+            .collect();
+        let listed = v["files"]
+            .as_array()
+            .ok_or_else(|| bad(k, "no files".into()))?;
+        for f in listed {
+            let (Some(name), Some(text)) = (f["name"].as_str(), f["text"].as_str()) else {
+                return Err(bad(k, "a file without its name or text".into()));
+            };
+            let Some(pos) = want.iter().position(|w| w == name) else {
+                return Err(bad(
+                    k,
+                    format!(
+                        "file {} is not one of shard {i}/{n}'s panels",
+                        solver::keys::truncate(name, 40)
+                    ),
+                ));
+            };
+            want.remove(pos);
+            files.push((name.to_string(), text.to_string()));
+        }
+        if let Some(missing) = want.first() {
+            return Err(bad(k, format!("file {missing} is missing")));
+        }
+        let list = v["panels"]
+            .as_array()
+            .ok_or_else(|| bad(k, "no panels".into()))?;
+        for entry in list {
+            let name = entry["panel"].as_str().unwrap_or_default();
+            let known = files.iter().any(|(f, _)| f == &format!("{name}.svg"));
+            let twice = panels
+                .iter()
+                .any(|p: &Value| p["panel"].as_str() == Some(name));
+            if !known || twice {
+                return Err(bad(
+                    k,
+                    format!(
+                        "panel {} is not one of its panels, or is given twice",
+                        solver::keys::truncate(name, 40)
+                    ),
+                ));
+            }
+            panels.push(entry.clone());
+        }
+    }
+    // Every panel listed once: three files each.
+    if panels.len() * 3 != files.len() {
+        return Err(usage(format!(
+            "merge: the shards list {} panels for {} files",
+            panels.len(),
+            files.len()
+        )));
+    }
+    files.sort_by(|a, b| a.0.cmp(&b.0));
+    write_all(out, &files)?;
+    Ok(listing(p, out, panels))
 }
 
 /// Panels a-d: one mesh each; every member's branch on every panel.
-fn frf_panels(p: &Preset, members: &[Member], args: &FigureArgs) -> Result<Vec<Value>, Failure> {
+fn frf_panels(
+    p: &Preset,
+    members: &[Member],
+    args: &FigureArgs,
+    files: &mut Files,
+) -> Result<Vec<Value>, Failure> {
     let names: &[&str] = p.meshes.unwrap_or(&[]);
     let mut bar = progress::Progress::new(members.len() * 1000, "per mille of the branches", false);
     // Per member: the JSON of its branch on each panel's mesh, and the
@@ -231,7 +483,7 @@ fn frf_panels(p: &Preset, members: &[Member], args: &FigureArgs) -> Result<Vec<V
             }
         }
         let complete = branches.iter().all(|b| b["complete"] == true);
-        let svg = args.out.join(format!("{panel}.svg"));
+        let svg = format!("{panel}.svg");
         let view = frf_view(p, members, &stores, name)?;
         let mut text = String::new();
         {
@@ -239,14 +491,14 @@ fn frf_panels(p: &Preset, members: &[Member], args: &FigureArgs) -> Result<Vec<V
             let root = SVGBackend::with_string(&mut text, size).into_drawing_area();
             drawn(&svg, app::plots::draw_fr(&root, &view, "").map(|_| ()))?;
         }
-        write(&svg, &text)?;
+        files.push((svg, text));
         let data = json!({
             "mesh": name,
             "family": p.family.map(|f| json!({ "key": f.key, "values": f.values })),
             "members": branches,
         });
-        write(&args.out.join(format!("{panel}.json")), &data.to_string())?;
-        write(&args.out.join(format!("{panel}.csv")), &csv)?;
+        files.push((format!("{panel}.json"), data.to_string()));
+        files.push((format!("{panel}.csv"), csv));
         out.push(json!({
             "panel": panel,
             "view": "frequency-response",
@@ -346,11 +598,18 @@ fn run_options(m: &Member, args: &FigureArgs) -> RunOptions {
 }
 
 /// Panels a-c: phase portraits; d-f: Poincaré sections.
-fn orbit_panels(p: &Preset, members: &[Member], args: &FigureArgs) -> Result<Vec<Value>, Failure> {
+fn orbit_panels(
+    p: &Preset,
+    members: &[Member],
+    args: &FigureArgs,
+    only: &dyn Fn(usize) -> bool,
+    files: &mut Files,
+) -> Result<Vec<Value>, Failure> {
     let mut out = Vec::new();
-    let mut bar = progress::Progress::new(members.len(), "panels", false);
     let n = members.len();
-    for (i, m) in members.iter().enumerate() {
+    let mine = (0..n).filter(|&i| only(i)).count();
+    let mut bar = progress::Progress::new(mine, "panels", false);
+    for (i, m) in members.iter().enumerate().filter(|(i, _)| only(*i)) {
         let job = OmegaJob {
             id: i as u64,
             model: m.model.clone(),
@@ -367,9 +626,10 @@ fn orbit_panels(p: &Preset, members: &[Member], args: &FigureArgs) -> Result<Vec
         let label = member_label(p, i);
         for (k, view) in [(i, OmegaView::Phase), (n + i, OmegaView::Poincare)] {
             let name = format!("{}{}", p.id, panel_letter(k));
-            let svg = args.out.join(format!("{name}.svg"));
+            let svg = format!("{name}.svg");
+            let mut text = String::new();
             {
-                let root = SVGBackend::new(&svg, SIZE).into_drawing_area();
+                let root = SVGBackend::with_string(&mut text, SIZE).into_drawing_area();
                 drawn(
                     &svg,
                     match view {
@@ -378,13 +638,14 @@ fn orbit_panels(p: &Preset, members: &[Member], args: &FigureArgs) -> Result<Vec
                     },
                 )?;
             }
+            files.push((svg, text));
             let mut data = app::views::omega::omega_json(&r, view);
             data["query"] = json!(m.query);
-            write(&args.out.join(format!("{name}.json")), &data.to_string())?;
-            write(
-                &args.out.join(format!("{name}.csv")),
-                &app::views::omega::omega_csv(&r, view),
-            )?;
+            files.push((format!("{name}.json"), data.to_string()));
+            files.push((
+                format!("{name}.csv"),
+                app::views::omega::omega_csv(&r, view),
+            ));
             out.push(json!({
                 "panel": name,
                 "view": if matches!(view, OmegaView::Poincare) { "poincare" } else { "phase" },
@@ -394,7 +655,7 @@ fn orbit_panels(p: &Preset, members: &[Member], args: &FigureArgs) -> Result<Vec
                 "files": [format!("{name}.svg"), format!("{name}.json"), format!("{name}.csv")],
             }));
         }
-        bar.update(i + 1);
+        bar.update(out.len() / 2);
     }
     bar.finish();
     out.sort_by(|a, b| a["panel"].as_str().cmp(&b["panel"].as_str()));
@@ -406,9 +667,11 @@ fn bifurcation_panels(
     p: &Preset,
     members: &[Member],
     args: &FigureArgs,
+    only: &dyn Fn(usize) -> bool,
+    files: &mut Files,
 ) -> Result<Vec<Value>, Failure> {
     let mut sweeps = Vec::new();
-    for m in members {
+    for (i, m) in members.iter().enumerate() {
         let v = &m.settings.view;
         let mut spec = SweepSpec::new(
             v.omega_from,
@@ -420,13 +683,19 @@ fn bifurcation_panels(
         spec.steady.record_periods = run.record_periods;
         spec.directions = v.bif_dir;
         spec.meshes = vec![m.settings.mesh_index(&m.model).unwrap_or(0)];
-        sweeps.push((spec.clone(), BifurcationSweep::new(m.model.clone(), spec)?));
+        sweeps.push((
+            i,
+            spec.clone(),
+            BifurcationSweep::new(m.model.clone(), spec)?,
+        ));
     }
-    let total: usize = sweeps.iter().map(|(_, s)| s.total()).sum();
+    sweeps.retain(|(i, _, _)| only(*i));
+    let total: usize = sweeps.iter().map(|(_, _, s)| s.total()).sum();
     let mut bar = progress::Progress::new(total, "points", false);
     let mut done = 0;
     let mut out = Vec::new();
-    for (i, (m, (spec, mut sweep))) in members.iter().zip(sweeps).enumerate() {
+    for (i, spec, mut sweep) in sweeps {
+        let m = &members[i];
         let mut pts = Vec::with_capacity(sweep.total());
         while !sweep.is_finished() {
             pts.extend(sweep.advance(1));
@@ -436,16 +705,13 @@ fn bifurcation_panels(
         canonical_order(&mut pts);
         let name = format!("{}{}", p.id, panel_letter(i));
         let data = solver::report::sweep_json(&m.model, &m.settings.params, &spec, &pts);
-        write(&args.out.join(format!("{name}.json")), &data.to_string())?;
-        write(
-            &args.out.join(format!("{name}.csv")),
-            &crate::csv::sweep(&data),
-        )?;
+        files.push((format!("{name}.json"), data.to_string()));
+        files.push((format!("{name}.csv"), crate::csv::sweep(&data)));
         let view = bif_view(m, &spec, &pts)?;
         let natural = app::views::natural_in_range(&m.model, spec.omega_from, spec.omega_to);
-        let svg = args.out.join(format!("{name}.svg"));
+        let svg = format!("{name}.svg");
         let text = drawn(&svg, bif_svg(&view, &natural, &member_label(p, i)))?;
-        write(&svg, &text)?;
+        files.push((svg, text));
         let failed = pts.iter().filter(|p| p.error.is_some()).count();
         out.push(json!({
             "panel": name,
@@ -460,9 +726,8 @@ fn bifurcation_panels(
     Ok(out)
 }
 
-/// The bifurcation diagram as SVG text. The page draws the chart, then its
-/// dots in a fast pass; an SVG is complete once presented, so the dots are
-/// drawn into a second SVG whose body is appended to the chart's.
+/// The bifurcation diagram as SVG text, its dots inside (as the page's
+/// SVG export draws it).
 fn bif_svg(
     view: &BifView,
     natural: &[app::views::NaturalFreq],
@@ -475,21 +740,7 @@ fn bif_svg(
             .map_err(|e| e.to_string())?
             .1
     };
-    let mut dots = String::new();
-    {
-        let root = SVGBackend::with_string(&mut dots, SIZE).into_drawing_area();
-        app::plots::draw_groups(&root, &groups).map_err(|e| e.to_string())?;
-    }
-    let head = chart
-        .trim_end()
-        .strip_suffix("</svg>")
-        .ok_or("the chart is not a complete SVG")?;
-    let body = dots
-        .split_once('>')
-        .map(|(_, rest)| rest.trim_end())
-        .and_then(|rest| rest.strip_suffix("</svg>"))
-        .ok_or("the dots are not a complete SVG")?;
-    Ok(format!("{head}{body}</svg>\n"))
+    app::plots::svg_with_dots(&chart, SIZE, &groups).map_err(|e| e.to_string())
 }
 
 /// The page's bifurcation view of one sweep: Poincaré samples of x = delta - e.

@@ -287,6 +287,10 @@ enum Command {
     Merge {
         /// Shard outputs (JSON files).
         files: Vec<std::path::PathBuf>,
+        /// Directory for a figure's files (shards of `gearshock figure ID
+        /// --shard i/n` only).
+        #[arg(long, value_name = "DIR")]
+        out: Option<std::path::PathBuf>,
     },
     /// Print every preset (the paper's figures as settings) as JSON.
     Presets,
@@ -1139,7 +1143,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let value = report::instability_json(&model, &params, &out);
             output(p.format, &value, csv::instability)
         }
-        Command::Merge { files } => {
+        Command::Merge { files, out } => {
             if files.is_empty() {
                 return Err(usage("merge: give the shard JSON files to join"));
             }
@@ -1171,7 +1175,16 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 left -= read;
                 shards.push(v);
             }
-            if shards.first().is_some_and(|v| v.get("cells").is_some()) {
+            if shards
+                .first()
+                .is_some_and(|v| v.get("figure_shard").is_some())
+            {
+                emit(&figure::merge(&shards, out.as_deref())?)
+            } else if out.is_some() {
+                Err(usage(
+                    "merge --out: only figure shards (gearshock figure ID --shard i/n) write files",
+                ))
+            } else if shards.first().is_some_and(|v| v.get("cells").is_some()) {
                 emit(&report::merge_maps(&shards)?)
             } else {
                 emit(&report::merge_shards(&shards)?)

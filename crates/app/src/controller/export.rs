@@ -56,13 +56,13 @@ pub enum ExportError {
     Json(String),
 }
 
-fn json_text(r: Result<String, serde_json::Error>) -> Result<String, ExportError> {
+pub(super) fn json_text(r: Result<String, serde_json::Error>) -> Result<String, ExportError> {
     r.map_err(|e| ExportError::Json(e.to_string()))
 }
 
 impl Controller {
     /// The selected-Omega result, if it is exportable (not a preview).
-    fn exportable_omega(&self) -> Result<&OmegaResult, ExportError> {
+    pub(super) fn exportable_omega(&self) -> Result<&OmegaResult, ExportError> {
         match &self.omega {
             Some(r) if r.preview => Err(ExportError::Preview),
             Some(r) => Ok(r),
@@ -74,6 +74,7 @@ impl Controller {
     pub fn export(&self, view: ViewId, format: Format) -> Result<Effect, ExportError> {
         let csv = format == Format::Csv;
         let text = match view.spec().data {
+            ExportKind::Fr if self.panels.is_some() => self.fr_panels_export(csv)?,
             ExportKind::Fr => {
                 let v = self.fr_view();
                 if csv {
@@ -82,6 +83,8 @@ impl Controller {
                     json_text(serde_json::to_string_pretty(&v))?
                 }
             }
+            // A family: every member, named.
+            ExportKind::Bif if self.family.is_some() => self.family_bif_export(csv)?,
             ExportKind::Bif => {
                 let v = self.bif_view();
                 if csv {
@@ -94,6 +97,10 @@ impl Controller {
             ExportKind::Map => crate::views::map::map_json(&self.map).to_string(),
             ExportKind::Lyap if csv => crate::views::lyap::lyap_csv(&self.lyap),
             ExportKind::Lyap => crate::views::lyap::lyap_json(&self.lyap).to_string(),
+            ExportKind::Omega if self.family.is_some() => {
+                let which = OmegaView::of(view).ok_or(ExportError::NoCliFormat)?;
+                self.family_omega_export(which, csv)?
+            }
             ExportKind::Omega => {
                 let r = self.exportable_omega()?;
                 let which = OmegaView::of(view).ok_or(ExportError::NoCliFormat)?;
@@ -110,6 +117,41 @@ impl Controller {
             mime: mime.into(),
             text,
         })
+    }
+
+    /// The frequency response's mesh panels: CSV with a `mesh` column
+    /// before each panel's rows, or JSON with one entry per panel.
+    fn fr_panels_export(&self, csv: bool) -> Result<String, ExportError> {
+        let names = self.panels.clone().unwrap_or_default();
+        let panels = self.fr_panels();
+        if csv {
+            let mut out = String::new();
+            for (name, p) in names.iter().zip(&panels) {
+                let Ok(v) = &p.data else { continue };
+                let text = crate::views::fr::fr_csv(v);
+                let mut lines = text.lines();
+                if out.is_empty() {
+                    out = format!("mesh,{}\n", lines.next().unwrap_or_default());
+                } else {
+                    lines.next();
+                }
+                for l in lines {
+                    out.push_str(&format!("{name},{l}\n"));
+                }
+            }
+            return Ok(out);
+        }
+        let entries: Vec<serde_json::Value> = names
+            .iter()
+            .zip(&panels)
+            .map(|(name, p)| match &p.data {
+                Ok(v) => serde_json::json!({ "mesh": name, "title": p.title, "view": v }),
+                Err(e) => serde_json::json!({ "mesh": name, "title": p.title, "error": e }),
+            })
+            .collect();
+        json_text(serde_json::to_string_pretty(
+            &serde_json::json!({ "panels": entries }),
+        ))
     }
 
     /// The data behind `view` in the CLI's JSON format: the selected-Omega

@@ -240,50 +240,12 @@ impl Controller {
             return;
         };
         for m in &mut f.members {
-            match msg {
-                FromWorker::HbmPoints {
-                    id,
-                    points,
-                    progress,
-                    finished,
-                    error,
-                    ..
-                } if *id == m.hbm.id && *id != 0 => {
-                    m.hbm
-                        .add(points.clone(), *progress, *finished, error.clone());
-                    m.fr_status.done = (100.0 * m.hbm.progress).floor() as usize;
-                    if *finished {
-                        m.fr_status.finished_ms = Some(now_ms);
-                    }
-                    if error.is_some() {
-                        m.fr_status.error = error.clone();
-                    }
-                    self.dirty.fr = true;
-                }
-                FromWorker::BifPoints { id, points } if *id == m.bif.id && *id != 0 => {
-                    m.bif.samples.extend(points.iter().cloned());
-                    m.bif_status.record(m.bif.samples.len(), now_ms);
-                    self.dirty.bif = true;
-                }
-                FromWorker::Omega { id, result } if *id == m.omega_status.id && *id != 0 => {
-                    m.omega = Some((**result).clone());
-                    m.omega_status.done = 1;
-                    m.omega_status.first_data_ms = Some(now_ms);
-                    m.omega_status.finished_ms = Some(now_ms);
-                    self.dirty.omega = true;
-                }
-                FromWorker::Failed { id, message } => {
-                    for st in [&mut m.fr_status, &mut m.bif_status, &mut m.omega_status] {
-                        if st.id == *id && *id != 0 {
-                            st.error = Some(message.clone());
-                            self.dirty.fr = true;
-                            self.dirty.bif = true;
-                            self.dirty.omega = true;
-                        }
-                    }
-                }
-                _ => {}
-            }
+            let side = super::replies::Side {
+                hbm: (&mut m.hbm, &mut m.fr_status),
+                bif: (&mut m.bif, &mut m.bif_status),
+                omega: Some((&mut m.omega, &mut m.omega_status)),
+            };
+            side.feed(msg, now_ms, &mut self.dirty);
         }
     }
 

@@ -52,27 +52,7 @@ fn member_id(c: &Controller, i: usize, kind: JobKind) -> JobId {
 }
 
 fn hbm(id: JobId, amplitude: f64) -> String {
-    encode(&FromWorker::HbmPoints {
-        id,
-        points: [0.5, 1.0]
-            .iter()
-            .map(|&omega| HbmSample {
-                omega,
-                meshes: vec![HbmMesh {
-                    rel_min_um: -amplitude,
-                    rel_max_um: amplitude,
-                    regime: Regime::NoImpact,
-                }],
-                stable: Some(true),
-                bifurcation: None,
-                piece: 0,
-            })
-            .collect(),
-        progress: 1.0,
-        finished: true,
-        error: None,
-        notes: Vec::new(),
-    })
+    hbm_meshes(id, 1, |_| amplitude)
 }
 
 #[test]
@@ -221,6 +201,15 @@ fn the_small_multiples_share_their_axes_and_letter_their_panels() {
         omega.iter().all(|p| p.data.is_err()),
         "nothing computed yet"
     );
+    // The SVG picture: the three panels with both panels' dots inside the
+    // one SVG document (plotters closes it when the chart is presented).
+    let svg = c.plot_svg(crate::views::ViewId::Bif).unwrap();
+    assert!(svg.contains("(c) backlash 200 µm"));
+    assert_eq!(svg.matches("</svg>").count(), 1);
+    assert!(svg.trim_end().ends_with("</svg>"));
+    let c = crate::plots::regime_color(Regime::SingleSided);
+    let orange = format!("#{:02X}{:02X}{:02X}", c.0, c.1, c.2);
+    assert_eq!(svg.matches(&orange).count(), 2, "two single-sided dots");
 }
 
 #[test]
@@ -269,4 +258,151 @@ fn a_figure_preset_loads_its_whole_family_and_bad_input_keeps_the_last_state() {
     assert!(c.pinned.is_some() && c.family.is_some());
     let d = link::decode(&c.query());
     assert!(d.pinned.is_some() && d.family.is_some(), "{:?}", d.issues);
+}
+
+/// A branch of two points whose mesh `j` swings ±`amplitude(j)`.
+fn hbm_meshes(id: JobId, meshes: usize, amplitude: impl Fn(usize) -> f64) -> String {
+    encode(&FromWorker::HbmPoints {
+        id,
+        points: [0.5, 1.0]
+            .iter()
+            .map(|&omega| HbmSample {
+                omega,
+                meshes: (0..meshes)
+                    .map(|j| HbmMesh {
+                        rel_min_um: -amplitude(j),
+                        rel_max_um: amplitude(j),
+                        regime: Regime::NoImpact,
+                    })
+                    .collect(),
+                stable: Some(true),
+                bifurcation: None,
+                piece: 0,
+            })
+            .collect(),
+        progress: 1.0,
+        finished: true,
+        error: None,
+        notes: Vec::new(),
+    })
+}
+
+#[test]
+fn fig2_shows_its_four_mesh_panels_as_a_projection_of_the_same_branches() {
+    let (mut c, _) = Controller::new("", 0.0);
+    ready(&mut c);
+    let fx = c.apply_preset("fig2", 1.0);
+    let names = ["s1a1", "s2b1", "a1b1", "rb1"];
+    assert_eq!(c.panels.as_deref(), Some(&names.map(String::from)[..]));
+    // No new computation: the same jobs as the family without panels.
+    let link = c.query();
+    assert!(link.contains("panels=s1a1%2Cs2b1%2Ca1b1%2Crb1"), "{link}");
+    let jobs = member_jobs(&posts(&fx));
+    assert_eq!(jobs.iter().filter(|j| j.1 == JobKind::Hbm).count(), 5);
+    // Every branch answers for every mesh; each panel projects its mesh.
+    let model = c.model.as_ref().unwrap();
+    let n = model.system.meshes.len();
+    let index: Vec<usize> = names
+        .iter()
+        .map(|m| model.system.mesh_index(m).unwrap())
+        .collect();
+    let main = c.hbm.id;
+    c.worker_message(1, &hbm_meshes(main, n, |j| j as f64 + 1.0), 2.0);
+    for i in 0..5 {
+        let id = member_id(&c, i, JobKind::Hbm);
+        let scale = 100.0 * (i + 1) as f64;
+        c.worker_message(0, &hbm_meshes(id, n, |j| scale + j as f64), 3.0);
+    }
+    let panels = c.fr_panels();
+    assert_eq!(panels.len(), 4);
+    assert_eq!(panels[0].title, "(a) s1a1 (small sun – short planet a1)");
+    assert_eq!(panels[3].title, "(d) rb1 (ring – long planet b1)");
+    for (p, &j) in panels.iter().zip(&index) {
+        let v = p.data.as_ref().unwrap();
+        let labels: Vec<&str> = v.branches.iter().map(|b| b.label.as_str()).collect();
+        assert_eq!(
+            labels,
+            [
+                "TE 5 µm",
+                "TE 10 µm",
+                "TE 15 µm",
+                "TE 20 µm",
+                "TE 25 µm",
+                "TE 30 µm"
+            ]
+        );
+        assert_eq!(v.branches[0].points[0].max_um, j as f64 + 1.0);
+        assert_eq!(v.branches[2].points[1].min_um, -(200.0 + j as f64));
+    }
+    // The note says the panels hold the branches only (the dots are the
+    // plotted mesh's alone).
+    let note = crate::views::fr::fr_panels_note(&c.fr_view());
+    assert!(note.contains("one panel per mesh") && !note.contains("Hollow dots"));
+    // The text alternative and the SVG name all four meshes.
+    let label = c.canvas_label(crate::views::ViewId::Fr);
+    let svg = c.plot_svg(crate::views::ViewId::Fr).unwrap();
+    assert!(svg.contains("height=\"680\""), "the taller canvas");
+    for m in names {
+        assert!(label.contains(m), "{label}");
+        assert!(svg.contains(&crate::panels::mesh_words(m)), "{m}");
+    }
+    // The link restores the panels; choosing a mesh shows it alone.
+    let (again, _) = Controller::new(&link, 0.0);
+    assert_eq!(again.panels, c.panels);
+    assert_eq!(again.query(), link);
+    c.set_key("mesh", "s2b1", 4.0).unwrap();
+    assert!(c.panels.is_none() && !c.query().contains("panels"));
+}
+
+#[test]
+fn a_familys_svg_pictures_are_its_small_multiples() {
+    let (mut c, _) = Controller::new("family=te_um:0,20,30", 0.0);
+    ready(&mut c);
+    for view in [
+        crate::views::ViewId::Bif,
+        crate::views::ViewId::Phase,
+        crate::views::ViewId::Poincare,
+    ] {
+        let svg = c.plot_svg(view).unwrap();
+        let offset = if view == crate::views::ViewId::Poincare {
+            3
+        } else {
+            0
+        };
+        for (k, te) in [0, 20, 30].iter().enumerate() {
+            let letter = char::from(b'a' + (k + offset) as u8);
+            assert!(
+                svg.contains(&format!("({letter}) TE {te} µm")),
+                "{view:?}: {letter}"
+            );
+        }
+    }
+}
+
+#[test]
+fn the_mesh_panels_export_every_panel() {
+    let (mut c, _) = Controller::new("", 0.0);
+    ready(&mut c);
+    c.apply_preset("fig3", 1.0);
+    let n = c.model.as_ref().unwrap().system.meshes.len();
+    c.worker_message(1, &hbm_meshes(c.hbm.id, n, |j| j as f64 + 1.0), 2.0);
+    let text = |f| match c.export(crate::views::ViewId::Fr, f).unwrap() {
+        Effect::Download { text, .. } => text,
+        Effect::Post { .. } => panic!("a data export posts nothing"),
+    };
+    let csv = text(Format::Csv);
+    assert!(csv.starts_with("mesh,branch,omega,"), "{csv}");
+    for m in ["s1a1", "s2b1", "a1b1", "rb1"] {
+        // Two points of the current state's branch on every panel.
+        let rows = csv
+            .lines()
+            .filter(|l| l.starts_with(&format!("{m},hbm (backlash 50 µm),")))
+            .count();
+        assert_eq!(rows, 2, "{m}: {csv}");
+    }
+    let json: serde_json::Value = serde_json::from_str(&text(Format::Json)).unwrap();
+    let panels = json["panels"].as_array().unwrap();
+    assert_eq!(panels.len(), 4);
+    assert_eq!(panels[3]["mesh"], "rb1");
+    assert_eq!(panels[3]["view"]["branches"].as_array().unwrap().len(), 4);
 }

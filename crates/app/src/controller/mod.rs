@@ -144,6 +144,9 @@ pub struct Controller {
     pub pinned: Option<Pinned>,
     /// The parameter family shown, if any (member 0 is the current state).
     pub family: Option<Family>,
+    /// The meshes of the frequency response's side-by-side panels (the
+    /// paper's Figs. 2 and 3), if shown.
+    pub panels: Option<Vec<String>>,
     /// Views to redraw.
     pub dirty: Dirty,
     workers: Vec<WorkerSlot>,
@@ -195,6 +198,7 @@ impl Controller {
             lyap_status: JobStatus::default(),
             pinned: None,
             family,
+            panels: decoded.panels,
             dirty: Dirty::default(),
             workers: vec![WorkerSlot::default(); workers],
             next_id: 0,
@@ -221,6 +225,7 @@ impl Controller {
             &self.settings,
             self.pinned.as_ref().map(|p| &p.settings),
             self.family.as_ref().map(|f| &f.spec),
+            self.panels.as_deref(),
         );
         match self.tour {
             Some(step) => format!("{q}&tour={}", step + 1),
@@ -296,6 +301,10 @@ impl Controller {
                 self.settings.view = before;
                 return Err(msg);
             }
+            if key == "mesh" && self.panels.take().is_some() {
+                // Choosing a mesh shows that mesh alone.
+                self.dirty.url = true;
+            }
             let what = match key {
                 "omega" => Restart {
                     omega: true,
@@ -360,7 +369,9 @@ impl Controller {
         self.settings.params = params;
         self.model = Ok(model);
         if model_changed {
-            // A new model: its own default mesh, and fresh controls.
+            // A new model: its own meshes (no panels of the old one), its
+            // default mesh, and fresh controls.
+            self.panels = None;
             if let Some(first) = self.mesh_names().first() {
                 self.settings.view.mesh = MeshSel::Named(first.clone());
             }
@@ -402,6 +413,7 @@ impl Controller {
             spec,
             members: Vec::new(),
         });
+        self.panels = d.panels;
         if let Some(a) = d.pinned {
             fx.extend(self.start_pinned(a, now_ms));
         }
@@ -462,6 +474,9 @@ impl Controller {
                 .collect();
             query.push_str(&format!("&family={}:{}", f.key, v.join(",")));
         }
+        if let Some(m) = p.meshes.filter(|m| m.len() > 1) {
+            query.push_str(&format!("&{}={}", crate::panels::PANELS_KEY, m.join(",")));
+        }
         let fx = self.load_query(&query, now_ms);
         self.preset_note = Some(presets::note(p));
         fx
@@ -504,8 +519,18 @@ impl Controller {
     /// previous complete branch faded while a new one computes) and the
     /// time-integration overlay if it is on.
     pub fn fr_view(&self) -> FrView {
-        let (mesh, b) = self.mesh_and_backlash();
-        let ctx = self.view_context();
+        let (mesh, _) = self.mesh_and_backlash();
+        self.fr_view_on(mesh, None)
+    }
+
+    /// The frequency-response view of mesh `mesh` (`None`: the worst),
+    /// titled `label` (default: the plotted mesh's).
+    fn fr_view_on(&self, mesh: Option<usize>, label: Option<&str>) -> FrView {
+        let (_, b) = self.mesh_and_backlash();
+        let mut ctx = self.view_context();
+        if let Some(l) = label {
+            ctx.mesh_label = l.to_string();
+        }
         // The previous branch is context while the new one computes, not
         // after it has ended (complete or failed).
         let previous = self.hbm_previous.as_ref().filter(|_| !self.hbm.finished);
@@ -661,6 +686,7 @@ impl Controller {
             })),
             "ab_labels": self.ab_labels(),
             "family": self.family_status(),
+            "fr_panels": self.panels,
             "fr_progress": self.fr_status.progress(now_ms),
             "fr_overlay_progress": self.ti_status.progress(now_ms),
             "bif_progress": self.bif_status.progress(now_ms),
@@ -675,17 +701,20 @@ impl Controller {
 }
 
 mod export;
+mod family_export;
 mod text;
 pub use export::{ExportError, Format};
 mod family;
 pub use family::{Family, Member};
 mod jobs;
+mod panels;
 use jobs::{Restart, ALL, NONE};
 use pinned::pinned_backlash;
 mod messages;
 mod pinned;
+mod replies;
 mod svg;
-pub use svg::view_size;
+pub use svg::{view_size, SvgError};
 
 pub use pinned::Pinned;
 

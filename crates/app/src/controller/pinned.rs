@@ -126,41 +126,11 @@ impl Controller {
         let Some(p) = self.pinned.as_mut() else {
             return;
         };
-        match msg {
-            FromWorker::HbmPoints {
-                id,
-                points,
-                progress,
-                finished,
-                error,
-                ..
-            } if *id == p.hbm.id && *id != 0 => {
-                p.hbm
-                    .add(points.clone(), *progress, *finished, error.clone());
-                if *finished {
-                    p.fr_status.finished_ms = Some(now_ms);
-                }
-                if error.is_some() {
-                    p.fr_status.error = error.clone();
-                }
-                self.dirty.fr = true;
-            }
-            FromWorker::BifPoints { id, points } if *id == p.bif.id && *id != 0 => {
-                p.bif.samples.extend(points.iter().cloned());
-                p.bif_status.done = p.bif.samples.len();
-                if p.bif_status.done >= p.bif_status.total {
-                    p.bif_status.finished_ms = Some(now_ms);
-                }
-                self.dirty.bif = true;
-            }
-            FromWorker::Failed { id, message } => {
-                for st in [&mut p.fr_status, &mut p.bif_status] {
-                    if st.id == *id && *id != 0 {
-                        st.error = Some(message.clone());
-                    }
-                }
-            }
-            _ => {}
-        }
+        let side = super::replies::Side {
+            hbm: (&mut p.hbm, &mut p.fr_status),
+            bif: (&mut p.bif, &mut p.bif_status),
+            omega: None,
+        };
+        side.feed(msg, now_ms, &mut self.dirty);
     }
 }

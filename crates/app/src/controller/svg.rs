@@ -3,7 +3,7 @@
 //! also rasterizes it at twice the size for its PNG export).
 
 use super::*;
-use crate::plots::{self, maps};
+use crate::plots::{self, maps, DrawError};
 use crate::views::{ExportKind, ViewId};
 use plotters::prelude::*;
 
@@ -16,23 +16,53 @@ pub fn view_size(view: ViewId) -> (u32, u32) {
     }
 }
 
+/// Why a view cannot be drawn as SVG now.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SvgError {
+    /// The view's data is not there yet (the selected-Ω motion computing).
+    #[error(transparent)]
+    NotReady(#[from] ExportError),
+    /// The drawing itself failed.
+    #[error(transparent)]
+    Draw(#[from] DrawError),
+}
+
 impl Controller {
+    /// A view's drawing size now: [`view_size`], except the frequency
+    /// response's mesh panels, which take a taller canvas.
+    pub fn canvas_size(&self, view: ViewId) -> (u32, u32) {
+        match (&self.panels, view) {
+            (Some(p), ViewId::Fr) => plots::multiples::fr_panels_size(p.len()),
+            _ => view_size(view),
+        }
+    }
+
     /// The view drawn as SVG text, as the page shows it (without the
     /// progress captions).
-    pub fn plot_svg(&self, view: ViewId) -> Result<String, String> {
+    pub fn plot_svg(&self, view: ViewId) -> Result<String, SvgError> {
         let mut s = String::new();
+        // The bifurcation diagram's dots, drawn after the chart is closed.
+        let mut dots = Vec::new();
         {
-            let root = SVGBackend::with_string(&mut s, view_size(view)).into_drawing_area();
+            let root = SVGBackend::with_string(&mut s, self.canvas_size(view)).into_drawing_area();
             let natural = self.view_context().natural;
             let v = &self.settings.view;
             let whole = v.whole_clearance;
             match view.spec().data {
+                ExportKind::Fr if self.panels.is_some() => {
+                    plots::multiples::draw_fr_panels(&root, &self.fr_panels(), "")?;
+                }
                 ExportKind::Fr => {
                     plots::draw_fr(&root, &self.fr_view(), "")?;
                 }
+                // A family: its small multiples, as the page draws them.
+                ExportKind::Bif if self.family.is_some() => {
+                    let mesh = self.view_context().mesh_label;
+                    let panels = self.bif_panels();
+                    dots = plots::multiples::draw_bif_panels(&root, &panels, &mesh, "")?.1;
+                }
                 ExportKind::Bif => {
-                    let (_, groups) = plots::draw_bif(&root, &self.bif_view(), &natural, "")?;
-                    plots::draw_groups(&root, &groups)?;
+                    dots = plots::draw_bif(&root, &self.bif_view(), &natural, "")?.1;
                 }
                 ExportKind::Map => {
                     let (f, o) = maps::draw_map(&root, &self.map_view(), "")?;
@@ -78,11 +108,17 @@ impl Controller {
                         "",
                     )?;
                 }
+                ExportKind::Omega
+                    if self.family.is_some()
+                        && matches!(view, ViewId::Phase | ViewId::Poincare) =>
+                {
+                    let poincare = view == ViewId::Poincare;
+                    let n = self.family.as_ref().map_or(0, |f| f.spec.values.len());
+                    let panels = self.omega_panels(if poincare { n } else { 0 });
+                    plots::multiples::draw_phase_panels(&root, &panels, poincare, "")?;
+                }
                 ExportKind::Omega => {
-                    let r = self
-                        .omega
-                        .as_ref()
-                        .ok_or("the motion at the selected Ω is still computing")?;
+                    let r = self.omega.as_ref().ok_or(ExportError::NotComputed)?;
                     match view {
                         ViewId::Phase => plots::draw_phase_with(&root, r, "", whole)?,
                         ViewId::Poincare => plots::draw_poincare_with(&root, r, "", whole)?,
@@ -95,11 +131,14 @@ impl Controller {
             }
             root.present().map_err(plots::err)?;
         }
-        Ok(s)
+        if dots.is_empty() {
+            return Ok(s);
+        }
+        Ok(plots::svg_with_dots(&s, self.canvas_size(view), &dots)?)
     }
 
     /// The view as an SVG file to download.
-    pub fn export_svg(&self, view: ViewId) -> Result<Effect, String> {
+    pub fn export_svg(&self, view: ViewId) -> Result<Effect, SvgError> {
         Ok(Effect::Download {
             name: format!("gearshock-{}-{}.svg", view.key(), self.mesh_file_label()),
             mime: "image/svg+xml".into(),

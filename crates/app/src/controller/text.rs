@@ -22,6 +22,7 @@ impl Controller {
         use crate::views::{labels, ExportKind};
         let title = view.spec().title;
         match view.spec().data {
+            ExportKind::Fr if self.panels.is_some() => labels::fr_panels_label(&self.fr_panels()),
             ExportKind::Fr => labels::fr_label(&self.fr_view()),
             ExportKind::Bif => labels::bif_label(&self.bif_view()),
             ExportKind::Map => labels::map_label(&self.map),

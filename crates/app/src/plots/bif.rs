@@ -2,7 +2,7 @@
 //! batched fill, the instability bands, the regime legend).
 
 use super::*;
-use crate::views::bif::BifView;
+use crate::views::bif::{BifPoint, BifView};
 
 /// Legend entries for the regimes present.
 fn regime_legend<'a, DB: DrawingBackend + 'a>(
@@ -46,6 +46,48 @@ pub fn failed_label(failed: &[(f64, String)]) -> String {
         })
         .unwrap_or_default();
     format!("{} point(s) failed, not plotted{reason}", failed.len())
+}
+
+/// The colour of a failed sweep point's cross.
+const FAILED_CROSS: RGBColor = RGBColor(90, 90, 90);
+
+/// Where a sweep failed: a grey cross of `size` pixels on the Ω axis (at
+/// `y0`, the axis's bottom) per failed point; the series, to label.
+pub(super) fn failed_crosses<'a, 'c, DB: DrawingBackend + 'a>(
+    chart: &'c mut Chart<'a, DB>,
+    failed: &[(f64, String)],
+    y0: f64,
+    size: i32,
+) -> Res<&'c mut plotters::chart::SeriesAnno<'a, DB>> {
+    chart
+        .draw_series(
+            failed
+                .iter()
+                .map(|&(omega, _)| Cross::new((omega, y0), size, FAILED_CROSS.stroke_width(2))),
+        )
+        .map_err(err)
+}
+
+/// Adds a bifurcation diagram's dots to `groups`, in pixels of `frame`:
+/// one group per regime colour and sweep direction (filled: upward), for
+/// one batched fill each.
+pub(super) fn group_dots(groups: &mut Vec<PointGroup>, points: &[BifPoint], frame: &PlotFrame) {
+    for p in points {
+        let color = regime_color(p.regime);
+        let q = frame.to_px(p.omega, p.x_um);
+        let px = (q.x as f32, q.y as f32);
+        match groups
+            .iter_mut()
+            .find(|g| g.color == color && g.filled == p.up)
+        {
+            Some(g) => g.px.push(px),
+            None => groups.push(PointGroup {
+                color,
+                filled: p.up,
+                px: vec![px],
+            }),
+        }
+    }
 }
 
 /// View 2: the bifurcation diagram. Returns the frame and the dots (in
@@ -113,22 +155,7 @@ pub fn draw_bif<DB: DrawingBackend>(
             }
         }
     }
-    for p in &v.points {
-        let color = regime_color(p.regime);
-        let q = frame.to_px(p.omega, p.x_um);
-        let px = (q.x as f32, q.y as f32);
-        match groups
-            .iter_mut()
-            .find(|g| g.color == color && g.filled == p.up)
-        {
-            Some(g) => g.px.push(px),
-            None => groups.push(PointGroup {
-                color,
-                filled: p.up,
-                px: vec![px],
-            }),
-        }
-    }
+    group_dots(&mut groups, &v.points, &frame);
     if let Some((a, b)) = &v.ab_labels {
         chart
             .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
@@ -162,22 +189,35 @@ pub fn draw_bif<DB: DrawingBackend>(
             });
     }
     if !v.failed.is_empty() {
-        // Where the sweep failed: a grey cross on the Omega axis each, and
-        // the first failure's reason (its message up to the first colon).
-        let grey = RGBColor(90, 90, 90);
-        chart
-            .draw_series(
-                v.failed
-                    .iter()
-                    .map(|&(omega, _)| Cross::new((omega, y.0), 5, grey.stroke_width(2))),
-            )
-            .map_err(err)?
+        // The first failure's reason (its message up to the first colon).
+        failed_crosses(&mut chart, &v.failed, y.0, 5)?
             .label(failed_label(&v.failed))
-            .legend(move |(x, y)| Cross::new((x + 8, y), 4, grey.stroke_width(2)));
+            .legend(move |(x, y)| Cross::new((x + 8, y), 4, FAILED_CROSS.stroke_width(2)));
     }
     legend(&mut chart, SeriesLabelPosition::UpperRight)?;
     root.present().map_err(err)?;
     Ok((frame, groups))
+}
+
+/// A bifurcation chart's SVG text with its dots: plotters closes an SVG
+/// when the chart is presented, so the dots are drawn into a second SVG of
+/// the same `size` whose body goes inside the first, before its end.
+pub fn svg_with_dots(chart: &str, size: (u32, u32), groups: &[PointGroup]) -> Res<String> {
+    let mut dots = String::new();
+    {
+        let root = plotters::prelude::SVGBackend::with_string(&mut dots, size).into_drawing_area();
+        draw_groups(&root, groups)?;
+    }
+    let head = chart
+        .trim_end()
+        .strip_suffix("</svg>")
+        .ok_or_else(|| DrawError("the chart is not a complete SVG".into()))?;
+    let body = dots
+        .split_once('>')
+        .map(|(_, rest)| rest.trim_end())
+        .and_then(|rest| rest.strip_suffix("</svg>"))
+        .ok_or_else(|| DrawError("the dots are not a complete SVG".into()))?;
+    Ok(format!("{head}{body}</svg>\n"))
 }
 
 /// Draws the dots of [`draw_bif`] with plotters (the page fills them on the

@@ -2,7 +2,7 @@
 //! the regime strip, the overlay and the key row).
 
 use super::*;
-use crate::views::fr::{FrCurvePoint, FrMarkerKind, FrView};
+use crate::views::fr::{FrBranch, FrCurvePoint, FrMarkerKind, FrView};
 use crate::views::unstable::{strip_from_overlay, unstable_ranges, unstable_sentence};
 
 /// View 1: the frequency response (harmonic-balance branch, stable solid,
@@ -141,37 +141,8 @@ pub fn draw_fr<DB: DrawingBackend>(
     let mut any_unstable = false;
     for br in &v.branches {
         for (which, color, label) in [(true, MAX_COLOR, "max x"), (false, MIN_COLOR, "min x")] {
-            let color = match (br.faded, br.pinned, which, br.member) {
-                (true, _, _, _) => FADED,
-                (false, true, true, _) => A_MAX,
-                (false, true, false, _) => A_MIN,
-                (false, false, _, Some(m)) => family_color(m),
-                _ => color,
-            };
-            let val = |p: &FrCurvePoint| if which { p.max_um } else { p.min_um };
-            // Split into runs of equal stability: stable (or unknown) solid,
-            // unstable dashed; consecutive runs of one piece share their
-            // joining point, and no line joins two pieces of the branch.
-            let mut runs: Vec<(bool, Vec<(f64, f64)>)> = Vec::new();
-            let mut prev: Option<&FrCurvePoint> = None;
-            for p in &br.points {
-                let unstable = p.stable == Some(false);
-                let joined = prev.is_none_or(|q| q.joins(p));
-                prev = Some(p);
-                match runs.last_mut() {
-                    Some((u, pts)) if *u == unstable && joined => pts.push((p.omega, val(p))),
-                    _ => {
-                        let mut pts = Vec::new();
-                        if let Some((_, prev)) = runs.last().filter(|_| joined) {
-                            if let Some(&last) = prev.last() {
-                                pts.push(last);
-                            }
-                        }
-                        pts.push((p.omega, val(p)));
-                        runs.push((unstable, pts));
-                    }
-                }
-            }
+            let color = branch_color(br, which).unwrap_or(color);
+            let runs = stability_runs(&br.points, which);
             let style = ShapeStyle::from(&color).stroke_width(2);
             // The faded branch and a family member are labelled once, not
             // per extreme (a member's max and min share its colour).
@@ -316,9 +287,50 @@ pub fn draw_fr<DB: DrawingBackend>(
     Ok(frame)
 }
 
+/// The colour of a branch's max x (`which`) or min x curve, if not the
+/// current state's own (faded, A's, or a family member's).
+pub(super) fn branch_color(br: &FrBranch, which: bool) -> Option<RGBColor> {
+    match (br.faded, br.pinned, which, br.member) {
+        (true, _, _, _) => Some(FADED),
+        (false, true, true, _) => Some(A_MAX),
+        (false, true, false, _) => Some(A_MIN),
+        (false, false, _, Some(m)) => Some(family_color(m)),
+        _ => None,
+    }
+}
+
+/// A branch's max x (`which`) or min x split into runs of equal
+/// stability, `(unstable, points)`: stable (or unknown) drawn solid,
+/// unstable dashed; consecutive runs of one piece share their joining
+/// point, and no line joins two pieces of the branch.
+pub(super) fn stability_runs(points: &[FrCurvePoint], which: bool) -> Vec<(bool, Vec<(f64, f64)>)> {
+    let val = |p: &FrCurvePoint| if which { p.max_um } else { p.min_um };
+    let mut runs: Vec<(bool, Vec<(f64, f64)>)> = Vec::new();
+    let mut prev: Option<&FrCurvePoint> = None;
+    for p in points {
+        let unstable = p.stable == Some(false);
+        let joined = prev.is_none_or(|q| q.joins(p));
+        prev = Some(p);
+        match runs.last_mut() {
+            Some((u, pts)) if *u == unstable && joined => pts.push((p.omega, val(p))),
+            _ => {
+                let mut pts = Vec::new();
+                if let Some((_, prev)) = runs.last().filter(|_| joined) {
+                    if let Some(&last) = prev.last() {
+                        pts.push(last);
+                    }
+                }
+                pts.push((p.omega, val(p)));
+                runs.push((unstable, pts));
+            }
+        }
+    }
+    runs
+}
+
 /// The points of a polyline at least `min_px` pixels (Chebyshev distance)
 /// from the last point kept, with both ends kept.
-fn thin(
+pub(super) fn thin(
     pts: Vec<(f64, f64)>,
     to_px: impl Fn(&(f64, f64)) -> (i32, i32),
     min_px: i32,

@@ -21,7 +21,7 @@ pub mod maps;
 pub mod multiples;
 mod omega;
 
-pub use bif::{draw_bif, draw_groups, failed_label};
+pub use bif::{draw_bif, draw_groups, failed_label, svg_with_dots};
 pub use fr::draw_fr;
 pub use omega::{
     draw_phase, draw_phase_with, draw_poincare, draw_poincare_with, draw_spectrum, draw_time,
@@ -45,12 +45,6 @@ pub const HEIGHT: u32 = 400;
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("drawing failed: {0}")]
 pub struct DrawError(pub String);
-
-impl From<DrawError> for String {
-    fn from(e: DrawError) -> String {
-        e.to_string()
-    }
-}
 
 pub(crate) type Res<T> = Result<T, DrawError>;
 pub(crate) type Chart<'a, DB> = ChartContext<

@@ -1,16 +1,23 @@
 //! Small multiples of a parameter family: the bifurcation diagram, the
 //! phase portrait and the Poincaré section of each member side by side
 //! (the paper's panels a-c, d-f), on shared axes so that the panels
-//! compare at a glance, with one key under them.
+//! compare at a glance, with one key under them; and the frequency
+//! responses of several meshes (the paper's Figs. 2 and 3, panels a-d),
+//! every family member's curve in each.
 
+use super::bif::{failed_crosses, group_dots};
+use super::fr::{branch_color, stability_runs, thin};
 use super::*;
 use crate::protocol::OmegaResult;
 use crate::views::bif::BifView;
 use crate::views::family::Panel;
+use crate::views::fr::FrView;
 
 /// Room for the title above the panels and the key under them (pixels).
 const TOP: u32 = 28;
 const BOTTOM: u32 = 40;
+/// Room for the frequency-response panels' key (pixels).
+const FR_KEY: u32 = 64;
 
 /// The shared axes of bifurcation panels: the Omega range of the first
 /// panel with data, and one x range holding every panel's dots and ±b.
@@ -154,6 +161,29 @@ fn dashed<'a, DB: DrawingBackend + 'a>(
     Ok(())
 }
 
+/// A panel over Ω: the ±b lines of `backlash_um` where they fall in the
+/// y range, and the selected Ω where it falls in the x range (dashed).
+fn omega_guides<'a, DB: DrawingBackend + 'a>(
+    chart: &mut Chart<'a, DB>,
+    backlash_um: &[f64],
+    selected: f64,
+    (x, y): ((f64, f64), (f64, f64)),
+) -> Res<()> {
+    for &b in backlash_um {
+        for level in [b, -b].into_iter().filter(|l| (y.0..=y.1).contains(l)) {
+            dashed(
+                chart,
+                vec![(x.0, level), (x.1, level)],
+                RGBColor(90, 90, 90),
+            )?;
+        }
+    }
+    if (x.0..=x.1).contains(&selected) {
+        dashed(chart, vec![(selected, y.0), (selected, y.1)], CURSOR)?;
+    }
+    Ok(())
+}
+
 /// The bifurcation diagrams of a family side by side. Returns each
 /// panel's frame (`None` without data) and the dots in pixels for the
 /// caller to draw, as [`draw_bif`] does.
@@ -202,46 +232,10 @@ pub fn draw_bif_panels<DB: DrawingBackend>(
             ("Ω", "Poincaré samples of x (µm)"),
             k == 0,
         )?;
-        for &b in &v.backlash_um {
-            for level in [b, -b].into_iter().filter(|l| (y.0..=y.1).contains(l)) {
-                dashed(
-                    &mut chart,
-                    vec![(x.0, level), (x.1, level)],
-                    RGBColor(90, 90, 90),
-                )?;
-            }
-        }
-        let s = v.selected_omega;
-        if s >= x.0 && s <= x.1 {
-            dashed(&mut chart, vec![(s, y.0), (s, y.1)], CURSOR)?;
-        }
-        if !v.failed.is_empty() {
-            let grey = RGBColor(90, 90, 90);
-            chart
-                .draw_series(
-                    v.failed
-                        .iter()
-                        .map(|&(omega, _)| Cross::new((omega, y.0), 4, grey.stroke_width(2))),
-                )
-                .map_err(err)?;
-        }
+        omega_guides(&mut chart, &v.backlash_um, v.selected_omega, (x, y))?;
+        failed_crosses(&mut chart, &v.failed, y.0, 4)?;
         let frame = frame_of(&chart, x, y);
-        for pt in &v.points {
-            let color = regime_color(pt.regime);
-            let q = frame.to_px(pt.omega, pt.x_um);
-            let px = (q.x as f32, q.y as f32);
-            match groups
-                .iter_mut()
-                .find(|g| g.color == color && g.filled == pt.up)
-            {
-                Some(g) => g.px.push(px),
-                None => groups.push(PointGroup {
-                    color,
-                    filled: pt.up,
-                    px: vec![px],
-                }),
-            }
-        }
+        group_dots(&mut groups, &v.points, &frame);
         frames.push(Some(frame));
     }
     root.present().map_err(err)?;
@@ -321,4 +315,144 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
             .map_err(err)?;
     }
     root.present().map_err(err)
+}
+
+/// Rows and columns of `n` frequency-response panels: two columns up to
+/// four panels (the paper's a-d as a 2 × 2 grid), three beyond.
+pub fn fr_grid(n: usize) -> (usize, usize) {
+    let cols = match n {
+        0 | 1 => 1,
+        2..=4 => 2,
+        _ => 3,
+    };
+    (n.div_ceil(cols).max(1), cols)
+}
+
+/// The canvas size of `n` frequency-response panels (pixels): one row is
+/// the ordinary plot's height, two rows are taller so each panel reads.
+pub fn fr_panels_size(n: usize) -> (u32, u32) {
+    let (rows, _) = fr_grid(n);
+    (WIDTH, if rows > 1 { 680 } else { HEIGHT })
+}
+
+/// The frequency responses of several meshes (the paper's Figs. 2 and 3,
+/// panels a-d), each panel on its own x scale and all on one Ω axis, with
+/// one key in words under them naming each curve's value. Returns each
+/// panel's frame (`None` without data).
+pub fn draw_fr_panels<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    panels: &[Panel<FrView>],
+    status: &str,
+) -> Res<Vec<Option<PlotFrame>>> {
+    root.fill(&WHITE).map_err(err)?;
+    let (w, h) = root.dim_in_pixel();
+    let title = format!(
+        "Frequency response of {} meshes: max and min x, Ω axis shared{status}",
+        panels.len()
+    );
+    root.draw(&Text::new(title, (10, 6), caption_font()))
+        .map_err(err)?;
+    // The key: one coloured line per curve, in words, from the first panel
+    // with data (every panel holds the same curves).
+    let mut entries: Vec<(RGBColor, String)> = Vec::new();
+    if let Some(v) = panels.iter().find_map(|p| p.data.as_ref().ok()) {
+        for br in v.branches.iter().filter(|b| !b.faded) {
+            match (br.member, branch_color(br, true)) {
+                (Some(_), Some(c)) => entries.push((c, br.label.clone())),
+                (_, c) => {
+                    let max = c.unwrap_or(MAX_COLOR);
+                    let min = branch_color(br, false).unwrap_or(MIN_COLOR);
+                    entries.push((max, format!("max x ({})", br.label)));
+                    entries.push((min, format!("min x ({})", br.label)));
+                }
+            }
+        }
+    }
+    let key_top = h as i32 - FR_KEY as i32 + 6;
+    let (mut x, mut row) = (10, 0);
+    for (c, text) in &entries {
+        let tw = root
+            .estimate_text_size(text, &small())
+            .map_or(8 * text.len() as u32, |(w, _)| w) as i32;
+        if x + 28 + tw > w as i32 - 8 && x > 10 {
+            (x, row) = (10, row + 1);
+        }
+        let y = key_top + 8 + 18 * row;
+        let style = ShapeStyle::from(c).stroke_width(3);
+        root.draw(&PathElement::new(vec![(x, y), (x + 22, y)], style))
+            .map_err(err)?;
+        root.draw(&Text::new(text.clone(), (x + 28, y - 7), small()))
+            .map_err(err)?;
+        x += 28 + tw + 18;
+    }
+    root.draw(&Text::new(
+        "Solid: stable, dashed: unstable (Floquet). Grey dashed: ±b; red dashed: selected Ω."
+            .to_string(),
+        (10, key_top + 8 + 18 * (row + 1) - 7),
+        small(),
+    ))
+    .map_err(err)?;
+    let (_, rest) = root.split_vertically(TOP);
+    let (middle, _) = rest.split_vertically(h.saturating_sub(TOP + FR_KEY));
+    let (rows, cols) = fr_grid(panels.len());
+    let areas = middle.split_evenly((rows, cols));
+    let mut frames = Vec::new();
+    for (k, (area, p)) in areas.iter().zip(panels).enumerate() {
+        let v = match &p.data {
+            Ok(v) => v,
+            Err(e) => {
+                panel_message(area, &p.title, e)?;
+                frames.push(None);
+                continue;
+            }
+        };
+        let x = (v.omega_from, v.omega_to);
+        let in_range = |o: f64| o >= x.0 && o <= x.1;
+        let levels = contact_levels(&v.backlash_um, &v.pinned_backlash_um, v.whole_clearance);
+        let y = padded_range(
+            v.branches
+                .iter()
+                .flat_map(|b| b.points.iter())
+                .filter(|p| in_range(p.omega))
+                .flat_map(|p| [p.max_um, p.min_um]),
+            &levels,
+            20.0,
+        );
+        let mut chart = panel_chart(
+            area,
+            &p.title,
+            (x, y),
+            ("Ω", "x = δ − e (µm)"),
+            k % cols == 0,
+        )?;
+        let levels: Vec<f64> = v
+            .backlash_um
+            .iter()
+            .chain(&v.pinned_backlash_um)
+            .copied()
+            .collect();
+        omega_guides(&mut chart, &levels, v.selected_omega, (x, y))?;
+        for br in v.branches.iter() {
+            for which in [true, false] {
+                let color =
+                    branch_color(br, which).unwrap_or(if which { MAX_COLOR } else { MIN_COLOR });
+                let style = ShapeStyle::from(&color).stroke_width(2);
+                for (unstable, pts) in stability_runs(&br.points, which) {
+                    let pts = thin(pts, |p| chart.backend_coord(p), 2);
+                    if unstable {
+                        chart
+                            .draw_series(DashedLineSeries::new(pts, 5, 4, style))
+                            .map_err(err)?;
+                    } else {
+                        chart
+                            .draw_series(LineSeries::new(pts, style))
+                            .map_err(err)?;
+                    }
+                }
+            }
+        }
+        frames.push(Some(frame_of(&chart, x, y)));
+    }
+    root.present().map_err(err)?;
+    Ok(frames)
 }

@@ -616,6 +616,21 @@ pub fn fr_note(v: &FrView) -> String {
     note
 }
 
+/// The note under view 1 when it shows mesh panels: the method, and that
+/// the panels hold the branches only (the time-integration dots are of
+/// the plotted mesh alone).
+pub fn fr_panels_note(v: &FrView) -> String {
+    let mut note = format!(
+        "Method: {}, pseudo-arclength continuation upward in Ω with Floquet stability: the branches only, one panel per mesh. Where a branch is dashed (unstable) the actual response differs; choose a mesh in the settings to see it alone with the time-integration dots of the actual response.",
+        v.method
+    );
+    for n in &v.branch_notes {
+        note.push(' ');
+        note.push_str(n);
+    }
+    note
+}
+
 /// The caption's status of view 1: progress over the Omega range while the
 /// branch computes, and a partial branch said as such.
 pub fn fr_caption_suffix(running: bool, v: &FrView) -> String {

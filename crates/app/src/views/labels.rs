@@ -5,6 +5,7 @@
 //! whenever the data does.
 
 use super::bif::BifView;
+use super::family::Panel;
 use super::fr::FrView;
 use super::map::MapStore;
 use super::unstable::{short, strip_from_overlay, unstable_ranges, unstable_sentence};
@@ -27,6 +28,40 @@ fn regime_runs(mut runs: Vec<(Regime, f64, f64)>, span: f64) -> String {
         .map(|(r, a, b)| format!("{} from Ω {} to {}", r.label(), short(a), short(b)))
         .collect::<Vec<_>>()
         .join("; ")
+}
+
+/// The frequency response's mesh panels: each panel's mesh in words and
+/// its highest peak, naming the curve (the family's value) it is on.
+pub fn fr_panels_label(panels: &[Panel<FrView>]) -> String {
+    let parts: Vec<String> = panels
+        .iter()
+        .map(|p| match &p.data {
+            Err(e) => format!("{}: {e}", p.title),
+            Ok(v) => {
+                let peak = v
+                    .branches
+                    .iter()
+                    .filter(|b| !b.faded)
+                    .flat_map(|b| b.points.iter().map(move |q| (b, q)))
+                    .max_by(|a, b| a.1.max_um.total_cmp(&b.1.max_um));
+                match peak {
+                    Some((b, q)) => format!(
+                        "{}: highest peak {:.0} µm at Ω {} ({})",
+                        p.title,
+                        q.max_um,
+                        short(q.omega),
+                        b.label
+                    ),
+                    None => format!("{}: computing", p.title),
+                }
+            }
+        })
+        .collect();
+    format!(
+        "Frequency response of {} meshes side by side. {}.",
+        panels.len(),
+        parts.join("; ")
+    )
 }
 
 /// The frequency response: the peak of the current branch, the regimes

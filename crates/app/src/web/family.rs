@@ -121,6 +121,17 @@ pub(super) fn draw_bif_family(p: &mut Page, root: &Area, cv: &HtmlCanvasElement)
     Ok(())
 }
 
+/// The frequency responses of the panels' meshes (Figs. 2 and 3, panels
+/// a-d), every family member's curve in each.
+pub(super) fn draw_fr_panels(p: &mut Page, root: &Area, status: &str) -> plots::Res<()> {
+    let panels = p.ctl.fr_panels();
+    let frames = plots::multiples::draw_fr_panels(root, &panels, status)?;
+    // Clicks pick Omega on the first panel's axis (the column under it
+    // shares it).
+    p.frames[ViewId::Fr.slot()] = frames.into_iter().flatten().next();
+    Ok(())
+}
+
 /// The phase portraits (view Phase) or Poincaré sections of the family's
 /// members side by side.
 pub(super) fn draw_omega_family(p: &mut Page, v: ViewId, root: &Area) -> plots::Res<()> {

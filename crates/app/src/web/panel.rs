@@ -356,6 +356,7 @@ fn png_2x(page: &Shared, v: ViewId) {
         let p = page.borrow();
         (p.doc.clone(), p.ctl.plot_svg(v))
     };
+    let (w, h) = page.borrow().ctl.canvas_size(v);
     let name = format!("gearshock-{}.png", v.key());
     let (Ok(svg), Ok(img)) = (svg, web_sys::HtmlImageElement::new()) else {
         if let Some(url) = canvas(&doc, v).and_then(|cv| cv.to_data_url().ok()) {
@@ -363,7 +364,6 @@ fn png_2x(page: &Shared, v: ViewId) {
         }
         return;
     };
-    let (w, h) = crate::controller::view_size(v);
     let src = format!(
         "data:image/svg+xml;charset=utf-8,{}",
         String::from(js_sys::encode_uri_component(&svg))
@@ -437,7 +437,7 @@ pub(super) fn build_exports(page: &Shared) {
                 let r = page2.borrow().ctl.export_svg(v);
                 match r {
                     Ok(e) => run_effects(&page2, vec![e]),
-                    Err(e) => set_text(&page2.borrow().doc, "status", &e),
+                    Err(e) => set_text(&page2.borrow().doc, "status", &e.to_string()),
                 }
             },
         );

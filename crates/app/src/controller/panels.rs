@@ -1,0 +1,36 @@
+//! The frequency response's mesh panels on the page (the paper's Figs. 2
+//! and 3, panels a-d): each panel is the same branches — the current
+//! state's and every family member's — projected on one mesh. Every
+//! harmonic-balance branch already holds every mesh's response, so the
+//! panels compute nothing new.
+
+use super::*;
+use crate::panels::mesh_words;
+use crate::views::family::{panel_titles, Panel};
+
+impl Controller {
+    /// The frequency response of each panel's mesh, titled with the mesh
+    /// in words ("(a) s1a1 (small sun – short planet a1)"); empty without
+    /// panels.
+    pub fn fr_panels(&self) -> Vec<Panel<FrView>> {
+        let Some(names) = &self.panels else {
+            return Vec::new();
+        };
+        let words: Vec<String> = names.iter().map(|n| mesh_words(n)).collect();
+        let titles = panel_titles(&words, 0);
+        names
+            .iter()
+            .zip(titles)
+            .map(|(name, title)| {
+                let data = match &self.model {
+                    Ok(m) => match m.system.mesh_index(name) {
+                        Some(j) => Ok(self.fr_view_on(Some(j), Some(name))),
+                        None => Err(format!("There is no mesh {name} in this model.")),
+                    },
+                    Err(e) => Err(e.clone()),
+                };
+                Panel { title, data }
+            })
+            .collect()
+    }
+}
