@@ -190,12 +190,17 @@ fn fr_key(v: &FrView, y: (f64, f64)) -> KeyItems {
     }
     // The regime strip is drawn under the current state's branch only (not
     // a family's members): its key only then.
+    let strip = v
+        .branches
+        .iter()
+        .any(|b| !b.faded && !b.pinned && b.member.is_none());
     items.extend(regime_items(
         v.branches
             .iter()
             .filter(|b| !b.faded && b.member.is_none())
             .flat_map(|b| b.points.iter().filter_map(|p| p.regime))
-            .chain(v.overlay.iter().filter_map(|p| p.regime)),
+            .chain(v.overlay.iter().filter_map(|p| p.regime))
+            .filter(|_| strip),
         "regime strip: ",
     ));
     for k in FrMarkerKind::ALL {

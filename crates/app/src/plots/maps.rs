@@ -208,6 +208,8 @@ pub fn draw_lyap<DB: DrawingBackend>(
     );
     let axes = Axes {
         y_labels: Some(5),
+        // Two decimals, and zero without a sign (plotters wrote "-0.0").
+        y_format: Some(|v: &f64| format!("{:.2}", if v.abs() < 1e-9 { 0.0 } else { *v })),
         ..Axes::new(OMEGA_AXIS, "λ per mesh period (−)")
     };
     let mut chart = linear_chart(&area, &caption, (x, y), &axes)?;

@@ -261,6 +261,8 @@ pub(crate) struct Axes {
     pub(crate) grid: bool,
     /// The number of y labels, if not plotters' default.
     pub(crate) y_labels: Option<usize>,
+    /// How the y labels are written, if not plotters' default.
+    pub(crate) y_format: Option<fn(&f64) -> String>,
 }
 
 impl Axes {
@@ -271,6 +273,7 @@ impl Axes {
             y: y.into(),
             grid: true,
             y_labels: None,
+            y_format: None,
         }
     }
 }
@@ -296,7 +299,7 @@ pub(crate) fn draw_axes<DB: DrawingBackend, X, Y>(
 ) -> Res<()>
 where
     X: Ranged + ValueFormatter<X::ValueType>,
-    Y: Ranged + ValueFormatter<Y::ValueType>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
 {
     let mut mesh = chart.configure_mesh();
     if axes.grid {
@@ -306,6 +309,9 @@ where
     }
     if let Some(n) = axes.y_labels {
         mesh.y_labels(n);
+    }
+    if let Some(f) = &axes.y_format {
+        mesh.y_label_formatter(f);
     }
     mesh.x_desc(axes.x.as_str())
         .y_desc(axes.y.as_str())

@@ -460,6 +460,8 @@ fn every_key_is_under_its_chart_never_over_the_data() {
         "dimensionless mesh frequency",
         frame,
     );
+    // No regime strip under a family (even with dots), so no key for one.
+    assert!(!family.overlay.is_empty() && !s.contains("regime strip"));
 
     let bp = |k: u32, up: bool| crate::views::bif::BifPoint {
         omega: 0.1 + 0.1 * f64::from(k),
