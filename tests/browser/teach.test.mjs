@@ -263,7 +263,7 @@ test('PNG exports are twice the canvas size and SVG exports are the same drawing
   const buf = await fs.promises.readFile(await png.path());
   // PNG header: width and height, big-endian, at bytes 16 and 20.
   assert.equal(buf.readUInt32BE(16), 1520);
-  assert.equal(buf.readUInt32BE(20), 920);
+  assert.equal(buf.readUInt32BE(20), 800);
   const [svg] = await Promise.all([
     page.waitForEvent('download'),
     page.click('#exports-fr button[aria-label="Export the frequency response as an SVG picture"]'),
