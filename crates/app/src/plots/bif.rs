@@ -140,16 +140,7 @@ fn bif_key(v: &BifView, natural: &[NaturalFreq], y: (f64, f64)) -> KeyItems {
     if v.points.iter().any(|p| !p.up) {
         items.push((KeyIcon::Square(dark), "downward sweep".into()));
     }
-    items.extend(contact_item(&v.backlash_um, y));
-    let a_only: Vec<f64> = v
-        .pinned_backlash_um
-        .iter()
-        .copied()
-        .filter(|b| !v.backlash_um.iter().any(|c| (*c - *b).abs() < 1e-9))
-        .collect();
-    if contact_item(&a_only, y).is_some() {
-        items.push((KeyIcon::Line(A_MIN, true), "A's ±b contact lines".into()));
-    }
+    items.extend(contact_items(&v.backlash_um, &v.pinned_backlash_um, y));
     if !v.unstable_bands.is_empty() {
         items.push((
             KeyIcon::Shade(UNSTABLE_BAND, BAND_ALPHA),

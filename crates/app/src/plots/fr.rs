@@ -163,19 +163,7 @@ fn fr_key(v: &FrView, y: (f64, f64)) -> KeyItems {
             "previous settings (updating)".into(),
         ));
     }
-    items.extend(contact_item(&v.backlash_um, y));
-    let a_only: Vec<f64> = v
-        .pinned_backlash_um
-        .iter()
-        .copied()
-        .filter(|b| !v.backlash_um.iter().any(|c| (*c - *b).abs() < 1e-9))
-        .collect();
-    if let Some((_, text)) = contact_item(&a_only, y) {
-        items.push((
-            KeyIcon::Line(A_MIN, true),
-            text.replacen("±b contact lines", "A's ±b", 1),
-        ));
-    }
+    items.extend(contact_items(&v.backlash_um, &v.pinned_backlash_um, y));
     items.extend(omega_items(&v.natural, v.selected_omega));
     let any_unstable = v
         .branches

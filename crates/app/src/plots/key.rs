@@ -148,6 +148,24 @@ pub(crate) fn contact_item(backlash_um: &[f64], shown: (f64, f64)) -> Option<(Ke
     })
 }
 
+/// The key items of the ±b contact lines shown in `y`: the current
+/// state's, then the pinned state A's where they differ (A/B comparison).
+pub(crate) fn contact_items(backlash_um: &[f64], pinned_um: &[f64], y: (f64, f64)) -> KeyItems {
+    let mut items: KeyItems = contact_item(backlash_um, y).into_iter().collect();
+    let a_only: Vec<f64> = pinned_um
+        .iter()
+        .copied()
+        .filter(|b| !backlash_um.iter().any(|c| (*c - *b).abs() < 1e-9))
+        .collect();
+    if let Some((_, text)) = contact_item(&a_only, y) {
+        items.push((
+            KeyIcon::Line(A_MIN, true),
+            text.replacen("±b contact lines", "A's ±b", 1),
+        ));
+    }
+    items
+}
+
 /// The key items of the regimes present, in their fixed order; the first
 /// prefixed by `prefix`.
 pub(crate) fn regime_items(present: impl Iterator<Item = Regime>, prefix: &str) -> KeyItems {

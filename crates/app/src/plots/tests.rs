@@ -391,6 +391,19 @@ fn assert_key_outside(name: &str, s: &str, key: &[&str], x_desc: &str, frame: Op
     }
 }
 
+/// A plot drawn to SVG at `size`, with the frame its drawing returns.
+fn framed<F: FnOnce(&DrawingArea<SVGBackend, Shift>) -> Res<PlotFrame>>(
+    size: (u32, u32),
+    f: F,
+) -> (String, Option<PlotFrame>) {
+    let mut frame = None;
+    let s = svg_sized(size, |root| {
+        frame = Some(f(root)?);
+        Ok(())
+    });
+    (s, frame)
+}
+
 /// No legend covers the data: each plot's key sits under its chart, at the
 /// canvas sizes of the page (760 x 400, the Lyapunov view 760 x 300), for
 /// an A/B comparison, a family, the orbit views and the Lyapunov view.
@@ -399,11 +412,7 @@ fn every_key_is_under_its_chart_never_over_the_data() {
     let mut fr = ab_fr();
     for whole in [true, false] {
         fr.whole_clearance = whole;
-        let mut frame = None;
-        let s = svg(|root| {
-            frame = Some(draw_fr(root, &fr, "")?);
-            Ok(())
-        });
+        let (s, frame) = framed((WIDTH, HEIGHT), |root| draw_fr(root, &fr, ""));
         let key = [
             "max x (A: backlash_um=100)",
             "min x (B: backlash_um=150; HBM, H = 5)",
@@ -422,11 +431,7 @@ fn every_key_is_under_its_chart_never_over_the_data() {
         );
         // On a phone's canvas (480 x 640): more rows, still under the chart,
         // and every line of the key within the canvas's width.
-        let mut frame = None;
-        let s = svg_sized((480, 640), |root| {
-            frame = Some(draw_fr(root, &fr, "")?);
-            Ok(())
-        });
+        let (s, frame) = framed((480, 640), |root| draw_fr(root, &fr, ""));
         let phone = "frequency response A/B, phone";
         assert_key_outside(phone, &s, &key, "dimensionless mesh frequency", frame);
         let t = texts(&s);
@@ -448,11 +453,7 @@ fn every_key_is_under_its_chart_never_over_the_data() {
         b.member = Some(m);
         b.label = format!("TE {} µm", 10 * m);
     }
-    let mut frame = None;
-    let s = svg(|root| {
-        frame = Some(draw_fr(root, &family, "")?);
-        Ok(())
-    });
+    let (s, frame) = framed((WIDTH, HEIGHT), |root| draw_fr(root, &family, ""));
     assert_key_outside(
         "family",
         &s,
@@ -495,10 +496,8 @@ fn every_key_is_under_its_chart_never_over_the_data() {
         kind: "rotational".into(),
         multiplicity: 1,
     }];
-    let mut frame = None;
-    let s = svg(|root| {
-        frame = Some(draw_bif(root, &bif, &natural, "")?.0);
-        Ok(())
+    let (s, frame) = framed((WIDTH, HEIGHT), |root| {
+        Ok(draw_bif(root, &bif, &natural, "")?.0)
     });
     let key = [
         "A (pinned): backlash 60 µm",
@@ -533,19 +532,11 @@ fn every_key_is_under_its_chart_never_over_the_data() {
         total: 3,
         periods: 100,
     };
-    let mut s = String::new();
-    let frame = {
-        let root = SVGBackend::with_string(&mut s, (WIDTH, 300)).into_drawing_area();
-        maps::draw_lyap(&root, &lyap, (0.1, 2.0), &natural, 0.84, "").unwrap()
-    };
+    let (s, frame) = framed((WIDTH, 300), |root| {
+        maps::draw_lyap(root, &lyap, (0.1, 2.0), &natural, 0.84, "")
+    });
     let key = ["λ = 0", "λ < 0: periodic", "λ > 0: chaotic", "selected Ω"];
-    assert_key_outside(
-        "Lyapunov",
-        &s,
-        &key,
-        "dimensionless mesh frequency",
-        Some(frame),
-    );
+    assert_key_outside("Lyapunov", &s, &key, "dimensionless mesh frequency", frame);
 
     let r = result();
     let phase = svg(|root| draw_phase_with(root, &r, "", false));
@@ -564,11 +555,7 @@ fn every_key_is_under_its_chart_never_over_the_data() {
         "sampled once",
         None,
     );
-    let mut frame = None;
-    let time = svg(|root| {
-        frame = Some(draw_time(root, &r, "")?);
-        Ok(())
-    });
+    let (time, frame) = framed((WIDTH, HEIGHT), |root| draw_time(root, &r, ""));
     assert_key_outside(
         "time history",
         &time,
