@@ -216,6 +216,26 @@ pub fn must_be(key: &str, typed: &str) -> String {
 mod tests {
     use super::*;
 
+    /// Every control's tooltip in plain words: no key name, no Rust range,
+    /// the allowed values said. (Keys that are plain words, such as
+    /// "model", may appear as words.)
+    #[test]
+    fn every_tooltip_is_plain_words() {
+        for c in crate::controls::controls() {
+            let t = tooltip(c.key, c.description);
+            assert!(!c.key.contains('_') || !t.contains(c.key), "{t}");
+            let code = t
+                .split(|ch: char| !(ch.is_ascii_alphanumeric() || ch == '_'))
+                .any(|w| w.contains('_'));
+            assert!(!code && !t.contains("..="), "{t}");
+            assert!(t.contains(&allowed(c.key)) && t.ends_with('.'), "{t}");
+        }
+        assert_eq!(
+            tooltip("backlash_um", "backlash: half-width b of the dead zone, on all meshes"),
+            "Backlash: half-width b of the dead zone, on all meshes. Allowed: between 0 and 1000 µm."
+        );
+    }
+
     /// Every key the page can set reads without key names or Rust ranges.
     #[test]
     fn settings_and_messages_read_as_sentences() {
