@@ -22,8 +22,12 @@ const FLAGS = [
   '--disable-sync',
 ];
 
-/** Starts the server and the browser; returns { url, browser, close }. */
-export async function start() {
+/**
+ * Starts the server and the browser; returns { url, browser, close }.
+ * `context` (optional) overrides the browser context's options, e.g. a
+ * phone's { viewport, hasTouch, isMobile }.
+ */
+export async function start(context = {}) {
   const dist = path.join(ROOT, 'dist');
   if (!fs.existsSync(path.join(dist, 'index.html'))) {
     throw new Error('dist/ is missing: run `trunk build --release --offline` first');
@@ -38,6 +42,7 @@ export async function start() {
     args: FLAGS,
     viewport: { width: 1500, height: 1100 },
     acceptDownloads: true,
+    ...context,
   });
   fs.mkdirSync(SHOTS, { recursive: true });
   return {

@@ -7,7 +7,7 @@ import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
-import { start, open, status, waitStatus, shot, SHOTS } from './harness.mjs';
+import { start, open, status, waitStatus, shot, canvasStats, SHOTS } from './harness.mjs';
 
 /** A screenshot of what the window shows (not the whole page). */
 const screen = (page, name) => page.screenshot({ path: path.join(SHOTS, `${name}.png`) });
@@ -45,6 +45,36 @@ async function visibleText(page) {
   });
 }
 
+/**
+ * The words a user reads in attributes: tooltips (title), the names a
+ * screen reader says (aria-label), alternative text and placeholders.
+ * Command lines (<code>, <pre>) may name keys, as links and JSON do.
+ */
+async function attributeWords(page) {
+  return page.evaluate(() => {
+    const out = [];
+    for (const e of document.querySelectorAll('[title], [aria-label], [alt], [placeholder]')) {
+      if (e.closest('code, pre')) continue;
+      for (const a of ['title', 'aria-label', 'alt', 'placeholder']) {
+        const v = e.getAttribute(a);
+        if (v) out.push({ el: e.id || e.tagName.toLowerCase(), attr: a, v });
+      }
+    }
+    return out;
+  });
+}
+
+/** A key name (a word with an underscore between letters) or a Rust range. */
+const CODE = /\b[a-z][a-z0-9]*_[a-z0-9_]+\b|\.\.=/i;
+
+/** Asserts that no attribute a user reads names a key or uses code syntax. */
+async function assertPlainAttributes(page) {
+  const words = await attributeWords(page);
+  assert.ok(words.filter((w) => w.attr === 'title').length >= 20, `${words.length} attributes`);
+  const bad = words.filter((w) => KEY_NAMES.some((k) => w.v.includes(k)) || CODE.test(w.v));
+  assert.deepEqual(bad, [], 'attributes with key names or code syntax');
+}
+
 test('at the Table 1 defaults the frequency response shows time-integration dots and says where no periodic motion is stable', async () => {
   const { page, errors } = await open(h.browser, h.url, '');
   await page.setViewportSize({ width: 1366, height: 768 });
@@ -73,6 +103,7 @@ test('at the Table 1 defaults the frequency response shows time-integration dots
   await screen(page, 'teach-02b-first-screen-1366x768');
   const text = await visibleText(page);
   for (const k of KEY_NAMES) assert.ok(!text.includes(k), `visible text contains ${k}`);
+  await assertPlainAttributes(page);
   // The student summary: two sentences, the dynamic factor explained; the figures behind a disclosure.
   await waitStatus(page, (x) => x.omega_job.finished_ms, 120000, 'the selected-Ω run');
   await page.waitForFunction(() => /Dynamic factor [\d.]+: the largest tooth force is/.test(document.getElementById('summary').textContent), null, { timeout: 10000 });
@@ -97,6 +128,8 @@ test('no visible text uses key names or code syntax, in the controls, a comparis
   const text = await visibleText(page);
   for (const k of KEY_NAMES) assert.ok(!text.includes(k), `visible text contains ${k}: …${text.slice(Math.max(0, text.indexOf(k) - 80), text.indexOf(k) + 40)}…`);
   assert.ok(!/\d um\b/.test(text), 'a unit written as um');
+  // Tooltips, names and placeholders too, every group of controls open.
+  await assertPlainAttributes(page);
   await shot(page, 'teach-03-page-1920x1080-comparison');
   await page.evaluate(() => window.scrollTo(0, 0));
   await screen(page, 'teach-03b-first-screen-1920x1080');
@@ -240,4 +273,124 @@ test('PNG exports are twice the canvas size and SVG exports are the same drawing
   assert.ok(text.startsWith('<svg') && text.includes('Frequency response'), text.slice(0, 200));
   assert.deepEqual(errors, []);
   await page.close();
+});
+
+/** The pixels of a PNG (a screenshot) that are not white, counted in the page. */
+async function pngInk(page, png) {
+  return page.evaluate(async (b64) => {
+    const img = new Image();
+    img.src = `data:image/png;base64,${b64}`;
+    await img.decode();
+    const c = document.createElement('canvas');
+    c.width = img.width;
+    c.height = img.height;
+    const ctx = c.getContext('2d');
+    ctx.drawImage(img, 0, 0);
+    const d = ctx.getImageData(0, 0, c.width, c.height).data;
+    let ink = 0;
+    for (let i = 0; i < d.length; i += 4) if (d[i] < 240 || d[i + 1] < 240 || d[i + 2] < 240) ink++;
+    return { ink, total: d.length / 4 };
+  }, png.toString('base64'));
+}
+
+test('the gear set\'s canvas always holds a drawn frame: before the motion, out of view, after a change and in a full-page screenshot', async () => {
+  const { page, errors } = await open(h.browser, h.url, QUICK);
+  await page.setViewportSize({ width: 1366, height: 768 });
+  const outOfView = () => page.evaluate(() => {
+    const r = document.getElementById('canvas-anim').getBoundingClientRect();
+    return r.top >= window.innerHeight || r.bottom <= 0;
+  });
+  assert.equal(await outOfView(), true, 'the gear set starts below the first screen');
+  // Drawn before any motion is computed (a frame and a line of words) ...
+  await page.waitForFunction(() => {
+    const c = document.getElementById('canvas-anim');
+    const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    for (let i = 0; i < d.length; i += 4) if (d[i] < 200) return true;
+    return false;
+  }, null, { timeout: 30000 });
+  // ... then the gear set, though out of view.
+  const s = await waitStatus(page, (x) => x.omega_job.finished_ms && x.anim?.frames >= 1, 120000, 'a frame of the gear set');
+  assert.equal(await outOfView(), true);
+  const first = await canvasStats(page, 'canvas-anim');
+  assert.ok(first.ink > 0.05 * first.total, `${first.ink} of ${first.total} pixels drawn`);
+  // A new state out of view is drawn at once.
+  await page.fill('#num-omega', '1.2');
+  await page.press('#num-omega', 'Enter');
+  await waitStatus(page, (x) => x.omega_job.finished_ms && x.omega_result?.omega === 1.2 && x.anim?.omega === 1.2, 120000, 'the gear set at Ω 1.2');
+  assert.equal(await outOfView(), true);
+  const second = await canvasStats(page, 'canvas-anim');
+  assert.notEqual(second.hash, first.hash, 'the new state is drawn');
+  // A full-page screenshot shows it: its region of the page is not blank.
+  const box = await page.evaluate(() => {
+    const r = document.getElementById('canvas-anim').getBoundingClientRect();
+    return { x: r.left + window.scrollX, y: r.top + window.scrollY, width: r.width, height: r.height };
+  });
+  const full = await page.screenshot({ fullPage: true, path: path.join(SHOTS, 'teach-08-full-page-1366.png') });
+  assert.ok(full.length > 0);
+  const region = await page.screenshot({ fullPage: true, clip: box });
+  const ink = await pngInk(page, region);
+  assert.ok(ink.ink > 0.05 * ink.total, `the gear set in the full-page screenshot: ${ink.ink} of ${ink.total} pixels`);
+  // And the canvas still holds its frame afterwards.
+  const after = await canvasStats(page, 'canvas-anim');
+  assert.ok(after.ink > 0.05 * after.total, `${after.ink} of ${after.total} pixels after the screenshot`);
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('on a phone (touch, 390x844) a tap or a sideways drag on the frequency response and a tap on the bifurcation diagram select Ω, on larger plots', async () => {
+  const phone = await start({ viewport: { width: 390, height: 844 }, hasTouch: true, isMobile: true });
+  try {
+    const { page, errors } = await open(phone.browser, phone.url, QUICK);
+    const s0 = await waitStatus(page, (x) => x.fr.finished_ms && x.bif.finished_ms && x.omega_job.finished_ms && x.fr_frame && x.bif_frame, 180000, 'the first views');
+    // Larger plots: drawn on 480 pixels across the screen's width, taller
+    // for their width, so the 13-pixel words read at 9 CSS pixels or more.
+    const sizes = await page.evaluate(() => Object.fromEntries([...document.querySelectorAll('canvas[role=img]')]
+      .map((c) => [c.id, { w: c.width, h: c.height, css: c.getBoundingClientRect().width }])));
+    assert.deepEqual([sizes['canvas-fr'].w, sizes['canvas-fr'].h], [480, 640]);
+    for (const [id, c] of Object.entries(sizes)) {
+      if (id === 'canvas-anim') continue;
+      assert.equal(c.w, 480, id);
+      assert.ok(c.css >= 340 && c.css <= 390, `${id}: ${c.css} CSS pixels wide`);
+      assert.ok((13 * c.css) / c.w >= 9, `${id}: words at ${(13 * c.css) / c.w} px`);
+    }
+    // Where a finger lands on a canvas for a fraction `f` across its plotting area.
+    const at = async (id, frame, f) => {
+      const loc = page.locator(`#${id}`);
+      await loc.scrollIntoViewIfNeeded();
+      const box = await loc.boundingBox();
+      const k = box.width / 480;
+      return { x: box.x + (frame[0] + f * (frame[2] - frame[0])) * k, y: box.y + 0.5 * (frame[1] + frame[3]) * k };
+    };
+    const omegaAt = (f) => 0.1 + f * (2 - 0.1);
+    const near = (x, want) => Math.abs(x.omega - want) < 0.02;
+    // A tap on the frequency response: Ω changes and the orbit views redraw.
+    let p = await at('canvas-fr', s0.fr_frame, 0.75);
+    await page.touchscreen.tap(p.x, p.y);
+    await waitStatus(page, (x) => near(x, omegaAt(0.75)), 10000, 'the tapped Ω');
+    const s1 = await waitStatus(page, (x) => x.omega_job.finished_ms && x.omega_result && near(x.omega_result, omegaAt(0.75))
+      && x.draws[2] > s0.draws[2] && x.draws[4] > s0.draws[4], 120000, 'the orbit views at the tapped Ω');
+    await shot(page.locator('#view-fr'), 'teach-09-phone-touch-fr');
+    // A sideways drag (touch events through the DevTools protocol).
+    const cdp = await page.context().newCDPSession(page);
+    p = await at('canvas-fr', s1.fr_frame, 0.3);
+    const q = await at('canvas-fr', s1.fr_frame, 0.5);
+    const touch = (type, x, y) => cdp.send('Input.dispatchTouchEvent', { type, touchPoints: type === 'touchEnd' ? [] : [{ x, y }] });
+    await touch('touchStart', p.x, p.y);
+    for (let k = 1; k <= 8; k++) await touch('touchMove', p.x + ((q.x - p.x) * k) / 8, p.y);
+    await touch('touchEnd');
+    await waitStatus(page, (x) => near(x, omegaAt(0.5)), 10000, 'the Ω where the drag ended');
+    // A tap on the bifurcation diagram.
+    p = await at('canvas-bif', s1.bif_frame, 0.25);
+    await page.touchscreen.tap(p.x, p.y);
+    await waitStatus(page, (x) => near(x, omegaAt(0.25)), 10000, 'the Ω tapped on the bifurcation diagram');
+    await waitStatus(page, (x) => x.omega_job.finished_ms && x.omega_result && near(x.omega_result, omegaAt(0.25)), 120000, 'the orbit views');
+    const w = await page.evaluate(() => ({ scroll: document.documentElement.scrollWidth, body: document.body.scrollWidth }));
+    assert.ok(w.scroll <= 390 && w.body <= 390, JSON.stringify(w));
+    await shot(page.locator('#view-bif'), 'teach-10-phone-bif');
+    await shot(page.locator('#view-phase'), 'teach-11-phone-phase');
+    assert.deepEqual(errors, []);
+    await page.close();
+  } finally {
+    await phone.close();
+  }
 });

@@ -118,7 +118,7 @@ pub const PRESETS: &[Preset] = &[
         settings: &[MODEL],
         family: None,
         meshes: None,
-        note: "The paper's Table 1: three planet pairs, module 4 mm, teeth 36/48/21/84, mesh stiffness 10⁹ N/m, 100 µm backlash, 20 µm eccentricity on sun s1, 2000 N m input. gearshock derives the radii from the tooth counts (the printed radii do not follow from them) and puts the 20 µm as a sine on the small-sun meshes.",
+        note: "The paper's Table 1: three planet pairs, module 4 mm, teeth 36/48/21/84, mesh stiffness 10⁹ N/m, 100 µm backlash, a 20 µm eccentricity of sun s1 and 2000 N m on s1. gearshock derives the radii from the tooth counts (the printed base radii do not follow from them) and puts the 20 µm as a sine on the small-sun meshes.",
         pinned: None,
     },
     Preset {
@@ -130,7 +130,7 @@ pub const PRESETS: &[Preset] = &[
             values: &[5.0, 10.0, 15.0, 20.0, 25.0, 30.0],
         }),
         meshes: Some(FOUR_MESHES),
-        note: "The paper shows the harmonic-balance response of one mesh of each kind (panels a-d) with no backlash as the TE's sine amplitude rises from 5 to 30 µm. gearshock reads its \"Ec_all\" as the same TE on every mesh (switch to the small-sun meshes only to compare), draws steps of 5 µm and an Ω range of 0.1 to 2, neither of which the paper states.",
+        note: "The paper shows the harmonic-balance response of each kind of mesh (panels a-d) with no backlash as the TE's sine amplitude on all meshes rises from 5 to 30 µm. gearshock puts the same sine on every mesh (switch to the small-sun meshes only to compare) and draws steps of 5 µm over Ω 0.1 to 2, neither of which the paper states.",
         pinned: None,
     },
     Preset {
@@ -142,7 +142,7 @@ pub const PRESETS: &[Preset] = &[
             values: &[50.0, 100.0, 150.0, 200.0],
         }),
         meshes: Some(FOUR_MESHES),
-        note: "The paper shows the harmonic-balance response of one mesh of each kind (panels a-d) with a 60 µm TE fundamental as the backlash of every mesh rises from 50 to 200 µm. gearshock takes the 60 µm as a sine on the small-sun meshes and draws 50, 100, 150 and 200 µm; the paper gives only the range.",
+        note: "The paper shows the harmonic-balance response of each kind of mesh (panels a-d) with a 60 µm TE fundamental as the backlash of every mesh rises from 50 to 200 µm. gearshock takes the 60 µm as a sine on the small-sun meshes and draws 50, 100, 150 and 200 µm; the paper gives only the range.",
         pinned: None,
     },
     Preset {
@@ -151,7 +151,7 @@ pub const PRESETS: &[Preset] = &[
         settings: bifurcation!("backlash_um" = "200"),
         family: Some(TE_0_20_30),
         meshes: None,
-        note: "The paper shows bifurcation diagrams of mesh s1a1 over Ω 0 to 2, 100 samples per Ω, with 200 µm backlash and TE 0, 20 and 30 µm in panels a-c. gearshock puts the TE as a sine on the small-sun meshes, starts at Ω 0.1 and sweeps up and down; the paper states neither its sweep nor its frequency scale.",
+        note: "The paper shows bifurcation diagrams of mesh s1a1 over Ω 0 to 2, one hundred samples per Ω, with 200 µm backlash and TE 0, 20 and 30 µm in panels a-c. gearshock puts the TE as a sine on the small-sun meshes, starts at Ω 0.1 and sweeps up and down; the paper states neither its sweep nor its frequency scale.",
         pinned: None,
     },
     Preset {
@@ -160,7 +160,7 @@ pub const PRESETS: &[Preset] = &[
         settings: orbit!("0.5", "backlash_um" = "200"),
         family: Some(TE_0_20_30),
         meshes: None,
-        note: "The paper shows mesh s1a1 at Ω 0.5 with 200 µm backlash and TE 0, 20 and 30 µm: phase portraits in panels a-c, Poincaré sections in d-f. gearshock puts the TE as a sine on the small-sun meshes; the paper does not state its frequency scale, so its Ω 0.5 may not be gearshock's.",
+        note: "The paper shows phase portraits (panels a-c) and Poincaré sections (d-f) at Ω 0.5 as the TE increases: a period-1 motion doubles. It states neither the TE values nor the backlash or the mesh here; gearshock takes Fig. 4's 200 µm and TE 0, 20 and 30 µm (a sine on the small-sun meshes) on mesh s1a1.",
         pinned: None,
     },
     Preset {
@@ -169,7 +169,7 @@ pub const PRESETS: &[Preset] = &[
         settings: orbit!("0.84", "backlash_um" = "200"),
         family: Some(TE_0_20_30),
         meshes: None,
-        note: "The paper shows mesh s1a1 at Ω 0.84 with 200 µm backlash and TE 0, 20 and 30 µm: phase portraits in panels a-c, Poincaré sections in d-f. gearshock puts the TE as a sine on the small-sun meshes; the paper does not state its frequency scale, so its Ω 0.84 may not be gearshock's.",
+        note: "The paper shows phase portraits (panels a-c) and Poincaré sections (d-f) at Ω 0.84 as the TE increases: a period-1 motion turns quasi-periodic. It states neither the TE values nor the backlash or the mesh here; gearshock takes Fig. 4's 200 µm and TE 0, 20 and 30 µm (a sine on the small-sun meshes) on mesh s1a1.",
         pinned: None,
     },
     Preset {
@@ -178,7 +178,7 @@ pub const PRESETS: &[Preset] = &[
         settings: orbit!("1.97", "backlash_um" = "200"),
         family: Some(TE_0_20_30),
         meshes: None,
-        note: "The paper shows mesh s1a1 at Ω 1.97 with 200 µm backlash and TE 0, 20 and 30 µm: phase portraits in panels a-c, Poincaré sections in d-f (its caption says \"different backlashes\" for d-f, its text says TE). gearshock puts the TE as a sine on the small-sun meshes and uses its own frequency scale.",
+        note: "The paper shows mesh s1a1 at Ω 1.97 with 200 µm backlash as the TE increases: phase portraits in panels a-c, Poincaré sections in d-f (its caption says \"different backlashes\" for d-f, its text says TE). gearshock takes TE 0, 20 and 30 µm as in Fig. 4, a sine on the small-sun meshes; the paper does not state the values here.",
         pinned: None,
     },
     Preset {
@@ -187,7 +187,7 @@ pub const PRESETS: &[Preset] = &[
         settings: bifurcation!("te_um" = "20"),
         family: Some(B_50_100_200),
         meshes: None,
-        note: "The paper shows bifurcation diagrams of mesh s1a1 with 20 µm TE and backlash 50, 100 and 200 µm in panels a-c. gearshock assumes Fig. 4's Ω range and 100 samples per Ω (the paper does not restate them), the TE as a sine on the small-sun meshes, and sweeps up and down.",
+        note: "The paper shows bifurcation diagrams of mesh s1a1 with 20 µm TE and backlash 50, 100 and 200 µm in panels a-c. gearshock assumes Fig. 4's Ω range and one hundred samples per Ω (the paper does not restate them), the TE as a sine on the small-sun meshes, and sweeps up and down.",
         pinned: None,
     },
     Preset {
@@ -196,7 +196,7 @@ pub const PRESETS: &[Preset] = &[
         settings: orbit!("0.5", "te_um" = "20"),
         family: Some(B_50_100_200),
         meshes: None,
-        note: "The paper shows mesh s1a1 at Ω 0.5 as the backlash increases: phase portraits in panels a-c, Poincaré sections in d-f. It states neither the backlash values nor the TE here; gearshock takes Fig. 8's 50, 100 and 200 µm and 20 µm TE, a sine on the small-sun meshes.",
+        note: "The paper shows phase portraits (panels a-c) and Poincaré sections (d-f) at Ω 0.5 as the backlash increases. It states neither the backlash values nor the TE or the mesh here; gearshock takes Fig. 8's 50, 100 and 200 µm and 20 µm TE (a sine on the small-sun meshes) on mesh s1a1.",
         pinned: None,
     },
     Preset {
@@ -205,7 +205,7 @@ pub const PRESETS: &[Preset] = &[
         settings: orbit!("0.84", "te_um" = "20"),
         family: Some(B_50_100_200),
         meshes: None,
-        note: "The paper shows mesh s1a1 at Ω 0.84 as the backlash increases: phase portraits in panels a-c, Poincaré sections in d-f. It states neither the backlash values nor the TE here; gearshock takes Fig. 8's 50, 100 and 200 µm and 20 µm TE, a sine on the small-sun meshes.",
+        note: "The paper shows phase portraits (panels a-c) and Poincaré sections (d-f) at Ω 0.84 as the backlash increases. It states neither the backlash values nor the TE or the mesh here; gearshock takes Fig. 8's 50, 100 and 200 µm and 20 µm TE (a sine on the small-sun meshes) on mesh s1a1.",
         pinned: None,
     },
     Preset {
@@ -214,7 +214,7 @@ pub const PRESETS: &[Preset] = &[
         settings: orbit!("1.97", "te_um" = "20"),
         family: Some(B_50_100_200),
         meshes: None,
-        note: "The paper shows mesh s1a1 at Ω 1.97 as the backlash increases: phase portraits in panels a-c, Poincaré sections in d-f. It states neither the backlash values nor the TE here; gearshock takes Fig. 8's 50, 100 and 200 µm and 20 µm TE, a sine on the small-sun meshes.",
+        note: "The paper shows phase portraits (panels a-c) and Poincaré sections (d-f) at Ω 1.97 as the backlash increases. It states neither the backlash values nor the TE or the mesh here; gearshock takes Fig. 8's 50, 100 and 200 µm and 20 µm TE (a sine on the small-sun meshes) on mesh s1a1.",
         pinned: None,
     },
     Preset {
@@ -277,7 +277,24 @@ mod tests {
             assert_eq!(p.query(), p.member_query(0, 0));
             assert_eq!(preset(p.id), Some(p));
             // Plain words: no key names or file names in what a user reads.
-            for word in ["_um", "MODEL.md", "backlash_um", "te_um", " um"] {
+            for word in [
+                "_um",
+                "MODEL.md",
+                "backlash_um",
+                "te_um",
+                " um",
+                "..=",
+                "the seed",
+            ] {
+                assert!(!p.note.contains(word), "{}: {word}", p.id);
+            }
+            // No key name of any kind (every key with an underscore, and
+            // no word with one), nor a choice's code word.
+            for k in solver::keys::KEYS.iter().filter(|k| k.name.contains('_')) {
+                assert!(!p.note.contains(k.name), "{}: {}", p.id, k.name);
+            }
+            assert!(!p.note.contains('_'), "{}: an underscore", p.id);
+            for word in ["te_meshes", "s1a\"", "gear-pair", "in-phase"] {
                 assert!(!p.note.contains(word), "{}: {word}", p.id);
             }
             let sentences = sentence_count(p.note);

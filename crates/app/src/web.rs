@@ -30,7 +30,8 @@ use wasm_bindgen::JsCast;
 use web_sys::{
     Blob, BlobPropertyBag, CanvasRenderingContext2d, Document, Element, Event, HtmlAnchorElement,
     HtmlCanvasElement, HtmlElement, HtmlInputElement, HtmlSelectElement, IntersectionObserver,
-    IntersectionObserverEntry, KeyboardEvent, MessageEvent, MouseEvent, Url, Window, Worker,
+    IntersectionObserverEntry, KeyboardEvent, MessageEvent, MouseEvent, PointerEvent, Url, Window,
+    Worker,
 };
 
 mod anim;
@@ -89,6 +90,8 @@ struct AnimState {
     last_ts: Option<f64>,
     frames: u32,
     dirty: bool,
+    /// Whether the canvas holds the "no motion yet" frame.
+    placeholder: bool,
     /// Whether the gear set's canvas and the time history's cursor canvas
     /// are both scrolled out of view (an `IntersectionObserver` says so):
     /// then the clock runs on but nothing is drawn, which spares the main
@@ -185,6 +188,7 @@ pub fn start_app() {
     claims::build_claims(&page);
     build_exports(&page);
     tour::build_tour(&page);
+    fit_canvases(&window, &doc);
     build_canvas_events(&page);
     start_workers(&page);
     run_effects(&page, effects);
@@ -668,6 +672,44 @@ fn canvas_px(cv: &HtmlCanvasElement, e: &MouseEvent) -> f64 {
     canvas_xy(cv, e).0
 }
 
+/// The plots' drawing width on a phone: with the canvas at the screen's
+/// width (about 360 CSS pixels), the axes' and the key's 13-pixel words
+/// read at about 10 pixels rather than the 6 of the 760-pixel drawing.
+const PHONE_PLOT_WIDTH: u32 = 480;
+
+/// On a narrow screen (under [`plots::NARROW`] CSS pixels) every plot's
+/// canvas draws on fewer, larger pixels and is taller for its width (its
+/// key takes more rows), so that the plotting area keeps a readable height:
+/// the plots adapt to their canvas's size. The gear set keeps its drawing.
+fn fit_canvases(window: &Window, doc: &Document) {
+    let width = window
+        .inner_width()
+        .ok()
+        .and_then(|w| w.as_f64())
+        .unwrap_or(f64::INFINITY);
+    if width >= f64::from(plots::NARROW) {
+        return;
+    }
+    let Ok(all) = doc.query_selector_all("canvas") else {
+        return;
+    };
+    for k in 0..all.length() {
+        let Some(cv) = all
+            .item(k)
+            .and_then(|n| n.dyn_into::<HtmlCanvasElement>().ok())
+        else {
+            continue;
+        };
+        let height = match cv.id().as_str() {
+            "canvas-anim" => continue,
+            "canvas-fr" => 640,
+            _ => cv.height() * 13 / 10,
+        };
+        cv.set_width(PHONE_PLOT_WIDTH);
+        cv.set_height(height);
+    }
+}
+
 fn build_canvas_events(page: &Shared) {
     let doc = page.borrow().doc.clone();
     if let Some(cv) = canvas(&doc, ViewId::Map) {
@@ -712,23 +754,31 @@ fn build_canvas_events(page: &Shared) {
                 }
             }
         };
+        // Pointer events: a mouse click or drag and a finger's tap or
+        // sideways drag take one path (the canvas's `touch-action: pan-y`
+        // leaves vertical swipes to scroll the page).
         let down = pick.clone();
         let p2 = page.clone();
-        listen(&cv.clone().into(), "pointerdown", move |e: MouseEvent| {
+        let cv2 = cv.clone();
+        listen(&cv.clone().into(), "pointerdown", move |e: PointerEvent| {
             p2.borrow_mut().dragging = true;
+            // Keeps the drag's events when the finger or mouse leaves the canvas.
+            let _ = cv2.set_pointer_capture(e.pointer_id());
             down(&e);
         });
         let mv = pick.clone();
         let p2 = page.clone();
-        listen(&cv.clone().into(), "pointermove", move |e: MouseEvent| {
+        listen(&cv.clone().into(), "pointermove", move |e: PointerEvent| {
             if p2.borrow().dragging && e.buttons() & 1 == 1 {
                 mv(&e);
             }
         });
-        let p2 = page.clone();
-        listen(&cv.clone().into(), "pointerup", move |_e: MouseEvent| {
-            p2.borrow_mut().dragging = false;
-        });
+        for end in ["pointerup", "pointercancel"] {
+            let p2 = page.clone();
+            listen(&cv.clone().into(), end, move |_e: PointerEvent| {
+                p2.borrow_mut().dragging = false;
+            });
+        }
         // Keyboard: arrows move the selected Omega by 1 % of the range (10 % with Shift).
         let p2 = page.clone();
         listen(&cv.into(), "keydown", move |e: KeyboardEvent| {

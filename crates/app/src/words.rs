@@ -133,10 +133,66 @@ pub fn allowed(key: &str) -> String {
             with_unit(format!("between {} and {}", num(min), num(max)))
         }
         Some(ViewType::Int { min, max }) => format!("a whole number between {min} and {max}"),
-        Some(ViewType::Choice(w)) => format!("one of {}", w.join(", ")),
+        Some(ViewType::Choice(w)) => {
+            let w: Vec<String> = w.iter().map(|w| plain(w)).collect();
+            format!("one of {}", w.join(", "))
+        }
         Some(ViewType::Mesh) => "one of the model's meshes, or the worst".into(),
         None => "a known setting".into(),
     }
+}
+
+/// A control's tooltip in plain words: what the setting does and what it
+/// allows ("Backlash: half-width b of the dead zone, on all meshes.
+/// Allowed: between 0 and 1000 µm.").
+pub fn tooltip(key: &str, description: &str) -> String {
+    format!(
+        "{}. Allowed: {}.",
+        upper_first(&plain(description)),
+        allowed(key)
+    )
+}
+
+/// The symbols and key names of the settings' descriptions (written for
+/// the command line) in words and symbols as people write them.
+const PLAIN: [(&str, &str); 12] = [
+    ("te_meshes", "the TE meshes setting"),
+    ("torque_s1_nm", "the torque on s1"),
+    (
+        "(teeth_r - teeth_s2)/2",
+        "(ring teeth − large-sun teeth) / 2",
+    ),
+    ("'Ec_all'", "“all meshes” curve"),
+    (
+        "k(t) = k_m (1 + v cos(omega t + gamma))",
+        "k(t) = kₘ (1 + v cos(ωt + γ))",
+    ),
+    ("c = 2 xi sqrt(k_m m_e)", "c = 2 ξ √(kₘ mₑ)"),
+    ("ratio xi", "ratio ξ"),
+    (
+        "adds m r_ca^2 to the carrier",
+        "adds its mass times its orbit radius squared to the carrier",
+    ),
+    (
+        "adds m r_cb^2 to the carrier",
+        "adds its mass times its orbit radius squared to the carrier",
+    ),
+    ("stiffness k_m", "stiffness kₘ"),
+    ("backlash_um", "backlash b"),
+    ("te_um", "TE amplitude"),
+];
+
+/// A description in plain words: the phrases of [`PLAIN`] replaced, and
+/// Omega written Ω.
+fn plain(text: &str) -> String {
+    let mut t = text.to_string();
+    for (from, to) in PLAIN {
+        t = t.replace(from, to);
+    }
+    t.split(' ')
+        .map(|w| if w == "Omega" { "Ω" } else { w })
+        .collect::<Vec<_>>()
+        .join(" ")
 }
 
 /// The message for a value a key does not allow, in a sentence:
@@ -159,6 +215,26 @@ pub fn must_be(key: &str, typed: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Every control's tooltip in plain words: no key name, no Rust range,
+    /// the allowed values said. (Keys that are plain words, such as
+    /// "model", may appear as words.)
+    #[test]
+    fn every_tooltip_is_plain_words() {
+        for c in crate::controls::controls() {
+            let t = tooltip(c.key, c.description);
+            assert!(!c.key.contains('_') || !t.contains(c.key), "{t}");
+            let code = t
+                .split(|ch: char| !(ch.is_ascii_alphanumeric() || ch == '_'))
+                .any(|w| w.contains('_'));
+            assert!(!code && !t.contains("..="), "{t}");
+            assert!(t.contains(&allowed(c.key)) && t.ends_with('.'), "{t}");
+        }
+        assert_eq!(
+            tooltip("backlash_um", "backlash: half-width b of the dead zone, on all meshes"),
+            "Backlash: half-width b of the dead zone, on all meshes. Allowed: between 0 and 1000 µm."
+        );
+    }
 
     /// Every key the page can set reads without key names or Rust ranges.
     #[test]

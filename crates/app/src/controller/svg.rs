@@ -11,7 +11,7 @@ use plotters::prelude::*;
 pub fn view_size(view: ViewId) -> (u32, u32) {
     match view {
         ViewId::Map => (plots::WIDTH, 460),
-        ViewId::Lyap => (plots::WIDTH, 240),
+        ViewId::Lyap => (plots::WIDTH, 300),
         _ => (plots::WIDTH, plots::HEIGHT),
     }
 }

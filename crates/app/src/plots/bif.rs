@@ -1,32 +1,8 @@
 //! View 2's plot: the bifurcation diagram (dots returned by colour for a
-//! batched fill, the instability bands, the regime legend).
+//! batched fill, the instability bands, the key).
 
 use super::*;
 use crate::views::bif::{BifPoint, BifView};
-
-/// Legend entries for the regimes present.
-fn regime_legend<'a, DB: DrawingBackend + 'a>(
-    chart: &mut Chart<'a, DB>,
-    present: impl Iterator<Item = Regime>,
-) -> Res<()> {
-    let mut seen = [false; 4];
-    for r in present {
-        if let Some(i) = Regime::ALL.iter().position(|&x| x == r) {
-            seen[i] = true;
-        }
-    }
-    for (i, r) in Regime::ALL.iter().enumerate() {
-        if seen[i] {
-            let c = regime_color(*r);
-            chart
-                .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
-                .map_err(err)?
-                .label(r.label())
-                .legend(move |(x, y)| Circle::new((x + 8, y), 4, c.filled()));
-        }
-    }
-    Ok(())
-}
 
 /// The shade of the Omega bands where the engaged system is parametrically
 /// unstable.
@@ -101,37 +77,31 @@ pub fn draw_bif<DB: DrawingBackend>(
     root.fill(&WHITE).map_err(err)?;
     let x = (v.omega_from, v.omega_to);
     let extra = contact_levels(&v.backlash_um, &v.pinned_backlash_um, v.whole_clearance);
-    let y = with_headroom(
-        padded_range(
-            v.points.iter().chain(v.pinned.iter()).map(|p| p.x_um),
-            &extra,
-            20.0,
-        ),
-        if v.ab_labels.is_some() { 0.8 } else { 0.55 },
+    // The key is under the chart, so the axes fit the data alone.
+    let y = padded_range(
+        v.points.iter().chain(v.pinned.iter()).map(|p| p.x_um),
+        &extra,
+        20.0,
     );
+    let items = bif_key(v, natural, y);
+    let plan = plan_key(root, &items, Vec::new());
+    let upper = chart_area(root, &plan);
     let caption = format!("Bifurcation diagram, mesh {}{status}", v.mesh_label);
     let axes = Axes::new(OMEGA_AXIS, "Poincaré samples of x = δ − e (µm)");
-    let mut chart = linear_chart(root, &caption, (x, y), &axes)?;
-    contact_lines(&mut chart, &v.backlash_um, x, true, true)?;
-    if pinned_contact_lines(&mut chart, &v.pinned_backlash_um, &v.backlash_um, x)? {
-        let style = ShapeStyle::from(&A_MIN).stroke_width(1);
-        legend_only(&mut chart, "A's ±b contact lines", style, [6, 10])?;
-    }
+    let mut chart = linear_chart(&upper, &caption, (x, y), &axes)?;
+    contact_lines(&mut chart, &v.backlash_um, x, true)?;
+    pinned_contact_lines(&mut chart, &v.pinned_backlash_um, &v.backlash_um, x)?;
     if !v.unstable_bands.is_empty() {
         // Where motion large against the backlash grows without bound (the
         // engaged system's Floquet spectral radius above 1), under the dots.
-        let shade = UNSTABLE_BAND.mix(0.14);
+        let shade = UNSTABLE_BAND.mix(BAND_ALPHA);
         chart
             .draw_series(v.unstable_bands.iter().map(|&(a, b)| {
                 Rectangle::new([(a.max(x.0), y.0), (b.min(x.1), y.1)], shade.filled())
             }))
-            .map_err(err)?
-            .label("parametrically unstable with all teeth engaged")
-            .legend(move |(px, py)| {
-                Rectangle::new([(px + 2, py - 4), (px + 14, py + 4)], shade.filled())
-            });
+            .map_err(err)?;
     }
-    omega_decorations(&mut chart, natural, v.selected_omega, y, true)?;
+    omega_decorations(&mut chart, natural, v.selected_omega, y)?;
     let frame = frame_of(&chart, x, y);
     let mut groups: Vec<PointGroup> = Vec::new();
     if !v.pinned.is_empty() {
@@ -156,45 +126,11 @@ pub fn draw_bif<DB: DrawingBackend>(
         }
     }
     group_dots(&mut groups, &v.points, &frame);
-    if let Some((a, b)) = &v.ab_labels {
-        chart
-            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
-            .map_err(err)?
-            .label(format!("A (pinned): {a}"))
-            .legend(move |(x, y)| Circle::new((x + 8, y), 4, A_DOTS.filled()));
-        chart
-            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
-            .map_err(err)?
-            .label(format!("B (current, regime colours): {b}"))
-            .legend(move |(x, y)| {
-                Circle::new((x + 8, y), 4, regime_color(Regime::SingleSided).filled())
-            });
-    }
-    regime_legend(&mut chart, v.points.iter().map(|p| p.regime))?;
-    let dark = RGBColor(60, 60, 60);
-    if v.points.iter().any(|p| p.up) {
-        chart
-            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
-            .map_err(err)?
-            .label("upward sweep")
-            .legend(move |(x, y)| Circle::new((x + 8, y), 2, dark.filled()));
-    }
-    if v.points.iter().any(|p| !p.up) {
-        chart
-            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
-            .map_err(err)?
-            .label("downward sweep")
-            .legend(move |(x, y)| {
-                Rectangle::new([(x + 6, y - 2), (x + 10, y + 2)], dark.stroke_width(1))
-            });
-    }
     if !v.failed.is_empty() {
-        // The first failure's reason (its message up to the first colon).
-        failed_crosses(&mut chart, &v.failed, y.0, 5)?
-            .label(failed_label(&v.failed))
-            .legend(move |(x, y)| Cross::new((x + 8, y), 4, FAILED_CROSS.stroke_width(2)));
+        // Where the sweep failed: a grey cross on the Omega axis each.
+        failed_crosses(&mut chart, &v.failed, y.0, 5)?;
     }
-    legend(&mut chart, SeriesLabelPosition::UpperRight)?;
+    draw_key(root, &items, &plan)?;
     root.present().map_err(err)?;
     Ok((frame, groups))
 }
@@ -218,6 +154,44 @@ pub fn svg_with_dots(chart: &str, size: (u32, u32), groups: &[PointGroup]) -> Re
         .and_then(|rest| rest.strip_suffix("</svg>"))
         .ok_or_else(|| DrawError("the dots are not a complete SVG".into()))?;
     Ok(format!("{head}{body}</svg>\n"))
+}
+
+/// The shade's opacity of the unstable bands.
+const BAND_ALPHA: f64 = 0.14;
+
+/// The bifurcation diagram's key: A and B when comparing, the regimes
+/// present, the sweep directions, the contact lines, the unstable bands,
+/// natural frequencies and cursor, and the failed points with the first
+/// one's reason.
+fn bif_key(v: &BifView, natural: &[NaturalFreq], y: (f64, f64)) -> KeyItems {
+    let mut items: KeyItems = Vec::new();
+    if let Some((a, b)) = &v.ab_labels {
+        items.push((KeyIcon::Dot(A_DOTS, 4), format!("A (pinned): {a}")));
+        items.push((
+            KeyIcon::Regime(Regime::SingleSided),
+            format!("B (current, regime colours): {b}"),
+        ));
+    }
+    items.extend(regime_items(v.points.iter().map(|p| p.regime), ""));
+    let dark = RGBColor(60, 60, 60);
+    if v.points.iter().any(|p| p.up) {
+        items.push((KeyIcon::Dot(dark, 2), "upward sweep".into()));
+    }
+    if v.points.iter().any(|p| !p.up) {
+        items.push((KeyIcon::Square(dark), "downward sweep".into()));
+    }
+    items.extend(contact_items(&v.backlash_um, &v.pinned_backlash_um, y));
+    if !v.unstable_bands.is_empty() {
+        items.push((
+            KeyIcon::Shade(UNSTABLE_BAND, BAND_ALPHA),
+            "parametrically unstable with all teeth engaged".into(),
+        ));
+    }
+    items.extend(omega_items(natural, v.selected_omega));
+    if !v.failed.is_empty() {
+        items.push((KeyIcon::Cross(FAILED_CROSS), failed_label(&v.failed)));
+    }
+    items
 }
 
 /// Draws the dots of [`draw_bif`] with plotters (the page fills them on the

@@ -23,104 +23,11 @@ pub fn draw_fr<DB: DrawingBackend>(
         .filter(|p| in_range(p.omega))
         .flat_map(|p| [p.max_um, p.min_um]);
     let extra = contact_levels(&v.backlash_um, &v.pinned_backlash_um, v.whole_clearance);
-    // Room at the top for the legend (two lines per branch, the faded
-    // branch, the unstable dash, the failure line).
-    // (A family's member has one line: its max and min share a colour.)
-    let entries = v
-        .branches
-        .iter()
-        .filter(|b| !b.faded)
-        .map(|b| if b.member.is_some() { 1 } else { 2 })
-        .sum::<usize>()
-        + usize::from(v.branches.iter().any(|b| b.faded))
-        + usize::from(v.branch_error.is_some())
-        + 1;
-    let y = with_headroom(padded_range(all, &extra, 20.0), 0.25 + 0.1 * entries as f64);
-    // The key under the chart: contact lines, natural frequencies, the
-    // cursor, regimes, bifurcations, overlay.
-    let mut items: Vec<(KeyIcon, String)> = Vec::new();
-    if !v.backlash_um.is_empty() {
-        let bs: Vec<String> = v.backlash_um.iter().map(|b| format!("{b}")).collect();
-        items.push((
-            KeyIcon::Line(CONTACT, true),
-            format!("±b contact lines (b = {} µm)", bs.join(", ")),
-        ));
-    }
-    let a_only: Vec<String> = v
-        .pinned_backlash_um
-        .iter()
-        .filter(|b| !v.backlash_um.iter().any(|c| (*c - **b).abs() < 1e-9))
-        .map(|b| format!("{b}"))
-        .collect();
-    if !a_only.is_empty() {
-        items.push((
-            KeyIcon::Line(A_MIN, true),
-            format!("A's ±b (b = {} µm)", a_only.join(", ")),
-        ));
-    }
-    if !v.natural.is_empty() {
-        items.push((
-            KeyIcon::Line(NATURAL, false),
-            "natural frequencies (linear, mean k)".into(),
-        ));
-    }
-    items.push((
-        KeyIcon::Line(CURSOR, false),
-        format!("selected Ω = {:.3}", v.selected_omega),
-    ));
-    let mut seen = [false; 4];
-    // The regime strip is drawn under the current state's branch only (not
-    // a family's members): its key only then.
-    for r in v
-        .branches
-        .iter()
-        .filter(|b| !b.faded && b.member.is_none())
-        .flat_map(|b| b.points.iter().filter_map(|p| p.regime))
-        .chain(v.overlay.iter().filter_map(|p| p.regime))
-    {
-        if let Some(i) = Regime::ALL.iter().position(|&x| x == r) {
-            seen[i] = true;
-        }
-    }
-    let mut first = true;
-    for (i, r) in Regime::ALL.iter().enumerate() {
-        if seen[i] {
-            let text = if first {
-                format!("regime strip: {}", r.label())
-            } else {
-                r.label().to_string()
-            };
-            first = false;
-            items.push((KeyIcon::Regime(*r), text));
-        }
-    }
-    for k in FrMarkerKind::ALL {
-        if v.markers.iter().any(|m| m.kind == k) {
-            items.push((KeyIcon::Marker(k), k.label().to_string()));
-        }
-    }
-    if v.overlay_source.is_some() {
-        let d = &v.discrepancy;
-        // Short enough for one row of the key: the points off the stable
-        // branch are what the sentence under the key is about.
-        let mut text = format!(
-            "time integration: the actual response ({} points",
-            v.overlay.len()
-        );
-        if let Some(m) = d.max_um {
-            text.push_str(&format!(
-                "; within {m:.1} µm of the stable branch at {}",
-                d.compared
-            ));
-        }
-        text.push(')');
-        items.push((KeyIcon::Overlay, text));
-    }
-    let (at, rows) = key_layout(root, &items, 76);
-    // The plain sentence under the key when the branch is unstable over a range.
-    let sentence: Vec<String> = unstable_sentence(v).map_or(Vec::new(), |t| wrap(&t, 86));
-    let key_h = 8 + KEY_ROW * (rows + sentence.len() as i32);
-    let (upper, _) = root.split_vertically(HEIGHT as i32 - key_h);
+    // The key is under the chart, so the axes fit the data alone.
+    let y = padded_range(all, &extra, 20.0);
+    let items = fr_key(v, y);
+    let plan = plan_key(root, &items, fr_lines(v, line_chars(root.dim_in_pixel().0)));
+    let upper = chart_area(root, &plan);
     let caption = if v.branches.iter().any(|b| b.member.is_some()) {
         format!(
             "Frequency response, mesh {}: max and min x per value{status}",
@@ -134,51 +41,28 @@ pub fn draw_fr<DB: DrawingBackend>(
     };
     let axes = Axes::new(OMEGA_AXIS, "x = δ − e (µm)");
     let mut chart = linear_chart(&upper, &caption, (x, y), &axes)?;
-    // These three go in the key under the chart, keeping the legend short.
-    contact_lines(&mut chart, &v.backlash_um, x, true, false)?;
+    contact_lines(&mut chart, &v.backlash_um, x, true)?;
     pinned_contact_lines(&mut chart, &v.pinned_backlash_um, &v.backlash_um, x)?;
-    omega_decorations(&mut chart, &v.natural, v.selected_omega, y, false)?;
-    let mut any_unstable = false;
+    omega_decorations(&mut chart, &v.natural, v.selected_omega, y)?;
     for br in &v.branches {
-        for (which, color, label) in [(true, MAX_COLOR, "max x"), (false, MIN_COLOR, "min x")] {
-            let color = branch_color(br, which).unwrap_or(color);
+        for which in [true, false] {
+            let style = ShapeStyle::from(&branch_color(br, which)).stroke_width(2);
             let runs = stability_runs(&br.points, which);
-            let style = ShapeStyle::from(&color).stroke_width(2);
-            // The faded branch and a family member are labelled once, not
-            // per extreme (a member's max and min share its colour).
-            let mut labelled = (br.faded || br.member.is_some()) && !which;
             for (unstable, pts) in runs {
                 // A branch has about a thousand points, most less than a
                 // pixel apart: drawing each (every dash a stroke) made a
                 // redraw take 100 ms. Points closer than 2 px to the last
                 // one kept are left out; the ends always stay.
                 let pts = thin(pts, |p| chart.backend_coord(p), 2);
-                let s = if unstable {
-                    any_unstable |= !br.faded;
+                if unstable {
                     chart
                         .draw_series(DashedLineSeries::new(pts, 5, 4, style))
-                        .map_err(err)?
+                        .map_err(err)?;
                 } else {
                     chart
                         .draw_series(LineSeries::new(pts, style))
-                        .map_err(err)?
-                };
-                if !labelled {
-                    let text = if br.faded {
-                        "previous settings (updating)".to_string()
-                    } else if br.member.is_some() {
-                        br.label.clone()
-                    } else {
-                        format!("{label} ({})", br.label)
-                    };
-                    s.label(text).legend(move |(xx, yy)| {
-                        PathElement::new(vec![(xx, yy), (xx + 16, yy)], style)
-                    });
-                    labelled = true;
+                        .map_err(err)?;
                 }
-            }
-            if br.faded {
-                continue;
             }
         }
         if !br.faded && !br.pinned && br.member.is_none() {
@@ -186,10 +70,6 @@ pub fn draw_fr<DB: DrawingBackend>(
             let filled = strip_from_overlay(&unstable_ranges(&br.points), &v.overlay);
             regime_strip(&mut chart, &br.points, &filled, y)?;
         }
-    }
-    if any_unstable {
-        let style = ShapeStyle::from(&CONTACT).stroke_width(2);
-        legend_only(&mut chart, "unstable (Floquet): dashed", style, [5, 9])?;
     }
     // Time-integration steady states: hollow dots on both extremes.
     chart
@@ -213,35 +93,118 @@ pub fn draw_fr<DB: DrawingBackend>(
                 3,
                 ShapeStyle::from(&FAILURE).stroke_width(2),
             ))
-            .map_err(err)?
-            .label("solver failure: branch ends")
-            .legend(|(xx, yy)| {
-                PathElement::new(
-                    vec![(xx, yy), (xx + 16, yy)],
-                    ShapeStyle::from(&FAILURE).stroke_width(2),
-                )
-            });
+            .map_err(err)?;
     }
-    legend(&mut chart, SeriesLabelPosition::UpperRight)?;
     let frame = frame_of(&chart, x, y);
+    draw_key(root, &items, &plan)?;
+    root.present().map_err(err)?;
+    Ok(frame)
+}
 
-    key_row(root, &items, &at, HEIGHT as i32 - key_h + 12)?;
-    for (k, line) in sentence.iter().enumerate() {
-        let y0 = HEIGHT as i32 - key_h + 5 + KEY_ROW * (rows + k as i32);
-        root.draw(&Text::new(
-            line.clone(),
-            (76, y0),
-            ("sans-serif", 13).into_font().style(FontStyle::Bold),
-        ))
-        .map_err(err)?;
+
+/// The frequency response's key: the branches (a family's member and the
+/// faded previous branch once each, else max and min), the contact lines,
+/// natural frequencies and cursor, the unstable dash, the regimes present,
+/// the bifurcation kinds present, the overlay and a failure's line.
+fn fr_key(v: &FrView, y: (f64, f64)) -> KeyItems {
+    let mut items: KeyItems = Vec::new();
+    for br in v.branches.iter().filter(|b| !b.faded) {
+        if br.member.is_some() {
+            items.push((
+                KeyIcon::Line(branch_color(br, true), false),
+                br.label.clone(),
+            ));
+        } else {
+            for (which, what) in [(true, "max x"), (false, "min x")] {
+                items.push((
+                    KeyIcon::Line(branch_color(br, which), false),
+                    format!("{what} ({})", br.label),
+                ));
+            }
+        }
     }
+    if v.branches.iter().any(|b| b.faded) {
+        items.push((
+            KeyIcon::Line(FADED, false),
+            "previous settings (updating)".into(),
+        ));
+    }
+    items.extend(contact_items(&v.backlash_um, &v.pinned_backlash_um, y));
+    items.extend(omega_items(&v.natural, v.selected_omega));
+    let any_unstable = v
+        .branches
+        .iter()
+        .filter(|b| !b.faded)
+        .any(|b| b.points.iter().any(|p| p.stable == Some(false)));
+    if any_unstable {
+        items.push((
+            KeyIcon::Line(CONTACT, true),
+            "unstable (Floquet): dashed".into(),
+        ));
+    }
+    // The regime strip is drawn under the current state's branch only (not
+    // a family's members): its key only then.
+    let strip = v
+        .branches
+        .iter()
+        .any(|b| !b.faded && !b.pinned && b.member.is_none());
+    items.extend(regime_items(
+        v.branches
+            .iter()
+            .filter(|b| !b.faded && b.member.is_none())
+            .flat_map(|b| b.points.iter().filter_map(|p| p.regime))
+            .chain(v.overlay.iter().filter_map(|p| p.regime))
+            .filter(|_| strip),
+        "regime strip: ",
+    ));
+    for k in FrMarkerKind::ALL {
+        if v.markers.iter().any(|m| m.kind == k) {
+            items.push((KeyIcon::Marker(k), k.label().to_string()));
+        }
+    }
+    if v.overlay_source.is_some() {
+        let d = &v.discrepancy;
+        // Short enough for one row of the key: the points off the stable
+        // branch are what the sentence under the key is about.
+        let mut text = format!(
+            "time integration: the actual response ({} points",
+            v.overlay.len()
+        );
+        if let Some(m) = d.max_um {
+            text.push_str(&format!(
+                "; within {m:.1} µm of the stable branch at {}",
+                d.compared
+            ));
+        }
+        text.push(')');
+        items.push((KeyIcon::Overlay, text));
+    }
+    if v.branch_error.is_some() {
+        items.push((
+            KeyIcon::Line(FAILURE, true),
+            "solver failure: branch ends".into(),
+        ));
+    }
+    items
+}
+
+/// The lines under the frequency response's key: the plain sentence when
+/// the branch is unstable over a range, then the warnings (a solver
+/// failure, a branch that turns back, failed time-integration points).
+fn fr_lines(v: &FrView, chars: usize) -> Vec<KeyLine> {
+    let x = (v.omega_from, v.omega_to);
+    let mut lines: Vec<KeyLine> = unstable_sentence(v)
+        .map_or(Vec::new(), |t| wrap(&t, chars))
+        .into_iter()
+        .map(KeyLine::Sentence)
+        .collect();
     let mut notes = Vec::new();
     if let Some((at, e)) = &v.branch_error {
         let text = format!(
             "Solver failure after Ω = {at:.4}: {}. The branch ends there (partial).",
             solver::keys::truncate(e, 160)
         );
-        notes.extend(wrap(&text, 84));
+        notes.extend(wrap(&text, chars));
     }
     // A finished branch that turned back at a fold and left the range at its
     // lower end covers only part of the range: say so rather than let the
@@ -263,7 +226,7 @@ pub fn draw_fr<DB: DrawingBackend>(
                     &format!(
                         "{who} turns back at Ω = {reach:.3} (a fold) and leaves the range below: above it the response lies on another branch (see the bifurcation diagram)."
                     ),
-                    84,
+                    chars,
                 ));
             }
         }
@@ -274,28 +237,20 @@ pub fn draw_fr<DB: DrawingBackend>(
             v.failed.len()
         ));
     }
-    let first_y = frame.bottom_right.y as i32 - 24 - 16 * (notes.len() as i32 - 1);
-    for (k, n) in notes.iter().enumerate() {
-        root.draw(&Text::new(
-            n.clone(),
-            (76, first_y + 16 * k as i32),
-            ("sans-serif", 13).into_font().color(&FAILURE),
-        ))
-        .map_err(err)?;
-    }
-    root.present().map_err(err)?;
-    Ok(frame)
+    lines.extend(notes.into_iter().map(KeyLine::Warning));
+    lines
 }
 
-/// The colour of a branch's max x (`which`) or min x curve, if not the
-/// current state's own (faded, A's, or a family member's).
-pub(super) fn branch_color(br: &FrBranch, which: bool) -> Option<RGBColor> {
+/// The colour of a branch's max x (`which`) or min x curve: faded, A's, a
+/// family member's or the current state's own.
+pub(super) fn branch_color(br: &FrBranch, which: bool) -> RGBColor {
     match (br.faded, br.pinned, which, br.member) {
-        (true, _, _, _) => Some(FADED),
-        (false, true, true, _) => Some(A_MAX),
-        (false, true, false, _) => Some(A_MIN),
-        (false, false, _, Some(m)) => Some(family_color(m)),
-        _ => None,
+        (true, _, _, _) => FADED,
+        (false, true, true, _) => A_MAX,
+        (false, true, false, _) => A_MIN,
+        (false, false, _, Some(m)) => family_color(m),
+        (false, false, true, None) => MAX_COLOR,
+        (false, false, false, None) => MIN_COLOR,
     }
 }
 

@@ -9,8 +9,9 @@
 //! its Omega ticks line up with the diagram above it.
 
 use super::{
-    err, frame_of, linear_chart, omega_decorations, padded_range, regime_color, small, Axes,
-    DrawError, PlotFrame, Res, GRID, OMEGA_AXIS,
+    chart_area, draw_key, err, frame_of, linear_chart, omega_decorations, omega_items,
+    padded_range, plan_key, regime_color, small, Axes, DrawError, KeyIcon, KeyItems, PlotFrame,
+    Res, GRID, OMEGA_AXIS,
 };
 use crate::protocol::Regime;
 use crate::views::lyap::{lyap_kind, LyapKind, LyapStore, LYAP_ZERO_BAND};
@@ -180,27 +181,45 @@ pub fn draw_lyap<DB: DrawingBackend>(
     root.fill(&WHITE).map_err(err)?;
     let curve = store.curve();
     let x = omega_range;
+    // The key is under the chart, so the axes fit the curve alone.
     let y = padded_range(curve.iter().map(|p| p.1), &[0.0], 0.2);
-    let y = (y.0, y.1 + 0.3 * (y.1 - y.0));
+    let kinds = [LyapKind::Periodic, LyapKind::Neutral, LyapKind::Chaotic];
+    let zero_color = BLACK;
+    let mut items: KeyItems = vec![(KeyIcon::Line(zero_color, false), "λ = 0".into())];
+    for kind in kinds {
+        let label = match kind {
+            LyapKind::Periodic => "λ < 0: periodic (stable)",
+            LyapKind::Neutral => "λ ≈ 0: quasi-periodic",
+            LyapKind::Chaotic => "λ > 0: chaotic",
+        };
+        items.push((KeyIcon::Dot(lyap_color(kind), 3), label.into()));
+    }
+    items.extend(omega_items(natural, selected));
+    let failed = store.failed();
+    let grey = RGBColor(90, 90, 90);
+    if !failed.is_empty() {
+        items.push((KeyIcon::Cross(grey), super::failed_label(&failed)));
+    }
+    let plan = plan_key(root, &items, Vec::new());
+    let area = chart_area(root, &plan);
     let caption = format!(
         "Largest Lyapunov exponent of the Poincaré map ({} periods each){status}",
         store.periods
     );
     let axes = Axes {
-        y_labels: Some(6),
+        y_labels: Some(5),
+        // Two decimals, and zero without a sign (plotters wrote "-0.0").
+        y_format: Some(|v: &f64| format!("{:.2}", if v.abs() < 1e-9 { 0.0 } else { *v })),
         ..Axes::new(OMEGA_AXIS, "λ per mesh period (−)")
     };
-    let mut chart = linear_chart(root, &caption, (x, y), &axes)?;
-    omega_decorations(&mut chart, natural, selected, y, false)?;
-    let zero = ShapeStyle::from(&BLACK).stroke_width(1);
+    let mut chart = linear_chart(&area, &caption, (x, y), &axes)?;
+    omega_decorations(&mut chart, natural, selected, y)?;
     chart
         .draw_series(std::iter::once(PathElement::new(
             vec![(x.0, 0.0), (x.1, 0.0)],
-            zero,
+            ShapeStyle::from(&zero_color).stroke_width(1),
         )))
-        .map_err(err)?
-        .label("λ = 0")
-        .legend(move |(px, py)| PathElement::new(vec![(px, py), (px + 16, py)], zero));
+        .map_err(err)?;
     let band = RGBColor(230, 120, 0).mix(0.12);
     chart
         .draw_series(std::iter::once(Rectangle::new(
@@ -214,48 +233,29 @@ pub fn draw_lyap<DB: DrawingBackend>(
             ShapeStyle::from(&RGBColor(120, 120, 130)).stroke_width(1),
         ))
         .map_err(err)?;
-    for kind in [LyapKind::Periodic, LyapKind::Neutral, LyapKind::Chaotic] {
+    for kind in kinds {
         let c = lyap_color(kind);
-        let pts: Vec<(f64, f64)> = curve
-            .iter()
-            .copied()
-            .filter(|p| lyap_kind(p.1) == kind)
-            .collect();
-        let label = match kind {
-            LyapKind::Periodic => "λ < 0: periodic (stable)",
-            LyapKind::Neutral => "λ ≈ 0: quasi-periodic",
-            LyapKind::Chaotic => "λ > 0: chaotic",
-        };
         chart
-            .draw_series(pts.iter().map(|&p| Circle::new(p, 3, c.filled())))
-            .map_err(err)?
-            .label(label)
-            .legend(move |(px, py)| Circle::new((px + 8, py), 3, c.filled()));
+            .draw_series(
+                curve
+                    .iter()
+                    .copied()
+                    .filter(|p| lyap_kind(p.1) == kind)
+                    .map(|p| Circle::new(p, 3, c.filled())),
+            )
+            .map_err(err)?;
     }
-    let failed = store.failed();
     if !failed.is_empty() {
-        let grey = RGBColor(90, 90, 90);
         chart
             .draw_series(
                 failed
                     .iter()
                     .map(|&(omega, _)| Cross::new((omega, y.0), 5, grey.stroke_width(2))),
             )
-            .map_err(err)?
-            .label(super::failed_label(&failed))
-            .legend(move |(px, py)| Cross::new((px + 8, py), 4, grey.stroke_width(2)));
+            .map_err(err)?;
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .background_style(WHITE.mix(0.85))
-        .border_style(GRID)
-        .margin(4)
-        .legend_area_size(20)
-        .label_font(("sans-serif", 11))
-        .draw()
-        .map_err(err)?;
     let frame = frame_of(&chart, x, y);
+    draw_key(root, &items, &plan)?;
     root.present().map_err(err)?;
     Ok(frame)
 }
@@ -270,7 +270,7 @@ mod tests {
     /// The map canvas's height (pixels).
     const MAP_HEIGHT: u32 = 460;
     /// The Lyapunov canvas's height (pixels).
-    const LYAP_HEIGHT: u32 = 240;
+    const LYAP_HEIGHT: u32 = 300;
 
     /// Draws a map's cells, dots and cursor with plotters (for backends
     /// without a fast path, e.g. the SVG of the tests).

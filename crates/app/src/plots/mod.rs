@@ -3,7 +3,7 @@
 //!
 //! Every plot labels its axes with units, draws the ±b contact lines where
 //! contact matters, the natural frequencies and the selected-Omega cursor on
-//! the Omega axes, and a legend. Axis ranges never shrink below a sensible
+//! the Omega axes, and a key under the chart (never over the data). Axis ranges never shrink below a sensible
 //! span, so numerical noise is never magnified into structure.
 //!
 //! Dense point clouds (the bifurcation diagram) are returned as pixel
@@ -13,16 +13,18 @@
 //!
 //! Shared here: colours, the plot frame (pixels to data), ranges, the one
 //! chart layout ([`linear_chart`], [`chart_layout`], [`draw_axes`]), the
-//! legend and the key row; each view kind's plot in its own module.
+//! key (in `key`); each view kind's plot in its own module.
 
 mod bif;
 mod fr;
+mod key;
 pub mod maps;
 pub mod multiples;
 mod omega;
 
 pub use bif::{draw_bif, draw_groups, failed_label, svg_with_dots};
 pub use fr::draw_fr;
+pub(crate) use key::*;
 pub use omega::{
     draw_phase, draw_phase_with, draw_poincare, draw_poincare_with, draw_spectrum, draw_time,
     draw_time_with,
@@ -33,7 +35,7 @@ use crate::views::fr::{FrCurvePoint, FrMarkerKind};
 use crate::views::NaturalFreq;
 use glam::DVec2;
 use plotters::coord::ranged1d::{Ranged, ValueFormatter};
-use plotters::coord::{CoordTranslate, Shift};
+use plotters::coord::Shift;
 use plotters::prelude::*;
 
 /// Plot size in pixels (the canvases' width and height attributes).
@@ -162,11 +164,6 @@ pub struct PointGroup {
     pub px: Vec<(f32, f32)>,
 }
 
-/// Extends a range upwards to leave room for the legend above the data.
-pub fn with_headroom(r: (f64, f64), fraction: f64) -> (f64, f64) {
-    (r.0, r.1 + fraction * (r.1 - r.0))
-}
-
 /// The levels a plot of x must show whatever the data: with the whole
 /// clearance, ±b of the current state's and A's meshes, and zero; else
 /// none (the axes fit the data and the ±b lines show where they fall in it).
@@ -224,6 +221,23 @@ pub(crate) fn caption_font() -> TextStyle<'static> {
     ("sans-serif", 17).into_font().color(&BLACK)
 }
 
+/// The canvas width under which a plot is drawn for a phone (smaller
+/// caption, shorter lines).
+pub const NARROW: u32 = 600;
+
+/// The caption's font on an area `width` pixels wide: smaller when narrow,
+/// so that the caption fits.
+fn caption_font_for(width: u32) -> TextStyle<'static> {
+    let size = if width < NARROW { 14 } else { 17 };
+    ("sans-serif", size).into_font().color(&BLACK)
+}
+
+/// How many characters of 13-pixel text fit on a line across an area
+/// `width` pixels wide, less the key's left margin.
+pub(crate) fn line_chars(width: u32) -> usize {
+    (width.saturating_sub(84) * 10 / 78).max(30) as usize
+}
+
 pub(crate) fn small() -> TextStyle<'static> {
     ("sans-serif", 13).into_font().color(&RGBColor(50, 50, 50))
 }
@@ -241,6 +255,8 @@ pub(crate) struct Axes {
     pub(crate) grid: bool,
     /// The number of y labels, if not plotters' default.
     pub(crate) y_labels: Option<usize>,
+    /// How the y labels are written, if not plotters' default.
+    pub(crate) y_format: Option<fn(&f64) -> String>,
 }
 
 impl Axes {
@@ -251,6 +267,7 @@ impl Axes {
             y: y.into(),
             grid: true,
             y_labels: None,
+            y_format: None,
         }
     }
 }
@@ -262,7 +279,7 @@ pub(crate) fn chart_layout<'a, 'b, DB: DrawingBackend>(
     caption: &str,
 ) -> ChartBuilder<'a, 'b, DB> {
     let mut b = ChartBuilder::on(area);
-    b.caption(caption, caption_font())
+    b.caption(caption, caption_font_for(area.dim_in_pixel().0))
         .margin(8)
         .x_label_area_size(44)
         .y_label_area_size(64);
@@ -276,7 +293,7 @@ pub(crate) fn draw_axes<DB: DrawingBackend, X, Y>(
 ) -> Res<()>
 where
     X: Ranged + ValueFormatter<X::ValueType>,
-    Y: Ranged + ValueFormatter<Y::ValueType>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
 {
     let mut mesh = chart.configure_mesh();
     if axes.grid {
@@ -286,6 +303,9 @@ where
     }
     if let Some(n) = axes.y_labels {
         mesh.y_labels(n);
+    }
+    if let Some(f) = &axes.y_format {
+        mesh.y_label_formatter(f);
     }
     mesh.x_desc(axes.x.as_str())
         .y_desc(axes.y.as_str())
@@ -309,32 +329,6 @@ pub(crate) fn linear_chart<'a, DB: DrawingBackend>(
     Ok(chart)
 }
 
-/// A legend entry for a line style drawn elsewhere (no series of its own):
-/// a 16-pixel path through the offsets `mid`.
-pub(crate) fn legend_only<'a, DB: DrawingBackend + 'a>(
-    chart: &mut Chart<'a, DB>,
-    label: &str,
-    style: ShapeStyle,
-    mid: [i32; 2],
-) -> Res<()> {
-    chart
-        .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
-        .map_err(err)?
-        .label(label)
-        .legend(move |(xx, yy)| {
-            PathElement::new(
-                vec![
-                    (xx, yy),
-                    (xx + mid[0], yy),
-                    (xx + mid[1], yy),
-                    (xx + 16, yy),
-                ],
-                style,
-            )
-        });
-    Ok(())
-}
-
 /// A plot with nothing to show yet: a frame and a message (never blank).
 pub fn draw_message<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
@@ -350,7 +344,8 @@ pub fn draw_message<DB: DrawingBackend>(
     .map_err(err)?;
     root.draw(&Text::new(title.to_string(), (12, 10), caption_font()))
         .map_err(err)?;
-    for (k, line) in wrap(message, 80).iter().enumerate() {
+    let chars = (w.saturating_sub(48) * 10 / 85).max(30) as usize;
+    for (k, line) in wrap(message, chars).iter().enumerate() {
         root.draw(&Text::new(
             line.clone(),
             (24, h as i32 / 2 - 10 + 18 * k as i32),
@@ -381,46 +376,28 @@ pub fn wrap(text: &str, width: usize) -> Vec<String> {
     lines
 }
 
-/// Draws the Omega-axis decorations: natural frequencies and the cursor.
+/// Draws the Omega-axis decorations: natural frequencies and the cursor
+/// (their key items: [`omega_items`]).
 pub(crate) fn omega_decorations<'a, DB: DrawingBackend + 'a>(
     chart: &mut Chart<'a, DB>,
     natural: &[NaturalFreq],
     selected: f64,
     y: (f64, f64),
-    in_legend: bool,
 ) -> Res<()> {
     let nat_style = ShapeStyle::from(&NATURAL.mix(0.55)).stroke_width(1);
-    let mut first = in_legend;
-    for n in natural {
-        let s = chart
-            .draw_series(std::iter::once(PathElement::new(
-                vec![(n.omega, y.0), (n.omega, y.1)],
-                nat_style,
-            )))
-            .map_err(err)?;
-        if first {
-            s.label("natural frequencies (linear, mean k)")
-                .legend(move |(x, yy)| PathElement::new(vec![(x, yy), (x + 16, yy)], nat_style));
-            first = false;
-        }
-    }
-    let cursor = chart
+    chart
+        .draw_series(
+            natural
+                .iter()
+                .map(|n| PathElement::new(vec![(n.omega, y.0), (n.omega, y.1)], nat_style)),
+        )
+        .map_err(err)?;
+    chart
         .draw_series(std::iter::once(PathElement::new(
             vec![(selected, y.0), (selected, y.1)],
             ShapeStyle::from(&CURSOR).stroke_width(2),
         )))
         .map_err(err)?;
-    if !in_legend {
-        return Ok(());
-    }
-    cursor
-        .label(format!("selected Ω = {selected:.3}"))
-        .legend(|(x, yy)| {
-            PathElement::new(
-                vec![(x, yy), (x + 16, yy)],
-                ShapeStyle::from(&CURSOR).stroke_width(2),
-            )
-        });
     Ok(())
 }
 
@@ -449,17 +426,15 @@ fn pinned_contact_lines<'a, DB: DrawingBackend + 'a>(
     Ok(any)
 }
 
-/// Draws the ±b contact lines across the x range.
+/// Draws the ±b contact lines across the x range, those that fall in the
+/// axes' range (they fit the data); their key item: [`contact_item`].
 fn contact_lines<'a, DB: DrawingBackend + 'a>(
     chart: &mut Chart<'a, DB>,
     backlash_um: &[f64],
     x: (f64, f64),
     horizontal: bool,
-    in_legend: bool,
 ) -> Res<()> {
     let style = ShapeStyle::from(&CONTACT).stroke_width(1);
-    let mut first = in_legend;
-    // Only the lines that fall in the axes' range (they fit the data).
     let shown = if horizontal {
         chart.y_range()
     } else {
@@ -472,157 +447,12 @@ fn contact_lines<'a, DB: DrawingBackend + 'a>(
             } else {
                 vec![(v, x.0), (v, x.1)]
             };
-            let s = chart
+            chart
                 .draw_series(DashedLineSeries::new(pts, 6, 4, style))
                 .map_err(err)?;
-            if first {
-                s.label(format!("±b contact lines (b = {b} µm)"))
-                    .legend(move |(xx, yy)| {
-                        PathElement::new(
-                            vec![(xx, yy), (xx + 6, yy), (xx + 10, yy), (xx + 16, yy)],
-                            style,
-                        )
-                    });
-                first = false;
-            }
         }
     }
     Ok(())
-}
-
-fn legend<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(
-    chart: &mut ChartContext<'a, DB, CT>,
-    pos: SeriesLabelPosition,
-) -> Res<()> {
-    chart
-        .configure_series_labels()
-        .position(pos)
-        .background_style(WHITE.mix(0.8))
-        .border_style(GRID)
-        .margin(6)
-        .legend_area_size(22)
-        .label_font(("sans-serif", 12))
-        .draw()
-        .map_err(err)
-}
-
-/// A symbol of the key row under the frequency response.
-#[derive(Debug, Clone, Copy)]
-enum KeyIcon {
-    Regime(Regime),
-    Marker(FrMarkerKind),
-    Overlay,
-    Line(RGBColor, bool),
-}
-
-const MARKER: RGBColor = RGBColor(0, 0, 0);
-const OVERLAY: RGBColor = RGBColor(60, 60, 60);
-const FAILURE: RGBColor = RGBColor(170, 0, 0);
-
-/// Row height of the key (pixels).
-const KEY_ROW: i32 = 17;
-
-/// Where each key item goes, left to right from `x0`, wrapping at the right
-/// edge; rows relative to the first (0, 17, ...). Also returns the rows used.
-fn key_layout<DB: DrawingBackend>(
-    root: &DrawingArea<DB, Shift>,
-    items: &[(KeyIcon, String)],
-    x0: i32,
-) -> (Vec<(i32, i32)>, i32) {
-    let font = small();
-    let right = root.dim_in_pixel().0 as i32 - 8;
-    let (mut x, mut y) = (x0, 0);
-    let mut out = Vec::with_capacity(items.len());
-    for (icon, text) in items {
-        let w = root
-            .estimate_text_size(text, &font)
-            .map_or(8 * text.len() as u32, |(w, _)| w) as i32;
-        let icon_w = if matches!(icon, KeyIcon::Line(..)) {
-            22
-        } else {
-            14
-        };
-        if x > x0 && x + icon_w + w > right {
-            x = x0;
-            y += KEY_ROW;
-        }
-        out.push((x, y));
-        x += icon_w + w + 16;
-    }
-    let rows = if items.is_empty() { 0 } else { y / KEY_ROW + 1 };
-    (out, rows)
-}
-
-/// Draws the key (the contact lines, natural frequencies and cursor,
-/// regimes present, bifurcation kinds present, the overlay) at the
-/// positions of [`key_layout`], offset by `y0`.
-fn key_row<DB: DrawingBackend>(
-    root: &DrawingArea<DB, Shift>,
-    items: &[(KeyIcon, String)],
-    at: &[(i32, i32)],
-    y0: i32,
-) -> Res<()> {
-    let font = small();
-    for ((icon, text), &(x, dy)) in items.iter().zip(at) {
-        let y = y0 + dy;
-        let c = (x + 5, y);
-        let text_x = if let KeyIcon::Line(color, dashed) = *icon {
-            let style = ShapeStyle::from(&color).stroke_width(2);
-            if dashed {
-                for k in 0..2 {
-                    root.draw(&PathElement::new(
-                        vec![(x + 10 * k, y), (x + 10 * k + 6, y)],
-                        style,
-                    ))
-                    .map_err(err)?;
-                }
-            } else {
-                root.draw(&PathElement::new(vec![(x, y), (x + 16, y)], style))
-                    .map_err(err)?;
-            }
-            x + 22
-        } else {
-            x + 14
-        };
-        match *icon {
-            KeyIcon::Line(..) => {}
-            KeyIcon::Regime(r) => root
-                .draw(&Circle::new(c, 4, regime_color(r).filled()))
-                .map_err(err)?,
-            KeyIcon::Marker(k) => draw_marker_px(root, k, c)?,
-            KeyIcon::Overlay => root
-                .draw(&Circle::new(c, 4, OVERLAY.stroke_width(1)))
-                .map_err(err)?,
-        }
-        root.draw(&Text::new(text.clone(), (text_x, y - 7), font.clone()))
-            .map_err(err)?;
-    }
-    Ok(())
-}
-
-/// A bifurcation marker at a pixel position.
-fn draw_marker_px<DB: DrawingBackend>(
-    root: &DrawingArea<DB, Shift>,
-    kind: FrMarkerKind,
-    c: (i32, i32),
-) -> Res<()> {
-    match kind {
-        FrMarkerKind::Fold => root
-            .draw(&TriangleMarker::new(c, 6, MARKER.filled()))
-            .map_err(err),
-        FrMarkerKind::PeriodDoubling => root
-            .draw(&Cross::new(c, 5, MARKER.stroke_width(2)))
-            .map_err(err),
-        FrMarkerKind::NeimarkSacker => root
-            .draw(&Circle::new(c, 5, MARKER.stroke_width(2)))
-            .map_err(err),
-        FrMarkerKind::BranchPoint => root
-            .draw(&Rectangle::new(
-                [(c.0 - 4, c.1 - 4), (c.0 + 4, c.1 + 4)],
-                MARKER.stroke_width(2),
-            ))
-            .map_err(err),
-    }
 }
 
 /// The impact regime along Omega as a thin coloured strip at the bottom of

@@ -59,29 +59,40 @@ pub fn phase_ranges(panels: &[Panel<OmegaResult>]) -> ((f64, f64), (f64, f64)) {
     (x, y)
 }
 
-/// The panel areas of `n` panels side by side under a title and over a key.
+/// The panel areas of `n` panels side by side under a title and over a key
+/// (two a row on a phone's narrow canvas), and the panels a row.
 fn layout<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     title: &str,
     key: &str,
     n: usize,
-) -> Res<Vec<DrawingArea<DB, Shift>>> {
+) -> Res<(Vec<DrawingArea<DB, Shift>>, usize)> {
     root.fill(&WHITE).map_err(err)?;
-    let (_, h) = root.dim_in_pixel();
+    let (w, h) = root.dim_in_pixel();
+    let cols = if w < super::NARROW {
+        n.clamp(1, 2)
+    } else {
+        n.max(1)
+    };
+    let rows = n.max(1).div_ceil(cols);
     root.draw(&Text::new(title.to_string(), (10, 6), caption_font()))
         .map_err(err)?;
-    // The key in at most two lines under the panels.
-    for (k, line) in wrap(key, 110).iter().take(2).enumerate() {
+    // The key in lines under the panels (two on a wide canvas).
+    let lines = wrap(key, super::line_chars(w + 64));
+    let bottom = BOTTOM.max(8 + 16 * lines.len() as u32);
+    for (k, line) in lines.iter().enumerate() {
         root.draw(&Text::new(
             line.clone(),
-            (10, h as i32 - BOTTOM as i32 + 4 + 16 * k as i32),
+            (10, h as i32 - bottom as i32 + 4 + 16 * k as i32),
             small(),
         ))
         .map_err(err)?;
     }
     let (_, rest) = root.split_vertically(TOP);
-    let (middle, _) = rest.split_vertically(h.saturating_sub(TOP + BOTTOM));
-    Ok(middle.split_evenly((1, n.max(1))))
+    let (middle, _) = rest.split_vertically(h.saturating_sub(TOP + bottom));
+    let mut areas = middle.split_evenly((rows, cols));
+    areas.truncate(n.max(1));
+    Ok((areas, cols))
 }
 
 /// One panel's chart on shared ranges: its title, compact tick labels, the
@@ -209,7 +220,7 @@ pub fn draw_bif_panels<DB: DrawingBackend>(
         "Dots: Poincaré samples coloured by regime ({}); filled: upward sweep, open: downward. Dashed grey: ±b; dashed red: selected Ω.",
         if regimes.is_empty() { "none yet".to_string() } else { regimes.join(", ") }
     );
-    let areas = layout(root, &title, &key, panels.len())?;
+    let (areas, cols) = layout(root, &title, &key, panels.len())?;
     let mut frames = Vec::new();
     let mut groups: Vec<PointGroup> = Vec::new();
     for (k, (area, p)) in areas.iter().zip(panels).enumerate() {
@@ -230,7 +241,7 @@ pub fn draw_bif_panels<DB: DrawingBackend>(
             &t,
             (x, y),
             ("Ω", "Poincaré samples of x (µm)"),
-            k == 0,
+            k % cols == 0,
         )?;
         omega_guides(&mut chart, &v.backlash_um, v.selected_omega, (x, y))?;
         failed_crosses(&mut chart, &v.failed, y.0, 4)?;
@@ -270,7 +281,7 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
         ),
         None => format!("{what}{status}"),
     };
-    let areas = layout(root, &title, key, panels.len())?;
+    let (areas, cols) = layout(root, &title, key, panels.len())?;
     for (k, (area, p)) in areas.iter().zip(panels).enumerate() {
         let r = match &p.data {
             Ok(r) => r,
@@ -284,7 +295,7 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
             None => "not periodic".into(),
         };
         let t = format!("{}: {period}", p.title);
-        let mut chart = panel_chart(area, &t, (x, y), ("x (µm)", "ẋ (m/s)"), k == 0)?;
+        let mut chart = panel_chart(area, &t, (x, y), ("x (µm)", "ẋ (m/s)"), k % cols == 0)?;
         let b = r.backlash_um;
         // The contact lines where they fall in range (the axes fit the data).
         for level in [b, -b].into_iter().filter(|l| (x.0..=x.1).contains(l)) {

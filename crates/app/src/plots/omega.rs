@@ -18,7 +18,7 @@ fn phase_ranges(r: &OmegaResult, whole: bool) -> ((f64, f64), (f64, f64)) {
     let x = padded_range(r.x_um.iter().copied(), &levels(r, whole), 20.0);
     let vmax = r.xdot_m_s.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
     let y = padded_range(r.xdot_m_s.iter().copied(), &[], (vmax * 0.2).max(1e-3));
-    (x, with_headroom(y, 0.25))
+    (x, y)
 }
 
 fn omega_caption(what: &str, r: &OmegaResult, status: &str) -> String {
@@ -26,19 +26,18 @@ fn omega_caption(what: &str, r: &OmegaResult, status: &str) -> String {
 }
 
 /// The phase plane (x, ẋ) of the phase portrait and the Poincaré section:
-/// the same axes, so one point reads as one point, and the ±b lines.
+/// the same axes, so one point reads as one point, and the ±b lines; the
+/// chart goes on `area`, above the key.
 fn phase_plane<'a, DB: DrawingBackend>(
-    root: &'a DrawingArea<DB, Shift>,
+    area: &'a DrawingArea<DB, Shift>,
     r: &OmegaResult,
     (what, x_desc): (&str, &str),
     status: &str,
-    whole: bool,
+    (x, y): ((f64, f64), (f64, f64)),
 ) -> Res<Chart<'a, DB>> {
-    root.fill(&WHITE).map_err(err)?;
-    let (x, y) = phase_ranges(r, whole);
     let caption = omega_caption(what, r, status);
-    let mut chart = linear_chart(root, &caption, (x, y), &Axes::new(x_desc, "ẋ (m/s)"))?;
-    contact_lines(&mut chart, &[r.backlash_um], y, false, true)?;
+    let mut chart = linear_chart(area, &caption, (x, y), &Axes::new(x_desc, "ẋ (m/s)"))?;
+    contact_lines(&mut chart, &[r.backlash_um], y, false)?;
     Ok(chart)
 }
 
@@ -58,17 +57,30 @@ pub fn draw_phase_with<DB: DrawingBackend>(
     status: &str,
     whole: bool,
 ) -> Res<()> {
+    root.fill(&WHITE).map_err(err)?;
+    let (x, y) = phase_ranges(r, whole);
+    let orbit = ORBIT.mix(0.7);
+    let mut items: KeyItems = vec![
+        (
+            KeyIcon::Line(ORBIT, false),
+            format!("orbit over {} recorded periods", r.record_periods),
+        ),
+        (
+            KeyIcon::Dot(CURSOR, 4),
+            "Poincaré points (once per mesh period)".into(),
+        ),
+    ];
+    items.extend(contact_item(&[r.backlash_um], x));
+    let plan = plan_key(root, &items, Vec::new());
+    let area = chart_area(root, &plan);
     let what = ("Phase portrait", "x = δ − e (µm)");
-    let mut chart = phase_plane(root, r, what, status, whole)?;
-    let orbit = ShapeStyle::from(&ORBIT.mix(0.7)).stroke_width(1);
+    let mut chart = phase_plane(&area, r, what, status, (x, y))?;
     chart
         .draw_series(LineSeries::new(
             r.x_um.iter().copied().zip(r.xdot_m_s.iter().copied()),
-            orbit,
+            ShapeStyle::from(&orbit).stroke_width(1),
         ))
-        .map_err(err)?
-        .label(format!("orbit over {} recorded periods", r.record_periods))
-        .legend(move |(xx, yy)| PathElement::new(vec![(xx, yy), (xx + 16, yy)], orbit));
+        .map_err(err)?;
     chart
         .draw_series(
             r.poincare_x_um
@@ -76,10 +88,8 @@ pub fn draw_phase_with<DB: DrawingBackend>(
                 .zip(&r.poincare_xdot_m_s)
                 .map(|(&a, &b)| Circle::new((a, b), 4, CURSOR.filled())),
         )
-        .map_err(err)?
-        .label("Poincaré points (once per mesh period)")
-        .legend(|(xx, yy)| Circle::new((xx + 8, yy), 4, CURSOR.filled()));
-    legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
+        .map_err(err)?;
+    draw_key(root, &items, &plan)?;
     root.present().map_err(err)
 }
 
@@ -99,15 +109,24 @@ pub fn draw_poincare_with<DB: DrawingBackend>(
     status: &str,
     whole: bool,
 ) -> Res<()> {
-    let what = (
-        "Poincaré section",
-        "x = δ − e (µm), sampled once per mesh period",
-    );
-    let mut chart = phase_plane(root, r, what, status, whole)?;
+    root.fill(&WHITE).map_err(err)?;
+    let (x, y) = phase_ranges(r, whole);
     let period = match r.period {
         Some(p) => format!("period {p}"),
         None => "not periodic".into(),
     };
+    let mut items: KeyItems = vec![(
+        KeyIcon::Dot(CURSOR, 3),
+        format!("{} Poincaré points ({period})", r.poincare_x_um.len()),
+    )];
+    items.extend(contact_item(&[r.backlash_um], x));
+    let plan = plan_key(root, &items, Vec::new());
+    let area = chart_area(root, &plan);
+    let what = (
+        "Poincaré section",
+        "x = δ − e (µm), sampled once per mesh period",
+    );
+    let mut chart = phase_plane(&area, r, what, status, (x, y))?;
     chart
         .draw_series(
             r.poincare_x_um
@@ -115,13 +134,8 @@ pub fn draw_poincare_with<DB: DrawingBackend>(
                 .zip(&r.poincare_xdot_m_s)
                 .map(|(&a, &b)| Circle::new((a, b), 3, CURSOR.filled())),
         )
-        .map_err(err)?
-        .label(format!(
-            "{} Poincaré points ({period})",
-            r.poincare_x_um.len()
-        ))
-        .legend(|(xx, yy)| Circle::new((xx + 8, yy), 3, CURSOR.filled()));
-    legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
+        .map_err(err)?;
+    draw_key(root, &items, &plan)?;
     root.present().map_err(err)
 }
 
@@ -149,10 +163,12 @@ pub fn draw_time_with<DB: DrawingBackend>(
     let t1 = (r.x_um.len().max(1) - 1) as f64 / spp as f64;
     let x = (t0, t1.max(t0 + 1e-9));
     let b = r.backlash_um;
-    let y = with_headroom(
-        padded_range(r.x_um[start..].iter().copied(), &levels(r, whole), 20.0),
-        0.2,
-    );
+    let y = padded_range(r.x_um[start..].iter().copied(), &levels(r, whole), 20.0);
+    let style = ShapeStyle::from(&ORBIT).stroke_width(2);
+    let mut items: KeyItems = vec![(KeyIcon::Line(ORBIT, false), "x(t)".into())];
+    items.extend(contact_item(&[b], y));
+    let plan = plan_key(root, &items, Vec::new());
+    let area = chart_area(root, &plan);
     let caption = omega_caption("Time history", r, status);
     let axes = Axes::new(
         format!(
@@ -161,9 +177,8 @@ pub fn draw_time_with<DB: DrawingBackend>(
         ),
         "x = δ − e (µm)",
     );
-    let mut chart = linear_chart(root, &caption, (x, y), &axes)?;
-    contact_lines(&mut chart, &[b], x, true, true)?;
-    let style = ShapeStyle::from(&ORBIT).stroke_width(2);
+    let mut chart = linear_chart(&area, &caption, (x, y), &axes)?;
+    contact_lines(&mut chart, &[b], x, true)?;
     chart
         .draw_series(LineSeries::new(
             r.x_um[start..]
@@ -172,11 +187,9 @@ pub fn draw_time_with<DB: DrawingBackend>(
                 .map(|(k, &v)| ((start + k) as f64 / spp as f64, v)),
             style,
         ))
-        .map_err(err)?
-        .label("x(t)")
-        .legend(move |(xx, yy)| PathElement::new(vec![(xx, yy), (xx + 16, yy)], style));
-    legend(&mut chart, SeriesLabelPosition::UpperRight)?;
+        .map_err(err)?;
     let frame = frame_of(&chart, x, y);
+    draw_key(root, &items, &plan)?;
     root.present().map_err(err)?;
     Ok(frame)
 }
@@ -203,27 +216,31 @@ pub fn draw_spectrum<DB: DrawingBackend>(
     let amax = lines.iter().fold(1e-3_f64, |m, l| m.max(l.1));
     let floor = amax * 1e-5;
     let omax = lines.last().map_or(1.0, |l| l.0).max(1.0);
-    let mut chart = chart_layout(root, &omega_caption("Spectrum of x", r, status))
-        .build_cartesian_2d(0.0..omax * 1.02, (floor..amax * 20.0).log_scale())
+    let style = ShapeStyle::from(&MAX_COLOR).stroke_width(2);
+    let items: KeyItems = vec![(
+        KeyIcon::Line(MAX_COLOR, false),
+        match mean {
+            Some(m) => format!("amplitude (mean x = {m:.2} µm not shown)"),
+            None => "amplitude".into(),
+        },
+    )];
+    let plan = plan_key(root, &items, Vec::new());
+    let area = chart_area(root, &plan);
+    let mut chart = chart_layout(&area, &omega_caption("Spectrum of x", r, status))
+        .build_cartesian_2d(0.0..omax * 1.02, (floor..amax * 2.0).log_scale())
         .map_err(err)?;
     let axes = Axes::new(
         "frequency (mesh orders: multiples of the mesh frequency)",
         "amplitude of x (µm, log)",
     );
     draw_axes(&mut chart, &axes)?;
-    let style = ShapeStyle::from(&MAX_COLOR).stroke_width(2);
     chart
         .draw_series(
             lines
                 .iter()
                 .map(|&(o, a)| PathElement::new(vec![(o, floor), (o, a.max(floor))], style)),
         )
-        .map_err(err)?
-        .label(match mean {
-            Some(m) => format!("amplitude (mean x = {m:.2} µm not shown)"),
-            None => "amplitude".into(),
-        })
-        .legend(move |(xx, yy)| PathElement::new(vec![(xx, yy), (xx + 16, yy)], style));
-    legend(&mut chart, SeriesLabelPosition::UpperRight)?;
+        .map_err(err)?;
+    draw_key(root, &items, &plan)?;
     root.present().map_err(err)
 }

@@ -6,9 +6,16 @@ use crate::views::fr::FrView;
 use crate::views::fr::{FrBranch, FrCurvePoint, FrMarker, FrSource};
 
 fn svg<F: FnOnce(&DrawingArea<SVGBackend, Shift>) -> Res<()>>(f: F) -> String {
+    svg_sized((WIDTH, HEIGHT), f)
+}
+
+fn svg_sized<F: FnOnce(&DrawingArea<SVGBackend, Shift>) -> Res<()>>(
+    size: (u32, u32),
+    f: F,
+) -> String {
     let mut s = String::new();
     {
-        let root = SVGBackend::with_string(&mut s, (WIDTH, HEIGHT)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut s, size).into_drawing_area();
         f(&root).unwrap();
     }
     s
@@ -88,8 +95,9 @@ fn ranges_never_magnify_noise() {
     assert_eq!(padded_range(std::iter::empty(), &[], 1.0), (-1.0, 1.0));
 }
 
-#[test]
-fn every_plot_draws_labels_units_and_legends() {
+/// An A/B comparison's frequency response: two branches, a marker, an
+/// overlay point, a natural frequency and a solver failure.
+fn ab_fr() -> FrView {
     let point = |k: u32| FrCurvePoint {
         omega: 0.1 + 0.2 * f64::from(k),
         max_um: 120.0 + f64::from(k),
@@ -101,7 +109,7 @@ fn every_plot_draws_labels_units_and_legends() {
         piece: 0,
     };
     let source = FrSource::Hbm { harmonics: 5 };
-    let fr = FrView {
+    FrView {
         method: source.label(),
         source,
         mesh_label: "s1a1".into(),
@@ -154,7 +162,12 @@ fn every_plot_draws_labels_units_and_legends() {
         finished: true,
         branch_notes: Vec::new(),
         whole_clearance: true,
-    };
+    }
+}
+
+#[test]
+fn every_plot_draws_labels_units_and_legends() {
+    let fr = ab_fr();
     let mut frame = None;
     let s = svg(|root| {
         frame = Some(draw_fr(root, &fr, "")?);
@@ -317,4 +330,245 @@ fn axes_fit_the_data_or_show_the_whole_clearance() {
     let all = svg(|root| draw_phase_with(root, &r, "", true));
     assert_ne!(fit, all);
     assert_eq!(all, svg(|root| draw_phase(root, &r, "")));
+}
+
+/// The texts of an SVG drawn by plotters: anchor (x, y) and words.
+fn texts(s: &str) -> Vec<(f64, f64, String)> {
+    let attr = |tag: &str, name: &str| -> Option<f64> {
+        let at = tag.find(&format!(" {name}=\""))? + name.len() + 3;
+        let end = tag[at..].find('"')? + at;
+        tag[at..end].parse().ok()
+    };
+    s.split("<text")
+        .skip(1)
+        .filter_map(|part| {
+            let (tag, rest) = part.split_once('>')?;
+            let words = rest.split("</text>").next()?;
+            let words = words
+                .trim()
+                .replace("&lt;", "<")
+                .replace("&gt;", ">")
+                .replace("&amp;", "&");
+            Some((attr(tag, "x")?, attr(tag, "y")?, words))
+        })
+        .collect()
+}
+
+/// Checks a plot's layout: every key entry (words in `key`) is drawn under
+/// the x axis's description, which is under the plotting area; with the
+/// frame known, no words at all are drawn inside the plotting area (no
+/// legend over the data), and the caption is above it.
+fn assert_key_outside(name: &str, s: &str, key: &[&str], x_desc: &str, frame: Option<PlotFrame>) {
+    let t = texts(s);
+    let find = |w: &str| {
+        t.iter()
+            .find(|(_, _, words)| words.contains(w))
+            .unwrap_or_else(|| panic!("{name}: \"{w}\" not drawn: {t:?}"))
+            .clone()
+    };
+    let desc_y = find(x_desc).1;
+    for k in key {
+        let (_, y, _) = find(k);
+        assert!(
+            y > desc_y,
+            "{name}: key entry \"{k}\" at y = {y}, above the x axis description at {desc_y}"
+        );
+    }
+    if let Some(f) = frame {
+        let inside = |x: f64, y: f64| {
+            x > f.top_left.x && x < f.bottom_right.x && y > f.top_left.y && y < f.bottom_right.y
+        };
+        let over: Vec<_> = t.iter().filter(|(x, y, _)| inside(*x, *y)).collect();
+        assert!(over.is_empty(), "{name}: words over the data: {over:?}");
+        for k in key {
+            assert!(
+                find(k).1 > f.bottom_right.y,
+                "{name}: \"{k}\" not under the plotting area"
+            );
+        }
+        // The caption (the first text) is above the plotting area.
+        assert!(t[0].1 < f.top_left.y, "{name}: caption at {}", t[0].1);
+    }
+}
+
+/// A plot drawn to SVG at `size`, with the frame its drawing returns.
+fn framed<F: FnOnce(&DrawingArea<SVGBackend, Shift>) -> Res<PlotFrame>>(
+    size: (u32, u32),
+    f: F,
+) -> (String, Option<PlotFrame>) {
+    let mut frame = None;
+    let s = svg_sized(size, |root| {
+        frame = Some(f(root)?);
+        Ok(())
+    });
+    (s, frame)
+}
+
+/// No legend covers the data: each plot's key sits under its chart, at the
+/// canvas sizes of the page (760 x 400, the Lyapunov view 760 x 300), for
+/// an A/B comparison, a family, the orbit views and the Lyapunov view.
+#[test]
+fn every_key_is_under_its_chart_never_over_the_data() {
+    let mut fr = ab_fr();
+    for whole in [true, false] {
+        fr.whole_clearance = whole;
+        let (s, frame) = framed((WIDTH, HEIGHT), |root| draw_fr(root, &fr, ""));
+        let key = [
+            "max x (A: backlash_um=100)",
+            "min x (B: backlash_um=150; HBM, H = 5)",
+            "unstable (Floquet): dashed",
+            "selected Ω = 0.840",
+            "fold (jump)",
+            "solver failure: branch ends",
+            "Solver failure after Ω = 1.9000",
+        ];
+        assert_key_outside(
+            "frequency response A/B",
+            &s,
+            &key,
+            "dimensionless mesh frequency",
+            frame,
+        );
+        // On a phone's canvas (480 x 640): more rows, still under the chart,
+        // and every line of the key within the canvas's width.
+        let (s, frame) = framed((480, 640), |root| draw_fr(root, &fr, ""));
+        let phone = "frequency response A/B, phone";
+        assert_key_outside(phone, &s, &key, "dimensionless mesh frequency", frame);
+        let t = texts(&s);
+        let desc = t.iter().find(|t| t.2.contains("dimensionless")).unwrap().1;
+        for (x, y, words) in t.into_iter().filter(|t| t.1 > desc) {
+            // 13-pixel sans-serif: about 6.5 pixels a character on average.
+            let right = x + 6.5 * words.chars().count() as f64;
+            assert!(
+                right <= 480.0,
+                "{phone}: \"{words}\" at ({x}, {y}) ends at {right}"
+            );
+        }
+    }
+    // A family: one entry per member.
+    let mut family = ab_fr();
+    family.branch_error = None;
+    for (m, b) in family.branches.iter_mut().enumerate() {
+        b.pinned = false;
+        b.member = Some(m);
+        b.label = format!("TE {} µm", 10 * m);
+    }
+    let (s, frame) = framed((WIDTH, HEIGHT), |root| draw_fr(root, &family, ""));
+    assert_key_outside(
+        "family",
+        &s,
+        &["TE 0 µm", "TE 10 µm"],
+        "dimensionless mesh frequency",
+        frame,
+    );
+    // No regime strip under a family (even with dots), so no key for one.
+    assert!(!family.overlay.is_empty() && !s.contains("regime strip"));
+
+    let bp = |k: u32, up: bool| crate::views::bif::BifPoint {
+        omega: 0.1 + 0.1 * f64::from(k),
+        x_um: 100.0 + 10.0 * f64::from(k % 7),
+        regime: if k.is_multiple_of(2) {
+            Regime::SingleSided
+        } else {
+            Regime::DoubleSided
+        },
+        up,
+    };
+    let bif = crate::views::bif::BifView {
+        mesh_label: "s1a1".into(),
+        backlash_um: vec![100.0],
+        points: (0..19).map(|k| bp(k, k % 3 != 0)).collect(),
+        omega_from: 0.1,
+        omega_to: 2.0,
+        selected_omega: 0.84,
+        failed: vec![(1.5, "the response grows without bound: x".into())],
+        unstable_bands: vec![(0.4, 0.5)],
+        pinned: (0..19).map(|k| bp(k, true)).collect(),
+        pinned_backlash_um: vec![60.0],
+        ab_labels: Some(("backlash 60 µm".into(), "backlash 100 µm".into())),
+        done: 19,
+        total: 19,
+        whole_clearance: true,
+    };
+    let natural = [NaturalFreq {
+        omega: 0.5,
+        frequency_hz: 3000.0,
+        kind: "rotational".into(),
+        multiplicity: 1,
+    }];
+    let (s, frame) = framed((WIDTH, HEIGHT), |root| {
+        Ok(draw_bif(root, &bif, &natural, "")?.0)
+    });
+    let key = [
+        "A (pinned): backlash 60 µm",
+        "B (current, regime colours): backlash 100 µm",
+        "double-sided",
+        "downward sweep",
+        "parametrically unstable",
+        "natural frequencies",
+        "1 point(s) failed",
+    ];
+    assert_key_outside(
+        "bifurcation A/B",
+        &s,
+        &key,
+        "dimensionless mesh frequency",
+        frame,
+    );
+
+    let lyap = crate::views::lyap::LyapStore {
+        id: 1,
+        points: [(0.5, -0.4), (1.0, 0.1), (1.5, 0.001)]
+            .iter()
+            .enumerate()
+            .map(|(index, &(omega, l))| crate::protocol::LyapSample {
+                index: index as u32,
+                omega,
+                per_period: Some(l),
+                per_s: Some(l * 100.0),
+                error: None,
+            })
+            .collect(),
+        total: 3,
+        periods: 100,
+    };
+    let (s, frame) = framed((WIDTH, 300), |root| {
+        maps::draw_lyap(root, &lyap, (0.1, 2.0), &natural, 0.84, "")
+    });
+    let key = ["λ = 0", "λ < 0: periodic", "λ > 0: chaotic", "selected Ω"];
+    assert_key_outside("Lyapunov", &s, &key, "dimensionless mesh frequency", frame);
+
+    let r = result();
+    let phase = svg(|root| draw_phase_with(root, &r, "", false));
+    assert_key_outside(
+        "phase portrait",
+        &phase,
+        &["orbit over 20", "Poincaré points"],
+        "x = δ − e (µm)",
+        None,
+    );
+    let poincare = svg(|root| draw_poincare(root, &r, ""));
+    assert_key_outside(
+        "Poincaré section",
+        &poincare,
+        &["20 Poincaré points (period 1)", "±b contact"],
+        "sampled once",
+        None,
+    );
+    let (time, frame) = framed((WIDTH, HEIGHT), |root| draw_time(root, &r, ""));
+    assert_key_outside(
+        "time history",
+        &time,
+        &["x(t)", "±b contact"],
+        "mesh periods since",
+        frame,
+    );
+    let spectrum = svg(|root| draw_spectrum(root, &r, ""));
+    assert_key_outside(
+        "spectrum",
+        &spectrum,
+        &["amplitude (mean x"],
+        "mesh orders",
+        None,
+    );
 }

@@ -1,5 +1,6 @@
 //! The animated gear set on the page: its controls, its own animation-frame
-//! loop (drawing only while on screen), the rasterizer of its
+//! loop (animating only while on screen, but drawing every new state at
+//! once, so the canvas is never blank), the rasterizer of its
 //! [`Scene`] and the time history's cursor.
 
 use super::*;
@@ -136,26 +137,46 @@ pub(super) fn anim_tick(page: &Shared, ts: f64) {
     let dt = p.anim.last_ts.map_or(0.0, |t| (ts - t) / 1000.0);
     p.anim.last_ts = Some(ts);
     let len = anim_len(&p);
-    let Some(spp) = p.ctl.omega.as_ref().map(|r| r.samples_per_period) else {
+    let spp = p.ctl.omega.as_ref().map(|r| r.samples_per_period);
+    let (Some(spp), true) = (spp, len > 0) else {
+        // No motion yet: a drawn frame that says so, never a blank canvas.
+        if !p.anim.placeholder {
+            p.anim.placeholder = draw_anim_placeholder(&p);
+        }
         return;
     };
-    if len == 0 {
-        return;
-    }
     if p.anim.clock.pos >= len as f64 {
         p.anim.clock.pos = 0.0;
     }
     p.anim.clock.advance(dt, spp, len);
-    if !(p.anim.clock.playing || p.anim.dirty) {
-        return;
-    }
-    if p.anim.offscreen.iter().all(|&o| o) {
-        // Drawn once it scrolls into view (the observer sets `dirty`).
+    // A new state (or a seek, a speed, the view scrolled in) is drawn at
+    // once, in view or not, so the canvas always holds the current state (a
+    // full-page screenshot shows it); the running animation only in view.
+    let in_view = !p.anim.offscreen.iter().all(|&o| o);
+    if !(p.anim.dirty || (p.anim.clock.playing && in_view)) {
         return;
     }
     p.anim.dirty = false;
     draw_anim(&mut p);
     draw_time_cursor(&p);
+}
+
+/// Fills the gear set's canvas with a frame and a line saying the motion is
+/// on its way; returns whether it was drawn.
+fn draw_anim_placeholder(p: &Page) -> bool {
+    let Some(cv) = by_id::<HtmlCanvasElement>(&p.doc, "canvas-anim") else {
+        return false;
+    };
+    let Some(b) = CanvasBackend::with_canvas_object(cv) else {
+        return false;
+    };
+    let root: Area = b.into_drawing_area();
+    plots::draw_message(
+        &root,
+        "The gear set",
+        "The gear set and its meshes appear here once the motion at the selected Ω is computed.",
+    )
+    .is_ok()
 }
 
 pub(super) fn trace(ctx: &CanvasRenderingContext2d, part: &SubPath) {

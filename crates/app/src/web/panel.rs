@@ -38,7 +38,7 @@ pub(super) fn build_controls(page: &Shared) {
             let Some(div) = el(&doc, "div") else { continue };
             div.set_class_name("control");
             div.set_id(&format!("control-{}", c.key));
-            check(div.set_attribute("title", &c.tooltip));
+            check(div.set_attribute("title", &crate::words::tooltip(c.key, c.description)));
             check(div.set_attribute(
                 "data-applies",
                 match c.applies {
