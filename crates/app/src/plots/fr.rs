@@ -101,7 +101,6 @@ pub fn draw_fr<DB: DrawingBackend>(
     Ok(frame)
 }
 
-
 /// The frequency response's key: the branches (a family's member and the
 /// faded previous branch once each, else max and min), the contact lines,
 /// natural frequencies and cursor, the unstable dash, the regimes present,

@@ -16,8 +16,8 @@ use crate::views::fr::FrView;
 /// Room for the title above the panels and the key under them (pixels).
 const TOP: u32 = 28;
 const BOTTOM: u32 = 40;
-/// Room for the frequency-response panels' key (pixels).
-const FR_KEY: u32 = 64;
+/// The ±b lines of a panel over Ω.
+const GUIDE: RGBColor = RGBColor(90, 90, 90);
 
 /// The shared axes of bifurcation panels: the Omega range of the first
 /// panel with data, and one x range holding every panel's dots and ±b.
@@ -182,11 +182,7 @@ fn omega_guides<'a, DB: DrawingBackend + 'a>(
 ) -> Res<()> {
     for &b in backlash_um {
         for level in [b, -b].into_iter().filter(|l| (y.0..=y.1).contains(l)) {
-            dashed(
-                chart,
-                vec![(x.0, level), (x.1, level)],
-                RGBColor(90, 90, 90),
-            )?;
+            dashed(chart, vec![(x.0, level), (x.1, level)], GUIDE)?;
         }
     }
     if (x.0..=x.1).contains(&selected) {
@@ -356,55 +352,47 @@ pub fn draw_fr_panels<DB: DrawingBackend>(
     status: &str,
 ) -> Res<Vec<Option<PlotFrame>>> {
     root.fill(&WHITE).map_err(err)?;
-    let (w, h) = root.dim_in_pixel();
     let title = format!(
         "Frequency response of {} meshes: max and min x, Ω axis shared{status}",
         panels.len()
     );
     root.draw(&Text::new(title, (10, 6), caption_font()))
         .map_err(err)?;
-    // The key: one coloured line per curve, in words, from the first panel
-    // with data (every panel holds the same curves).
-    let mut entries: Vec<(RGBColor, String)> = Vec::new();
+    // The key under the panels: one coloured line per curve, in words,
+    // from the first panel with data (every panel holds the same curves),
+    // then the line styles; as tall as it needs on a narrow canvas.
+    let mut items: KeyItems = Vec::new();
     if let Some(v) = panels.iter().find_map(|p| p.data.as_ref().ok()) {
         for br in v.branches.iter().filter(|b| !b.faded) {
-            match (br.member, branch_color(br, true)) {
-                (Some(_), Some(c)) => entries.push((c, br.label.clone())),
-                (_, c) => {
-                    let max = c.unwrap_or(MAX_COLOR);
-                    let min = branch_color(br, false).unwrap_or(MIN_COLOR);
-                    entries.push((max, format!("max x ({})", br.label)));
-                    entries.push((min, format!("min x ({})", br.label)));
+            if br.member.is_some() {
+                items.push((
+                    KeyIcon::Line(branch_color(br, true), false),
+                    br.label.clone(),
+                ));
+            } else {
+                for (which, what) in [(true, "max x"), (false, "min x")] {
+                    items.push((
+                        KeyIcon::Line(branch_color(br, which), false),
+                        format!("{what} ({})", br.label),
+                    ));
                 }
             }
         }
     }
-    let key_top = h as i32 - FR_KEY as i32 + 6;
-    let (mut x, mut row) = (10, 0);
-    for (c, text) in &entries {
-        let tw = root
-            .estimate_text_size(text, &small())
-            .map_or(8 * text.len() as u32, |(w, _)| w) as i32;
-        if x + 28 + tw > w as i32 - 8 && x > 10 {
-            (x, row) = (10, row + 1);
-        }
-        let y = key_top + 8 + 18 * row;
-        let style = ShapeStyle::from(c).stroke_width(3);
-        root.draw(&PathElement::new(vec![(x, y), (x + 22, y)], style))
-            .map_err(err)?;
-        root.draw(&Text::new(text.clone(), (x + 28, y - 7), small()))
-            .map_err(err)?;
-        x += 28 + tw + 18;
-    }
-    root.draw(&Text::new(
-        "Solid: stable, dashed: unstable (Floquet). Grey dashed: ±b; red dashed: selected Ω."
-            .to_string(),
-        (10, key_top + 8 + 18 * (row + 1) - 7),
-        small(),
-    ))
-    .map_err(err)?;
+    items.extend([
+        (
+            KeyIcon::Line(GUIDE, true),
+            "±b (contact), where in range".into(),
+        ),
+        (KeyIcon::Line(CURSOR, true), "selected Ω".into()),
+    ]);
+    let lines = vec![KeyLine::Sentence(
+        "Solid: stable; dashed: unstable (Floquet).".into(),
+    )];
+    let plan = plan_key(root, &items, lines);
+    draw_key(root, &items, &plan)?;
     let (_, rest) = root.split_vertically(TOP);
-    let (middle, _) = rest.split_vertically(h.saturating_sub(TOP + FR_KEY));
+    let (middle, _) = rest.split_vertically((plan.top.max(TOP as i32 + 40) as u32) - TOP);
     let (rows, cols) = fr_grid(panels.len());
     let areas = middle.split_evenly((rows, cols));
     let mut frames = Vec::new();
@@ -445,9 +433,7 @@ pub fn draw_fr_panels<DB: DrawingBackend>(
         omega_guides(&mut chart, &levels, v.selected_omega, (x, y))?;
         for br in v.branches.iter() {
             for which in [true, false] {
-                let color =
-                    branch_color(br, which).unwrap_or(if which { MAX_COLOR } else { MIN_COLOR });
-                let style = ShapeStyle::from(&color).stroke_width(2);
+                let style = ShapeStyle::from(&branch_color(br, which)).stroke_width(2);
                 for (unstable, pts) in stability_runs(&br.points, which) {
                     let pts = thin(pts, |p| chart.backend_coord(p), 2);
                     if unstable {
