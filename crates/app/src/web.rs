@@ -78,6 +78,9 @@ struct Page {
     max_frame_ms: f64,
     last_input_ms: f64,
     dragging: bool,
+    /// Whether the screen is narrow (a phone): plots draw on fewer, larger
+    /// pixels, see [`fit_canvases`].
+    narrow: bool,
 }
 
 type Shared = Rc<RefCell<Page>>;
@@ -181,6 +184,7 @@ pub fn start_app() {
         max_frame_ms: 0.0,
         last_input_ms: 0.0,
         dragging: false,
+        narrow: is_narrow(&window),
     }));
     build_controls(&page);
     build_toolbar(&page);
@@ -390,7 +394,7 @@ fn draw_view(p: &mut Page, v: ViewId) {
         return;
     };
     // The frequency response's mesh panels take a taller canvas.
-    let (w, h) = p.ctl.canvas_size(v);
+    let (w, h) = screen_size(p.ctl.canvas_size(v), v == ViewId::Fr, p.narrow);
     if (cv.width(), cv.height()) != (w, h) {
         cv.set_width(w);
         cv.set_height(h);
@@ -682,12 +686,7 @@ const PHONE_PLOT_WIDTH: u32 = 480;
 /// key takes more rows), so that the plotting area keeps a readable height:
 /// the plots adapt to their canvas's size. The gear set keeps its drawing.
 fn fit_canvases(window: &Window, doc: &Document) {
-    let width = window
-        .inner_width()
-        .ok()
-        .and_then(|w| w.as_f64())
-        .unwrap_or(f64::INFINITY);
-    if width >= f64::from(plots::NARROW) {
+    if !is_narrow(window) {
         return;
     }
     let Ok(all) = doc.query_selector_all("canvas") else {
@@ -700,13 +699,32 @@ fn fit_canvases(window: &Window, doc: &Document) {
         else {
             continue;
         };
-        let height = match cv.id().as_str() {
-            "canvas-anim" => continue,
-            "canvas-fr" => 640,
-            _ => cv.height() * 13 / 10,
-        };
-        cv.set_width(PHONE_PLOT_WIDTH);
-        cv.set_height(height);
+        if cv.id() == "canvas-anim" {
+            continue;
+        }
+        let (w, h) = screen_size((cv.width(), cv.height()), cv.id() == "canvas-fr", true);
+        cv.set_width(w);
+        cv.set_height(h);
+    }
+}
+
+/// Whether the window is narrower than [`plots::NARROW`] CSS pixels.
+fn is_narrow(window: &Window) -> bool {
+    window
+        .inner_width()
+        .ok()
+        .and_then(|w| w.as_f64())
+        .is_some_and(|w| w < f64::from(plots::NARROW))
+}
+
+/// A plot canvas's size on the screen for its drawing size `(w, h)`: as
+/// drawn, or on a narrow screen [`PHONE_PLOT_WIDTH`] wide and taller for
+/// its width (the frequency response of one mesh 640 pixels high).
+fn screen_size((w, h): (u32, u32), fr: bool, narrow: bool) -> (u32, u32) {
+    match (narrow, fr && h == plots::HEIGHT) {
+        (false, _) => (w, h),
+        (true, true) => (PHONE_PLOT_WIDTH, 640),
+        (true, false) => (PHONE_PLOT_WIDTH, h * 13 / 10),
     }
 }
 
