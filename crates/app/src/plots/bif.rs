@@ -129,6 +129,13 @@ pub fn draw_bif<DB: DrawingBackend>(
             }),
         }
     }
+    // One dot per pixel and group: a sweep of 1000 recorded periods has
+    // up to 1000 Poincaré samples per point, most on a few pixels.
+    for g in &mut groups {
+        g.px = decimate::one_per_pixel(g.px.iter().copied(), |(x, y)| {
+            (x.round() as i32, y.round() as i32)
+        });
+    }
     if let Some((a, b)) = &v.ab_labels {
         chart
             .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())

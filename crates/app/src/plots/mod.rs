@@ -16,6 +16,7 @@
 //! legend and the key row; each view kind's plot in its own module.
 
 mod bif;
+pub mod decimate;
 mod fr;
 pub mod maps;
 pub mod multiples;

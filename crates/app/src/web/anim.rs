@@ -258,6 +258,7 @@ pub(super) fn draw_anim(p: &mut Page) {
         "playing": clock.playing,
         "periods_per_s": clock.periods_per_s,
         "sample": scene.sample,
+        "window_len": r.anim.x_um.first().map_or(0, Vec::len),
         "history_sample": k,
         "t_periods": scene.t_periods,
         "factor": scene.factor,
