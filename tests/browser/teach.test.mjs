@@ -191,17 +191,23 @@ test('on a phone (390x844) nothing scrolls sideways, the settings are a closed d
 test('Copy link confirms for about two seconds', async () => {
   await h.browser.grantPermissions(['clipboard-read', 'clipboard-write']);
   const { page, errors } = await open(h.browser, h.url, QUICK);
+  // When the page hides the confirmation, noted in the page as it happens
+  // (a check from here could come late on a busy machine).
+  await page.evaluate(() => {
+    const e = document.getElementById('copy-done');
+    new MutationObserver(() => {
+      if (e.hidden && e.dataset.shown) window.__hiddenAfter = Date.now() - Number(e.dataset.shown);
+    }).observe(e, { attributes: true, attributeFilter: ['hidden'] });
+  });
   await page.click('#copy-link');
-  const clicked = await page.evaluate(() => performance.now());
   const toast = page.locator('#copy-done');
   await toast.waitFor({ state: 'visible', timeout: 5000 });
   await shot(page.locator('header'), 'teach-06-copy-link');
   assert.match(await toast.textContent(), /Link copied/);
-  // The state one second after the click: still shown.
-  await page.waitForFunction((t0) => performance.now() - t0 >= 1000, clicked);
-  assert.equal(await toast.isVisible(), true, 'the confirmation is gone within a second');
-  // And then it goes.
-  await toast.waitFor({ state: 'hidden', timeout: 5000 });
+  // Then it goes, two seconds after it was shown (not within a second).
+  await toast.waitFor({ state: 'hidden', timeout: 10000 });
+  const shownMs = await page.evaluate(() => window.__hiddenAfter);
+  assert.ok(shownMs >= 1900, `the confirmation was shown for ${shownMs} ms`);
   assert.deepEqual(errors, []);
   await page.close();
 });

@@ -532,9 +532,12 @@ pub struct OmegaResult {
     pub samples_per_period: u32,
     /// Recorded periods.
     pub record_periods: u32,
-    /// x = delta - e (um) at uniform samples over the recorded periods.
+    /// x = delta - e (um) at uniform samples over the recorded periods
+    /// (carried as [`f64_bytes`]: 64 000 of them at 1000 periods).
+    #[serde(with = "f64_bytes")]
     pub x_um: Vec<f64>,
     /// dx/dt (m/s) at the same samples.
+    #[serde(with = "f64_bytes")]
     pub xdot_m_s: Vec<f64>,
     /// Poincaré samples of x (um).
     pub poincare_x_um: Vec<f64>,
@@ -673,6 +676,8 @@ pub fn encode<T: Serialize>(msg: &T) -> String {
     })
 }
 
+mod f64_bytes;
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -708,6 +713,32 @@ mod tests {
             assert_eq!(back, m);
         }
         assert_eq!(encode(&FromWorker::Ready), r#"{"type":"ready"}"#);
+    }
+
+    #[test]
+    fn long_number_lists_travel_as_their_exact_bytes() {
+        // Python: base64.b64encode(struct.pack('<2d', 1.0, -2.5)).
+        assert_eq!(f64_bytes::encode(&[1.0, -2.5]), "AAAAAAAA8D8AAAAAAAAEwA==");
+        let tricky = [
+            0.1,
+            -0.0,
+            f64::MIN_POSITIVE / 3.0,
+            1.0 / 3.0,
+            -1e300,
+            123.456,
+        ];
+        for n in 0..=tricky.len() {
+            let back = f64_bytes::decode(&f64_bytes::encode(&tricky[..n])).unwrap();
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&back), bits(&tricky[..n]));
+        }
+        assert!(f64_bytes::decode("AAAA*AAA")
+            .unwrap_err()
+            .contains("not base64"));
+        assert!(
+            f64_bytes::decode("AAAA").is_err(),
+            "3 bytes are not a number"
+        );
     }
 
     #[test]

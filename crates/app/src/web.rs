@@ -22,7 +22,6 @@ use crate::views::redraw::{Decision, Redraw};
 use crate::views::{ExportKind, ViewId, DRAW_ORDER, VIEWS};
 use plotters::coord::Shift;
 use plotters::prelude::{DrawingArea, IntoDrawingArea};
-use plotters_canvas::CanvasBackend;
 use std::cell::RefCell;
 use std::rc::Rc;
 use wasm_bindgen::prelude::*;
@@ -35,6 +34,7 @@ use web_sys::{
 };
 
 mod anim;
+mod canvas;
 mod claims;
 mod family;
 mod panel;
@@ -84,7 +84,7 @@ struct Page {
 }
 
 type Shared = Rc<RefCell<Page>>;
-type Area = DrawingArea<CanvasBackend, Shift>;
+type Area = DrawingArea<canvas::Canvas, Shift>;
 
 /// The animated gear set's state on the page.
 #[derive(Default)]
@@ -338,29 +338,44 @@ fn mark_invalid(doc: &Document, key: &str, invalid: bool) {
 fn draw_dirty(page: &Shared, p: &mut Page) {
     let t0 = now(&p.window);
     let d = std::mem::take(&mut p.ctl.dirty);
+    p.redraw.mark(&d);
+    // The canvases first, the page's text after: plotters measures legend
+    // text in the page (a span it adds and removes), which lays out the
+    // whole page again whenever text changed since the last measure.
+    let mut writes = Vec::new();
+    for v in DRAW_ORDER {
+        let start = now(&p.window);
+        match p.redraw.decide(v, t0, start, Some(p.ctl.view_status(v))) {
+            Decision::Stop => break,
+            Decision::Skip => continue,
+            Decision::Draw => writes.extend(draw_view(p, v)),
+        }
+        let end = now(&p.window);
+        p.redraw.drawn(v, start, end);
+    }
+    for (id, attr, value) in writes {
+        match attr {
+            None => set_text(&p.doc, &id, &value),
+            Some(name) => {
+                if let Some(e) = p.doc.get_element_by_id(&id) {
+                    check(e.set_attribute(name, &value));
+                }
+            }
+        }
+    }
     if d.controls {
         refresh_controls(p);
     }
-    if d.messages {
+    // (A plotting failure in this frame joined the messages.)
+    if d.messages || std::mem::take(&mut p.ctl.dirty.messages) {
         refresh_messages(p);
     }
-    p.redraw.mark(&d);
     if d.omega {
         set_text(&p.doc, "summary", &p.ctl.student_summary());
         set_text(&p.doc, "summary-expert", &p.ctl.summary_text());
         if let Some(e) = p.doc.get_element_by_id("canvas-anim") {
             check(e.set_attribute("aria-label", &p.ctl.anim_label()));
         }
-    }
-    for v in DRAW_ORDER {
-        let start = now(&p.window);
-        match p.redraw.decide(v, t0, start, Some(p.ctl.view_status(v))) {
-            Decision::Stop => break,
-            Decision::Skip => continue,
-            Decision::Draw => draw_view(p, v),
-        }
-        let end = now(&p.window);
-        p.redraw.drawn(v, start, end);
     }
     if d.url || d.controls {
         let q = p.ctl.query();
@@ -387,11 +402,16 @@ fn canvas(doc: &Document, view: ViewId) -> Option<HtmlCanvasElement> {
     by_id(doc, &format!("canvas-{}", view.key()))
 }
 
+/// A text (`None`) or attribute of the element with an id, to set once
+/// the frame's canvases are drawn.
+type DomWrite = (String, Option<&'static str>, String);
+
 /// Draws one view on its canvas (or why it has nothing to draw); a
-/// plotting failure joins the messages.
-fn draw_view(p: &mut Page, v: ViewId) {
+/// plotting failure joins the messages. Returns its note and label, for
+/// the caller to set after the frame's drawing.
+fn draw_view(p: &mut Page, v: ViewId) -> Vec<DomWrite> {
     let Some(cv) = canvas(&p.doc, v) else {
-        return;
+        return Vec::new();
     };
     // The frequency response's mesh panels take a taller canvas.
     let (w, h) = screen_size(p.ctl.canvas_size(v), v == ViewId::Fr, p.narrow);
@@ -399,22 +419,25 @@ fn draw_view(p: &mut Page, v: ViewId) {
         cv.set_width(w);
         cv.set_height(h);
     }
-    let Some(b) = CanvasBackend::with_canvas_object(cv.clone()) else {
-        return;
+    let Some(b) = canvas::Canvas::new(&cv) else {
+        return Vec::new();
     };
     let root = b.into_drawing_area();
+    let mut writes = Vec::new();
+    let note = |text: String| (format!("note-{}", v.key()), None, text);
     // The frequency response's view model, built once for its note and plot.
     let fr = (v == ViewId::Fr).then(|| p.ctl.fr_view());
     if let Some(fr) = &fr {
-        let note = match p.ctl.panels {
+        writes.push(note(match p.ctl.panels {
             Some(_) => crate::views::fr::fr_panels_note(fr),
             None => crate::views::fr::fr_note(fr),
-        };
-        set_note(p, v, &note);
+        }));
     }
     if v == ViewId::Map {
-        let note = crate::views::map::map_note(&p.ctl.map, p.ctl.map_status.total);
-        set_note(p, v, &note);
+        writes.push(note(crate::views::map::map_note(
+            &p.ctl.map,
+            p.ctl.map_status.total,
+        )));
     }
     let r = match p.ctl.placeholder(v) {
         Some(message) => {
@@ -436,18 +459,14 @@ fn draw_view(p: &mut Page, v: ViewId) {
     if v == ViewId::Time {
         p.anim.dirty = true;
     }
-    check(cv.set_attribute("aria-label", &p.ctl.canvas_label(v)));
+    writes.push((cv.id(), Some("aria-label"), p.ctl.canvas_label(v)));
     if let Err(e) = r.map_err(|e| e.to_string()) {
         if !p.ctl.issues.contains(&e) {
             p.ctl.issues.push(e);
-            refresh_messages(p);
+            p.ctl.dirty.messages = true;
         }
     }
-}
-
-/// The note under a view's plot.
-fn set_note(p: &Page, v: ViewId, text: &str) {
-    set_text(&p.doc, &format!("note-{}", v.key()), text);
+    writes
 }
 
 fn draw_fr(p: &mut Page, root: &Area, v: &crate::views::fr::FrView) -> plots::Res<()> {

@@ -126,6 +126,13 @@ pub fn draw_bif<DB: DrawingBackend>(
         }
     }
     group_dots(&mut groups, &v.points, &frame);
+    // One dot per pixel and group: a sweep of 1000 recorded periods has
+    // up to 1000 Poincaré samples per point, most on a few pixels.
+    for g in &mut groups {
+        g.px = decimate::one_per_pixel(g.px.iter().copied(), |(x, y)| {
+            (x.round() as i32, y.round() as i32)
+        });
+    }
     if !v.failed.is_empty() {
         // Where the sweep failed: a grey cross on the Omega axis each.
         failed_crosses(&mut chart, &v.failed, y.0, 5)?;

@@ -245,6 +245,12 @@ pub fn draw_bif_panels<DB: DrawingBackend>(
         group_dots(&mut groups, &v.points, &frame);
         frames.push(Some(frame));
     }
+    // One dot per pixel and group (see `draw_bif`).
+    for g in &mut groups {
+        g.px = super::decimate::one_per_pixel(g.px.iter().copied(), |(x, y)| {
+            (x.round() as i32, y.round() as i32)
+        });
+    }
     root.present().map_err(err)?;
     Ok((frames, groups))
 }
@@ -303,22 +309,12 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
         }
         let color = family_color(k);
         if !poincare {
-            let orbit = ShapeStyle::from(&color.mix(0.7)).stroke_width(1);
-            chart
-                .draw_series(LineSeries::new(
-                    r.x_um.iter().copied().zip(r.xdot_m_s.iter().copied()),
-                    orbit,
-                ))
-                .map_err(err)?;
+            super::omega::draw_orbit(&mut chart, r, color)?;
         }
         let (dot, size) = if poincare { (color, 3) } else { (CURSOR, 3) };
+        let dots = super::omega::poincare_dots(r, |p| chart.backend_coord(&p));
         chart
-            .draw_series(
-                r.poincare_x_um
-                    .iter()
-                    .zip(&r.poincare_xdot_m_s)
-                    .map(|(&a, &v)| Circle::new((a, v), size, dot.filled())),
-            )
+            .draw_series(dots.into_iter().map(|p| Circle::new(p, size, dot.filled())))
             .map_err(err)?;
     }
     root.present().map_err(err)

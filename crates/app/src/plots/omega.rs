@@ -41,6 +41,51 @@ fn phase_plane<'a, DB: DrawingBackend>(
     Ok(chart)
 }
 
+/// The orbit's line: the colour a 70 % translucent line has on white,
+/// drawn opaque. A translucent path that crosses itself thousands of times
+/// (a record of 1000 periods) costs the canvas a coverage mask per stroke,
+/// an opaque one plain hairlines; and where two runs of
+/// [`decimate::polyline_runs`] cross, an opaque line does not darken.
+fn orbit_style(color: RGBColor) -> ShapeStyle {
+    let mix = |c: u8| (0.7 * f64::from(c) + 0.3 * 255.0).round() as u8;
+    ShapeStyle::from(&RGBColor(mix(color.0), mix(color.1), mix(color.2))).stroke_width(1)
+}
+
+/// Draws the orbit of `r` in `color`, each pixel segment once (a steady
+/// orbit retraces its pixels every period, 1000 times at the most).
+pub(super) fn draw_orbit<DB: DrawingBackend>(
+    chart: &mut Chart<'_, DB>,
+    r: &OmegaResult,
+    color: RGBColor,
+) -> Res<()> {
+    let runs = decimate::polyline_runs(
+        r.x_um.iter().copied().zip(r.xdot_m_s.iter().copied()),
+        |p| chart.backend_coord(&p),
+    );
+    let style = orbit_style(color);
+    for run in &runs {
+        chart
+            .draw_series(LineSeries::new(run.iter().copied(), style))
+            .map_err(err)?;
+    }
+    Ok(())
+}
+
+/// The Poincaré points, one per pixel of `px` (equal dots on one pixel
+/// look like one).
+pub(super) fn poincare_dots(
+    r: &OmegaResult,
+    px: impl Fn((f64, f64)) -> decimate::Px,
+) -> Vec<(f64, f64)> {
+    decimate::one_per_pixel(
+        r.poincare_x_um
+            .iter()
+            .copied()
+            .zip(r.poincare_xdot_m_s.iter().copied()),
+        px,
+    )
+}
+
 /// View 3: the phase portrait with its Poincaré points.
 pub fn draw_phase<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
@@ -59,7 +104,6 @@ pub fn draw_phase_with<DB: DrawingBackend>(
 ) -> Res<()> {
     root.fill(&WHITE).map_err(err)?;
     let (x, y) = phase_ranges(r, whole);
-    let orbit = ORBIT.mix(0.7);
     let mut items: KeyItems = vec![
         (
             KeyIcon::Line(ORBIT, false),
@@ -75,19 +119,10 @@ pub fn draw_phase_with<DB: DrawingBackend>(
     let area = chart_area(root, &plan);
     let what = ("Phase portrait", "x = δ − e (µm)");
     let mut chart = phase_plane(&area, r, what, status, (x, y))?;
+    draw_orbit(&mut chart, r, ORBIT)?;
+    let dots = poincare_dots(r, |p| chart.backend_coord(&p));
     chart
-        .draw_series(LineSeries::new(
-            r.x_um.iter().copied().zip(r.xdot_m_s.iter().copied()),
-            ShapeStyle::from(&orbit).stroke_width(1),
-        ))
-        .map_err(err)?;
-    chart
-        .draw_series(
-            r.poincare_x_um
-                .iter()
-                .zip(&r.poincare_xdot_m_s)
-                .map(|(&a, &b)| Circle::new((a, b), 4, CURSOR.filled())),
-        )
+        .draw_series(dots.into_iter().map(|p| Circle::new(p, 4, CURSOR.filled())))
         .map_err(err)?;
     draw_key(root, &items, &plan)?;
     root.present().map_err(err)
@@ -127,13 +162,9 @@ pub fn draw_poincare_with<DB: DrawingBackend>(
         "x = δ − e (µm), sampled once per mesh period",
     );
     let mut chart = phase_plane(&area, r, what, status, (x, y))?;
+    let dots = poincare_dots(r, |p| chart.backend_coord(&p));
     chart
-        .draw_series(
-            r.poincare_x_um
-                .iter()
-                .zip(&r.poincare_xdot_m_s)
-                .map(|(&a, &b)| Circle::new((a, b), 3, CURSOR.filled())),
-        )
+        .draw_series(dots.into_iter().map(|p| Circle::new(p, 3, CURSOR.filled())))
         .map_err(err)?;
     draw_key(root, &items, &plan)?;
     root.present().map_err(err)
@@ -234,6 +265,8 @@ pub fn draw_spectrum<DB: DrawingBackend>(
         "amplitude of x (µm, log)",
     );
     draw_axes(&mut chart, &axes)?;
+    // A line per pixel column (8000 lines over 1000 recorded periods).
+    let lines = decimate::tallest_per_column(&lines, |o| chart.backend_coord(&(o, floor)).0);
     chart
         .draw_series(
             lines

@@ -142,16 +142,7 @@ pub fn bif_csv(v: &BifView) -> String {
 mod tests {
     use super::*;
     use crate::protocol::BifMesh;
-
-    fn ctx() -> ViewContext {
-        ViewContext {
-            omega_from: 0.1,
-            omega_to: 2.0,
-            selected_omega: 0.5,
-            mesh_label: "s1a1".into(),
-            natural: vec![],
-        }
-    }
+    use crate::views::test_support::ctx;
 
     #[test]
     fn bif_store_flattens_poincare_samples() {

@@ -242,33 +242,8 @@ pub fn omega_label(title: &str, r: &OmegaResult) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::protocol::{HbmMesh, HbmSample};
     use crate::views::fr::{fr_view, HbmStore};
-    use crate::views::ViewContext;
-
-    fn ctx() -> ViewContext {
-        ViewContext {
-            omega_from: 0.1,
-            omega_to: 2.0,
-            selected_omega: 0.5,
-            mesh_label: "s1a1".into(),
-            natural: vec![],
-        }
-    }
-
-    fn point(omega: f64, hi: f64, regime: Regime, stable: bool) -> HbmSample {
-        HbmSample {
-            omega,
-            meshes: vec![HbmMesh {
-                rel_min_um: 0.0,
-                rel_max_um: hi,
-                regime,
-            }],
-            stable: Some(stable),
-            bifurcation: None,
-            piece: 0,
-        }
-    }
+    use crate::views::test_support::{ctx, hbm_peak as point};
 
     /// The label names the peak and the regimes along Omega, and changes
     /// when the data does.

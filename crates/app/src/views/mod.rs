@@ -15,6 +15,8 @@ pub mod map;
 pub mod omega;
 pub mod redraw;
 mod table;
+#[cfg(test)]
+mod test_support;
 pub mod unstable;
 
 pub use table::{part_number, ExportKind, PagePart, ViewId, ViewSpec, DRAW_ORDER, PAGE, VIEWS};

@@ -121,45 +121,9 @@ pub fn strip_from_overlay(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::protocol::{FrSample, HbmMesh, HbmSample, MeshExtremes};
+    use crate::protocol::FrSample;
     use crate::views::fr::{fr_view, FrStore, HbmStore};
-    use crate::views::ViewContext;
-
-    fn ctx() -> ViewContext {
-        ViewContext {
-            omega_from: 0.1,
-            omega_to: 2.0,
-            selected_omega: 0.5,
-            mesh_label: "s1a1".into(),
-            natural: vec![],
-        }
-    }
-
-    fn hbm_point(omega: f64, meshes: &[(f64, f64)], stable: bool) -> HbmSample {
-        HbmSample {
-            omega,
-            meshes: meshes
-                .iter()
-                .map(|&(lo, hi)| HbmMesh {
-                    rel_min_um: lo,
-                    rel_max_um: hi,
-                    regime: Regime::NoImpact,
-                })
-                .collect(),
-            stable: Some(stable),
-            bifurcation: None,
-            piece: 0,
-        }
-    }
-
-    fn ext(lo: f64, hi: f64) -> MeshExtremes {
-        MeshExtremes {
-            rel_min_um: lo,
-            rel_max_um: hi,
-            regime: Regime::SingleSided,
-            dynamic_factor: None,
-        }
-    }
+    use crate::views::test_support::{ctx, ext, hbm_point};
 
     fn pt(omega: f64, stable: Option<bool>, regime: Regime) -> FrCurvePoint {
         FrCurvePoint {
@@ -278,7 +242,7 @@ mod tests {
         ti.add(vec![FrSample {
             index: 0,
             omega: 1.2,
-            meshes: vec![ext(0.0, 10.0)],
+            meshes: vec![ext(0.0, 10.0, None)],
             period: None,
             error: None,
         }]);

@@ -167,7 +167,7 @@ fn draw_anim_placeholder(p: &Page) -> bool {
     let Some(cv) = by_id::<HtmlCanvasElement>(&p.doc, "canvas-anim") else {
         return false;
     };
-    let Some(b) = CanvasBackend::with_canvas_object(cv) else {
+    let Some(b) = canvas::Canvas::new(&cv) else {
         return false;
     };
     let root: Area = b.into_drawing_area();
@@ -279,6 +279,7 @@ pub(super) fn draw_anim(p: &mut Page) {
         "playing": clock.playing,
         "periods_per_s": clock.periods_per_s,
         "sample": scene.sample,
+        "window_len": r.anim.x_um.first().map_or(0, Vec::len),
         "history_sample": k,
         "t_periods": scene.t_periods,
         "factor": scene.factor,

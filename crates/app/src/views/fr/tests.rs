@@ -1,43 +1,7 @@
 //! Tests of the frequency response's stores, view model and exports.
 
 use super::*;
-use crate::protocol::{HbmMesh, MeshExtremes};
-
-fn ext(lo: f64, hi: f64, df: f64) -> MeshExtremes {
-    MeshExtremes {
-        rel_min_um: lo,
-        rel_max_um: hi,
-        regime: Regime::SingleSided,
-        dynamic_factor: Some(df),
-    }
-}
-
-fn ctx() -> ViewContext {
-    ViewContext {
-        omega_from: 0.1,
-        omega_to: 2.0,
-        selected_omega: 0.5,
-        mesh_label: "s1a1".into(),
-        natural: vec![],
-    }
-}
-
-fn hbm_point(omega: f64, meshes: &[(f64, f64)], stable: bool) -> HbmSample {
-    HbmSample {
-        omega,
-        meshes: meshes
-            .iter()
-            .map(|&(lo, hi)| HbmMesh {
-                rel_min_um: lo,
-                rel_max_um: hi,
-                regime: Regime::NoImpact,
-            })
-            .collect(),
-        stable: Some(stable),
-        bifurcation: None,
-        piece: 0,
-    }
-}
+use crate::views::test_support::{ctx, ext, hbm_point};
 
 #[test]
 fn a_restarted_branch_is_not_joined_across_its_pieces() {
@@ -82,7 +46,7 @@ fn fr_store_orders_by_grid_and_picks_meshes() {
     st.add(vec![FrSample {
         index: 2,
         omega: 2.0,
-        meshes: vec![ext(1.0, 2.0, 1.1), ext(-5.0, 9.0, 3.0)],
+        meshes: vec![ext(1.0, 2.0, Some(1.1)), ext(-5.0, 9.0, Some(3.0))],
         period: Some(1),
         error: None,
     }]);
@@ -124,7 +88,7 @@ fn hbm_branch_with_markers_partial_failure_and_overlay() {
         FrSample {
             index: 0,
             omega: 0.75,
-            meshes: vec![ext(72.0, 128.0, 1.2), ext(0.0, 1.0, 1.0)],
+            meshes: vec![ext(72.0, 128.0, Some(1.2)), ext(0.0, 1.0, Some(1.0))],
             period: Some(1),
             error: None,
         },

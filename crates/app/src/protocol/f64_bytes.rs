@@ -1,0 +1,61 @@
+//! A long list of numbers as the base64 of their bytes (little-endian
+//! f64): exact, and read in a fraction of the time decimal JSON takes (the
+//! page reads a 1000-period record, 128 000 numbers, on its main thread).
+
+use serde::{de::Error, Deserialize, Deserializer, Serializer};
+
+const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+
+pub(super) fn encode(v: &[f64]) -> String {
+    let bytes: Vec<u8> = v.iter().flat_map(|x| x.to_le_bytes()).collect();
+    let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
+    for c in bytes.chunks(3) {
+        let n = (u32::from(c[0]) << 16)
+            | (u32::from(*c.get(1).unwrap_or(&0)) << 8)
+            | u32::from(*c.get(2).unwrap_or(&0));
+        for k in 0..4 {
+            if k <= c.len() {
+                out.push(char::from(ALPHABET[(n >> (18 - 6 * k)) as usize & 63]));
+            } else {
+                out.push('=');
+            }
+        }
+    }
+    out
+}
+
+pub(super) fn decode(s: &str) -> Result<Vec<f64>, String> {
+    let mut value = [255u8; 256];
+    for (i, &c) in ALPHABET.iter().enumerate() {
+        value[usize::from(c)] = i as u8;
+    }
+    let text = s.trim_end_matches('=').as_bytes();
+    let mut bytes = Vec::with_capacity(text.len() * 3 / 4);
+    for c in text.chunks(4) {
+        let mut n = 0u32;
+        for (k, &ch) in c.iter().enumerate() {
+            let d = value[usize::from(ch)];
+            if d == 255 {
+                return Err(format!("not base64: {:?}", char::from(ch)));
+            }
+            n |= u32::from(d) << (18 - 6 * k);
+        }
+        bytes.extend_from_slice(&n.to_be_bytes()[1..c.len()]);
+    }
+    if bytes.len() % 8 != 0 {
+        return Err(format!("{} bytes are not whole numbers", bytes.len()));
+    }
+    Ok(bytes
+        .chunks_exact(8)
+        .map(|b| f64::from_le_bytes([b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]]))
+        .collect())
+}
+
+pub(super) fn serialize<S: Serializer>(v: &[f64], s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_str(&encode(v))
+}
+
+pub(super) fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<f64>, D::Error> {
+    let s = std::borrow::Cow::<'de, str>::deserialize(d)?;
+    decode(&s).map_err(D::Error::custom)
+}

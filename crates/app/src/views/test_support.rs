@@ -1,0 +1,55 @@
+//! Test fixtures shared by the views' tests: a view context over the
+//! default Omega range, harmonic-balance points and time-integration
+//! extremes built from a few numbers.
+
+use super::ViewContext;
+use crate::protocol::{HbmMesh, HbmSample, MeshExtremes, Regime};
+
+/// The view context of the tests: Omega 0.1 to 2, 0.5 selected, mesh s1a1,
+/// no natural frequencies.
+pub(crate) fn ctx() -> ViewContext {
+    ViewContext {
+        omega_from: 0.1,
+        omega_to: 2.0,
+        selected_omega: 0.5,
+        mesh_label: "s1a1".into(),
+        natural: vec![],
+    }
+}
+
+/// A harmonic-balance point at `omega` with one `(min, max)` (µm) per mesh,
+/// no impact, of the given stability, in piece 0.
+pub(crate) fn hbm_point(omega: f64, meshes: &[(f64, f64)], stable: bool) -> HbmSample {
+    HbmSample {
+        omega,
+        meshes: meshes
+            .iter()
+            .map(|&(lo, hi)| HbmMesh {
+                rel_min_um: lo,
+                rel_max_um: hi,
+                regime: Regime::NoImpact,
+            })
+            .collect(),
+        stable: Some(stable),
+        bifurcation: None,
+        piece: 0,
+    }
+}
+
+/// A harmonic-balance point with one mesh peaking at `hi` µm in `regime`.
+pub(crate) fn hbm_peak(omega: f64, hi: f64, regime: Regime, stable: bool) -> HbmSample {
+    let mut p = hbm_point(omega, &[(0.0, hi)], stable);
+    p.meshes[0].regime = regime;
+    p
+}
+
+/// One mesh's time-integration extremes (µm), single-sided impact, with
+/// the dynamic factor `df`.
+pub(crate) fn ext(lo: f64, hi: f64, df: Option<f64>) -> MeshExtremes {
+    MeshExtremes {
+        rel_min_um: lo,
+        rel_max_um: hi,
+        regime: Regime::SingleSided,
+        dynamic_factor: df,
+    }
+}

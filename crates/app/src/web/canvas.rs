@@ -1,0 +1,133 @@
+//! The plotters backend of the page's canvases: `plotters-canvas`'s
+//! `CanvasBackend` for every drawing call, but text measured with the
+//! canvas's own `measureText`. On wasm32 plotters measures a label by
+//! adding a span to the page and reading its size, a forced layout of the
+//! whole page per label: some 300 per page load, up to 36 ms each, all on
+//! the main thread.
+
+use plotters_backend::{
+    BackendColor, BackendCoord, BackendStyle, BackendTextStyle, DrawingBackend, DrawingErrorKind,
+};
+use plotters_canvas::CanvasBackend;
+use wasm_bindgen::JsCast;
+use web_sys::{CanvasRenderingContext2d, HtmlCanvasElement};
+
+type Error = DrawingErrorKind<<CanvasBackend as DrawingBackend>::ErrorType>;
+
+/// A canvas backend whose text sizes come from `measureText`.
+pub(super) struct Canvas {
+    inner: CanvasBackend,
+    ctx: CanvasRenderingContext2d,
+}
+
+impl Canvas {
+    /// The backend of `canvas`, if it has a 2D context.
+    pub(super) fn new(canvas: &HtmlCanvasElement) -> Option<Self> {
+        let ctx = canvas
+            .get_context("2d")
+            .ok()
+            .flatten()?
+            .dyn_into::<CanvasRenderingContext2d>()
+            .ok()?;
+        let inner = CanvasBackend::with_canvas_object(canvas.clone())?;
+        Some(Self { inner, ctx })
+    }
+}
+
+impl DrawingBackend for Canvas {
+    type ErrorType = <CanvasBackend as DrawingBackend>::ErrorType;
+
+    fn get_size(&self) -> (u32, u32) {
+        self.inner.get_size()
+    }
+
+    fn ensure_prepared(&mut self) -> Result<(), Error> {
+        self.inner.ensure_prepared()
+    }
+
+    fn present(&mut self) -> Result<(), Error> {
+        self.inner.present()
+    }
+
+    fn draw_pixel(&mut self, point: BackendCoord, color: BackendColor) -> Result<(), Error> {
+        self.inner.draw_pixel(point, color)
+    }
+
+    fn draw_line<S: BackendStyle>(
+        &mut self,
+        from: BackendCoord,
+        to: BackendCoord,
+        style: &S,
+    ) -> Result<(), Error> {
+        self.inner.draw_line(from, to, style)
+    }
+
+    fn draw_rect<S: BackendStyle>(
+        &mut self,
+        upper_left: BackendCoord,
+        bottom_right: BackendCoord,
+        style: &S,
+        fill: bool,
+    ) -> Result<(), Error> {
+        self.inner.draw_rect(upper_left, bottom_right, style, fill)
+    }
+
+    fn draw_path<S: BackendStyle, I: IntoIterator<Item = BackendCoord>>(
+        &mut self,
+        path: I,
+        style: &S,
+    ) -> Result<(), Error> {
+        self.inner.draw_path(path, style)
+    }
+
+    fn draw_circle<S: BackendStyle>(
+        &mut self,
+        center: BackendCoord,
+        radius: u32,
+        style: &S,
+        fill: bool,
+    ) -> Result<(), Error> {
+        self.inner.draw_circle(center, radius, style, fill)
+    }
+
+    fn fill_polygon<S: BackendStyle, I: IntoIterator<Item = BackendCoord>>(
+        &mut self,
+        vert: I,
+        style: &S,
+    ) -> Result<(), Error> {
+        self.inner.fill_polygon(vert, style)
+    }
+
+    fn draw_text<S: BackendTextStyle>(
+        &mut self,
+        text: &str,
+        style: &S,
+        pos: BackendCoord,
+    ) -> Result<(), Error> {
+        self.inner.draw_text(text, style, pos)
+    }
+
+    /// The text's advance width and its font's line height (ascent plus
+    /// descent, what a span of it measures), in the font `draw_text` sets.
+    fn estimate_text_size<S: BackendTextStyle>(
+        &self,
+        text: &str,
+        style: &S,
+    ) -> Result<(u32, u32), Error> {
+        let font = format!(
+            "{} {}px {}",
+            style.style().as_str(),
+            style.size(),
+            style.family().as_str()
+        );
+        let saved = self.ctx.font();
+        self.ctx.set_font(&font);
+        let m = self.ctx.measure_text(text);
+        self.ctx.set_font(&saved);
+        let m = m.map_err(|e| {
+            DrawingErrorKind::FontError(Box::new(std::io::Error::other(format!("{e:?}"))))
+        })?;
+        let height = m.font_bounding_box_ascent() + m.font_bounding_box_descent();
+        Ok((m.width().round() as u32, height.round() as u32))
+    }
+}

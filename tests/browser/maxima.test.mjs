@@ -1,0 +1,69 @@
+// Browser tests of the page at the largest values its settings allow
+// (issue 15): the main thread stays responsive (every task under 100 ms on
+// an unloaded machine, the limit scaled by the slowdown measured in the
+// same page, see harness.mjs) from the first paint until the heaviest
+// results are drawn: 1000 recorded periods (64 000 samples) in the four
+// selected-Omega views, the first harmonic-balance points at H = 15 and
+// 400 nominal points, and the first bifurcation points of a 1000-point
+// sweep of 3000 + 1000 periods.
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { start, open, waitStatus, canvasStats, shot, watchMainThread, waitWatched, stopWatch, watchReport } from './harness.mjs';
+
+/** Every setting at its allowed maximum (settings.rs). */
+const MAXIMA = [
+  'record_periods=1000',
+  'transient_periods=3000',
+  'bif_points=1000',
+  'fr_points=400',
+  'harmonics=15',
+  'fr_ti_points=200',
+  'fr_record_periods=200',
+  'map_omega_points=200',
+  'map_value_points=100',
+  'map_transient_periods=3000',
+  'map_record_periods=1000',
+  'lyap_points=400',
+  'lyap_transient_periods=3000',
+  'lyap_periods=1000',
+].join('&');
+
+let h;
+before(async () => {
+  h = await start();
+});
+after(async () => {
+  await h?.close();
+});
+
+/** Whether view `slot` was drawn after time `t` (ms, page clock). */
+const drawnAfter = (s, slot, t) => Boolean(t) && s.last_draw_ms[slot] > t;
+
+/** The four selected-Omega views (phase, Poincaré, time, spectrum) drawn after `t`. */
+const omegaDrawn = (s, t) => [2, 3, 4, 5].every((k) => drawnAfter(s, k, t));
+
+test('at the largest allowed settings no main-thread task blocks the page', async () => {
+  const { page, errors } = await open(h.browser, h.url, MAXIMA);
+  await waitStatus(page, (s) => s.first_draw_ms.every((t) => t > 0), 60000, 'the first paint');
+  await watchMainThread(page);
+  const s = await waitWatched(
+    page,
+    (s) =>
+      s.omega_job.finished_ms &&
+      omegaDrawn(s, s.omega_job.finished_ms) &&
+      drawnAfter(s, 0, s.fr.first_data_ms) &&
+      drawnAfter(s, 1, s.bif.first_data_ms),
+    400000,
+    'the 1000-period result, the first branch points and the first sweep points, drawn',
+  );
+  const beat = await stopWatch(page);
+  console.log(`# maxima: ${s.fr_branch_points} branch points, ${s.bif.done} sweep points drawn; ${watchReport(beat)}`);
+  assert.deepEqual(beat.over, [], `main-thread tasks over their limit: ${watchReport(beat)}`);
+  assert.equal(s.omega_job.error ?? null, null);
+  const st = await canvasStats(page, 'canvas-phase');
+  assert.ok(st.ink > st.total * 0.01, 'the phase portrait looks empty');
+  await shot(page.locator('#view-phase'), '30-phase-1000-periods');
+  await shot(page.locator('#view-spectrum'), '31-spectrum-1000-periods');
+  assert.deepEqual(errors, []);
+  await page.close();
+});
