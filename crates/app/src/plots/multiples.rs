@@ -292,10 +292,7 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
                 continue;
             }
         };
-        let period = match r.period {
-            Some(n) => format!("period {n}"),
-            None => "not periodic".into(),
-        };
+        let period = crate::words::period_words(r.period, r.settled);
         let t = format!("{}: {period}", p.title);
         let mut chart = panel_chart(area, &t, (x, y), ("x (µm)", "ẋ (m/s)"), k % cols == 0)?;
         let b = r.backlash_um;

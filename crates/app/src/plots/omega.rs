@@ -146,10 +146,7 @@ pub fn draw_poincare_with<DB: DrawingBackend>(
 ) -> Res<()> {
     root.fill(&WHITE).map_err(err)?;
     let (x, y) = phase_ranges(r, whole);
-    let period = match r.period {
-        Some(p) => format!("period {p}"),
-        None => "not periodic".into(),
-    };
+    let period = crate::words::period_words(r.period, r.settled);
     let mut items: KeyItems = vec![(
         KeyIcon::Dot(CURSOR, 3),
         format!("{} Poincaré points ({period})", r.poincare_x_um.len()),

@@ -219,8 +219,8 @@ pub fn omega_label(title: &str, r: &OmegaResult) -> String {
     let lo = r.x_um.iter().copied().fold(f64::INFINITY, f64::min);
     let hi = r.x_um.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     let period = match r.period {
-        Some(p) => format!("period {p}"),
         None => "not periodic within the record".into(),
+        p => crate::words::period_words(p, r.settled),
     };
     let range = if lo.is_finite() && hi.is_finite() {
         format!(

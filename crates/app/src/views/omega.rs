@@ -10,8 +10,8 @@ use solver::steady::Model;
 /// The one-line summary at the selected Omega (view 6).
 pub fn summary_line(r: &OmegaResult, natural: &[NaturalFreq]) -> String {
     let period = match r.period {
-        Some(p) => format!("period {p}"),
         None => "not periodic (within the recorded periods)".into(),
+        p => crate::words::period_words(p, r.settled),
     };
     let df = r.dynamic_factor.map_or("n/a".into(), |d| format!("{d:.3}"));
     let nat = if natural.is_empty() {
@@ -59,6 +59,9 @@ pub fn student_summary(r: &OmegaResult) -> String {
     };
     let repeats = match r.period {
         Some(1) => "the motion repeats every mesh period".to_string(),
+        Some(n) if !r.settled => format!(
+            "the motion nearly repeats every {n} mesh periods, but it had not settled by the end of the transient, so more transient periods (in the settings) may show another period"
+        ),
         Some(n) => format!("the motion repeats every {n} mesh periods (period {n})"),
         None => {
             "the motion does not repeat within the recorded periods (quasi-periodic or chaotic)"
