@@ -29,10 +29,15 @@ pub enum SvgError {
 
 impl Controller {
     /// A view's drawing size now: [`view_size`], except the frequency
-    /// response's mesh panels, which take a taller canvas.
+    /// response's mesh panels and a large family's small multiples, which
+    /// take a taller canvas.
     pub fn canvas_size(&self, view: ViewId) -> (u32, u32) {
-        match (&self.panels, view) {
-            (Some(p), ViewId::Fr) => plots::multiples::fr_panels_size(p.len()),
+        let family = self.family.as_ref().map(|f| f.members.len() + 1);
+        match (&self.panels, family, view) {
+            (Some(p), _, ViewId::Fr) => plots::multiples::fr_panels_size(p.len()),
+            (_, Some(n), ViewId::Bif | ViewId::Phase | ViewId::Poincare) => {
+                plots::multiples::family_panels_size(n)
+            }
             _ => view_size(view),
         }
     }

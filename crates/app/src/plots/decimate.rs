@@ -96,6 +96,38 @@ pub fn tallest_per_column(lines: &[(f64, f64)], column: impl Fn(f64) -> i32) -> 
     out
 }
 
+/// The SVG path data of a polyline in pixels, "M1 2L3 4...", for the page
+/// to stroke in one call (a `Path2D`) rather than one call per point.
+pub fn svg_path(pts: &[Px]) -> String {
+    let mut d = String::with_capacity(pts.len() * 10);
+    for (k, &(x, y)) in pts.iter().enumerate() {
+        d.push(if k == 0 { 'M' } else { 'L' });
+        push_int(&mut d, x);
+        d.push(' ');
+        push_int(&mut d, y);
+    }
+    d
+}
+
+/// Appends the decimal digits of `v` (no allocation per number).
+fn push_int(s: &mut String, v: i32) {
+    if v < 0 {
+        s.push('-');
+    }
+    let mut digits = [0u8; 10];
+    let mut n = v.unsigned_abs();
+    let mut i = digits.len();
+    loop {
+        i -= 1;
+        digits[i] = b'0' + (n % 10) as u8;
+        n /= 10;
+        if n == 0 {
+            break;
+        }
+    }
+    s.extend(digits[i..].iter().map(|&b| char::from(b)));
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -182,5 +214,18 @@ mod tests {
         let lines = [(1.0, 2.0), (1.2, 5.0), (3.0, 1.0), (0.9, 4.0), (2.6, 0.5)];
         let kept = tallest_per_column(&lines, |x| x.round() as i32);
         assert_eq!(kept, vec![(1.2, 5.0), (3.0, 1.0)]);
+    }
+
+    /// The path data reads as the points, signs and extremes included.
+    #[test]
+    fn svg_path_spells_the_points() {
+        assert_eq!(svg_path(&[]), "");
+        assert_eq!(svg_path(&[(0, 7)]), "M0 7");
+        assert_eq!(
+            svg_path(&[(12, -3), (760, 400), (-45, 0)]),
+            "M12 -3L760 400L-45 0"
+        );
+        let ext = svg_path(&[(i32::MIN, i32::MAX)]);
+        assert_eq!(ext, format!("M{} {}", i32::MIN, i32::MAX));
     }
 }

@@ -16,6 +16,16 @@ use crate::views::fr::FrView;
 /// Room for the title above the panels and the key under them (pixels).
 const TOP: u32 = 28;
 const BOTTOM: u32 = 40;
+/// A family's panels a row on a wide canvas: six panels of a 760-pixel
+/// canvas in one row were too narrow for their titles and tick labels.
+pub const FAMILY_COLS: usize = 3;
+
+/// The canvas size of a family of `n` small multiples (pixels): one row is
+/// the ordinary plot's height, two rows are taller so each panel reads.
+pub fn family_panels_size(n: usize) -> (u32, u32) {
+    (WIDTH, if n > FAMILY_COLS { 680 } else { HEIGHT })
+}
+
 /// The ±b lines of a panel over Ω.
 const GUIDE: RGBColor = RGBColor(90, 90, 90);
 
@@ -60,7 +70,8 @@ pub fn phase_ranges(panels: &[Panel<OmegaResult>]) -> ((f64, f64), (f64, f64)) {
 }
 
 /// The panel areas of `n` panels side by side under a title and over a key
-/// (two a row on a phone's narrow canvas), and the panels a row.
+/// (two a row on a phone's narrow canvas, else up to [`FAMILY_COLS`]), and
+/// the panels a row.
 fn layout<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     title: &str,
@@ -72,7 +83,7 @@ fn layout<DB: DrawingBackend>(
     let cols = if w < super::NARROW {
         n.clamp(1, 2)
     } else {
-        n.max(1)
+        n.clamp(1, FAMILY_COLS)
     };
     let rows = n.max(1).div_ceil(cols);
     root.draw(&Text::new(title.to_string(), (10, 6), caption_font()))
@@ -283,7 +294,15 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
         ),
         None => format!("{what}{status}"),
     };
-    let (areas, cols) = layout(root, &title, key, panels.len())?;
+    // A period found before the transient settled is starred in the
+    // panel's title (the title has no room for the words) and said in the key.
+    let unsettled = |r: &OmegaResult| r.period.is_some_and(|p| p > 1) && !r.settled;
+    let key = if panels.iter().any(|p| p.data.as_ref().is_ok_and(unsettled)) {
+        format!("{key}; *: still settling, more transient periods may show another period")
+    } else {
+        key.to_string()
+    };
+    let (areas, cols) = layout(root, &title, &key, panels.len())?;
     for (k, (area, p)) in areas.iter().zip(panels).enumerate() {
         let r = match &p.data {
             Ok(r) => r,
@@ -292,7 +311,10 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
                 continue;
             }
         };
-        let period = crate::words::period_words(r.period, r.settled);
+        let period = match r.period {
+            Some(n) if unsettled(r) => format!("period {n}*"),
+            p => crate::words::period_words(p, true),
+        };
         let t = format!("{}: {period}", p.title);
         let mut chart = panel_chart(area, &t, (x, y), ("x (µm)", "ẋ (m/s)"), k % cols == 0)?;
         let b = r.backlash_um;

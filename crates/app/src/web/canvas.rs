@@ -10,7 +10,7 @@ use plotters_backend::{
 };
 use plotters_canvas::CanvasBackend;
 use wasm_bindgen::JsCast;
-use web_sys::{CanvasRenderingContext2d, HtmlCanvasElement};
+use web_sys::{CanvasRenderingContext2d, HtmlCanvasElement, Path2d};
 
 type Error = DrawingErrorKind<<CanvasBackend as DrawingBackend>::ErrorType>;
 
@@ -72,12 +72,32 @@ impl DrawingBackend for Canvas {
         self.inner.draw_rect(upper_left, bottom_right, style, fill)
     }
 
+    /// One `Path2D` from an SVG path string and one stroke: plotters-canvas
+    /// makes a JavaScript call per point (`lineTo`), some hundreds of
+    /// thousands for a family's long chaotic orbits. Falls back to it if
+    /// the browser refuses the path string.
     fn draw_path<S: BackendStyle, I: IntoIterator<Item = BackendCoord>>(
         &mut self,
         path: I,
         style: &S,
     ) -> Result<(), Error> {
-        self.inner.draw_path(path, style)
+        let c = style.color();
+        if c.alpha == 0.0 {
+            return Ok(());
+        }
+        let pts: Vec<BackendCoord> = path.into_iter().collect();
+        if pts.is_empty() {
+            return Ok(());
+        }
+        let Ok(p2d) = Path2d::new_with_path_string(&crate::plots::decimate::svg_path(&pts)) else {
+            return self.inner.draw_path(pts, style);
+        };
+        let (r, g, b) = c.rgb;
+        self.ctx
+            .set_stroke_style_str(&format!("rgba({r},{g},{b},{})", c.alpha));
+        self.ctx.set_line_width(f64::from(style.stroke_width()));
+        self.ctx.stroke_with_path(&p2d);
+        Ok(())
     }
 
     fn draw_circle<S: BackendStyle>(
