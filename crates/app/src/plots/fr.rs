@@ -45,26 +45,7 @@ pub fn draw_fr<DB: DrawingBackend>(
     pinned_contact_lines(&mut chart, &v.pinned_backlash_um, &v.backlash_um, x)?;
     omega_decorations(&mut chart, &v.natural, v.selected_omega, y)?;
     for br in &v.branches {
-        for which in [true, false] {
-            let style = ShapeStyle::from(&branch_color(br, which)).stroke_width(2);
-            let runs = stability_runs(&br.points, which);
-            for (unstable, pts) in runs {
-                // A branch has about a thousand points, most less than a
-                // pixel apart: drawing each (every dash a stroke) made a
-                // redraw take 100 ms. Points closer than 2 px to the last
-                // one kept are left out; the ends always stay.
-                let pts = thin(pts, |p| chart.backend_coord(p), 2);
-                if unstable {
-                    chart
-                        .draw_series(DashedLineSeries::new(pts, 5, 4, style))
-                        .map_err(err)?;
-                } else {
-                    chart
-                        .draw_series(LineSeries::new(pts, style))
-                        .map_err(err)?;
-                }
-            }
-        }
+        draw_branch(&mut chart, br)?;
         if !br.faded && !br.pinned && br.member.is_none() {
             // Where no stretch is stable, the strip shows the dots' regimes.
             let filled = strip_from_overlay(&unstable_ranges(&br.points), &v.overlay);
@@ -107,21 +88,7 @@ pub fn draw_fr<DB: DrawingBackend>(
 /// the bifurcation kinds present, the overlay and a failure's line.
 fn fr_key(v: &FrView, y: (f64, f64)) -> KeyItems {
     let mut items: KeyItems = Vec::new();
-    for br in v.branches.iter().filter(|b| !b.faded) {
-        if br.member.is_some() {
-            items.push((
-                KeyIcon::Line(branch_color(br, true), false),
-                br.label.clone(),
-            ));
-        } else {
-            for (which, what) in [(true, "max x"), (false, "min x")] {
-                items.push((
-                    KeyIcon::Line(branch_color(br, which), false),
-                    format!("{what} ({})", br.label),
-                ));
-            }
-        }
-    }
+    items.extend(branch_items(&v.branches));
     if v.branches.iter().any(|b| b.faded) {
         items.push((
             KeyIcon::Line(FADED, false),
@@ -301,6 +268,52 @@ pub(super) fn thin(
         }
     }
     out
+}
+
+/// The key's lines of the branches not faded: a family member once (its
+/// max and min share its colour), any other branch's max and min.
+pub(super) fn branch_items(branches: &[FrBranch]) -> KeyItems {
+    let mut items: KeyItems = Vec::new();
+    for br in branches.iter().filter(|b| !b.faded) {
+        if br.member.is_some() {
+            items.push((
+                KeyIcon::Line(branch_color(br, true), false),
+                br.label.clone(),
+            ));
+        } else {
+            for (which, what) in [(true, "max x"), (false, "min x")] {
+                items.push((
+                    KeyIcon::Line(branch_color(br, which), false),
+                    format!("{what} ({})", br.label),
+                ));
+            }
+        }
+    }
+    items
+}
+
+/// Draws a branch's max and min x, stable runs solid and unstable ones
+/// dashed. A branch has about a thousand points, most less than a pixel
+/// apart: drawing each (every dash a stroke) made a redraw take 100 ms, so
+/// points closer than 2 px to the last one kept are left out (the ends
+/// always stay).
+pub(super) fn draw_branch<DB: DrawingBackend>(chart: &mut Chart<'_, DB>, br: &FrBranch) -> Res<()> {
+    for which in [true, false] {
+        let style = ShapeStyle::from(&branch_color(br, which)).stroke_width(2);
+        for (unstable, pts) in stability_runs(&br.points, which) {
+            let pts = thin(pts, |p| chart.backend_coord(p), 2);
+            if unstable {
+                chart
+                    .draw_series(DashedLineSeries::new(pts, 5, 4, style))
+                    .map_err(err)?;
+            } else {
+                chart
+                    .draw_series(LineSeries::new(pts, style))
+                    .map_err(err)?;
+            }
+        }
+    }
+    Ok(())
 }
 
 #[cfg(test)]

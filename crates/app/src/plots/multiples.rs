@@ -6,7 +6,7 @@
 //! every family member's curve in each.
 
 use super::bif::{failed_crosses, group_dots};
-use super::fr::{branch_color, stability_runs, thin};
+use super::fr::{branch_items, draw_branch};
 use super::*;
 use crate::protocol::OmegaResult;
 use crate::views::bif::BifView;
@@ -376,24 +376,10 @@ pub fn draw_fr_panels<DB: DrawingBackend>(
     // The key under the panels: one coloured line per curve, in words,
     // from the first panel with data (every panel holds the same curves),
     // then the line styles; as tall as it needs on a narrow canvas.
-    let mut items: KeyItems = Vec::new();
-    if let Some(v) = panels.iter().find_map(|p| p.data.as_ref().ok()) {
-        for br in v.branches.iter().filter(|b| !b.faded) {
-            if br.member.is_some() {
-                items.push((
-                    KeyIcon::Line(branch_color(br, true), false),
-                    br.label.clone(),
-                ));
-            } else {
-                for (which, what) in [(true, "max x"), (false, "min x")] {
-                    items.push((
-                        KeyIcon::Line(branch_color(br, which), false),
-                        format!("{what} ({})", br.label),
-                    ));
-                }
-            }
-        }
-    }
+    let mut items: KeyItems = panels
+        .iter()
+        .find_map(|p| p.data.as_ref().ok())
+        .map_or_else(Vec::new, |v| branch_items(&v.branches));
     items.extend([
         (
             KeyIcon::Line(GUIDE, true),
@@ -447,21 +433,7 @@ pub fn draw_fr_panels<DB: DrawingBackend>(
             .collect();
         omega_guides(&mut chart, &levels, v.selected_omega, (x, y))?;
         for br in v.branches.iter() {
-            for which in [true, false] {
-                let style = ShapeStyle::from(&branch_color(br, which)).stroke_width(2);
-                for (unstable, pts) in stability_runs(&br.points, which) {
-                    let pts = thin(pts, |p| chart.backend_coord(p), 2);
-                    if unstable {
-                        chart
-                            .draw_series(DashedLineSeries::new(pts, 5, 4, style))
-                            .map_err(err)?;
-                    } else {
-                        chart
-                            .draw_series(LineSeries::new(pts, style))
-                            .map_err(err)?;
-                    }
-                }
-            }
+            draw_branch(&mut chart, br)?;
         }
         frames.push(Some(frame_of(&chart, x, y)));
     }
