@@ -456,6 +456,20 @@ pub struct MapSample {
     pub error: Option<String>,
 }
 
+impl From<solver::map::MapCell> for MapSample {
+    fn from(c: solver::map::MapCell) -> Self {
+        MapSample {
+            row: c.row,
+            column: c.column,
+            omega: c.omega,
+            value: c.value,
+            regime: c.impact.into(),
+            period: c.period,
+            error: c.error,
+        }
+    }
+}
+
 /// One point of the Lyapunov-exponent curve.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct LyapSample {

@@ -4,7 +4,7 @@
 //! state's jobs, and arrive progressively like them.
 
 use super::*;
-use crate::controller::jobs::{bif_total, hbm_job};
+use crate::controller::jobs::{bif_job, bif_total, hbm_job};
 use crate::family::FamilySpec;
 use crate::views::bif::BifView;
 use crate::views::family::{panel_titles, Panel};
@@ -180,20 +180,8 @@ impl Controller {
                         // As many chains as the current state's sweep, dealt
                         // round robin: the same results on any pool.
                         let chains = super::chain_count(v.bif_points);
-                        let run = RunOptions {
-                            transient_periods: v.transient_periods,
-                            record_periods: v.record_periods,
-                        };
                         let jobs = (0..chains)
-                            .map(|shard| JobSpec::Bif {
-                                omega_from: v.omega_from,
-                                omega_to: v.omega_to,
-                                points: v.bif_points,
-                                directions: v.bif_dir.name().to_string(),
-                                chains,
-                                shard,
-                                run,
-                            })
+                            .map(|shard| bif_job(&v, chains, shard))
                             .collect();
                         (
                             jobs,
@@ -203,14 +191,7 @@ impl Controller {
                     }
                     _ => {
                         m.omega = None;
-                        let job = JobSpec::Omega {
-                            omega: v.omega,
-                            mesh: self.settings.mesh_index(&built),
-                            run: self.run_options(v.record_periods),
-                            samples_per_period: SAMPLES_PER_PERIOD,
-                            max_order: MAX_ORDER,
-                        };
-                        (vec![job], 1, vec![(i + 1) % pool])
+                        (vec![self.omega_job(&built)], 1, vec![(i + 1) % pool])
                     }
                 };
                 let st = match kind {

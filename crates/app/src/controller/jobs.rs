@@ -74,7 +74,37 @@ pub(super) fn hbm_job(v: &crate::settings::ViewOptions) -> JobSpec {
     }
 }
 
+/// Chain `shard` of the `chains` of a bifurcation sweep of view settings
+/// `v` (the current state's, A's and a family member's alike).
+pub(super) fn bif_job(v: &crate::settings::ViewOptions, chains: u32, shard: u32) -> JobSpec {
+    JobSpec::Bif {
+        omega_from: v.omega_from,
+        omega_to: v.omega_to,
+        points: v.bif_points,
+        directions: v.bif_dir.name().to_string(),
+        chains,
+        shard,
+        run: RunOptions {
+            transient_periods: v.transient_periods,
+            record_periods: v.record_periods,
+        },
+    }
+}
+
 impl Controller {
+    /// The selected-Omega job of the current settings on `model` (the
+    /// current state's and a family member's alike).
+    pub(super) fn omega_job(&self, model: &Model) -> JobSpec {
+        let v = &self.settings.view;
+        JobSpec::Omega {
+            omega: v.omega,
+            mesh: self.settings.mesh_index(model),
+            run: self.run_options(v.record_periods),
+            samples_per_period: SAMPLES_PER_PERIOD,
+            max_order: MAX_ORDER,
+        }
+    }
+
     pub(super) fn post(&mut self, worker: usize, msg: &ToWorker) -> Vec<Effect> {
         let text = encode(msg);
         match self.workers.get_mut(worker) {
@@ -264,14 +294,7 @@ impl Controller {
     }
 
     fn start_omega(&mut self, model: &Model, params: &Params, now_ms: f64) -> Vec<Effect> {
-        let v = &self.settings.view;
-        let job = JobSpec::Omega {
-            omega: v.omega,
-            mesh: self.settings.mesh_index(model),
-            run: self.run_options(v.record_periods),
-            samples_per_period: SAMPLES_PER_PERIOD,
-            max_order: MAX_ORDER,
-        };
+        let job = self.omega_job(model);
         let id = self.begin(JobKind::Omega, 1, now_ms);
         let fx = self.post_shards(id, params, (1, false), |_| job.clone());
         self.preview_omega(model, id, now_ms);
@@ -345,18 +368,8 @@ impl Controller {
         pinned: bool,
     ) -> Vec<Effect> {
         let chains = chain_count(v.bif_points);
-        let run = RunOptions {
-            transient_periods: v.transient_periods,
-            record_periods: v.record_periods,
-        };
-        self.post_shards(id, params, (chains, pinned), |shard| JobSpec::Bif {
-            omega_from: v.omega_from,
-            omega_to: v.omega_to,
-            points: v.bif_points,
-            directions: v.bif_dir.name().to_string(),
-            chains,
-            shard,
-            run,
+        self.post_shards(id, params, (chains, pinned), |shard| {
+            bif_job(v, chains, shard)
         })
     }
 

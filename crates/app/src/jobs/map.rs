@@ -41,15 +41,7 @@ impl Job for MapJob {
             .map
             .advance_steps(SLICE_STEPS)
             .into_iter()
-            .map(|c| MapSample {
-                row: c.row,
-                column: c.column,
-                omega: c.omega,
-                value: c.value,
-                regime: c.impact.into(),
-                period: c.period,
-                error: c.error,
-            })
+            .map(MapSample::from)
             .collect();
         if !cells.is_empty() {
             out.push(FromWorker::MapCells { id: self.id, cells });

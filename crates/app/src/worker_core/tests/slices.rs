@@ -188,15 +188,7 @@ fn a_map_cell_pauses_for_a_new_omega_job_and_keeps_its_bits() {
     let want: Vec<MapSample> = map
         .advance(usize::MAX)
         .into_iter()
-        .map(|c| MapSample {
-            row: c.row,
-            column: c.column,
-            omega: c.omega,
-            value: c.value,
-            regime: c.impact.into(),
-            period: c.period,
-            error: c.error,
-        })
+        .map(MapSample::from)
         .collect();
     assert_eq!(want.len(), 4);
     assert_eq!(got, want);
