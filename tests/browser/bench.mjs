@@ -4,7 +4,7 @@
 // docs/browser-bench.md. Needs a release build in dist/:
 //
 //   scripts/setup.sh && source scripts/env.sh && trunk build --release --offline
-//   node tests/browser/bench.mjs [--repeats N] [--quick] [--map] [--pool-only]
+//   node tests/browser/bench.mjs [--repeats N] [--quick] [--map] [--pool-only] [--family-only]
 import fs from 'node:fs';
 import path from 'node:path';
 import zlib from 'node:zlib';
@@ -19,6 +19,9 @@ const MAP_ONLY = args.includes('--map-only');
 const MAP = MAP_ONLY || args.includes('--map');
 // --pool-only measures only the bifurcation sweep on 1 and 2 workers.
 const POOL_ONLY = args.includes('--pool-only');
+// --family-only measures only the main thread while a family of six draws
+// its 1000-period orbits (issue 15's case still over 100 ms).
+const FAMILY_ONLY = args.includes('--family-only');
 
 const median = (xs) => {
   const s = [...xs].sort((a, b) => a - b);
@@ -46,7 +49,7 @@ const h = await start();
 try {
   // First paint from a cold load: navigation start to the first drawn frame
   // of the frequency-response axes, and to its first computed points.
-  if (!MAP_ONLY && !POOL_ONLY) {
+  if (!MAP_ONLY && !POOL_ONLY && !FAMILY_ONLY) {
     const paint = [];
     const firstFr = [];
     for (let i = 0; i < REPEATS; i++) {
@@ -107,7 +110,7 @@ try {
   // and 2 workers (window.gearshockWorkers): the pool's scaling on this
   // 2-core machine. The two pool sizes alternate, so that the shared
   // machine's load falls on both alike.
-  if (!MAP_ONLY) {
+  if (!MAP_ONLY && !FAMILY_ONLY) {
     const points = QUICK ? 20 : 200;
     const reps = QUICK ? 1 : POOL_ONLY ? REPEATS : Math.min(REPEATS, 3);
     const total = { 1: [], 2: [] };
@@ -132,6 +135,32 @@ try {
     const ratio = median(total[1]) / median(total[2]);
     results.push({ what: 'bifurcation: speed-up of 2 workers over 1', median: ratio, unit: 'x', note: 'ratio of the medians', n: 1, ratio: true });
     console.error(`bifurcation speed-up 1 -> 2 workers: ${ratio.toFixed(2)}x`);
+  }
+
+  // A family of six at 1000 recorded periods, Fig. 6's Omega 0.84 (most
+  // orbits chaotic): the longest main-thread task and frame while the six
+  // results arrive and their small multiples are drawn.
+  if (FAMILY_ONLY) {
+    const longest = [];
+    const frame = [];
+    const slow = [];
+    for (let i = 0; i < (QUICK ? 1 : REPEATS); i++) {
+      const { page } = await open(h.browser, h.url, 'record_periods=1000&backlash_um=200&te_meshes=s1a&omega=0.84&family=te_um:0,10,20,30,40,50');
+      await waitStatus(page, (s) => s.first_draw_ms.every((t) => t > 0), 60000, 'first paint');
+      await watchMainThread(page);
+      const done = (s) => s.family?.members.length === 5 && s.omega_job.finished_ms && s.family.members.every((m) => m.omega_job.finished_ms);
+      const s0 = await waitStatus(page, done, 900000, 'the six results');
+      const last = Math.max(s0.omega_job.finished_ms, ...s0.family.members.map((m) => m.omega_job.finished_ms));
+      const s = await waitStatus(page, (s) => s.last_draw_ms[2] > last, 60000, 'the phase panels drawn');
+      const beat = await stopWatch(page);
+      longest.push(beat.long);
+      frame.push(s.max_frame_ms);
+      slow.push(Math.max(...beat.factors));
+      await page.close();
+    }
+    row('family of six at 1000 periods: longest main-thread task', longest, 'ms', 'from the first paint until the six orbits are drawn');
+    row('family of six at 1000 periods: longest frame (drawing)', frame, 'ms', '');
+    row('family of six at 1000 periods: main-thread slowdown meanwhile', slow, 'x', 'reference workload, see harness.mjs');
   }
 
   // Regime map: 100 x 40 cells x (300 + 100) periods, two workers (opt-in).

@@ -14,6 +14,9 @@ use web_sys::{CanvasRenderingContext2d, HtmlCanvasElement, Path2d};
 
 type Error = DrawingErrorKind<<CanvasBackend as DrawingBackend>::ErrorType>;
 
+/// The points from which a path is stroked as one `Path2D`.
+const LONG_PATH: usize = 32;
+
 /// A canvas backend whose text sizes come from `measureText`.
 pub(super) struct Canvas {
     inner: CanvasBackend,
@@ -74,8 +77,9 @@ impl DrawingBackend for Canvas {
 
     /// One `Path2D` from an SVG path string and one stroke: plotters-canvas
     /// makes a JavaScript call per point (`lineTo`), some hundreds of
-    /// thousands for a family's long chaotic orbits. Falls back to it if
-    /// the browser refuses the path string.
+    /// thousands for a family's long chaotic orbits. Paths under
+    /// [`LONG_PATH`] points, and any the browser refuses as a path string,
+    /// go the plotters-canvas way.
     fn draw_path<S: BackendStyle, I: IntoIterator<Item = BackendCoord>>(
         &mut self,
         path: I,
@@ -86,8 +90,9 @@ impl DrawingBackend for Canvas {
             return Ok(());
         }
         let pts: Vec<BackendCoord> = path.into_iter().collect();
-        if pts.is_empty() {
-            return Ok(());
+        // A short path (a grid line, a tick) costs fewer calls as it is.
+        if pts.len() < LONG_PATH {
+            return self.inner.draw_path(pts, style);
         }
         let Ok(p2d) = Path2d::new_with_path_string(&crate::plots::decimate::svg_path(&pts)) else {
             return self.inner.draw_path(pts, style);
