@@ -155,12 +155,12 @@ try {
       const beat = await stopWatch(page);
       longest.push(beat.long);
       frame.push(s.max_frame_ms);
-      slow.push(Math.max(...beat.factors));
+      slow.push(beat.longCpu);
       await page.close();
     }
-    row('family of six at 1000 periods: longest main-thread task', longest, 'ms', 'from the first paint until the six orbits are drawn');
+    row('family of six at 1000 periods: longest main-thread task (wall clock)', longest, 'ms', 'from the first paint until the six orbits are drawn');
+    row('family of six at 1000 periods: most main-thread CPU time in one task', slow, 'ms', 'the limit the tests assert is 100 ms (harness.mjs)');
     row('family of six at 1000 periods: longest frame (drawing)', frame, 'ms', '');
-    row('family of six at 1000 periods: main-thread slowdown meanwhile', slow, 'x', 'reference workload, see harness.mjs');
   }
 
   // Regime map: 100 x 40 cells x (300 + 100) periods, two workers (opt-in).
@@ -176,12 +176,12 @@ try {
       const beat = await stopWatch(page);
       total.push(s.map.finished_ms - s.map.started_ms);
       longest.push(beat.long);
-      slow.push(Math.max(...beat.factors));
+      slow.push(beat.longCpu);
       await page.close();
     }
     row('regime map: 100 x 40 cells x (300 + 100) periods, 2 workers', total, 'ms', 'backlash rows, Omega 0.1..2, default model');
-    row('regime map: longest main-thread task while it runs (0: none over 50 ms)', longest, 'ms', 'from the first paint on');
-    row('regime map: main-thread slowdown meanwhile (reference workload, see harness.mjs)', slow, 'x', 'the larger of before and after');
+    row('regime map: longest main-thread task while it runs, wall clock (0: none over 50 ms)', longest, 'ms', 'from the first paint on');
+    row('regime map: most main-thread CPU time in one such task', slow, 'ms', 'the limit the tests assert is 100 ms (harness.mjs)');
   }
 } finally {
   await h.close();

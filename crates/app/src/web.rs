@@ -76,6 +76,8 @@ struct Page {
     max_message_ms: f64,
     /// The longest animation frame's work (ms), for the tests.
     max_frame_ms: f64,
+    /// The animation frame (its time stamp) in which views were last drawn.
+    views_drawn_ts: f64,
     last_input_ms: f64,
     dragging: bool,
     /// Whether the screen is narrow (a phone): plots draw on fewer, larger
@@ -104,6 +106,44 @@ struct AnimState {
     set: Option<(solver::params::ModelParams, GearSet)>,
     /// What the last frame showed (for the tests' status).
     info: serde_json::Value,
+    /// The animation frame (its requestAnimationFrame time stamp) in which
+    /// the gear set was last drawn, and whether it gave its last frame up to
+    /// the views: see [`FrameTurn`].
+    drawn_ts: f64,
+    yielded: bool,
+}
+
+/// Who draws in an animation frame. The views and the gear set each have a
+/// requestAnimationFrame callback, and callbacks of one frame run in one
+/// main-thread task, followed by the browser's commit of every canvas they
+/// changed: a view (up to 30 ms with both workers busy) and the gear set
+/// (usually 1 ms, at times 20-50 ms) in one frame made tasks of 100-166 ms.
+/// So a frame draws one of them: the views go first (the gear set gives up
+/// a frame for them once, and draws in the next), and the views wait a
+/// frame when the gear set drew in this one.
+struct FrameTurn;
+
+impl FrameTurn {
+    /// Whether the gear set draws in frame `ts`: not in a frame the views
+    /// drew in, and not when the views wait to draw (once: the next frame
+    /// is the gear set's).
+    fn anim_draws(p: &mut Page, ts: f64) -> bool {
+        if p.views_drawn_ts == ts {
+            return false;
+        }
+        if p.frame_requested && p.redraw.pending() && !p.anim.yielded {
+            p.anim.yielded = true;
+            return false;
+        }
+        p.anim.yielded = false;
+        p.anim.drawn_ts = ts;
+        true
+    }
+
+    /// Whether the views draw in frame `ts`: not when the gear set drew in it.
+    fn views_draw(p: &Page, ts: f64) -> bool {
+        p.anim.drawn_ts != ts
+    }
 }
 
 fn now(window: &Window) -> f64 {
@@ -182,6 +222,7 @@ pub fn start_app() {
         redraw: Redraw::default(),
         max_message_ms: 0.0,
         max_frame_ms: 0.0,
+        views_drawn_ts: 0.0,
         last_input_ms: 0.0,
         dragging: false,
         narrow: is_narrow(&window),
@@ -289,12 +330,13 @@ fn request_frame(page: &Shared) {
         p.window.clone()
     };
     let page2 = page.clone();
-    let cb = Closure::once_into_js(move |_t: f64| frame(&page2));
+    let cb = Closure::once_into_js(move |ts: f64| frame(&page2, ts));
     check(window.request_animation_frame(cb.unchecked_ref()));
 }
 
-/// Once per animation frame: apply queued input, then redraw what changed.
-fn frame(page: &Shared) {
+/// Once per animation frame (`ts`: its time stamp): apply queued input,
+/// then redraw what changed.
+fn frame(page: &Shared, ts: f64) {
     let t_frame = now(&page.borrow().window);
     let effects = {
         let mut p = page.borrow_mut();
@@ -324,7 +366,7 @@ fn frame(page: &Shared) {
     };
     run_effects(page, effects);
     let mut p = page.borrow_mut();
-    draw_dirty(page, &mut p);
+    draw_dirty(page, &mut p, ts);
     let took = now(&p.window) - t_frame;
     p.max_frame_ms = p.max_frame_ms.max(took);
 }
@@ -335,7 +377,7 @@ fn mark_invalid(doc: &Document, key: &str, invalid: bool) {
     }
 }
 
-fn draw_dirty(page: &Shared, p: &mut Page) {
+fn draw_dirty(page: &Shared, p: &mut Page, ts: f64) {
     let t0 = now(&p.window);
     let d = std::mem::take(&mut p.ctl.dirty);
     p.redraw.mark(&d);
@@ -343,7 +385,12 @@ fn draw_dirty(page: &Shared, p: &mut Page) {
     // text in the page (a span it adds and removes), which lays out the
     // whole page again whenever text changed since the last measure.
     let mut writes = Vec::new();
-    for v in DRAW_ORDER {
+    let order = if FrameTurn::views_draw(p, ts) {
+        DRAW_ORDER.as_slice()
+    } else {
+        &[]
+    };
+    for &v in order {
         let start = now(&p.window);
         match p.redraw.decide(v, t0, start, Some(p.ctl.view_status(v))) {
             Decision::Stop => break,
@@ -352,6 +399,7 @@ fn draw_dirty(page: &Shared, p: &mut Page) {
         }
         let end = now(&p.window);
         p.redraw.drawn(v, start, end);
+        p.views_drawn_ts = ts;
     }
     for (id, attr, value) in writes {
         match attr {
@@ -393,7 +441,7 @@ fn draw_dirty(page: &Shared, p: &mut Page) {
     if p.redraw.pending() {
         p.frame_requested = false;
         let page2 = page.clone();
-        let cb = Closure::once_into_js(move |_t: f64| frame(&page2));
+        let cb = Closure::once_into_js(move |ts: f64| frame(&page2, ts));
         p.frame_requested = p.window.request_animation_frame(cb.unchecked_ref()).is_ok();
     }
 }

@@ -156,6 +156,9 @@ pub(super) fn anim_tick(page: &Shared, ts: f64) {
     if !(p.anim.dirty || (p.anim.clock.playing && in_view)) {
         return;
     }
+    if !super::FrameTurn::anim_draws(&mut p, ts) {
+        return;
+    }
     p.anim.dirty = false;
     draw_anim(&mut p);
     draw_time_cursor(&p);
