@@ -5,8 +5,8 @@
 //! picture: a cloud of equal dots one per pixel, a polyline each pixel
 //! segment once, vertical lines from a common floor the tallest per column.
 
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 use std::collections::hash_map::Entry;
-use std::collections::{HashMap, HashSet};
 
 /// A pixel position.
 pub type Px = (i32, i32);
@@ -14,7 +14,7 @@ pub type Px = (i32, i32);
 /// The first point of `points` on each pixel, in their order: a dot drawn
 /// at a pixel looks the same however many times it is drawn there.
 pub fn one_per_pixel<P: Copy>(points: impl IntoIterator<Item = P>, px: impl Fn(P) -> Px) -> Vec<P> {
-    let mut seen = HashSet::new();
+    let mut seen = HashSet::default();
     points.into_iter().filter(|&p| seen.insert(px(p))).collect()
 }
 
@@ -33,7 +33,7 @@ pub fn polyline_runs<P: Copy>(
     points: impl IntoIterator<Item = P>,
     px: impl Fn(P) -> Px,
 ) -> Vec<Vec<P>> {
-    let mut seen: HashSet<(Px, Px)> = HashSet::new();
+    let mut seen: HashSet<(Px, Px)> = HashSet::default();
     let mut runs = Vec::new();
     let mut run: Vec<P> = Vec::new();
     // The points of the repeated segments since the last new one.
@@ -78,7 +78,7 @@ pub fn polyline_runs<P: Copy>(
 /// column cover the shorter ones.
 pub fn tallest_per_column(lines: &[(f64, f64)], column: impl Fn(f64) -> i32) -> Vec<(f64, f64)> {
     let mut out: Vec<(f64, f64)> = Vec::new();
-    let mut at: HashMap<i32, usize> = HashMap::new();
+    let mut at: HashMap<i32, usize> = HashMap::default();
     for &(x, h) in lines {
         match at.entry(column(x)) {
             Entry::Occupied(e) => {
@@ -138,7 +138,7 @@ mod tests {
 
     /// The pixel segments a polyline draws (zero-length ones drawn as nothing).
     fn segments(runs: &[Vec<(f64, f64)>]) -> HashSet<(Px, Px)> {
-        let mut out = HashSet::new();
+        let mut out = HashSet::default();
         for r in runs {
             for w in r.windows(2) {
                 let (a, b) = (to_px(w[0]), to_px(w[1]));

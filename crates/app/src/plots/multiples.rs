@@ -26,6 +26,29 @@ pub fn family_panels_size(n: usize) -> (u32, u32) {
     (WIDTH, if n > FAMILY_COLS { 680 } else { HEIGHT })
 }
 
+/// The most orbit samples a family's phase portraits draw in all: about
+/// 250 periods of each of six members at 64 samples a period. Six chaotic
+/// orbits of 1000 periods (64 000 samples each, hardly any two on the same
+/// pixel segment of a small panel) took 130 ms of main-thread CPU time to
+/// decimate and stroke in one frame; at panel size the last 250 periods
+/// already fill the attractor's picture, and the Poincaré dots of every
+/// recorded period are drawn.
+pub const PANEL_ORBIT_SAMPLES: usize = 96_000;
+
+/// The first sample of the orbit a phase panel draws, and the periods
+/// from there to the end, when `n` panels share [`PANEL_ORBIT_SAMPLES`]:
+/// the last whole periods that fit (at least one), or the whole record.
+pub fn panel_orbit_tail(r: &OmegaResult, n: usize) -> (usize, usize) {
+    let len = r.x_um.len().min(r.xdot_m_s.len());
+    let spp = (r.samples_per_period as usize).max(1);
+    let budget = PANEL_ORBIT_SAMPLES / n.max(1);
+    if len <= budget {
+        return (0, len / spp);
+    }
+    let periods = (budget / spp).max(1).min(len / spp);
+    (len - periods * spp, periods)
+}
+
 /// The ±b lines of a panel over Ω.
 const GUIDE: RGBColor = RGBColor(90, 90, 90);
 
@@ -297,11 +320,24 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
     // A period found before the transient settled is starred in the
     // panel's title (the title has no room for the words) and said in the key.
     let unsettled = |r: &OmegaResult| r.period.is_some_and(|p| p > 1) && !r.settled;
-    let key = if panels.iter().any(|p| p.data.as_ref().is_ok_and(unsettled)) {
-        format!("{key}; *: still settling, more transient periods may show another period")
-    } else {
-        key.to_string()
-    };
+    let mut key = key.to_string();
+    // The orbits cut to the panels' budget, in words: "the last 250 of 1000
+    // recorded periods" (the largest of the panels' cuts).
+    let n = panels.len();
+    let cut = panels
+        .iter()
+        .filter_map(|p| p.data.as_ref().ok())
+        .filter(|r| panel_orbit_tail(r, n).0 > 0)
+        .map(|r| (panel_orbit_tail(r, n).1, r.record_periods))
+        .max_by_key(|&(shown, _)| shown);
+    if let (false, Some((shown, recorded))) = (poincare, cut) {
+        key = format!(
+            "Line: the orbit's last {shown} of {recorded} recorded periods; red dots: the Poincaré points of all of them; dashed: ±b"
+        );
+    }
+    if panels.iter().any(|p| p.data.as_ref().is_ok_and(unsettled)) {
+        key.push_str("; *: still settling, more transient periods may show another period");
+    }
     let (areas, cols) = layout(root, &title, &key, panels.len())?;
     for (k, (area, p)) in areas.iter().zip(panels).enumerate() {
         let r = match &p.data {
@@ -328,7 +364,8 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
         }
         let color = family_color(k);
         if !poincare {
-            super::omega::draw_orbit(&mut chart, r, color)?;
+            let (from, _) = panel_orbit_tail(r, n);
+            super::omega::draw_orbit(&mut chart, r, from, color)?;
         }
         let (dot, size) = if poincare { (color, 3) } else { (CURSOR, 3) };
         let dots = super::omega::poincare_dots(r, |p| chart.backend_coord(&p));

@@ -56,10 +56,15 @@ fn orbit_style(color: RGBColor) -> ShapeStyle {
 pub(super) fn draw_orbit<DB: DrawingBackend>(
     chart: &mut Chart<'_, DB>,
     r: &OmegaResult,
+    from_sample: usize,
     color: RGBColor,
 ) -> Res<()> {
     let runs = decimate::polyline_runs(
-        r.x_um.iter().copied().zip(r.xdot_m_s.iter().copied()),
+        r.x_um
+            .iter()
+            .copied()
+            .zip(r.xdot_m_s.iter().copied())
+            .skip(from_sample),
         |p| chart.backend_coord(&p),
     );
     let style = orbit_style(color);
@@ -119,7 +124,7 @@ pub fn draw_phase_with<DB: DrawingBackend>(
     let area = chart_area(root, &plan);
     let what = ("Phase portrait", "x = δ − e (µm)");
     let mut chart = phase_plane(&area, r, what, status, (x, y))?;
-    draw_orbit(&mut chart, r, ORBIT)?;
+    draw_orbit(&mut chart, r, 0, ORBIT)?;
     let dots = poincare_dots(r, |p| chart.backend_coord(&p));
     chart
         .draw_series(dots.into_iter().map(|p| Circle::new(p, 4, CURSOR.filled())))

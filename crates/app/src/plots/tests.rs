@@ -572,3 +572,73 @@ fn every_key_is_under_its_chart_never_over_the_data() {
         None,
     );
 }
+
+/// The polyline points of an SVG drawing (plotters' `<polyline points=...>`).
+fn polyline_points(svg: &str) -> usize {
+    svg.split("<polyline")
+        .skip(1)
+        .filter_map(|p| p.split("points=\"").nth(1))
+        .filter_map(|p| p.split('"').next())
+        .map(|p| p.split_whitespace().count())
+        .sum()
+}
+
+/// A family's phase portraits share a budget of drawn samples: six orbits
+/// of 1000 periods draw their last 250 periods each (the key says so);
+/// a short record is drawn whole and the key says nothing of a cut.
+#[test]
+fn family_phase_panels_draw_the_last_periods_within_a_budget() {
+    use crate::views::family::Panel;
+    use std::f64::consts::TAU;
+    // Quasi-periodic: no period retraces another's pixels.
+    let long = |k: usize| {
+        let mut r = result();
+        let n = 64 * 1000;
+        r.record_periods = 1000;
+        let t = |i: usize| i as f64 / 64.0 * TAU;
+        r.x_um = (0..n)
+            .map(|i| 110.0 + 30.0 * t(i).sin() + 12.0 * (0.618_034 * t(i)).sin() + k as f64)
+            .collect();
+        r.xdot_m_s = (0..n)
+            .map(|i| 0.5 * t(i).cos() + 0.2 * (0.414_214 * t(i)).cos())
+            .collect();
+        r
+    };
+    assert_eq!(
+        multiples::panel_orbit_tail(&long(0), 6),
+        (64_000 - 250 * 64, 250)
+    );
+    assert_eq!(multiples::panel_orbit_tail(&long(0), 1), (0, 1000));
+    let panels: Vec<Panel<OmegaResult>> = (0..6)
+        .map(|k| Panel {
+            title: format!("({k})"),
+            data: Ok(long(k)),
+        })
+        .collect();
+    let size = multiples::family_panels_size(6);
+    let s = svg_sized(size, |root| {
+        multiples::draw_phase_panels(root, &panels, false, "")
+    });
+    assert!(s.contains("last 250 of 1000 recorded periods"), "key");
+    let drawn = polyline_points(&s);
+    assert!(
+        (10_000..=multiples::PANEL_ORBIT_SAMPLES + 2_000).contains(&drawn),
+        "{drawn} polyline points"
+    );
+    // The Poincaré sections draw every period's dot and cut nothing.
+    let s = svg_sized(size, |root| {
+        multiples::draw_phase_panels(root, &panels, true, "")
+    });
+    assert!(!s.contains("recorded periods"));
+    let short: Vec<Panel<OmegaResult>> = (0..6)
+        .map(|k| Panel {
+            title: format!("({k})"),
+            data: Ok(result()),
+        })
+        .collect();
+    assert_eq!(multiples::panel_orbit_tail(&result(), 6), (0, 20));
+    let s = svg_sized(size, |root| {
+        multiples::draw_phase_panels(root, &short, false, "")
+    });
+    assert!(!s.contains("recorded periods"), "no cut, no words on one");
+}
