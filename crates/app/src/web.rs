@@ -18,7 +18,7 @@ use crate::controls::{controls, field_text, shown_for, Group, Target, Widget};
 use crate::gearset::{AnimClock, GearSet};
 use crate::plots::{self, PlotFrame, PointGroup};
 use crate::presets::PRESETS;
-use crate::views::redraw::{Decision, Redraw};
+use crate::views::redraw::{Decision, FrameTurn, Redraw};
 use crate::views::{ExportKind, ViewId, DRAW_ORDER, VIEWS};
 use plotters::coord::Shift;
 use plotters::prelude::{DrawingArea, IntoDrawingArea};
@@ -76,8 +76,8 @@ struct Page {
     max_message_ms: f64,
     /// The longest animation frame's work (ms), for the tests.
     max_frame_ms: f64,
-    /// The animation frame (its time stamp) in which views were last drawn.
-    views_drawn_ts: f64,
+    /// Whether the views or the gear set draw in an animation frame.
+    turn: FrameTurn,
     last_input_ms: f64,
     dragging: bool,
     /// Whether the screen is narrow (a phone): plots draw on fewer, larger
@@ -106,44 +106,6 @@ struct AnimState {
     set: Option<(solver::params::ModelParams, GearSet)>,
     /// What the last frame showed (for the tests' status).
     info: serde_json::Value,
-    /// The animation frame (its requestAnimationFrame time stamp) in which
-    /// the gear set was last drawn, and whether it gave its last frame up to
-    /// the views: see [`FrameTurn`].
-    drawn_ts: f64,
-    yielded: bool,
-}
-
-/// Who draws in an animation frame. The views and the gear set each have a
-/// requestAnimationFrame callback, and callbacks of one frame run in one
-/// main-thread task, followed by the browser's commit of every canvas they
-/// changed: a view (up to 30 ms with both workers busy) and the gear set
-/// (usually 1 ms, at times 20-50 ms) in one frame made tasks of 100-166 ms.
-/// So a frame draws one of them: the views go first (the gear set gives up
-/// a frame for them once, and draws in the next), and the views wait a
-/// frame when the gear set drew in this one.
-struct FrameTurn;
-
-impl FrameTurn {
-    /// Whether the gear set draws in frame `ts`: not in a frame the views
-    /// drew in, and not when the views wait to draw (once: the next frame
-    /// is the gear set's).
-    fn anim_draws(p: &mut Page, ts: f64) -> bool {
-        if p.views_drawn_ts == ts {
-            return false;
-        }
-        if p.frame_requested && p.redraw.pending() && !p.anim.yielded {
-            p.anim.yielded = true;
-            return false;
-        }
-        p.anim.yielded = false;
-        p.anim.drawn_ts = ts;
-        true
-    }
-
-    /// Whether the views draw in frame `ts`: not when the gear set drew in it.
-    fn views_draw(p: &Page, ts: f64) -> bool {
-        p.anim.drawn_ts != ts
-    }
 }
 
 fn now(window: &Window) -> f64 {
@@ -222,7 +184,7 @@ pub fn start_app() {
         redraw: Redraw::default(),
         max_message_ms: 0.0,
         max_frame_ms: 0.0,
-        views_drawn_ts: 0.0,
+        turn: FrameTurn::default(),
         last_input_ms: 0.0,
         dragging: false,
         narrow: is_narrow(&window),
@@ -385,7 +347,7 @@ fn draw_dirty(page: &Shared, p: &mut Page, ts: f64) {
     // text in the page (a span it adds and removes), which lays out the
     // whole page again whenever text changed since the last measure.
     let mut writes = Vec::new();
-    let order = if FrameTurn::views_draw(p, ts) {
+    let order = if p.turn.views_draw(ts) {
         DRAW_ORDER.as_slice()
     } else {
         &[]
@@ -399,7 +361,7 @@ fn draw_dirty(page: &Shared, p: &mut Page, ts: f64) {
         }
         let end = now(&p.window);
         p.redraw.drawn(v, start, end);
-        p.views_drawn_ts = ts;
+        p.turn.views_drew(ts);
     }
     for (id, attr, value) in writes {
         match attr {

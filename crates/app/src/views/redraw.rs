@@ -116,6 +116,50 @@ impl Redraw {
     }
 }
 
+/// Who draws in an animation frame: the views or the gear set, not both.
+/// Each has a requestAnimationFrame callback, and the callbacks of one
+/// frame run in one main-thread task, followed by the browser's commit of
+/// every canvas they changed: a view (up to 30 ms with both workers busy)
+/// and the gear set (usually 1 ms, at times 20-50 ms) in one frame made
+/// tasks of 100-166 ms. The views go first: the gear set gives a frame up
+/// to views waiting to draw, once, and draws in the next; the views wait a
+/// frame when the gear set drew in this one. Frames are named by their
+/// time stamp (the one every callback of a frame receives).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct FrameTurn {
+    views_ts: f64,
+    anim_ts: f64,
+    yielded: bool,
+}
+
+impl FrameTurn {
+    /// Whether the gear set draws in frame `ts` (and if so, notes it):
+    /// not in a frame the views drew in, and not when `views_waiting`
+    /// (a frame is requested for views that need drawing), once.
+    pub fn anim_draws(&mut self, ts: f64, views_waiting: bool) -> bool {
+        if self.views_ts == ts {
+            return false;
+        }
+        if views_waiting && !self.yielded {
+            self.yielded = true;
+            return false;
+        }
+        self.yielded = false;
+        self.anim_ts = ts;
+        true
+    }
+
+    /// Whether the views may draw in frame `ts`: not when the gear set drew in it.
+    pub fn views_draw(&self, ts: f64) -> bool {
+        self.anim_ts != ts
+    }
+
+    /// Notes that views drew in frame `ts`.
+    pub fn views_drew(&mut self, ts: f64) {
+        self.views_ts = ts;
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -229,5 +273,36 @@ mod tests {
         assert!(
             plan(&mut r, 400.0, 1.0, |v| (v == ViewId::Bif).then_some(&s2)).contains(&ViewId::Bif)
         );
+    }
+
+    /// One drawer per frame, whichever callback runs first, and neither
+    /// starves: with views waiting in every frame the gear set still draws
+    /// every other frame.
+    #[test]
+    fn a_frame_draws_the_views_or_the_gear_set() {
+        // The views' callback first: they draw, the gear set waits.
+        let mut t = FrameTurn::default();
+        assert!(t.views_draw(16.0));
+        t.views_drew(16.0);
+        assert!(!t.anim_draws(16.0, false));
+        assert!(t.anim_draws(33.0, false));
+        // The gear set first, nothing waiting: it draws, the views wait.
+        assert!(!t.views_draw(33.0));
+        assert!(t.views_draw(50.0));
+        // Views waiting: the gear set yields once, then draws.
+        let mut t = FrameTurn::default();
+        let mut anim = 0;
+        let mut views = 0;
+        for k in 1..=10 {
+            let ts = 16.0 * f64::from(k);
+            if t.anim_draws(ts, true) {
+                anim += 1;
+            }
+            if t.views_draw(ts) {
+                t.views_drew(ts);
+                views += 1;
+            }
+        }
+        assert_eq!((anim, views), (5, 5));
     }
 }

@@ -156,7 +156,8 @@ pub(super) fn anim_tick(page: &Shared, ts: f64) {
     if !(p.anim.dirty || (p.anim.clock.playing && in_view)) {
         return;
     }
-    if !super::FrameTurn::anim_draws(&mut p, ts) {
+    let views_waiting = p.frame_requested && p.redraw.pending();
+    if !p.turn.anim_draws(ts, views_waiting) {
         return;
     }
     p.anim.dirty = false;
