@@ -82,7 +82,10 @@ export async function status(page) {
   return JSON.parse(await page.evaluate(() => window.gearshockStatus()));
 }
 
-/** Waits until `pred(status)` holds, polling. */
+/**
+ * Waits until `pred(status)` holds, reading the status every 50 ms (the
+ * poll's interval: what is waited for is the state, never a time).
+ */
 export async function waitStatus(page, pred, timeoutMs = 60000, what = 'condition') {
   const t0 = Date.now();
   for (;;) {
@@ -141,9 +144,11 @@ const watches = new WeakMap();
 export async function watchMainThread(page) {
   const cdp = await page.context().newCDPSession(page);
   const events = [];
-  const KEEP = new Set(['RunTask', 'thread_name', 'TracingStartedInBrowser']);
+  // Only what `stopWatch` reads: tasks over 50 ms (of every process: the
+  // page's renderer is known at the end), thread names, the traced page.
+  const keep = (x) => (x.name === 'RunTask' ? x.dur > 50000 : x.name === 'thread_name' || x.name === 'TracingStartedInBrowser');
   cdp.on('Tracing.dataCollected', (e) => {
-    for (const x of e.value) if (KEEP.has(x.name)) events.push(x);
+    for (const x of e.value) if (keep(x)) events.push(x);
   });
   const complete = new Promise((resolve) => cdp.once('Tracing.tracingComplete', resolve));
   await cdp.send('Tracing.start', { categories: 'disabled-by-default-devtools.timeline', transferMode: 'ReportEvents' });
