@@ -3,7 +3,7 @@
 // the A/B comparison. Small grids keep the suite quick.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { start, open, status, waitStatus, canvasStats, shot, watchMainThread, waitWatched, stopWatch, watchReport } from './harness.mjs';
+import { start, open, status, waitStatus, waitText, canvasStats, shot, watchMainThread, waitWatched, stopWatch, watchReport } from './harness.mjs';
 
 const QUICK = 'bif_points=8&transient_periods=120&record_periods=40&fr_points=150';
 
@@ -204,14 +204,13 @@ test('the phasing preset compares in-phase (A) with sequential (B) and gives the
   await page.selectOption('#preset', 'phasing5');
   const s = await waitStatus(page, (s) => s.pinned && s.omega_job.finished_ms && s.query.includes('phasing=sequential'), 60000, 'the phasing preset');
   assert.deepEqual(s.ab_labels, ['mesh phasing in-phase', 'mesh phasing sequential']);
-  const summary = await page.textContent('#summary-expert');
-  assert.match(summary, /Planet phasing \(sequential, N = 5\)/);
+  const summary = await waitText(page, '#summary-expert', /Planet phasing \(sequential, N = 5\)/);
   assert.match(summary, /s1a 0\.00\/0\.00\/0\.00\/0\.00\/1\.00\/0\.00/);
   assert.match(summary, /orders 1, 2, 3, 4, 6 cancel in every kind/);
   assert.match(summary, /Response of s1a1 at orders 1–4: [0-9.]+, [0-9.]+, [0-9.]+, [0-9.]+ µm/);
   // The solver's geometry warnings reach the page: five pairs clash.
   assert.match(summary, /Model warnings: .*planets = 5/);
-  assert.match(await page.textContent('#preset-note'), /Parker & Lin/);
+  await waitText(page, '#preset-note', /Parker & Lin/);
   await waitStatus(page, (s) => s.fr.finished_ms && s.pinned.fr.finished_ms, 60000, 'both branches');
   await shot(page.locator('#view-fr'), '18-phasing-fr');
   await shot(page.locator('#summary'), '19-phasing-summary');

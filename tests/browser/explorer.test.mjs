@@ -4,7 +4,7 @@
 // tests/browser/screenshots/ (git-ignored) for a human to look at.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { start, open, status, waitStatus, canvasStats, shot, watchMainThread, waitWatched, stopWatch, watchReport } from './harness.mjs';
+import { start, open, status, waitStatus, waitText, canvasStats, shot, watchMainThread, waitWatched, stopWatch, watchReport } from './harness.mjs';
 
 // Small grids keep the suite quick; the bifurcation test uses full periods.
 // The frequency response keeps its defaults (150 nominal points, H = 5):
@@ -33,18 +33,17 @@ test('the page loads without console errors and draws every canvas', async () =>
   assert.equal(s.fr.error, null);
   assert.equal(s.fr_partial, null);
   assert.ok(s.fr_branch_points > 20, `${s.fr_branch_points} branch points`);
-  assert.match(await page.textContent('#note-fr'), /Method: harmonic balance, H = 5, exact/);
+  await waitText(page, '#note-fr', /Method: harmonic balance, H = 5, exact/);
   for (const id of CANVASES) {
     const st = await canvasStats(page, `canvas-${id}`);
     assert.ok(st.ink > st.total * 0.02, `canvas-${id} looks blank (${st.ink} of ${st.total} pixels drawn)`);
   }
   // The summary names the regime and period; the schematic marks the plotted mesh.
   // Two sentences for students, the figures for experts behind a disclosure.
-  const summary = await page.textContent('#summary');
+  const summary = await waitText(page, '#summary', /Dynamic factor [\d.]+: the largest tooth force is/);
   assert.match(summary, /impact|no contact/);
-  assert.match(summary, /Dynamic factor [\d.]+: the largest tooth force is/);
-  assert.match(await page.textContent('#summary-expert'), /Natural frequencies in range/);
-  assert.equal(await page.getAttribute('#mesh-s1a1', 'class'), 'mesh selected');
+  await waitText(page, '#summary-expert', /Natural frequencies in range/);
+  await waitText(page, '#mesh-s1a1', /^mesh selected$/, { attr: 'class' });
   await shot(page, '01-loaded');
   assert.deepEqual(errors, []);
   await page.close();
@@ -97,8 +96,7 @@ test('a slider change previews the selected-Omega views at once, then the full s
   await shot(page.locator('#view-phase'), '03a-phase-preview');
   const s = await waitStatus(page, (s) => s.omega_job.finished_ms && s.omega_job.started_ms >= t0, 90000, 'the full run');
   assert.ok(s.omega_job.finished_ms > sp.omega_job.preview_ms);
-  const summary = await page.textContent('#summary-expert');
-  assert.ok(!summary.startsWith('Preview'), summary);
+  await waitText(page, '#summary-expert', /^Preview/, { not: true });
   assert.deepEqual(errors, []);
   await page.close();
 });
@@ -225,8 +223,7 @@ test('a figure preset loads its first member and says what the paper shows', asy
   const { page, errors } = await open(h.browser, h.url, QUICK);
   await page.selectOption('#preset', 'fig8');
   await page.waitForFunction(() => location.search.includes('backlash_um=50'));
-  const note = await page.textContent('#preset-note');
-  assert.match(note, /The paper shows/);
+  const note = await waitText(page, '#preset-note', /The paper shows/);
   assert.match(note, /gearshock assumes/);
   assert.equal(await page.inputValue('#num-backlash_um'), '50');
   assert.equal(await page.inputValue('#num-te_um'), '20');
@@ -306,7 +303,7 @@ test('the frequency response is the harmonic-balance branch at the default setti
   assert.equal(d.compared + d.off_branch, 12);
   assert.ok(d.compared > 0 && typeof d.max_um === 'number');
   console.log(`# time-integration overlay: 12 points; ${d.compared} under a stable stretch of the branch, largest distance ${d.max_um.toFixed(2)} um; ${d.off_branch} where the branch is unstable or absent`);
-  assert.match(await o.page.textContent('#note-fr'), /Hollow dots: the actual response, from time integration \(upward sweep\)/);
+  await waitText(o.page, '#note-fr', /Hollow dots: the actual response, from time integration \(upward sweep\)/);
   await shot(o.page.locator('#view-fr'), '09-fr-hbm-with-time-integration');
   assert.deepEqual(errors, []);
   assert.deepEqual(o.errors, []);

@@ -4,7 +4,7 @@
 // round trip and bad family input. Small grids keep the suite quick.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { start, open, waitStatus, canvasStats, shot } from './harness.mjs';
+import { start, open, waitStatus, waitText, canvasStats, shot } from './harness.mjs';
 
 const QUICK = 'bif_points=6&transient_periods=120&record_periods=30&fr_points=120&lyap_points=0&map_omega_points=2&map_value_points=1&bif_dir=up';
 
@@ -87,7 +87,7 @@ test('the Fig. 5 preset shows three phase portraits and three Poincaré sections
   assert.match(s.query, /omega=0\.5/);
   for (const m of s.family.members) assert.equal(m.omega_job.error, null, JSON.stringify(m));
   // The preset's note no longer says only the first member is shown.
-  assert.doesNotMatch(await page.textContent('#preset-note'), /first curve or panel/);
+  await waitText(page, '#preset-note', /first curve or panel/, { not: true });
   for (const v of ['phase', 'poincare']) {
     await page.locator(`#view-${v}`).scrollIntoViewIfNeeded();
     assert.ok((await canvasStats(page, `canvas-${v}`)).ink > 3000, v);
@@ -133,7 +133,7 @@ test('the Fig. 2 preset link shows its four mesh panels at once, every TE curve 
     assert.ok(label.includes(m), `${m} in ${label}`);
   }
   assert.equal(await page.getAttribute('#canvas-fr', 'height'), '680');
-  assert.match(await page.textContent('#note-fr'), /one panel per mesh/);
+  await waitText(page, '#note-fr', /one panel per mesh/);
   assert.ok((await canvasStats(page, 'canvas-fr')).ink > 8000);
   await page.locator('#view-fr').scrollIntoViewIfNeeded();
   await shot(page.locator('#view-fr'), '35-fig2-fr-panels');

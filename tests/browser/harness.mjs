@@ -98,6 +98,34 @@ export async function waitStatus(page, pred, timeoutMs = 60000, what = 'conditio
   }
 }
 
+/**
+ * Waits until the text of the element `selector` (or its attribute `attr`)
+ * matches `re` (with `not`, until it no longer does) and returns it. The
+ * page writes its text in the animation frame after a result arrives, so
+ * a test that waited for the status then reads the text waits for it too.
+ */
+export async function waitText(page, selector, re, { not = false, attr = null, timeoutMs = 30000 } = {}) {
+  const read = () =>
+    page.evaluate(({ selector, attr }) => {
+      const e = document.querySelector(selector);
+      return e ? (attr ? e.getAttribute(attr) ?? '' : e.textContent) : null;
+    }, { selector, attr });
+  try {
+    await page.waitForFunction(
+      ({ selector, src, flags, not, attr }) => {
+        const e = document.querySelector(selector);
+        const t = e ? (attr ? e.getAttribute(attr) ?? '' : e.textContent) : null;
+        return t !== null && new RegExp(src, flags).test(t) !== not;
+      },
+      { selector, src: re.source, flags: re.flags, not, attr },
+      { timeout: timeoutMs },
+    );
+  } catch {
+    throw new Error(`${selector}${attr ? ` [${attr}]` : ''} did not ${not ? 'stop matching' : 'match'} ${re} within ${timeoutMs} ms; it reads: ${await read()}`);
+  }
+  return read();
+}
+
 /** Non-background pixel count of a canvas and a cheap hash of its pixels. */
 export async function canvasStats(page, id) {
   return page.evaluate((id) => {
