@@ -423,8 +423,16 @@ fn draw_view(p: &mut Page, v: ViewId) -> Vec<DomWrite> {
     let Some(cv) = canvas(&p.doc, v) else {
         return Vec::new();
     };
-    // The frequency response's mesh panels take a taller canvas.
-    let (w, h) = screen_size(p.ctl.canvas_size(v), v == ViewId::Fr, p.narrow);
+    // The frequency response's view model, built once for its size, note
+    // and plot.
+    let fr = (v == ViewId::Fr).then(|| p.ctl.fr_view());
+    // The frequency response's mesh panels take a taller canvas, and so
+    // does a long key under one frequency response.
+    let (w, h) = screen_size(p.ctl.base_canvas_size(v), v == ViewId::Fr, p.narrow);
+    let h = match (&fr, &p.ctl.panels) {
+        (Some(fr), None) => plots::fr_height(fr, (w, h)),
+        _ => h,
+    };
     if (cv.width(), cv.height()) != (w, h) {
         cv.set_width(w);
         cv.set_height(h);
@@ -435,8 +443,6 @@ fn draw_view(p: &mut Page, v: ViewId) -> Vec<DomWrite> {
     let root = b.into_drawing_area();
     let mut writes = Vec::new();
     let note = |text: String| (format!("note-{}", v.key()), None, text);
-    // The frequency response's view model, built once for its note and plot.
-    let fr = (v == ViewId::Fr).then(|| p.ctl.fr_view());
     if let Some(fr) = &fr {
         writes.push(note(match p.ctl.panels {
             Some(_) => crate::views::fr::fr_panels_note(fr),

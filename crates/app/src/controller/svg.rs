@@ -28,10 +28,21 @@ pub enum SvgError {
 }
 
 impl Controller {
-    /// A view's drawing size now: [`view_size`], except the frequency
-    /// response's mesh panels and a large family's small multiples, which
-    /// take a taller canvas.
+    /// A view's drawing size now: [`Self::base_canvas_size`], the frequency
+    /// response taller where its key is long ([`plots::fr_height`]).
     pub fn canvas_size(&self, view: ViewId) -> (u32, u32) {
+        let size = self.base_canvas_size(view);
+        if view == ViewId::Fr && self.panels.is_none() {
+            (size.0, plots::fr_height(&self.fr_view(), size))
+        } else {
+            size
+        }
+    }
+
+    /// A view's drawing size before its key is laid out: [`view_size`],
+    /// except the frequency response's mesh panels and a large family's
+    /// small multiples, which take a taller canvas.
+    pub fn base_canvas_size(&self, view: ViewId) -> (u32, u32) {
         let family = self.family.as_ref().map(|f| f.members.len() + 1);
         match (&self.panels, family, view) {
             (Some(p), _, ViewId::Fr) => plots::multiples::fr_panels_size(p.len()),

@@ -5,6 +5,41 @@ use super::*;
 use crate::views::fr::{FrBranch, FrCurvePoint, FrMarkerKind, FrView};
 use crate::views::unstable::{strip_from_overlay, unstable_ranges, unstable_sentence};
 
+/// The least height (pixels) of the frequency response's chart above its
+/// key, by [`key_height_estimate`]: what the ordinary 400-pixel canvas
+/// leaves above the key of one branch with its markers, the time-
+/// integration dots and the sentence on unstable ranges (a plot about 190
+/// pixels high). A comparison's key (two branches, two sets of contact
+/// lines) takes three or four rows more, which left its plot 155 pixels
+/// high; the canvas grows instead.
+pub const FR_MIN_CHART: u32 = 270;
+
+/// The frequency response's canvas height for `size` (width, ordinary
+/// height): taller where its key would leave the chart less than
+/// [`FR_MIN_CHART`] pixels.
+pub fn fr_height(v: &FrView, (w, h): (u32, u32)) -> u32 {
+    let items = fr_key(v, fr_y_range(v));
+    let lines = fr_lines(v, line_chars(w)).len();
+    let key = key_height_estimate(&items, lines, w).max(0) as u32;
+    h.max(FR_MIN_CHART + key)
+}
+
+/// The frequency response's y range: the data in the Ω range and the
+/// contact lines asked for (the key is under the chart, so the axes fit
+/// the data alone).
+fn fr_y_range(v: &FrView) -> (f64, f64) {
+    let in_range = |o: f64| o >= v.omega_from && o <= v.omega_to;
+    let all = v
+        .branches
+        .iter()
+        .flat_map(|b| b.points.iter())
+        .chain(v.overlay.iter())
+        .filter(|p| in_range(p.omega))
+        .flat_map(|p| [p.max_um, p.min_um]);
+    let extra = contact_levels(&v.backlash_um, &v.pinned_backlash_um, v.whole_clearance);
+    padded_range(all, &extra, 20.0)
+}
+
 /// View 1: the frequency response (harmonic-balance branch, stable solid,
 /// unstable dashed, bifurcation markers, optional time-integration dots).
 pub fn draw_fr<DB: DrawingBackend>(
@@ -15,16 +50,7 @@ pub fn draw_fr<DB: DrawingBackend>(
     root.fill(&WHITE).map_err(err)?;
     let x = (v.omega_from, v.omega_to);
     let in_range = |o: f64| o >= x.0 && o <= x.1;
-    let all = v
-        .branches
-        .iter()
-        .flat_map(|b| b.points.iter())
-        .chain(v.overlay.iter())
-        .filter(|p| in_range(p.omega))
-        .flat_map(|p| [p.max_um, p.min_um]);
-    let extra = contact_levels(&v.backlash_um, &v.pinned_backlash_um, v.whole_clearance);
-    // The key is under the chart, so the axes fit the data alone.
-    let y = padded_range(all, &extra, 20.0);
+    let y = fr_y_range(v);
     let items = fr_key(v, y);
     let plan = plan_key(root, &items, fr_lines(v, line_chars(root.dim_in_pixel().0)));
     let upper = chart_area(root, &plan);

@@ -206,6 +206,31 @@ fn key_layout<DB: DrawingBackend>(
         root.estimate_text_size(t, &font)
             .map_or(8 * t.len() as u32, |(w, _)| w) as i32
     };
+    layout_rows(items, x0, right, width)
+}
+
+/// The height (pixels) of the key of `items` and `lines` lines of words on
+/// a canvas `canvas_w` pixels wide, before there is a canvas to measure text
+/// on: every character taken as 7 pixels wide (the most a character of the
+/// key's font takes), so the estimate is never short.
+pub(crate) fn key_height_estimate(items: &[(KeyIcon, String)], lines: usize, canvas_w: u32) -> i32 {
+    let right = canvas_w as i32 - 8;
+    let (_, rows) = layout_rows(items, KEY_X, right, |t| 7 * t.chars().count() as i32);
+    let n = rows + lines as i32;
+    if n == 0 {
+        0
+    } else {
+        8 + KEY_ROW * n
+    }
+}
+
+/// [`key_layout`] with the text's widths from `width`, wrapping at `right`.
+fn layout_rows(
+    items: &[(KeyIcon, String)],
+    x0: i32,
+    right: i32,
+    width: impl Fn(&str) -> i32,
+) -> (Vec<KeyPlace>, i32) {
     let (mut x, mut y) = (x0, 0);
     let mut out = Vec::with_capacity(items.len());
     for (icon, text) in items {

@@ -642,3 +642,35 @@ fn family_phase_panels_draw_the_last_periods_within_a_budget() {
     });
     assert!(!s.contains("recorded periods"), "no cut, no words on one");
 }
+
+/// The plotting area's height of the frequency response drawn at `size`.
+fn fr_plot_height(v: &FrView, size: (u32, u32)) -> f64 {
+    let mut frame = None;
+    svg_sized(size, |root| {
+        frame = Some(draw_fr(root, v, "")?);
+        Ok(())
+    });
+    let f = frame.unwrap();
+    f.bottom_right.y - f.top_left.y
+}
+
+/// A comparison's long key makes the frequency response's canvas taller,
+/// so that its plot keeps the height of a single branch's; a single
+/// branch's key keeps the ordinary height.
+#[test]
+fn a_long_key_makes_the_frequency_response_taller() {
+    let mut one = ab_fr();
+    one.branches.truncate(1);
+    one.branches[0].pinned = false;
+    one.pinned_backlash_um.clear();
+    one.branch_error = None;
+    assert_eq!(fr_height(&one, (WIDTH, HEIGHT)), HEIGHT);
+    let single = fr_plot_height(&one, (WIDTH, HEIGHT));
+    let ab = ab_fr();
+    let h = fr_height(&ab, (WIDTH, HEIGHT));
+    assert!(h > HEIGHT, "{h}");
+    let squeezed = fr_plot_height(&ab, (WIDTH, HEIGHT));
+    let kept = fr_plot_height(&ab, (WIDTH, h));
+    assert!(squeezed < single - 20.0, "{squeezed} vs {single}");
+    assert!(kept >= single - 10.0, "{kept} vs {single}");
+}
