@@ -3,7 +3,7 @@
 // the A/B comparison. Small grids keep the suite quick.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { start, open, status, waitStatus, waitText, canvasStats, shot, watchMainThread, waitWatched, stopWatch, watchReport } from './harness.mjs';
+import { start, open, status, waitStatus, waitText, canvasStats, shot, watchMainThread, stopWatch, watchReport } from './harness.mjs';
 
 const QUICK = 'bif_points=8&transient_periods=120&record_periods=40&fr_points=150';
 
@@ -34,7 +34,7 @@ test('the impact-regime map fills in from both workers and a cell click sets bac
   // first paint on, as for the bifurcation sweep).
   await waitStatus(page, (s) => s.first_draw_ms.every((t) => t > 0), 30000, 'the first paint');
   await watchMainThread(page);
-  const s = await waitWatched(page, (s) => s.map.finished_ms && s.map_frame, 90000, 'the map');
+  const s = await waitStatus(page, (s) => s.map.finished_ms && s.map_frame, 90000, 'the map');
   const beat = await stopWatch(page);
   console.log(`# map: 50 cells in ${Math.round(s.map.finished_ms - s.map.started_ms)} ms; ${watchReport(beat)}`);
   assert.deepEqual(beat.over, [], `main-thread tasks over their limit: ${watchReport(beat)}`);

@@ -4,7 +4,7 @@
 // tests/browser/screenshots/ (git-ignored) for a human to look at.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { start, open, status, waitStatus, waitText, canvasStats, shot, watchMainThread, waitWatched, stopWatch, watchReport } from './harness.mjs';
+import { start, open, status, waitStatus, waitText, canvasStats, shot, watchMainThread, stopWatch, watchReport } from './harness.mjs';
 
 // Small grids keep the suite quick; the bifurcation test uses full periods.
 // The frequency response keeps its defaults (150 nominal points, H = 5):
@@ -243,13 +243,13 @@ test('the bifurcation diagram completes progressively while the main thread stay
   // of the benchmark).
   await waitStatus(page, (s) => s.first_draw_ms.every((t) => t > 0), 30000, 'the first paint');
   await watchMainThread(page);
-  const partial = await waitWatched(page, (s) => s.bif.done > 0 && !s.bif.finished_ms, 60000, 'first bifurcation points');
+  const partial = await waitStatus(page, (s) => s.bif.done > 0 && !s.bif.finished_ms, 60000, 'first bifurcation points');
   assert.ok(partial.draws[1] >= 1);
   // A job this long shows its progress.
   await page.locator('#progress-bif').waitFor({ state: 'visible', timeout: 5000 });
   assert.match(await page.textContent('#progress-bif'), /computing \d+\/80 points/);
   await shot(page.locator('#view-bif'), '06-bifurcation-partial');
-  const s = await waitWatched(page, (s) => s.bif.finished_ms, 240000, 'the bifurcation sweep');
+  const s = await waitStatus(page, (s) => s.bif.finished_ms, 240000, 'the bifurcation sweep');
   const beat = await stopWatch(page);
   console.log(`# bifurcation: 80 points in ${Math.round(s.bif.finished_ms - s.bif.started_ms)} ms, first points after ${Math.round(s.bif.first_data_ms - s.bif.started_ms)} ms; ${watchReport(beat)}; slowest draws (ms) ${s.max_draw_ms.map(Math.round)}; longest frame ${Math.round(s.max_frame_ms)} ms, longest worker message ${Math.round(s.max_message_ms)} ms`);
   assert.equal(s.bif.done, 80);

@@ -155,7 +155,7 @@ export async function shot(pageOrLocator, name) {
  * Not its wall-clock time: on this 2-core machine, with both of the page's
  * workers computing, a frame of 17 ms of main-thread work took 60-140 ms
  * by the clock, waiting for the browser's compositor and raster threads to
- * get a core (measured with a trace, 2026-12-01); any other process on the
+ * get a core (`node tests/browser/trace.mjs`, 2026-12-01); any other process on the
  * machine stretches it further. The CPU time is what the page's code spends
  * and what this limit is about; the wall-clock times are reported beside it.
  */
@@ -167,32 +167,35 @@ const watches = new WeakMap();
 /**
  * Starts watching the page's main thread: a browser trace (the DevTools
  * timeline's category) that records every task with its wall-clock and
- * CPU time, until `stopWatch`.
+ * CPU time, until `stopWatch`. With `detail`, also what ran inside the
+ * long tasks (animation frames, commits, paints, garbage collection).
  */
-export async function watchMainThread(page) {
+export async function watchMainThread(page, { detail = false } = {}) {
   const cdp = await page.context().newCDPSession(page);
   const events = [];
   // Only what `stopWatch` reads: tasks over 50 ms (of every process: the
-  // page's renderer is known at the end), thread names, the traced page.
-  const keep = (x) => (x.name === 'RunTask' ? x.dur > 50000 : x.name === 'thread_name' || x.name === 'TracingStartedInBrowser');
+  // page's renderer is known at the end), thread names, the traced page,
+  // and with `detail` every other event of 3 ms or more.
+  const keep = (x) => {
+    if (x.name === 'RunTask') return x.dur > 50000;
+    if (x.name === 'thread_name' || x.name === 'TracingStartedInBrowser') return true;
+    return detail && x.ph === 'X' && x.dur >= 3000;
+  };
   cdp.on('Tracing.dataCollected', (e) => {
     for (const x of e.value) if (keep(x)) events.push(x);
   });
   const complete = new Promise((resolve) => cdp.once('Tracing.tracingComplete', resolve));
-  await cdp.send('Tracing.start', { categories: 'disabled-by-default-devtools.timeline', transferMode: 'ReportEvents' });
+  const categories = detail ? 'devtools.timeline,disabled-by-default-devtools.timeline' : 'disabled-by-default-devtools.timeline';
+  await cdp.send('Tracing.start', { categories, transferMode: 'ReportEvents' });
   watches.set(page, { cdp, events, complete });
-}
-
-/** `waitStatus` for a watched page (kept for the tests' wording). */
-export async function waitWatched(page, pred, timeoutMs, what) {
-  return waitStatus(page, pred, timeoutMs, what);
 }
 
 /**
  * Stops the watch of `watchMainThread` and returns what it saw on the
- * page's main thread: { long, longCpu, longs, over }: the longest task by
- * the clock, the largest CPU time of a task, every task over 50 ms as
- * [wall ms, CPU ms], and those whose CPU time reaches `TASK_LIMIT_MS`.
+ * page's main thread: { long, longCpu, longs, over, inside }: the longest
+ * task by the clock, the largest CPU time of a task, every task over 50 ms
+ * as [wall ms, CPU ms], those whose CPU time reaches `TASK_LIMIT_MS`, and
+ * (with `detail`) per long task the events inside it as [name, ms].
  */
 export async function stopWatch(page) {
   const w = watches.get(page);
@@ -206,14 +209,20 @@ export async function stopWatch(page) {
   const pid = started?.args?.data?.frames?.find((f) => f.isOutermostMainFrame ?? true)?.processId;
   const main = w.events.find((e) => e.name === 'thread_name' && e.pid === pid && e.args?.name === 'CrRendererMain');
   if (!main) throw new Error(`the trace holds no main thread for the page (renderer ${pid})`);
-  const longs = w.events
-    .filter((e) => e.name === 'RunTask' && e.ph === 'X' && e.pid === pid && e.tid === main.tid && e.dur > 50000)
-    .map((e) => [Math.round(e.dur / 1000), Math.round((e.tdur ?? e.dur) / 1000)]);
+  const onMain = w.events.filter((e) => e.ph === 'X' && e.pid === pid && e.tid === main.tid);
+  const tasks = onMain.filter((e) => e.name === 'RunTask' && e.dur > 50000);
+  const longs = tasks.map((e) => [Math.round(e.dur / 1000), Math.round((e.tdur ?? e.dur) / 1000)]);
+  const inside = tasks.map((t) =>
+    onMain
+      .filter((e) => e !== t && e.ts >= t.ts && e.ts + e.dur <= t.ts + t.dur)
+      .map((e) => [e.name, Math.round(e.dur / 100) / 10]),
+  );
   return {
     long: Math.max(0, ...longs.map(([d]) => d)),
     longCpu: Math.max(0, ...longs.map(([, c]) => c)),
     longs,
     over: longs.filter(([, c]) => c >= TASK_LIMIT_MS),
+    inside,
   };
 }
 

@@ -7,7 +7,7 @@
 // sweep of 3000 + 1000 periods.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { start, open, waitStatus, canvasStats, shot, watchMainThread, waitWatched, stopWatch, watchReport } from './harness.mjs';
+import { start, open, waitStatus, canvasStats, shot, watchMainThread, stopWatch, watchReport } from './harness.mjs';
 
 /** Every setting at its allowed maximum (settings.rs). */
 const MAXIMA = [
@@ -45,7 +45,7 @@ test('at the largest allowed settings no main-thread task blocks the page', asyn
   const { page, errors } = await open(h.browser, h.url, MAXIMA);
   await waitStatus(page, (s) => s.first_draw_ms.every((t) => t > 0), 60000, 'the first paint');
   await watchMainThread(page);
-  const s = await waitWatched(
+  const s = await waitStatus(
     page,
     (s) =>
       s.omega_job.finished_ms &&
@@ -76,7 +76,7 @@ test('a family of six at 1000 recorded periods draws its small multiples without
   await watchMainThread(page);
   const arrived = (s) => s.family?.members.length === 5 && s.omega_job.finished_ms && s.family.members.every((m) => m.omega_job.finished_ms);
   const last = (s) => Math.max(s.omega_job.finished_ms, ...s.family.members.map((m) => m.omega_job.finished_ms));
-  const s = await waitWatched(page, (s) => arrived(s) && omegaDrawn(s, last(s)), 900000, 'the six 1000-period orbits, drawn');
+  const s = await waitStatus(page, (s) => arrived(s) && omegaDrawn(s, last(s)), 900000, 'the six 1000-period orbits, drawn');
   const beat = await stopWatch(page);
   console.log(`# family of six at 1000 periods: ${watchReport(beat)}`);
   assert.deepEqual(beat.over, [], `main-thread tasks over their limit: ${watchReport(beat)}`);

@@ -327,8 +327,10 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
     let cut = panels
         .iter()
         .filter_map(|p| p.data.as_ref().ok())
-        .filter(|r| panel_orbit_tail(r, n).0 > 0)
-        .map(|r| (panel_orbit_tail(r, n).1, r.record_periods))
+        .filter_map(|r| match panel_orbit_tail(r, n) {
+            (0, _) => None,
+            (_, shown) => Some((shown, r.record_periods)),
+        })
         .max_by_key(|&(shown, _)| shown);
     if let (false, Some((shown, recorded))) = (poincare, cut) {
         key = format!(
