@@ -10,8 +10,8 @@
 //! the modules and their invariants.
 //!
 //! Architecture invariant: heavy work (steady states, sweeps, the
-//! harmonic-balance continuation) runs only in the workers ([`jobs`], run by
-//! [`worker_core`]); the main thread builds the small model for validation
+//! harmonic-balance continuation) runs only in the workers ([`worker`] and
+//! its `jobs`); the main thread builds the small model for validation
 //! and natural frequencies, draws, and never blocks for long.
 
 #![warn(unreachable_pub)]
@@ -21,19 +21,21 @@ pub mod controller;
 pub mod controls;
 pub mod family;
 pub mod gearset;
-pub mod jobs;
 pub mod link;
+pub mod page;
 pub mod panels;
 pub mod plots;
 pub mod presets;
 pub mod protocol;
 pub mod scene;
 pub mod settings;
-pub mod status;
+pub mod store;
 pub mod tour;
 pub mod views;
 pub mod words;
-pub mod worker_core;
+pub mod worker;
+/// The worker's job runner under its earlier name.
+pub use worker as worker_core;
 
 #[cfg(target_arch = "wasm32")]
 pub mod web;

@@ -299,8 +299,8 @@ pub fn anim_note(r: &OmegaResult, clock: &AnimClock) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::jobs::omega::{omega_result, OmegaJob};
-    use crate::protocol::RunOptions;
+    use crate::protocol::{OmegaSpec, RunOptions};
+    use crate::worker::jobs::omega::{omega_result, OmegaJob};
     use solver::steady::Model;
 
     /// The default set and a real (short) steady state of it.
@@ -317,14 +317,16 @@ mod tests {
         let job = OmegaJob {
             id: 1,
             model,
-            omega: 1.05,
-            mesh: None,
-            run: RunOptions {
-                transient_periods: 30,
-                record_periods: 8,
+            spec: OmegaSpec {
+                omega: 1.05,
+                mesh: None,
+                run: RunOptions {
+                    transient_periods: 30,
+                    record_periods: 8,
+                },
+                samples_per_period: 32,
+                max_order: 8.0,
             },
-            samples_per_period: 32,
-            max_order: 8.0,
         };
         (set, omega_result(&job, None).unwrap())
     }

@@ -5,6 +5,7 @@
 //! View options have their own small key table, [`VIEW_KEYS`], with ranges
 //! that cap every job: no link can start an unbounded computation.
 
+use crate::protocol::{JobKind as K, KindSet};
 use solver::params::ModelParams;
 use solver::steady::Model;
 use solver::sweep::Directions;
@@ -44,7 +45,30 @@ impl ViewType {
     }
 }
 
-/// One view option key.
+/// Where a view option lives in [`ViewOptions`]: its getter and setter.
+#[derive(Clone, Copy)]
+pub enum Field {
+    /// A number.
+    Num(fn(&ViewOptions) -> f64, fn(&mut ViewOptions, f64)),
+    /// A count.
+    Count(fn(&ViewOptions) -> u32, fn(&mut ViewOptions, u32)),
+    /// A word (a choice or a mesh name), set from checked text.
+    Word(fn(&ViewOptions) -> String, fn(&mut ViewOptions, &str)),
+}
+
+impl std::fmt::Debug for Field {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Field::Num(..) => "Num",
+            Field::Count(..) => "Count",
+            Field::Word(..) => "Word",
+        })
+    }
+}
+
+/// One view option key: its link name, unit, type and range, words, where
+/// it lives, and the jobs a change of it restarts (every view is redrawn
+/// regardless: they share the mesh and the range).
 #[derive(Debug, Clone, Copy)]
 pub struct ViewKey {
     /// The key in links.
@@ -55,6 +79,10 @@ pub struct ViewKey {
     pub ty: ViewType,
     /// One line for tooltips.
     pub description: &'static str,
+    /// Its getter and setter.
+    pub field: Field,
+    /// The job kinds a change restarts.
+    pub restarts: KindSet,
 }
 
 /// Largest nominal point count of the harmonic-balance branch.
@@ -95,30 +123,40 @@ const OMEGA: ViewType = ViewType::Float {
 pub const VIEW_KEYS: &[ViewKey] = &[
     ViewKey {
         name: "omega",
+        field: Field::Num(|v| v.omega, |v, x| v.omega = x),
+        restarts: KindSet::of(&[K::Omega]),
         unit: "-",
         ty: OMEGA,
         description: "selected dimensionless mesh frequency Omega for the phase portrait, Poincaré section, history and spectrum",
     },
     ViewKey {
         name: "mesh",
+        field: Field::Word(|v| v.mesh.text().to_string(), |v, t| v.mesh = if t == "worst" { MeshSel::Worst } else { MeshSel::Named(t.to_string()) }),
+        restarts: KindSet::of(&[K::Omega, K::Map]),
         unit: "-",
         ty: ViewType::Mesh,
         description: "which mesh to plot, or the worst (largest dynamic factor)",
     },
     ViewKey {
         name: "omega_from",
+        field: Field::Num(|v| v.omega_from, |v, x| v.omega_from = x),
+        restarts: KindSet::ALL,
         unit: "-",
         ty: OMEGA,
         description: "lowest Omega of the frequency response and bifurcation diagram",
     },
     ViewKey {
         name: "omega_to",
+        field: Field::Num(|v| v.omega_to, |v, x| v.omega_to = x),
+        restarts: KindSet::ALL,
         unit: "-",
         ty: OMEGA,
         description: "highest Omega of the frequency response and bifurcation diagram",
     },
     ViewKey {
         name: "fr_points",
+        field: Field::Count(|v| v.fr_points, |v, n| v.fr_points = n),
+        restarts: KindSet::of(&[K::HarmonicBalance]),
         unit: "-",
         ty: ViewType::Int {
             min: 2,
@@ -128,6 +166,8 @@ pub const VIEW_KEYS: &[ViewKey] = &[
     },
     ViewKey {
         name: "fr_ti_points",
+        field: Field::Count(|v| v.fr_ti_points, |v, n| v.fr_ti_points = n),
+        restarts: KindSet::of(&[K::Overlay]),
         unit: "-",
         ty: ViewType::Int {
             min: 0,
@@ -137,12 +177,16 @@ pub const VIEW_KEYS: &[ViewKey] = &[
     },
     ViewKey {
         name: "fr_record_periods",
+        field: Field::Count(|v| v.fr_record_periods, |v, n| v.fr_record_periods = n),
+        restarts: KindSet::of(&[K::Overlay]),
         unit: "periods",
         ty: ViewType::Int { min: 1, max: 200 },
         description: "recorded mesh periods per time-integration overlay point of the frequency response",
     },
     ViewKey {
         name: "bif_points",
+        field: Field::Count(|v| v.bif_points, |v, n| v.bif_points = n),
+        restarts: KindSet::of(&[K::Bif]),
         unit: "-",
         ty: ViewType::Int {
             min: 2,
@@ -152,12 +196,16 @@ pub const VIEW_KEYS: &[ViewKey] = &[
     },
     ViewKey {
         name: "bif_dir",
+        field: Field::Word(|v| v.bif_dir.name().to_string(), |v, t| v.bif_dir = Directions::from_name(t).unwrap_or(v.bif_dir)),
+        restarts: KindSet::of(&[K::Bif]),
         unit: "-",
         ty: ViewType::Choice(&["up", "down", "both"]),
         description: "bifurcation sweep direction: up, down, or up then down",
     },
     ViewKey {
         name: "transient_periods",
+        field: Field::Count(|v| v.transient_periods, |v, n| v.transient_periods = n),
+        restarts: KindSet::of(&[K::Omega, K::Overlay, K::Bif]),
         unit: "periods",
         ty: ViewType::Int {
             min: 0,
@@ -167,6 +215,8 @@ pub const VIEW_KEYS: &[ViewKey] = &[
     },
     ViewKey {
         name: "record_periods",
+        field: Field::Count(|v| v.record_periods, |v, n| v.record_periods = n),
+        restarts: KindSet::of(&[K::Omega, K::Bif]),
         unit: "periods",
         ty: ViewType::Int {
             min: 1,
@@ -176,6 +226,8 @@ pub const VIEW_KEYS: &[ViewKey] = &[
     },
     ViewKey {
         name: "harmonics",
+        field: Field::Count(|v| v.harmonics, |v, n| v.harmonics = n),
+        restarts: KindSet::of(&[K::HarmonicBalance]),
         unit: "-",
         ty: ViewType::Int {
             min: 1,
@@ -185,12 +237,16 @@ pub const VIEW_KEYS: &[ViewKey] = &[
     },
     ViewKey {
         name: "map_key",
+        field: Field::Word(|v| v.map_key.clone(), |v, t| v.map_key = t.to_string()),
+        restarts: KindSet::of(&[K::Map]),
         unit: "-",
         ty: ViewType::Choice(MAP_KEYS),
         description: "the parameter on the vertical axis of the impact-regime map: backlash b or TE amplitude",
     },
     ViewKey {
         name: "map_from",
+        field: Field::Num(|v| v.map_from, |v, x| v.map_from = x),
+        restarts: KindSet::of(&[K::Map]),
         unit: "um",
         ty: ViewType::Float {
             min: 0.0,
@@ -200,6 +256,8 @@ pub const VIEW_KEYS: &[ViewKey] = &[
     },
     ViewKey {
         name: "map_to",
+        field: Field::Num(|v| v.map_to, |v, x| v.map_to = x),
+        restarts: KindSet::of(&[K::Map]),
         unit: "um",
         ty: ViewType::Float {
             min: 0.0,
@@ -209,6 +267,8 @@ pub const VIEW_KEYS: &[ViewKey] = &[
     },
     ViewKey {
         name: "map_omega_points",
+        field: Field::Count(|v| v.map_omega_points, |v, n| v.map_omega_points = n),
+        restarts: KindSet::of(&[K::Map]),
         unit: "-",
         ty: ViewType::Int {
             min: 2,
@@ -218,6 +278,8 @@ pub const VIEW_KEYS: &[ViewKey] = &[
     },
     ViewKey {
         name: "map_value_points",
+        field: Field::Count(|v| v.map_value_points, |v, n| v.map_value_points = n),
+        restarts: KindSet::of(&[K::Map]),
         unit: "-",
         ty: ViewType::Int {
             min: 1,
@@ -227,6 +289,8 @@ pub const VIEW_KEYS: &[ViewKey] = &[
     },
     ViewKey {
         name: "map_transient_periods",
+        field: Field::Count(|v| v.map_transient_periods, |v, n| v.map_transient_periods = n),
+        restarts: KindSet::of(&[K::Map]),
         unit: "periods",
         ty: ViewType::Int {
             min: 0,
@@ -236,6 +300,8 @@ pub const VIEW_KEYS: &[ViewKey] = &[
     },
     ViewKey {
         name: "map_record_periods",
+        field: Field::Count(|v| v.map_record_periods, |v, n| v.map_record_periods = n),
+        restarts: KindSet::of(&[K::Map]),
         unit: "periods",
         ty: ViewType::Int {
             min: 1,
@@ -245,6 +311,8 @@ pub const VIEW_KEYS: &[ViewKey] = &[
     },
     ViewKey {
         name: "lyap_points",
+        field: Field::Count(|v| v.lyap_points, |v, n| v.lyap_points = n),
+        restarts: KindSet::of(&[K::Lyap]),
         unit: "-",
         ty: ViewType::Int {
             min: 0,
@@ -254,6 +322,8 @@ pub const VIEW_KEYS: &[ViewKey] = &[
     },
     ViewKey {
         name: "lyap_transient_periods",
+        field: Field::Count(|v| v.lyap_transient_periods, |v, n| v.lyap_transient_periods = n),
+        restarts: KindSet::of(&[K::Lyap]),
         unit: "periods",
         ty: ViewType::Int {
             min: 0,
@@ -263,6 +333,8 @@ pub const VIEW_KEYS: &[ViewKey] = &[
     },
     ViewKey {
         name: "lyap_periods",
+        field: Field::Count(|v| v.lyap_periods, |v, n| v.lyap_periods = n),
+        restarts: KindSet::of(&[K::Lyap]),
         unit: "periods",
         ty: ViewType::Int {
             min: 10,
@@ -272,6 +344,8 @@ pub const VIEW_KEYS: &[ViewKey] = &[
     },
     ViewKey {
         name: "clearance",
+        field: Field::Word(|v| if v.whole_clearance { "whole" } else { "fit" }.to_string(), |v, t| v.whole_clearance = t == "whole"),
+        restarts: KindSet::NONE,
         unit: "-",
         ty: ViewType::Choice(&["fit", "whole"]),
         description: "the axes of x: fit the data (the ±b lines drawn where they fall in range) or show the whole clearance from −b to +b",
@@ -392,31 +466,10 @@ pub fn fmt_exact(x: f64) -> String {
 impl ViewOptions {
     /// The value of a view key as link text.
     pub fn get(&self, name: &str) -> Option<String> {
-        Some(match name {
-            "omega" => fmt_exact(self.omega),
-            "mesh" => self.mesh.text().to_string(),
-            "omega_from" => fmt_exact(self.omega_from),
-            "omega_to" => fmt_exact(self.omega_to),
-            "fr_points" => self.fr_points.to_string(),
-            "fr_ti_points" => self.fr_ti_points.to_string(),
-            "fr_record_periods" => self.fr_record_periods.to_string(),
-            "bif_points" => self.bif_points.to_string(),
-            "bif_dir" => self.bif_dir.name().to_string(),
-            "clearance" => if self.whole_clearance { "whole" } else { "fit" }.to_string(),
-            "transient_periods" => self.transient_periods.to_string(),
-            "record_periods" => self.record_periods.to_string(),
-            "harmonics" => self.harmonics.to_string(),
-            "map_key" => self.map_key.clone(),
-            "map_from" => fmt_exact(self.map_from),
-            "map_to" => fmt_exact(self.map_to),
-            "map_omega_points" => self.map_omega_points.to_string(),
-            "map_value_points" => self.map_value_points.to_string(),
-            "map_transient_periods" => self.map_transient_periods.to_string(),
-            "map_record_periods" => self.map_record_periods.to_string(),
-            "lyap_points" => self.lyap_points.to_string(),
-            "lyap_transient_periods" => self.lyap_transient_periods.to_string(),
-            "lyap_periods" => self.lyap_periods.to_string(),
-            _ => return None,
+        Some(match view_key(name)?.field {
+            Field::Num(get, _) => fmt_exact(get(self)),
+            Field::Count(get, _) => get(self).to_string(),
+            Field::Word(get, _) => get(self),
         })
     }
 
@@ -434,24 +487,16 @@ impl ViewOptions {
                 key.ty.allowed()
             )
         };
-        match key.ty {
-            ViewType::Float { min, max } => {
+        match (key.ty, key.field) {
+            (ViewType::Float { min, max }, Field::Num(_, set)) => {
                 let x: f64 = text.parse().map_err(|_| bad())?;
                 if !(x.is_finite() && x >= min && x <= max) {
                     return Err(bad());
                 }
                 // A typed -0 is kept (and written back in links) as 0.
-                let x = x + 0.0;
-                match name {
-                    "omega" => self.omega = x,
-                    "omega_from" => self.omega_from = x,
-                    "omega_to" => self.omega_to = x,
-                    "map_from" => self.map_from = x,
-                    "map_to" => self.map_to = x,
-                    _ => return Err(bad()),
-                }
+                set(self, x + 0.0);
             }
-            ViewType::Int { min, max } => {
+            (ViewType::Int { min, max }, Field::Count(_, set)) => {
                 let x: f64 = text.parse().map_err(|_| bad())?;
                 if !(x.is_finite()
                     && x.fract() == 0.0
@@ -460,48 +505,24 @@ impl ViewOptions {
                 {
                     return Err(bad());
                 }
-                let n = x as u32;
-                match name {
-                    "fr_points" => self.fr_points = n,
-                    "fr_ti_points" => self.fr_ti_points = n,
-                    "fr_record_periods" => self.fr_record_periods = n,
-                    "bif_points" => self.bif_points = n,
-                    "transient_periods" => self.transient_periods = n,
-                    "record_periods" => self.record_periods = n,
-                    "harmonics" => self.harmonics = n,
-                    "map_omega_points" => self.map_omega_points = n,
-                    "map_value_points" => self.map_value_points = n,
-                    "map_transient_periods" => self.map_transient_periods = n,
-                    "map_record_periods" => self.map_record_periods = n,
-                    "lyap_points" => self.lyap_points = n,
-                    "lyap_transient_periods" => self.lyap_transient_periods = n,
-                    "lyap_periods" => self.lyap_periods = n,
-                    _ => return Err(bad()),
-                }
+                set(self, x as u32);
             }
-            ViewType::Choice(words) => match name {
-                "bif_dir" => self.bif_dir = Directions::from_name(text).ok_or_else(bad)?,
-                "clearance" => {
-                    let w = words.iter().find(|w| **w == text).ok_or_else(bad)?;
-                    self.whole_clearance = *w == "whole";
+            (ViewType::Choice(words), Field::Word(_, set)) => {
+                if !words.contains(&text) {
+                    return Err(bad());
                 }
-                _ => {
-                    let w = words.iter().find(|w| **w == text).ok_or_else(bad)?;
-                    self.map_key = (*w).to_string();
-                }
-            },
-            ViewType::Mesh => {
-                if text == "worst" {
-                    self.mesh = MeshSel::Worst;
-                } else if meshes.iter().any(|m| m == text) {
-                    self.mesh = MeshSel::Named(text.to_string());
-                } else {
+                set(self, text);
+            }
+            (ViewType::Mesh, Field::Word(_, set)) => {
+                if text != "worst" && !meshes.iter().any(|m| m == text) {
                     return Err(format!(
                         "mesh = {shown} is not a mesh of this model: allowed {}, worst",
                         meshes.join(", ")
                     ));
                 }
+                set(self, text);
             }
+            _ => return Err(bad()),
         }
         Ok(())
     }

@@ -19,11 +19,11 @@
 //! are not sharded: each of their panels holds every member's branch.
 
 use crate::{progress, usage, Failure};
-use app::jobs::omega::{omega_result, OmegaJob};
 use app::presets::{preset, Preset};
 use app::protocol::RunOptions;
 use app::views::bif::{BifPoint, BifView};
 use app::views::omega::OmegaView;
+use app::worker::jobs::omega::{omega_result, selected_spec, OmegaJob};
 use clap::Args;
 use plotters::prelude::{IntoDrawingArea, SVGBackend};
 use serde_json::{json, Value};
@@ -34,8 +34,6 @@ use std::path::{Path, PathBuf};
 
 /// Size of each panel's SVG (pixels).
 const SIZE: (u32, u32) = (800, 500);
-/// History samples per mesh period of an orbit panel (as the page).
-const SAMPLES_PER_PERIOD: u32 = 64;
 
 /// Options of `gearshock figure`.
 #[derive(Debug, Args)]
@@ -439,7 +437,10 @@ fn frf_panels(
         stores.push(app::views::fr::HbmStore {
             id: i as u64 + 1,
             harmonics: v.harmonics,
-            points: branch.iter().map(app::jobs::hbm::hbm_sample).collect(),
+            points: branch
+                .iter()
+                .map(app::worker::jobs::hbm::hbm_sample)
+                .collect(),
             progress: c.progress(),
             finished: true,
             error: failure.as_ref().map(ToString::to_string),
@@ -613,11 +614,7 @@ fn orbit_panels(
         let job = OmegaJob {
             id: i as u64,
             model: m.model.clone(),
-            omega: m.settings.view.omega,
-            mesh: m.settings.mesh_index(&m.model),
-            run: run_options(m, args),
-            samples_per_period: SAMPLES_PER_PERIOD,
-            max_order: 8.0,
+            spec: selected_spec(&m.settings, &m.model, run_options(m, args)),
         };
         let r = omega_result(&job, None).map_err(|e| Failure {
             code: 1,
@@ -783,7 +780,7 @@ fn bif_view(
         unstable_bands: solver::parametric::Parametric::new(&m.model).and_then(|p| {
             p.unstable_bands(
                 (spec.omega_from, spec.omega_to),
-                app::jobs::bif::BAND_SAMPLES,
+                app::worker::jobs::bif::BAND_SAMPLES,
             )
         })?,
         pinned: Vec::new(),

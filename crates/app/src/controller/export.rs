@@ -3,7 +3,8 @@
 //! file and the CLI commands.
 
 use super::*;
-use crate::views::{omega::OmegaView, ExportKind, ViewId};
+use crate::protocol::JobKind;
+use crate::views::{omega::OmegaView, ViewId};
 
 /// A data export's format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -63,7 +64,7 @@ pub(super) fn json_text(r: Result<String, serde_json::Error>) -> Result<String, 
 impl Controller {
     /// The selected-Omega result, if it is exportable (not a preview).
     pub(super) fn exportable_omega(&self) -> Result<&OmegaResult, ExportError> {
-        match &self.omega {
+        match &self.main.omega {
             Some(r) if r.preview => Err(ExportError::Preview),
             Some(r) => Ok(r),
             None => Err(ExportError::NotComputed),
@@ -74,8 +75,10 @@ impl Controller {
     pub fn export(&self, view: ViewId, format: Format) -> Result<Effect, ExportError> {
         let csv = format == Format::Csv;
         let text = match view.spec().data {
-            ExportKind::Fr if self.panels.is_some() => self.fr_panels_export(csv)?,
-            ExportKind::Fr => {
+            JobKind::HarmonicBalance | JobKind::Overlay if self.panels.is_some() => {
+                self.fr_panels_export(csv)?
+            }
+            JobKind::HarmonicBalance | JobKind::Overlay => {
                 let v = self.fr_view();
                 if csv {
                     crate::views::fr::fr_csv(&v)
@@ -84,8 +87,8 @@ impl Controller {
                 }
             }
             // A family: every member, named.
-            ExportKind::Bif if self.family.is_some() => self.family_bif_export(csv)?,
-            ExportKind::Bif => {
+            JobKind::Bif if self.family.is_some() => self.family_bif_export(csv)?,
+            JobKind::Bif => {
                 let v = self.bif_view();
                 if csv {
                     crate::views::bif::bif_csv(&v)
@@ -93,15 +96,15 @@ impl Controller {
                     json_text(serde_json::to_string(&v))?
                 }
             }
-            ExportKind::Map if csv => crate::views::map::map_csv(&self.map),
-            ExportKind::Map => crate::views::map::map_json(&self.map).to_string(),
-            ExportKind::Lyap if csv => crate::views::lyap::lyap_csv(&self.lyap),
-            ExportKind::Lyap => crate::views::lyap::lyap_json(&self.lyap).to_string(),
-            ExportKind::Omega if self.family.is_some() => {
+            JobKind::Map if csv => crate::views::map::map_csv(&self.main.map),
+            JobKind::Map => crate::views::map::map_json(&self.main.map).to_string(),
+            JobKind::Lyap if csv => crate::views::lyap::lyap_csv(&self.main.lyap),
+            JobKind::Lyap => crate::views::lyap::lyap_json(&self.main.lyap).to_string(),
+            JobKind::Omega if self.family.is_some() => {
                 let which = OmegaView::of(view).ok_or(ExportError::NoCliFormat)?;
                 self.family_omega_export(which, csv)?
             }
-            ExportKind::Omega => {
+            JobKind::Omega => {
                 let r = self.exportable_omega()?;
                 let which = OmegaView::of(view).ok_or(ExportError::NoCliFormat)?;
                 if csv {
@@ -160,8 +163,8 @@ impl Controller {
     /// post; the download follows their replies).
     pub fn export_cli(&mut self, view: ViewId) -> Result<Vec<Effect>, ExportError> {
         match view.spec().data {
-            ExportKind::Bif => self.request_bif_export(),
-            ExportKind::Omega => {
+            JobKind::Bif => self.request_bif_export(),
+            JobKind::Omega => {
                 let r = self.exportable_omega()?;
                 Ok(vec![Effect::Download {
                     name: format!("gearshock-simulate-{}-{}.json", r.mesh_name, r.omega),
@@ -186,11 +189,11 @@ impl Controller {
     /// worker but the first sends its shards, then worker 0 (which holds
     /// chain 0) merges them with its own.
     fn request_bif_export(&mut self) -> Result<Vec<Effect>, ExportError> {
-        if self.bif_status.finished_ms.is_none() {
+        if self.main.status(JobKind::Bif).finished_ms.is_none() {
             return Err(ExportError::SweepRunning);
         }
         let (mesh, _) = self.mesh_and_backlash();
-        let id = self.bif.id;
+        let id = self.main.bif.id;
         let chains = chain_count(self.settings.view.bif_points);
         let holders: Vec<usize> = (1..self.workers())
             .filter(|&w| self.chains_on(w, chains) > 0)
@@ -256,6 +259,7 @@ impl Controller {
         let mesh = match (&self.model, &v.mesh) {
             (_, MeshSel::Named(n)) => n.clone(),
             (Ok(m), MeshSel::Worst) => self
+                .main
                 .omega
                 .as_ref()
                 .map_or_else(|| m.system.meshes[0].name.clone(), |r| r.mesh_name.clone()),

@@ -3,13 +3,14 @@
 //! sweep and selected-Omega steady state in the workers, beside the current
 //! state's jobs, and arrive progressively like them.
 
+use super::jobs::MEMBER_KINDS;
 use super::*;
-use crate::controller::jobs::{bif_job, bif_total, hbm_job};
 use crate::family::FamilySpec;
 use crate::views::bif::BifView;
 use crate::views::family::{panel_titles, Panel};
 
-/// One family member besides the current state, and its three results.
+/// One family member besides the current state, and its results (its
+/// branch, its sweep, its selected-Omega run).
 #[derive(Debug, Clone)]
 pub struct Member {
     /// Its value of the family's key.
@@ -17,18 +18,8 @@ pub struct Member {
     /// Its parameters (the current state's with the key set), or why they
     /// cannot be built.
     pub params: Result<solver::params::ModelParams, String>,
-    /// Its harmonic-balance branch.
-    pub hbm: HbmStore,
-    /// Its bifurcation points.
-    pub bif: BifStore,
-    /// Its selected-Omega steady state.
-    pub omega: Option<OmegaResult>,
-    /// Branch job.
-    pub fr_status: JobStatus,
-    /// Bifurcation job.
-    pub bif_status: JobStatus,
-    /// Selected-Omega job.
-    pub omega_status: JobStatus,
+    /// Its results.
+    pub comp: Computation,
 }
 
 /// The family shown: its spec and members 1, 2, ... (member 0 is the
@@ -48,7 +39,7 @@ impl Controller {
     pub fn set_family(&mut self, spec: FamilySpec, now_ms: f64) -> Result<Vec<Effect>, String> {
         let first = spec.member_params(&self.settings.params, 0)?;
         Model::new(&first).map_err(|e| e.to_string())?;
-        let mut fx = self.cancel_members(None);
+        let mut fx = self.cancel_members();
         let changed = first != self.settings.params;
         self.family = Some(Family {
             members: Vec::new(),
@@ -58,13 +49,11 @@ impl Controller {
             self.settings.params = first;
             self.rebuild_model();
             self.dirty.controls = true;
-            fx.extend(self.restart(ALL, now_ms));
+            fx.extend(self.restart(KindSet::ALL, now_ms));
         } else {
-            fx.extend(self.restart_members(ALL, now_ms));
+            fx.extend(self.restart_members(KindSet::ALL, now_ms));
         }
-        self.dirty.fr = true;
-        self.dirty.bif = true;
-        self.dirty.omega = true;
+        self.dirty.data(MEMBER_KINDS);
         self.dirty.url = true;
         Ok(fx)
     }
@@ -83,25 +72,27 @@ impl Controller {
 
     /// Ends the family: the current state alone again.
     pub fn clear_family(&mut self) -> Vec<Effect> {
-        if self.family.take().is_none() {
+        if self.family.is_none() {
             return Vec::new();
         }
-        self.dirty.fr = true;
-        self.dirty.bif = true;
-        self.dirty.omega = true;
+        let fx = self.cancel_members();
+        self.family = None;
+        self.dirty.data(MEMBER_KINDS);
         self.dirty.url = true;
-        self.cancel_members(None)
+        fx
     }
 
-    pub(super) fn cancel_members(&mut self, kind: Option<JobKind>) -> Vec<Effect> {
-        (0..self.workers())
-            .flat_map(|w| self.post(w, &ToWorker::CancelMembers { kind }))
+    /// Cancels every job of the members shown.
+    pub(super) fn cancel_members(&mut self) -> Vec<Effect> {
+        let n = self.family.as_ref().map_or(0, |f| f.members.len());
+        (1..=n as u32)
+            .flat_map(|m| self.cancel(Target::Member(m), None))
             .collect()
     }
 
     /// Restarts the members' jobs of the kinds `what` names (a member
     /// computes the branch, the sweep and the selected Omega).
-    pub(super) fn restart_members(&mut self, what: Restart, now_ms: f64) -> Vec<Effect> {
+    pub(super) fn restart_members(&mut self, what: KindSet, now_ms: f64) -> Vec<Effect> {
         let Some(mut family) = self.family.take() else {
             return Vec::new();
         };
@@ -113,121 +104,40 @@ impl Controller {
             }
         }
         let n = family.spec.values.len().saturating_sub(1);
-        if family.members.len() != n || what == ALL {
-            family.members = (1..=n)
-                .map(|i| Member {
-                    value: family.spec.values[i],
-                    params: family.spec.member_params(&self.settings.params, i),
-                    hbm: HbmStore::default(),
-                    bif: BifStore::default(),
-                    omega: None,
-                    fr_status: JobStatus::default(),
-                    bif_status: JobStatus::default(),
-                    omega_status: JobStatus::default(),
-                })
-                .collect();
-        } else {
-            for (i, m) in family.members.iter_mut().enumerate() {
-                m.params = family.spec.member_params(&self.settings.params, i + 1);
-            }
-        }
-        let v = self.settings.view.clone();
-        let pool = self.workers();
-        let hbm_worker = self.hbm_worker();
-        let kinds = [
-            (what.fr, JobKind::Hbm),
-            (what.bif, JobKind::Bif),
-            (what.omega, JobKind::Omega),
-        ];
-        for (_, kind) in kinds.iter().filter(|(on, _)| *on) {
-            fx.extend(self.cancel_members(Some(*kind)));
-        }
-        let main_error = self.model.as_ref().err().cloned();
-        for (i, m) in family.members.iter_mut().enumerate() {
-            let member = (i + 1) as u32;
-            let built = match (&main_error, &m.params) {
-                (Some(e), _) | (_, Err(e)) => Err(e.clone()),
-                (None, Ok(p)) => Model::new(p).map_err(|e| e.to_string()),
-            };
-            let built = match built {
-                Ok(b) => b,
-                Err(e) => {
-                    for st in [&mut m.fr_status, &mut m.bif_status, &mut m.omega_status] {
-                        *st = JobStatus {
-                            error: Some(e.clone()),
-                            ..JobStatus::default()
-                        };
-                    }
-                    continue;
-                }
-            };
-            let Ok(p) = &m.params else { continue };
-            let params = keys::to_json(p);
-            for (on, kind) in kinds {
-                if !on {
-                    continue;
-                }
-                self.next_id += 1;
-                let id = self.next_id;
-                let (job, total, workers): (Vec<JobSpec>, usize, Vec<usize>) = match kind {
-                    JobKind::Hbm => {
-                        m.hbm = HbmStore::new(id, v.harmonics);
-                        (vec![hbm_job(&v)], 100, vec![(hbm_worker + i + 1) % pool])
-                    }
-                    JobKind::Bif => {
-                        let total = bif_total(&v);
-                        m.bif = BifStore::new(id, total);
-                        // As many chains as the current state's sweep, dealt
-                        // round robin: the same results on any pool.
-                        let chains = super::chain_count(v.bif_points);
-                        let jobs = (0..chains)
-                            .map(|shard| bif_job(&v, chains, shard))
-                            .collect();
-                        (
-                            jobs,
-                            total,
-                            (0..chains as usize).map(|c| c % pool).collect(),
-                        )
-                    }
-                    _ => {
-                        m.omega = None;
-                        (vec![self.omega_job(&built)], 1, vec![(i + 1) % pool])
-                    }
-                };
-                let st = match kind {
-                    JobKind::Hbm => &mut m.fr_status,
-                    JobKind::Bif => &mut m.bif_status,
-                    _ => &mut m.omega_status,
-                };
-                *st = JobStatus::start(id, now_ms, total);
-                for (job, w) in job.into_iter().zip(workers) {
-                    let msg = ToWorker::RunMember {
-                        member,
-                        id,
-                        params: params.clone(),
-                        job,
-                    };
-                    fx.extend(self.post(w, &msg));
-                }
-            }
-        }
+        let rebuild = family.members.len() != n || what == KindSet::ALL;
         self.family = Some(family);
-        fx
-    }
-
-    /// Feeds the members' stores with replies to their jobs.
-    pub(super) fn family_message(&mut self, msg: &FromWorker, now_ms: f64) {
-        let Some(f) = self.family.as_mut() else {
-            return;
-        };
-        for m in &mut f.members {
-            let side = super::replies::Side {
-                hbm: (&mut m.hbm, &mut m.fr_status),
-                bif: (&mut m.bif, &mut m.bif_status),
-                omega: Some((&mut m.omega, &mut m.omega_status)),
-            };
-            side.feed(msg, now_ms, &mut self.dirty);
+        let kinds = what.and(MEMBER_KINDS);
+        // The members' running jobs of those kinds (all of them, if the
+        // members change) are dropped first.
+        if rebuild {
+            fx.extend(self.cancel_members());
+        } else {
+            for m in 1..=n as u32 {
+                for kind in kinds.iter() {
+                    fx.extend(self.cancel(Target::Member(m), Some(kind)));
+                }
+            }
         }
+        let params = &self.settings.params;
+        if let Some(f) = &mut self.family {
+            if rebuild {
+                f.members = (1..=n)
+                    .map(|i| Member {
+                        value: f.spec.values[i],
+                        params: f.spec.member_params(params, i),
+                        comp: Computation::default(),
+                    })
+                    .collect();
+            } else {
+                for (i, m) in f.members.iter_mut().enumerate() {
+                    m.params = f.spec.member_params(params, i + 1);
+                }
+            }
+        }
+        for m in 1..=n as u32 {
+            fx.extend(self.start(Target::Member(m), kinds, now_ms));
+        }
+        fx
     }
 
     /// The panel titles of the family: "(a) TE 0 µm", ... (lettered from
@@ -250,7 +160,10 @@ impl Controller {
         let ctx = self.view_context();
         let mut out = vec![Panel {
             title: titles[0].clone(),
-            data: match (&self.bif_status.error, self.bif.samples.is_empty()) {
+            data: match (
+                &self.main.status(JobKind::Bif).error,
+                self.main.bif.samples.is_empty(),
+            ) {
                 (Some(e), true) => Err(e.clone()),
                 _ => Ok(self.bif_view()),
             },
@@ -266,9 +179,10 @@ impl Controller {
                     })
                 })
                 .unwrap_or_default();
-            let data = match (&m.bif_status.error, m.bif.samples.is_empty()) {
+            let c = &m.comp;
+            let data = match (&c.status(JobKind::Bif).error, c.bif.samples.is_empty()) {
                 (Some(e), true) => Err(e.clone()),
-                _ => Ok(m.bif.view(mesh, &backlash, &ctx)),
+                _ => Ok(c.bif.view(mesh, &backlash, &ctx)),
             };
             out.push(Panel { title, data });
         }
@@ -287,35 +201,24 @@ impl Controller {
                 self.settings.view.omega,
             ))
         };
-        let mut out = vec![Panel {
-            title: titles[0].clone(),
-            data: match (&self.omega, &self.omega_status.error) {
+        let panel = |c: &Computation, title: String| Panel {
+            title,
+            data: match (&c.omega, &c.status(JobKind::Omega).error) {
                 (_, Some(e)) => Err(format!("Not computed: {e}")),
                 (Some(r), None) => Ok(r.clone()),
                 (None, None) => waiting(),
             },
-        }];
-        for (m, title) in f.members.iter().zip(titles.into_iter().skip(1)) {
-            let data = match (&m.omega, &m.omega_status.error) {
-                (_, Some(e)) => Err(format!("Not computed: {e}")),
-                (Some(r), None) => Ok(r.clone()),
-                (None, None) => waiting(),
-            };
-            out.push(Panel { title, data });
-        }
-        out
+        };
+        let comps = std::iter::once(&self.main).chain(f.members.iter().map(|m| &m.comp));
+        comps.zip(titles).map(|(c, t)| panel(c, t)).collect()
     }
 
     /// Whether a family member's job of `kind` (its branch, sweep or
     /// selected-Omega run) is still computing.
     pub fn members_running(&self, kind: JobKind) -> bool {
-        self.family.as_ref().is_some_and(|f| {
-            f.members.iter().any(|m| match kind {
-                JobKind::Hbm => m.fr_status.running(),
-                JobKind::Bif => m.bif_status.running(),
-                _ => m.omega_status.running(),
-            })
-        })
+        self.family
+            .as_ref()
+            .is_some_and(|f| f.members.iter().any(|m| m.comp.status(kind).running()))
     }
 
     /// The family's part of the status the tests read.
@@ -327,14 +230,15 @@ impl Controller {
             .members
             .iter()
             .map(|m| {
+                let c = &m.comp;
                 serde_json::json!({
                     "value": m.value,
-                    "fr": m.fr_status,
-                    "fr_branch_points": m.hbm.points.len(),
-                    "bif": m.bif_status,
-                    "bif_points": m.bif.samples.len(),
-                    "omega_job": m.omega_status,
-                    "period": m.omega.as_ref().map(|r| r.period),
+                    "fr": c.status(JobKind::HarmonicBalance),
+                    "fr_branch_points": c.hbm.points.len(),
+                    "bif": c.status(JobKind::Bif),
+                    "bif_points": c.bif.samples.len(),
+                    "omega_job": c.status(JobKind::Omega),
+                    "period": c.omega.as_ref().map(|r| r.period),
                 })
             })
             .collect();

@@ -82,8 +82,10 @@ impl Controller {
         let mut results: Vec<&OmegaResult> = vec![self.exportable_omega()?];
         if let Some(f) = &self.family {
             for m in &f.members {
-                match &m.omega {
-                    Some(r) if !r.preview && m.omega_status.error.is_none() => results.push(r),
+                match &m.comp.omega {
+                    Some(r) if !r.preview && m.comp.status(JobKind::Omega).error.is_none() => {
+                        results.push(r)
+                    }
                     _ => return Err(ExportError::NotComputed),
                 }
             }

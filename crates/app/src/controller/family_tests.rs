@@ -24,8 +24,8 @@ fn ready(c: &mut Controller) -> Vec<(usize, ToWorker)> {
 fn member_jobs(p: &[(usize, ToWorker)]) -> Vec<(u32, JobKind, usize, f64)> {
     p.iter()
         .filter_map(|(w, m)| match m {
-            ToWorker::RunMember {
-                member,
+            ToWorker::Run {
+                target: Target::Member(member),
                 params,
                 job,
                 ..
@@ -44,11 +44,7 @@ fn member_jobs(p: &[(usize, ToWorker)]) -> Vec<(u32, JobKind, usize, f64)> {
 
 fn member_id(c: &Controller, i: usize, kind: JobKind) -> JobId {
     let m = &c.family.as_ref().unwrap().members[i];
-    match kind {
-        JobKind::Hbm => m.hbm.id,
-        JobKind::Bif => m.bif.id,
-        _ => m.omega_status.id,
-    }
+    m.comp.status(kind).id
 }
 
 fn hbm(id: JobId, amplitude: f64) -> String {
@@ -80,13 +76,18 @@ fn a_family_link_fans_out_member_jobs_and_restores_exactly() {
             .map(|j| j.2)
             .collect();
         assert_eq!(bif_workers, vec![0, 1]);
-        assert_eq!(mine.iter().filter(|j| j.1 == JobKind::Hbm).count(), 1);
+        assert_eq!(
+            mine.iter()
+                .filter(|j| j.1 == JobKind::HarmonicBalance)
+                .count(),
+            1
+        );
         assert_eq!(mine.iter().filter(|j| j.1 == JobKind::Omega).count(), 1);
     }
     // The two members' branches go to different workers.
     let hbm_workers: Vec<usize> = jobs
         .iter()
-        .filter(|j| j.1 == JobKind::Hbm)
+        .filter(|j| j.1 == JobKind::HarmonicBalance)
         .map(|j| j.2)
         .collect();
     assert_eq!(hbm_workers.len(), 2);
@@ -107,10 +108,10 @@ fn a_family_link_fans_out_member_jobs_and_restores_exactly() {
 fn member_replies_become_coloured_curves_labelled_in_words() {
     let (mut c, _) = Controller::new("family=te_um:0,20,30", 0.0);
     ready(&mut c);
-    let main = c.hbm.id;
+    let main = c.main.hbm.id;
     c.worker_message(1, &hbm(main, 10.0), 2.0);
-    let m1 = member_id(&c, 0, JobKind::Hbm);
-    let m2 = member_id(&c, 1, JobKind::Hbm);
+    let m1 = member_id(&c, 0, JobKind::HarmonicBalance);
+    let m2 = member_id(&c, 1, JobKind::HarmonicBalance);
     c.worker_message(0, &hbm(m1, 20.0), 3.0);
     // A stale id (an older job) is ignored.
     c.worker_message(0, &hbm(m2 + 1000, 99.0), 3.0);
@@ -139,10 +140,10 @@ fn member_replies_become_coloured_curves_labelled_in_words() {
     let csv = crate::views::fr::fr_csv(&c.fr_view());
     assert!(csv.contains("\nhbm (TE 0 µm),0.5,10,-10,"), "{csv}");
     assert!(csv.contains("\nhbm (TE 20 µm),1,20,-20,"), "{csv}");
-    assert!(c.members_running(JobKind::Hbm));
+    assert!(c.members_running(JobKind::HarmonicBalance));
     c.worker_message(0, &hbm(m2, 30.0), 5.0);
     assert_eq!(c.fr_view().branches[2].points.len(), 2);
-    assert!(!c.members_running(JobKind::Hbm));
+    assert!(!c.members_running(JobKind::HarmonicBalance));
 }
 
 #[test]
@@ -169,7 +170,7 @@ fn the_small_multiples_share_their_axes_and_letter_their_panels() {
             points: vec![sample(0.5, x)],
         })
     };
-    c.worker_message(0, &bif(c.bif.id, 10.0), 2.0);
+    c.worker_message(0, &bif(c.main.bif.id, 10.0), 2.0);
     c.worker_message(0, &bif(member_id(&c, 1, JobKind::Bif), -700.0), 2.0);
     let panels = c.bif_panels();
     let titles: Vec<&str> = panels.iter().map(|p| p.title.as_str()).collect();
@@ -248,9 +249,13 @@ fn a_figure_preset_loads_its_whole_family_and_bad_input_keeps_the_last_state() {
     assert_eq!(c.family.as_ref().unwrap().spec.values, vec![60.0, 100.0]);
     // One value only: the members' jobs are cancelled.
     let fx = c.clear_family();
-    assert!(posts(&fx)
-        .iter()
-        .all(|(_, m)| matches!(m, ToWorker::CancelMembers { kind: None })));
+    assert!(posts(&fx).iter().all(|(_, m)| matches!(
+        m,
+        ToWorker::Cancel {
+            target: Target::Member(_),
+            kind: None
+        }
+    )));
     assert!(!c.query().contains("family"));
     // A/B stays: pinning still works beside a family.
     c.set_family_text("te_um", "0, 30", 5.0).unwrap();
@@ -298,7 +303,12 @@ fn fig2_shows_its_four_mesh_panels_as_a_projection_of_the_same_branches() {
     let link = c.query();
     assert!(link.contains("panels=s1a1%2Cs2b1%2Ca1b1%2Crb1"), "{link}");
     let jobs = member_jobs(&posts(&fx));
-    assert_eq!(jobs.iter().filter(|j| j.1 == JobKind::Hbm).count(), 5);
+    assert_eq!(
+        jobs.iter()
+            .filter(|j| j.1 == JobKind::HarmonicBalance)
+            .count(),
+        5
+    );
     // Every branch answers for every mesh; each panel projects its mesh.
     let model = c.model.as_ref().unwrap();
     let n = model.system.meshes.len();
@@ -306,10 +316,10 @@ fn fig2_shows_its_four_mesh_panels_as_a_projection_of_the_same_branches() {
         .iter()
         .map(|m| model.system.mesh_index(m).unwrap())
         .collect();
-    let main = c.hbm.id;
+    let main = c.main.hbm.id;
     c.worker_message(1, &hbm_meshes(main, n, |j| j as f64 + 1.0), 2.0);
     for i in 0..5 {
-        let id = member_id(&c, i, JobKind::Hbm);
+        let id = member_id(&c, i, JobKind::HarmonicBalance);
         let scale = 100.0 * (i + 1) as f64;
         c.worker_message(0, &hbm_meshes(id, n, |j| scale + j as f64), 3.0);
     }
@@ -385,7 +395,7 @@ fn the_mesh_panels_export_every_panel() {
     ready(&mut c);
     c.apply_preset("fig3", 1.0);
     let n = c.model.as_ref().unwrap().system.meshes.len();
-    c.worker_message(1, &hbm_meshes(c.hbm.id, n, |j| j as f64 + 1.0), 2.0);
+    c.worker_message(1, &hbm_meshes(c.main.hbm.id, n, |j| j as f64 + 1.0), 2.0);
     let text = |f| match c.export(crate::views::ViewId::Fr, f).unwrap() {
         Effect::Download { text, .. } => text,
         Effect::Post { .. } => panic!("a data export posts nothing"),

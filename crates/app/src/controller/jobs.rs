@@ -1,7 +1,19 @@
-//! Starting the page's jobs: which change restarts what, and the job
-//! messages posted to the workers (a kind's shards spread over them).
+//! Starting the page's jobs: one path for every [`Target`] (the current
+//! state, the pinned A, a family member) and every [`JobKind`]: a kind's
+//! store started in the target's [`Computation`], its job's shards posted
+//! to the workers.
 
 use super::*;
+use crate::worker::jobs::omega::{selected_spec, OmegaJob, PREVIEW_RUN};
+
+/// A job's parameters as the worker messages carry them.
+pub(super) type Params = serde_json::Map<String, serde_json::Value>;
+
+/// The kinds the pinned A computes (drawn under the current state's).
+pub(super) const PINNED_KINDS: KindSet = KindSet::of(&[JobKind::HarmonicBalance, JobKind::Bif]);
+/// The kinds a family member computes (its curve, its panel, its orbit).
+pub(super) const MEMBER_KINDS: KindSet =
+    KindSet::of(&[JobKind::Omega, JobKind::HarmonicBalance, JobKind::Bif]);
 
 /// Steady states in a bifurcation sweep of view settings `v` (both
 /// directions count twice).
@@ -14,97 +26,15 @@ pub(super) fn bif_total(v: &crate::settings::ViewOptions) -> usize {
     v.bif_points as usize * per_dir
 }
 
-/// What a change restarts.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) struct Restart {
-    /// The harmonic-balance branch.
-    pub(super) fr: bool,
-    /// The time-integration overlay.
-    pub(super) ti: bool,
-    pub(super) bif: bool,
-    pub(super) omega: bool,
-    /// The map (only if what it depends on changed).
-    pub(super) map: bool,
-    pub(super) lyap: bool,
-}
-
-impl Restart {
-    /// The kinds to restart, in the order they start (the selected Omega
-    /// first: its worker serves it first).
-    fn kinds(self) -> impl Iterator<Item = JobKind> {
-        let on = [self.omega, self.fr, self.ti, self.bif, self.map, self.lyap];
-        JobKind::ALL
-            .into_iter()
-            .zip(on)
-            .filter(|(_, on)| *on)
-            .map(|(k, _)| k)
-    }
-}
-
-/// A job's parameters as the worker messages carry them.
-pub(super) type Params = serde_json::Map<String, serde_json::Value>;
-
-pub(super) const ALL: Restart = Restart {
-    fr: true,
-    ti: true,
-    bif: true,
-    omega: true,
-    map: true,
-    lyap: true,
-};
-
-pub(super) const NONE: Restart = Restart {
-    fr: false,
-    ti: false,
-    bif: false,
-    omega: false,
-    map: false,
-    lyap: false,
-};
-
-/// The harmonic-balance job of a view's settings (the current state's and
-/// the pinned A state's alike).
-pub(super) fn hbm_job(v: &crate::settings::ViewOptions) -> JobSpec {
-    JobSpec::Hbm {
-        omega_from: v.omega_from,
-        omega_to: v.omega_to,
-        points: v.fr_points,
-        harmonics: v.harmonics,
-        stability: true,
-    }
-}
-
-/// Chain `shard` of the `chains` of a bifurcation sweep of view settings
-/// `v` (the current state's, A's and a family member's alike).
-pub(super) fn bif_job(v: &crate::settings::ViewOptions, chains: u32, shard: u32) -> JobSpec {
-    JobSpec::Bif {
-        omega_from: v.omega_from,
-        omega_to: v.omega_to,
-        points: v.bif_points,
-        directions: v.bif_dir.name().to_string(),
-        chains,
-        shard,
-        run: RunOptions {
-            transient_periods: v.transient_periods,
-            record_periods: v.record_periods,
-        },
-    }
+/// What a target computes with: its settings (a member's are the current
+/// view with its own parameters) and its model.
+pub(super) struct Inputs {
+    pub(super) settings: Settings,
+    pub(super) model: Model,
+    pub(super) params: Params,
 }
 
 impl Controller {
-    /// The selected-Omega job of the current settings on `model` (the
-    /// current state's and a family member's alike).
-    pub(super) fn omega_job(&self, model: &Model) -> JobSpec {
-        let v = &self.settings.view;
-        JobSpec::Omega {
-            omega: v.omega,
-            mesh: self.settings.mesh_index(model),
-            run: self.run_options(v.record_periods),
-            samples_per_period: SAMPLES_PER_PERIOD,
-            max_order: MAX_ORDER,
-        }
-    }
-
     pub(super) fn post(&mut self, worker: usize, msg: &ToWorker) -> Vec<Effect> {
         let text = encode(msg);
         match self.workers.get_mut(worker) {
@@ -122,7 +52,7 @@ impl Controller {
         self.workers.len()
     }
 
-    /// The worker that runs the harmonic-balance branch: the last.
+    /// The worker that runs the current state's harmonic-balance branch: the last.
     pub fn hbm_worker(&self) -> usize {
         self.workers.len() - 1
     }
@@ -144,6 +74,22 @@ impl Controller {
         shard as usize % self.workers.len()
     }
 
+    /// The worker of `target`'s job of `kind`, shard `shard`: the
+    /// selected-Omega runs and the branches spread over the pool by target,
+    /// the chains round robin.
+    fn worker_of(&self, target: Target, kind: JobKind, shard: u32) -> usize {
+        let pool = self.workers.len();
+        match (kind, target) {
+            (JobKind::HarmonicBalance, Target::Main) => self.hbm_worker(),
+            (JobKind::HarmonicBalance, Target::A) => self.pinned_hbm_worker(),
+            (JobKind::HarmonicBalance, Target::Member(m)) => {
+                (self.hbm_worker() + m as usize) % pool
+            }
+            (JobKind::Omega, Target::Member(m)) => m as usize % pool,
+            _ => self.shard_worker(shard),
+        }
+    }
+
     /// How many of `chains` chains worker `worker` holds.
     pub(super) fn chains_on(&self, worker: usize, chains: u32) -> usize {
         (0..chains)
@@ -151,20 +97,340 @@ impl Controller {
             .count()
     }
 
-    pub(super) fn run_options(&self, record: u32) -> RunOptions {
-        RunOptions {
-            transient_periods: self.settings.view.transient_periods,
-            record_periods: record,
+    /// The next job id (unique across every computation).
+    pub(super) fn next_job(&mut self) -> JobId {
+        self.next_id += 1;
+        self.next_id
+    }
+
+    /// The computation of `target`, if it exists.
+    pub(super) fn computation_mut(&mut self, target: Target) -> Option<&mut Computation> {
+        match target {
+            Target::Main => Some(&mut self.main),
+            Target::A => self.pinned.as_mut().map(|p| &mut p.comp),
+            Target::Member(m) => self
+                .family
+                .as_mut()
+                .and_then(|f| f.members.get_mut((m as usize).checked_sub(1)?))
+                .map(|m| &mut m.comp),
         }
     }
 
+    /// The computation of `target`, if it exists.
+    pub fn computation(&self, target: Target) -> Option<&Computation> {
+        match target {
+            Target::Main => Some(&self.main),
+            Target::A => self.pinned.as_ref().map(|p| &p.comp),
+            Target::Member(m) => self
+                .family
+                .as_ref()
+                .and_then(|f| f.members.get((m as usize).checked_sub(1)?))
+                .map(|m| &m.comp),
+        }
+    }
+
+    /// Every computation and its target: the current state, A, the members.
+    pub(super) fn targets(&self) -> Vec<Target> {
+        let mut t = vec![Target::Main];
+        if self.pinned.is_some() {
+            t.push(Target::A);
+        }
+        if let Some(f) = &self.family {
+            t.extend((1..=f.members.len() as u32).map(Target::Member));
+        }
+        t
+    }
+
+    /// Cancels `target`'s jobs of `kind` (`None`: all) on every worker.
+    pub(super) fn cancel(&mut self, target: Target, kind: Option<JobKind>) -> Vec<Effect> {
+        (0..self.workers.len())
+            .flat_map(|w| self.post(w, &ToWorker::Cancel { target, kind }))
+            .collect()
+    }
+
+    /// Posts the job of each of `chains` shards (`job(shard)`) of `target`.
+    fn post_shards(
+        &mut self,
+        (target, id, params): (Target, JobId, &Params),
+        chains: u32,
+        job: impl Fn(u32) -> JobSpec,
+    ) -> Vec<Effect> {
+        let mut fx = Vec::new();
+        for shard in 0..chains {
+            let job = job(shard);
+            let worker = self.worker_of(target, job.kind(), shard);
+            let msg = ToWorker::Run {
+                target,
+                id,
+                params: params.clone(),
+                job,
+            };
+            fx.extend(self.post(worker, &msg));
+        }
+        fx
+    }
+
+    /// The inputs of `target`'s jobs, or why it has none (its model
+    /// cannot be built).
+    pub(super) fn inputs(&self, target: Target) -> Result<Inputs, String> {
+        let settings = match target {
+            Target::Main => {
+                let model = self.model.clone()?;
+                let params = keys::to_json(&self.settings.params);
+                return Ok(Inputs {
+                    settings: self.settings.clone(),
+                    model,
+                    params,
+                });
+            }
+            Target::A => self.pinned.as_ref().map(|p| p.settings.clone()),
+            Target::Member(m) => {
+                let member = self
+                    .family
+                    .as_ref()
+                    .and_then(|f| f.members.get((m as usize).checked_sub(1)?));
+                match member.map(|m| m.params.clone()) {
+                    Some(Ok(params)) => Some(Settings {
+                        params,
+                        view: self.settings.view.clone(),
+                    }),
+                    Some(Err(e)) => return Err(e),
+                    None => None,
+                }
+            }
+        }
+        .ok_or_else(|| "no such computation".to_string())?;
+        let model = Model::new(&settings.params).map_err(|e| e.to_string())?;
+        let params = keys::to_json(&settings.params);
+        Ok(Inputs {
+            settings,
+            model,
+            params,
+        })
+    }
+
+    /// Restarts `target`'s jobs of `kinds`: each kind's store and status
+    /// started afresh and its shards posted; a target whose model cannot
+    /// be built says why on every one of those kinds.
+    pub(super) fn start(&mut self, target: Target, kinds: KindSet, now_ms: f64) -> Vec<Effect> {
+        let input = match self.inputs(target) {
+            Ok(i) => i,
+            Err(e) => {
+                let kinds: Vec<JobKind> = kinds.iter().collect();
+                if let Some(c) = self.computation_mut(target) {
+                    c.fail_all(&kinds, &e);
+                }
+                return Vec::new();
+            }
+        };
+        let mut fx = Vec::new();
+        for kind in kinds.iter() {
+            fx.extend(self.start_kind(target, kind, &input, now_ms));
+        }
+        fx
+    }
+
+    /// Starts `target`'s job of `kind` with `input`.
+    fn start_kind(
+        &mut self,
+        target: Target,
+        kind: JobKind,
+        input: &Inputs,
+        now_ms: f64,
+    ) -> Vec<Effect> {
+        let v = &input.settings.view;
+        let main = target == Target::Main;
+        // Everything the map depends on (it restarts only if that changed).
+        let map_signature = match kind {
+            JobKind::Map => self.map_signature(&input.model, &input.params),
+            _ => String::new(),
+        };
+        // The units of the job's progress, and its shards: `None` for a
+        // kind switched off (its running job dropped).
+        let shards = match kind {
+            JobKind::Omega | JobKind::HarmonicBalance => Some(1),
+            JobKind::Overlay => (v.fr_ti_points > 0).then(|| chain_count(v.fr_ti_points)),
+            JobKind::Bif => Some(chain_count(v.bif_points)),
+            JobKind::Map => {
+                let st = self.main.status(JobKind::Map);
+                if map_signature == self.main.map.signature && st.error.is_none() {
+                    // What the map depends on did not change.
+                    return Vec::new();
+                }
+                Some((self.workers.len() as u32).min(v.map_value_points))
+            }
+            JobKind::Lyap => (v.lyap_points >= 2).then(|| chain_count(v.lyap_points)),
+        };
+        let Some(chains) = shards else {
+            return self.switch_off(target, kind);
+        };
+        let total = match kind {
+            JobKind::Omega => 1,
+            JobKind::HarmonicBalance => 100,
+            JobKind::Overlay => v.fr_ti_points as usize,
+            JobKind::Bif => bif_total(v),
+            JobKind::Map => self.map_grid().cells(),
+            JobKind::Lyap => v.lyap_points as usize,
+        };
+        let id = self.next_job();
+        let grid = self.map_grid();
+        let Some(c) = self.computation_mut(target) else {
+            return Vec::new();
+        };
+        *c.status_mut(kind) = JobStatus::start(id, now_ms, total);
+        match kind {
+            // The current state keeps its last result on screen until the
+            // new one (or its preview) arrives; a member's panel waits.
+            JobKind::Omega if !main => c.omega = None,
+            JobKind::Omega => {}
+            JobKind::HarmonicBalance => {
+                // Keep the last complete branch (not a half-computed one)
+                // to fade under the new one while it computes.
+                if main && c.hbm.is_complete() {
+                    c.hbm_previous = Some(std::mem::take(&mut c.hbm));
+                }
+                c.hbm = HbmStore::new(id, v.harmonics);
+            }
+            JobKind::Overlay => {
+                c.overlay =
+                    FrStore::new(id, v.fr_ti_points, v.transient_periods, v.fr_record_periods)
+            }
+            JobKind::Bif => c.bif = BifStore::new(id, total),
+            JobKind::Map => c.map = MapStore::new(id, grid.clone(), map_signature),
+            JobKind::Lyap => c.lyap = LyapStore::new(id, total, v.lyap_periods),
+        }
+        if main {
+            self.dirty.data(kind);
+            if kind == JobKind::HarmonicBalance {
+                let before = self.issues.len();
+                self.issues.retain(|i| !i.starts_with(HBM_FAILURE));
+                self.dirty.messages |= self.issues.len() != before;
+            }
+            if kind == JobKind::Bif {
+                self.export = None;
+                // The sweep's steady states are also the frequency response's dots.
+                self.dirty.data(JobKind::Overlay);
+            }
+        }
+        let run = |record_periods| RunOptions {
+            transient_periods: v.transient_periods,
+            record_periods,
+        };
+        let mesh = input.settings.mesh_index(&input.model);
+        let fx = self.post_shards((target, id, &input.params), chains, |shard| match kind {
+            JobKind::Omega => JobSpec::Omega(selected_spec(
+                &input.settings,
+                &input.model,
+                run(v.record_periods),
+            )),
+            JobKind::HarmonicBalance => JobSpec::HarmonicBalance {
+                omega_from: v.omega_from,
+                omega_to: v.omega_to,
+                points: v.fr_points,
+                harmonics: v.harmonics,
+                stability: true,
+            },
+            JobKind::Overlay => JobSpec::Overlay {
+                omega_from: v.omega_from,
+                omega_to: v.omega_to,
+                points: v.fr_ti_points,
+                chains,
+                shard,
+                run: run(v.fr_record_periods),
+            },
+            JobKind::Bif => JobSpec::Bif {
+                omega_from: v.omega_from,
+                omega_to: v.omega_to,
+                points: v.bif_points,
+                directions: v.bif_dir.name().to_string(),
+                chains,
+                shard,
+                run: run(v.record_periods),
+            },
+            JobKind::Map => JobSpec::Map {
+                key: grid.key.clone(),
+                omega_from: grid.omega_from,
+                omega_to: grid.omega_to,
+                omega_points: grid.omega_points,
+                value_from: grid.value_from,
+                value_to: grid.value_to,
+                value_points: grid.value_points,
+                mesh,
+                shards: chains,
+                shard,
+                run: RunOptions {
+                    transient_periods: v.map_transient_periods,
+                    record_periods: v.map_record_periods,
+                },
+            },
+            JobKind::Lyap => JobSpec::Lyap {
+                omega_from: v.omega_from,
+                omega_to: v.omega_to,
+                points: v.lyap_points,
+                chains,
+                shard,
+                transient_periods: v.lyap_transient_periods,
+                periods: v.lyap_periods,
+            },
+        });
+        if main && kind == JobKind::Omega {
+            self.preview_omega(&input.model, id, now_ms);
+        }
+        fx
+    }
+
+    /// A kind switched off (no overlay, no Lyapunov curve): its store and
+    /// status cleared, its running job dropped.
+    fn switch_off(&mut self, target: Target, kind: JobKind) -> Vec<Effect> {
+        let Some(c) = self.computation_mut(target) else {
+            return Vec::new();
+        };
+        let running = c.status(kind).id != 0;
+        *c.status_mut(kind) = JobStatus::default();
+        match kind {
+            JobKind::Overlay => c.overlay = FrStore::default(),
+            JobKind::Lyap => c.lyap = LyapStore::default(),
+            _ => {}
+        }
+        self.dirty.data(kind);
+        if running {
+            self.cancel(target, Some(kind))
+        } else {
+            Vec::new()
+        }
+    }
+
+    /// Restarts the jobs of `kinds`, kind by kind, for the current state
+    /// and the family members (A keeps its own settings).
+    pub(super) fn restart(&mut self, kinds: KindSet, now_ms: f64) -> Vec<Effect> {
+        let mut fx = Vec::new();
+        if let Err(e) = &self.model {
+            // No jobs on an invalid model: say why on every view.
+            let e = e.clone();
+            let all: Vec<JobKind> = kinds.iter().collect();
+            self.main.fail_all(&all, &e);
+            for kind in JobKind::ALL {
+                fx.extend(self.cancel(Target::Main, Some(kind)));
+            }
+            self.main.map.signature.clear();
+            fx.extend(self.cancel_members());
+            self.dirty.data(KindSet::ALL);
+            return fx;
+        }
+        fx.extend(self.start(Target::Main, kinds, now_ms));
+        fx.extend(self.restart_members(kinds, now_ms));
+        self.dirty.url = true;
+        fx
+    }
+
     /// Shows a preview of the selected-Omega views at once: a short bounded
-    /// run ([`crate::jobs::omega::PREVIEW_RUN`]) continued from the last result's
-    /// end state under the new settings. The worker's full steady state
-    /// replaces it; without a previous state, or if the run fails or
-    /// exceeds its step budget, the views keep the last result until then.
-    pub(super) fn preview_omega(&mut self, model: &Model, id: JobId, now_ms: f64) {
+    /// run ([`PREVIEW_RUN`]) continued from the last result's end state
+    /// under the new settings. The worker's full steady state replaces it;
+    /// without a previous state, or if the run fails or exceeds its step
+    /// budget, the views keep the last result until then.
+    fn preview_omega(&mut self, model: &Model, id: JobId, now_ms: f64) {
         let Some(start) = self
+            .main
             .omega
             .as_ref()
             .map(|r| r.end_state.clone())
@@ -172,205 +438,15 @@ impl Controller {
         else {
             return;
         };
-        let v = &self.settings.view;
-        let job = crate::jobs::omega::OmegaJob {
+        let job = OmegaJob {
             id,
             model: model.clone(),
-            omega: v.omega,
-            mesh: self.settings.mesh_index(model),
-            run: crate::jobs::omega::PREVIEW_RUN,
-            samples_per_period: SAMPLES_PER_PERIOD,
-            max_order: MAX_ORDER,
+            spec: selected_spec(&self.settings, model, PREVIEW_RUN),
         };
-        if let Ok(r) = crate::jobs::omega::omega_result(&job, Some(&start)) {
-            self.omega = Some(r);
-            self.omega_status.preview_ms = Some(now_ms);
+        if let Ok(r) = crate::worker::jobs::omega::omega_result(&job, Some(&start)) {
+            self.main.omega = Some(r);
+            self.main.status_mut(JobKind::Omega).preview_ms = Some(now_ms);
         }
-    }
-
-    /// The next job id.
-    fn next_job(&mut self) -> JobId {
-        self.next_id += 1;
-        self.next_id
-    }
-
-    /// Posts the job of each of `chains` shards (`job(shard)`), dealt round
-    /// robin over the workers, for the current state or (`pinned`) for A.
-    pub(super) fn post_shards(
-        &mut self,
-        id: JobId,
-        params: &Params,
-        (chains, pinned): (u32, bool),
-        job: impl Fn(u32) -> JobSpec,
-    ) -> Vec<Effect> {
-        let mut fx = Vec::new();
-        for w in 0..chains {
-            let (params, job) = (params.clone(), job(w));
-            let msg = if pinned {
-                ToWorker::RunPinned { id, params, job }
-            } else {
-                ToWorker::Run { id, params, job }
-            };
-            fx.extend(self.post(self.shard_worker(w), &msg));
-        }
-        fx
-    }
-
-    /// A new job of `kind` with `total` units: its id, its status started.
-    fn begin(&mut self, kind: JobKind, total: usize, now_ms: f64) -> JobId {
-        let id = self.next_job();
-        *self.status_mut(kind) = JobStatus::start(id, now_ms, total);
-        id
-    }
-
-    /// A kind switched off: its running job (if `running`) cancelled and
-    /// its status cleared.
-    fn switch_off(&mut self, kind: JobKind, running: bool) -> Vec<Effect> {
-        *self.status_mut(kind) = JobStatus::default();
-        if running {
-            self.cancel(kind)
-        } else {
-            Vec::new()
-        }
-    }
-
-    /// Cancels the jobs of `kind` on every worker.
-    fn cancel(&mut self, kind: JobKind) -> Vec<Effect> {
-        (0..self.workers.len())
-            .flat_map(|w| self.post(w, &ToWorker::Cancel { kind }))
-            .collect()
-    }
-
-    /// The status of the current job of `kind`.
-    pub(super) fn status_mut(&mut self, kind: JobKind) -> &mut JobStatus {
-        match kind {
-            JobKind::Omega => &mut self.omega_status,
-            JobKind::Hbm => &mut self.fr_status,
-            JobKind::Fr => &mut self.ti_status,
-            JobKind::Bif => &mut self.bif_status,
-            JobKind::Map => &mut self.map_status,
-            JobKind::Lyap => &mut self.lyap_status,
-        }
-    }
-
-    /// Restarts the jobs `what` names, kind by kind.
-    pub(super) fn restart(&mut self, what: Restart, now_ms: f64) -> Vec<Effect> {
-        let mut fx = Vec::new();
-        let model = match &self.model {
-            Ok(m) => m.clone(),
-            Err(e) => {
-                // No jobs on an invalid model: say why on every view.
-                let e = e.clone();
-                for kind in what.kinds() {
-                    self.status_mut(kind).error = Some(e.clone());
-                }
-                for kind in JobKind::ALL {
-                    fx.extend(self.cancel(kind));
-                }
-                self.map.signature.clear();
-                fx.extend(self.cancel_members(None));
-                self.dirty.fr = true;
-                self.dirty.bif = true;
-                self.dirty.omega = true;
-                self.dirty.map = true;
-                self.dirty.lyap = true;
-                return fx;
-            }
-        };
-        let params = keys::to_json(&self.settings.params);
-        for kind in what.kinds() {
-            fx.extend(match kind {
-                JobKind::Omega => self.start_omega(&model, &params, now_ms),
-                JobKind::Hbm => self.start_hbm(&params, now_ms),
-                JobKind::Fr => self.start_overlay(&params, now_ms),
-                JobKind::Bif => self.start_bif(&params, now_ms),
-                JobKind::Map => self.restart_map(&model, &params, now_ms),
-                JobKind::Lyap => self.restart_lyap(&params, now_ms),
-            });
-        }
-        fx.extend(self.restart_members(what, now_ms));
-        self.dirty.url = true;
-        fx
-    }
-
-    fn start_omega(&mut self, model: &Model, params: &Params, now_ms: f64) -> Vec<Effect> {
-        let job = self.omega_job(model);
-        let id = self.begin(JobKind::Omega, 1, now_ms);
-        let fx = self.post_shards(id, params, (1, false), |_| job.clone());
-        self.preview_omega(model, id, now_ms);
-        self.dirty.omega = true;
-        fx
-    }
-
-    fn start_hbm(&mut self, params: &Params, now_ms: f64) -> Vec<Effect> {
-        let id = self.begin(JobKind::Hbm, 100, now_ms);
-        // Keep the last complete branch (not a half-computed one) to fade
-        // under the new one while it computes.
-        if self.hbm.is_complete() {
-            self.hbm_previous = Some(std::mem::take(&mut self.hbm));
-        }
-        self.hbm = HbmStore::new(id, self.settings.view.harmonics);
-        let before = self.issues.len();
-        self.issues.retain(|i| !i.starts_with(HBM_FAILURE));
-        self.dirty.messages |= self.issues.len() != before;
-        let job = hbm_job(&self.settings.view);
-        self.dirty.fr = true;
-        let msg = ToWorker::Run {
-            id,
-            params: params.clone(),
-            job,
-        };
-        self.post(self.hbm_worker(), &msg)
-    }
-
-    fn start_overlay(&mut self, params: &Params, now_ms: f64) -> Vec<Effect> {
-        let v = self.settings.view.clone();
-        self.dirty.fr = true;
-        if v.fr_ti_points == 0 {
-            // Overlay off: drop a running overlay job, if there was one.
-            let running = self.fr.id != 0;
-            self.fr = FrStore::default();
-            return self.switch_off(JobKind::Fr, running);
-        }
-        let n = v.fr_ti_points;
-        let id = self.begin(JobKind::Fr, n as usize, now_ms);
-        self.fr = FrStore::new(id, n, v.transient_periods, v.fr_record_periods);
-        let chains = chain_count(n);
-        let run = self.run_options(v.fr_record_periods);
-        self.post_shards(id, params, (chains, false), |shard| JobSpec::Fr {
-            omega_from: v.omega_from,
-            omega_to: v.omega_to,
-            points: n,
-            chains,
-            shard,
-            run,
-        })
-    }
-
-    fn start_bif(&mut self, params: &Params, now_ms: f64) -> Vec<Effect> {
-        let v = self.settings.view.clone();
-        let total = bif_total(&v);
-        let id = self.begin(JobKind::Bif, total, now_ms);
-        self.bif = BifStore::new(id, total);
-        // The sweep's steady states are also the frequency response's dots.
-        self.dirty.fr = true;
-        self.export = None;
-        self.dirty.bif = true;
-        self.post_bif(id, params, &v, false)
-    }
-
-    /// Posts the shards of a bifurcation sweep of view settings `v`.
-    pub(super) fn post_bif(
-        &mut self,
-        id: JobId,
-        params: &Params,
-        v: &crate::settings::ViewOptions,
-        pinned: bool,
-    ) -> Vec<Effect> {
-        let chains = chain_count(v.bif_points);
-        self.post_shards(id, params, (chains, pinned), |shard| {
-            bif_job(v, chains, shard)
-        })
     }
 
     /// The map's grid from the view options.
@@ -390,11 +466,7 @@ impl Controller {
     /// Everything the map depends on, as text: its grid, periods and mesh,
     /// and the parameters with the rows' key neutralised (the rows set it),
     /// so a click on a cell, which sets that key, does not restart the map.
-    pub(super) fn map_signature(
-        &self,
-        model: &Model,
-        params: &serde_json::Map<String, serde_json::Value>,
-    ) -> String {
+    pub(super) fn map_signature(&self, model: &Model, params: &Params) -> String {
         let v = &self.settings.view;
         let mut p = self.settings.params.clone();
         let neutral = keys::set(&mut p, &v.map_key, keys::Value::Num(0.0)).is_ok();
@@ -410,67 +482,5 @@ impl Controller {
             v.map_record_periods,
             self.settings.mesh_index(model),
         )
-    }
-
-    pub(super) fn restart_map(
-        &mut self,
-        model: &Model,
-        params: &Params,
-        now_ms: f64,
-    ) -> Vec<Effect> {
-        let signature = self.map_signature(model, params);
-        if signature == self.map.signature && self.map_status.error.is_none() {
-            return Vec::new();
-        }
-        let grid = self.map_grid();
-        let id = self.begin(JobKind::Map, grid.cells(), now_ms);
-        let v = &self.settings.view;
-        let run = RunOptions {
-            transient_periods: v.map_transient_periods,
-            record_periods: v.map_record_periods,
-        };
-        // Rows are independent: every worker takes a share.
-        let shards = (self.workers.len() as u32).min(grid.value_points);
-        let mesh = self.settings.mesh_index(model);
-        let fx = self.post_shards(id, params, (shards, false), |shard| JobSpec::Map {
-            key: grid.key.clone(),
-            omega_from: grid.omega_from,
-            omega_to: grid.omega_to,
-            omega_points: grid.omega_points,
-            value_from: grid.value_from,
-            value_to: grid.value_to,
-            value_points: grid.value_points,
-            mesh,
-            shards,
-            shard,
-            run,
-        });
-        self.map = MapStore::new(id, grid, signature);
-        self.dirty.map = true;
-        fx
-    }
-
-    pub(super) fn restart_lyap(&mut self, params: &Params, now_ms: f64) -> Vec<Effect> {
-        let v = self.settings.view.clone();
-        self.dirty.lyap = true;
-        if v.lyap_points < 2 {
-            // The curve is off: drop a running job, if there was one.
-            let running = self.lyap.id != 0;
-            self.lyap = LyapStore::default();
-            return self.switch_off(JobKind::Lyap, running);
-        }
-        let n = v.lyap_points;
-        let id = self.begin(JobKind::Lyap, n as usize, now_ms);
-        self.lyap = LyapStore::new(id, n as usize, v.lyap_periods);
-        let chains = chain_count(n);
-        self.post_shards(id, params, (chains, false), |shard| JobSpec::Lyap {
-            omega_from: v.omega_from,
-            omega_to: v.omega_to,
-            points: n,
-            chains,
-            shard,
-            transient_periods: v.lyap_transient_periods,
-            periods: v.lyap_periods,
-        })
     }
 }

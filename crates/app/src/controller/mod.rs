@@ -4,25 +4,29 @@
 //! Every user action returns the messages to post to the workers; the
 //! controller queues messages for a worker until it has said "ready".
 //! Jobs are restarted by what a change affects: a model parameter restarts
-//! everything, the frequency range the sweeps, the harmonics only the
-//! harmonic-balance branch, the selected Omega or plotted mesh only the
-//! selected-Omega job. The harmonic-balance branch of view 1 runs on the last
-//! worker (worker 0 serves the selected-Omega job first).
+//! everything, a view option the kinds its row of
+//! [`crate::settings::VIEW_KEYS`] names. The current state, the pinned A
+//! and each family member are each one [`Computation`], addressed by a
+//! [`Target`]; every reply goes to [`Computation::feed`]. The
+//! harmonic-balance branch of `ViewId::Fr` runs on the last worker (worker
+//! 0 serves the selected-Omega job first).
 //!
 //! The page runs a pool of workers sized to the machine ([`pool_size`]).
 //! Sweeps along continuation chains use a number of chains fixed by their
 //! point count alone ([`chain_count`]), dealt round robin over the pool, so
 //! their results are the same bits on any machine; map rows are
-//! independent and shared by every worker. The web layer redraws the views
-//! whose `dirty` flag is set, once per animation frame.
+//! independent and shared by every worker. The page core redraws the views
+//! whose data changed ([`Dirty`]), once per animation frame.
 
 use crate::link;
 use crate::presets;
 use crate::protocol::{
-    encode, FromWorker, JobId, JobKind, JobSpec, OmegaResult, RunOptions, ToWorker,
+    encode, um, FromWorker, JobId, JobKind, JobSpec, KindSet, OmegaResult, RunOptions, Target,
+    ToWorker,
 };
 use crate::settings::{mesh_names, view_key, MeshSel, Settings};
-use crate::status::{Dirty, JobStatus};
+use crate::store::status::{Dirty, JobStatus};
+use crate::store::{Computation, HBM_FAILURE};
 use crate::views::bif::{BifStore, BifView};
 use crate::views::fr::{fr_view, FrBranch, FrSource, FrStore, FrView, HbmStore};
 use crate::views::lyap::LyapStore;
@@ -58,13 +62,6 @@ pub fn chain_count(points: u32) -> u32 {
         .min(points)
         .max(1)
 }
-/// Samples per mesh period of the selected-Omega history.
-pub const SAMPLES_PER_PERIOD: u32 = 64;
-/// Highest mesh order of the spectrum.
-pub const MAX_ORDER: f64 = 8.0;
-/// How a failure of the harmonic-balance branch starts in the messages (a
-/// new branch clears the old branch's failure).
-const HBM_FAILURE: &str = "Frequency response: the harmonic-balance solver failed";
 /// Something the web layer must do.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Effect {
@@ -106,57 +103,29 @@ struct PendingExport {
 /// The page's state.
 pub struct Controller {
     /// What a link restores.
-    pub settings: Settings,
+    settings: Settings,
     /// The model built from the parameters, or why it cannot be.
-    pub model: Result<Model, String>,
+    model: Result<Model, String>,
     /// Messages for the user (link problems, rejected input, job failures).
     pub issues: Vec<String>,
     /// The note of the preset last loaded.
-    pub preset_note: Option<String>,
-    /// The harmonic-balance branch of the current job (view 1).
-    pub hbm: HbmStore,
-    /// The last complete branch, shown faded while a new one computes.
-    pub hbm_previous: Option<HbmStore>,
-    /// Time-integration overlay points of the current job (id 0: overlay off).
-    pub fr: FrStore,
-    /// Bifurcation points of the current job.
-    pub bif: BifStore,
-    /// The latest selected-Omega result (possibly from an older job while a new one runs).
-    pub omega: Option<OmegaResult>,
-    /// Status of the harmonic-balance branch (view 1); `done` and `total`
-    /// are per cent of the Omega range.
-    pub fr_status: JobStatus,
-    /// Status of the time-integration overlay grid.
-    pub ti_status: JobStatus,
-    /// Bifurcation job status.
-    pub bif_status: JobStatus,
-    /// Selected-Omega job status.
-    pub omega_status: JobStatus,
-    /// The impact-regime map's cells.
-    pub map: MapStore,
-    /// Map job status.
-    pub map_status: JobStatus,
-    /// The Lyapunov curve's points.
-    pub lyap: LyapStore,
-    /// Lyapunov job status.
-    pub lyap_status: JobStatus,
+    preset_note: Option<String>,
+    /// The current state's results.
+    main: Computation,
     /// The pinned state A of an A/B comparison.
-    pub pinned: Option<Pinned>,
+    pinned: Option<Pinned>,
     /// The parameter family shown, if any (member 0 is the current state).
-    pub family: Option<Family>,
+    family: Option<Family>,
     /// The meshes of the frequency response's side-by-side panels (the
     /// paper's Figs. 2 and 3), if shown.
-    pub panels: Option<Vec<String>>,
-    /// Views to redraw.
-    pub dirty: Dirty,
+    panels: Option<Vec<String>>,
+    /// What changed since the page last drew.
+    dirty: Dirty,
     workers: Vec<WorkerSlot>,
     next_id: JobId,
     export: Option<PendingExport>,
-    /// The parametric-instability bands of the bifurcation sweep's range,
-    /// from its shard-0 worker (kept until a newer job's arrive).
-    bands: Vec<(f64, f64)>,
     /// The "Start here" tour's step (0-based), if it is running.
-    pub tour: Option<usize>,
+    tour: Option<usize>,
 }
 
 impl Controller {
@@ -183,19 +152,7 @@ impl Controller {
             settings: decoded.settings,
             issues: decoded.issues,
             preset_note: None,
-            hbm: HbmStore::default(),
-            hbm_previous: None,
-            fr: FrStore::default(),
-            bif: BifStore::default(),
-            omega: None,
-            fr_status: JobStatus::default(),
-            ti_status: JobStatus::default(),
-            bif_status: JobStatus::default(),
-            omega_status: JobStatus::default(),
-            map: MapStore::default(),
-            map_status: JobStatus::default(),
-            lyap: LyapStore::default(),
-            lyap_status: JobStatus::default(),
+            main: Computation::default(),
             pinned: None,
             family,
             panels: decoded.panels,
@@ -203,11 +160,10 @@ impl Controller {
             workers: vec![WorkerSlot::default(); workers],
             next_id: 0,
             export: None,
-            bands: Vec::new(),
             tour,
         };
         c.rebuild_model();
-        let mut fx = c.restart(ALL, now_ms);
+        let mut fx = c.restart(KindSet::ALL, now_ms);
         if let Some(a) = pinned {
             fx.extend(c.start_pinned(a, now_ms));
         }
@@ -264,7 +220,8 @@ impl Controller {
         mesh_names(&self.settings.params)
     }
 
-    fn issue(&mut self, message: String) {
+    /// Adds a message for the user (once; the last 12 are kept).
+    pub fn issue(&mut self, message: String) {
         if !self.issues.contains(&message) {
             self.issues.push(message);
             if self.issues.len() > 12 {
@@ -272,6 +229,13 @@ impl Controller {
             }
         }
         self.dirty.messages = true;
+    }
+
+    /// Takes back a message (a refused value the user has since changed).
+    pub fn withdraw(&mut self, message: &str) {
+        let before = self.issues.len();
+        self.issues.retain(|i| i != message);
+        self.dirty.messages |= self.issues.len() != before;
     }
 
     /// Clears the messages.
@@ -283,7 +247,7 @@ impl Controller {
     /// Sets a control's key from its text. Out-of-range or impossible values
     /// are refused with a message naming the key and its allowed range.
     pub fn set_key(&mut self, key: &str, text: &str, now_ms: f64) -> Result<Vec<Effect>, String> {
-        if view_key(key).is_some() {
+        if let Some(row) = view_key(key) {
             let before = self.settings.view.clone();
             let meshes = self.mesh_names();
             self.settings
@@ -305,55 +269,14 @@ impl Controller {
                 // Choosing a mesh shows that mesh alone.
                 self.dirty.url = true;
             }
-            let what = match key {
-                "omega" => Restart {
-                    omega: true,
-                    ..NONE
-                },
-                "mesh" => Restart {
-                    omega: true,
-                    map: true,
-                    ..NONE
-                },
-                "omega_from" | "omega_to" => ALL,
-                "transient_periods" => Restart {
-                    fr: false,
-                    map: false,
-                    lyap: false,
-                    ..ALL
-                },
-                "map_key"
-                | "map_from"
-                | "map_to"
-                | "map_omega_points"
-                | "map_value_points"
-                | "map_transient_periods"
-                | "map_record_periods" => Restart { map: true, ..NONE },
-                "lyap_points" | "lyap_transient_periods" | "lyap_periods" => {
-                    Restart { lyap: true, ..NONE }
-                }
-                "fr_points" | "harmonics" => Restart { fr: true, ..NONE },
-                "fr_ti_points" | "fr_record_periods" => Restart { ti: true, ..NONE },
-                "bif_points" | "bif_dir" => Restart { bif: true, ..NONE },
-                // Only the axes change: every view of x is redrawn.
-                "clearance" => {
-                    self.dirty.omega = true;
-                    NONE
-                }
-                "record_periods" => Restart {
-                    bif: true,
-                    omega: true,
-                    ..NONE
-                },
-                _ => NONE,
-            };
-            // The views share the mesh and range: redraw them even without new data.
-            self.dirty.fr = true;
-            self.dirty.bif = true;
-            self.dirty.map = true;
-            self.dirty.lyap = true;
+            // The sweeps' views share the mesh and the range: they are
+            // redrawn even without new data; the axes of x are every view's.
+            self.dirty.data(KindSet::ALL.without(JobKind::Omega.set()));
+            if key == "clearance" {
+                self.dirty.data(JobKind::Omega);
+            }
             self.dirty.url = true;
-            return Ok(self.restart(what, now_ms));
+            return Ok(self.restart(row.restarts, now_ms));
         }
         // The message in a sentence with the allowed range ("Backlash b must be
         // between 0 and 1000 µm"), not the CLI's key syntax.
@@ -378,7 +301,7 @@ impl Controller {
             self.dirty.controls = true;
         }
         self.preset_note = None;
-        Ok(self.restart(ALL, now_ms))
+        Ok(self.restart(KindSet::ALL, now_ms))
     }
 
     /// Moves the selected Omega (clicks and drags on the Omega axes).
@@ -406,7 +329,7 @@ impl Controller {
         self.issues = d.issues;
         self.preset_note = None;
         self.rebuild_model();
-        self.hbm_previous = None;
+        self.main.hbm_previous = None;
         let mut fx = self.clear_a();
         fx.extend(self.clear_family());
         self.family = d.family.map(|spec| Family {
@@ -418,7 +341,7 @@ impl Controller {
             fx.extend(self.start_pinned(a, now_ms));
         }
         self.dirty = Dirty::all();
-        fx.extend(self.restart(ALL, now_ms));
+        fx.extend(self.restart(KindSet::ALL, now_ms));
         fx
     }
 
@@ -431,7 +354,12 @@ impl Controller {
         value: f64,
         now_ms: f64,
     ) -> Result<Vec<Effect>, String> {
-        let grid = self.map.grid.clone().unwrap_or_else(|| self.map_grid());
+        let grid = self
+            .main
+            .map
+            .grid
+            .clone()
+            .unwrap_or_else(|| self.map_grid());
         let (row, column) = grid
             .cell_at(omega, value)
             .ok_or_else(|| "the click is outside the map".to_string())?;
@@ -450,7 +378,7 @@ impl Controller {
             _ => None,
         };
         MapView {
-            store: &self.map,
+            store: &self.main.map,
             mesh_label: match &self.settings.view.mesh {
                 MeshSel::Named(n) => format!("mesh {n}"),
                 MeshSel::Worst => "most severe of all meshes".into(),
@@ -505,11 +433,7 @@ impl Controller {
         match &self.model {
             Ok(m) => (
                 self.settings.mesh_index(m),
-                m.system
-                    .meshes
-                    .iter()
-                    .map(|x| (x.backlash_m * 1e12).round() / 1e6)
-                    .collect(),
+                m.system.meshes.iter().map(|x| um(x.backlash_m)).collect(),
             ),
             Err(_) => (Some(0), Vec::new()),
         }
@@ -533,19 +457,20 @@ impl Controller {
         }
         // The previous branch is context while the new one computes, not
         // after it has ended (complete or failed).
-        let previous = self.hbm_previous.as_ref().filter(|_| !self.hbm.finished);
+        let main = &self.main;
+        let previous = main.hbm_previous.as_ref().filter(|_| !main.hbm.finished);
         // The time-integration dots: the overlay job's when it is on, else
         // the bifurcation sweep's steady states (the same computation, free).
         let swept;
-        let overlay = if self.fr.id != 0 {
-            Some(&self.fr)
+        let overlay = if main.overlay.id != 0 {
+            Some(&main.overlay)
         } else {
             let v = &self.settings.view;
-            swept = FrStore::from_sweep(&self.bif.samples, v.transient_periods, v.record_periods);
+            swept = FrStore::from_sweep(&main.bif.samples, v.transient_periods, v.record_periods);
             Some(&swept).filter(|s| !s.points.is_empty())
         };
         let previous = previous.filter(|_| self.family.is_none());
-        let mut v = fr_view(&self.hbm, previous, overlay, mesh, &b, &ctx);
+        let mut v = fr_view(&main.hbm, previous, overlay, mesh, &b, &ctx);
         v.whole_clearance = self.settings.view.whole_clearance;
         if let Some(f) = &self.family {
             // Every member's ±b (a backlash family has one pair per value).
@@ -561,7 +486,7 @@ impl Controller {
             }
             v.backlash_um = distinct(&levels, None);
             for br in v.branches.iter_mut().filter(|b| !b.faded) {
-                let partial = if self.hbm.error.is_some() {
+                let partial = if main.hbm.error.is_some() {
                     "; partial"
                 } else {
                     ""
@@ -570,13 +495,13 @@ impl Controller {
                 br.member = Some(0);
             }
             for (i, m) in f.members.iter().enumerate() {
-                let partial = if m.hbm.error.is_some() {
+                let partial = if m.comp.hbm.error.is_some() {
                     "; partial"
                 } else {
                     ""
                 };
                 // Each member's bifurcations sit on its own curve.
-                let (points, markers) = m.hbm.curve(mesh);
+                let (points, markers) = m.comp.hbm.curve(mesh);
                 v.markers.extend(markers);
                 v.branches.push(FrBranch {
                     label: format!("{}{partial}", f.spec.label(i + 1)),
@@ -592,7 +517,7 @@ impl Controller {
             for br in v.branches.iter_mut().filter(|b| !b.faded) {
                 br.label = format!("B: {tb}; {}", br.label);
             }
-            let partial = if p.hbm.error.is_some() {
+            let partial = if p.comp.hbm.error.is_some() {
                 "; partial"
             } else {
                 ""
@@ -602,7 +527,7 @@ impl Controller {
                 0,
                 FrBranch {
                     label: format!("A: {ta}{partial}"),
-                    points: p.hbm.curve(mesh).0,
+                    points: p.comp.hbm.curve(mesh).0,
                     faded: false,
                     pinned: true,
                     member: None,
@@ -619,10 +544,10 @@ impl Controller {
             .map(|p| link::ab_difference(&p.settings, &self.settings, 3))
     }
 
-    /// The method of view 1 in words.
+    /// The method of `ViewId::Fr` in words.
     pub fn fr_method(&self) -> String {
         FrSource::Hbm {
-            harmonics: self.hbm.harmonics,
+            harmonics: self.main.hbm.harmonics,
         }
         .label()
     }
@@ -631,11 +556,11 @@ impl Controller {
     pub fn bif_view(&self) -> BifView {
         let (mesh, b) = self.mesh_and_backlash();
         let ctx = self.view_context();
-        let mut v = self.bif.view(mesh, &b, &ctx);
+        let mut v = self.main.bif.view(mesh, &b, &ctx);
         v.whole_clearance = self.settings.view.whole_clearance;
         v.unstable_bands = self.instability_bands();
         if let Some(p) = &self.pinned {
-            v.pinned = p.bif.view(mesh, &b, &ctx).points;
+            v.pinned = p.comp.bif.view(mesh, &b, &ctx).points;
             v.pinned_backlash_um = distinct(&pinned_backlash(&p.settings), mesh);
             v.ab_labels = self.ab_labels();
         }
@@ -647,56 +572,116 @@ impl Controller {
     /// spectral radius above 1: motion large against the backlash grows
     /// without bound), as the sweep's worker computed them.
     pub fn instability_bands(&self) -> Vec<(f64, f64)> {
-        self.bands.clone()
+        self.main.bands.clone()
     }
 
     /// Everything the tests and the benchmark read.
     pub fn status(&self, now_ms: f64) -> serde_json::Value {
         let fr = self.fr_view();
+        let main = &self.main;
+        let st = |k| main.status(k);
         serde_json::json!({
             "query": self.query(),
             "issues": self.issues,
             "omega": self.settings.view.omega,
-            "fr": self.fr_status,
+            "fr": st(JobKind::HarmonicBalance),
             "fr_method": self.fr_method(),
-            "fr_branch_points": self.hbm.points.len(),
-            "fr_partial": self.hbm.error,
-            "fr_overlay": self.ti_status,
+            "fr_branch_points": main.hbm.points.len(),
+            "fr_partial": main.hbm.error,
+            "fr_overlay": st(JobKind::Overlay),
             "fr_discrepancy": fr.discrepancy,
             // The frequency response's time-integration dots and the
             // sentence under it where the branch is unstable.
             "fr_dots": fr.overlay.len(),
             "fr_sentence": crate::views::unstable::unstable_sentence(&fr),
-            "bif": self.bif_status,
+            "bif": st(JobKind::Bif),
             "bif_bands": self.instability_bands(),
-            "omega_job": self.omega_status,
-            "map": self.map_status,
-            "map_grid": self.map.grid,
-            "map_progress": self.map_status.progress(now_ms),
-            "map_counts": self.map.counts(),
-            "lyap": self.lyap_status,
-            "lyap_points": self.lyap.curve().len(),
-            "lyap_progress": self.lyap_status.progress(now_ms),
+            "omega_job": st(JobKind::Omega),
+            "map": st(JobKind::Map),
+            "map_grid": main.map.grid,
+            "map_progress": st(JobKind::Map).progress(now_ms),
+            "map_counts": main.map.counts(),
+            "lyap": st(JobKind::Lyap),
+            "lyap_points": main.lyap.curve().len(),
+            "lyap_progress": st(JobKind::Lyap).progress(now_ms),
             "pinned": self.pinned.as_ref().map(|p| serde_json::json!({
                 "query": link::encode(&p.settings),
-                "fr": p.fr_status,
-                "bif": p.bif_status,
-                "fr_branch_points": p.hbm.points.len(),
-                "bif_points": p.bif.samples.len(),
+                "fr": p.comp.status(JobKind::HarmonicBalance),
+                "bif": p.comp.status(JobKind::Bif),
+                "fr_branch_points": p.comp.hbm.points.len(),
+                "bif_points": p.comp.bif.samples.len(),
             })),
             "ab_labels": self.ab_labels(),
             "family": self.family_status(),
             "fr_panels": self.panels,
-            "fr_progress": self.fr_status.progress(now_ms),
-            "fr_overlay_progress": self.ti_status.progress(now_ms),
-            "bif_progress": self.bif_status.progress(now_ms),
-            "omega_progress": self.omega_status.progress(now_ms),
+            "fr_progress": st(JobKind::HarmonicBalance).progress(now_ms),
+            "fr_overlay_progress": st(JobKind::Overlay).progress(now_ms),
+            "bif_progress": st(JobKind::Bif).progress(now_ms),
+            "omega_progress": st(JobKind::Omega).progress(now_ms),
             "workers_ready": self.workers.iter().filter(|w| w.ready).count(),
             "workers": self.workers.len(),
-            "omega_result": self.omega.as_ref().map(|r| serde_json::json!({
-                "omega": r.omega, "mesh": r.mesh_name, "impact": r.regime.solver_name(), "period": r.period,
+            "omega_result": main.omega.as_ref().map(|r| serde_json::json!({
+                "omega": r.omega, "mesh": r.mesh_name, "impact": r.regime.solver_name(),
+                "period": r.period, "preview": r.preview,
             })),
         })
+    }
+
+    /// What a link restores.
+    pub fn settings(&self) -> &Settings {
+        &self.settings
+    }
+
+    /// The model of the current parameters, or why it cannot be built.
+    pub fn model(&self) -> Result<&Model, &str> {
+        self.model.as_ref().map_err(String::as_str)
+    }
+
+    /// The current state's results.
+    pub fn main(&self) -> &Computation {
+        &self.main
+    }
+
+    /// The pinned state A, if comparing.
+    pub fn pinned(&self) -> Option<&Pinned> {
+        self.pinned.as_ref()
+    }
+
+    /// The family shown, if any.
+    pub fn family(&self) -> Option<&Family> {
+        self.family.as_ref()
+    }
+
+    /// The frequency response's mesh panels, if shown.
+    pub fn panels(&self) -> Option<&[String]> {
+        self.panels.as_deref()
+    }
+
+    /// The note of the preset last loaded.
+    pub fn preset_note(&self) -> Option<&str> {
+        self.preset_note.as_deref()
+    }
+
+    /// The tour's step (0-based), if it is running.
+    pub fn tour(&self) -> Option<usize> {
+        self.tour
+    }
+
+    /// What changed since the last call: the page draws it.
+    pub fn take_dirty(&mut self) -> Dirty {
+        std::mem::take(&mut self.dirty)
+    }
+
+    /// Whether the messages changed since the last call.
+    pub fn take_messages_dirty(&mut self) -> bool {
+        std::mem::take(&mut self.dirty.messages)
+    }
+
+    /// Marks the messages and the controls to be shown again (the page's
+    /// own change to them, e.g. a refused value).
+    pub fn touch(&mut self, controls: bool) {
+        self.dirty.messages = true;
+        self.dirty.controls |= controls;
     }
 }
 
@@ -708,11 +693,9 @@ mod family;
 pub use family::{Family, Member};
 mod jobs;
 mod panels;
-use jobs::{Restart, ALL, NONE};
 use pinned::pinned_backlash;
 mod messages;
 mod pinned;
-mod replies;
 mod svg;
 pub use svg::{view_size, SvgError};
 

@@ -4,7 +4,7 @@
 
 use super::*;
 use crate::plots::{self, maps, DrawError};
-use crate::views::{ExportKind, ViewId};
+use crate::views::ViewId;
 use plotters::prelude::*;
 
 /// A view's drawing size in pixels (its canvas's size on the page).
@@ -65,22 +65,22 @@ impl Controller {
             let v = &self.settings.view;
             let whole = v.whole_clearance;
             match view.spec().data {
-                ExportKind::Fr if self.panels.is_some() => {
+                JobKind::HarmonicBalance | JobKind::Overlay if self.panels.is_some() => {
                     plots::multiples::draw_fr_panels(&root, &self.fr_panels(), "")?;
                 }
-                ExportKind::Fr => {
+                JobKind::HarmonicBalance | JobKind::Overlay => {
                     plots::draw_fr(&root, &self.fr_view(), "")?;
                 }
                 // A family: its small multiples, as the page draws them.
-                ExportKind::Bif if self.family.is_some() => {
+                JobKind::Bif if self.family.is_some() => {
                     let mesh = self.view_context().mesh_label;
                     let panels = self.bif_panels();
                     dots = plots::multiples::draw_bif_panels(&root, &panels, &mesh, "")?.1;
                 }
-                ExportKind::Bif => {
+                JobKind::Bif => {
                     dots = plots::draw_bif(&root, &self.bif_view(), &natural, "")?.1;
                 }
-                ExportKind::Map => {
+                JobKind::Map => {
                     let (f, o) = maps::draw_map(&root, &self.map_view(), "")?;
                     for (c, rects) in &o.cells {
                         for r in rects {
@@ -114,17 +114,17 @@ impl Controller {
                         .map_err(plots::err)?;
                     }
                 }
-                ExportKind::Lyap => {
+                JobKind::Lyap => {
                     maps::draw_lyap(
                         &root,
-                        &self.lyap,
+                        &self.main.lyap,
                         (v.omega_from, v.omega_to),
                         &natural,
                         v.omega,
                         "",
                     )?;
                 }
-                ExportKind::Omega
+                JobKind::Omega
                     if self.family.is_some()
                         && matches!(view, ViewId::Phase | ViewId::Poincare) =>
                 {
@@ -133,8 +133,8 @@ impl Controller {
                     let panels = self.omega_panels(if poincare { n } else { 0 });
                     plots::multiples::draw_phase_panels(&root, &panels, poincare, "")?;
                 }
-                ExportKind::Omega => {
-                    let r = self.omega.as_ref().ok_or(ExportError::NotComputed)?;
+                JobKind::Omega => {
+                    let r = self.main.omega.as_ref().ok_or(ExportError::NotComputed)?;
                     match view {
                         ViewId::Phase => plots::draw_phase_with(&root, r, "", whole)?,
                         ViewId::Poincare => plots::draw_poincare_with(&root, r, "", whole)?,
@@ -184,7 +184,7 @@ mod tests {
                         v.key()
                     );
                 }
-                Err(e) => assert_eq!(v.spec().data, ExportKind::Omega, "{}: {e}", v.key()),
+                Err(e) => assert_eq!(v.spec().data, JobKind::Omega, "{}: {e}", v.key()),
             }
         }
         let (mut c, _) = Controller::new("", 0.0);

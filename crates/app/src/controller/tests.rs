@@ -2,9 +2,9 @@
 //! hand-made worker messages.
 
 use super::*;
-use crate::protocol::{FrSample, HbmMesh, HbmSample};
+use crate::protocol::{FrSample, HbmMesh, HbmSample, OmegaSpec};
 
-fn posts(fx: &[Effect]) -> Vec<(usize, ToWorker)> {
+pub(super) fn posts(fx: &[Effect]) -> Vec<(usize, ToWorker)> {
     fx.iter()
         .filter_map(|e| match e {
             Effect::Post { worker, text } => Some((*worker, serde_json::from_str(text).unwrap())),
@@ -49,7 +49,7 @@ fn hbm_points(id: JobId, omegas: &[f64], finished: bool, error: Option<&str>) ->
 fn instability_bands_come_from_the_current_sweep() {
     let (mut c, _) = Controller::new("", 0.0);
     ready(&mut c);
-    let id = c.bif.id;
+    let id = c.main.bif.id;
     let msg = |id, bands: Vec<(f64, f64)>| {
         encode(&FromWorker::Bands {
             id,
@@ -62,7 +62,7 @@ fn instability_bands_come_from_the_current_sweep() {
     c.dirty = Dirty::default();
     c.worker_message(0, &msg(id, vec![(0.99, 1.22)]), 2.0);
     assert_eq!(c.instability_bands(), vec![(0.99, 1.22)]);
-    assert!(c.dirty.bif);
+    assert!(c.dirty.jobs.contains(JobKind::Bif));
     assert_eq!(c.bif_view().unstable_bands, vec![(0.99, 1.22)]);
 }
 
@@ -80,7 +80,7 @@ fn jobs_queue_until_ready_then_split_over_two_workers() {
         && matches!(
             m,
             ToWorker::Run {
-                job: JobSpec::Hbm {
+                job: JobSpec::HarmonicBalance {
                     harmonics: 5,
                     points: 150,
                     stability: true,
@@ -110,15 +110,15 @@ fn jobs_queue_until_ready_then_split_over_two_workers() {
 fn slider_change_restarts_and_stale_replies_are_ignored() {
     let (mut c, _) = Controller::new("", 0.0);
     ready(&mut c);
-    let old = c.hbm.id;
+    let old = c.main.hbm.id;
     let fx = c.set_key("backlash_um", "150", 10.0).unwrap();
     // Omega, branch, two bifurcation and two Lyapunov shards; the map over
     // backlash does not depend on the backlash, so it goes on.
     assert_eq!(posts(&fx).len(), 6);
-    assert_ne!(c.hbm.id, old);
+    assert_ne!(c.main.hbm.id, old);
     assert!(c.query().contains("backlash_um=150"));
     c.worker_message(1, &hbm_points(old, &[0.1], false, None), 11.0);
-    assert!(c.hbm.points.is_empty());
+    assert!(c.main.hbm.points.is_empty());
     // Out of range: refused in a sentence naming the setting and its range; nothing restarts.
     let e = c.set_key("backlash_um", "5000", 12.0).unwrap_err();
     assert_eq!(e, "Backlash must be between 0 and 1000 µm (not 5000).");
@@ -127,7 +127,7 @@ fn slider_change_restarts_and_stale_replies_are_ignored() {
     let p = posts(&fx);
     assert_eq!(p.len(), 1);
     assert!(
-        matches!(&p[0].1, ToWorker::Run { job: JobSpec::Omega { omega, .. }, .. } if (*omega - 1.2346).abs() < 1e-12)
+        matches!(&p[0].1, ToWorker::Run { job: JobSpec::Omega(OmegaSpec { omega, .. }), .. } if (*omega - 1.2346).abs() < 1e-12)
     );
     assert!(c.query().contains("omega=1.2346"));
     // The harmonics restart only the branch, on its worker.
@@ -137,7 +137,7 @@ fn slider_change_restarts_and_stale_replies_are_ignored() {
     assert!(matches!(
         &p[0].1,
         ToWorker::Run {
-            job: JobSpec::Hbm { harmonics: 3, .. },
+            job: JobSpec::HarmonicBalance { harmonics: 3, .. },
             ..
         }
     ));
@@ -151,11 +151,11 @@ fn run_omega_jobs(c: &mut Controller, p: &[(usize, ToWorker)], now_ms: f64) {
         if matches!(
             m,
             ToWorker::Run {
-                job: JobSpec::Omega { .. },
+                job: JobSpec::Omega(OmegaSpec { .. }),
                 ..
             }
         ) {
-            let mut core = crate::worker_core::WorkerCore::new();
+            let mut core = crate::worker::WorkerCore::new();
             core.handle(&encode(m));
             while core.has_work() {
                 for reply in core.step() {
@@ -171,9 +171,9 @@ fn a_slider_change_previews_the_selected_omega_from_the_last_end_state() {
     let (mut c, _) = Controller::new("transient_periods=40&record_periods=10", 0.0);
     let p = ready(&mut c);
     // No previous state: no preview, the views wait for the worker.
-    assert!(c.omega.is_none() && c.omega_status.preview_ms.is_none());
+    assert!(c.main.omega.is_none() && c.main.status(JobKind::Omega).preview_ms.is_none());
     run_omega_jobs(&mut c, &p, 5.0);
-    let full = c.omega.clone().expect("the worker's result");
+    let full = c.main.omega.clone().expect("the worker's result");
     assert!(!full.preview && !full.cli_json.is_empty());
     assert_eq!(
         full.end_state.len(),
@@ -183,42 +183,57 @@ fn a_slider_change_previews_the_selected_omega_from_the_last_end_state() {
     let p = posts(&c.set_key("backlash_um", "150", 10.0).unwrap());
     // The preview shows at once, under the new backlash, while the
     // worker's job runs; it is bounded and carries no CLI JSON.
-    let pre = c.omega.clone().expect("a preview");
+    let pre = c.main.omega.clone().expect("a preview");
     assert!(pre.preview && pre.cli_json.is_empty());
-    assert_eq!(c.omega_status.preview_ms, Some(10.0));
-    assert!(c.omega_status.running());
+    assert_eq!(c.main.status(JobKind::Omega).preview_ms, Some(10.0));
+    assert!(c.main.status(JobKind::Omega).running());
     assert_eq!(pre.backlash_um, 150.0);
     assert_eq!(
         pre.record_periods,
-        crate::jobs::omega::PREVIEW_RUN.record_periods
+        crate::worker::jobs::omega::PREVIEW_RUN.record_periods
     );
-    assert!(pre.transient_periods_run <= crate::jobs::omega::PREVIEW_RUN.transient_periods);
+    assert!(pre.transient_periods_run <= crate::worker::jobs::omega::PREVIEW_RUN.transient_periods);
     assert!(crate::views::omega::summary_line(&pre, &[]).starts_with("Preview ("));
     // The full run (from the static state, as the CLI starts) replaces it.
     run_omega_jobs(&mut c, &p, 20.0);
-    let after = c.omega.clone().unwrap();
+    let after = c.main.omega.clone().unwrap();
     assert!(!after.preview && after.backlash_um == 150.0);
-    assert!(!c.omega_status.running());
+    assert!(!c.main.status(JobKind::Omega).running());
     // A preview that cannot start (a model with other coordinates) is
     // skipped: the last result stays until the worker answers.
-    c.omega.as_mut().unwrap().end_state.pop();
+    c.main.omega.as_mut().unwrap().end_state.pop();
     c.set_key("backlash_um", "120", 30.0).unwrap();
-    assert!(!c.omega.as_ref().unwrap().preview);
+    assert!(!c.main.omega.as_ref().unwrap().preview);
 }
 
 #[test]
 fn progress_shows_only_for_long_jobs() {
     let (mut c, _) = Controller::new("fr_points=4", 0.0);
     ready(&mut c);
-    assert_eq!(c.fr_status.progress(100.0), None);
-    assert_eq!(c.fr_status.progress(300.0), Some((0, 100)));
-    let id = c.hbm.id;
+    assert_eq!(
+        c.main.status(JobKind::HarmonicBalance).progress(100.0),
+        None
+    );
+    assert_eq!(
+        c.main.status(JobKind::HarmonicBalance).progress(300.0),
+        Some((0, 100))
+    );
+    let id = c.main.hbm.id;
     c.worker_message(1, &hbm_points(id, &[0.1, 1.05], false, None), 350.0);
-    assert_eq!(c.fr_status.progress(360.0), Some((50, 100)));
+    assert_eq!(
+        c.main.status(JobKind::HarmonicBalance).progress(360.0),
+        Some((50, 100))
+    );
     c.worker_message(1, &hbm_points(id, &[2.0], true, None), 400.0);
-    assert_eq!(c.fr_status.finished_ms, Some(400.0));
-    assert_eq!(c.fr_status.progress(500.0), None);
-    assert!(c.hbm.is_complete());
+    assert_eq!(
+        c.main.status(JobKind::HarmonicBalance).finished_ms,
+        Some(400.0)
+    );
+    assert_eq!(
+        c.main.status(JobKind::HarmonicBalance).progress(500.0),
+        None
+    );
+    assert!(c.main.hbm.is_complete());
     // The complete branch is kept, faded, while the next one computes.
     c.set_key("harmonics", "3", 600.0).unwrap();
     let v = c.fr_view();
@@ -230,15 +245,20 @@ fn progress_shows_only_for_long_jobs() {
 fn a_solver_failure_ends_the_branch_as_partial_and_is_reported() {
     let (mut c, _) = Controller::new("", 0.0);
     ready(&mut c);
-    let id = c.hbm.id;
+    let id = c.main.hbm.id;
     c.worker_message(1, &hbm_points(id, &[0.1, 0.5], false, None), 10.0);
     c.worker_message(
         1,
         &hbm_points(id, &[], true, Some("Newton did not converge")),
         20.0,
     );
-    assert!(!c.fr_status.running());
-    let e = c.fr_status.error.clone().unwrap();
+    assert!(!c.main.status(JobKind::HarmonicBalance).running());
+    let e = c
+        .main
+        .status(JobKind::HarmonicBalance)
+        .error
+        .clone()
+        .unwrap();
     assert!(e.contains("0.5000") && e.contains("partial"), "{e}");
     assert!(c.issues.contains(&e));
     let v = c.fr_view();
@@ -262,7 +282,7 @@ fn the_time_integration_overlay_runs_on_both_workers_when_asked() {
             matches!(
                 m,
                 ToWorker::Run {
-                    job: JobSpec::Fr { points: 4, .. },
+                    job: JobSpec::Overlay { points: 4, .. },
                     ..
                 }
             )
@@ -270,7 +290,7 @@ fn the_time_integration_overlay_runs_on_both_workers_when_asked() {
         .map(|(w, _)| *w)
         .collect();
     assert_eq!(ti, vec![0, 1]);
-    let id = c.fr.id;
+    let id = c.main.overlay.id;
     let pts = (0..4)
         .map(|i| FrSample {
             index: i,
@@ -280,15 +300,23 @@ fn the_time_integration_overlay_runs_on_both_workers_when_asked() {
             error: Some("x".into()),
         })
         .collect();
-    c.worker_message(1, &encode(&FromWorker::FrPoints { id, points: pts }), 400.0);
-    assert_eq!(c.ti_status.finished_ms, Some(400.0));
+    c.worker_message(
+        1,
+        &encode(&FromWorker::OverlayPoints { id, points: pts }),
+        400.0,
+    );
+    assert_eq!(c.main.status(JobKind::Overlay).finished_ms, Some(400.0));
     assert_eq!(c.fr_view().failed.len(), 4);
     // Switching it off cancels it on both workers.
     let p = posts(&c.set_key("fr_ti_points", "0", 500.0).unwrap());
     assert_eq!(p.len(), 2);
-    assert!(p
-        .iter()
-        .all(|(_, m)| matches!(m, ToWorker::Cancel { kind: JobKind::Fr })));
+    assert!(p.iter().all(|(_, m)| matches!(
+        m,
+        ToWorker::Cancel {
+            kind: Some(JobKind::Overlay),
+            ..
+        }
+    )));
     assert!(c.fr_view().overlay_source.is_none());
 }
 
@@ -300,8 +328,8 @@ fn at_the_defaults_the_frequency_response_shows_the_sweeps_steady_states() {
     use crate::protocol::{BifMesh, BifSample, Regime};
     let (mut c, _) = Controller::new("", 0.0);
     ready(&mut c);
-    assert_eq!(c.fr.id, 0, "no overlay job at the defaults");
-    let id = c.bif.id;
+    assert_eq!(c.main.overlay.id, 0, "no overlay job at the defaults");
+    let id = c.main.bif.id;
     let sample = |index: u32, omega: f64, up: bool, lo: f64, hi: f64| BifSample {
         index,
         omega,
@@ -316,16 +344,16 @@ fn at_the_defaults_the_frequency_response_shows_the_sweeps_steady_states() {
         period: None,
         error: None,
     };
-    c.dirty.fr = false;
+    c.dirty.jobs = KindSet::NONE;
     let points = vec![
         sample(1, 1.0, true, 2.0, 9.0),
         sample(0, 0.5, true, 10.0, 70.0),
         sample(0, 0.5, false, 0.0, 5.0),
     ];
-    c.bif.total = 3;
+    c.main.bif.total = 3;
     c.worker_message(0, &encode(&FromWorker::BifPoints { id, points }), 10.0);
     assert!(
-        c.dirty.fr,
+        c.dirty.jobs.contains(JobKind::Overlay),
         "the sweep's last point redraws the frequency response"
     );
     let v = c.fr_view();
@@ -415,7 +443,7 @@ fn the_map_shards_rows_and_a_cell_click_sets_both_parameters() {
         })
         .collect();
     assert_eq!(shards, vec![(0, 0, 2), (1, 1, 2)]);
-    let id = c.map.id;
+    let id = c.main.map.id;
     c.worker_message(
         0,
         &map_cells(id, &[(0, 0, Regime::NoImpact, Some(1))]),
@@ -426,15 +454,15 @@ fn the_map_shards_rows_and_a_cell_click_sets_both_parameters() {
         &map_cells(id, &[(1, 0, Regime::DoubleSided, Some(2))]),
         11.0,
     );
-    assert_eq!(c.map_status.done, 2);
-    assert_eq!(c.map.counts().0, [1, 0, 1, 0]);
+    assert_eq!(c.main.status(JobKind::Map).done, 2);
+    assert_eq!(c.main.map.counts().0, [1, 0, 1, 0]);
     // Row 2 is 120 um, column 10 is Omega = 0.1 + 10 * 1.9 / 19 = 1.1.
     let fx = c.pick_map_point(1.1 + 0.02, 120.0 - 5.0, 20.0).unwrap();
     assert!(c.query().contains("backlash_um=120"), "{}", c.query());
     assert_eq!(c.settings.view.omega, 1.1);
     assert!(c.query().contains("omega=1.1&"), "{}", c.query());
     // The map goes on (same signature), everything else restarts.
-    assert_eq!(c.map.id, id);
+    assert_eq!(c.main.map.id, id);
     assert!(!posts(&fx).iter().any(|(_, m)| matches!(
         m,
         ToWorker::Run {
@@ -442,7 +470,7 @@ fn the_map_shards_rows_and_a_cell_click_sets_both_parameters() {
             ..
         }
     )));
-    assert_eq!(c.map_status.done, 2);
+    assert_eq!(c.main.status(JobKind::Map).done, 2);
     assert!(c.pick_map_point(5.0, 100.0, 21.0).is_err());
     // On the TE axis, with its own default range, a click sets te_um.
     c.set_key("map_key", "te_um", 30.0).unwrap();
@@ -450,15 +478,15 @@ fn the_map_shards_rows_and_a_cell_click_sets_both_parameters() {
         (c.settings.view.map_from, c.settings.view.map_to),
         (0.0, 60.0)
     );
-    assert_ne!(c.map.id, id);
+    assert_ne!(c.main.map.id, id);
     c.set_key("map_value_points", "7", 31.0).unwrap();
     c.pick_map_point(0.1, 30.0, 32.0).unwrap();
     assert!(c.query().contains("te_um=30"), "{}", c.query());
     assert_eq!(c.settings.view.omega, 0.1);
     // Another parameter changes the map's model: it restarts.
-    let before = c.map.id;
+    let before = c.main.map.id;
     c.set_key("damping_ratio", "0.05", 40.0).unwrap();
-    assert_ne!(c.map.id, before);
+    assert_ne!(c.main.map.id, before);
 }
 
 #[test]
@@ -481,7 +509,7 @@ fn the_lyapunov_curve_collects_both_chains_and_can_be_switched_off() {
             .count(),
         2
     );
-    let id = c.lyap.id;
+    let id = c.main.lyap.id;
     let pts = |idx: &[u32]| {
         encode(&FromWorker::LyapPoints {
             id,
@@ -499,18 +527,19 @@ fn the_lyapunov_curve_collects_both_chains_and_can_be_switched_off() {
     };
     c.worker_message(1, &pts(&[1, 3]), 5.0);
     c.worker_message(0, &pts(&[0, 2]), 6.0);
-    assert_eq!(c.lyap_status.finished_ms, Some(6.0));
-    let curve = c.lyap.curve();
+    assert_eq!(c.main.status(JobKind::Lyap).finished_ms, Some(6.0));
+    let curve = c.main.lyap.curve();
     assert_eq!(curve.len(), 4);
     assert!(curve.windows(2).all(|w| w[0].0 < w[1].0));
     let p = posts(&c.set_key("lyap_points", "0", 7.0).unwrap());
     assert!(p.iter().all(|(_, m)| matches!(
         m,
         ToWorker::Cancel {
-            kind: JobKind::Lyap
+            kind: Some(JobKind::Lyap),
+            ..
         }
     )));
-    assert_eq!(c.lyap.id, 0);
+    assert_eq!(c.main.lyap.id, 0);
 }
 
 #[test]
@@ -521,7 +550,12 @@ fn a_link_with_a_pinned_state_computes_both_and_pinning_keeps_a() {
     let pinned: Vec<(usize, JobKind)> = p
         .iter()
         .filter_map(|(w, m)| match m {
-            ToWorker::RunPinned { job, params, .. } => {
+            ToWorker::Run {
+                target: Target::A,
+                job,
+                params,
+                ..
+            } => {
                 assert_eq!(params["backlash_s1a_um"].as_f64(), Some(100.0));
                 Some((*w, job.kind()))
             }
@@ -532,15 +566,15 @@ fn a_link_with_a_pinned_state_computes_both_and_pinning_keeps_a() {
         pinned,
         vec![
             (0, JobKind::Bif),
-            (c.hbm_worker(), JobKind::Hbm),
+            (c.hbm_worker(), JobKind::HarmonicBalance),
             (1, JobKind::Bif)
         ]
     );
-    let a_id = c.pinned.as_ref().unwrap().hbm.id;
+    let a_id = c.pinned.as_ref().unwrap().comp.hbm.id;
     c.worker_message(1, &hbm_points(a_id, &[0.1, 1.0, 2.0], true, None), 5.0);
     let a = c.pinned.as_ref().unwrap();
-    assert_eq!(a.hbm.points.len(), 3);
-    assert!(c.hbm.points.is_empty(), "A's points must not reach B");
+    assert_eq!(a.comp.hbm.points.len(), 3);
+    assert!(c.main.hbm.points.is_empty(), "A's points must not reach B");
     let v = c.fr_view();
     let labels: Vec<&str> = v.branches.iter().map(|b| b.label.as_str()).collect();
     assert!(
@@ -556,9 +590,13 @@ fn a_link_with_a_pinned_state_computes_both_and_pinning_keeps_a() {
     assert_eq!(link::decode(&c.query()).pinned.unwrap().view.omega, 0.5);
     // Clear A: the link loses it, and A's jobs are cancelled on every worker.
     let fx = posts(&c.clear_a());
-    assert!(fx
-        .iter()
-        .all(|(_, m)| matches!(m, ToWorker::CancelPinned { .. })));
+    assert!(fx.iter().all(|(_, m)| matches!(
+        m,
+        ToWorker::Cancel {
+            target: Target::A,
+            ..
+        }
+    )));
     assert!(c.pinned.is_none() && !c.query().contains("&a="));
 }
 
@@ -566,14 +604,14 @@ fn a_link_with_a_pinned_state_computes_both_and_pinning_keeps_a() {
 fn pin_as_a_keeps_finished_results_while_b_changes() {
     let (mut c, _) = Controller::new("bif_points=2&bif_dir=up", 0.0);
     ready(&mut c);
-    let id = c.hbm.id;
+    let id = c.main.hbm.id;
     c.worker_message(1, &hbm_points(id, &[0.1, 2.0], true, None), 5.0);
-    c.bif_status.finished_ms = Some(6.0);
+    c.main.status_mut(JobKind::Bif).finished_ms = Some(6.0);
     let fx = c.pin_a(7.0);
     assert!(fx.is_empty(), "finished results are kept, not recomputed");
     c.set_key("backlash_um", "150", 8.0).unwrap();
     let a = c.pinned.as_ref().unwrap();
-    assert_eq!(a.hbm.points.len(), 2);
+    assert_eq!(a.comp.hbm.points.len(), 2);
     assert_eq!(
         keys::get(&a.settings.params, "backlash_um"),
         Some(keys::Value::Num(100.0))
@@ -651,12 +689,12 @@ fn views_without_data_say_why() {
             message: "no luck".into(),
         })
     };
-    c.worker_message(0, &failed(c.bif.id), 5.0);
+    c.worker_message(0, &failed(c.main.bif.id), 5.0);
     assert_eq!(
         c.placeholder(ViewId::Bif),
         Some("Not computed: no luck".into())
     );
-    c.worker_message(0, &failed(c.omega_status.id), 6.0);
+    c.worker_message(0, &failed(c.main.status(JobKind::Omega).id), 6.0);
     for v in [
         ViewId::Phase,
         ViewId::Poincare,
@@ -668,100 +706,4 @@ fn views_without_data_say_why() {
     assert_eq!(c.placeholder(ViewId::Fr), None, "the branch still computes");
 }
 
-#[test]
-fn the_pool_leaves_one_core_to_the_page_within_two_to_eight_workers() {
-    // (logical cores, workers): one core for the page's main thread.
-    for (cores, workers) in [
-        (None, 2),
-        (Some(0), 2),
-        (Some(1), 2),
-        (Some(2), 2),
-        (Some(3), 2),
-        (Some(4), 3),
-        (Some(8), 7),
-        (Some(9), 8),
-        (Some(64), 8),
-    ] {
-        assert_eq!(pool_size(cores), workers, "{cores:?} cores");
-    }
-    // Chains depend on the points only: one per 50, 2 to 8.
-    for (points, chains) in [
-        (1, 1),
-        (2, 2),
-        (49, 2),
-        (100, 2),
-        (150, 3),
-        (200, 4),
-        (400, 8),
-        (5000, 8),
-    ] {
-        assert_eq!(chain_count(points), chains, "{points} points");
-    }
-    // Out-of-range pools are clamped.
-    assert_eq!(Controller::with_workers("", 0.0, 0).0.workers(), 1);
-    assert_eq!(Controller::with_workers("", 0.0, 30).0.workers(), 8);
-}
-
-#[test]
-fn a_larger_pool_deals_the_fixed_chains_round_robin_and_shares_the_map_rows() {
-    let (mut c, _) =
-        Controller::with_workers("bif_points=400&lyap_points=150&map_value_points=16", 0.0, 5);
-    assert_eq!(c.workers(), 5);
-    let mut fx = Vec::new();
-    for w in 0..5 {
-        fx.extend(c.worker_message(w, r#"{"type":"ready"}"#, 1.0));
-    }
-    let p = posts(&fx);
-    let shards = |kind: JobKind| -> Vec<(usize, u32, u32)> {
-        let mut v: Vec<(usize, u32, u32)> =
-            p.iter()
-                .filter_map(|(w, m)| match m {
-                    ToWorker::Run { job, .. } if job.kind() == kind => match job {
-                        JobSpec::Bif { chains, shard, .. }
-                        | JobSpec::Lyap { chains, shard, .. } => Some((*w, *chains, *shard)),
-                        JobSpec::Map { shards, shard, .. } => Some((*w, *shards, *shard)),
-                        _ => Some((*w, 0, 0)),
-                    },
-                    _ => None,
-                })
-                .collect();
-        v.sort_by_key(|s| s.2);
-        v
-    };
-    // 8 sweep chains over 5 workers: chain c on worker c mod 5.
-    let bif = shards(JobKind::Bif);
-    assert_eq!(bif.len(), 8);
-    for (w, chains, shard) in &bif {
-        assert_eq!((*chains, *w), (8, *shard as usize % 5));
-    }
-    // 3 Lyapunov chains (150 points), on workers 0, 1, 2.
-    assert_eq!(shards(JobKind::Lyap), vec![(0, 3, 0), (1, 3, 1), (2, 3, 2)]);
-    // Map rows are independent: one share per worker.
-    let map = shards(JobKind::Map);
-    assert_eq!(
-        map.iter().map(|s| s.0).collect::<Vec<_>>(),
-        vec![0, 1, 2, 3, 4]
-    );
-    assert!(map.iter().all(|s| s.1 == 5));
-    // The selected Omega on worker 0, the branch on the last worker.
-    assert_eq!(shards(JobKind::Omega), vec![(0, 0, 0)]);
-    assert_eq!(shards(JobKind::Hbm), vec![(4, 0, 0)]);
-    assert_eq!((c.hbm_worker(), c.pinned_hbm_worker()), (4, 3));
-    // The test status says how many workers run.
-    assert_eq!(c.status(2.0)["workers"], 5);
-    // A cancel reaches every worker.
-    let p = posts(&c.set_key("lyap_points", "0", 3.0).unwrap());
-    let cancelled: Vec<usize> = p
-        .iter()
-        .filter(|(_, m)| {
-            matches!(
-                m,
-                ToWorker::Cancel {
-                    kind: JobKind::Lyap
-                }
-            )
-        })
-        .map(|(w, _)| *w)
-        .collect();
-    assert_eq!(cancelled, vec![0, 1, 2, 3, 4]);
-}
+mod pool;

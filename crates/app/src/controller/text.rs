@@ -7,27 +7,23 @@ use super::*;
 impl Controller {
     /// The status of the job whose data `view` shows.
     pub fn view_status(&self, view: crate::views::ViewId) -> &JobStatus {
-        match view.spec().data {
-            crate::views::ExportKind::Fr => &self.fr_status,
-            crate::views::ExportKind::Bif => &self.bif_status,
-            crate::views::ExportKind::Omega => &self.omega_status,
-            crate::views::ExportKind::Map => &self.map_status,
-            crate::views::ExportKind::Lyap => &self.lyap_status,
-        }
+        self.main.status(view.spec().data)
     }
 
     /// The text alternative of a view's canvas (its `aria-label`), from
     /// the data it draws.
     pub fn canvas_label(&self, view: crate::views::ViewId) -> String {
-        use crate::views::{labels, ExportKind};
+        use crate::views::labels;
         let title = view.spec().title;
         match view.spec().data {
-            ExportKind::Fr if self.panels.is_some() => labels::fr_panels_label(&self.fr_panels()),
-            ExportKind::Fr => labels::fr_label(&self.fr_view()),
-            ExportKind::Bif => labels::bif_label(&self.bif_view()),
-            ExportKind::Map => labels::map_label(&self.map),
-            ExportKind::Lyap => labels::lyap_label(&self.lyap.curve()),
-            ExportKind::Omega => match (&self.omega, &self.omega_status.error) {
+            JobKind::HarmonicBalance | JobKind::Overlay if self.panels.is_some() => {
+                labels::fr_panels_label(&self.fr_panels())
+            }
+            JobKind::HarmonicBalance | JobKind::Overlay => labels::fr_label(&self.fr_view()),
+            JobKind::Bif => labels::bif_label(&self.bif_view()),
+            JobKind::Map => labels::map_label(&self.main.map),
+            JobKind::Lyap => labels::lyap_label(&self.main.lyap.curve()),
+            JobKind::Omega => match (&self.main.omega, &self.main.status(JobKind::Omega).error) {
                 (_, Some(e)) => format!("{title}: not computed: {e}"),
                 (Some(r), None) => labels::omega_label(title, r),
                 (None, None) => format!("{title}: computing."),
@@ -37,7 +33,7 @@ impl Controller {
 
     /// The text alternative of the gear-set animation.
     pub fn anim_label(&self) -> String {
-        match &self.omega {
+        match &self.main.omega {
             Some(r) => format!(
                 "The gear set in slow motion at Ω {}, each mesh coloured by its contact state; mesh {}: {}.",
                 crate::views::unstable::short(r.omega),
@@ -52,7 +48,7 @@ impl Controller {
     /// regime, whether the motion repeats, the dynamic factor explained);
     /// the expert figures are [`Controller::summary_text`].
     pub fn student_summary(&self) -> String {
-        match (&self.omega, &self.omega_status.error) {
+        match (&self.main.omega, &self.main.status(JobKind::Omega).error) {
             (_, Some(e)) => format!("Not computed: {e}"),
             (Some(r), None) => crate::views::omega::student_summary(r),
             (None, None) => "Computing the motion at the selected Ω…".into(),
@@ -63,7 +59,7 @@ impl Controller {
     /// planet phasing clause, or why there is none yet; the model's warnings.
     pub fn summary_text(&self) -> String {
         let natural = self.view_context().natural;
-        let text = match (&self.omega, &self.omega_status.error) {
+        let text = match (&self.main.omega, &self.main.status(JobKind::Omega).error) {
             (_, Some(e)) => format!("Not computed: {e}"),
             (Some(r), None) => {
                 let mut s = crate::views::omega::summary_line(r, &natural);
@@ -74,7 +70,7 @@ impl Controller {
                         s.push_str(&line);
                     }
                 }
-                if self.omega_status.running() && !r.preview {
+                if self.main.status(JobKind::Omega).running() && !r.preview {
                     s.push_str(" Updating…");
                 }
                 s
@@ -93,38 +89,38 @@ impl Controller {
     /// (its job failed before any data, it waits for the workers, it is
     /// switched off, its first result is computing).
     pub fn placeholder(&self, view: crate::views::ViewId) -> Option<String> {
-        use crate::views::ExportKind;
+        use JobKind;
         let st = self.view_status(view);
         let not_computed = |e: &String| format!("Not computed: {e}");
         match view.spec().data {
-            ExportKind::Fr => {
+            JobKind::HarmonicBalance | JobKind::Overlay => {
                 let e = st.error.as_ref()?;
                 let v = self.fr_view();
                 let has_data =
                     v.branches.iter().any(|b| !b.points.is_empty()) || !v.overlay.is_empty();
                 (!has_data).then(|| not_computed(e))
             }
-            ExportKind::Bif => st
+            JobKind::Bif => st
                 .error
                 .as_ref()
-                .filter(|_| self.bif.samples.is_empty())
+                .filter(|_| self.main.bif.samples.is_empty())
                 .map(not_computed),
-            ExportKind::Map => {
-                (self.map.done == 0 && (st.error.is_some() || self.map.grid.is_none())).then(|| {
-                    st.error
-                        .as_ref()
-                        .map_or_else(|| "Waiting for the Web Workers…".to_string(), not_computed)
-                })
-            }
-            ExportKind::Lyap if self.lyap.id == 0 => Some(
+            JobKind::Map => (self.main.map.done == 0
+                && (st.error.is_some() || self.main.map.grid.is_none()))
+            .then(|| {
+                st.error
+                    .as_ref()
+                    .map_or_else(|| "Waiting for the Web Workers…".to_string(), not_computed)
+            }),
+            JobKind::Lyap if self.main.lyap.id == 0 => Some(
                 "Off: set Lyapunov Ω points above 0 (Regime map and Lyapunov exponent).".into(),
             ),
-            ExportKind::Lyap => st
+            JobKind::Lyap => st
                 .error
                 .as_ref()
-                .filter(|_| self.lyap.points.is_empty())
+                .filter(|_| self.main.lyap.points.is_empty())
                 .map(not_computed),
-            ExportKind::Omega => match (&self.omega, &st.error) {
+            JobKind::Omega => match (&self.main.omega, &st.error) {
                 (_, Some(e)) => Some(not_computed(e)),
                 (None, None) => Some(crate::views::omega::computing_message(
                     self.settings.view.omega,
@@ -153,7 +149,7 @@ impl Controller {
     /// The mesh the schematic highlights: the chosen one, or the worst of
     /// the last result.
     pub fn highlighted_mesh(&self) -> String {
-        match (&self.settings.view.mesh, &self.omega) {
+        match (&self.settings.view.mesh, &self.main.omega) {
             (MeshSel::Named(n), _) => n.clone(),
             (MeshSel::Worst, Some(r)) => r.mesh_name.clone(),
             _ => String::new(),

@@ -250,15 +250,6 @@ pub fn map_json(store: &MapStore) -> serde_json::Value {
     serde_json::json!({ "grid": store.grid, "cells": cells })
 }
 
-/// The caption's status of the map: the cells computed while it runs.
-pub fn map_caption_suffix(st: &crate::status::JobStatus) -> String {
-    if st.running() {
-        format!(" (computing {}/{} cells)", st.done, st.total)
-    } else {
-        String::new()
-    }
-}
-
 /// The note under the map: cells done, counts per regime, failures with
 /// an example, and what a click does.
 pub fn map_note(store: &MapStore, total: usize) -> String {

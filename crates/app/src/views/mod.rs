@@ -13,13 +13,12 @@ pub mod labels;
 pub mod lyap;
 pub mod map;
 pub mod omega;
-pub mod redraw;
 mod table;
 #[cfg(test)]
 mod test_support;
 pub mod unstable;
 
-pub use table::{part_number, ExportKind, PagePart, ViewId, ViewSpec, DRAW_ORDER, PAGE, VIEWS};
+pub use table::{part_number, PagePart, ViewId, ViewSpec, DRAW_ORDER, PAGE, VIEWS};
 
 use serde::Serialize;
 use solver::modal::ModeKind;

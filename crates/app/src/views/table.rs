@@ -2,6 +2,8 @@
 //! progress bars, file names, draw order, the tests' status arrays) names a
 //! view by its [`ViewId`] and reads the rest from [`VIEWS`].
 
+use crate::protocol::{JobKind, KindSet};
+
 /// A view drawn from the controller's state. The discriminant is the view's
 /// slot in the page's per-view arrays (the tests' status: `draws`,
 /// `last_draw_ms`, ...).
@@ -25,21 +27,6 @@ pub enum ViewId {
     Lyap,
 }
 
-/// Which job's data a view shows, and so which exports it offers.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ExportKind {
-    /// The harmonic-balance branch and the overlay.
-    Fr,
-    /// The bifurcation sweep (also as `gearshock bifurcation` JSON).
-    Bif,
-    /// The selected-Omega steady state (also as `gearshock simulate` JSON).
-    Omega,
-    /// The impact-regime map.
-    Map,
-    /// The Lyapunov curve.
-    Lyap,
-}
-
 /// What the page needs to know about a view.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct ViewSpec {
@@ -50,8 +37,10 @@ pub struct ViewSpec {
     pub key: &'static str,
     /// Its title (the heading starts with it; the plot's title when it has no data).
     pub title: &'static str,
-    /// Whose data it shows.
-    pub data: ExportKind,
+    /// The job whose data it shows and exports (its status is the view's).
+    pub data: JobKind,
+    /// Every job whose data it draws (a change of one redraws it).
+    pub shows: KindSet,
     /// Whether its job streams points (redraws are then throttled while it runs).
     pub progressive: bool,
 }
@@ -62,56 +51,64 @@ pub const VIEWS: [ViewSpec; 8] = [
         id: ViewId::Fr,
         key: "fr",
         title: "Frequency response",
-        data: ExportKind::Fr,
+        data: JobKind::HarmonicBalance,
+        shows: KindSet::of(&[JobKind::HarmonicBalance, JobKind::Overlay]),
         progressive: true,
     },
     ViewSpec {
         id: ViewId::Bif,
         key: "bif",
         title: "Bifurcation diagram",
-        data: ExportKind::Bif,
+        data: JobKind::Bif,
+        shows: JobKind::Bif.set(),
         progressive: true,
     },
     ViewSpec {
         id: ViewId::Phase,
         key: "phase",
         title: "Phase portrait",
-        data: ExportKind::Omega,
+        data: JobKind::Omega,
+        shows: JobKind::Omega.set(),
         progressive: false,
     },
     ViewSpec {
         id: ViewId::Poincare,
         key: "poincare",
         title: "Poincaré section",
-        data: ExportKind::Omega,
+        data: JobKind::Omega,
+        shows: JobKind::Omega.set(),
         progressive: false,
     },
     ViewSpec {
         id: ViewId::Time,
         key: "time",
         title: "Time history",
-        data: ExportKind::Omega,
+        data: JobKind::Omega,
+        shows: JobKind::Omega.set(),
         progressive: false,
     },
     ViewSpec {
         id: ViewId::Spectrum,
         key: "spectrum",
         title: "Spectrum",
-        data: ExportKind::Omega,
+        data: JobKind::Omega,
+        shows: JobKind::Omega.set(),
         progressive: false,
     },
     ViewSpec {
         id: ViewId::Map,
         key: "map",
         title: "Impact-regime map",
-        data: ExportKind::Map,
+        data: JobKind::Map,
+        shows: JobKind::Map.set(),
         progressive: true,
     },
     ViewSpec {
         id: ViewId::Lyap,
         key: "lyap",
         title: "Largest Lyapunov exponent",
-        data: ExportKind::Lyap,
+        data: JobKind::Lyap,
+        shows: JobKind::Lyap.set(),
         progressive: true,
     },
 ];
@@ -229,10 +226,12 @@ impl ViewId {
     /// The progress bar's label at `done` of `total`.
     pub fn progress_label(self, done: usize, total: usize) -> String {
         match self.spec().data {
-            ExportKind::Fr => format!("harmonic balance: {done}% of the Ω range"),
-            ExportKind::Bif | ExportKind::Lyap => format!("computing {done}/{total} points"),
-            ExportKind::Map => format!("computing {done}/{total} cells"),
-            ExportKind::Omega => "computing…".into(),
+            JobKind::HarmonicBalance | JobKind::Overlay => {
+                format!("harmonic balance: {done}% of the Ω range")
+            }
+            JobKind::Bif | JobKind::Lyap => format!("computing {done}/{total} points"),
+            JobKind::Map => format!("computing {done}/{total} cells"),
+            JobKind::Omega => "computing…".into(),
         }
     }
 
@@ -252,8 +251,8 @@ impl ViewId {
     /// The CLI-format export's button title, for the views that have one.
     pub fn cli_export_title(self) -> Option<&'static str> {
         match self.spec().data {
-            ExportKind::Bif => Some("The sweep as `gearshock bifurcation` JSON (the CLI's format)"),
-            ExportKind::Omega => Some("This run as `gearshock simulate` JSON (the CLI's format)"),
+            JobKind::Bif => Some("The sweep as `gearshock bifurcation` JSON (the CLI's format)"),
+            JobKind::Omega => Some("This run as `gearshock simulate` JSON (the CLI's format)"),
             _ => None,
         }
     }

@@ -58,7 +58,10 @@ pub(super) fn build_anim_controls(page: &Shared) {
             let (px, py) = canvas_xy(&cv2, &e);
             let mut p = page2.borrow_mut();
             let len = anim_len(&p);
-            let (Some(f), Some(r)) = (p.frames[ViewId::Time.slot()], p.ctl.omega.as_ref()) else {
+            let (Some(f), Some(r)) = (
+                p.core.frame(ViewId::Time),
+                p.core.ctl().main().omega.as_ref(),
+            ) else {
                 return;
             };
             let Some(q) = f.point_at(px, py) else { return };
@@ -69,8 +72,10 @@ pub(super) fn build_anim_controls(page: &Shared) {
     }
 }
 
-pub(super) fn anim_len(p: &Page) -> usize {
-    p.ctl
+pub(super) fn anim_len(p: &Shell) -> usize {
+    p.core
+        .ctl()
+        .main()
         .omega
         .as_ref()
         .and_then(|r| r.anim.x_um.first())
@@ -137,7 +142,13 @@ pub(super) fn anim_tick(page: &Shared, ts: f64) {
     let dt = p.anim.last_ts.map_or(0.0, |t| (ts - t) / 1000.0);
     p.anim.last_ts = Some(ts);
     let len = anim_len(&p);
-    let spp = p.ctl.omega.as_ref().map(|r| r.samples_per_period);
+    let spp = p
+        .core
+        .ctl()
+        .main()
+        .omega
+        .as_ref()
+        .map(|r| r.samples_per_period);
     let (Some(spp), true) = (spp, len > 0) else {
         // No motion yet: a drawn frame that says so, never a blank canvas.
         if !p.anim.placeholder {
@@ -156,8 +167,8 @@ pub(super) fn anim_tick(page: &Shared, ts: f64) {
     if !(p.anim.dirty || (p.anim.clock.playing && in_view)) {
         return;
     }
-    let views_waiting = p.frame_requested && p.redraw.pending();
-    if !p.turn.anim_draws(ts, views_waiting) {
+    let views_waiting = p.frame_requested && p.core.wants_frame();
+    if !p.core.anim_draws(ts, views_waiting) {
         return;
     }
     p.anim.dirty = false;
@@ -167,7 +178,7 @@ pub(super) fn anim_tick(page: &Shared, ts: f64) {
 
 /// Fills the gear set's canvas with a frame and a line saying the motion is
 /// on its way; returns whether it was drawn.
-fn draw_anim_placeholder(p: &Page) -> bool {
+fn draw_anim_placeholder(p: &Shell) -> bool {
     let Some(cv) = by_id::<HtmlCanvasElement>(&p.doc, "canvas-anim") else {
         return false;
     };
@@ -256,20 +267,21 @@ pub(super) fn paint_scene(ctx: &CanvasRenderingContext2d, scene: &Scene, size: (
     }
 }
 
-pub(super) fn draw_anim(p: &mut Page) {
+pub(super) fn draw_anim(p: &mut Shell) {
     let Some(cv) = by_id::<HtmlCanvasElement>(&p.doc, "canvas-anim") else {
         return;
     };
     let Some(ctx) = ctx2d(&cv) else { return };
-    let params = p.ctl.settings.params.clone();
+    let params = p.core.ctl().settings().params.clone();
     if p.anim.set.as_ref().is_none_or(|(q, _)| *q != params) {
-        let meshes: Vec<(solver::params::MeshKind, usize)> = match &p.ctl.model {
+        let meshes: Vec<(solver::params::MeshKind, usize)> = match p.core.ctl().model() {
             Ok(m) => m.system.meshes.iter().map(|x| (x.kind, x.planet)).collect(),
             Err(_) => Vec::new(),
         };
         p.anim.set = GearSet::new(&params, &meshes).map(|g| (params.clone(), g));
     }
-    let (Some((_, set)), Some(r)) = (p.anim.set.as_ref(), p.ctl.omega.as_ref()) else {
+    let (Some((_, set)), Some(r)) = (p.anim.set.as_ref(), p.core.ctl().main().omega.as_ref())
+    else {
         return;
     };
     let size = (f64::from(cv.width()), f64::from(cv.height()));
@@ -303,13 +315,16 @@ pub(super) fn draw_anim(p: &mut Page) {
     );
 }
 
-pub(super) fn draw_time_cursor(p: &Page) {
+pub(super) fn draw_time_cursor(p: &Shell) {
     let Some(cv) = by_id::<HtmlCanvasElement>(&p.doc, "canvas-time-cursor") else {
         return;
     };
     let Some(ctx) = ctx2d(&cv) else { return };
     ctx.clear_rect(0.0, 0.0, f64::from(cv.width()), f64::from(cv.height()));
-    let (Some(f), Some(r)) = (p.frames[ViewId::Time.slot()], p.ctl.omega.as_ref()) else {
+    let (Some(f), Some(r)) = (
+        p.core.frame(ViewId::Time),
+        p.core.ctl().main().omega.as_ref(),
+    ) else {
         return;
     };
     let t = p

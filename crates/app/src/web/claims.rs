@@ -37,7 +37,7 @@ pub(super) fn build_claims(page: &Shared) {
                         let fx = {
                             let mut p = page2.borrow_mut();
                             let t = now(&p.window);
-                            p.ctl.apply_preset(id, t)
+                            p.core.ctl_mut().apply_preset(id, t)
                         };
                         run_effects(&page2, fx);
                         request_frame(&page2);

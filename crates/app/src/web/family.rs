@@ -5,7 +5,6 @@
 
 use super::*;
 use crate::family::FAMILY_KEYS;
-use crate::protocol::JobKind;
 
 pub(super) fn build_family_bar(page: &Shared) {
     let doc = page.borrow().doc.clone();
@@ -31,7 +30,7 @@ pub(super) fn build_family_bar(page: &Shared) {
                     .map(|s| s.value())
                     .unwrap_or_default();
                 let t = now(&p.window);
-                match p.ctl.set_family_text(&key, &values, t) {
+                match p.core.ctl_mut().set_family_text(&key, &values, t) {
                     Ok(fx) => {
                         set_text(&p.doc, "family-error", "");
                         fx
@@ -63,7 +62,7 @@ pub(super) fn build_family_bar(page: &Shared) {
             let fx = {
                 let mut p = page2.borrow_mut();
                 set_text(&p.doc, "family-error", "");
-                p.ctl.clear_family()
+                p.core.ctl_mut().clear_family()
             };
             run_effects(&page2, fx);
             request_frame(&page2);
@@ -71,50 +70,44 @@ pub(super) fn build_family_bar(page: &Shared) {
     }
 }
 
-/// The bar's state after a change: the family shown, in words.
-pub(super) fn refresh_family_bar(p: &Page) {
-    let text = match &p.ctl.family {
-        Some(f) => {
-            let labels: Vec<String> = (0..f.spec.values.len()).map(|i| f.spec.label(i)).collect();
-            if let Some(s) = by_id::<HtmlSelectElement>(&p.doc, "family-key") {
-                s.set_value(f.spec.key.key);
-            }
-            if let Some(i) = by_id::<HtmlInputElement>(&p.doc, "family-values") {
-                // Written when the family changed, not while it is typed.
-                let code = f.spec.encode();
-                if i.get_attribute("data-shown").as_deref() != Some(code.as_str()) {
-                    let v: Vec<String> = f
-                        .spec
-                        .values
-                        .iter()
-                        .map(|x| crate::settings::fmt_exact(*x))
-                        .collect();
-                    i.set_value(&v.join(", "));
-                    check(i.set_attribute("data-shown", &code));
-                }
-            }
-            format!(
-                "Showing {}: one colour each on the frequency response, one panel each on the bifurcation diagram, phase portrait and Poincaré section.",
-                labels.join(", ")
-            )
-        }
-        None => String::new(),
+/// The bar's fields after a change: the family shown (its line and its
+/// "Clear" button are the core's writes).
+pub(super) fn refresh_family_bar(p: &Shell) {
+    let Some(f) = p.core.ctl().family() else {
+        return;
     };
-    set_text(&p.doc, "family-status", &text);
-    if let Some(b) = by_id::<HtmlElement>(&p.doc, "family-clear") {
-        b.set_hidden(p.ctl.family.is_none());
+    if let Some(s) = by_id::<HtmlSelectElement>(&p.doc, "family-key") {
+        s.set_value(f.spec.key.key);
+    }
+    if let Some(i) = by_id::<HtmlInputElement>(&p.doc, "family-values") {
+        // Written when the family changed, not while it is typed.
+        let code = f.spec.encode();
+        if i.get_attribute("data-shown").as_deref() != Some(code.as_str()) {
+            let v: Vec<String> = f
+                .spec
+                .values
+                .iter()
+                .map(|x| crate::settings::fmt_exact(*x))
+                .collect();
+            i.set_value(&v.join(", "));
+            check(i.set_attribute("data-shown", &code));
+        }
     }
 }
 
 /// The bifurcation diagrams of the family's members side by side.
-pub(super) fn draw_bif_family(p: &mut Page, root: &Area, cv: &HtmlCanvasElement) -> plots::Res<()> {
-    let panels = p.ctl.bif_panels();
-    let mesh = p.ctl.view_context().mesh_label;
-    let running = p.ctl.bif_status.running() || p.ctl.members_running(JobKind::Bif);
-    let status = if running { " (computing…)" } else { "" };
-    let (frames, groups) = plots::multiples::draw_bif_panels(root, &panels, &mesh, status)?;
+pub(super) fn draw_bif_family(
+    p: &mut Shell,
+    root: &Area,
+    cv: &HtmlCanvasElement,
+) -> plots::Res<()> {
+    let panels = p.core.ctl().bif_panels();
+    let mesh = p.core.ctl().view_context().mesh_label;
+    let status = p.core.caption_suffix(ViewId::Bif, None);
+    let (frames, groups) = plots::multiples::draw_bif_panels(root, &panels, &mesh, &status)?;
     // Clicks pick Omega on the first panel's axis (all share it).
-    p.frames[ViewId::Bif.slot()] = frames.into_iter().flatten().next();
+    p.core
+        .set_frame(ViewId::Bif, frames.into_iter().flatten().next());
     if let Some(ctx) = ctx2d(cv) {
         fill_groups(&ctx, &groups);
     }
@@ -123,22 +116,22 @@ pub(super) fn draw_bif_family(p: &mut Page, root: &Area, cv: &HtmlCanvasElement)
 
 /// The frequency responses of the panels' meshes (Figs. 2 and 3, panels
 /// a-d), every family member's curve in each.
-pub(super) fn draw_fr_panels(p: &mut Page, root: &Area, status: &str) -> plots::Res<()> {
-    let panels = p.ctl.fr_panels();
+pub(super) fn draw_fr_panels(p: &mut Shell, root: &Area, status: &str) -> plots::Res<()> {
+    let panels = p.core.ctl().fr_panels();
     let frames = plots::multiples::draw_fr_panels(root, &panels, status)?;
     // Clicks pick Omega on the first panel's axis (the column under it
     // shares it).
-    p.frames[ViewId::Fr.slot()] = frames.into_iter().flatten().next();
+    p.core
+        .set_frame(ViewId::Fr, frames.into_iter().flatten().next());
     Ok(())
 }
 
 /// The phase portraits (view Phase) or Poincaré sections of the family's
 /// members side by side.
-pub(super) fn draw_omega_family(p: &mut Page, v: ViewId, root: &Area) -> plots::Res<()> {
+pub(super) fn draw_omega_family(p: &mut Shell, v: ViewId, root: &Area) -> plots::Res<()> {
     let poincare = v == ViewId::Poincare;
-    let n = p.ctl.family.as_ref().map_or(0, |f| f.spec.values.len());
-    let panels = p.ctl.omega_panels(if poincare { n } else { 0 });
-    let running = p.ctl.omega_status.running() || p.ctl.members_running(JobKind::Omega);
-    let status = if running { " (computing…)" } else { "" };
-    plots::multiples::draw_phase_panels(root, &panels, poincare, status)
+    let n = p.core.ctl().family().map_or(0, |f| f.spec.values.len());
+    let panels = p.core.ctl().omega_panels(if poincare { n } else { 0 });
+    let status = p.core.caption_suffix(v, None);
+    plots::multiples::draw_phase_panels(root, &panels, poincare, &status)
 }

@@ -139,20 +139,18 @@ pub(super) fn add_option(doc: &Document, sel: &HtmlSelectElement, value: &str, t
 pub(super) fn queue_input(page: &Shared, key: &str, value: &str) {
     {
         let mut p = page.borrow_mut();
-        p.last_input_ms = now(&p.window);
-        // Coalesce: only the latest value of a key per frame.
-        p.pending.retain(|(k, _)| k != key);
-        p.pending.push((key.to_string(), value.to_string()));
+        let t = now(&p.window);
+        p.core.input(key, value, t);
     }
     request_frame(page);
 }
 
-pub(super) fn refresh_controls(p: &Page) {
-    let params = &p.ctl.settings.params;
+pub(super) fn refresh_controls(p: &Shell) {
+    let params = &p.core.ctl().settings().params;
     let model = params.kind();
     // The mesh list depends on the model.
     if let Some(sel) = by_id::<HtmlSelectElement>(&p.doc, "sel-mesh") {
-        let names = p.ctl.mesh_names();
+        let names = p.core.ctl().mesh_names();
         let wanted: Vec<String> = names.iter().cloned().chain(["worst".to_string()]).collect();
         let current: Vec<String> = (0..sel.length())
             .filter_map(|i| sel.item(i))
@@ -176,7 +174,7 @@ pub(super) fn refresh_controls(p: &Page) {
                 Some(solver::keys::Value::Text(t)) => t,
                 None => continue,
             },
-            Target::View => match p.ctl.settings.view.get(c.key) {
+            Target::View => match p.core.ctl().settings().view.get(c.key) {
                 Some(t) => t,
                 None => continue,
             },
@@ -219,7 +217,7 @@ pub(super) fn build_toolbar(page: &Shared) {
             let fx = {
                 let mut p = page2.borrow_mut();
                 let t = now(&p.window);
-                p.ctl.apply_preset(&id, t)
+                p.core.ctl_mut().apply_preset(&id, t)
             };
             run_effects(&page2, fx);
             request_frame(&page2);
@@ -231,7 +229,7 @@ pub(super) fn build_toolbar(page: &Shared) {
             let fx = {
                 let mut p = page2.borrow_mut();
                 let t = now(&p.window);
-                p.ctl.load_query("", t)
+                p.core.ctl_mut().load_query("", t)
             };
             run_effects(&page2, fx);
             request_frame(&page2);
@@ -245,9 +243,9 @@ pub(super) fn build_toolbar(page: &Shared) {
                     let mut p = page2.borrow_mut();
                     let t = now(&p.window);
                     if pin {
-                        p.ctl.pin_a(t)
+                        p.core.ctl_mut().pin_a(t)
                     } else {
-                        p.ctl.clear_a()
+                        p.core.ctl_mut().clear_a()
                     }
                 };
                 run_effects(&page2, fx);
@@ -262,9 +260,8 @@ pub(super) fn build_toolbar(page: &Shared) {
     if let Some(m) = doc.get_element_by_id("messages") {
         let page2 = page.clone();
         listen(&m.into(), "click", move |_e: Event| {
-            let mut p = page2.borrow_mut();
-            p.ctl.clear_issues();
-            refresh_messages(&p);
+            page2.borrow_mut().core.ctl_mut().clear_issues();
+            request_frame(&page2);
         });
     }
 }
@@ -354,9 +351,9 @@ pub(super) fn download_url(doc: &Document, name: &str, url: &str) {
 fn png_2x(page: &Shared, v: ViewId) {
     let (doc, svg) = {
         let p = page.borrow();
-        (p.doc.clone(), p.ctl.plot_svg(v))
+        (p.doc.clone(), p.core.ctl().plot_svg(v))
     };
-    let (w, h) = page.borrow().ctl.canvas_size(v);
+    let (w, h) = page.borrow().core.ctl().canvas_size(v);
     let name = format!("gearshock-{}.png", v.key());
     let (Ok(svg), Ok(img)) = (svg, web_sys::HtmlImageElement::new()) else {
         if let Some(url) = canvas(&doc, v).and_then(|cv| cv.to_data_url().ok()) {
@@ -434,7 +431,7 @@ pub(super) fn build_exports(page: &Shared) {
             "SVG",
             &v.export_name("an SVG picture"),
             move |_| {
-                let r = page2.borrow().ctl.export_svg(v);
+                let r = page2.borrow().core.ctl().export_svg(v);
                 match r {
                     Ok(e) => run_effects(&page2, vec![e]),
                     Err(e) => set_text(&page2.borrow().doc, "status", &e.to_string()),
@@ -445,7 +442,7 @@ pub(super) fn build_exports(page: &Shared) {
             let title = v.export_name(fmt.label());
             let page2 = page.clone();
             add_button(page, &bar, fmt.label(), &title, move |_| {
-                let r = page2.borrow().ctl.export(v, fmt);
+                let r = page2.borrow().core.ctl().export(v, fmt);
                 finish_export(&page2, r.map(|e| vec![e]));
             });
         }
@@ -453,7 +450,7 @@ pub(super) fn build_exports(page: &Shared) {
             let page2 = page.clone();
             let title = v.export_name("JSON for the command-line tool");
             add_button(page, &bar, "CLI JSON", &title, move |_| {
-                let r = page2.borrow_mut().ctl.export_cli(v);
+                let r = page2.borrow_mut().core.ctl_mut().export_cli(v);
                 finish_export(&page2, r);
             });
         }
@@ -467,7 +464,7 @@ pub(super) fn build_exports(page: &Shared) {
             text,
             "Download the parameters as JSON for the command-line tool",
             move |_| {
-                let fx = vec![page2.borrow().ctl.export_params()];
+                let fx = vec![page2.borrow().core.ctl().export_params()];
                 run_effects(&page2, fx);
             },
         );

@@ -24,7 +24,7 @@ pub(super) fn build_tour(page: &Shared) {
         if let Some(b) = doc.get_element_by_id(id) {
             let page2 = page.clone();
             listen(&b.into(), "click", move |_e: Event| {
-                let step = next(page2.borrow().ctl.tour);
+                let step = next(page2.borrow().core.ctl().tour());
                 go(&page2, step);
             });
         }
@@ -36,7 +36,7 @@ fn go(page: &Shared, step: Option<usize>) {
     let fx = {
         let mut p = page.borrow_mut();
         let t = now(&p.window);
-        p.ctl.tour_go(step, t)
+        p.core.ctl_mut().tour_go(step, t)
     };
     run_effects(page, fx);
     show_tour(&page.borrow());
@@ -45,7 +45,7 @@ fn go(page: &Shared, step: Option<usize>) {
 
 /// Shows the current step (or hides the panel), highlights its target and
 /// scrolls to it.
-fn show_tour(p: &Page) {
+fn show_tour(p: &Shell) {
     let doc = &p.doc;
     if let Ok(old) = doc.query_selector_all(".tour-target") {
         for i in 0..old.length() {
@@ -57,7 +57,7 @@ fn show_tour(p: &Page) {
     let Some(panel) = doc.get_element_by_id("tour") else {
         return;
     };
-    let Some(step) = p.ctl.tour else {
+    let Some(step) = p.core.ctl().tour() else {
         check(panel.set_attribute("hidden", ""));
         return;
     };

@@ -3,7 +3,7 @@
 //! worker's event loop so that newer jobs and cancels arrive.
 
 use super::check;
-use crate::worker_core::{ready_message, WorkerCore};
+use crate::worker::{ready_message, WorkerCore};
 use std::cell::{Cell, RefCell};
 use std::rc::Rc;
 use wasm_bindgen::prelude::*;

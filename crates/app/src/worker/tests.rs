@@ -1,8 +1,11 @@
 //! The worker job runner's tests: real jobs on small models.
 
 use super::*;
-use crate::jobs::hbm::HBM_CHUNK;
-use crate::protocol::{encode, RunOptions};
+use crate::protocol::{encode, JobSpec, OmegaSpec, RunOptions};
+use crate::worker::jobs::hbm::HBM_CHUNK;
+use serde_json::Map;
+use solver::keys;
+use solver::params::ModelParams;
 
 fn params(p: &ModelParams) -> Map<String, Value> {
     keys::to_json(p)
@@ -10,6 +13,7 @@ fn params(p: &ModelParams) -> Map<String, Value> {
 
 fn run_msg(id: JobId, p: &ModelParams, job: JobSpec) -> String {
     encode(&ToWorker::Run {
+        target: Target::Main,
         id,
         params: params(p),
         job,
@@ -94,45 +98,73 @@ fn map_and_lyapunov_jobs_share_the_worker_and_cover_their_shares() {
     assert!(out.iter().any(|m| matches!(m, FromWorker::Done { id: 4 })));
 }
 
+/// A job of `target` (an overlay of two points) as its message.
+fn target_msg(target: Target, id: JobId, p: &ModelParams) -> String {
+    encode(&ToWorker::Run {
+        target,
+        id,
+        params: params(p),
+        job: JobSpec::Overlay {
+            omega_from: 0.5,
+            omega_to: 1.0,
+            points: 2,
+            chains: 1,
+            shard: 0,
+            run: quick(),
+        },
+    })
+}
+
+fn finished(out: &[FromWorker], id: JobId) -> bool {
+    out.iter()
+        .any(|m| matches!(m, FromWorker::Done { id: i } if *i == id))
+}
+
 #[test]
-fn a_pinned_job_runs_beside_the_current_job_of_its_kind() {
+fn every_computation_runs_beside_the_others_and_is_cancelled_alone() {
     let mut core = WorkerCore::new();
     let p = ModelParams::defaults(solver::ModelKind::GearPair);
-    let job = |shard| JobSpec::Fr {
-        omega_from: 0.5,
-        omega_to: 1.0,
-        points: 2,
-        chains: 1,
-        shard,
-        run: quick(),
-    };
-    core.handle(&run_msg(1, &p, job(0)));
-    core.handle(&encode(&ToWorker::RunPinned {
-        id: 2,
-        params: params(&p),
-        job: job(0),
+    let targets = [
+        Target::Main,
+        Target::A,
+        Target::Member(1),
+        Target::Member(2),
+    ];
+    // The same kind for every target: all of them run.
+    for (i, t) in targets.into_iter().enumerate() {
+        core.handle(&target_msg(t, i as JobId + 1, &p));
+    }
+    let out = drain(&mut core);
+    for id in 1..=4 {
+        assert!(finished(&out, id), "job {id} did not finish");
+    }
+    // Cancelling one target's job (or all its jobs) leaves the others'.
+    for (i, t) in targets.into_iter().enumerate() {
+        core.handle(&target_msg(t, i as JobId + 11, &p));
+    }
+    core.handle(&encode(&ToWorker::Cancel {
+        target: Target::A,
+        kind: Some(JobKind::Overlay),
+    }));
+    core.handle(&encode(&ToWorker::Cancel {
+        target: Target::Member(1),
+        kind: None,
     }));
     let out = drain(&mut core);
-    for id in [1, 2] {
+    assert!(finished(&out, 11) && finished(&out, 14));
+    for id in [12, 13] {
+        assert!(!out
+            .iter()
+            .any(|m| matches!(m, FromWorker::OverlayPoints { id: i, .. } if *i == id)));
+    }
+    // Member 0 is the current state; a member past the cap is refused.
+    for bad in [0, 99] {
+        let out = core.handle(&target_msg(Target::Member(bad), 6, &p));
         assert!(
-            out.iter()
-                .any(|m| matches!(m, FromWorker::Done { id: i } if *i == id)),
-            "job {id} did not finish"
+            matches!(&out[..], [FromWorker::Failed { id: 6, .. }]),
+            "{out:?}"
         );
     }
-    // Cancelling A's job leaves B's alone.
-    core.handle(&run_msg(3, &p, job(0)));
-    core.handle(&encode(&ToWorker::RunPinned {
-        id: 4,
-        params: params(&p),
-        job: job(0),
-    }));
-    core.handle(&encode(&ToWorker::CancelPinned { kind: JobKind::Fr }));
-    let out = drain(&mut core);
-    assert!(out.iter().any(|m| matches!(m, FromWorker::Done { id: 3 })));
-    assert!(!out
-        .iter()
-        .any(|m| matches!(m, FromWorker::FrPoints { id: 4, .. })));
 }
 
 #[test]
@@ -142,13 +174,13 @@ fn omega_job_returns_history_poincare_and_cli_json() {
     let out = core.handle(&run_msg(
         7,
         &p,
-        JobSpec::Omega {
+        JobSpec::Omega(OmegaSpec {
             omega: 0.8,
             mesh: None,
             run: quick(),
             samples_per_period: 32,
             max_order: 4.0,
-        },
+        }),
     ));
     assert!(out.is_empty());
     let out = drain(&mut core);
@@ -184,7 +216,7 @@ fn sharded_fr_grid_covers_every_point_once() {
         let out = core.handle(&run_msg(
             1,
             &p,
-            JobSpec::Fr {
+            JobSpec::Overlay {
                 omega_from: 0.5,
                 omega_to: 1.5,
                 points: 5,
@@ -197,7 +229,7 @@ fn sharded_fr_grid_covers_every_point_once() {
             matches!(out[0], FromWorker::Progress { total, .. } if total == if shard == 0 { 3 } else { 2 })
         );
         for m in drain(&mut core) {
-            if let FromWorker::FrPoints { points, .. } = m {
+            if let FromWorker::OverlayPoints { points, .. } = m {
                 for s in points {
                     assert_eq!(s.meshes.len(), 1);
                     assert!(s.meshes[0].rel_max_um >= s.meshes[0].rel_min_um);
@@ -263,7 +295,7 @@ fn hbm_job_streams_the_branch_in_chunks_and_a_newer_job_replaces_it() {
         run_msg(
             id,
             &p,
-            JobSpec::Hbm {
+            JobSpec::HarmonicBalance {
                 omega_from: 0.3,
                 omega_to: 1.8,
                 points: 60,
@@ -310,7 +342,10 @@ fn hbm_job_streams_the_branch_in_chunks_and_a_newer_job_replaces_it() {
     assert!(!core.has_work());
     // A cancel drops a running branch.
     core.handle(&hbm(3, 3));
-    core.handle(&encode(&ToWorker::Cancel { kind: JobKind::Hbm }));
+    core.handle(&encode(&ToWorker::Cancel {
+        target: Target::Main,
+        kind: Some(JobKind::HarmonicBalance),
+    }));
     assert!(!core.has_work());
     // Out-of-range harmonics fail cleanly.
     let out = core.handle(&hbm(4, 99));
@@ -361,15 +396,16 @@ fn newer_job_replaces_older_and_bad_params_fail_cleanly() {
     let mut bad = params(&p);
     bad.insert("backlash_um".into(), Value::from(-5));
     let msg = encode(&ToWorker::Run {
+        target: Target::Main,
         id: 9,
         params: bad,
-        job: JobSpec::Omega {
+        job: JobSpec::Omega(OmegaSpec {
             omega: 1.0,
             mesh: Some(0),
             run: quick(),
             samples_per_period: 16,
             max_order: 4.0,
-        },
+        }),
     });
     let out = core.handle(&msg);
     assert!(
@@ -459,20 +495,22 @@ fn steps_to_omega(core: &mut WorkerCore) -> (Vec<FromWorker>, usize) {
 
 #[test]
 fn a_new_omega_job_preempts_a_running_steady_state_within_one_slice() {
-    use crate::jobs::omega::{omega_result, OmegaJob};
-    use crate::jobs::SLICE_STEPS;
+    use crate::worker::jobs::omega::{omega_result, OmegaJob};
+    use crate::worker::jobs::SLICE_STEPS;
     let mut core = WorkerCore::new();
     let p = ModelParams::default();
     let run = RunOptions {
         transient_periods: 300,
         record_periods: 40,
     };
-    let omega_job = |omega| JobSpec::Omega {
-        omega,
-        mesh: None,
-        run,
-        samples_per_period: 32,
-        max_order: 8.0,
+    let omega_job = |omega| {
+        JobSpec::Omega(OmegaSpec {
+            omega,
+            mesh: None,
+            run,
+            samples_per_period: 32,
+            max_order: 8.0,
+        })
     };
     // A bifurcation shard waits behind the Omega jobs.
     core.handle(&run_msg(
@@ -524,73 +562,17 @@ fn a_new_omega_job_preempts_a_running_steady_state_within_one_slice() {
         .iter()
         .all(|m| !matches!(m, FromWorker::BifPoints { .. })));
     // Sliced, the result is the one-shot run's, bit for bit.
-    let model = Model::new(&p).expect("model");
-    let job = OmegaJob {
-        id: 2,
-        model,
-        omega: 1.1,
-        mesh: None,
-        run,
-        samples_per_period: 32,
-        max_order: 8.0,
+    let model = solver::steady::Model::new(&p).expect("model");
+    let JobSpec::Omega(spec) = omega_job(1.1) else {
+        panic!("not an Omega job");
     };
+    let job = OmegaJob { id: 2, model, spec };
     let whole = omega_result(&job, None).expect("one-shot run");
     assert_eq!(*result.1.as_ref(), whole);
     // Then the sweep runs.
     assert!(drain(&mut core)
         .iter()
         .any(|m| matches!(m, FromWorker::BifPoints { id: 7, .. })));
-}
-
-#[test]
-fn family_members_run_beside_the_current_state_and_cancel_together() {
-    let mut core = WorkerCore::new();
-    let p = ModelParams::defaults(solver::ModelKind::GearPair);
-    let job = || JobSpec::Fr {
-        omega_from: 0.5,
-        omega_to: 1.0,
-        points: 2,
-        chains: 1,
-        shard: 0,
-        run: quick(),
-    };
-    let member = |member, id| {
-        encode(&ToWorker::RunMember {
-            member,
-            id,
-            params: params(&p),
-            job: job(),
-        })
-    };
-    // The current state's job and two members' jobs of the same kind all run.
-    core.handle(&run_msg(1, &p, job()));
-    core.handle(&member(1, 2));
-    core.handle(&member(2, 3));
-    let out = drain(&mut core);
-    for id in [1, 2, 3] {
-        assert!(
-            out.iter()
-                .any(|m| matches!(m, FromWorker::Done { id: i } if *i == id)),
-            "job {id} did not finish"
-        );
-    }
-    // Cancelling the members leaves the current state's job alone.
-    core.handle(&run_msg(4, &p, job()));
-    core.handle(&member(1, 5));
-    core.handle(&encode(&ToWorker::CancelMembers { kind: None }));
-    let out = drain(&mut core);
-    assert!(out.iter().any(|m| matches!(m, FromWorker::Done { id: 4 })));
-    assert!(!out
-        .iter()
-        .any(|m| matches!(m, FromWorker::FrPoints { id: 5, .. })));
-    // Member 0 is the current state; a member past the cap is refused.
-    for bad in [0, 99] {
-        let out = core.handle(&member(bad, 6));
-        assert!(
-            matches!(&out[..], [FromWorker::Failed { id: 6, .. }]),
-            "{out:?}"
-        );
-    }
 }
 
 mod slices;

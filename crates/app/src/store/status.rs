@@ -1,9 +1,8 @@
-//! What the page knows about its jobs and views between frames: each
-//! job's progress and timing ([`JobStatus`]) and which views' data changed
-//! ([`Dirty`]). The controller writes both; the redraw scheduler and the
-//! captions read them.
+//! What the page knows about its jobs between frames: each job's progress
+//! and timing ([`JobStatus`]) and whose data changed ([`Dirty`]). The
+//! controller writes both; the redraw scheduler and the captions read them.
 
-use crate::protocol::JobId;
+use crate::protocol::{JobId, KindSet};
 
 /// Jobs shorter than this show no progress indicator (ms).
 pub const PROGRESS_AFTER_MS: f64 = 200.0;
@@ -52,40 +51,35 @@ impl JobStatus {
     }
 }
 
-/// Which views need drawing.
+/// What changed since the last frame: whose data (a set of job kinds;
+/// each view redraws when a kind it shows is in it, see
+/// `views::ViewSpec::shows`), the controls, the link and the messages.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Dirty {
-    /// Frequency response.
-    pub fr: bool,
-    /// Bifurcation diagram.
-    pub bif: bool,
-    /// Views 3–6 and the summary.
-    pub omega: bool,
+    /// The kinds whose data (or whose views' axes) changed.
+    pub jobs: KindSet,
     /// Control values (after a link, preset or reset).
     pub controls: bool,
     /// The URL.
     pub url: bool,
     /// The messages area.
     pub messages: bool,
-    /// The impact-regime map.
-    pub map: bool,
-    /// The Lyapunov curve.
-    pub lyap: bool,
 }
 
 impl Dirty {
     /// Everything: a new page state (a link, a preset, a reset).
     pub fn all() -> Self {
         Dirty {
-            fr: true,
-            bif: true,
-            omega: true,
+            jobs: KindSet::ALL,
             controls: true,
             url: true,
             messages: true,
-            map: true,
-            lyap: true,
         }
+    }
+
+    /// Marks `kinds`' data as changed.
+    pub fn data(&mut self, kinds: impl Into<KindSet>) {
+        self.jobs = self.jobs.with(kinds.into());
     }
 }
 
@@ -97,6 +91,15 @@ impl JobStatus {
         self.first_data_ms.get_or_insert(now_ms);
         if done >= self.total {
             self.finished_ms = Some(now_ms);
+        }
+    }
+
+    /// The map's caption status: the cells computed while it runs.
+    pub fn map_caption_suffix(&self) -> String {
+        if self.running() {
+            format!(" (computing {}/{} cells)", self.done, self.total)
+        } else {
+            String::new()
         }
     }
 

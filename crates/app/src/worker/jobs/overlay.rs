@@ -3,7 +3,8 @@
 //! each computed in slices ([`SteadyRun`]).
 
 use super::chain::{Chain, ChainJob, ChainKind};
-use super::{failed, round_um};
+use super::failed;
+use crate::protocol::um;
 use crate::protocol::{FrSample, FromWorker, JobId, MeshExtremes, RunOptions};
 use solver::steady::{Model, SteadyOptions, SteadyRun};
 use solver::sweep::SweepSpec;
@@ -66,8 +67,8 @@ impl ChainKind for Overlay {
             .meshes
             .iter()
             .map(|m| MeshExtremes {
-                rel_min_um: round_um(m.rel_min_m * 1e6),
-                rel_max_um: round_um(m.rel_max_m * 1e6),
+                rel_min_um: um(m.rel_min_m),
+                rel_max_um: um(m.rel_max_m),
                 regime: m.impact.into(),
                 dynamic_factor: m.dynamic_factor,
             })
@@ -93,6 +94,6 @@ impl ChainKind for Overlay {
     }
 
     fn message(id: JobId, points: Vec<FrSample>) -> FromWorker {
-        FromWorker::FrPoints { id, points }
+        FromWorker::OverlayPoints { id, points }
     }
 }

@@ -2,10 +2,12 @@
 //!
 //! Protocol. A worker posts [`FromWorker::Ready`] once its wasm has loaded;
 //! the page queues jobs until then (messages posted earlier would be lost).
-//! Every job carries an id. A worker holds at most one job of each
-//! [`JobKind`] (further `Run` messages with the same id are more shards of
-//! it): a newer job of a kind replaces (cancels) the older one, and the
-//! page ignores replies whose id is not the current one of that kind. Workers
+//! Every job carries an id and a [`Target`]: the computation it belongs to
+//! (the current state, the pinned A, a family member). A worker holds at
+//! most one job of each [`JobKind`] per target (further `Run` messages with
+//! the same id are more shards of it): a newer job of a kind replaces
+//! (cancels) the older one, and the page ignores replies whose id is not
+//! the current one of that kind. Workers
 //! compute in bounded chunks (a slice of a steady state, one steady state or
 //! map cell) and yield to their event loop between chunks, so a newer job or
 //! a cancel arrives within one chunk. Bifurcation sweeps, the Lyapunov curve
@@ -13,7 +15,7 @@
 //! interleaved continuation chains (`chains` fixed by the points, one
 //! message per `shard`, dealt over the pool); the merged result equals an
 //! unsharded run with as many chains. The harmonic-balance branch
-//! ([`JobSpec::Hbm`]) is one continuation on one worker, advanced a few
+//! ([`JobSpec::HarmonicBalance`]) is one continuation on one worker, advanced a few
 //! points per chunk.
 //!
 //! These are the serializable DTOs of the boundary; solver types stay inside
@@ -26,36 +28,8 @@ use solver::steady::Impact;
 /// Identifies one job; increases monotonically on the page.
 pub type JobId = u64;
 
-/// The kinds of job: `Omega` is served first, then `Hbm` every other chunk;
-/// `Fr` and `Bif` take turns in the remaining chunks.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum JobKind {
-    /// One steady state at the selected Omega (views 3–6).
-    Omega,
-    /// The harmonic-balance branch of the frequency response (view 1).
-    Hbm,
-    /// The time-integration overlay grid of the frequency response (view 1).
-    Fr,
-    /// The bifurcation sweep (view 2).
-    Bif,
-    /// The impact-regime map (view 7).
-    Map,
-    /// The largest Lyapunov exponent over Omega (under view 2).
-    Lyap,
-}
-
-impl JobKind {
-    /// All kinds.
-    pub const ALL: [JobKind; 6] = [
-        JobKind::Omega,
-        JobKind::Hbm,
-        JobKind::Fr,
-        JobKind::Bif,
-        JobKind::Map,
-        JobKind::Lyap,
-    ];
-}
+mod kinds;
+pub use kinds::{JobKind, KindSet, Target};
 
 /// Transient and recorded mesh periods of each steady state.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -66,27 +40,33 @@ pub struct RunOptions {
     pub record_periods: u32,
 }
 
+/// The selected-Omega run: one steady state with the time history of one
+/// mesh. The worker's job, the page's preview and the CLI's figures run
+/// this one spec.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct OmegaSpec {
+    /// Dimensionless mesh frequency.
+    pub omega: f64,
+    /// Mesh index, or `None` for the worst mesh (largest dynamic factor).
+    pub mesh: Option<usize>,
+    /// Periods.
+    pub run: RunOptions,
+    /// Uniform samples per mesh period of the history.
+    pub samples_per_period: u32,
+    /// Highest mesh order of the spectrum.
+    pub max_order: f64,
+}
+
 /// What a job computes.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum JobSpec {
     /// One steady state with the time history of one mesh.
-    Omega {
-        /// Dimensionless mesh frequency.
-        omega: f64,
-        /// Mesh index, or `None` for the worst mesh (largest dynamic factor).
-        mesh: Option<usize>,
-        /// Periods.
-        run: RunOptions,
-        /// Uniform samples per mesh period of the history.
-        samples_per_period: u32,
-        /// Highest mesh order of the spectrum.
-        max_order: f64,
-    },
+    Omega(OmegaSpec),
     /// The harmonic-balance frequency response (`solver::hbm`): one
     /// pseudo-arclength continuation upward from `omega_from`, with Floquet
     /// stability and bifurcation labels.
-    Hbm {
+    HarmonicBalance {
         /// Start of the Omega range.
         omega_from: f64,
         /// End of the Omega range.
@@ -101,7 +81,7 @@ pub enum JobSpec {
     /// Steady-state extremes of every mesh over an Omega grid (upward
     /// continuation along interleaved chains; this worker does `shard`): the
     /// time-integration overlay of the frequency response.
-    Fr {
+    Overlay {
         /// First grid Omega.
         omega_from: f64,
         /// Last grid Omega.
@@ -183,9 +163,9 @@ impl JobSpec {
     /// The kind of this job.
     pub fn kind(&self) -> JobKind {
         match self {
-            JobSpec::Omega { .. } => JobKind::Omega,
-            JobSpec::Hbm { .. } => JobKind::Hbm,
-            JobSpec::Fr { .. } => JobKind::Fr,
+            JobSpec::Omega(_) => JobKind::Omega,
+            JobSpec::HarmonicBalance { .. } => JobKind::HarmonicBalance,
+            JobSpec::Overlay { .. } => JobKind::Overlay,
             JobSpec::Bif { .. } => JobKind::Bif,
             JobSpec::Map { .. } => JobKind::Map,
             JobSpec::Lyap { .. } => JobKind::Lyap,
@@ -197,8 +177,11 @@ impl JobSpec {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "type", rename_all = "snake_case")]
 pub enum ToWorker {
-    /// Start a job, replacing any job of the same kind.
+    /// Start a job of `target`'s computation, replacing that computation's
+    /// job of the same kind (a further shard of the same id joins it).
     Run {
+        /// Whose job it is.
+        target: Target,
         /// Job id.
         id: JobId,
         /// The parameter set as the flat key object of `solver::keys::to_json`.
@@ -206,42 +189,10 @@ pub enum ToWorker {
         /// What to compute.
         job: JobSpec,
     },
-    /// Drop the current job of a kind.
+    /// Drop `target`'s job of a kind (or all its jobs).
     Cancel {
-        /// Which kind.
-        kind: JobKind,
-    },
-    /// Start a job for the pinned state A of an A/B comparison: it runs
-    /// beside the current state's job of the same kind (the worker keeps a
-    /// second set of jobs for A), replacing only A's job of that kind.
-    RunPinned {
-        /// Job id.
-        id: JobId,
-        /// A's parameter set (flat keys).
-        params: Map<String, Value>,
-        /// What to compute.
-        job: JobSpec,
-    },
-    /// Drop A's job of a kind.
-    CancelPinned {
-        /// Which kind.
-        kind: JobKind,
-    },
-    /// Start a job for member `member` (1, 2, ...) of a parameter family: it
-    /// runs beside the current state's job of the same kind (the worker keeps
-    /// a set of jobs per member), replacing only that member's job of that kind.
-    RunMember {
-        /// The family member (member 0 is the current state itself).
-        member: u32,
-        /// Job id.
-        id: JobId,
-        /// The member's parameter set (flat keys).
-        params: Map<String, Value>,
-        /// What to compute.
-        job: JobSpec,
-    },
-    /// Drop every family member's job of a kind (or all their jobs).
-    CancelMembers {
+        /// Whose job.
+        target: Target,
         /// Which kind, or every kind.
         kind: Option<JobKind>,
     },
@@ -587,8 +538,8 @@ pub struct OmegaResult {
 pub enum FromWorker {
     /// The worker's wasm is loaded; jobs may be posted.
     Ready,
-    /// New points of a frequency-response job.
-    FrPoints {
+    /// New points of the time-integration overlay of the frequency response.
+    OverlayPoints {
         /// Job id.
         id: JobId,
         /// The points.
@@ -682,6 +633,12 @@ pub enum FromWorker {
     },
 }
 
+/// A length in metres as micrometres rounded to 1e-6 µm: the one
+/// conversion of every length the page shows and exports.
+pub fn um(metres: f64) -> f64 {
+    (metres * 1e6 * 1e6).round() / 1e6
+}
+
 /// Serializes a message; serialization of these plain types cannot fail,
 /// but a failure would still come back as text rather than a panic.
 pub fn encode<T: Serialize>(msg: &T) -> String {
@@ -705,7 +662,7 @@ mod tests {
                 done: 1,
                 total: 9,
             },
-            FromWorker::FrPoints {
+            FromWorker::OverlayPoints {
                 id: 4,
                 points: vec![FrSample {
                     index: 2,

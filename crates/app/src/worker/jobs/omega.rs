@@ -3,12 +3,32 @@
 //! history, spectrum and gear-set animation ([`OmegaResult`]); also the
 //! page's bounded preview run ([`omega_result`] with a start state).
 
-use super::{excitation_at, failed, round_um, Job, SLICE_STEPS};
+use super::{excitation_at, failed, Job, SLICE_STEPS};
 use crate::protocol::{
-    history_start, AnimHistory, FromWorker, JobId, MeshSummary, OmegaResult, RunOptions,
+    history_start, um, AnimHistory, FromWorker, JobId, MeshSummary, OmegaResult, OmegaSpec,
+    RunOptions,
 };
+use crate::settings::Settings;
 use solver::report;
 use solver::steady::{spectrum, steady_state, Model, SteadyOptions, SteadyRun, SteadyState};
+
+/// Samples per mesh period of the selected-Omega history.
+pub const SAMPLES_PER_PERIOD: u32 = 64;
+/// Highest mesh order of the spectrum.
+pub const MAX_ORDER: f64 = 8.0;
+
+/// The selected-Omega run of `settings` on its `model` with periods `run`:
+/// the one spec the worker's job, the page's preview (with
+/// [`PREVIEW_RUN`]) and the CLI's figures run.
+pub fn selected_spec(settings: &Settings, model: &Model, run: RunOptions) -> OmegaSpec {
+    OmegaSpec {
+        omega: settings.view.omega,
+        mesh: settings.mesh_index(model),
+        run,
+        samples_per_period: SAMPLES_PER_PERIOD,
+        max_order: MAX_ORDER,
+    }
+}
 
 /// An Omega job waiting for its one step (also the page's preview run).
 pub struct OmegaJob {
@@ -16,16 +36,8 @@ pub struct OmegaJob {
     pub id: JobId,
     /// The model.
     pub model: Model,
-    /// Dimensionless frequency.
-    pub omega: f64,
-    /// Mesh to plot, `None` for the worst.
-    pub mesh: Option<usize>,
-    /// Transient and recorded periods.
-    pub run: RunOptions,
-    /// History samples per mesh period.
-    pub samples_per_period: u32,
-    /// Highest spectrum order.
-    pub max_order: f64,
+    /// What to run.
+    pub spec: OmegaSpec,
 }
 
 /// Periods of the page's preview run: continued from the last result's end
@@ -63,7 +75,7 @@ pub enum OmegaError {
 impl OmegaError {
     fn solver(job: &OmegaJob) -> impl FnOnce(solver::SolverError) -> Self + '_ {
         move |source| OmegaError::Solver {
-            omega: job.omega,
+            omega: job.spec.omega,
             source,
         }
     }
@@ -130,13 +142,14 @@ impl Job for OmegaRun {
 /// The steady-state options of `job` (`preview`: the page's bounded run).
 fn omega_options(job: &OmegaJob, preview: bool) -> Result<SteadyOptions, OmegaError> {
     let n_mesh = job.model.system.meshes.len();
-    if let Some(j) = job.mesh.filter(|&j| j >= n_mesh) {
+    let spec = &job.spec;
+    if let Some(j) = spec.mesh.filter(|&j| j >= n_mesh) {
         return Err(OmegaError::NoMesh(j));
     }
-    let mut opts = SteadyOptions::new(job.omega);
-    opts.transient_periods = job.run.transient_periods;
-    opts.record_periods = job.run.record_periods;
-    opts.samples_per_period = job.samples_per_period.clamp(8, 256);
+    let mut opts = SteadyOptions::new(spec.omega);
+    opts.transient_periods = spec.run.transient_periods;
+    opts.record_periods = spec.run.record_periods;
+    opts.samples_per_period = spec.samples_per_period.clamp(8, 256);
     if preview {
         opts.max_steps_per_period = PREVIEW_STEPS_PER_PERIOD;
     }
@@ -167,9 +180,10 @@ fn omega_result_of(
 ) -> Result<OmegaResult, OmegaError> {
     let model = &job.model;
     let n_mesh = model.system.meshes.len();
-    let samples_per_period = job.samples_per_period.clamp(8, 256);
-    let record_periods = job.run.record_periods;
-    let j = job.mesh.unwrap_or_else(|| ss.worst_mesh());
+    let samples_per_period = job.spec.samples_per_period.clamp(8, 256);
+    let record_periods = job.spec.run.record_periods;
+    let max_order = job.spec.max_order;
+    let j = job.spec.mesh.unwrap_or_else(|| ss.worst_mesh());
     let Some(h) = ss.histories.iter().find(|h| h.mesh == j) else {
         return Err(OmegaError::NoHistory);
     };
@@ -182,11 +196,11 @@ fn omega_result_of(
         .map(|(v, &t)| v - excitation_at(model, j, w, t).1)
         .collect();
     let (e0, de0) = excitation_at(model, j, w, 0.0);
-    let spec = spectrum(&h.rel_m, samples_per_period, record_periods, job.max_order);
+    let spec = spectrum(&h.rel_m, samples_per_period, record_periods, max_order);
     let cli_json = if preview {
         String::new()
     } else {
-        report::simulate_json(model, &ss, j, job.max_order).to_string()
+        report::simulate_json(model, &ss, j, max_order).to_string()
     };
     let start = history_start(h.rel_m.len(), samples_per_period, record_periods);
     let mut anim_x = vec![Vec::new(); n_mesh];
@@ -205,14 +219,14 @@ fn omega_result_of(
             .system
             .meshes
             .iter()
-            .map(|m| round_um(m.backlash_m * 1e6))
+            .map(|m| um(m.backlash_m))
             .collect(),
     };
     let result = OmegaResult {
         omega: ss.omega,
         mesh: j,
         mesh_name: model.system.meshes[j].name.clone(),
-        backlash_um: round_um(model.system.meshes[j].backlash_m * 1e6),
+        backlash_um: um(model.system.meshes[j].backlash_m),
         regime: m.impact.into(),
         period: ss.period,
         dynamic_factor: m.dynamic_factor,
@@ -221,13 +235,9 @@ fn omega_result_of(
         settled: ss.stats.settled,
         samples_per_period,
         record_periods,
-        x_um: h.rel_m.iter().map(|x| round_um(x * 1e6)).collect(),
+        x_um: h.rel_m.iter().map(|x| um(*x)).collect(),
         xdot_m_s: xdot_m_s.iter().map(|v| (v * 1e9).round() / 1e9).collect(),
-        poincare_x_um: m
-            .poincare_delta_m
-            .iter()
-            .map(|d| round_um((d - e0) * 1e6))
-            .collect(),
+        poincare_x_um: m.poincare_delta_m.iter().map(|d| um(d - e0)).collect(),
         poincare_xdot_m_s: m.poincare_velocity_m_s.iter().map(|v| v - de0).collect(),
         spectrum_order: spec.order,
         spectrum_um: spec.amplitude.iter().map(|a| a * 1e6).collect(),

@@ -4,9 +4,11 @@
 //! solver runs.
 
 use super::{drain, run_msg, steps_to_omega};
-use crate::jobs::SLICE_STEPS;
-use crate::protocol::{FromWorker, JobSpec, LyapSample, MapSample, MeshExtremes, RunOptions};
-use crate::worker_core::WorkerCore;
+use crate::protocol::{
+    FromWorker, JobSpec, LyapSample, MapSample, MeshExtremes, OmegaSpec, RunOptions,
+};
+use crate::worker::jobs::SLICE_STEPS;
+use crate::worker::WorkerCore;
 use solver::lyapunov::{largest_exponent, LyapunovOptions};
 use solver::map::{MapSpec, RegimeMap};
 use solver::params::ModelParams;
@@ -31,13 +33,13 @@ fn yields_to_a_new_omega_job(job: JobSpec, is_data: fn(&FromWorker) -> bool) -> 
         transient_periods: 300,
         record_periods: 40,
     };
-    let omega_job = JobSpec::Omega {
+    let omega_job = JobSpec::Omega(OmegaSpec {
         omega: 1.1,
         mesh: None,
         run,
         samples_per_period: 32,
         max_order: 8.0,
-    };
+    });
     core.handle(&run_msg(1, &p, omega_job));
     let (msgs, steps) = steps_to_omega(&mut core);
     let result = msgs
@@ -108,7 +110,7 @@ fn an_overlay_point_pauses_for_a_new_omega_job_and_keeps_its_bits() {
         record_periods: 40,
     };
     let out = yields_to_a_new_omega_job(
-        JobSpec::Fr {
+        JobSpec::Overlay {
             omega_from: 0.5,
             omega_to: 0.9,
             points: 3,
@@ -116,12 +118,12 @@ fn an_overlay_point_pauses_for_a_new_omega_job_and_keeps_its_bits() {
             shard: 0,
             run,
         },
-        |m| matches!(m, FromWorker::FrPoints { .. }),
+        |m| matches!(m, FromWorker::OverlayPoints { .. }),
     );
     let got: Vec<_> = out
         .into_iter()
         .flat_map(|m| match m {
-            FromWorker::FrPoints { points, .. } => points,
+            FromWorker::OverlayPoints { points, .. } => points,
             _ => Vec::new(),
         })
         .collect();
@@ -139,8 +141,8 @@ fn an_overlay_point_pauses_for_a_new_omega_job_and_keeps_its_bits() {
             .meshes
             .iter()
             .map(|x| MeshExtremes {
-                rel_min_um: crate::jobs::round_um(x.rel_min_m * 1e6),
-                rel_max_um: crate::jobs::round_um(x.rel_max_m * 1e6),
+                rel_min_um: crate::protocol::um(x.rel_min_m),
+                rel_max_um: crate::protocol::um(x.rel_max_m),
                 regime: x.impact.into(),
                 dynamic_factor: x.dynamic_factor,
             })

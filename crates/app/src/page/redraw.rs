@@ -2,15 +2,15 @@
 //! pure type fed with the page's clock (`now_ms`), so it is tested natively.
 //!
 //! A change marks views as needed ([`Redraw::mark`]); each frame the page
-//! walks [`super::DRAW_ORDER`] and asks [`Redraw::decide`] per view: draw it, skip
+//! walks [`crate::views::DRAW_ORDER`] and asks [`Redraw::decide`] per view: draw it, skip
 //! it for now (a running sweep's view is redrawn at most every
 //! [`RUNNING_REDRAW_MS`], though a new job's start and its first points show
 //! at once), or stop (the frame's budget [`FRAME_BUDGET_MS`] is spent; the
 //! rest waits for the next frame). It also keeps the per-view counters the
 //! tests' status reports.
 
-use super::{ViewId, VIEWS};
-use crate::status::{Dirty, JobStatus};
+use crate::store::status::{Dirty, JobStatus};
+use crate::views::{ViewId, VIEWS};
 
 /// Main-thread time after which a frame starts no further view (ms): a
 /// full refresh spreads over a few frames instead of blocking one. (Drawing
@@ -48,17 +48,10 @@ pub struct Redraw {
 }
 
 impl Redraw {
-    /// Marks the views whose data `dirty` says changed.
+    /// Marks the views that show a kind whose data `dirty` says changed.
     pub fn mark(&mut self, dirty: &Dirty) {
-        for v in ViewId::ALL {
-            let changed = match v {
-                ViewId::Fr => dirty.fr,
-                ViewId::Bif => dirty.bif,
-                ViewId::Phase | ViewId::Poincare | ViewId::Time | ViewId::Spectrum => dirty.omega,
-                ViewId::Map => dirty.map,
-                ViewId::Lyap => dirty.lyap,
-            };
-            self.need[v.slot()] |= changed;
+        for spec in VIEWS {
+            self.need[spec.id.slot()] |= !spec.shows.and(dirty.jobs).is_empty();
         }
     }
 
@@ -163,6 +156,7 @@ impl FrameTurn {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::protocol::{JobKind, KindSet};
     use crate::views::DRAW_ORDER;
 
     /// The views drawn in one frame if each takes `draw_ms`:
@@ -192,11 +186,7 @@ mod tests {
 
     fn all() -> Dirty {
         Dirty {
-            fr: true,
-            bif: true,
-            omega: true,
-            map: true,
-            lyap: true,
+            jobs: KindSet::ALL,
             ..Dirty::default()
         }
     }
@@ -239,8 +229,7 @@ mod tests {
             ..JobStatus::default()
         };
         let bif = Dirty {
-            bif: true,
-            omega: true,
+            jobs: KindSet::of(&[JobKind::Bif, JobKind::Omega]),
             ..Dirty::default()
         };
         r.mark(&bif);

@@ -1,7 +1,8 @@
 //! The harmonic-balance branch of the frequency response (view 1): a
 //! pseudo-arclength continuation streamed in chunks of [`HBM_CHUNK`] points.
 
-use super::{failed, round_um, Job};
+use super::{failed, Job};
+use crate::protocol::um;
 use crate::protocol::{FromWorker, HbmMesh, HbmSample, JobId};
 use solver::hbm::{BranchPoint, FrfContinuation, FrfSpec};
 use solver::steady::Model;
@@ -118,8 +119,8 @@ pub fn hbm_sample(p: &BranchPoint) -> HbmSample {
             .meshes
             .iter()
             .map(|m| HbmMesh {
-                rel_min_um: round_um(m.rel_min_m * 1e6),
-                rel_max_um: round_um(m.rel_max_m * 1e6),
+                rel_min_um: um(m.rel_min_m),
+                rel_max_um: um(m.rel_max_m),
                 regime: m.impact.into(),
             })
             .collect(),

@@ -2,7 +2,8 @@
 //! chains, a slice of a steady state per step, kept when finished for the CLI JSON
 //! export; shard 0 first sends the parametric-instability bands of the range.
 
-use super::{excitation_at, failed, round_um, Job, SLICE_STEPS};
+use super::{excitation_at, failed, Job, SLICE_STEPS};
+use crate::protocol::um;
 use crate::protocol::{BifMesh, BifSample, FromWorker, JobId, RunOptions};
 use serde_json::Value;
 use solver::keys;
@@ -225,13 +226,9 @@ fn bif_sample(sweep: &BifurcationSweep, p: &SweepPoint) -> BifSample {
             .map(|m| {
                 let (e0, _) = excitation_at(model, m.mesh, omega_rad_s, 0.0);
                 BifMesh {
-                    x_um: m
-                        .poincare_delta_m
-                        .iter()
-                        .map(|d| round_um((d - e0) * 1e6))
-                        .collect(),
-                    rel_min_um: round_um(m.rel_min_m * 1e6),
-                    rel_max_um: round_um(m.rel_max_m * 1e6),
+                    x_um: m.poincare_delta_m.iter().map(|d| um(d - e0)).collect(),
+                    rel_min_um: um(m.rel_min_m),
+                    rel_max_um: um(m.rel_max_m),
                     regime: m.impact.into(),
                 }
             })

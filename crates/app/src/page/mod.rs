@@ -1,0 +1,386 @@
+//! The page core: everything the page decides between the browser's events
+//! and its paint, as a plain type the native tests drive. The web layer
+//! (`web.rs`, `web/`) hands it events (a slider's input, a click's pixel, a
+//! key, a worker's message, an animation frame) and paints what it lists
+//! ([`Write`]s, the views [`Page::decide`] says to draw).
+//!
+//! Rules it keeps: input only queues work, applied once per animation
+//! frame ([`Page::apply_pending`]), so a fast drag costs one job restart
+//! and one redraw per frame; every message for the user goes through
+//! [`Controller::issue`]; what to redraw and when comes from
+//! [`redraw::Redraw`] and [`redraw::FrameTurn`].
+
+pub mod redraw;
+mod texts;
+
+use crate::controller::{Controller, Effect};
+use crate::plots::{self, PlotFrame};
+use crate::store::status::Dirty;
+use crate::views::{ViewId, DRAW_ORDER, VIEWS};
+use redraw::{Decision, FrameTurn, Redraw};
+
+/// One change to the page's document, for the web layer to make.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Write {
+    /// An element's text.
+    Text {
+        /// The element's id.
+        id: String,
+        /// Its text.
+        text: String,
+    },
+    /// An element's attribute.
+    Attr {
+        /// The element's id.
+        id: String,
+        /// The attribute.
+        name: &'static str,
+        /// Its value.
+        value: String,
+    },
+    /// Whether an element is hidden.
+    Hidden {
+        /// The element's id.
+        id: String,
+        /// Hidden or shown.
+        hidden: bool,
+    },
+    /// A class of an element switched on or off.
+    Class {
+        /// The element's id.
+        id: String,
+        /// The class.
+        class: &'static str,
+        /// On or off.
+        on: bool,
+    },
+    /// A view's progress bar: its fill (0 ..= 1) and label, or hidden.
+    Progress {
+        /// The view.
+        view: ViewId,
+        /// Fill and label while it shows.
+        shown: Option<(f64, String)>,
+    },
+    /// The page's address (the query, without `?`).
+    Url(String),
+}
+
+impl Write {
+    fn text(id: &str, text: impl Into<String>) -> Self {
+        Write::Text {
+            id: id.to_string(),
+            text: text.into(),
+        }
+    }
+}
+
+/// The keyboard's step of the selected Omega: the arrows move it by this
+/// share of the range (with Shift, [`OMEGA_STEP_SHIFT`]).
+pub const OMEGA_STEP: f64 = 0.01;
+/// The keyboard's step of the selected Omega with Shift.
+pub const OMEGA_STEP_SHIFT: f64 = 0.1;
+
+/// The page's state besides the controller's: queued input, the redraw
+/// schedule, the plots' frames, and the figures the tests read.
+pub struct Page {
+    ctl: Controller,
+    /// Slider and field values waiting for the next frame (the latest per key).
+    pending: Vec<(String, String)>,
+    /// An Omega picked on a plot, waiting for the next frame.
+    pending_omega: Option<f64>,
+    redraw: Redraw,
+    turn: FrameTurn,
+    /// Each view's plot frame as last drawn (views with pixel-to-data
+    /// mappings), by [`ViewId::slot`].
+    frames: [Option<PlotFrame>; VIEWS.len()],
+    /// The link last written to the address bar.
+    last_query: String,
+    /// Whether the screen is narrow (a phone): plots draw on fewer, larger pixels.
+    narrow: bool,
+    /// Whether a pointer drags on an Omega axis.
+    dragging: bool,
+    /// When the last input arrived (ms).
+    last_input_ms: f64,
+    /// The longest handling of one worker message (ms).
+    max_message_ms: f64,
+    /// The longest animation frame's work (ms).
+    max_frame_ms: f64,
+    /// When a preview of the selected-Omega views was last drawn (ms) and
+    /// the summary it showed: the tests wait for this marker.
+    preview_drawn: Option<(f64, String)>,
+    /// Each control's refusal shown in the messages (a newer value's
+    /// outcome replaces it).
+    refused: Vec<(String, String)>,
+}
+
+impl Page {
+    /// A page around `ctl`; `narrow`: a phone's screen.
+    pub fn new(ctl: Controller, narrow: bool) -> Self {
+        Page {
+            ctl,
+            pending: Vec::new(),
+            pending_omega: None,
+            redraw: Redraw::default(),
+            turn: FrameTurn::default(),
+            frames: [None; VIEWS.len()],
+            last_query: String::new(),
+            narrow,
+            dragging: false,
+            last_input_ms: 0.0,
+            max_message_ms: 0.0,
+            max_frame_ms: 0.0,
+            preview_drawn: None,
+            refused: Vec::new(),
+        }
+    }
+
+    /// The controller.
+    pub fn ctl(&self) -> &Controller {
+        &self.ctl
+    }
+
+    /// The controller, to act on (buttons, presets, exports).
+    pub fn ctl_mut(&mut self) -> &mut Controller {
+        &mut self.ctl
+    }
+
+    /// A message for the user.
+    pub fn issue(&mut self, message: String) {
+        self.ctl.issue(message);
+    }
+
+    /// Whether the screen is narrow.
+    pub fn narrow(&self) -> bool {
+        self.narrow
+    }
+
+    // ------------------------------------------------------------ input
+
+    /// A control's new text (a slider moved, a field changed), applied at
+    /// the next frame; only a key's latest value is kept.
+    pub fn input(&mut self, key: &str, value: &str, now_ms: f64) {
+        self.last_input_ms = now_ms;
+        self.pending.retain(|(k, _)| k != key);
+        self.pending.push((key.to_string(), value.to_string()));
+    }
+
+    /// A pointer pressed (`Some(true)`), released (`Some(false)`) or moved
+    /// (`None`, with the button `held`) at pixel `x` of `view`'s canvas:
+    /// a press or a drag selects the Omega there. Whether a frame is needed.
+    pub fn pointer(&mut self, view: ViewId, x: f64, press: Option<bool>, held: bool) -> bool {
+        match press {
+            Some(false) => {
+                self.dragging = false;
+                return false;
+            }
+            Some(true) => self.dragging = true,
+            None if !(self.dragging && held) => return false,
+            None => {}
+        }
+        let omega = self.frames[view.slot()].and_then(|f| f.x_at(x));
+        self.pending_omega = omega.or(self.pending_omega);
+        omega.is_some()
+    }
+
+    /// A key pressed on an Omega axis: the arrows move the selected Omega
+    /// by [`OMEGA_STEP`] of the range ([`OMEGA_STEP_SHIFT`] with Shift),
+    /// within the range. Whether the key was taken.
+    pub fn key(&mut self, key: &str, shift: bool) -> bool {
+        let dir = match key {
+            "ArrowLeft" | "ArrowDown" => -1.0,
+            "ArrowRight" | "ArrowUp" => 1.0,
+            _ => return false,
+        };
+        let v = &self.ctl.settings().view;
+        let share = if shift { OMEGA_STEP_SHIFT } else { OMEGA_STEP };
+        let from = self.pending_omega.unwrap_or(v.omega);
+        let step = (v.omega_to - v.omega_from) * share;
+        self.pending_omega = Some((from + dir * step).clamp(v.omega_from, v.omega_to));
+        true
+    }
+
+    /// A click at pixel `(x, y)` of the map: that cell's value and Omega.
+    pub fn map_click(&mut self, x: f64, y: f64, now_ms: f64) -> Vec<Effect> {
+        let Some(at) = self.frames[ViewId::Map.slot()].and_then(|f| f.point_at(x, y)) else {
+            return Vec::new();
+        };
+        match self.ctl.pick_map_point(at.x, at.y, now_ms) {
+            Ok(fx) => fx,
+            Err(e) => {
+                self.issue(e);
+                Vec::new()
+            }
+        }
+    }
+
+    /// Worker `worker`'s message, handled in `took_ms` (measured by the caller).
+    pub fn worker_message(&mut self, worker: usize, text: &str, now_ms: f64) -> Vec<Effect> {
+        self.ctl.worker_message(worker, text, now_ms)
+    }
+
+    /// Records how long a worker message's handling took.
+    pub fn message_took(&mut self, ms: f64) {
+        self.max_message_ms = self.max_message_ms.max(ms);
+    }
+
+    // ------------------------------------------------------------ frames
+
+    /// Applies the queued input at `now_ms`: each control's value (a
+    /// refused one marks its control invalid and says why), then a picked
+    /// Omega. Returns the messages to post and the controls to mark.
+    pub fn apply_pending(&mut self, now_ms: f64) -> (Vec<Effect>, Vec<Write>) {
+        let mut fx = Vec::new();
+        let mut writes = Vec::new();
+        for (key, value) in std::mem::take(&mut self.pending) {
+            // The key's earlier refusal gives way to this value's outcome.
+            if let Some(i) = self.refused.iter().position(|(k, _)| *k == key) {
+                let (_, old) = self.refused.remove(i);
+                self.ctl.withdraw(&old);
+            }
+            let ok = match self.ctl.set_key(&key, &value, now_ms) {
+                Ok(more) => {
+                    fx.extend(more);
+                    true
+                }
+                Err(msg) => {
+                    self.refused.push((key.clone(), msg.clone()));
+                    self.ctl.issue(msg);
+                    self.ctl.touch(true);
+                    false
+                }
+            };
+            writes.push(Write::Class {
+                id: format!("control-{key}"),
+                class: "invalid",
+                on: !ok,
+            });
+        }
+        if let Some(o) = self.pending_omega.take() {
+            fx.extend(self.ctl.select_omega(o, now_ms));
+        }
+        (fx, writes)
+    }
+
+    /// Starts drawing frame `ts`: what changed since the last frame (the
+    /// views marked for redrawing), and the views to consider in this
+    /// frame, in draw order (none when the gear set drew in it).
+    pub fn begin_frame(&mut self, ts: f64) -> (Dirty, &'static [ViewId]) {
+        let d = self.ctl.take_dirty();
+        self.redraw.mark(&d);
+        let order = if self.turn.views_draw(ts) {
+            DRAW_ORDER.as_slice()
+        } else {
+            &[]
+        };
+        (d, order)
+    }
+
+    /// Whether to draw `view` now (`now_ms`) in a frame begun at `frame_ms`.
+    pub fn decide(&mut self, view: ViewId, frame_ms: f64, now_ms: f64) -> Decision {
+        let status = self.ctl.view_status(view).clone();
+        self.redraw.decide(view, frame_ms, now_ms, Some(&status))
+    }
+
+    /// Records that `view` was drawn from `start_ms` to `end_ms` in frame `ts`.
+    pub fn drawn(&mut self, view: ViewId, (start_ms, end_ms): (f64, f64), ts: f64) {
+        self.redraw.drawn(view, start_ms, end_ms);
+        self.turn.views_drew(ts);
+        let preview = self.ctl.main().omega.as_ref().is_some_and(|r| r.preview);
+        if view == ViewId::Phase && preview && self.ctl.family().is_none() {
+            self.preview_drawn = Some((end_ms, self.ctl.summary_text()));
+        }
+    }
+
+    /// Whether views still wait to be drawn (another frame is needed).
+    pub fn wants_frame(&self) -> bool {
+        self.redraw.pending()
+    }
+
+    /// Whether the gear set draws in frame `ts` (else it waits a frame).
+    pub fn anim_draws(&mut self, ts: f64, views_waiting: bool) -> bool {
+        self.turn.anim_draws(ts, views_waiting)
+    }
+
+    /// Records how long frame's work took.
+    pub fn frame_took(&mut self, ms: f64) {
+        self.max_frame_ms = self.max_frame_ms.max(ms);
+    }
+
+    /// The plot frame `view` was last drawn in.
+    pub fn frame(&self, view: ViewId) -> Option<PlotFrame> {
+        self.frames[view.slot()]
+    }
+
+    /// Records the plot frame `view` was drawn in (`None`: nothing to click).
+    pub fn set_frame(&mut self, view: ViewId, frame: Option<PlotFrame>) {
+        self.frames[view.slot()] = frame;
+    }
+
+    /// A view's plot failed: the reason joins the messages.
+    pub fn plot_failed(&mut self, reason: String) {
+        self.issue(reason);
+    }
+
+    /// The writes after a frame's views: the messages, the summaries, the
+    /// link, the comparison line, as `d` says they changed.
+    pub fn end_frame(&mut self, d: &Dirty) -> Vec<Write> {
+        let mut w = Vec::new();
+        // (A plotting failure in this frame joined the messages.)
+        let again = self.ctl.take_messages_dirty();
+        if d.messages || again {
+            w.extend(self.messages());
+        }
+        if d.jobs.contains(crate::protocol::JobKind::Omega) {
+            w.push(Write::text("summary", self.ctl.student_summary()));
+            w.push(Write::text("summary-expert", self.ctl.summary_text()));
+            w.push(Write::Attr {
+                id: "canvas-anim".into(),
+                name: "aria-label",
+                value: self.ctl.anim_label(),
+            });
+        }
+        if d.url || d.controls {
+            let q = self.ctl.query();
+            if q != self.last_query {
+                self.last_query = q.clone();
+                w.push(Write::Url(q));
+            }
+            w.push(Write::text("cli-command", self.ctl.cli_commands()));
+            w.extend(self.comparison());
+        }
+        w
+    }
+
+    /// A view's drawing size on this screen (a frequency response's key
+    /// may need a taller canvas: `fr_height`).
+    pub fn canvas_size(&self, view: ViewId, fr: Option<&crate::views::fr::FrView>) -> (u32, u32) {
+        let (w, h) = screen_size(
+            self.ctl.base_canvas_size(view),
+            view == ViewId::Fr,
+            self.narrow,
+        );
+        match (fr, self.ctl.panels()) {
+            (Some(fr), None) => (w, plots::fr_height(fr, (w, h))),
+            _ => (w, h),
+        }
+    }
+}
+
+/// The plots' drawing width on a phone: with the canvas at the screen's
+/// width (about 360 CSS pixels), the axes' and the key's 13-pixel words
+/// read at about 10 pixels rather than the 6 of the 760-pixel drawing.
+pub const PHONE_PLOT_WIDTH: u32 = 480;
+
+/// A plot canvas's size on the screen for its drawing size `(w, h)`: as
+/// drawn, or on a narrow screen [`PHONE_PLOT_WIDTH`] wide and taller for
+/// its width (the frequency response of one mesh 640 pixels high).
+pub fn screen_size((w, h): (u32, u32), fr: bool, narrow: bool) -> (u32, u32) {
+    match (narrow, fr && h == plots::HEIGHT) {
+        (false, _) => (w, h),
+        (true, true) => (PHONE_PLOT_WIDTH, 640),
+        (true, false) => (PHONE_PLOT_WIDTH, h * 13 / 10),
+    }
+}
+
+#[cfg(test)]
+mod tests;

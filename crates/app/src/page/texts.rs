@@ -1,0 +1,192 @@
+//! The page core's texts: the messages box, the comparison line, the
+//! family bar's line, the progress bars and the status line, each view's
+//! caption status and note, and the status the tests read.
+
+use super::{Page, Write};
+use crate::protocol::JobKind;
+use crate::views::fr::FrView;
+use crate::views::ViewId;
+
+/// The status line while any job shows progress.
+pub(crate) const COMPUTING: &str = "Computing in Web Workers…";
+
+impl Page {
+    /// The messages box and the preset's note.
+    pub(super) fn messages(&self) -> Vec<Write> {
+        let text = self.ctl.messages_text();
+        let note = self.ctl.preset_note();
+        vec![
+            Write::Hidden {
+                id: "messages".into(),
+                hidden: text.is_empty(),
+            },
+            Write::text("messages", text),
+            Write::Hidden {
+                id: "preset-note".into(),
+                hidden: note.is_none(),
+            },
+            Write::text("preset-note", note.unwrap_or_default()),
+        ]
+    }
+
+    /// The A/B comparison line and its "Clear A" button; the family bar's line.
+    pub(super) fn comparison(&self) -> Vec<Write> {
+        let ab = match self.ctl.ab_labels() {
+            Some((a, b)) => format!("Comparing A ({a}) with B ({b})"),
+            None => String::new(),
+        };
+        let family = match self.ctl.family() {
+            Some(f) => {
+                let labels: Vec<String> =
+                    (0..f.spec.values.len()).map(|i| f.spec.label(i)).collect();
+                format!(
+                    "Showing {}: one colour each on the frequency response, one panel each on the bifurcation diagram, phase portrait and Poincaré section.",
+                    labels.join(", ")
+                )
+            }
+            None => String::new(),
+        };
+        vec![
+            Write::text("ab-status", ab),
+            Write::Hidden {
+                id: "clear-a".into(),
+                hidden: self.ctl.pinned().is_none(),
+            },
+            Write::text("family-status", family),
+            Write::Hidden {
+                id: "family-clear".into(),
+                hidden: self.ctl.family().is_none(),
+            },
+        ]
+    }
+
+    /// Every view's progress bar at `now_ms` and the status line (progress
+    /// is time-based: the page asks ten times a second).
+    pub fn progress(&self, now_ms: f64) -> Vec<Write> {
+        let mut busy = false;
+        let mut w: Vec<Write> = ViewId::ALL
+            .into_iter()
+            .map(|view| {
+                let prog = self.ctl.view_status(view).progress(now_ms);
+                busy |= prog.is_some();
+                let shown = prog.map(|(done, total)| {
+                    let frac = if total > 0 {
+                        done as f64 / total as f64
+                    } else {
+                        0.0
+                    };
+                    (frac, view.progress_label(done, total))
+                });
+                Write::Progress { view, shown }
+            })
+            .collect();
+        w.push(Write::text("status", if busy { COMPUTING } else { "" }));
+        w
+    }
+
+    /// Whether any job of `kind` runs, the current state's or a member's.
+    fn running(&self, kind: JobKind) -> bool {
+        self.ctl.main().status(kind).running() || self.ctl.members_running(kind)
+    }
+
+    /// The status a view's caption ends with: computing, a preview, partial.
+    pub fn caption_suffix(&self, view: ViewId, fr: Option<&FrView>) -> String {
+        let main = self.ctl.main();
+        let family = self.ctl.family().is_some();
+        match view {
+            ViewId::Fr => fr.map_or_else(String::new, |v| {
+                crate::views::fr::fr_caption_suffix(self.running(JobKind::HarmonicBalance), v)
+            }),
+            ViewId::Bif if family => computing(self.running(JobKind::Bif)),
+            ViewId::Bif => main.status(JobKind::Bif).caption_suffix(),
+            ViewId::Map => main.status(JobKind::Map).map_caption_suffix(),
+            ViewId::Lyap => main.status(JobKind::Lyap).caption_suffix(),
+            ViewId::Phase | ViewId::Poincare if family => computing(self.running(JobKind::Omega)),
+            ViewId::Phase | ViewId::Poincare | ViewId::Time | ViewId::Spectrum => {
+                let preview = main.omega.as_ref().is_some_and(|r| r.preview);
+                let running = main.status(JobKind::Omega).running();
+                crate::views::omega::caption_suffix(preview, running).to_string()
+            }
+        }
+    }
+
+    /// The note under a view (the frequency response's, the map's), if it has one.
+    pub fn note(&self, view: ViewId, fr: Option<&FrView>) -> Option<Write> {
+        let text = match (view, fr) {
+            (ViewId::Fr, Some(fr)) if self.ctl.panels().is_some() => {
+                crate::views::fr::fr_panels_note(fr)
+            }
+            (ViewId::Fr, Some(fr)) => crate::views::fr::fr_note(fr),
+            (ViewId::Map, _) => {
+                let main = self.ctl.main();
+                crate::views::map::map_note(&main.map, main.status(JobKind::Map).total)
+            }
+            _ => return None,
+        };
+        Some(Write::text(&format!("note-{}", view.key()), text))
+    }
+
+    /// Everything the tests and the benchmark read: the controller's
+    /// status, the draw counters, the frames, the timings, the preview
+    /// marker, and `extra` (the gear set's last frame) under `anim`.
+    pub fn status(&self, now_ms: f64, extra: serde_json::Value) -> serde_json::Value {
+        let mut v = self.ctl.status(now_ms);
+        let frame_json = |f: Option<crate::plots::PlotFrame>| {
+            serde_json::json!(f.map(|f| [
+                f.top_left.x,
+                f.top_left.y,
+                f.bottom_right.x,
+                f.bottom_right.y,
+                f.x_range.0,
+                f.x_range.1,
+                f.y_range.0,
+                f.y_range.1
+            ]))
+        };
+        if let Some(o) = v.as_object_mut() {
+            let r = &self.redraw;
+            o.insert("draws".into(), serde_json::json!(r.draws));
+            o.insert("last_draw_ms".into(), serde_json::json!(r.last_draw_ms));
+            o.insert("max_draw_ms".into(), serde_json::json!(r.max_draw_ms));
+            o.insert("first_draw_ms".into(), serde_json::json!(r.first_draw_ms));
+            o.insert(
+                "max_message_ms".into(),
+                serde_json::json!(self.max_message_ms),
+            );
+            o.insert("max_frame_ms".into(), serde_json::json!(self.max_frame_ms));
+            o.insert(
+                "last_input_ms".into(),
+                serde_json::json!(self.last_input_ms),
+            );
+            o.insert("now_ms".into(), serde_json::json!(now_ms));
+            for view in [ViewId::Map, ViewId::Lyap, ViewId::Bif, ViewId::Time] {
+                o.insert(
+                    format!("{}_frame", view.key()),
+                    frame_json(self.frame(view)),
+                );
+            }
+            let corners = self.frame(ViewId::Fr).map(|f| {
+                [
+                    f.top_left.x,
+                    f.top_left.y,
+                    f.bottom_right.x,
+                    f.bottom_right.y,
+                ]
+            });
+            o.insert("fr_frame".into(), serde_json::json!(corners));
+            o.insert(
+                "preview_drawn".into(),
+                serde_json::json!(self
+                    .preview_drawn
+                    .as_ref()
+                    .map(|(ms, summary)| serde_json::json!({"ms": ms, "summary": summary}))),
+            );
+            o.insert("anim".into(), extra);
+        }
+        v
+    }
+}
+
+fn computing(running: bool) -> String {
+    if running { " (computing…)" } else { "" }.to_string()
+}

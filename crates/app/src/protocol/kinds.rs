@@ -1,0 +1,164 @@
+//! The one table of job kinds ([`JobKind`]: its slot in every per-kind
+//! array, its name, its place in the order jobs start), sets of kinds
+//! ([`KindSet`]: what a change restarts, which kinds' data changed), and
+//! whose computation a job belongs to ([`Target`]).
+
+use serde::{Deserialize, Serialize};
+
+/// The kinds of job. The discriminant is the kind's slot in every per-kind
+/// array (a computation's statuses, a worker's jobs); [`JobKind::ALL`]
+/// lists them in the order a restart starts them (the selected Omega
+/// first: its worker serves it first).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum JobKind {
+    /// One steady state at the selected Omega (`ViewId::Phase`,
+    /// `Poincare`, `Time`, `Spectrum` and the gear set).
+    Omega = 0,
+    /// The harmonic-balance branch of the frequency response (`ViewId::Fr`).
+    HarmonicBalance = 1,
+    /// The time-integration overlay of the frequency response (`ViewId::Fr`).
+    Overlay = 2,
+    /// The bifurcation sweep (`ViewId::Bif`).
+    Bif = 3,
+    /// The impact-regime map (`ViewId::Map`).
+    Map = 4,
+    /// The largest Lyapunov exponent over Omega (`ViewId::Lyap`).
+    Lyap = 5,
+}
+
+impl JobKind {
+    /// Every kind, by slot.
+    pub const ALL: [JobKind; 6] = [
+        JobKind::Omega,
+        JobKind::HarmonicBalance,
+        JobKind::Overlay,
+        JobKind::Bif,
+        JobKind::Map,
+        JobKind::Lyap,
+    ];
+    /// How many kinds there are (the length of per-kind arrays).
+    pub const COUNT: usize = Self::ALL.len();
+
+    /// The kind's slot in per-kind arrays.
+    pub const fn slot(self) -> usize {
+        self as usize
+    }
+
+    /// The set of this kind alone.
+    pub const fn set(self) -> KindSet {
+        KindSet(1 << self as u8)
+    }
+}
+
+/// A set of job kinds: what a change restarts, or whose data changed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
+pub struct KindSet(u8);
+
+impl KindSet {
+    /// No kind.
+    pub const NONE: KindSet = KindSet(0);
+    /// Every kind.
+    pub const ALL: KindSet = KindSet((1 << JobKind::COUNT) - 1);
+
+    /// The set of `kinds`.
+    pub const fn of(kinds: &[JobKind]) -> KindSet {
+        let mut bits = 0;
+        let mut i = 0;
+        while i < kinds.len() {
+            bits |= 1 << kinds[i] as u8;
+            i += 1;
+        }
+        KindSet(bits)
+    }
+
+    /// Whether `kind` is in the set.
+    pub const fn contains(self, kind: JobKind) -> bool {
+        self.0 & (1 << kind as u8) != 0
+    }
+
+    /// Both sets' kinds.
+    #[must_use]
+    pub const fn with(self, other: KindSet) -> KindSet {
+        KindSet(self.0 | other.0)
+    }
+
+    /// The kinds in both sets.
+    #[must_use]
+    pub const fn and(self, other: KindSet) -> KindSet {
+        KindSet(self.0 & other.0)
+    }
+
+    /// This set's kinds that are not in `other`.
+    #[must_use]
+    pub const fn without(self, other: KindSet) -> KindSet {
+        KindSet(self.0 & !other.0)
+    }
+
+    /// Adds `kind`.
+    pub fn insert(&mut self, kind: JobKind) {
+        self.0 |= 1 << kind as u8;
+    }
+
+    /// Whether the set is empty.
+    pub const fn is_empty(self) -> bool {
+        self.0 == 0
+    }
+
+    /// The kinds in the set, in [`JobKind::ALL`] order.
+    pub fn iter(self) -> impl Iterator<Item = JobKind> {
+        JobKind::ALL.into_iter().filter(move |k| self.contains(*k))
+    }
+}
+
+impl From<JobKind> for KindSet {
+    fn from(k: JobKind) -> Self {
+        k.set()
+    }
+}
+
+/// Whose computation a job belongs to: the current state, the pinned
+/// state A of an A/B comparison, or member `i` (1, 2, ...) of a parameter
+/// family (member 0 is the current state itself).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Target {
+    /// The current state (B when comparing).
+    #[default]
+    Main,
+    /// The pinned state A.
+    A,
+    /// A family member, 1-based.
+    Member(u32),
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn slots_are_the_positions_in_all_and_sets_hold_what_was_put_in() {
+        for (i, k) in JobKind::ALL.into_iter().enumerate() {
+            assert_eq!(k.slot(), i);
+            assert!(k.set().contains(k));
+            assert_eq!(k.set().iter().collect::<Vec<_>>(), vec![k]);
+        }
+        assert_eq!(KindSet::ALL.iter().count(), JobKind::COUNT);
+        let s = KindSet::of(&[JobKind::Map, JobKind::Omega]);
+        assert_eq!(s.iter().collect::<Vec<_>>(), [JobKind::Omega, JobKind::Map]);
+        assert_eq!(s.without(JobKind::Map.set()), JobKind::Omega.set());
+        assert!(KindSet::NONE.is_empty() && !s.is_empty());
+    }
+
+    #[test]
+    fn targets_travel_as_json() {
+        for t in [Target::Main, Target::A, Target::Member(3)] {
+            let text = serde_json::to_string(&t).unwrap();
+            assert_eq!(serde_json::from_str::<Target>(&text).unwrap(), t);
+        }
+        assert_eq!(
+            serde_json::to_string(&Target::Member(2)).unwrap(),
+            r#"{"member":2}"#
+        );
+    }
+}
