@@ -1,4 +1,4 @@
-//! The animated gear set (view 0): the Ravigneaux set (or the gear pair)
+//! The animated gear set (the page part `anim`, not a view): the Ravigneaux set (or the gear pair)
 //! drawn to scale from its tooth counts and module, turning in slow motion,
 //! with every mesh coloured by its contact state at that instant of the
 //! simulated steady response.

@@ -93,3 +93,64 @@ fn no_file_is_too_long() {
         assert!(n <= 800, "{rel}: {n} lines (at most 800)");
     }
 }
+
+/// Architecture invariant: ARCHITECTURE.md's app section stays true: every
+/// file and folder it names exists under `crates/app/src`, and every
+/// "Architecture invariant:" paragraph names a test (a `fn` of the app's
+/// sources or tests) that holds it.
+#[test]
+fn the_app_tour_names_real_files_and_tests() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let doc = std::fs::read_to_string(root.join("../../ARCHITECTURE.md")).unwrap();
+    let start = doc.find("## The app").expect("an app section");
+    let end = doc[start + 3..]
+        .find("\n## ")
+        .map_or(doc.len(), |i| start + 3 + i);
+    let section = &doc[start..end];
+    let mut code = String::new();
+    let mut all = Vec::new();
+    files(&src(), &mut all);
+    files(&root.join("tests"), &mut all);
+    for p in &all {
+        code.push_str(&std::fs::read_to_string(p).unwrap());
+    }
+    // Files and folders: words ending in `.rs` or `/` in the code map.
+    let words =
+        section.split(|c: char| c.is_whitespace() || c == '(' || c == ')' || c == ',' || c == '`');
+    let mut named = 0;
+    for w in words {
+        let w = w.trim_end_matches(['.', ':', ';']);
+        let is_path = (w.ends_with(".rs") || (w.ends_with('/') && w.len() > 1))
+            && w.chars()
+                .all(|c| c.is_ascii_alphanumeric() || "_/.".contains(c));
+        if !is_path || w.starts_with("crates/") {
+            continue;
+        }
+        let here = src().join(w);
+        // A file (or a folder) in one of the rooms.
+        let in_a_room = all.iter().any(|p| {
+            let p = p.to_string_lossy();
+            p.ends_with(&format!("/{w}")) || (w.ends_with('/') && p.contains(&format!("/{w}")))
+        });
+        assert!(
+            here.exists() || in_a_room,
+            "ARCHITECTURE.md names {w}, which does not exist"
+        );
+        named += 1;
+    }
+    assert!(named > 30, "only {named} files named");
+    // Invariants: each names at least one test that exists.
+    let invariants: Vec<&str> = section.split("Architecture invariant:").skip(1).collect();
+    assert!(invariants.len() >= 6, "{} invariants", invariants.len());
+    for inv in invariants {
+        let inv = inv.split("\n\n").next().unwrap_or("");
+        let tests: Vec<&str> = inv
+            .split('`')
+            .skip(1)
+            .step_by(2)
+            .filter(|t| t.chars().all(|c| c.is_ascii_lowercase() || c == '_') && t.contains('_'))
+            .filter(|t| code.contains(&format!("fn {t}()")))
+            .collect();
+        assert!(!tests.is_empty(), "no test named in: {inv}");
+    }
+}

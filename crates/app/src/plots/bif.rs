@@ -1,4 +1,4 @@
-//! View 2's plot: the bifurcation diagram (dots returned by colour for a
+//! `ViewId::Bif`'s plot: the bifurcation diagram (dots returned by colour for a
 //! batched fill, the instability bands, the key).
 
 use super::*;
@@ -66,7 +66,7 @@ pub(super) fn group_dots(groups: &mut Vec<PointGroup>, points: &[BifPoint], fram
     }
 }
 
-/// View 2: the bifurcation diagram. Returns the frame and the dots (in
+/// `ViewId::Bif`: the bifurcation diagram. Returns the frame and the dots (in
 /// pixels, grouped by colour and sweep direction) for the caller to draw.
 pub fn draw_bif<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,

@@ -1,4 +1,4 @@
-//! View 1's plot: the frequency response (branches, stability, markers,
+//! `ViewId::Fr`'s plot: the frequency response (branches, stability, markers,
 //! the regime strip, the overlay and the key row).
 
 use super::*;
@@ -40,7 +40,7 @@ fn fr_y_range(v: &FrView) -> (f64, f64) {
     padded_range(all, &extra, 20.0)
 }
 
-/// View 1: the frequency response (harmonic-balance branch, stable solid,
+/// `ViewId::Fr`: the frequency response (harmonic-balance branch, stable solid,
 /// unstable dashed, bifurcation markers, optional time-integration dots).
 pub fn draw_fr<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,

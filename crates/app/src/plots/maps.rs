@@ -1,4 +1,4 @@
-//! The impact-regime map (view 7) and the Lyapunov curve (under view 2),
+//! The impact-regime map (`ViewId::Map`) and the Lyapunov curve (under `ViewId::Bif`),
 //! drawn with plotters like the other plots.
 //!
 //! The map's cells are filled rectangles in the regime colours of the other

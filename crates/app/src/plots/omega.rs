@@ -91,7 +91,7 @@ pub(super) fn poincare_dots(
     )
 }
 
-/// View 3: the phase portrait with its Poincaré points.
+/// `ViewId::Phase`: the phase portrait with its Poincaré points.
 pub fn draw_phase<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     r: &OmegaResult,
@@ -133,7 +133,7 @@ pub fn draw_phase_with<DB: DrawingBackend>(
     root.present().map_err(err)
 }
 
-/// View 4: the Poincaré section, on the orbit's axes so that one point reads as one point.
+/// `ViewId::Poincare`: the Poincaré section, on the orbit's axes so that one point reads as one point.
 pub fn draw_poincare<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     r: &OmegaResult,
@@ -172,7 +172,7 @@ pub fn draw_poincare_with<DB: DrawingBackend>(
     root.present().map_err(err)
 }
 
-/// View 5a: the time history of the last recorded periods.
+/// `ViewId::Time`: the time history of the last recorded periods.
 pub fn draw_time<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     r: &OmegaResult,
@@ -227,7 +227,7 @@ pub fn draw_time_with<DB: DrawingBackend>(
     Ok(frame)
 }
 
-/// View 5b: the amplitude spectrum of x (without the mean), log scale.
+/// `ViewId::Spectrum`: the amplitude spectrum of x (without the mean), log scale.
 pub fn draw_spectrum<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     r: &OmegaResult,

@@ -470,7 +470,7 @@ pub fn history_start(len: usize, samples_per_period: u32, record_periods: u32) -
     len.saturating_sub(shown * samples_per_period.max(1) as usize)
 }
 
-/// The steady state at the selected Omega, for views 3–6.
+/// The steady state at the selected Omega, for the selected-Omega views (`ViewId::Phase`, `Poincare`, `Time`, `Spectrum`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct OmegaResult {
     /// Dimensionless frequency.

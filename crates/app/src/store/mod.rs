@@ -206,3 +206,6 @@ impl Computation {
         fed
     }
 }
+
+#[cfg(test)]
+mod tests;

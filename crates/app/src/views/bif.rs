@@ -1,4 +1,4 @@
-//! View 2, the bifurcation diagram: the store of the sweep's Poincaré
+//! `ViewId::Bif`, the bifurcation diagram: the store of the sweep's Poincaré
 //! samples from both workers, the dots the plot draws, and the CSV export.
 
 use super::{csv_num, distinct, ViewContext};

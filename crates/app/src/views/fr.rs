@@ -1,4 +1,4 @@
-//! View 1, the frequency response: its stores, its view model and its
+//! `ViewId::Fr`, the frequency response: its stores, its view model and its
 //! CSV export.
 //!
 //! It is the harmonic-balance branch of
@@ -306,7 +306,7 @@ pub struct FrStore {
 }
 
 /// Picks the plotted mesh of a set: the given one, or the one with the
-/// largest `size` (view 1: peak-to-peak x).
+/// largest `size` (`ViewId::Fr`: peak-to-peak x).
 fn pick<T>(items: &[T], mesh: Option<usize>, size: impl Fn(&T) -> f64) -> Option<usize> {
     match mesh {
         Some(j) => (j < items.len()).then_some(j),
@@ -481,7 +481,7 @@ pub fn discrepancy(branch: &[FrCurvePoint], overlay: &[FrCurvePoint]) -> Discrep
     out
 }
 
-/// Everything view 1 draws: the current branch, the previous settings'
+/// Everything `ViewId::Fr` draws: the current branch, the previous settings'
 /// complete branch (faded, while the current one computes), and the
 /// time-integration overlay if it is on. `mesh = None` plots each point's
 /// mesh with the largest peak-to-peak x.
@@ -596,7 +596,7 @@ pub fn fr_csv(v: &FrView) -> String {
     s
 }
 
-/// The note under view 1: the method, and how to see the overlay.
+/// The note under `ViewId::Fr`: the method, and how to see the overlay.
 pub fn fr_note(v: &FrView) -> String {
     let overlay = match v.overlay_source {
         Some(FrSource::Sweep { .. }) => {
@@ -616,7 +616,7 @@ pub fn fr_note(v: &FrView) -> String {
     note
 }
 
-/// The note under view 1 when it shows mesh panels: the method, and that
+/// The note under `ViewId::Fr` when it shows mesh panels: the method, and that
 /// the panels hold the branches only (the time-integration dots are of
 /// the plotted mesh alone).
 pub fn fr_panels_note(v: &FrView) -> String {
@@ -631,7 +631,7 @@ pub fn fr_panels_note(v: &FrView) -> String {
     note
 }
 
-/// The caption's status of view 1: progress over the Omega range while the
+/// The caption's status of `ViewId::Fr`: progress over the Omega range while the
 /// branch computes, and a partial branch said as such.
 pub fn fr_caption_suffix(running: bool, v: &FrView) -> String {
     if v.branch_error.is_some() {

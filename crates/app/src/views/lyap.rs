@@ -1,4 +1,4 @@
-//! The largest Lyapunov exponent over Omega (view 2b, under the
+//! The largest Lyapunov exponent over Omega (`ViewId::Lyap`, under the
 //! bifurcation diagram): the store that collects both chains' points, how
 //! an exponent reads, and the exports.
 

@@ -1,4 +1,4 @@
-//! The impact-regime map (view 7): its grid, the store that collects the
+//! The impact-regime map (`ViewId::Map`): its grid, the store that collects the
 //! workers' cells, what the plot draws, its note and its exports.
 //!
 //! A map is a grid of Omega columns (the page's frequency range) and rows of

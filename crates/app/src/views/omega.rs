@@ -1,4 +1,4 @@
-//! Views 3 to 6, the selected Omega: the summary line (with the planet
+//! the selected-Omega views (`ViewId::Phase`, `Poincare`, `Time`, `Spectrum`), the selected Omega: the summary line (with the planet
 //! phasing clause), and the phase portrait's, Poincaré section's, time
 //! history's and spectrum's CSV and JSON exports.
 
@@ -7,7 +7,7 @@ use crate::protocol::{OmegaResult, Regime};
 use solver::params::MeshKind;
 use solver::steady::Model;
 
-/// The one-line summary at the selected Omega (view 6).
+/// The one-line summary at the selected Omega (under the selected-Omega views).
 pub fn summary_line(r: &OmegaResult, natural: &[NaturalFreq]) -> String {
     let period = match r.period {
         None => "not periodic (within the recorded periods)".into(),

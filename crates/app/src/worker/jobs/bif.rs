@@ -1,4 +1,4 @@
-//! The bifurcation sweep (view 2): one worker's shard of the sweep's
+//! The bifurcation sweep (`ViewId::Bif`): one worker's shard of the sweep's
 //! chains, a slice of a steady state per step, kept when finished for the CLI JSON
 //! export; shard 0 first sends the parametric-instability bands of the range.
 

@@ -1,4 +1,4 @@
-//! The harmonic-balance branch of the frequency response (view 1): a
+//! The harmonic-balance branch of the frequency response (`ViewId::Fr`): a
 //! pseudo-arclength continuation streamed in chunks of [`HBM_CHUNK`] points.
 
 use super::{failed, Job};

@@ -1,4 +1,4 @@
-//! The largest Lyapunov exponent over Omega (under view 2): one chain of
+//! The largest Lyapunov exponent over Omega (under `ViewId::Bif`): one chain of
 //! Benettin runs over its share of the Omega grid, each continued from the
 //! previous end state and computed in slices ([`LyapunovRun`]).
 

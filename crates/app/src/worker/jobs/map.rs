@@ -1,4 +1,4 @@
-//! The impact-regime map (view 7): one worker's share of the rows, a slice
+//! The impact-regime map (`ViewId::Map`): one worker's share of the rows, a slice
 //! of one cell's steady state per step.
 
 use super::{failed, Job, SLICE_STEPS};

@@ -1,4 +1,4 @@
-//! The time-integration overlay of the frequency response (view 1): one
+//! The time-integration overlay of the frequency response (`ViewId::Fr`): one
 //! continuation chain of steady states over its share of the Omega grid,
 //! each computed in slices ([`SteadyRun`]).
 
