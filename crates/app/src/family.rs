@@ -13,8 +13,8 @@
 
 use crate::settings::fmt_exact;
 use solver::keys::{self, KeyType, Value};
+use solver::model::Model;
 use solver::params::ModelParams;
-use solver::steady::Model;
 
 /// Most members of a family (the work grows with each).
 pub const MAX_MEMBERS: usize = 6;

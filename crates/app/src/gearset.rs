@@ -480,7 +480,7 @@ impl AnimClock {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use solver::steady::Model;
+    use solver::model::Model;
 
     fn set(query: &str) -> (GearSet, Model) {
         let s = crate::link::decode(query).settings;

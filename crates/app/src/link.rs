@@ -23,8 +23,8 @@ use crate::family::{FamilySpec, FAMILY_KEY};
 use crate::panels::PANELS_KEY;
 use crate::settings::{fmt_exact, mesh_names, view_key, Settings};
 use solver::keys::{self, Value};
+use solver::model::Model;
 use solver::params::{ModelKind, ModelParams};
-use solver::steady::Model;
 
 /// At most this many `key=value` pairs are read from one link.
 pub const MAX_PAIRS: usize = 400;

@@ -271,7 +271,7 @@ mod tests {
                 for panel in 0..panels {
                     let d = decode(&p.member_query(m, panel));
                     assert!(d.issues.is_empty(), "{} {m} {panel}: {:?}", p.id, d.issues);
-                    assert!(solver::steady::Model::new(&d.settings.params).is_ok());
+                    assert!(solver::model::Model::new(&d.settings.params).is_ok());
                 }
             }
             assert_eq!(p.query(), p.member_query(0, 0));

@@ -301,7 +301,7 @@ mod tests {
     use super::*;
     use crate::protocol::{OmegaSpec, RunOptions};
     use crate::worker::jobs::omega::{omega_result, OmegaJob};
-    use solver::steady::Model;
+    use solver::model::Model;
 
     /// The default set and a real (short) steady state of it.
     fn fixture() -> (GearSet, OmegaResult) {

@@ -6,8 +6,8 @@
 //! that cap every job: no link can start an unbounded computation.
 
 use crate::protocol::{JobKind as K, KindSet};
+use solver::model::Model;
 use solver::params::ModelParams;
-use solver::steady::Model;
 use solver::sweep::Directions;
 
 /// The type and range of a view option.

@@ -33,7 +33,7 @@ use crate::views::lyap::LyapStore;
 use crate::views::map::{MapGrid, MapStore, MapView};
 use crate::views::{distinct, natural_in_range, ViewContext};
 use solver::keys;
-use solver::steady::Model;
+use solver::model::Model;
 
 /// The fewest Web Workers the page runs (also the pool of [`Controller::new`]).
 pub const MIN_WORKERS: usize = 2;

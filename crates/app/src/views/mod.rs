@@ -22,7 +22,7 @@ pub use table::{part_number, PagePart, ViewId, ViewSpec, DRAW_ORDER, PAGE, VIEWS
 
 use serde::Serialize;
 use solver::modal::ModeKind;
-use solver::steady::Model;
+use solver::model::Model;
 
 /// A natural frequency of the mean-stiffness linear system.
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -4,8 +4,8 @@
 
 use super::{csv_num, NaturalFreq};
 use crate::protocol::{OmegaResult, Regime};
+use solver::model::Model;
 use solver::params::MeshKind;
-use solver::steady::Model;
 
 /// The one-line summary at the selected Omega (under the selected-Omega views).
 pub fn summary_line(r: &OmegaResult, natural: &[NaturalFreq]) -> String {

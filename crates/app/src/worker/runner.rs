@@ -6,8 +6,8 @@ use super::jobs::{self, failed, Job};
 use crate::protocol::{FromWorker, JobId, JobKind, JobSpec};
 use serde_json::{Map, Value};
 use solver::keys;
+use solver::model::Model;
 use solver::params::ModelParams;
-use solver::steady::Model;
 
 /// The kinds in the order a computation serves them after the
 /// harmonic-balance branch: the overlay and the bifurcation sweep take

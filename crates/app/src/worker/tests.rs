@@ -562,7 +562,7 @@ fn a_new_omega_job_preempts_a_running_steady_state_within_one_slice() {
         .iter()
         .all(|m| !matches!(m, FromWorker::BifPoints { .. })));
     // Sliced, the result is the one-shot run's, bit for bit.
-    let model = solver::steady::Model::new(&p).expect("model");
+    let model = solver::model::Model::new(&p).expect("model");
     let JobSpec::Omega(spec) = omega_job(1.1) else {
         panic!("not an Omega job");
     };

@@ -7,10 +7,10 @@ use crate::protocol::um;
 use crate::protocol::{BifMesh, BifSample, FromWorker, JobId, RunOptions};
 use serde_json::Value;
 use solver::keys;
+use solver::model::Model;
 use solver::parametric::Parametric;
 use solver::params::ModelParams;
 use solver::report;
-use solver::steady::Model;
 use solver::sweep::{canonical_order, BifurcationSweep, Directions, SweepPoint, SweepSpec};
 
 /// Omega samples of the parametric-instability scan over the sweep's range

@@ -6,7 +6,7 @@
 
 use super::{Job, SLICE_STEPS};
 use crate::protocol::{FromWorker, JobId};
-use solver::steady::Model;
+use solver::model::Model;
 
 /// A chain's share of an Omega grid: every `chains`-th of `points` grid
 /// points from `shard`, computed in order (each continued from the last).

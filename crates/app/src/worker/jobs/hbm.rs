@@ -5,7 +5,7 @@ use super::{failed, Job};
 use crate::protocol::um;
 use crate::protocol::{FromWorker, HbmMesh, HbmSample, JobId};
 use solver::hbm::{BranchPoint, FrfContinuation, FrfSpec};
-use solver::steady::Model;
+use solver::model::Model;
 
 /// Points of the harmonic-balance branch computed per step: a few
 /// milliseconds each, so a newer job or a cancel waits at most a few tens of

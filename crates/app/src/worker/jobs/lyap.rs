@@ -6,7 +6,7 @@ use super::chain::{Chain, ChainJob, ChainKind};
 use super::failed;
 use crate::protocol::{FromWorker, JobId, LyapSample};
 use solver::lyapunov::{LyapunovOptions, LyapunovRun};
-use solver::steady::Model;
+use solver::model::Model;
 
 /// Benettin runs of `periods` after `transient_periods`.
 pub(crate) struct Lyap {

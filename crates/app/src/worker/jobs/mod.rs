@@ -29,8 +29,8 @@ use hbm::HbmJob;
 use map::MapJob;
 use omega::{OmegaJob, OmegaRun};
 use solver::map::MapSpec;
+use solver::model::Model;
 use solver::params::ModelParams;
-use solver::steady::Model;
 
 /// Integrator steps per step of a sliced run (the selected-Omega run, a
 /// bifurcation, overlay or Lyapunov point, a map cell): a few ms in the

@@ -9,8 +9,9 @@ use crate::protocol::{
     RunOptions,
 };
 use crate::settings::Settings;
+use solver::model::Model;
 use solver::report;
-use solver::steady::{spectrum, steady_state, Model, SteadyOptions, SteadyRun, SteadyState};
+use solver::steady::{spectrum, steady_state, SteadyOptions, SteadyRun, SteadyState};
 
 /// Samples per mesh period of the selected-Omega history.
 pub const SAMPLES_PER_PERIOD: u32 = 64;

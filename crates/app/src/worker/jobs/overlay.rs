@@ -6,7 +6,8 @@ use super::chain::{Chain, ChainJob, ChainKind};
 use super::failed;
 use crate::protocol::um;
 use crate::protocol::{FrSample, FromWorker, JobId, MeshExtremes, RunOptions};
-use solver::steady::{Model, SteadyOptions, SteadyRun};
+use solver::model::Model;
+use solver::steady::{SteadyOptions, SteadyRun};
 use solver::sweep::SweepSpec;
 
 /// Steady states for the overlay, `run` periods each.

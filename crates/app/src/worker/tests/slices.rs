@@ -11,8 +11,9 @@ use crate::worker::jobs::SLICE_STEPS;
 use crate::worker::WorkerCore;
 use solver::lyapunov::{largest_exponent, LyapunovOptions};
 use solver::map::{MapSpec, RegimeMap};
+use solver::model::Model;
 use solver::params::ModelParams;
-use solver::steady::{steady_state, Model, SteadyOptions};
+use solver::steady::{steady_state, SteadyOptions};
 use solver::sweep::SweepSpec;
 
 /// Starts `job` (id 7) and steps it once: it must pause inside its first
