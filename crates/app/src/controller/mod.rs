@@ -686,7 +686,6 @@ impl Controller {
 }
 
 mod export;
-mod family_export;
 mod text;
 pub use export::{ExportError, Format};
 mod family;
@@ -696,8 +695,7 @@ mod panels;
 use pinned::pinned_backlash;
 mod messages;
 mod pinned;
-mod svg;
-pub use svg::{view_size, SvgError};
+pub use export::{view_size, SvgError};
 
 pub use pinned::Pinned;
 

@@ -3,8 +3,8 @@
 //! `member` column naming the value in words ("TE 20 µm"); JSON holds the
 //! family and one entry per member naming it.
 
-use super::export::ExportError;
-use super::*;
+use super::super::*;
+use super::ExportError;
 use crate::views::omega::{omega_csv, omega_json, OmegaView};
 
 /// CSV texts of one shape, one per member, as one CSV with a leading

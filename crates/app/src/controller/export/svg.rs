@@ -2,7 +2,8 @@
 //! canvases, on plotters' SVG backend (for slides and papers; the page
 //! also rasterizes it at twice the size for its PNG export).
 
-use super::*;
+use super::super::*;
+use super::ExportError;
 use crate::plots::{self, maps, DrawError};
 use crate::views::ViewId;
 use plotters::prelude::*;

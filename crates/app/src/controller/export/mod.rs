@@ -1,6 +1,8 @@
-//! Exports: each view's data as CSV or JSON, the CLI-format JSON (the
-//! bifurcation sweep assembled from the workers' shards), the parameters
-//! file and the CLI commands.
+//! Exports, in one room: each view's data as CSV or JSON, the CLI-format
+//! JSON (the bifurcation sweep assembled from the workers' shards), the
+//! parameters file and the CLI commands; a family's exports, one entry per
+//! member (`family.rs`); every view as SVG, also rasterized for the PNG
+//! export (`svg.rs`).
 
 use super::*;
 use crate::protocol::JobKind;
@@ -303,3 +305,7 @@ impl Controller {
         )
     }
 }
+
+mod family;
+mod svg;
+pub use svg::{view_size, SvgError};
