@@ -2,23 +2,9 @@
 //! replies into the overlay and the small multiples, presets that load a
 //! whole family, and bad family input refused with the last state kept.
 
+use super::tests::{posts, ready};
 use super::*;
 use crate::protocol::{BifMesh, BifSample, HbmMesh, HbmSample, Regime};
-
-fn posts(fx: &[Effect]) -> Vec<(usize, ToWorker)> {
-    fx.iter()
-        .filter_map(|e| match e {
-            Effect::Post { worker, text } => Some((*worker, serde_json::from_str(text).unwrap())),
-            Effect::Download { .. } => None,
-        })
-        .collect()
-}
-
-fn ready(c: &mut Controller) -> Vec<(usize, ToWorker)> {
-    let mut fx = c.worker_message(0, r#"{"type":"ready"}"#, 1.0);
-    fx.extend(c.worker_message(1, r#"{"type":"ready"}"#, 1.0));
-    posts(&fx)
-}
 
 /// The member jobs posted: (member, kind, worker, its TE in µm).
 fn member_jobs(p: &[(usize, ToWorker)]) -> Vec<(u32, JobKind, usize, f64)> {

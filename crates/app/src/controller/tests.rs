@@ -13,7 +13,7 @@ pub(super) fn posts(fx: &[Effect]) -> Vec<(usize, ToWorker)> {
         .collect()
 }
 
-fn ready(c: &mut Controller) -> Vec<(usize, ToWorker)> {
+pub(super) fn ready(c: &mut Controller) -> Vec<(usize, ToWorker)> {
     let mut fx = c.worker_message(0, r#"{"type":"ready"}"#, 1.0);
     fx.extend(c.worker_message(1, r#"{"type":"ready"}"#, 1.0));
     posts(&fx)
