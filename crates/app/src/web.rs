@@ -277,6 +277,9 @@ fn frame(page: &Shared, ts: f64) {
     run_effects(page, effects);
     let mut p = page.borrow_mut();
     paint(&p, marks);
+    // The frame's drawing budget starts now, after the input (and a
+    // selected-Omega preview) was applied.
+    let t0 = now(&p.window);
     let (d, order) = p.core.begin_frame(ts);
     // The canvases first, the page's text after: plotters measures legend
     // text in the page (a span it adds and removes), which lays out the
@@ -284,7 +287,7 @@ fn frame(page: &Shared, ts: f64) {
     let mut writes = Vec::new();
     for &v in order {
         let start = now(&p.window);
-        match p.core.decide(v, t_frame, start) {
+        match p.core.decide(v, t0, start) {
             Decision::Stop => break,
             Decision::Skip => continue,
             Decision::Draw => writes.extend(draw_view(&mut p, v)),
