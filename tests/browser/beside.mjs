@@ -8,20 +8,25 @@ import { start, open, waitStatus } from './harness.mjs';
 
 const h = await start();
 let loads = 0;
+let stopping = false;
 const stop = async () => {
+  stopping = true;
   await h.close();
   process.exit(0);
 };
 process.on('SIGTERM', stop);
 process.on('SIGINT', stop);
-for (;;) {
-  const { page } = await open(h.browser, h.url, '');
-  loads += 1;
+while (!stopping) {
   try {
-    await waitStatus(page, (s) => s.fr.finished_ms && s.bif.finished_ms && s.omega_job.finished_ms && s.map.finished_ms, 120000, 'every view');
-  } catch {
-    // A slow load is fine here: the point is the load on the machine.
+    const { page } = await open(h.browser, h.url, '');
+    loads += 1;
+    await waitStatus(page, (s) => s.fr.finished_ms && s.bif.finished_ms && s.omega_job.finished_ms && s.map.finished_ms, 120000, 'every view').catch(() => {
+      // A slow load is fine here: the point is the load on the machine.
+    });
+    await page.close();
+    console.log(`beside: ${loads} page loads`);
+  } catch (e) {
+    // The browser closes under the loop when the script is stopped.
+    if (!stopping) throw e;
   }
-  await page.close();
-  console.log(`beside: ${loads} page loads`);
 }

@@ -1,11 +1,13 @@
 //! gearshock's browser explorer as a plain Rust library, testable natively.
 //!
-//! The page is split like egui/eframe: everything here is pure logic
-//! (settings and their link codec, presets, control specs, the worker
-//! protocol, the jobs by kind and their runner, the views by kind with the
-//! redraw scheduler, the plots, the gear set's scene, the page controller),
-//! and one boundary, `web` (web.rs and web/), compiled only for wasm32,
-//! touches `wasm_bindgen` and `web_sys`. Two binaries start it: `app` on the
+//! The page is split like egui/eframe: everything here is pure logic, in
+//! rooms that show the page/worker split: the page side ([`page`], the
+//! page core with the redraw scheduler; [`controller`]; [`store`], one
+//! computation's results; [`views`]; [`plots`]), the worker side
+//! ([`worker`] and its jobs), what both speak ([`protocol`]), and the
+//! state, its link codec and its words at the top. One boundary, `web`
+//! (web.rs and web/), compiled only for wasm32, touches `wasm_bindgen` and
+//! `web_sys`: glue that hands events to the page core and paints. Two binaries start it: `app` on the
 //! page's main thread and `worker` in each Web Worker. ARCHITECTURE.md maps
 //! the modules and their invariants.
 //!
@@ -34,7 +36,8 @@ pub mod tour;
 pub mod views;
 pub mod words;
 pub mod worker;
-/// The worker's job runner under its earlier name.
+/// The worker's job runner under its earlier name (the pinned exports
+/// test, `tests/exports.rs`, names it so and stays unchanged).
 pub use worker as worker_core;
 
 #[cfg(target_arch = "wasm32")]
