@@ -24,7 +24,7 @@ use solver::parametric::Parametric;
 use solver::params::{ModelKind, ModelParams};
 use solver::steady::{steady_state, Model, SteadyOptions};
 use solver::sweep::{canonical_order, BifurcationSweep, Direction, Directions, SweepSpec};
-use solver::{report, SolverError};
+use solver::SolverError;
 use std::io::Read;
 use std::io::Write;
 use std::process::ExitCode;
@@ -1175,19 +1175,21 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 left -= read;
                 shards.push(v);
             }
+            // Messages name each shard by its file.
+            let names: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
             if shards
                 .first()
                 .is_some_and(|v| v.get("figure_shard").is_some())
             {
-                emit(&figure::merge(&shards, out.as_deref())?)
+                emit(&figure::shard::merge(&shards, &names, out.as_deref())?)
             } else if out.is_some() {
                 Err(usage(
                     "merge --out: only figure shards (gearshock figure ID --shard i/n) write files",
                 ))
             } else if shards.first().is_some_and(|v| v.get("cells").is_some()) {
-                emit(&report::merge_maps(&shards)?)
+                emit(&report::merge_map_files(&shards, &names)?)
             } else {
-                emit(&report::merge_shards(&shards)?)
+                emit(&report::merge_sweep_files(&shards, &names)?)
             }
         }
         Command::Presets => emit(&presets::all_json()),
