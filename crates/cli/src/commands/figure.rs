@@ -21,7 +21,8 @@
 
 pub mod shard;
 
-use crate::{progress, usage, Failure};
+use crate::failure::{usage, Failure};
+use crate::progress;
 use app::jobs::omega::{omega_result, OmegaJob};
 use app::presets::{preset, Preset};
 use app::protocol::{OmegaResult, RunOptions};
@@ -181,7 +182,7 @@ pub fn run(args: &FigureArgs) -> Result<Value, Failure> {
             ))
         }
         Some(text) => {
-            let (i, n) = crate::parse_shard(text)?;
+            let (i, n) = crate::args::parse_shard(text)?;
             if n as usize > members.len() {
                 return Err(usage(format!(
                     "--shard {text}: figure {} has {} members (one per panel), so at most {} shards",

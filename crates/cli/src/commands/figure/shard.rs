@@ -12,7 +12,7 @@ use super::{
     bif_files, bif_spec, check_options, listing, members, orbit_files, orbits, run_options, sweeps,
     FigureArgs, Files, Member, SAMPLES_PER_PERIOD,
 };
-use crate::{usage, Failure};
+use crate::failure::{usage, Failure};
 use app::presets::{preset, Preset};
 use app::protocol::{AnimHistory, OmegaResult, Regime};
 use serde_json::{json, Map, Value};
