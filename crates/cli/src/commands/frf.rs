@@ -6,7 +6,7 @@ use crate::args::{meshes, ParamArgs};
 use crate::budget::MAX_FRF_WORK;
 use crate::csv;
 use crate::failure::{usage, Failure};
-use crate::output::output;
+use crate::output::{note, output};
 use crate::sweep::{self, Sweep};
 use clap::Args;
 use solver::hbm::{BranchPoint, FrfContinuation, FrfSpec, Method};
@@ -126,18 +126,18 @@ pub fn run(a: &FrfArgs) -> Result<(), Failure> {
     output(a.p.format, &value, csv::frf)?;
     // Restarts and left-out gaps are in the JSON; say them here too.
     for n in c.notes() {
-        eprintln!("gearshock: note: {n}");
+        note(&format!("note: {n}"));
     }
     if failure.is_none() && c.left_at_start() {
-        eprintln!(
-            "gearshock: note: the branch turned back at a fold and left the range at its start; \
+        note(&format!(
+            "note: the branch turned back at a fold and left the range at its start; \
              continue from the other end with --direction {} to see the rest",
             if c.spec().direction == Direction::Up {
                 "down"
             } else {
                 "up"
             }
-        );
+        ));
     }
     match failure {
         // The partial branch is written (marked `complete: false`),

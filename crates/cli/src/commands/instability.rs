@@ -4,7 +4,7 @@
 use crate::args::{omega_grid, stream_header, ParamArgs};
 use crate::csv;
 use crate::failure::Failure;
-use crate::output::output;
+use crate::output::{note, output};
 use crate::sweep::{self, Lines, Points};
 use clap::Args;
 use solver::parametric::Parametric;
@@ -44,14 +44,14 @@ pub fn run(a: &InstabilityArgs) -> Result<(), Failure> {
         .iter()
         .map(|(a, b)| format!("Omega {a:.4} to {b:.4}"))
         .collect();
-    eprintln!(
-        "gearshock: unstable bands of the engaged system: {}",
+    note(&format!(
+        "unstable bands of the engaged system: {}",
         if text.is_empty() {
             "none in the scanned range".to_string()
         } else {
             text.join(", ")
         }
-    );
+    ));
     if kept.is_none() {
         return Ok(());
     }
