@@ -2,7 +2,7 @@
 //! arclength continuation. A solver failure still writes the branch up to
 //! there, marked incomplete, and exits with code 1.
 
-use crate::args::{meshes, ParamArgs};
+use crate::args::{meshes, OmegaRange, ParamArgs};
 use crate::budget::MAX_FRF_WORK;
 use crate::csv;
 use crate::failure::{usage, Failure};
@@ -20,12 +20,8 @@ use solver::SolverError;
 pub struct FrfArgs {
     #[command(flatten)]
     p: ParamArgs,
-    /// First Omega.
-    #[arg(long, allow_hyphen_values = true)]
-    omega_from: f64,
-    /// Last Omega.
-    #[arg(long, allow_hyphen_values = true)]
-    omega_to: f64,
+    #[command(flatten)]
+    range: OmegaRange,
     /// Nominal points: the largest continuation step is range / points.
     #[arg(long, default_value_t = 400)]
     points: u32,
@@ -86,7 +82,7 @@ impl Sweep for Branch {
 /// Checks the options and the budget, follows the branch and prints it.
 pub fn run(a: &FrfArgs) -> Result<(), Failure> {
     let (params, model) = a.p.load()?;
-    let mut spec = FrfSpec::new(a.omega_from, a.omega_to, a.points);
+    let mut spec = FrfSpec::new(a.range.omega_from, a.range.omega_to, a.points);
     spec.harmonics = a.harmonics;
     spec.method = Method::from_name(&a.method).ok_or_else(|| {
         usage(format!(
