@@ -7,50 +7,12 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use serde_json::Value;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::PathBuf;
+use test_support::cli::{files, gearshock, ok, temp_dir, Files};
 
-fn gearshock(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_gearshock"))
-        .args(args)
-        .output()
-        .expect("run gearshock")
-}
-
-fn ok(args: &[&str]) -> Vec<u8> {
-    let out = gearshock(args);
-    assert!(
-        out.status.success(),
-        "{args:?} failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out.stdout
-}
-
+/// A fresh scratch folder of this file's tests.
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("gearshock-shards-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).expect("dir");
-    d
-}
-
-/// Files as (name, bytes).
-type Files = Vec<(String, Vec<u8>)>;
-
-/// Every file of a directory: (name, bytes), sorted by name.
-fn files(d: &Path) -> Files {
-    let mut v: Vec<(String, Vec<u8>)> = std::fs::read_dir(d)
-        .expect("read dir")
-        .map(|e| {
-            let e = e.expect("entry");
-            (
-                e.file_name().to_string_lossy().into_owned(),
-                std::fs::read(e.path()).expect("read"),
-            )
-        })
-        .collect();
-    v.sort();
-    v
+    temp_dir(&format!("shards-{name}"))
 }
 
 /// Runs figure `id` unsharded into one directory and in `n` shards merged

@@ -22,7 +22,7 @@
 pub mod shard;
 
 use crate::failure::{usage, Failure};
-use crate::progress;
+use crate::{output, progress};
 use app::jobs::omega::{omega_result, OmegaJob};
 use app::presets::{preset, Preset};
 use app::protocol::{OmegaResult, RunOptions};
@@ -94,13 +94,6 @@ pub(crate) fn members(p: &Preset) -> Result<Vec<Member>, Failure> {
             })
         })
         .collect()
-}
-
-fn write(path: &Path, text: &str) -> Result<(), Failure> {
-    std::fs::write(path, text).map_err(|e| Failure {
-        code: 1,
-        message: format!("cannot write {}: {e}", path.display()),
-    })
 }
 
 fn drawn<T, E: std::fmt::Display>(name: &str, result: Result<T, E>) -> Result<T, Failure> {
@@ -202,6 +195,8 @@ pub fn run(args: &FigureArgs) -> Result<Value, Failure> {
         .out
         .as_ref()
         .ok_or_else(|| usage("figure: --out DIR is required (or --shard i/n)"))?;
+    // Before the work: a folder that cannot take the files would lose it.
+    output::check_dir("--out", out)?;
     let mut files = Files::new();
     let panels = if is("bif_dir") {
         bifurcation_panels(p, &members, args, &mut files)?
@@ -220,13 +215,10 @@ pub(crate) fn listing(p: &Preset, out: &Path, mut panels: Vec<Value>) -> Value {
     json!({ "id": p.id, "title": p.title, "out": out.display().to_string(), "panels": panels })
 }
 
-/// Creates `out` and writes the files into it.
+/// Creates `out` and writes the files into it, each whole or not at all.
 pub(crate) fn write_all(out: &Path, files: &Files) -> Result<(), Failure> {
-    std::fs::create_dir_all(out).map_err(|e| usage(format!("--out {}: {e}", out.display())))?;
-    for (name, text) in files {
-        write(&out.join(name), text)?;
-    }
-    Ok(())
+    output::check_dir("--out", out)?;
+    output::write_files(out, files)
 }
 
 /// Panels a-d: one mesh each; every member's branch on every panel.

@@ -12,9 +12,6 @@ pub fn run(p: &ParamArgs) -> Result<(), Failure> {
         Format::Json | Format::Jsonl => {
             output(p.format, &report::modes_json(&model), |_| String::new())
         }
-        Format::Csv => {
-            emit_text(&csv::modes(&model));
-            Ok(())
-        }
+        Format::Csv => emit_text(&csv::modes(&model)),
     }
 }

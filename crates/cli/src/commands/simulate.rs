@@ -47,9 +47,6 @@ pub fn run(a: &SimulateArgs) -> Result<(), Failure> {
             &report::simulate_json(&model, &ss, j, max_order),
             |_| String::new(),
         ),
-        Format::Csv => {
-            emit_text(&csv::history(&ss, j));
-            Ok(())
-        }
+        Format::Csv => emit_text(&csv::history(&ss, j)),
     }
 }

@@ -323,6 +323,8 @@ pub fn merge(shards: &[Value], names: &[String], out: Option<&Path>) -> Result<V
             "merge: figure shards need --out DIR for the figure's files",
         ));
     };
+    // Before the work: a folder that cannot take the files would lose it.
+    crate::output::check_dir("--out", out)?;
     let args = options_of(&id, &options, &name(0))?;
     let all = members(p)?;
     let count = all.len();
