@@ -137,7 +137,7 @@ fn defines_in(text: &str, name: &str) -> bool {
 }
 
 /// The `backticked` spans outside code blocks, joined where a line break
-/// cut them (`crates/solver/tests/` + `support/modgraph.rs`).
+/// cut them (`crates/test-support/` + `src/modgraph.rs`).
 fn spans(doc: &str) -> Vec<String> {
     let mut prose = String::new();
     let mut in_code = false;
