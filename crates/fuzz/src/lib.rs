@@ -10,8 +10,8 @@
 //! - `params`: the parameter JSON ([`solver::keys::from_json_str`]) on
 //!   random objects, mutated real parameter files and raw text. A set it
 //!   accepts must round-trip through [`solver::keys::to_json`].
-//! - `shards`: the shard merger ([`solver::report::merge_shards`],
-//!   [`solver::report::merge_maps`]) on real shards of a tiny sweep and map
+//! - `shards`: the shard merger ([`report::merge_shards`],
+//!   [`report::merge_maps`]) on real shards of a tiny sweep and map
 //!   with forged fields, dropped, doubled or swapped shards and mutated
 //!   text. A merge it accepts must hold every grid point exactly once.
 //!
@@ -366,7 +366,7 @@ pub fn base_shards() -> (Vec<Value>, Vec<Value>) {
                 pts.extend(sweep.advance(8));
             }
             canonical_order(&mut pts);
-            sweeps.push(solver::report::sweep_json(&model, &params, &spec, &pts));
+            sweeps.push(report::sweep_json(&model, &params, &spec, &pts));
         }
         let mut mspec = MapSpec::new((0.5, 0.6, 2), "backlash_um", (50.0, 60.0, 2));
         mspec.steady.transient_periods = 5;
@@ -377,7 +377,7 @@ pub fn base_shards() -> (Vec<Value>, Vec<Value>) {
             while !map.is_finished() {
                 cells.extend(map.advance(8));
             }
-            maps.push(solver::report::map_json(&model, &params, &mspec, &cells));
+            maps.push(report::map_json(&model, &params, &mspec, &cells));
         }
     }
     (sweeps, maps)
@@ -528,7 +528,7 @@ pub fn check_params(text: &str) -> Result<(), String> {
 
 /// Checks the shard merger on one input.
 pub fn check_shards(shards: &[Value]) -> Result<(), String> {
-    if let Ok(v) = solver::report::merge_shards(shards) {
+    if let Ok(v) = report::merge_shards(shards) {
         let spec = &v["spec"];
         let dirs = if spec["direction"] == "both" { 2 } else { 1 };
         let expected = spec["points"].as_u64().unwrap_or(0) * dirs;
@@ -539,7 +539,7 @@ pub fn check_shards(shards: &[Value]) -> Result<(), String> {
             ));
         }
     }
-    if let Ok(v) = solver::report::merge_maps(shards) {
+    if let Ok(v) = report::merge_maps(shards) {
         let spec = &v["spec"];
         let expected =
             spec["omega_points"].as_u64().unwrap_or(0) * spec["value_points"].as_u64().unwrap_or(0);
