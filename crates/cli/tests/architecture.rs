@@ -6,7 +6,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use std::path::{Path, PathBuf};
-use test_support::cli::ok;
+use test_support::cli::{ok, words};
 
 /// Every source file below `src/`: (path relative to `src/`, text).
 fn sources() -> Vec<(String, String)> {
@@ -42,17 +42,7 @@ fn code(text: &str) -> String {
 /// `output` (progress lines on stderr through `progress`).
 #[test]
 fn only_output_writes() {
-    let writers = [
-        "print!(",
-        "println!(",
-        "eprint!(",
-        "eprintln!(",
-        "io::stdout(",
-        "io::stderr(",
-        "fs::write(",
-        "File::create(",
-        "OpenOptions",
-    ];
+    let writers = words("print!( println!( eprint!( eprintln!( io::stdout( io::stderr( fs::write( File::create( OpenOptions");
     for (file, text) in sources() {
         let allowed: &[&str] = match file.as_str() {
             "output.rs" => &writers,

@@ -5,25 +5,11 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use serde_json::{json, Value};
-use test_support::cli::{gearshock, json, json_lines};
+use test_support::cli::{gearshock, json, json_lines, words};
 
 #[test]
 fn sharded_sweep_merged_equals_the_unsharded_run() {
-    let base = [
-        "bifurcation",
-        "--omega-from",
-        "0.4",
-        "--omega-to",
-        "1.4",
-        "--points",
-        "7",
-        "--direction",
-        "both",
-        "--transient-periods",
-        "30",
-        "--record-periods",
-        "6",
-    ];
+    let base = words("bifurcation --omega-from 0.4 --omega-to 1.4 --points 7 --direction both --transient-periods 30 --record-periods 6");
     let mut whole_args = base.to_vec();
     whole_args.extend(["--chains", "2"]);
     let whole = json(&whole_args);
@@ -52,21 +38,7 @@ fn sharded_sweep_merged_equals_the_unsharded_run() {
 
 #[test]
 fn progress_lines_go_to_stderr_on_request_even_when_it_is_not_a_terminal() {
-    let args = [
-        "bifurcation",
-        "--model",
-        "gear-pair",
-        "--omega-from",
-        "0.5",
-        "--omega-to",
-        "0.7",
-        "--points",
-        "3",
-        "--transient-periods",
-        "5",
-        "--record-periods",
-        "2",
-    ];
+    let args = words("bifurcation --model gear-pair --omega-from 0.5 --omega-to 0.7 --points 3 --transient-periods 5 --record-periods 2");
     let quiet = gearshock(&args);
     assert!(quiet.status.success());
     assert!(
@@ -89,23 +61,7 @@ fn progress_lines_go_to_stderr_on_request_even_when_it_is_not_a_terminal() {
 
 #[test]
 fn jsonl_streams_each_point_as_computed_with_the_same_results() {
-    let sweep = [
-        "bifurcation",
-        "--model",
-        "gear-pair",
-        "--omega-from",
-        "0.5",
-        "--omega-to",
-        "0.7",
-        "--points",
-        "3",
-        "--direction",
-        "both",
-        "--transient-periods",
-        "5",
-        "--record-periods",
-        "2",
-    ];
+    let sweep = words("bifurcation --model gear-pair --omega-from 0.5 --omega-to 0.7 --points 3 --direction both --transient-periods 5 --record-periods 2");
     let whole = json(&sweep);
     let mut args = sweep.to_vec();
     args.extend(["--format", "jsonl"]);
@@ -121,21 +77,7 @@ fn jsonl_streams_each_point_as_computed_with_the_same_results() {
     written.sort_by_key(key);
     assert_eq!(streamed, written);
 
-    let lyap = [
-        "lyapunov",
-        "--model",
-        "gear-pair",
-        "--omega-from",
-        "0.5",
-        "--omega-to",
-        "0.6",
-        "--points",
-        "2",
-        "--transient-periods",
-        "10",
-        "--periods",
-        "10",
-    ];
+    let lyap = words("lyapunov --model gear-pair --omega-from 0.5 --omega-to 0.6 --points 2 --transient-periods 10 --periods 10");
     let whole = json(&lyap);
     let mut args = lyap.to_vec();
     args.extend(["--format", "jsonl"]);
@@ -144,17 +86,7 @@ fn jsonl_streams_each_point_as_computed_with_the_same_results() {
     assert_eq!(lines[1..3], whole["points"].as_array().expect("points")[..]);
     assert_eq!(lines[3], json!({"complete": true, "points": 2}));
 
-    let inst = [
-        "instability",
-        "--model",
-        "gear-pair",
-        "--omega-from",
-        "0.5",
-        "--omega-to",
-        "2",
-        "--points",
-        "3",
-    ];
+    let inst = words("instability --model gear-pair --omega-from 0.5 --omega-to 2 --points 3");
     let whole = json(&inst);
     let mut args = inst.to_vec();
     args.extend(["--format", "jsonl"]);
@@ -162,27 +94,7 @@ fn jsonl_streams_each_point_as_computed_with_the_same_results() {
     assert_eq!(lines[1..4], whole["points"].as_array().expect("points")[..]);
     assert_eq!(lines[4], json!({"complete": true, "points": 3}));
 
-    let map = [
-        "map",
-        "--model",
-        "gear-pair",
-        "--omega-from",
-        "0.5",
-        "--omega-to",
-        "0.6",
-        "--omega-points",
-        "2",
-        "--value-from",
-        "50",
-        "--value-to",
-        "60",
-        "--value-points",
-        "2",
-        "--transient-periods",
-        "5",
-        "--record-periods",
-        "2",
-    ];
+    let map = words("map --model gear-pair --omega-from 0.5 --omega-to 0.6 --omega-points 2 --value-from 50 --value-to 60 --value-points 2 --transient-periods 5 --record-periods 2");
     let whole = json(&map);
     let mut args = map.to_vec();
     args.extend(["--format", "jsonl"]);

@@ -8,7 +8,7 @@
 
 use serde_json::Value;
 use std::path::PathBuf;
-use test_support::cli::{files, gearshock, ok, temp_dir, Files};
+use test_support::cli::{files, gearshock, ok, temp_dir, words, Files};
 
 /// A fresh scratch folder of this file's tests.
 fn dir(name: &str) -> PathBuf {
@@ -78,16 +78,9 @@ fn a_sharded_orbit_figure_merged_is_byte_identical_to_the_unsharded_run() {
     let foreign = shards[0].with_file_name("fig6.json");
     std::fs::write(
         &foreign,
-        ok(&[
-            "figure",
-            "fig9",
-            "--shard",
-            "1/2",
-            "--transient-periods",
-            "20",
-            "--record-periods",
-            "4",
-        ]),
+        ok(&words(
+            "figure fig9 --shard 1/2 --transient-periods 20 --record-periods 4",
+        )),
     )
     .unwrap();
     refused(
@@ -98,16 +91,9 @@ fn a_sharded_orbit_figure_merged_is_byte_identical_to_the_unsharded_run() {
     let other = shards[0].with_file_name("other.json");
     std::fs::write(
         &other,
-        ok(&[
-            "figure",
-            "fig5",
-            "--shard",
-            "1/2",
-            "--transient-periods",
-            "20",
-            "--record-periods",
-            "5",
-        ]),
+        ok(&words(
+            "figure fig5 --shard 1/2 --transient-periods 20 --record-periods 5",
+        )),
     )
     .unwrap();
     refused(
@@ -209,14 +195,7 @@ fn a_sharded_orbit_figure_merged_is_byte_identical_to_the_unsharded_run() {
 
 #[test]
 fn a_sharded_bifurcation_figure_merged_is_byte_identical_to_the_unsharded_run() {
-    let opts = [
-        "--points",
-        "3",
-        "--transient-periods",
-        "20",
-        "--record-periods",
-        "4",
-    ];
+    let opts = words("--points 3 --transient-periods 20 --record-periods 4");
     let (whole, merged, shards) = both("fig4", 3, &opts);
     assert_eq!(whole.len(), 9);
     assert!(

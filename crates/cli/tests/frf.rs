@@ -4,24 +4,14 @@
 // Tests may panic: that is how they fail.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use test_support::cli::{gearshock, json};
+use test_support::cli::{gearshock, json, words};
 
 #[test]
 fn frf_reports_the_branch_with_stability_and_bifurcations() {
     // The gear pair's hysteresis band (folds near Omega 0.49 and 0.60).
-    let v = json(&[
-        "frf",
-        "--model",
-        "gear-pair",
-        "--omega-from",
-        "0.4",
-        "--omega-to",
-        "0.7",
-        "--points",
-        "100",
-        "--harmonics",
-        "5",
-    ]);
+    let v = json(&words(
+        "frf --model gear-pair --omega-from 0.4 --omega-to 0.7 --points 100 --harmonics 5",
+    ));
     assert_eq!(v["complete"], true);
     assert_eq!(v["spec"]["harmonics"], 5);
     assert_eq!(v["spec"]["method"], "exact");
@@ -42,23 +32,7 @@ fn frf_reports_the_branch_with_stability_and_bifurcations() {
     assert!(folds >= 2, "{folds} folds");
     assert!(branch.iter().any(|p| p["stable"] == false));
     // The seed's describing function at H = 1, and CSV.
-    let out = gearshock(&[
-        "frf",
-        "--model",
-        "gear-pair",
-        "--omega-from",
-        "1.2",
-        "--omega-to",
-        "1.5",
-        "--points",
-        "20",
-        "--harmonics",
-        "1",
-        "--method",
-        "describing-function",
-        "--format",
-        "csv",
-    ]);
+    let out = gearshock(&words("frf --model gear-pair --omega-from 1.2 --omega-to 1.5 --points 20 --harmonics 1 --method describing-function --format csv"));
     assert!(out.status.success());
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(text.starts_with("index,omega,mesh,delta_max_m"));
@@ -73,39 +47,15 @@ fn frf_bad_options_exit_2_naming_them() {
             "omega-to",
         ),
         (
-            vec![
-                "frf",
-                "--omega-from",
-                "0.1",
-                "--omega-to",
-                "1",
-                "--harmonics",
-                "99",
-            ],
+            words("frf --omega-from 0.1 --omega-to 1 --harmonics 99"),
             "harmonics",
         ),
         (
-            vec![
-                "frf",
-                "--omega-from",
-                "0.1",
-                "--omega-to",
-                "1",
-                "--method",
-                "magic",
-            ],
+            words("frf --omega-from 0.1 --omega-to 1 --method magic"),
             "--method",
         ),
         (
-            vec![
-                "frf",
-                "--omega-from",
-                "0.1",
-                "--omega-to",
-                "1",
-                "--direction",
-                "sideways",
-            ],
+            words("frf --omega-from 0.1 --omega-to 1 --direction sideways"),
             "--direction",
         ),
         (

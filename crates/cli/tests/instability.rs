@@ -3,28 +3,14 @@
 // Tests may panic: that is how they fail.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use test_support::cli::{gearshock, json};
+use test_support::cli::{gearshock, json, words};
 
 /// The gear pair at its principal parametric resonance (Omega = 2,
 /// stiffness variation 0.3, damping ratio 0.05 < 0.3 / 4) is unstable when
 /// engaged, and stable far from it; the CSV carries the same rows.
 #[test]
 fn instability_finds_the_principal_parametric_resonance() {
-    let args = [
-        "instability",
-        "--model",
-        "gear-pair",
-        "--set",
-        "stiffness_variation=0.3",
-        "--set",
-        "damping_ratio=0.05",
-        "--omega-from",
-        "1.0",
-        "--omega-to",
-        "2.0",
-        "--points",
-        "2",
-    ];
+    let args = words("instability --model gear-pair --set stiffness_variation=0.3 --set damping_ratio=0.05 --omega-from 1.0 --omega-to 2.0 --points 2");
     let v = json(&args);
     let pts = v["points"].as_array().unwrap();
     assert_eq!(pts.len(), 2);

@@ -5,7 +5,7 @@
 // Tests may panic: that is how they fail.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use test_support::cli::{gearshock, json, refused};
+use test_support::cli::{gearshock, json, refused, words};
 
 #[test]
 fn bad_input_exits_2_with_one_line_naming_it() {
@@ -35,39 +35,15 @@ fn bad_input_exits_2_with_one_line_naming_it() {
             "omega-to",
         ),
         (
-            &[
-                "bifurcation",
-                "--omega-from",
-                "0.1",
-                "--omega-to",
-                "1",
-                "--points",
-                "99999999",
-            ],
+            &words("bifurcation --omega-from 0.1 --omega-to 1 --points 99999999"),
             "points",
         ),
         (
-            &[
-                "bifurcation",
-                "--omega-from",
-                "0.1",
-                "--omega-to",
-                "1",
-                "--shard",
-                "3/2",
-            ],
+            &words("bifurcation --omega-from 0.1 --omega-to 1 --shard 3/2"),
             "shard",
         ),
         (
-            &[
-                "bifurcation",
-                "--omega-from",
-                "0.1",
-                "--omega-to",
-                "1",
-                "--direction",
-                "sideways",
-            ],
+            &words("bifurcation --omega-from 0.1 --omega-to 1 --direction sideways"),
             "direction",
         ),
         (
@@ -96,98 +72,28 @@ fn total_work_and_memory_are_capped_naming_the_options() {
     // Each option within its range, the product not: these grew memory
     // until they died, or ran for days.
     refused(
-        &[
-            "bifurcation",
-            "--omega-from",
-            "0.1",
-            "--omega-to",
-            "2",
-            "--points",
-            "100000",
-            "--record-periods",
-            "100000",
-            "--mesh",
-            "all",
-        ],
+        &words("bifurcation --omega-from 0.1 --omega-to 2 --points 100000 --record-periods 100000 --mesh all"),
         &["--points", "--record-periods", "100000000", "--shard"],
     );
     refused(
-        &[
-            "bifurcation",
-            "--omega-from",
-            "0.1",
-            "--omega-to",
-            "2",
-            "--points",
-            "1000",
-            "--record-periods",
-            "10000",
-            "--transient-periods",
-            "0",
-            "--mesh",
-            "all",
-        ],
+        &words("bifurcation --omega-from 0.1 --omega-to 2 --points 1000 --record-periods 10000 --transient-periods 0 --mesh all"),
         &["--mesh", "--record-periods", "Poincaré samples", "2000000"],
     );
     refused(
-        &[
-            "lyapunov",
-            "--omega-from",
-            "0.1",
-            "--omega-to",
-            "2",
-            "--points",
-            "10000",
-            "--transient-periods",
-            "1000000",
-            "--periods",
-            "100000",
-        ],
+        &words("lyapunov --omega-from 0.1 --omega-to 2 --points 10000 --transient-periods 1000000 --periods 100000"),
         &["--points 10000", "--periods 100000", "100000000"],
     );
     refused(
-        &[
-            "map",
-            "--omega-from",
-            "0.1",
-            "--omega-to",
-            "2",
-            "--omega-points",
-            "2000",
-            "--value-from",
-            "10",
-            "--value-to",
-            "200",
-            "--value-points",
-            "500",
-        ],
+        &words("map --omega-from 0.1 --omega-to 2 --omega-points 2000 --value-from 10 --value-to 200 --value-points 500"),
         &["--omega-points", "--value-points", "100000000"],
     );
     refused(
-        &[
-            "frf",
-            "--omega-from",
-            "0.1",
-            "--omega-to",
-            "2",
-            "--points",
-            "100000",
-            "--harmonics",
-            "40",
-        ],
+        &words("frf --omega-from 0.1 --omega-to 2 --points 100000 --harmonics 40"),
         &["--points 100000", "--harmonics 40", "2000000000"],
     );
     // The largest number the flag parses overflowed the budget's arithmetic.
     refused(
-        &[
-            "frf",
-            "--omega-from",
-            "0.1",
-            "--omega-to",
-            "2",
-            "--harmonics",
-            "18446744073709551615",
-        ],
+        &words("frf --omega-from 0.1 --omega-to 2 --harmonics 18446744073709551615"),
         &["--harmonics 18446744073709551615", "1 ..= 40"],
     );
     for flag in ["--transient-periods", "--record-periods"] {
@@ -217,29 +123,7 @@ fn negative_values_are_accepted_and_options_checked_before_any_work() {
         &["simulate", "--omega", "0.5", "--rtol", "-1e-6"],
         &["--rtol -0.000001", "1e-13"],
     );
-    let v = json(&[
-        "map",
-        "--model",
-        "gear-pair",
-        "--key",
-        "te_um",
-        "--value-from",
-        "-100",
-        "--value-to",
-        "-0",
-        "--value-points",
-        "2",
-        "--omega-from",
-        "0.5",
-        "--omega-to",
-        "0.6",
-        "--omega-points",
-        "2",
-        "--transient-periods",
-        "5",
-        "--record-periods",
-        "2",
-    ]);
+    let v = json(&words("map --model gear-pair --key te_um --value-from -100 --value-to -0 --value-points 2 --omega-from 0.5 --omega-to 0.6 --omega-points 2 --transient-periods 5 --record-periods 2"));
     assert_eq!(v["spec"]["value_from"], -100.0);
     // A typed -0 is echoed as 0.
     assert_eq!(v["spec"]["value_to"].to_string(), "0.0");
@@ -247,19 +131,7 @@ fn negative_values_are_accepted_and_options_checked_before_any_work() {
     // These computed every point and then named an internal grid value; a
     // large --points shows they now stop before the first point.
     refused(
-        &[
-            "lyapunov",
-            "--omega-from",
-            "0.1",
-            "--omega-to",
-            "20.001",
-            "--points",
-            "10000",
-            "--periods",
-            "10",
-            "--transient-periods",
-            "10",
-        ],
+        &words("lyapunov --omega-from 0.1 --omega-to 20.001 --points 10000 --periods 10 --transient-periods 10"),
         &["--omega-to 20.001", "0.01 ..= 20"],
     );
     refused(
@@ -267,15 +139,7 @@ fn negative_values_are_accepted_and_options_checked_before_any_work() {
         &["--omega-to 25", "0.01 ..= 20"],
     );
     refused(
-        &[
-            "lyapunov",
-            "--omega-from",
-            "0.5",
-            "--omega-to",
-            "1",
-            "--periods",
-            "0",
-        ],
+        &words("lyapunov --omega-from 0.5 --omega-to 1 --periods 0"),
         &["--periods 0"],
     );
     refused(

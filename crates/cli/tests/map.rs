@@ -3,34 +3,12 @@
 // Tests may panic: that is how they fail.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use test_support::cli::{gearshock, json};
+use test_support::cli::{gearshock, json, words};
 
 #[test]
 fn map_shards_merge_into_the_unsharded_map() {
     let args = |extra: &[&'static str]| -> Vec<&'static str> {
-        let mut a = vec![
-            "map",
-            "--model",
-            "gear-pair",
-            "--omega-from",
-            "0.4",
-            "--omega-to",
-            "1.6",
-            "--omega-points",
-            "4",
-            "--key",
-            "te_um",
-            "--value-from",
-            "1",
-            "--value-to",
-            "40",
-            "--value-points",
-            "3",
-            "--transient-periods",
-            "100",
-            "--record-periods",
-            "20",
-        ];
+        let mut a = words("map --model gear-pair --omega-from 0.4 --omega-to 1.6 --omega-points 4 --key te_um --value-from 1 --value-to 40 --value-points 3 --transient-periods 100 --record-periods 20");
         a.extend_from_slice(extra);
         a
     };

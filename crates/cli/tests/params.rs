@@ -5,7 +5,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use serde_json::json;
-use test_support::cli::{gearshock, json, refused, temp_dir, write_json};
+use test_support::cli::{gearshock, json, refused, temp_dir, words, write_json};
 
 #[test]
 fn params_prints_the_defaults_as_flat_keys() {
@@ -37,15 +37,9 @@ fn keys_lists_the_table() {
     let out = gearshock(&["keys", "--markdown"]);
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(text.starts_with("| key |"));
-    for k in [
-        "backlash_um",
-        "te_um",
-        "stiffness_variation",
-        "damping_ratio",
-        "torque_s1_nm",
-        "planets",
-        "phasing",
-    ] {
+    for k in
+        words("backlash_um te_um stiffness_variation damping_ratio torque_s1_nm planets phasing")
+    {
         assert!(text.contains(&format!("`{k}`")), "{k}");
     }
 }
@@ -53,23 +47,11 @@ fn keys_lists_the_table() {
 #[test]
 fn no_setting_is_silently_dropped_by_the_model_choice() {
     // `model` reset every parameter, so the backlash given before it was lost.
-    let v = json(&[
-        "params",
-        "--set",
-        "backlash_um=50",
-        "--set",
-        "model=gear-pair",
-    ]);
+    let v = json(&words("params --set backlash_um=50 --set model=gear-pair"));
     assert_eq!(v["model"], "gear-pair");
     assert_eq!(v["backlash_um"], 50);
     refused(
-        &[
-            "params",
-            "--model",
-            "ravigneaux",
-            "--set",
-            "model=gear-pair",
-        ],
+        &words("params --model ravigneaux --set model=gear-pair"),
         &["--set model=gear-pair", "--model ravigneaux"],
     );
     // A parameter file of the other model would be replaced by defaults.

@@ -3,30 +3,15 @@
 // Tests may panic: that is how they fail.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use test_support::cli::{gearshock, json};
+use test_support::cli::{gearshock, json, words};
 
 #[test]
 fn simulate_reports_one_mesh_with_si_units() {
-    let v = json(&[
-        "simulate",
-        "--omega",
-        "0.5",
-        "--transient-periods",
-        "20",
-        "--record-periods",
-        "10",
-        "--mesh",
-        "rb2",
-    ]);
+    let v = json(&words(
+        "simulate --omega 0.5 --transient-periods 20 --record-periods 10 --mesh rb2",
+    ));
     assert_eq!(v["mesh"], "rb2");
-    for k in [
-        "omega",
-        "mesh_freq_hz",
-        "delta_min_m",
-        "delta_max_m",
-        "delta_rms_m",
-        "dynamic_factor",
-    ] {
+    for k in words("omega mesh_freq_hz delta_min_m delta_max_m delta_rms_m dynamic_factor") {
         assert!(v[k].is_number(), "{k}");
     }
     assert_eq!(
@@ -44,17 +29,9 @@ fn simulate_reports_one_mesh_with_si_units() {
             .len()
             > 10
     );
-    let csv = gearshock(&[
-        "simulate",
-        "--omega",
-        "0.5",
-        "--transient-periods",
-        "2",
-        "--record-periods",
-        "2",
-        "--format",
-        "csv",
-    ]);
+    let csv = gearshock(&words(
+        "simulate --omega 0.5 --transient-periods 2 --record-periods 2 --format csv",
+    ));
     let text = String::from_utf8_lossy(&csv.stdout);
     assert!(text.starts_with("t_s,delta_m,velocity_m_s"));
     assert_eq!(text.lines().count(), 1 + 2 * 64);

@@ -8,7 +8,7 @@
 
 use std::io::Read;
 use std::process::Stdio;
-use test_support::cli::{command, files, ok, refused, temp_dir, to_full_disk};
+use test_support::cli::{command, files, ok, refused, temp_dir, to_full_disk, words};
 
 const FULL: &str = "gearshock: cannot write stdout: No space left on device";
 
@@ -89,22 +89,7 @@ fn a_full_disk_is_an_error_naming_stdout_with_exit_3_for_every_subcommand() {
 
 /// A streamed sweep of 20 000 points (minutes of work), its reader gone.
 fn long_stream() -> std::process::Command {
-    let mut c = command(&[
-        "bifurcation",
-        "--omega-from",
-        "0.4",
-        "--omega-to",
-        "0.6",
-        "--points",
-        "20000",
-        "--transient-periods",
-        "100",
-        "--record-periods",
-        "10",
-        "--format",
-        "jsonl",
-        "--progress",
-    ]);
+    let mut c = command(&words("bifurcation --omega-from 0.4 --omega-to 0.6 --points 20000 --transient-periods 100 --record-periods 10 --format jsonl --progress"));
     c.stdout(Stdio::piped()).stderr(Stdio::piped());
     c
 }

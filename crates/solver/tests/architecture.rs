@@ -90,12 +90,11 @@ fn the_solver_source_uses_no_clock_thread_or_io() {
     assert!(files.contains(&hbm), "the walk reaches src/hbm/");
 }
 
-#[path = "support/modgraph.rs"]
-mod modgraph;
+use test_support::modgraph;
 
 /// Architecture invariant: no import cycle in the solver, between its
 /// top-level modules or between any two of its files (see
-/// `support/modgraph.rs` for how the graph is read).
+/// `test_support::modgraph` for how the graph is read).
 #[test]
 fn the_solver_has_no_import_cycle() {
     let g = modgraph::read(&Path::new(env!("CARGO_MANIFEST_DIR")).join("src"));

@@ -113,3 +113,9 @@ pub fn files(d: &Path) -> Files {
     v.sort();
     v
 }
+
+/// The words of a command line written as one string:
+/// `json(&words("map --model gear-pair --omega-points 2"))`.
+pub fn words(line: &str) -> Vec<&str> {
+    line.split_whitespace().collect()
+}
