@@ -32,49 +32,43 @@ pub fn params(p: &ModelParams) -> String {
     s
 }
 
-/// `keys`: an aligned text listing.
-pub fn keys_text() -> String {
-    let mut s = String::new();
+/// One line per key, `row` formatting its name, unit, models, allowed
+/// values and meaning.
+fn key_rows(mut s: String, row: fn(&mut String, [&str; 5])) -> String {
     for k in KEYS.iter() {
         let models = match k.applies {
             keys::Applies::Both => "both",
             keys::Applies::Ravigneaux => "ravigneaux",
             keys::Applies::GearPair => "gear-pair",
         };
-        let _ = writeln!(
-            s,
-            "{:<24} {:<7} {:<11} {:<28} {}",
-            k.name,
-            k.unit,
-            models,
-            k.ty.allowed(),
-            k.description
-        );
+        let allowed = k.ty.allowed();
+        row(&mut s, [k.name, k.unit, models, &allowed, k.description]);
     }
     s
 }
 
+/// `keys`: an aligned text listing.
+pub fn keys_text() -> String {
+    key_rows(
+        String::new(),
+        |s, [name, unit, models, allowed, meaning]| {
+            let _ = writeln!(
+                s,
+                "{name:<24} {unit:<7} {models:<11} {allowed:<28} {meaning}"
+            );
+        },
+    )
+}
+
 /// `keys --markdown`: the README's table.
 pub fn keys_markdown() -> String {
-    let mut s =
-        String::from("| key | unit | models | allowed | meaning |\n|---|---|---|---|---|\n");
-    for k in KEYS.iter() {
-        let models = match k.applies {
-            keys::Applies::Both => "both",
-            keys::Applies::Ravigneaux => "ravigneaux",
-            keys::Applies::GearPair => "gear-pair",
-        };
+    let head = String::from("| key | unit | models | allowed | meaning |\n|---|---|---|---|---|\n");
+    key_rows(head, |s, [name, unit, models, allowed, meaning]| {
         let _ = writeln!(
             s,
-            "| `{}` | {} | {} | {} | {} |",
-            k.name,
-            k.unit,
-            models,
-            k.ty.allowed(),
-            k.description
+            "| `{name}` | {unit} | {models} | {allowed} | {meaning} |"
         );
-    }
-    s
+    })
 }
 
 /// `modes --format csv`: one row per mode, the shape in coordinate columns.
