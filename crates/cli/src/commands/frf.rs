@@ -2,16 +2,15 @@
 //! arclength continuation. A solver failure still writes the branch up to
 //! there, marked incomplete, and exits with code 1.
 
-use crate::args::{meshes, ParamArgs};
+use crate::args::{meshes, OmegaRange, ParamArgs};
 use crate::budget::MAX_FRF_WORK;
 use crate::csv;
 use crate::failure::{usage, Failure};
-use crate::output::output;
+use crate::output::{note, output};
 use crate::sweep::{self, Sweep};
 use clap::Args;
 use solver::hbm::{BranchPoint, FrfContinuation, FrfSpec, Method};
 use solver::keys;
-use solver::report;
 use solver::sweep::Direction;
 use solver::SolverError;
 
@@ -20,12 +19,8 @@ use solver::SolverError;
 pub struct FrfArgs {
     #[command(flatten)]
     p: ParamArgs,
-    /// First Omega.
-    #[arg(long, allow_hyphen_values = true)]
-    omega_from: f64,
-    /// Last Omega.
-    #[arg(long, allow_hyphen_values = true)]
-    omega_to: f64,
+    #[command(flatten)]
+    range: OmegaRange,
     /// Nominal points: the largest continuation step is range / points.
     #[arg(long, default_value_t = 400)]
     points: u32,
@@ -86,7 +81,7 @@ impl Sweep for Branch {
 /// Checks the options and the budget, follows the branch and prints it.
 pub fn run(a: &FrfArgs) -> Result<(), Failure> {
     let (params, model) = a.p.load()?;
-    let mut spec = FrfSpec::new(a.omega_from, a.omega_to, a.points);
+    let mut spec = FrfSpec::new(a.range.omega_from, a.range.omega_to, a.points);
     spec.harmonics = a.harmonics;
     spec.method = Method::from_name(&a.method).ok_or_else(|| {
         usage(format!(
@@ -126,18 +121,18 @@ pub fn run(a: &FrfArgs) -> Result<(), Failure> {
     output(a.p.format, &value, csv::frf)?;
     // Restarts and left-out gaps are in the JSON; say them here too.
     for n in c.notes() {
-        eprintln!("gearshock: note: {n}");
+        note(&format!("note: {n}"));
     }
     if failure.is_none() && c.left_at_start() {
-        eprintln!(
-            "gearshock: note: the branch turned back at a fold and left the range at its start; \
+        note(&format!(
+            "note: the branch turned back at a fold and left the range at its start; \
              continue from the other end with --direction {} to see the rest",
             if c.spec().direction == Direction::Up {
                 "down"
             } else {
                 "up"
             }
-        );
+        ));
     }
     match failure {
         // The partial branch is written (marked `complete: false`),

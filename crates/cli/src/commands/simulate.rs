@@ -6,7 +6,6 @@ use crate::csv;
 use crate::failure::{usage, Failure};
 use crate::output::{emit_text, output};
 use clap::Args;
-use solver::report;
 use solver::steady::{steady_state, SteadyOptions};
 
 /// Options of `gearshock simulate`.
@@ -48,9 +47,6 @@ pub fn run(a: &SimulateArgs) -> Result<(), Failure> {
             &report::simulate_json(&model, &ss, j, max_order),
             |_| String::new(),
         ),
-        Format::Csv => {
-            emit_text(&csv::history(&ss, j));
-            Ok(())
-        }
+        Format::Csv => emit_text(&csv::history(&ss, j)),
     }
 }

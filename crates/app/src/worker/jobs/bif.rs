@@ -10,7 +10,6 @@ use solver::keys;
 use solver::model::Model;
 use solver::parametric::Parametric;
 use solver::params::ModelParams;
-use solver::report;
 use solver::sweep::{canonical_order, BifurcationSweep, Directions, SweepPoint, SweepSpec};
 
 /// Omega samples of the parametric-instability scan over the sweep's range

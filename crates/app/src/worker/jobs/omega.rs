@@ -10,7 +10,6 @@ use crate::protocol::{
 };
 use crate::settings::Settings;
 use solver::model::Model;
-use solver::report;
 use solver::steady::{spectrum, steady_state, SteadyOptions, SteadyRun, SteadyState};
 
 /// Samples per mesh period of the selected-Omega history.
