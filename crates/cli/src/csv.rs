@@ -1,9 +1,9 @@
 //! Plain-text tables: `--format csv` outputs and the key listing.
 
+use report::{display_shape, num};
 use serde_json::Value;
 use solver::keys::{self, KEYS};
 use solver::params::ModelParams;
-use solver::report::{display_shape, num};
 use solver::steady::{Model, SteadyState};
 use std::fmt::Write;
 

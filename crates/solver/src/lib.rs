@@ -5,7 +5,8 @@
 //! The crate is pure computation: no web, UI, clock, thread or I/O
 //! dependency, so it builds unchanged for native targets and
 //! `wasm32-unknown-unknown`. The physics is `MODEL.md`'s; see the
-//! repository's `ARCHITECTURE.md` for the map.
+//! repository's `ARCHITECTURE.md` for the map. Results as JSON and the
+//! merge of sharded runs live outside it, in the `report` crate.
 //!
 //! - [`params`] and [`keys`]: the parameter sets and their flat user-facing keys.
 //! - [`system`]: the compiled model (mass matrix, mesh vectors, loads).
@@ -21,7 +22,6 @@
 //! - [`lyapunov`]: the largest Lyapunov exponent of the Poincaré map.
 //! - [`parametric`]: parametric instability of the fully engaged set over Omega.
 //! - [`map`]: impact-regime maps over Omega and a second parameter.
-//! - [`report`]: results as JSON, shared by the CLI and the browser.
 
 pub mod dynamics;
 pub mod error;
@@ -35,7 +35,6 @@ pub mod model;
 pub mod ode;
 pub mod parametric;
 pub mod params;
-pub mod report;
 pub mod steady;
 pub mod sweep;
 pub mod system;

@@ -156,19 +156,12 @@ fn the_cycle_finder_finds_cycles() {
 /// `steady/`, `keys/` are split by concept).
 #[test]
 fn no_solver_source_file_is_over_800_lines() {
-    // report.rs (shard merging) leaves the solver on branch i22s of issue
-    // 20; until then it is the one file allowed over the limit.
-    const LEAVING: &[(&str, usize)] = &[("report.rs", 900)];
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
     let mut files = Vec::new();
     source_files(&src, &mut files);
     for path in &files {
         let lines = std::fs::read_to_string(path).expect("read").lines().count();
         let rel = path.strip_prefix(&src).expect("below src");
-        let limit = LEAVING
-            .iter()
-            .find(|(f, _)| rel == Path::new(f))
-            .map_or(800, |(_, n)| *n);
-        assert!(lines <= limit, "{}: {lines} lines", rel.display());
+        assert!(lines <= 800, "{}: {lines} lines", rel.display());
     }
 }

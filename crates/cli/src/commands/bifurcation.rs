@@ -9,7 +9,6 @@ use crate::output::output;
 use crate::sweep::{self, Lines};
 use clap::Args;
 use solver::keys;
-use solver::report;
 use solver::sweep::{canonical_order, BifurcationSweep, Directions, SweepSpec};
 
 /// Options of `gearshock bifurcation`.

@@ -11,7 +11,6 @@ use crate::sweep::{self, Sweep};
 use clap::Args;
 use solver::hbm::{BranchPoint, FrfContinuation, FrfSpec, Method};
 use solver::keys;
-use solver::report;
 use solver::sweep::Direction;
 use solver::SolverError;
 

@@ -8,7 +8,6 @@ use crate::output::{note, output};
 use crate::sweep::{self, Lines, Points};
 use clap::Args;
 use solver::parametric::Parametric;
-use solver::report;
 
 /// Options of `gearshock instability`.
 #[derive(Debug, Args)]

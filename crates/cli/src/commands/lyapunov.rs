@@ -9,7 +9,6 @@ use crate::output::output;
 use crate::sweep::{self, Lines, Points};
 use clap::Args;
 use solver::lyapunov::{largest_exponent, LyapunovOptions};
-use solver::report;
 
 /// Options of `gearshock lyapunov`.
 #[derive(Debug, Args)]

@@ -9,7 +9,6 @@ use crate::output::output;
 use crate::sweep::{self, Lines};
 use clap::Args;
 use solver::map::{MapSpec, RegimeMap};
-use solver::report;
 
 /// Options of `gearshock map`.
 #[derive(Debug, Args)]

@@ -4,7 +4,6 @@ use crate::args::{Format, ParamArgs};
 use crate::csv;
 use crate::failure::Failure;
 use crate::output::{emit_text, output};
-use solver::report;
 
 /// Prints the model's statics and modes.
 pub fn run(p: &ParamArgs) -> Result<(), Failure> {

@@ -6,7 +6,6 @@ use crate::csv;
 use crate::failure::{usage, Failure};
 use crate::output::{emit_text, output};
 use clap::Args;
-use solver::report;
 use solver::steady::{steady_state, SteadyOptions};
 
 /// Options of `gearshock simulate`.
