@@ -17,6 +17,10 @@
 # add a TLS stack (rustls, ring) for `trunk serve --tls` and a crates.io
 # update check, neither used here (the page is served by
 # scripts/static-server.mjs and every build is offline); 16 crates fewer.
+# Trunk is compiled at opt-level 0: half the CPU time of opt-level 1 (354
+# against 656 s), and a page build with it takes the same time (its work is
+# wasm-bindgen's and wasm-opt's, separate programs); wasm-bindgen-cli keeps
+# opt-level 1, since it rewrites the page's WebAssembly itself.
 # Both tools compile side by side, each in its own
 # target folder, while Debian's chromium, the npm tools and the project's
 # crates download. Their compiler output goes to target/setup/*.log; the
@@ -52,7 +56,7 @@ fi
 [[ -x /usr/bin/chromium && -x /usr/bin/chromedriver ]] || need_chromium=1
 
 if (( need_target )); then say "to install: the wasm32-unknown-unknown target (rustup; the page's compile target; about 20 s)"; else say "present: the wasm32-unknown-unknown target"; fi
-if (( need_trunk )); then say "to install: trunk ${TRUNK_VERSION} from crates.io: the build tool that bundles the page (about 7 min on 2 cores, once)"; else say "present: trunk ${TRUNK_VERSION}"; fi
+if (( need_trunk )); then say "to install: trunk ${TRUNK_VERSION} from crates.io: the build tool that bundles the page (about 5 min on 2 cores, once)"; else say "present: trunk ${TRUNK_VERSION}"; fi
 if (( need_bindgen )); then say "to install: wasm-bindgen-cli ${WASM_BINDGEN_VERSION} from crates.io: writes the JavaScript glue for the page's WebAssembly (about 5 min on 2 cores, once; side by side with trunk)"; else say "present: wasm-bindgen-cli ${WASM_BINDGEN_VERSION}"; fi
 if (( need_npm )); then say "to install: npm ci: binaryen's wasm-opt 132 (shrinks the page's WebAssembly) and playwright-core (drives chromium in the browser tests; about 10 s)"; else say "present: node_modules (wasm-opt 132, playwright-core)"; fi
 if (( need_chromium )); then say "to install: Debian's chromium and chromium-driver (apt-get): the headless browser of the browser tests (about 1 min)"; else say "present: chromium and chromium-driver"; fi
@@ -70,7 +74,7 @@ fi
 fast_install() {
   CARGO_PROFILE_RELEASE_LTO=false \
   CARGO_PROFILE_RELEASE_CODEGEN_UNITS=16 \
-  CARGO_PROFILE_RELEASE_OPT_LEVEL=1 \
+  CARGO_PROFILE_RELEASE_OPT_LEVEL="${TOOL_OPT_LEVEL:-1}" \
   CARGO_PROFILE_RELEASE_DEBUG=0 \
   CARGO_PROFILE_RELEASE_INCREMENTAL=false \
   CARGO_TERM_PROGRESS_WHEN=never \
@@ -87,7 +91,7 @@ start_bg() { # name log command...
 if (( need_trunk )); then
   say "compiling trunk ${TRUNK_VERSION} (log: $LOGS/trunk.log)"
   start_bg "trunk ${TRUNK_VERSION}" "$LOGS/trunk.log" \
-    env CARGO_TARGET_DIR="$PWD/$LOGS/trunk-build" bash -c "$(declare -f fast_install); fast_install trunk --version ${TRUNK_VERSION} --locked --no-default-features"
+    env TOOL_OPT_LEVEL=0 CARGO_TARGET_DIR="$PWD/$LOGS/trunk-build" bash -c "$(declare -f fast_install); fast_install trunk --version ${TRUNK_VERSION} --locked --no-default-features"
 fi
 if (( need_bindgen )); then
   # Without --locked: its lock file names a crate version the registry lacks.

@@ -72,7 +72,8 @@ if ! munge -n 2>/dev/null | unmunge >/dev/null 2>&1; then
   took "munged started"
 fi
 
-# 3. The one-node cluster, in a folder of its own.
+# 3. The one-node cluster, in a folder of its own (on 127.0.0.1: a fresh
+# machine's host name need not resolve).
 work=$(mktemp -d /tmp/gearshock-cluster.XXXXXX)
 host=$(hostname -s)
 cpus=$(nproc)
@@ -94,7 +95,7 @@ trap stop EXIT
 mkdir -p "$work/state" "$work/spool" "$work/log" "$work/out"
 cat > "$conf" <<CONF
 ClusterName=gearshock
-SlurmctldHost=$host
+SlurmctldHost=$host(127.0.0.1)
 SlurmctldPort=16817
 SlurmdPort=16818
 SlurmUser=root
@@ -114,7 +115,7 @@ SlurmctldPidFile=$work/slurmctld.pid
 SlurmdPidFile=$work/slurmd.pid
 SlurmctldLogFile=$work/log/slurmctld.log
 SlurmdLogFile=$work/log/slurmd.log
-NodeName=$host CPUs=$cpus State=UNKNOWN
+NodeName=$host NodeAddr=127.0.0.1 CPUs=$cpus State=UNKNOWN
 PartitionName=gearshock Nodes=$host Default=YES MaxTime=INFINITE State=UP
 CONF
 $SUDO env SLURM_CONF="$conf" slurmctld -f "$conf" \

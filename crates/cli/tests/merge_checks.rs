@@ -13,7 +13,7 @@
 
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
-use test_support::cli::{ok, refused};
+use test_support::cli::{ok, refused, words};
 
 fn dir(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("gearshock-merge-{}-{name}", std::process::id()));
@@ -44,55 +44,26 @@ fn merged(files: &[String]) -> Vec<u8> {
     ok(&args)
 }
 
-const SWEEP: [&str; 13] = [
-    "bifurcation",
-    "--omega-from",
-    "0.4",
-    "--omega-to",
-    "1.4",
-    "--points",
-    "14",
-    "--direction",
-    "both",
-    "--transient-periods",
-    "30",
-    "--record-periods",
-    "6",
-];
+const SWEEP: &str = "bifurcation --omega-from 0.4 --omega-to 1.4 --points 14 --direction both \
+     --transient-periods 30 --record-periods 6";
 
-const MAP: [&str; 21] = [
-    "map",
-    "--model",
-    "gear-pair",
-    "--omega-from",
-    "0.4",
-    "--omega-to",
-    "1.6",
-    "--omega-points",
-    "3",
-    "--key",
-    "te_um",
-    "--value-from",
-    "1",
-    "--value-to",
-    "40",
-    "--value-points",
-    "7",
-    "--transient-periods",
-    "40",
-    "--record-periods",
-    "8",
-];
+const MAP: &str = "map --model gear-pair --omega-from 0.4 --omega-to 1.6 --omega-points 3 \
+     --key te_um --value-from 1 --value-to 40 --value-points 7 \
+     --transient-periods 40 --record-periods 8";
+
+/// A tiny sweep (3 points, up only) forged by the tests below.
+const TINY_SWEEP: &str = "bifurcation --omega-from 0.5 --omega-to 0.7 --points 3 \
+     --transient-periods 5 --record-periods 3";
 
 #[test]
 fn merged_sweep_shards_are_the_run_with_as_many_chains_byte_for_byte() {
     let d = dir("sweep");
     for n in [2usize, 3, 7] {
         let chains = n.to_string();
-        let mut whole = SWEEP.to_vec();
+        let mut whole = words(SWEEP);
         whole.extend(["--chains", &chains]);
         let whole = ok(&whole);
-        let files = shards(&d, &SWEEP, n);
+        let files = shards(&d, &words(SWEEP), n);
         let merged = merged(&files);
         // Non-trivial: the merged text holds long floats (17 digits), the
         // kind a read without round trip altered in the last place.
@@ -113,9 +84,9 @@ fn merged_sweep_shards_are_the_run_with_as_many_chains_byte_for_byte() {
 #[test]
 fn merged_map_shards_are_the_unsharded_map_byte_for_byte() {
     let d = dir("map");
-    let whole = ok(&MAP);
+    let whole = ok(&words(MAP));
     for n in [2usize, 3, 7] {
-        let files = shards(&d, &MAP, n);
+        let files = shards(&d, &words(MAP), n);
         assert!(whole == merged(&files), "{n} map shards merged differ");
     }
     let _ = std::fs::remove_dir_all(&d);
@@ -174,20 +145,7 @@ fn read(files: &[String]) -> Vec<Value> {
 #[test]
 fn forged_sweep_shards_are_refused_naming_file_field_value_and_range() {
     let d = dir("forged-sweep");
-    let base = [
-        "bifurcation",
-        "--omega-from",
-        "0.5",
-        "--omega-to",
-        "0.7",
-        "--points",
-        "3",
-        "--transient-periods",
-        "5",
-        "--record-periods",
-        "3",
-    ];
-    let good = read(&shards(&d, &base, 2));
+    let good = read(&shards(&d, &words(TINY_SWEEP), 2));
     // The genuine shards merge, and their arrays are record_periods long.
     assert_eq!(
         good[0]["points"][0]["poincare_delta_m"]
@@ -288,20 +246,7 @@ fn forged_sweep_shards_are_refused_naming_file_field_value_and_range() {
 #[test]
 fn a_model_differing_between_shards_is_refused() {
     let d = dir("model");
-    let base = [
-        "bifurcation",
-        "--omega-from",
-        "0.5",
-        "--omega-to",
-        "0.7",
-        "--points",
-        "3",
-        "--transient-periods",
-        "5",
-        "--record-periods",
-        "2",
-    ];
-    let mut good = read(&shards(&d, &base, 2));
+    let mut good = read(&shards(&d, &words(TINY_SWEEP), 2));
     // Shard 1 claims another model (its params unchanged).
     good[1]["model"] = json!("gear-pair");
     let files: Vec<String> = good
@@ -323,27 +268,10 @@ fn a_model_differing_between_shards_is_refused() {
 #[test]
 fn forged_map_shards_are_refused_naming_file_field_value_and_range() {
     let d = dir("forged-map");
-    let base = [
-        "map",
-        "--model",
-        "gear-pair",
-        "--omega-from",
-        "0.5",
-        "--omega-to",
-        "0.6",
-        "--omega-points",
-        "2",
-        "--value-from",
-        "50",
-        "--value-to",
-        "60",
-        "--value-points",
-        "2",
-        "--transient-periods",
-        "5",
-        "--record-periods",
-        "2",
-    ];
+    let base = words(
+        "map --model gear-pair --omega-from 0.5 --omega-to 0.6 --omega-points 2 \
+         --value-from 50 --value-to 60 --value-points 2 --transient-periods 5 --record-periods 2",
+    );
     let good = read(&shards(&d, &base, 2));
     let forgeries: &[Forgery] = &[
         (
