@@ -20,6 +20,8 @@
 //! - [`lyapunov`]: the largest Lyapunov exponent of the Poincaré map.
 //! - [`parametric`]: parametric instability of the fully engaged set over Omega.
 //! - [`map`]: impact-regime maps over Omega and a second parameter.
+//! - [`shooting`]: periodic orbits by Newton on the Poincaré map, Floquet
+//!   multipliers, continuation of periodic branches.
 //! - [`report`]: results as JSON, shared by the CLI and the browser.
 
 pub mod dynamics;
@@ -34,6 +36,7 @@ pub mod ode;
 pub mod parametric;
 pub mod params;
 pub mod report;
+pub mod shooting;
 pub mod steady;
 pub mod sweep;
 pub mod system;
