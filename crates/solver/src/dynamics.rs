@@ -425,6 +425,30 @@ impl Ode for MeshOde {
     }
 }
 
+/// The integrator's tolerances for a run at `omega`: `atol_m` as a mesh
+/// deflection, scaled to each coordinate's length (and, for rates, by the
+/// larger of the mesh and reference frequencies); steps between
+/// `h_min_periods` and an eighth of a mesh period.
+pub(crate) fn tolerances(
+    sys: &crate::system::MeshSystem,
+    omega: f64,
+    rtol: f64,
+    atol_m: f64,
+    period: f64,
+    h_min_periods: f64,
+) -> crate::ode::Tolerances {
+    let lengths = sys.dof_length_m();
+    let v_scale = sys.omega_ref_rad_s * omega.max(1.0);
+    let mut atol: Vec<f64> = lengths.iter().map(|l| atol_m / l).collect();
+    atol.extend(lengths.iter().map(|l| atol_m / l * v_scale));
+    crate::ode::Tolerances {
+        rtol,
+        atol,
+        h_min: period * h_min_periods,
+        h_max: period / 8.0,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     // Tests may panic: that is how they fail.

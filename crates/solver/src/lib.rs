@@ -14,6 +14,7 @@
 //! - [`dynamics`]: the equations of motion as an ODE.
 //! - [`trig`]: the mesh phase's sine and cosine, the same bits in native and wasm.
 //! - [`fastmath`]: max, min and a power function for the hot loops, likewise.
+//! - [`model`]: the compiled model (system, modes, statics) every run starts from.
 //! - [`steady`]: steady-state runs, Poincaré samples, impact regimes, spectra.
 //! - [`sweep`]: bifurcation sweeps with bounded work per call.
 //! - [`hbm`]: harmonic balance, continuation, Floquet stability.
@@ -24,6 +25,7 @@
 //!   multipliers, continuation of periodic branches.
 //! - [`report`]: results as JSON, shared by the CLI and the browser.
 
+pub mod bifurcation;
 pub mod dynamics;
 pub mod error;
 pub mod fastmath;
@@ -32,6 +34,7 @@ pub mod keys;
 pub mod lyapunov;
 pub mod map;
 pub mod modal;
+pub mod model;
 pub mod ode;
 pub mod parametric;
 pub mod params;
@@ -43,5 +46,6 @@ pub mod system;
 pub mod trig;
 
 pub use error::{Result, SolverError};
+pub use model::Model;
 pub use params::{ModelKind, ModelParams};
-pub use steady::{Model, SteadyOptions, SteadyState};
+pub use steady::{SteadyOptions, SteadyState};

@@ -28,118 +28,28 @@
 //! wherever a deflection's rate changes sign inside a step, the extremum is
 //! located on a cubic Hermite model and evaluated on the dense output.
 
-use crate::dynamics::{MeshInstant, MeshOde};
+use crate::dynamics::tolerances;
+use crate::dynamics::MeshOde;
 use crate::error::{Result, SolverError};
 use crate::fastmath::{max, min};
-use crate::modal::{self, Modes, StaticSolution};
-use crate::ode::{Dopri5, IntegratorStats, StepInfo, Tolerances};
-use crate::params::ModelParams;
-use crate::shooting::pipeline::{
-    candidate_period, classify_recorded, loose_tol_um, pipeline_options, Motion, CHECKPOINTS,
-};
+use crate::ode::{Dopri5, IntegratorStats, Tolerances};
 use crate::shooting::{ShootOutcome, ShootRun};
-use crate::system::MeshSystem;
 use std::f64::consts::PI;
 
-/// A compiled model with its modes and static equilibrium, computed once.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Model {
-    /// The system.
-    pub system: MeshSystem,
-    /// Natural modes of the mean-stiffness system.
-    pub modes: Modes,
-    /// The loaded static equilibrium.
-    pub statics: StaticSolution,
-}
+mod record;
+mod spectrum;
+mod verdict;
 
-impl Model {
-    /// Validates the parameters and prepares the model.
-    pub fn new(params: &ModelParams) -> Result<Self> {
-        let system = MeshSystem::build(params)?;
-        let modes = modal::modes(&system)?;
-        let statics = modal::statics(&system, &modes)?;
-        Ok(Model {
-            system,
-            modes,
-            statics,
-        })
-    }
+use record::Recorder;
+pub use spectrum::{spectrum, Spectrum};
+pub use verdict::{
+    candidate_period, classify_recorded, loose_tol_um, pipeline_options, Motion, CHECKPOINTS,
+    PIPELINE_ITERATIONS,
+};
 
-    /// The static equilibrium as an ODE state (at rest).
-    pub fn static_state(&self) -> Vec<f64> {
-        let mut y = self.statics.q.clone();
-        y.extend(std::iter::repeat_n(0.0, self.system.dof()));
-        y
-    }
-
-    /// The largest mesh deflection (m) a bounded response is taken to reach:
-    /// [`DIVERGENCE_FACTOR`] times the model's own scale (the largest of any
-    /// mesh's static deflection plus backlash plus TE, at least 1 um), raised
-    /// in proportion under light damping (below a damping ratio of 0.05,
-    /// where a resonance amplifies more).
-    ///
-    /// Forcing and backlash are bounded and damping is not negative, so only
-    /// a parametric instability of the time-varying stiffness (the motion's
-    /// growth outruns the dead zone, beyond which the force law is linear)
-    /// carries a response past it, well before the integrator overflows.
-    pub fn divergence_bound_m(&self) -> f64 {
-        let meshes = &self.system.meshes;
-        let scale = meshes
-            .iter()
-            .zip(&self.statics.mesh_deflection_m)
-            .map(|(m, d)| d.abs() + m.backlash_m + m.te_mean_m.abs() + m.te_cos_m.hypot(m.te_sin_m))
-            .fold(1e-6, f64::max);
-        let zeta_min = meshes
-            .iter()
-            .map(|m| m.damping_n_s_m / (2.0 * (m.stiffness_mean_n_m * m.equivalent_mass_kg).sqrt()))
-            .fold(f64::INFINITY, f64::min)
-            .max(1e-4);
-        DIVERGENCE_FACTOR * scale * (0.05 / zeta_min).max(1.0)
-    }
-
-    /// [`SolverError::Diverged`] if a mesh deflection of state `y` at `t_s`
-    /// exceeds `bound_m` (or is not finite).
-    pub(crate) fn check_bounded(
-        &self,
-        ode: &MeshOde,
-        t_s: f64,
-        y: &[f64],
-        bound_m: f64,
-    ) -> Result<()> {
-        let q = &y[..self.system.dof()];
-        for (j, m) in self.system.meshes.iter().enumerate() {
-            let delta_m = ode.deflection(j, q);
-            if delta_m.abs() > bound_m || !delta_m.is_finite() {
-                return Err(SolverError::Diverged {
-                    mesh: m.name.clone(),
-                    delta_m,
-                    bound_m,
-                    t_s,
-                });
-            }
-        }
-        Ok(())
-    }
-
-    /// An integrator failure, or [`SolverError::Diverged`] if the state it
-    /// stopped in had already left the bounded range (the failure is then
-    /// the growth's consequence, not its cause).
-    pub(crate) fn explain_failure(
-        &self,
-        ode: &MeshOde,
-        int: &Dopri5,
-        e: SolverError,
-    ) -> SolverError {
-        match self.check_bounded(ode, int.t(), int.y(), self.divergence_bound_m()) {
-            Err(diverged) => diverged,
-            Ok(()) => e,
-        }
-    }
-}
-
-/// How many times the model's deflection scale a mesh deflection may reach
-/// before the response counts as unbounded ([`Model::divergence_bound_m`]).
-pub const DIVERGENCE_FACTOR: f64 = 100.0;
+/// The model moved to [`crate::model`]; these names stay here so that
+/// `steady::Model` keeps meaning what it always did.
+pub use crate::model::{Model, DIVERGENCE_FACTOR};
 
 /// Impact regime of a steady response (Kahraman & Singh, 1990).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -398,35 +308,11 @@ impl SteadyState {
 }
 
 /// Largest orbit period tested.
-pub const MAX_PERIOD: usize = 32;
+pub const MAX_PERIOD: usize = crate::shooting::MAX_SHOOT_PERIOD as usize;
 
 /// Settle tolerance (um) for deflections spanning `span_um`.
 pub fn settle_tol_um(span_um: f64) -> f64 {
     1e-4 + 1e-5 * span_um
-}
-
-/// The integrator's tolerances for a run at `omega`: `atol_m` as a mesh
-/// deflection, scaled to each coordinate's length (and, for rates, by the
-/// larger of the mesh and reference frequencies); steps between
-/// `h_min_periods` and an eighth of a mesh period.
-pub(crate) fn tolerances(
-    sys: &crate::system::MeshSystem,
-    omega: f64,
-    rtol: f64,
-    atol_m: f64,
-    period: f64,
-    h_min_periods: f64,
-) -> Tolerances {
-    let lengths = sys.dof_length_m();
-    let v_scale = sys.omega_ref_rad_s * omega.max(1.0);
-    let mut atol: Vec<f64> = lengths.iter().map(|l| atol_m / l).collect();
-    atol.extend(lengths.iter().map(|l| atol_m / l * v_scale));
-    Tolerances {
-        rtol,
-        atol,
-        h_min: period * h_min_periods,
-        h_max: period / 8.0,
-    }
 }
 
 /// Runs one steady-state response from `start` (or the static equilibrium).
@@ -640,6 +526,9 @@ impl SteadyRun {
                     settled,
                 } => {
                     let (n, settled) = (*period, *settled);
+                    if steps >= max_steps {
+                        return Ok(None);
+                    }
                     let before = run.steps();
                     let out = run.advance(max_steps - steps.min(max_steps));
                     let taken = run.steps() - before;
@@ -963,297 +852,4 @@ impl SpanTracker {
         self.lo.fill(f64::INFINITY);
         self.hi.fill(f64::NEG_INFINITY);
     }
-}
-
-/// Accumulates the recorded window.
-#[derive(Debug, Clone)]
-struct Recorder {
-    n_mesh: usize,
-    t_rec: f64,
-    period: f64,
-    samples_per_period: u32,
-    total_samples: u64,
-    next_sample: u64,
-    prev: Vec<MeshInstant>,
-    cur: Vec<MeshInstant>,
-    d_min: Vec<f64>,
-    d_max: Vec<f64>,
-    x_min: Vec<f64>,
-    x_max: Vec<f64>,
-    f_min: Vec<f64>,
-    f_max: Vec<f64>,
-    sum: Vec<f64>,
-    sum_sq: Vec<f64>,
-    contact: Vec<[u64; 3]>,
-    n_samples: u64,
-    pc_delta: Vec<Vec<f64>>,
-    pc_vel: Vec<Vec<f64>>,
-    pc_points: Vec<Vec<f64>>,
-    history_meshes: Vec<usize>,
-    histories: Vec<MeshHistory>,
-    times: Vec<f64>,
-    ybuf: Vec<f64>,
-}
-
-impl Recorder {
-    fn new(
-        model: &Model,
-        ode: &MeshOde,
-        opts: &SteadyOptions,
-        t_rec: f64,
-        period: f64,
-        y: &[f64],
-    ) -> Self {
-        let n_mesh = model.system.meshes.len();
-        let history_meshes: Vec<usize> = opts
-            .history_meshes
-            .iter()
-            .copied()
-            .filter(|&j| j < n_mesh)
-            .collect();
-        let mut cur = Vec::with_capacity(n_mesh);
-        ode.mesh_instants(t_rec, y, &mut cur);
-        let total = if opts.samples_per_period > 0 {
-            u64::from(opts.samples_per_period) * u64::from(opts.record_periods)
-        } else {
-            0
-        };
-        let mut r = Recorder {
-            n_mesh,
-            t_rec,
-            period,
-            samples_per_period: opts.samples_per_period,
-            total_samples: total,
-            next_sample: 0,
-            prev: cur.clone(),
-            d_min: cur.iter().map(|m| m.delta).collect(),
-            d_max: cur.iter().map(|m| m.delta).collect(),
-            x_min: cur.iter().map(|m| m.rel).collect(),
-            x_max: cur.iter().map(|m| m.rel).collect(),
-            f_min: cur.iter().map(|m| m.force).collect(),
-            f_max: cur.iter().map(|m| m.force).collect(),
-            cur,
-            sum: vec![0.0; n_mesh],
-            sum_sq: vec![0.0; n_mesh],
-            contact: vec![[0; 3]; n_mesh],
-            n_samples: 0,
-            pc_delta: vec![Vec::new(); n_mesh],
-            pc_vel: vec![Vec::new(); n_mesh],
-            pc_points: Vec::new(),
-            histories: history_meshes
-                .iter()
-                .map(|&mesh| MeshHistory {
-                    mesh,
-                    delta_m: Vec::new(),
-                    velocity_m_s: Vec::new(),
-                    rel_m: Vec::new(),
-                    force_n: Vec::new(),
-                })
-                .collect(),
-            history_meshes,
-            times: Vec::new(),
-            ybuf: vec![0.0; y.len()],
-        };
-        if r.total_samples > 0 {
-            let inst = r.cur.clone();
-            r.sample(ode, t_rec, &inst);
-        }
-        r
-    }
-
-    fn sample(&mut self, ode: &MeshOde, t: f64, inst: &[MeshInstant]) {
-        for (j, mi) in inst.iter().enumerate() {
-            self.sum[j] += mi.delta;
-            self.sum_sq[j] += mi.delta * mi.delta;
-            let b = ode.backlash(j);
-            let c = if mi.rel > b {
-                0
-            } else if mi.rel < -b {
-                2
-            } else {
-                1
-            };
-            self.contact[j][c] += 1;
-            self.f_min[j] = min(self.f_min[j], mi.force);
-            self.f_max[j] = max(self.f_max[j], mi.force);
-        }
-        for h in &mut self.histories {
-            let mi = inst[h.mesh];
-            h.delta_m.push(mi.delta);
-            h.velocity_m_s.push(mi.delta_dot);
-            h.rel_m.push(mi.rel);
-            h.force_n.push(mi.force);
-        }
-        if !self.history_meshes.is_empty() {
-            self.times.push(t);
-        }
-        self.n_samples += 1;
-        self.next_sample += 1;
-    }
-
-    fn sample_time(&self, k: u64) -> f64 {
-        self.t_rec + self.period * (k as f64) / f64::from(self.samples_per_period)
-    }
-
-    fn on_step(&mut self, ode: &MeshOde, int: &Dopri5, info: StepInfo) {
-        std::mem::swap(&mut self.prev, &mut self.cur);
-        ode.mesh_instants(info.t1, int.y(), &mut self.cur);
-        let h = info.t1 - info.t0;
-        let mut ybuf = std::mem::take(&mut self.ybuf);
-        for j in 0..self.n_mesh {
-            let (a, b) = (self.prev[j], self.cur[j]);
-            self.d_min[j] = min(self.d_min[j], b.delta);
-            self.d_max[j] = max(self.d_max[j], b.delta);
-            self.x_min[j] = min(self.x_min[j], b.rel);
-            self.x_max[j] = max(self.x_max[j], b.rel);
-            self.f_min[j] = min(self.f_min[j], b.force);
-            self.f_max[j] = max(self.f_max[j], b.force);
-            // Interior extremum of delta or of x: the rate changes sign.
-            for rel in [false, true] {
-                let (v0, v1, r0, r1) = if rel {
-                    (a.rel, b.rel, a.rel_dot, b.rel_dot)
-                } else {
-                    (a.delta, b.delta, a.delta_dot, b.delta_dot)
-                };
-                if r0 * r1 < 0.0 {
-                    if let Some(theta) = hermite_extremum(v0, v1, r0 * h, r1 * h) {
-                        let t = info.t0 + theta * h;
-                        int.dense(t, &mut ybuf);
-                        let mi = ode.mesh_instant(j, t, &ybuf);
-                        let v = if rel { mi.rel } else { mi.delta };
-                        let (lo, hi) = if rel {
-                            (&mut self.x_min[j], &mut self.x_max[j])
-                        } else {
-                            (&mut self.d_min[j], &mut self.d_max[j])
-                        };
-                        *lo = min(*lo, v);
-                        *hi = max(*hi, v);
-                        self.f_min[j] = min(self.f_min[j], mi.force);
-                        self.f_max[j] = max(self.f_max[j], mi.force);
-                    }
-                }
-            }
-        }
-        let mut inst = Vec::new();
-        while self.next_sample < self.total_samples {
-            let ts = self.sample_time(self.next_sample);
-            if ts > info.t1 {
-                break;
-            }
-            int.dense(ts, &mut ybuf);
-            ode.mesh_instants(ts, &ybuf, &mut inst);
-            self.sample(ode, ts, &inst);
-        }
-        self.ybuf = ybuf;
-    }
-
-    fn on_period(&mut self, ode: &MeshOde, t: f64, y: &[f64], omega_rad_s: f64) {
-        for j in 0..self.n_mesh {
-            let mi = ode.mesh_instant(j, t, y);
-            self.pc_delta[j].push(mi.delta);
-            self.pc_vel[j].push(mi.delta_dot);
-        }
-        self.pc_points.push(poincare_point(ode, t, y, omega_rad_s));
-    }
-
-    fn finish(self, model: &Model) -> (Vec<MeshSteady>, Vec<MeshHistory>, Vec<f64>, Vec<Vec<f64>>) {
-        let ns = self.n_samples as f64;
-        let meshes = (0..self.n_mesh)
-            .map(|j| {
-                let fs = model.statics.mesh_force_n[j];
-                let b = model.system.meshes[j].backlash_m;
-                MeshSteady {
-                    delta_min_m: self.d_min[j],
-                    delta_max_m: self.d_max[j],
-                    delta_mean_m: if ns > 0.0 { self.sum[j] / ns } else { f64::NAN },
-                    delta_rms_m: if ns > 0.0 {
-                        (self.sum_sq[j] / ns).sqrt()
-                    } else {
-                        f64::NAN
-                    },
-                    rel_min_m: self.x_min[j],
-                    rel_max_m: self.x_max[j],
-                    force_max_n: self.f_max[j],
-                    force_min_n: self.f_min[j],
-                    static_force_n: fs,
-                    dynamic_factor: (fs.abs() > 1e-9).then(|| self.f_max[j] / fs),
-                    impact: Impact::classify(self.x_min[j], self.x_max[j], b),
-                    poincare_delta_m: self.pc_delta[j].clone(),
-                    poincare_velocity_m_s: self.pc_vel[j].clone(),
-                    contact_fraction: if ns > 0.0 {
-                        let c = self.contact[j];
-                        [c[0] as f64 / ns, c[1] as f64 / ns, c[2] as f64 / ns]
-                    } else {
-                        [0.0; 3]
-                    },
-                }
-            })
-            .collect();
-        (meshes, self.histories, self.times, self.pc_points)
-    }
-}
-
-/// Position in `(0, 1)` of the extremum of the cubic Hermite model with end
-/// values `v0`, `v1` and end slopes `s0`, `s1` (already times `h`) whose slopes
-/// have opposite signs: the root of the quadratic `p'` inside the step.
-fn hermite_extremum(v0: f64, v1: f64, s0: f64, s1: f64) -> Option<f64> {
-    let a = 6.0 * (v0 - v1) + 3.0 * (s0 + s1);
-    let b = -6.0 * (v0 - v1) - 4.0 * s0 - 2.0 * s1;
-    let c = s0;
-    let roots = if a.abs() <= 1e-14 * (b.abs() + c.abs()) {
-        [-c / b, f64::NAN]
-    } else {
-        let disc = max(b * b - 4.0 * a * c, 0.0);
-        let q = -0.5 * (b + b.signum() * disc.sqrt());
-        [q / a, if q != 0.0 { c / q } else { f64::NAN }]
-    };
-    // p' changes sign on [0, 1], so exactly one root (or three, counted
-    // with multiplicity) lies inside; take the one nearest the middle.
-    roots
-        .into_iter()
-        .filter(|t| t.is_finite() && (0.0..=1.0).contains(t))
-        .min_by(|x, y| (x - 0.5).abs().total_cmp(&(y - 0.5).abs()))
-}
-
-/// Amplitude spectrum of a signal sampled uniformly over whole periods.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Spectrum {
-    /// Frequency of each line in mesh orders (multiples of the mesh frequency).
-    pub order: Vec<f64>,
-    /// One-sided amplitude (a sinusoid of amplitude A gives A; the mean gives its value).
-    pub amplitude: Vec<f64>,
-}
-
-/// One-sided amplitude spectrum (rustfft) of `samples`, taken at
-/// `samples_per_period` per mesh period over `periods` periods, up to `max_order`.
-pub fn spectrum(
-    samples: &[f64],
-    samples_per_period: u32,
-    periods: u32,
-    max_order: f64,
-) -> Spectrum {
-    use rustfft::{num_complex::Complex, FftPlanner};
-    let n = samples.len();
-    if n < 2 {
-        return Spectrum {
-            order: Vec::new(),
-            amplitude: Vec::new(),
-        };
-    }
-    let mut buf: Vec<Complex<f64>> = samples.iter().map(|&x| Complex::new(x, 0.0)).collect();
-    FftPlanner::new().plan_fft_forward(n).process(&mut buf);
-    let per = f64::from(periods.max(1));
-    let nyquist = f64::from(samples_per_period) / 2.0;
-    let mut order = Vec::new();
-    let mut amplitude = Vec::new();
-    for (k, c) in buf.iter().enumerate().take(n / 2 + 1) {
-        let o = k as f64 / per;
-        if o > max_order.min(nyquist) {
-            break;
-        }
-        let scale = if k == 0 || 2 * k == n { 1.0 } else { 2.0 };
-        order.push(o);
-        amplitude.push(scale * c.norm() / n as f64);
-    }
-    Spectrum { order, amplitude }
 }

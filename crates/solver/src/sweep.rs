@@ -17,8 +17,7 @@
 //! follow a branch.
 
 use crate::error::{Result, SolverError};
-use crate::shooting::pipeline::Motion;
-use crate::steady::{Impact, Model, SteadyOptions, SteadyRun, SteadyState, SteadyStats};
+use crate::steady::{Impact, Model, Motion, SteadyOptions, SteadyRun, SteadyState, SteadyStats};
 
 /// Direction of one swept point.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

@@ -6,7 +6,7 @@
 //! where it leaves: through +1 a fold (or a branch point), through -1 a
 //! period doubling, as a complex pair a Neimark–Sacker bifurcation.
 
-use crate::hbm::Bifurcation;
+use crate::bifurcation::Bifurcation;
 use nalgebra::{Complex, DMatrix, DVector};
 
 /// How far outside the unit circle a multiplier may lie and the orbit still

@@ -18,7 +18,6 @@
 //! - [`newton`]: damped Newton with a backtracking line search, resumable
 //!   step by step ([`ShootRun`]), and the one-shot [`shoot`].
 //! - [`floquet`]: Floquet multipliers and how stability is lost.
-//! - [`pipeline`]: when a steady run shoots, for which period, and its verdict ([`pipeline::Motion`]).
 //! - [`continuation`]: pseudo-arclength continuation in Omega of period-n
 //!   orbits, with folds and period doublings located and period-doubled
 //!   branches followed.
@@ -26,7 +25,6 @@
 // continuation: added with the frequency response below.
 pub mod floquet;
 pub mod newton;
-pub mod pipeline;
 #[cfg(test)]
 mod tests;
 pub(crate) mod variational;

@@ -48,7 +48,7 @@ pub struct ShootOptions {
 }
 
 /// Largest orbit period shooting accepts (the same as the period detection's).
-pub const MAX_SHOOT_PERIOD: u32 = crate::steady::MAX_PERIOD as u32;
+pub const MAX_SHOOT_PERIOD: u32 = 32;
 
 impl ShootOptions {
     /// Defaults for a period-`period` orbit: 16 iterations, integrator at
@@ -211,7 +211,7 @@ impl ShootRun {
         let red = Reduced::new(model, omega);
         let ode = MeshOde::new(sys, red.omega_rad_s);
         let tol =
-            crate::steady::tolerances(sys, omega, opts.rtol, opts.atol_m, red.period_s, 1e-14);
+            crate::dynamics::tolerances(sys, omega, opts.rtol, opts.atol_m, red.period_s, 1e-14);
         let (z, rigid) = red.from_state(start);
         Ok(ShootRun {
             opts: opts.clone(),

@@ -139,7 +139,7 @@ fn monodromy_matches_finite_differences_of_the_map() {
         let y0 = steady_state(&m, &so, None).unwrap().end_state;
         let red = Reduced::new(&m, omega);
         let ode = crate::dynamics::MeshOde::new(&m.system, red.omega_rad_s);
-        let tol = crate::steady::tolerances(&m.system, omega, 1e-12, 1e-16, red.period_s, 1e-14);
+        let tol = crate::dynamics::tolerances(&m.system, omega, 1e-12, 1e-16, red.period_s, 1e-14);
         let (z0, rigid) = red.from_state(&y0);
         let eval = |z: &[f64], mono: bool| {
             let mut run = MapRun::new(&red, &ode, &tol, z, rigid, 2, mono, 1.0, u64::MAX);

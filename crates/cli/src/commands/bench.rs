@@ -15,6 +15,28 @@ use solver::sweep::{BifurcationSweep, SweepSpec};
 use solver::SolverError;
 use std::time::Instant;
 
+/// Options of `gearshock bench`.
+#[derive(Debug, clap::Args)]
+pub struct BenchArgs {
+    /// Repeats per figure.
+    #[arg(long, default_value_t = 5)]
+    repeats: u32,
+    /// Fewer points and periods (for smoke tests).
+    #[arg(long)]
+    quick: bool,
+}
+
+/// Checks the options, runs every benchmark and prints the figures.
+pub fn run_command(a: &BenchArgs) -> Result<(), crate::failure::Failure> {
+    if a.repeats == 0 || a.repeats > 100 {
+        return Err(crate::failure::usage(format!(
+            "--repeats {}: allowed 1 ..= 100",
+            a.repeats
+        )));
+    }
+    crate::output::emit(&run(a.repeats, a.quick)?)
+}
+
 fn median(mut xs: Vec<f64>) -> f64 {
     xs.sort_by(f64::total_cmp);
     let n = xs.len();

@@ -47,3 +47,8 @@ pub fn preset_json(p: &Preset) -> Value {
 pub fn all_json() -> Value {
     json!({ "presets": PRESETS.iter().map(preset_json).collect::<Vec<_>>() })
 }
+
+/// Prints the preset table.
+pub fn run() -> Result<(), crate::failure::Failure> {
+    crate::output::emit(&all_json())
+}

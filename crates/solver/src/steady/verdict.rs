@@ -1,7 +1,7 @@
 //! The steady-state pipeline's pieces that belong to shooting: when to try
 //! it, which period to try, its options, and the verdict a run ends with.
 //!
-//! A steady run ([`crate::steady::SteadyRun`]) integrates a short
+//! A steady run ([`super::SteadyRun`]) integrates a short
 //! transient; at the checkpoints [`CHECKPOINTS`] (and whenever the
 //! early-settle test fires) it reads a candidate period from its recent
 //! Poincaré points with a loose tolerance ([`candidate_period`]) and shoots
@@ -14,8 +14,8 @@
 //! window then decides ([`classify_recorded`]), and a failed attempt is
 //! said in the verdict's note, never shown as an orbit.
 
-use super::ShootOptions;
-use crate::steady::{settle_tol_um, MAX_PERIOD};
+use super::{settle_tol_um, MAX_PERIOD};
+use crate::shooting::ShootOptions;
 
 /// The transient periods after which a candidate period is looked for.
 pub const CHECKPOINTS: &[u32] = &[12, 24, 48, 96, 192, 384, 768, 1536, 3072, 6144];

@@ -18,7 +18,8 @@
 //! writes the same files as the unsharded run, byte for byte. Figs. 2 and 3
 //! are not sharded: each of their panels holds every member's branch.
 
-use crate::{progress, usage, Failure};
+use crate::failure::{usage, Failure};
+use crate::progress;
 use app::jobs::omega::{omega_result, OmegaJob};
 use app::presets::{preset, Preset};
 use app::protocol::RunOptions;
@@ -172,7 +173,7 @@ pub fn run(args: &FigureArgs) -> Result<Value, Failure> {
             ))
         }
         Some(text) => {
-            let (i, n) = crate::parse_shard(text)?;
+            let (i, n) = crate::args::parse_shard(text)?;
             if n as usize > members.len() {
                 return Err(usage(format!(
                     "--shard {text}: figure {} has {} members (one per panel), so at most {} shards",

@@ -1,0 +1,110 @@
+//! `gearshock bifurcation`: Poincaré samples over a sweep of Omega, in
+//! interleaved chains, optionally one shard of them.
+
+use crate::args::{meshes, parse_shard, stream_header, Format, ParamArgs, RunArgs};
+use crate::budget::{check_work, MAX_SAMPLES};
+use crate::csv;
+use crate::failure::{usage, Failure};
+use crate::output::output;
+use crate::sweep::{self, Lines};
+use clap::Args;
+use solver::keys;
+use solver::report;
+use solver::sweep::{canonical_order, BifurcationSweep, Directions, SweepSpec};
+
+/// Options of `gearshock bifurcation`.
+#[derive(Debug, Args)]
+pub struct BifurcationArgs {
+    #[command(flatten)]
+    p: ParamArgs,
+    /// First Omega.
+    #[arg(long, allow_hyphen_values = true)]
+    omega_from: f64,
+    /// Last Omega.
+    #[arg(long, allow_hyphen_values = true)]
+    omega_to: f64,
+    /// Number of Omega points.
+    #[arg(long, default_value_t = 200)]
+    points: u32,
+    /// Sweep direction: up, down or both (up then down).
+    #[arg(long, default_value = "up")]
+    direction: String,
+    #[command(flatten)]
+    run: RunArgs,
+    /// Mesh to report, or `all`.
+    #[arg(long)]
+    mesh: Option<String>,
+    /// Number of interleaved continuation chains (see the README).
+    #[arg(long)]
+    chains: Option<u32>,
+    /// Compute only shard i of n (every n-th point from i; implies --chains n).
+    #[arg(long, value_name = "i/n")]
+    shard: Option<String>,
+}
+
+/// Checks the options and the budget, runs the sweep and prints it.
+pub fn run(a: &BifurcationArgs) -> Result<(), Failure> {
+    let (params, model) = a.p.load()?;
+    let mut spec = SweepSpec::new(a.omega_from, a.omega_to, a.points);
+    a.run.apply(&mut spec.steady);
+    spec.directions = Directions::from_name(&a.direction).ok_or_else(|| {
+        usage(format!(
+            "--direction {}: allowed up, down, both",
+            keys::truncate(&a.direction, 20)
+        ))
+    })?;
+    spec.meshes = meshes(&model, a.mesh.as_deref())?;
+    if let Some(s) = &a.shard {
+        let (i, n) = parse_shard(s)?;
+        if let Some(c) = a.chains {
+            if c != n {
+                return Err(usage(format!(
+                    "--shard {s} needs --chains {n} (got --chains {c})"
+                )));
+            }
+        }
+        spec.chains = n;
+        spec.shard = Some(i);
+    } else if let Some(c) = a.chains {
+        spec.chains = c;
+    }
+    let mut bifurcation = BifurcationSweep::new(model.clone(), spec.clone())?;
+    let total = bifurcation.total() as u64;
+    let (transient, record) = (
+        u64::from(a.run.transient_periods),
+        u64::from(a.run.record_periods),
+    );
+    check_work(
+        total * (transient + record),
+        &format!(
+            "{total} points (--points over --direction and --shard) x (--transient-periods {transient} + --record-periods {record})"
+        ),
+        "split the sweep with --shard i/n",
+    )?;
+    let samples = total * spec.meshes.len() as u64 * record;
+    // Streamed points are not kept, so only the work is capped then.
+    if samples > MAX_SAMPLES && a.p.format != Format::Jsonl {
+        return Err(usage(format!(
+            "{total} points x {} meshes (--mesh) x --record-periods {record} = {samples} Poincaré samples \
+             is more than the {} one command may keep: use fewer points, meshes or recorded periods, \
+             stream them with --format jsonl, or split the sweep with --shard i/n",
+            spec.meshes.len(),
+            MAX_SAMPLES
+        )));
+    }
+    let lines = Lines {
+        header: stream_header(
+            &model,
+            &params,
+            Some(report::sweep_spec_json(&model, &spec)),
+        ),
+        line: &|pt| report::sweep_point_json(&model, pt),
+        count: "points",
+    };
+    let Some(mut pts) = sweep::run(&mut bifurcation, &a.p, "points", Some(lines))? else {
+        return Ok(());
+    };
+    canonical_order(&mut pts);
+    let value = report::sweep_json(&model, &params, &spec, &pts);
+    output(a.p.format, &value, csv::sweep)
+}

@@ -1,0 +1,151 @@
+//! `gearshock frf`: the frequency response by harmonic balance with
+//! arclength continuation. A solver failure still writes the branch up to
+//! there, marked incomplete, and exits with code 1.
+
+use crate::args::{meshes, ParamArgs};
+use crate::budget::MAX_FRF_WORK;
+use crate::csv;
+use crate::failure::{usage, Failure};
+use crate::output::output;
+use crate::sweep::{self, Sweep};
+use clap::Args;
+use solver::hbm::{BranchPoint, FrfContinuation, FrfSpec, Method};
+use solver::keys;
+use solver::report;
+use solver::sweep::Direction;
+use solver::SolverError;
+
+/// Options of `gearshock frf`.
+#[derive(Debug, Args)]
+pub struct FrfArgs {
+    #[command(flatten)]
+    p: ParamArgs,
+    /// First Omega.
+    #[arg(long, allow_hyphen_values = true)]
+    omega_from: f64,
+    /// Last Omega.
+    #[arg(long, allow_hyphen_values = true)]
+    omega_to: f64,
+    /// Nominal points: the largest continuation step is range / points.
+    #[arg(long, default_value_t = 400)]
+    points: u32,
+    /// Harmonics H (1 ..= 40).
+    #[arg(long, default_value_t = 7)]
+    harmonics: usize,
+    /// aft (time grid, any H), exact (closed-form integration between the
+    /// contact switches, any H) or describing-function (the seed's Eqs. 9-13, H = 1).
+    #[arg(long, default_value = "exact")]
+    method: String,
+    /// Continue up from --omega-from or down from --omega-to.
+    #[arg(long, default_value = "up")]
+    direction: String,
+    /// AFT time-grid size (default: max(64 H, 256) rounded up to a power of two).
+    #[arg(long)]
+    grid: Option<usize>,
+    /// Skip the Floquet stability of each point.
+    #[arg(long)]
+    no_stability: bool,
+    /// Mesh to report, or `all`.
+    #[arg(long)]
+    mesh: Option<String>,
+}
+
+/// The continuation as a sweep of per mille of the Omega range; a failure
+/// ends it and is kept, so the branch up to there is still written.
+struct Branch {
+    c: FrfContinuation,
+    failure: Option<SolverError>,
+    per_mille: usize,
+}
+
+impl Sweep for Branch {
+    type Item = BranchPoint;
+    fn total(&self) -> usize {
+        1000
+    }
+    fn done(&self) -> usize {
+        self.per_mille
+    }
+    fn is_finished(&self) -> bool {
+        self.failure.is_some() || self.c.is_finished()
+    }
+    fn advance(&mut self) -> Result<Vec<BranchPoint>, Failure> {
+        match self.c.advance(16) {
+            Ok(points) => {
+                self.per_mille = (self.c.progress() * 1000.0) as usize;
+                Ok(points)
+            }
+            Err(e) => {
+                self.failure = Some(e);
+                Ok(Vec::new())
+            }
+        }
+    }
+}
+
+/// Checks the options and the budget, follows the branch and prints it.
+pub fn run(a: &FrfArgs) -> Result<(), Failure> {
+    let (params, model) = a.p.load()?;
+    let mut spec = FrfSpec::new(a.omega_from, a.omega_to, a.points);
+    spec.harmonics = a.harmonics;
+    spec.method = Method::from_name(&a.method).ok_or_else(|| {
+        usage(format!(
+            "--method {}: allowed aft, exact, describing-function",
+            keys::truncate(&a.method, 30)
+        ))
+    })?;
+    spec.direction = Direction::from_name(&a.direction).ok_or_else(|| {
+        usage(format!(
+            "--direction {}: allowed up, down",
+            keys::truncate(&a.direction, 20)
+        ))
+    })?;
+    spec.grid = a.grid;
+    spec.stability = !a.no_stability;
+    let meshes = meshes(&model, a.mesh.as_deref())?;
+    // Larger H is refused by the solver's own check, naming it.
+    let (points, harmonics) = (a.points, a.harmonics);
+    if harmonics <= 40 {
+        let work = u64::from(points) * (2 * harmonics as u64 + 1).pow(3);
+        if work > MAX_FRF_WORK {
+            return Err(usage(format!(
+                "--points {points} x (2 x --harmonics {harmonics} + 1)^3 = {work} is more than the {} \
+                 one frequency response may take: use fewer points or harmonics",
+                MAX_FRF_WORK
+            )));
+        }
+    }
+    let mut branch = Branch {
+        c: FrfContinuation::new(&model, spec)?,
+        failure: None,
+        per_mille: 0,
+    };
+    let points = sweep::run(&mut branch, &a.p, "per mille of the range", None)?.unwrap_or_default();
+    let Branch { c, failure, .. } = branch;
+    let value = report::frf_json(&model, &params, &c, &points, &meshes, failure.as_ref());
+    output(a.p.format, &value, csv::frf)?;
+    // Restarts and left-out gaps are in the JSON; say them here too.
+    for n in c.notes() {
+        eprintln!("gearshock: note: {n}");
+    }
+    if failure.is_none() && c.left_at_start() {
+        eprintln!(
+            "gearshock: note: the branch turned back at a fold and left the range at its start; \
+             continue from the other end with --direction {} to see the rest",
+            if c.spec().direction == Direction::Up {
+                "down"
+            } else {
+                "up"
+            }
+        );
+    }
+    match failure {
+        // The partial branch is written (marked `complete: false`),
+        // and the failure is reported with exit code 1.
+        Some(e) => Err(Failure {
+            code: 1,
+            message: format!("{e} (the branch up to there was written, marked incomplete)"),
+        }),
+        None => Ok(()),
+    }
+}

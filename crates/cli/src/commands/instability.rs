@@ -1,0 +1,60 @@
+//! `gearshock instability`: the Floquet spectral radius of the fully
+//! engaged linear system over Omega, and its unstable bands.
+
+use crate::args::{omega_grid, stream_header, ParamArgs};
+use crate::csv;
+use crate::failure::Failure;
+use crate::output::output;
+use crate::sweep::{self, Lines, Points};
+use clap::Args;
+use solver::parametric::Parametric;
+use solver::report;
+
+/// Options of `gearshock instability`.
+#[derive(Debug, Args)]
+pub struct InstabilityArgs {
+    #[command(flatten)]
+    p: ParamArgs,
+    /// First Omega.
+    #[arg(long, allow_hyphen_values = true)]
+    omega_from: f64,
+    /// Last Omega.
+    #[arg(long, allow_hyphen_values = true)]
+    omega_to: f64,
+    /// Number of Omega points.
+    #[arg(long, default_value_t = 200)]
+    points: u32,
+}
+
+/// Scans Omega, says the unstable bands on stderr and prints the points.
+pub fn run(a: &InstabilityArgs) -> Result<(), Failure> {
+    let (params, model) = a.p.load()?;
+    let omegas = omega_grid(a.omega_from, a.omega_to, a.points, 100_000)?;
+    let engaged = Parametric::new(&model)?;
+    let lines = Lines {
+        header: stream_header(&model, &params, None),
+        line: &report::instability_point_json,
+        count: "points",
+    };
+    let mut scan = Points::new(omegas, |omega| Ok(engaged.at(omega)?));
+    let kept = sweep::run(&mut scan, &a.p, "points", Some(lines))?;
+    let out = kept.as_deref().unwrap_or_default();
+    let bands = report::instability_bands(out);
+    let text: Vec<String> = bands
+        .iter()
+        .map(|(a, b)| format!("Omega {a:.4} to {b:.4}"))
+        .collect();
+    eprintln!(
+        "gearshock: unstable bands of the engaged system: {}",
+        if text.is_empty() {
+            "none in the scanned range".to_string()
+        } else {
+            text.join(", ")
+        }
+    );
+    if kept.is_none() {
+        return Ok(());
+    }
+    let value = report::instability_json(&model, &params, out);
+    output(a.p.format, &value, csv::instability)
+}

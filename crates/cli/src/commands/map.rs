@@ -1,0 +1,87 @@
+//! `gearshock map`: the impact-regime map over Omega (columns) and any
+//! numeric key (rows), optionally one shard of its rows.
+
+use crate::args::{mesh_index, parse_shard, stream_header, ParamArgs, RunArgs};
+use crate::budget::check_work;
+use crate::csv;
+use crate::failure::Failure;
+use crate::output::output;
+use crate::sweep::{self, Lines};
+use clap::Args;
+use solver::map::{MapSpec, RegimeMap};
+use solver::report;
+
+/// Options of `gearshock map`.
+#[derive(Debug, Args)]
+pub struct MapArgs {
+    #[command(flatten)]
+    p: ParamArgs,
+    /// First Omega.
+    #[arg(long, allow_hyphen_values = true)]
+    omega_from: f64,
+    /// Last Omega.
+    #[arg(long, allow_hyphen_values = true)]
+    omega_to: f64,
+    /// Number of Omega columns.
+    #[arg(long, default_value_t = 100)]
+    omega_points: u32,
+    /// The row parameter: any numeric key (e.g. backlash_um, te_um).
+    #[arg(long, default_value = "backlash_um")]
+    key: String,
+    /// First value of the row parameter.
+    #[arg(long, allow_hyphen_values = true)]
+    value_from: f64,
+    /// Last value of the row parameter.
+    #[arg(long, allow_hyphen_values = true)]
+    value_to: f64,
+    /// Number of rows.
+    #[arg(long, default_value_t = 40)]
+    value_points: u32,
+    #[command(flatten)]
+    run: RunArgs,
+    /// Mesh whose regime is mapped (default: the worst over all meshes).
+    #[arg(long)]
+    mesh: Option<String>,
+    /// Compute only shard i of n (rows i, i + n, ...).
+    #[arg(long, value_name = "i/n")]
+    shard: Option<String>,
+}
+
+/// Checks the options and the budget, computes the map and prints it.
+pub fn run(a: &MapArgs) -> Result<(), Failure> {
+    let (params, model) = a.p.load()?;
+    // `+ 0.0` turns a typed -0 into 0, so the echoed spec reads 0.
+    let mut spec = MapSpec::new(
+        (a.omega_from, a.omega_to, a.omega_points),
+        &a.key,
+        (a.value_from + 0.0, a.value_to + 0.0, a.value_points),
+    );
+    a.run.apply(&mut spec.steady);
+    spec.mesh = match a.mesh.as_deref() {
+        None | Some("worst") => None,
+        other => Some(mesh_index(&model, other)?),
+    };
+    if let Some(s) = &a.shard {
+        spec.shard = Some(parse_shard(s)?);
+    }
+    let mut map = RegimeMap::new(&params, spec.clone())?;
+    let total = map.total() as u64;
+    let (transient, record) = (a.run.transient_periods, a.run.record_periods);
+    check_work(
+        total * (u64::from(transient) + u64::from(record)),
+        &format!(
+            "{total} cells (--omega-points x --value-points over --shard) x (--transient-periods {transient} + --record-periods {record})"
+        ),
+        "split the map with --shard i/n",
+    )?;
+    let lines = Lines {
+        header: stream_header(&model, &params, Some(report::map_spec_json(&model, &spec))),
+        line: &report::map_cell_json,
+        count: "cells",
+    };
+    let Some(cells) = sweep::run(&mut map, &a.p, "cells", Some(lines))? else {
+        return Ok(());
+    };
+    let value = report::map_json(&model, &params, &spec, &cells);
+    output(a.p.format, &value, csv::map)
+}

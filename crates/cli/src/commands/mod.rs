@@ -1,0 +1,93 @@
+//! The subcommands, one module each: its options (a clap `Args` struct) and
+//! its `run`. The sweeps share [`crate::sweep::run`]; every command writes
+//! through [`crate::output`].
+
+mod bench;
+mod bifurcation;
+mod figure;
+mod frf;
+mod instability;
+mod keys;
+mod lyapunov;
+mod map;
+mod merge;
+mod modes;
+mod params;
+mod presets;
+mod simulate;
+
+use crate::args::ParamArgs;
+use crate::failure::Failure;
+use clap::Subcommand;
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Print the full parameter set (defaults plus --params/--set) as JSON.
+    #[command(allow_negative_numbers = true)]
+    Params {
+        #[command(flatten)]
+        p: ParamArgs,
+    },
+    /// List every parameter key with unit, range and meaning.
+    #[command(allow_negative_numbers = true)]
+    Keys(keys::KeysArgs),
+    /// Static equilibrium, mesh forces and natural modes.
+    #[command(allow_negative_numbers = true)]
+    Modes {
+        #[command(flatten)]
+        p: ParamArgs,
+    },
+    /// Steady-state response at one dimensionless mesh frequency.
+    #[command(allow_negative_numbers = true)]
+    Simulate(simulate::SimulateArgs),
+    /// Bifurcation diagram: Poincaré samples over a sweep of Omega.
+    #[command(allow_negative_numbers = true)]
+    Bifurcation(bifurcation::BifurcationArgs),
+    /// Frequency response by harmonic balance with arclength continuation.
+    #[command(allow_negative_numbers = true)]
+    Frf(frf::FrfArgs),
+    /// Impact-regime map over Omega (columns) and a parameter (rows).
+    #[command(allow_negative_numbers = true)]
+    Map(map::MapArgs),
+    /// Largest Lyapunov exponent of the Poincaré map over a sweep of Omega.
+    #[command(allow_negative_numbers = true)]
+    Lyapunov(lyapunov::LyapunovArgs),
+    /// Parametric instability over Omega: the Floquet spectral radius of the
+    /// linear system with every tooth pair in contact (above 1, motion large
+    /// against the backlash grows without bound).
+    #[command(allow_negative_numbers = true)]
+    Instability(instability::InstabilityArgs),
+    /// Join the JSON outputs of all shards of one sweep.
+    #[command(allow_negative_numbers = true)]
+    Merge(merge::MergeArgs),
+    /// Print every preset (the paper's figures as settings) as JSON.
+    Presets,
+    /// Compute every panel of one of the paper's figures: SVG, JSON, CSV per panel.
+    Figure {
+        #[command(flatten)]
+        args: figure::FigureArgs,
+    },
+    /// Measure the solver's speed (medians over repeats).
+    #[command(allow_negative_numbers = true)]
+    Bench(bench::BenchArgs),
+}
+
+/// Runs one subcommand.
+pub fn run(command: Command) -> Result<(), Failure> {
+    match command {
+        Command::Params { p } => params::run(&p),
+        Command::Keys(a) => keys::run(&a),
+        Command::Modes { p } => modes::run(&p),
+        Command::Simulate(a) => simulate::run(&a),
+        Command::Bifurcation(a) => bifurcation::run(&a),
+        Command::Frf(a) => frf::run(&a),
+        Command::Map(a) => map::run(&a),
+        Command::Lyapunov(a) => lyapunov::run(&a),
+        Command::Instability(a) => instability::run(&a),
+        Command::Merge(a) => merge::run(&a),
+        Command::Presets => presets::run(),
+        Command::Figure { args } => crate::output::emit(&figure::run(&args)?),
+        Command::Bench(a) => bench::run_command(&a),
+    }
+}

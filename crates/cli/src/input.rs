@@ -1,0 +1,81 @@
+//! Input files read through a size limit, so that no input (`/dev/zero`,
+//! a forged file) can grow memory without bound.
+
+use crate::failure::{usage, Failure};
+use serde_json::Value;
+use std::io::Read;
+
+/// Largest `--params` file (bytes): a parameter set is a few kB.
+pub const MAX_PARAMS_BYTES: u64 = 1 << 20;
+/// Largest shard file `merge` reads (bytes).
+pub const MAX_SHARD_BYTES: u64 = 256 << 20;
+/// Largest total of the files `merge` reads (bytes): parsed JSON takes
+/// several times its text in memory.
+pub const MAX_MERGE_BYTES: u64 = 1 << 30;
+
+/// A reader that fails once more than its limit has been read, so that no
+/// input (`/dev/zero`, a forged file) can grow memory without bound.
+struct Limited<R> {
+    inner: R,
+    left: u64,
+}
+
+impl<R: Read> Read for Limited<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        // Read one byte past the limit to tell "exactly the limit" from "more".
+        let want = buf
+            .len()
+            .min(usize::try_from(self.left.saturating_add(1)).unwrap_or(usize::MAX));
+        let n = self.inner.read(&mut buf[..want])?;
+        if n as u64 > self.left {
+            return Err(std::io::Error::other("over the size limit"));
+        }
+        self.left -= n as u64;
+        Ok(n)
+    }
+}
+
+/// Describes a size in words (e.g. "1 MiB").
+pub fn bytes_text(n: u64) -> String {
+    if n >= 1 << 30 && n.is_multiple_of(1 << 30) {
+        format!("{} GiB", n >> 30)
+    } else if n >= 1 << 20 && n.is_multiple_of(1 << 20) {
+        format!("{} MiB", n >> 20)
+    } else {
+        format!("{n} bytes")
+    }
+}
+
+/// Reads and parses a JSON file of at most `limit` bytes, returning the
+/// value and the bytes read; the failure names `what` (the flag or
+/// command), the file and `limit_text` (what the limit is).
+pub fn read_json(
+    path: &std::path::Path,
+    limit: u64,
+    what: &str,
+    limit_text: &str,
+) -> Result<(Value, u64), Failure> {
+    let shown = path.display();
+    let too_large = || usage(format!("{what} {shown}: larger than {limit_text}"));
+    let file = std::fs::File::open(path).map_err(|e| usage(format!("{what} {shown}: {e}")))?;
+    if file
+        .metadata()
+        .is_ok_and(|m| m.is_file() && m.len() > limit)
+    {
+        return Err(too_large());
+    }
+    let mut reader = Limited {
+        inner: std::io::BufReader::new(file),
+        left: limit,
+    };
+    let value = serde_json::from_reader(&mut reader).map_err(|e| {
+        if e.is_io() && e.to_string().contains("over the size limit") {
+            too_large()
+        } else if e.is_io() {
+            usage(format!("{what} {shown}: {e}"))
+        } else {
+            usage(format!("{what} {shown}: not JSON: {e}"))
+        }
+    })?;
+    Ok((value, limit - reader.left))
+}

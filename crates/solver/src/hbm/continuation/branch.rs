@@ -1,0 +1,285 @@
+//! What a continuation is asked for (`FrfSpec`) and what it returns: branch
+//! points with their meshes, how each piece ended, the restarts, the work
+//! done and the parts of the range left out.
+
+use super::super::assembly::Method;
+use crate::error::{Result, SolverError};
+use crate::steady::Impact;
+use crate::sweep::Direction;
+use nalgebra::Complex;
+
+pub use crate::bifurcation::Bifurcation;
+
+/// Options of a frequency-response computation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FrfSpec {
+    /// Start of the Omega range.
+    pub omega_from: f64,
+    /// End of the Omega range.
+    pub omega_to: f64,
+    /// Resolution: a step moves Omega by at most `range / points` (with
+    /// [`StepControl::Iterations`], the largest arclength step is
+    /// `1 / points` in the continuation's metric).
+    pub points: u32,
+    /// Continue upward from `omega_from` or downward from `omega_to`.
+    pub direction: Direction,
+    /// Number of harmonics H.
+    pub harmonics: usize,
+    /// AFT or the seed's describing function.
+    pub method: Method,
+    /// AFT grid size (default [`harmonic::Grid::default_size`]).
+    pub grid: Option<usize>,
+    /// Compute Floquet stability at every point.
+    pub stability: bool,
+    /// Use the cyclic-symmetry reduction when the planets allow it.
+    pub symmetric: bool,
+    /// How the continuation chooses its step.
+    pub step_control: StepControl,
+}
+
+/// The continuation's step-length control.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StepControl {
+    /// From the curve's geometry (the predictor-corrector distance and the
+    /// tangent's turn), folds located by regula falsi; the default.
+    Geometry,
+    /// From the corrector's iteration count with the arclength step capped
+    /// at `1 / points`, folds labelled on the point after them: the control
+    /// before issue 14, kept for the benchmark's before/after comparison.
+    Iterations,
+}
+
+impl FrfSpec {
+    /// Defaults: H = 5 with the exact method, stability on, symmetric
+    /// reduction on, up.
+    pub fn new(omega_from: f64, omega_to: f64, points: u32) -> Self {
+        FrfSpec {
+            omega_from,
+            omega_to,
+            points,
+            direction: Direction::Up,
+            harmonics: 5,
+            method: Method::Exact,
+            grid: None,
+            stability: true,
+            symmetric: true,
+            step_control: StepControl::Geometry,
+        }
+    }
+
+    /// Checks the options.
+    pub fn validate(&self) -> Result<()> {
+        let bad = |option: &str, value: String, allowed: &str| {
+            SolverError::bad_option(option, value, allowed)
+        };
+        for (name, v) in [("omega-from", self.omega_from), ("omega-to", self.omega_to)] {
+            if !(v.is_finite() && (0.01..=20.0).contains(&v)) {
+                return bad(name, format!("{v}"), "0.01 ..= 20");
+            }
+        }
+        if self.omega_to <= self.omega_from {
+            return bad("omega-to", format!("{}", self.omega_to), "> omega-from");
+        }
+        if self.points < 2 || self.points > 100_000 {
+            return bad("points", self.points.to_string(), "2 ..= 100000");
+        }
+        if self.harmonics == 0 || self.harmonics > 40 {
+            return bad("harmonics", self.harmonics.to_string(), "1 ..= 40");
+        }
+        if self.method == Method::DescribingFunction && self.harmonics != 1 {
+            return bad(
+                "harmonics",
+                self.harmonics.to_string(),
+                "1 with the describing-function method",
+            );
+        }
+        if let Some(n) = self.grid {
+            if n <= 4 * self.harmonics || n > 1 << 16 {
+                return bad("grid", n.to_string(), "4 H + 1 ..= 65536");
+            }
+        }
+        Ok(())
+    }
+}
+
+/// One mesh on a branch point, reconstructed from the harmonics.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BranchMesh {
+    /// Largest deflection delta (m).
+    pub delta_max_m: f64,
+    /// Smallest deflection delta (m).
+    pub delta_min_m: f64,
+    /// Half the peak-to-peak deflection (m).
+    pub delta_amplitude_m: f64,
+    /// Mean (index 0) and amplitude of harmonics 1..=H of delta (m).
+    pub harmonics_m: Vec<f64>,
+    /// Smallest relative displacement delta - e (m).
+    pub rel_min_m: f64,
+    /// Largest relative displacement delta - e (m).
+    pub rel_max_m: f64,
+    /// Contact regime of the reconstructed orbit.
+    pub impact: Impact,
+}
+
+/// One point of a branch.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BranchPoint {
+    /// Dimensionless frequency.
+    pub omega: f64,
+    /// Every physical mesh, in the system's order.
+    pub meshes: Vec<BranchMesh>,
+    /// Stability (None if not computed or the eigenvalues failed).
+    pub stable: Option<bool>,
+    /// Floquet multipliers (empty if not computed).
+    pub multipliers: Vec<Complex<f64>>,
+    /// A bifurcation detected between the previous point and this one.
+    pub bifurcation: Option<Bifurcation>,
+    /// Newton iterations spent on this point.
+    pub newton_iterations: usize,
+    /// The solution's coefficients (scaled units; for continuation and checks).
+    pub coefficients: Vec<f64>,
+    /// The piece of the branch this point belongs to: 0, then one more at
+    /// every automatic restart (a curve through the points is broken
+    /// between pieces).
+    pub piece: u32,
+}
+
+/// Why a piece of the branch ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PieceEnd {
+    /// It left the range through the far end.
+    Reached,
+    /// It turned back at a fold and left the range through the end it
+    /// started from.
+    TurnedBack,
+    /// The response grew without bound: the periodic solution passes through
+    /// infinity (a multiplier of the orbit's linearization at +1, such as the
+    /// edge of a parametric resonance of the linear mesh).
+    Diverged,
+    /// It made no progress in Omega over many points (a tangle of close folds).
+    Stalled,
+    /// The corrector failed at the smallest step.
+    Failed,
+}
+
+impl PieceEnd {
+    /// Name for output.
+    pub fn name(self) -> &'static str {
+        match self {
+            PieceEnd::Reached => "reached-end",
+            PieceEnd::TurnedBack => "turned-back",
+            PieceEnd::Diverged => "diverged",
+            PieceEnd::Stalled => "stalled",
+            PieceEnd::Failed => "corrector-failed",
+        }
+    }
+}
+
+/// An automatic restart of the continuation: where and why the previous
+/// piece ended and where the next one started.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Restart {
+    /// Index of the new piece (1, 2, ...).
+    pub piece: u32,
+    /// Why the previous piece ended.
+    pub reason: PieceEnd,
+    /// Omega where the previous piece ended.
+    pub stopped_at: f64,
+    /// Omega where the new piece started.
+    pub start_omega: f64,
+    /// Direction of the new piece.
+    pub direction: Direction,
+}
+
+impl Restart {
+    /// A plain sentence for the user.
+    pub fn note(&self) -> String {
+        let why = match self.reason {
+            PieceEnd::Reached => "ended".to_string(),
+            PieceEnd::TurnedBack => format!(
+                "turned back at a fold and left the range at Omega {:.4}",
+                self.stopped_at
+            ),
+            PieceEnd::Diverged => format!(
+                "grew without bound near Omega {:.4} (the periodic response has a pole there)",
+                self.stopped_at
+            ),
+            PieceEnd::Stalled => format!(
+                "wound through many close folds near Omega {:.4} without progress",
+                self.stopped_at
+            ),
+            PieceEnd::Failed => format!("could not be corrected at Omega {:.4}", self.stopped_at),
+        };
+        let dir = match self.direction {
+            Direction::Up => "upward",
+            Direction::Down => "downward",
+        };
+        format!(
+            "The branch {why}; it was restarted at Omega {:.4}, {dir} (piece {} of the curve).",
+            self.start_omega,
+            self.piece + 1
+        )
+    }
+}
+
+/// Work counters of a continuation.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct FrfStats {
+    /// Points on the branch.
+    pub points: u64,
+    /// Newton iterations.
+    pub newton_iterations: u64,
+    /// Rejected continuation steps.
+    pub rejected_steps: u64,
+    /// Residual and Jacobian evaluations.
+    pub jacobians: u64,
+}
+/// A part of the Omega range left out of the branch, reported.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LeftOut {
+    /// Lower Omega.
+    pub from: f64,
+    /// Upper Omega.
+    pub to: f64,
+    /// Why.
+    pub reason: LeftOutReason,
+}
+
+/// Why a part of the range has no branch points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LeftOutReason {
+    /// The response grows without bound from both sides (a pole of the
+    /// periodic solution), and a start inside is beyond the divergence bound.
+    Unbounded,
+    /// Pieces from both sides wound through many close folds there and a
+    /// start inside did not get across either.
+    Tangle,
+}
+
+impl LeftOut {
+    /// A plain sentence for the user.
+    pub fn note(&self) -> String {
+        match self.reason {
+            LeftOutReason::Unbounded => format!(
+                "Between Omega {:.5} and {:.5} the periodic response is unbounded \
+                 (it grows without bound from both sides): no point is drawn there.",
+                self.from, self.to
+            ),
+            LeftOutReason::Tangle => format!(
+                "Between Omega {:.5} and {:.5} the branch winds through many close folds \
+                 (a strongly impacting response, which a few harmonics resolve poorly) and \
+                 was not followed across: no point is drawn there; time integration shows \
+                 the motion.",
+                self.from, self.to
+            ),
+        }
+    }
+
+    /// Name of the reason for output.
+    pub fn reason_name(&self) -> &'static str {
+        match self.reason {
+            LeftOutReason::Unbounded => "unbounded",
+            LeftOutReason::Tangle => "tangle",
+        }
+    }
+}

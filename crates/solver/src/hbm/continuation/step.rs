@@ -1,0 +1,343 @@
+//! One continuation step: tangent predictor, bordered Newton corrector,
+//! step control from the curve's geometry, fold location.
+
+use super::*;
+
+impl FrfContinuation {
+    /// Weights of the arclength metric: Omega in units of the range, the
+    /// coefficients in units of `scale` (RMS over coefficients).
+    pub(super) fn metric(&self, i: usize) -> f64 {
+        if i == self.n_x() {
+            let range = self.spec.omega_to - self.spec.omega_from;
+            1.0 / (range * range)
+        } else {
+            1.0 / (self.scale * self.scale * self.n_x() as f64)
+        }
+    }
+
+    /// Grows the amplitude scale of the metric with the largest response seen
+    /// (three times its RMS harmonic coefficient, at least 1 um), so that a
+    /// resonance peak costs a bounded number of steps whatever its height.
+    pub(super) fn update_scale(&mut self) {
+        let m = self.asm.model.m;
+        let nx = self.n_x();
+        let amp = 3.0 * rms(&self.y[m..nx]);
+        if self.spec.step_control == StepControl::Geometry {
+            self.scale = amp.max(1.0);
+            self.normalize_tangent();
+        } else if amp > self.scale {
+            self.scale = amp;
+            self.normalize_tangent();
+        }
+    }
+
+    pub(super) fn normalize_tangent(&mut self) {
+        let norm: f64 = (0..self.tangent.len())
+            .map(|i| self.metric(i) * self.tangent[i] * self.tangent[i])
+            .sum::<f64>()
+            .sqrt();
+        for t in &mut self.tangent {
+            *t /= norm;
+        }
+    }
+
+    /// One predictor-corrector step; `None` when the branch has left the range.
+    ///
+    /// The step length follows the curve's geometry: after a converged
+    /// corrector, the distance from the predictor to the solution (`d`, in
+    /// the arclength metric) and the angle between the old and new tangents
+    /// (`alpha`) give the factor `f = max(sqrt(d / D_NOM), alpha / ALPHA_NOM)`
+    /// by which the step overshot its nominal size (the distance grows as the
+    /// square of the step, the angle linearly). `f > 2` rejects the step
+    /// and retries with `ds / f`; otherwise the next step is `ds / f`,
+    /// growing by at most 2. The step is also capped so that Omega moves by
+    /// at most `range / points`.
+    pub(super) fn step(&mut self) -> Result<()> {
+        let nx = self.n_x();
+        let n = nx + 1;
+        let omega_now = self.y[nx];
+        let ds_min = 1e-5 * self.ds_max;
+        loop {
+            let t_om = self.tangent[nx];
+            let end = match self.dir {
+                Direction::Up => self.spec.omega_to,
+                Direction::Down => self.spec.omega_from,
+            };
+            // At most `range / points` in Omega per step.
+            let range = self.spec.omega_to - self.spec.omega_from;
+            let mut ds = match self.spec.step_control {
+                StepControl::Geometry => {
+                    let omega_cap = range / f64::from(self.spec.points) / t_om.abs().max(1e-300);
+                    self.ds.min(omega_cap).min(DS_CAP).max(ds_min)
+                }
+                StepControl::Iterations => self.ds,
+            };
+            // Land on the end of the range instead of overshooting it.
+            let mut landing = false;
+            if t_om != 0.0 {
+                let to_end = (end - omega_now) / t_om;
+                if to_end > 0.0 && to_end <= ds {
+                    ds = to_end;
+                    landing = true;
+                }
+            }
+            let pred: Vec<f64> = (0..n).map(|i| self.y[i] + ds * self.tangent[i]).collect();
+            if landing {
+                // The last point sits exactly on the end of the range: a
+                // natural-parameter Newton at Omega = end from the predictor.
+                let mut x = pred[..nx].to_vec();
+                let mut stats = self.stats;
+                if let Ok(iterations) = newton_fixed(&mut self.asm, &mut x, end, &mut stats) {
+                    self.stats = stats;
+                    self.y[..nx].copy_from_slice(&x);
+                    self.y[nx] = end;
+                    return self.finish_piece(iterations, None, PieceEnd::Reached);
+                }
+            }
+            match self.correct(&pred) {
+                Ok((y_new, t_new, iterations)) => {
+                    let cos: f64 = (0..n)
+                        .map(|i| self.metric(i) * t_new[i] * self.tangent[i])
+                        .sum();
+                    let alpha = cos.clamp(-1.0, 1.0).acos();
+                    let dist = (0..n)
+                        .map(|i| self.metric(i) * (y_new[i] - pred[i]).powi(2))
+                        .sum::<f64>()
+                        .sqrt();
+                    let geometry = self.spec.step_control == StepControl::Geometry;
+                    if geometry {
+                        let f = (dist / D_NOM).sqrt().max(alpha / ALPHA_NOM).max(0.5);
+                        if f > 2.0 && ds > ds_min {
+                            self.stats.rejected_steps += 1;
+                            self.ds = (ds / f.min(4.0)).max(ds_min);
+                            continue;
+                        }
+                        self.ds = (ds / f).clamp(ds_min, DS_CAP);
+                    } else {
+                        // Before issue 14: the turn limits the step, the
+                        // corrector's iterations adapt it.
+                        if cos < 0.9 && ds > ds_min {
+                            self.stats.rejected_steps += 1;
+                            self.ds = ds * 0.5;
+                            continue;
+                        }
+                        self.ds = if iterations <= 2 {
+                            (ds * 1.4).min(self.ds_max)
+                        } else if iterations >= 5 {
+                            ds * 0.6
+                        } else {
+                            ds
+                        }
+                        .max(ds_min);
+                    }
+                    if t_new[nx].signum() != self.tangent[nx].signum() && !geometry {
+                        self.pending_fold = true;
+                    } else if t_new[nx].signum() != self.tangent[nx].signum() {
+                        // A fold between the two points: locate it, and
+                        // put it on the branch before the new point.
+                        if let Some((y_fold, t_fold, it)) = self.locate_fold(ds, t_new[nx]) {
+                            let (y_keep, t_keep) = (
+                                std::mem::replace(&mut self.y, y_fold),
+                                std::mem::replace(&mut self.tangent, t_fold),
+                            );
+                            let fold_point = self.point(it, Some(Bifurcation::Fold));
+                            self.y = y_keep;
+                            self.tangent = t_keep;
+                            self.emit(fold_point)?;
+                            if !self.started || self.finished {
+                                return Ok(());
+                            }
+                        } else {
+                            self.pending_fold = true;
+                        }
+                    }
+                    self.y = y_new;
+                    self.tangent = t_new;
+                    self.update_scale();
+                    let omega = self.y[nx];
+                    let label = std::mem::take(&mut self.pending_fold).then_some(Bifurcation::Fold);
+                    if omega > self.spec.omega_to + 1e-12 || omega < self.spec.omega_from - 1e-12 {
+                        // Left through the end it started from: the branch
+                        // turned back at a fold and the rest of the range
+                        // was not reached.
+                        let at_start = match self.dir {
+                            Direction::Up => omega < self.spec.omega_from + 1e-9,
+                            Direction::Down => omega > self.spec.omega_to - 1e-9,
+                        };
+                        let how = if at_start {
+                            PieceEnd::TurnedBack
+                        } else {
+                            PieceEnd::Reached
+                        };
+                        return self.finish_piece(iterations, label, how);
+                    }
+                    let p = self.point(iterations, label);
+                    return self.emit(p);
+                }
+                Err(e) => {
+                    self.stats.rejected_steps += 1;
+                    if ds <= ds_min {
+                        return Err(e);
+                    }
+                    self.ds = (ds * 0.5).max(ds_min);
+                }
+            }
+        }
+    }
+
+    /// Locates a fold between the current point (`self.y`, tangent
+    /// `self.tangent`) and the solution a step `ds` further: the zero of the
+    /// tangent's Omega component along the branch, by the Illinois variant
+    /// of regula falsi on the step length, each trial a corrector on the
+    /// hyperplane normal to the current tangent. Returns the fold's solution,
+    /// tangent and the corrector's iterations; `None` if a corrector failed
+    /// (the fold is then labelled on the point after it).
+    pub(super) fn locate_fold(
+        &mut self,
+        ds: f64,
+        f_end: f64,
+    ) -> Option<(Vec<f64>, Vec<f64>, usize)> {
+        let nx = self.n_x();
+        let n = nx + 1;
+        let (mut a, mut fa) = (0.0, self.tangent[nx]);
+        let (mut b, mut fb) = (ds, f_end);
+        if fa.signum() == fb.signum() {
+            return None;
+        }
+        let mut best = None;
+        let mut omega_prev = f64::NAN;
+        for _ in 0..FOLD_ITERATIONS {
+            let s = (a * fb - b * fa) / (fb - fa);
+            let pred: Vec<f64> = (0..n).map(|i| self.y[i] + s * self.tangent[i]).collect();
+            let (y, t, it) = self.correct(&pred).ok()?;
+            let fs = t[nx];
+            let omega = y[nx];
+            let converged = (omega - omega_prev).abs() <= FOLD_TOL * (1.0 + omega.abs());
+            omega_prev = omega;
+            best = Some((y, t, it));
+            if converged || fs == 0.0 {
+                break;
+            }
+            if fs.signum() != fb.signum() {
+                (a, fa) = (b, fb);
+            } else {
+                fa *= 0.5;
+            }
+            (b, fb) = (s, fs);
+        }
+        best
+    }
+
+    /// Newton on the bordered system from the predictor `pred`; returns the
+    /// solution, its tangent and the iterations.
+    pub(super) fn correct(&mut self, pred: &[f64]) -> Result<(Vec<f64>, Vec<f64>, usize)> {
+        let nx = self.n_x();
+        let n = nx + 1;
+        let mut y = pred.to_vec();
+        let mut r = vec![0.0; nx];
+        let mut jac = DMatrix::zeros(n, n);
+        let mut jx = DMatrix::zeros(nx, n);
+        let weighted_t: Vec<f64> = (0..n).map(|i| self.metric(i) * self.tangent[i]).collect();
+        let mut res_prev = f64::INFINITY;
+        // The last factorization and the size of the step it produced: once
+        // a step is below `CHORD_STEP`, the Jacobian moves by less than that
+        // and the factorization is kept (a chord step, whose error is the
+        // product of the two small steps), and it also gives the tangent.
+        let mut lu: Option<nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>> = None;
+        let mut step_prev = f64::INFINITY;
+        for iteration in 1..=NEWTON_MAX {
+            // AFT's residual has small kinks where a contact switch crosses
+            // a grid point, on which chord steps can stall: it keeps Newton.
+            let chord = lu.is_some() && step_prev <= CHORD_STEP && self.asm.method != Method::Aft;
+            if chord {
+                self.asm.evaluate(&y[..nx], y[nx], &mut r, None);
+            } else {
+                self.asm.evaluate(&y[..nx], y[nx], &mut r, Some(&mut jx));
+            }
+            self.stats.jacobians += 1;
+            self.stats.newton_iterations += 1;
+            let mut g = DVector::zeros(n);
+            for i in 0..nx {
+                g[i] = r[i];
+            }
+            g[nx] = (0..n).map(|i| weighted_t[i] * (y[i] - pred[i])).sum();
+            let res = inf_norm(&r);
+            if !res.is_finite() {
+                break;
+            }
+            // On a kinked residual Newton can stall, bouncing between two
+            // linearizations: a residual at round-off level that no longer
+            // falls (where smooth Newton would square it) is a solution as
+            // it stands.
+            let scale_now = 1.0 + inf_norm(&y[..nx]);
+            let at_floor =
+                iteration > 2 && res <= RESIDUAL_FLOOR * scale_now && res > 0.1 * res_prev;
+            res_prev = res;
+            if !chord {
+                jac.rows_mut(0, nx).copy_from(&jx);
+                for i in 0..n {
+                    jac[(nx, i)] = weighted_t[i];
+                }
+                lu = Some(jac.clone().lu());
+            }
+            let Some(factors) = lu.as_ref() else { break };
+            let mut step = 0.0;
+            if !at_floor {
+                let Some(dy) = factors.solve(&g) else { break };
+                for i in 0..n {
+                    y[i] -= dy[i];
+                }
+                let scale = 1.0 + inf_norm(&y[..nx]);
+                step = inf_norm(&dy.as_slice()[..nx]).max(dy[nx].abs() * scale) / scale;
+            }
+            step_prev = step;
+            if at_floor || step <= NEWTON_TOL {
+                let scale = 1.0 + inf_norm(&y[..nx]);
+                // The residual before this last (tiny) step is already
+                // within the bound: the step only reduces it, and a second
+                // evaluation is saved. Otherwise check at the result.
+                if !at_floor && res > 1e-6 * scale {
+                    self.asm.evaluate(&y[..nx], y[nx], &mut r, None);
+                    self.stats.jacobians += 1;
+                    if inf_norm(&r) > 1e-6 * scale {
+                        break;
+                    }
+                }
+                // Converged: the tangent solves [R_X R_Omega; t^T] t_new = [0; 1],
+                // with the last factorization (a Jacobian within a chord
+                // step of the solution).
+                let mut e = DVector::zeros(n);
+                e[nx] = 1.0;
+                let t = factors.solve(&e).ok_or_else(|| SolverError::Singular {
+                    what: format!("bordered Jacobian at Omega = {}", y[nx]),
+                })?;
+                let mut t: Vec<f64> = t.iter().copied().collect();
+                let norm: f64 = (0..n)
+                    .map(|i| self.metric(i) * t[i] * t[i])
+                    .sum::<f64>()
+                    .sqrt();
+                let dot: f64 = (0..n)
+                    .map(|i| self.metric(i) * t[i] * self.tangent[i])
+                    .sum();
+                let sign = if dot < 0.0 { -1.0 } else { 1.0 };
+                for v in &mut t {
+                    *v *= sign / norm;
+                }
+                // A step accepted at the residual floor was as easy as a
+                // two-iteration one: let the step size grow.
+                let effort = if at_floor {
+                    iteration.min(2)
+                } else {
+                    iteration
+                };
+                return Ok((y, t, effort));
+            }
+        }
+        self.asm.evaluate(&y[..nx], y[nx], &mut r, None);
+        Err(SolverError::NotConverged {
+            omega: y[nx],
+            residual: inf_norm(&r),
+            iterations: NEWTON_MAX,
+        })
+    }
+}
