@@ -123,13 +123,13 @@ impl Motion {
 /// The shooting options of a steady run whose integrator uses `rtol` and
 /// `atol_m`: a hundred times tighter (at most 1e-9 and 1e-12 m), so that
 /// the orbit is exact at the run's own accuracy, and a residual tolerance
-/// a tenth of the period test's.
+/// a hundredth of the period test's (a tenth of the settle test's).
 pub fn pipeline_options(period: u32, rtol: f64, atol_m: f64, span_um: f64) -> ShootOptions {
     let mut o = ShootOptions::new(period);
     o.max_iterations = PIPELINE_ITERATIONS;
     o.rtol = (rtol * 1e-2).clamp(1e-13, 1e-9);
     o.atol_m = (atol_m * 1e-2).clamp(1e-16, 1e-12);
-    o.tol_abs_um = settle_tol_um(span_um);
+    o.tol_abs_um = 0.1 * settle_tol_um(span_um);
     o.tol_rel = 0.0;
     o
 }
