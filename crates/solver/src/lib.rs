@@ -23,6 +23,7 @@
 //! - [`map`]: impact-regime maps over Omega and a second parameter.
 //! - [`shooting`]: periodic orbits by Newton on the Poincaré map, Floquet
 //!   multipliers, continuation of periodic branches.
+//! - [`orbits`]: branches of periodic orbits by shooting continuation in Omega.
 //! - [`report`]: results as JSON, shared by the CLI and the browser.
 
 pub mod bifurcation;
@@ -36,6 +37,7 @@ pub mod map;
 pub mod modal;
 pub mod model;
 pub mod ode;
+pub mod orbits;
 pub mod parametric;
 pub mod params;
 pub mod report;

@@ -4,6 +4,9 @@
 //! dimensionless quantities (`omega`, `dynamic_factor`) carry none. Building
 //! JSON values is pure computation; writing them out is the caller's job.
 
+mod orbits;
+pub use orbits::shooting_frf_json;
+
 use crate::error::{Result, SolverError};
 use crate::keys;
 use crate::modal::Mode;
