@@ -66,7 +66,11 @@ impl ShootingContinuation {
     /// Locates a period doubling between the cursor and `end` (Illinois on
     /// the real multiplier nearest -1, plus one, until the bracket spans
     /// less than 1e-7 in Omega); the point and its solution.
-    pub(super) fn locate_pd(&mut self, c: &Cursor, end: &Solved) -> Result<Option<(ShootPoint, Solved)>> {
+    pub(super) fn locate_pd(
+        &mut self,
+        c: &Cursor,
+        end: &Solved,
+    ) -> Result<Option<(ShootPoint, Solved)>> {
         let ds = c.ds;
         let f = |s: &Solved| {
             Multipliers::of(&s.monodromy).and_then(|m| {
