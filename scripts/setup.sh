@@ -13,7 +13,11 @@
 # with a release profile made for building fast (no LTO, 16 codegen units,
 # opt-level 1, no debug info) instead of Trunk's own fat-LTO, one-codegen-unit
 # profile, which is the slowest possible build of a dev server whose speed
-# does not matter here. Both tools compile side by side, each in its own
+# does not matter here. Trunk is built without its default features: they
+# add a TLS stack (rustls, ring) for `trunk serve --tls` and a crates.io
+# update check, neither used here (the page is served by
+# scripts/static-server.mjs and every build is offline); 16 crates fewer.
+# Both tools compile side by side, each in its own
 # target folder, while Debian's chromium, the npm tools and the project's
 # crates download. Their compiler output goes to target/setup/*.log; the
 # screen gets one line per step and a line a minute while a tool compiles.
@@ -48,8 +52,8 @@ fi
 [[ -x /usr/bin/chromium && -x /usr/bin/chromedriver ]] || need_chromium=1
 
 if (( need_target )); then say "to install: the wasm32-unknown-unknown target (rustup; the page's compile target; about 20 s)"; else say "present: the wasm32-unknown-unknown target"; fi
-if (( need_trunk )); then say "to install: trunk ${TRUNK_VERSION} from crates.io: the build tool that bundles the page (about 5 min on 2 cores, once)"; else say "present: trunk ${TRUNK_VERSION}"; fi
-if (( need_bindgen )); then say "to install: wasm-bindgen-cli ${WASM_BINDGEN_VERSION} from crates.io: writes the JavaScript glue for the page's WebAssembly (about 4 min on 2 cores, once; side by side with trunk)"; else say "present: wasm-bindgen-cli ${WASM_BINDGEN_VERSION}"; fi
+if (( need_trunk )); then say "to install: trunk ${TRUNK_VERSION} from crates.io: the build tool that bundles the page (about 7 min on 2 cores, once)"; else say "present: trunk ${TRUNK_VERSION}"; fi
+if (( need_bindgen )); then say "to install: wasm-bindgen-cli ${WASM_BINDGEN_VERSION} from crates.io: writes the JavaScript glue for the page's WebAssembly (about 5 min on 2 cores, once; side by side with trunk)"; else say "present: wasm-bindgen-cli ${WASM_BINDGEN_VERSION}"; fi
 if (( need_npm )); then say "to install: npm ci: binaryen's wasm-opt 132 (shrinks the page's WebAssembly) and playwright-core (drives chromium in the browser tests; about 10 s)"; else say "present: node_modules (wasm-opt 132, playwright-core)"; fi
 if (( need_chromium )); then say "to install: Debian's chromium and chromium-driver (apt-get): the headless browser of the browser tests (about 1 min)"; else say "present: chromium and chromium-driver"; fi
 if (( DRY_RUN )); then
@@ -83,7 +87,7 @@ start_bg() { # name log command...
 if (( need_trunk )); then
   say "compiling trunk ${TRUNK_VERSION} (log: $LOGS/trunk.log)"
   start_bg "trunk ${TRUNK_VERSION}" "$LOGS/trunk.log" \
-    env CARGO_TARGET_DIR="$PWD/$LOGS/trunk-build" bash -c "$(declare -f fast_install); fast_install trunk --version ${TRUNK_VERSION} --locked"
+    env CARGO_TARGET_DIR="$PWD/$LOGS/trunk-build" bash -c "$(declare -f fast_install); fast_install trunk --version ${TRUNK_VERSION} --locked --no-default-features"
 fi
 if (( need_bindgen )); then
   # Without --locked: its lock file names a crate version the registry lacks.

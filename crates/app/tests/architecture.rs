@@ -5,8 +5,7 @@
 // Tests may panic: that is how they fail.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-#[path = "../../solver/tests/support/modgraph.rs"]
-mod modgraph;
+use test_support::modgraph;
 
 use std::path::{Path, PathBuf};
 

@@ -51,6 +51,17 @@ pub struct ParamArgs {
     pub progress: bool,
 }
 
+/// The Omega range of a sweep.
+#[derive(Debug, Args)]
+pub struct OmegaRange {
+    /// First Omega.
+    #[arg(long, allow_hyphen_values = true)]
+    pub omega_from: f64,
+    /// Last Omega.
+    #[arg(long, allow_hyphen_values = true)]
+    pub omega_to: f64,
+}
+
 /// Options of a steady-state run.
 #[derive(Debug, Args)]
 pub struct RunArgs {

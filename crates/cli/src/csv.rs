@@ -1,9 +1,9 @@
 //! Plain-text tables: `--format csv` outputs and the key listing.
 
+use report::{display_shape, num};
 use serde_json::Value;
 use solver::keys::{self, KEYS};
 use solver::params::ModelParams;
-use solver::report::{display_shape, num};
 use solver::steady::{Model, SteadyState};
 use std::fmt::Write;
 
@@ -32,49 +32,43 @@ pub fn params(p: &ModelParams) -> String {
     s
 }
 
-/// `keys`: an aligned text listing.
-pub fn keys_text() -> String {
-    let mut s = String::new();
+/// One line per key, `row` formatting its name, unit, models, allowed
+/// values and meaning.
+fn key_rows(mut s: String, row: fn(&mut String, [&str; 5])) -> String {
     for k in KEYS.iter() {
         let models = match k.applies {
             keys::Applies::Both => "both",
             keys::Applies::Ravigneaux => "ravigneaux",
             keys::Applies::GearPair => "gear-pair",
         };
-        let _ = writeln!(
-            s,
-            "{:<24} {:<7} {:<11} {:<28} {}",
-            k.name,
-            k.unit,
-            models,
-            k.ty.allowed(),
-            k.description
-        );
+        let allowed = k.ty.allowed();
+        row(&mut s, [k.name, k.unit, models, &allowed, k.description]);
     }
     s
 }
 
+/// `keys`: an aligned text listing.
+pub fn keys_text() -> String {
+    key_rows(
+        String::new(),
+        |s, [name, unit, models, allowed, meaning]| {
+            let _ = writeln!(
+                s,
+                "{name:<24} {unit:<7} {models:<11} {allowed:<28} {meaning}"
+            );
+        },
+    )
+}
+
 /// `keys --markdown`: the README's table.
 pub fn keys_markdown() -> String {
-    let mut s =
-        String::from("| key | unit | models | allowed | meaning |\n|---|---|---|---|---|\n");
-    for k in KEYS.iter() {
-        let models = match k.applies {
-            keys::Applies::Both => "both",
-            keys::Applies::Ravigneaux => "ravigneaux",
-            keys::Applies::GearPair => "gear-pair",
-        };
+    let head = String::from("| key | unit | models | allowed | meaning |\n|---|---|---|---|---|\n");
+    key_rows(head, |s, [name, unit, models, allowed, meaning]| {
         let _ = writeln!(
             s,
-            "| `{}` | {} | {} | {} | {} |",
-            k.name,
-            k.unit,
-            models,
-            k.ty.allowed(),
-            k.description
+            "| `{name}` | {unit} | {models} | {allowed} | {meaning} |"
         );
-    }
-    s
+    })
 }
 
 /// `modes --format csv`: one row per mode, the shape in coordinate columns.
@@ -204,56 +198,41 @@ pub fn frf(v: &Value) -> String {
     s
 }
 
+/// A table of one row per element of `items`: `header`, then each
+/// element's `fields` (commas inside a text replaced by semicolons).
+fn table(header: &str, items: Option<&Vec<Value>>, fields: &[&str]) -> String {
+    let mut s = format!("{header}\n");
+    for item in items.into_iter().flatten() {
+        let row: Vec<String> = fields
+            .iter()
+            .map(|f| cell(&item[*f]).replace(',', ";"))
+            .collect();
+        s.push_str(&row.join(","));
+        s.push('\n');
+    }
+    s
+}
+
 /// A regime map: one row per cell.
 pub fn map(v: &Value) -> String {
     let key = cell(&v["spec"]["key"]);
-    let mut s = format!("row,column,omega,{key},impact,period,error\n");
-    if let Some(cells) = v["cells"].as_array() {
-        for c in cells {
-            s.push_str(&format!(
-                "{},{},{},{},{},{},{}\n",
-                cell(&c["row"]),
-                cell(&c["column"]),
-                cell(&c["omega"]),
-                cell(&c["value"]),
-                cell(&c["impact"]),
-                cell(&c["period"]),
-                cell(&c["error"]).replace(',', ";"),
-            ));
-        }
-    }
-    s
+    table(
+        &format!("row,column,omega,{key},impact,period,error"),
+        v["cells"].as_array(),
+        &[
+            "row", "column", "omega", "value", "impact", "period", "error",
+        ],
+    )
 }
 
 /// A Lyapunov sweep: one row per Omega.
 pub fn lyapunov(v: &Value) -> String {
-    let mut s = String::from("omega,exponent_per_period,exponent_per_s\n");
-    if let Some(points) = v["points"].as_array() {
-        for p in points {
-            s.push_str(&format!(
-                "{},{},{}\n",
-                cell(&p["omega"]),
-                cell(&p["exponent_per_period"]),
-                cell(&p["exponent_per_s"]),
-            ));
-        }
-    }
-    s
+    let fields = ["omega", "exponent_per_period", "exponent_per_s"];
+    table(&fields.join(","), v["points"].as_array(), &fields)
 }
 
 /// A parametric-instability scan: one row per Omega.
 pub fn instability(v: &Value) -> String {
-    let mut s = String::from("omega,spectral_radius,growth_per_period,unstable\n");
-    if let Some(points) = v["points"].as_array() {
-        for p in points {
-            s.push_str(&format!(
-                "{},{},{},{}\n",
-                cell(&p["omega"]),
-                cell(&p["spectral_radius"]),
-                cell(&p["growth_per_period"]),
-                cell(&p["unstable"]),
-            ));
-        }
-    }
-    s
+    let fields = ["omega", "spectral_radius", "growth_per_period", "unstable"];
+    table(&fields.join(","), v["points"].as_array(), &fields)
 }

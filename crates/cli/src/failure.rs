@@ -8,7 +8,8 @@ use solver::SolverError;
 pub struct Failure {
     /// The process's exit code.
     pub code: u8,
-    /// One line for stderr (after `gearshock: `).
+    /// One line for stderr (after `gearshock: `); empty for a closed
+    /// pipe, whose reader wants no word.
     pub message: String,
 }
 

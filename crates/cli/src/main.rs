@@ -4,7 +4,9 @@
 //! JSON goes to stdout (or CSV with `--format csv`), a progress bar to stderr
 //! when stderr is a terminal (plain progress lines with `--progress`). Bad
 //! input exits with code 2 and one line that names the offending flag, key
-//! or value; a solver failure exits with 1. Every option is checked before
+//! or value; a solver failure exits with 1; a failed write (a full disk,
+//! `> /dev/full`) exits with 3 naming stdout or the file, and a closed pipe
+//! with 3 and no word ([`output`]). Every option is checked before
 //! any work starts, input files are read through a size limit, and each
 //! command's total work and memory are capped ([`budget`]).
 //!
@@ -41,8 +43,10 @@ fn main() -> ExitCode {
         Err(e) => {
             use clap::error::ErrorKind;
             if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
-                print!("{e}");
-                return ExitCode::SUCCESS;
+                return match output::stdout(e.to_string().as_bytes()) {
+                    Ok(()) => ExitCode::SUCCESS,
+                    Err(f) => exit(&f),
+                };
             }
             // One line: clap's message up to its usage block, joined.
             let text = e.render().to_string();
@@ -53,15 +57,21 @@ fn main() -> ExitCode {
                 .filter(|l| !l.is_empty() && !l.starts_with("tip:"))
                 .collect();
             let line = message.join(" ");
-            eprintln!("gearshock: {}", line.trim_start_matches("error: "));
+            output::note(line.trim_start_matches("error: "));
             return ExitCode::from(2);
         }
     };
     match commands::run(cli.command) {
         Ok(()) => ExitCode::SUCCESS,
-        Err(f) => {
-            eprintln!("gearshock: {}", f.message);
-            ExitCode::from(f.code)
-        }
+        Err(f) => exit(&f),
     }
+}
+
+/// Says why (unless the failure is a closed pipe's, which wants no word)
+/// and exits with the failure's code.
+fn exit(f: &failure::Failure) -> ExitCode {
+    if !f.message.is_empty() {
+        output::note(&f.message);
+    }
+    ExitCode::from(f.code)
 }

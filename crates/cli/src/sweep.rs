@@ -48,7 +48,7 @@ pub fn run<S: Sweep>(
     let mut bar = Progress::new(sweep.total(), unit, p.progress);
     let lines = lines.filter(|_| p.format == Format::Jsonl);
     if let Some(l) = &lines {
-        emit_line(&l.header);
+        emit_line(&l.header)?;
     }
     let mut kept = Vec::new();
     let mut streamed = 0usize;
@@ -56,7 +56,7 @@ pub fn run<S: Sweep>(
         for item in sweep.advance()? {
             match &lines {
                 Some(l) => {
-                    emit_line(&(l.line)(&item));
+                    emit_line(&(l.line)(&item))?;
                     streamed += 1;
                 }
                 None => kept.push(item),
@@ -67,7 +67,7 @@ pub fn run<S: Sweep>(
     bar.finish();
     match lines {
         Some(l) => {
-            emit_line(&serde_json::json!({ "complete": true, l.count: streamed }));
+            emit_line(&serde_json::json!({ "complete": true, l.count: streamed }))?;
             Ok(None)
         }
         None => Ok(Some(kept)),

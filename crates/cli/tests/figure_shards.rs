@@ -7,50 +7,12 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use serde_json::Value;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::PathBuf;
+use test_support::cli::{files, gearshock, ok, temp_dir, words, Files};
 
-fn gearshock(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_gearshock"))
-        .args(args)
-        .output()
-        .expect("run gearshock")
-}
-
-fn ok(args: &[&str]) -> Vec<u8> {
-    let out = gearshock(args);
-    assert!(
-        out.status.success(),
-        "{args:?} failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out.stdout
-}
-
+/// A fresh scratch folder of this file's tests.
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("gearshock-shards-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).expect("dir");
-    d
-}
-
-/// Files as (name, bytes).
-type Files = Vec<(String, Vec<u8>)>;
-
-/// Every file of a directory: (name, bytes), sorted by name.
-fn files(d: &Path) -> Files {
-    let mut v: Vec<(String, Vec<u8>)> = std::fs::read_dir(d)
-        .expect("read dir")
-        .map(|e| {
-            let e = e.expect("entry");
-            (
-                e.file_name().to_string_lossy().into_owned(),
-                std::fs::read(e.path()).expect("read"),
-            )
-        })
-        .collect();
-    v.sort();
-    v
+    temp_dir(&format!("shards-{name}"))
 }
 
 /// Runs figure `id` unsharded into one directory and in `n` shards merged
@@ -116,16 +78,9 @@ fn a_sharded_orbit_figure_merged_is_byte_identical_to_the_unsharded_run() {
     let foreign = shards[0].with_file_name("fig6.json");
     std::fs::write(
         &foreign,
-        ok(&[
-            "figure",
-            "fig9",
-            "--shard",
-            "1/2",
-            "--transient-periods",
-            "20",
-            "--record-periods",
-            "4",
-        ]),
+        ok(&words(
+            "figure fig9 --shard 1/2 --transient-periods 20 --record-periods 4",
+        )),
     )
     .unwrap();
     refused(
@@ -136,32 +91,95 @@ fn a_sharded_orbit_figure_merged_is_byte_identical_to_the_unsharded_run() {
     let other = shards[0].with_file_name("other.json");
     std::fs::write(
         &other,
-        ok(&[
-            "figure",
-            "fig5",
-            "--shard",
-            "1/2",
-            "--transient-periods",
-            "20",
-            "--record-periods",
-            "5",
-        ]),
+        ok(&words(
+            "figure fig5 --shard 1/2 --transient-periods 20 --record-periods 5",
+        )),
     )
     .unwrap();
     refused(
         &["merge", "--out", o, s0, other.to_str().unwrap()],
         "computed with other options",
     );
-    // A tampered file name cannot write outside the directory.
-    let mut tampered: Value = serde_json::from_slice(&std::fs::read(&shards[1]).unwrap()).unwrap();
-    assert_eq!(tampered["files"][0]["name"], "fig5b.svg");
-    tampered["files"][0]["name"] = "../fig5b.svg".into();
-    let bad = shards[0].with_file_name("bad.json");
-    std::fs::write(&bad, tampered.to_string()).unwrap();
-    refused(
-        &["merge", "--out", o, s0, bad.to_str().unwrap()],
-        "is not one of shard 1/2's panels",
-    );
+    // Forged shards (data-driven): each change to shard 1 is refused,
+    // naming the file, and nothing is written.
+    let good: Value = serde_json::from_slice(&std::fs::read(&shards[1]).unwrap()).unwrap();
+    assert_eq!(good["figure_shard"]["members"], serde_json::json!([1]));
+    let history = good["members"][0]["orbit"]["x_um"]
+        .as_array()
+        .unwrap()
+        .len();
+    // 4 recorded periods of 64 samples each.
+    assert_eq!(history, 4 * 64);
+    let forgeries: &[(&str, Value, &str)] = &[
+        // The members the figure's definition gives shard 1/2 are [1].
+        (
+            "/figure_shard/members",
+            serde_json::json!([2]),
+            "differs from the figure's definition",
+        ),
+        // File text is never passed through: a shard holds no files.
+        (
+            "/files",
+            serde_json::json!([{ "name": "../fig5b.svg", "text": "<svg><script>alert(1)</script></svg>" }]),
+            "field files is not one a figure shard holds",
+        ),
+        (
+            "/members/0/orbit/mesh_name",
+            "<script>".into(),
+            "orbit.mesh_name = \"<script>\" is out of range",
+        ),
+        (
+            "/members/0/orbit/x_um",
+            Value::Array(vec![0.5.into(); 3_000_000]),
+            "orbit.x_um (3000000 entries) is out of range: allowed an array of exactly 256 numbers",
+        ),
+        (
+            "/members/0/orbit/poincare_x_um",
+            serde_json::json!([1.0]),
+            "orbit.poincare_x_um (1 entries)",
+        ),
+        (
+            "/members/0/orbit/period",
+            serde_json::json!(1e300),
+            "orbit.period = 1e+300 is out of range",
+        ),
+        (
+            "/members/0/orbit/omega",
+            serde_json::json!(0.9),
+            "orbit.omega = 0.9 is out of range",
+        ),
+        ("/members/0/orbit/regime", "<script>".into(), "orbit.regime"),
+        ("/members/0/orbit/extra", Value::Null, "field orbit.extra"),
+        (
+            "/members/0/member",
+            serde_json::json!(2),
+            "in the order of figure_shard.members",
+        ),
+        (
+            "/figure_shard/options/points",
+            serde_json::json!(1_000_000),
+            "computed with other options",
+        ),
+    ];
+    for (k, (pointer, value, words)) in forgeries.iter().enumerate() {
+        let mut forged = good.clone();
+        match forged.pointer_mut(pointer) {
+            Some(slot) => *slot = value.clone(),
+            None => {
+                let (parent, key) = pointer.rsplit_once('/').unwrap();
+                forged
+                    .pointer_mut(parent)
+                    .and_then(Value::as_object_mut)
+                    .unwrap()
+                    .insert(key.into(), value.clone());
+            }
+        }
+        let bad = shards[0].with_file_name(format!("forged{k}.json"));
+        std::fs::write(&bad, forged.to_string()).unwrap();
+        let name = format!("forged{k}.json");
+        refused(&["merge", "--out", o, s0, bad.to_str().unwrap()], words);
+        refused(&["merge", "--out", o, s0, bad.to_str().unwrap()], &name);
+    }
     assert!(!out.parent().unwrap().join("fig5b.svg").exists());
     // Nothing was written by a refused merge.
     assert!(files(&out).is_empty());
@@ -177,18 +195,57 @@ fn a_sharded_orbit_figure_merged_is_byte_identical_to_the_unsharded_run() {
 
 #[test]
 fn a_sharded_bifurcation_figure_merged_is_byte_identical_to_the_unsharded_run() {
-    let opts = [
-        "--points",
-        "3",
-        "--transient-periods",
-        "20",
-        "--record-periods",
-        "4",
-    ];
-    let (whole, merged, _) = both("fig4", 3, &opts);
+    let opts = words("--points 3 --transient-periods 20 --record-periods 4");
+    let (whole, merged, shards) = both("fig4", 3, &opts);
     assert_eq!(whole.len(), 9);
     assert!(
         whole == merged,
         "the merged files differ from the unsharded run's"
     );
+    // Forged sweeps are refused, naming the file and the field.
+    let out = dir("fig4-refused");
+    let good: Value = serde_json::from_slice(&std::fs::read(&shards[2]).unwrap()).unwrap();
+    let forgeries: &[(&str, Value, &str)] = &[
+        (
+            "/members/0/sweep/points/0/stats/steps",
+            serde_json::json!(1.5),
+            "stats.steps = 1.5 is out of range",
+        ),
+        (
+            "/members/0/sweep/points/0/poincare_delta_m",
+            serde_json::json!([]),
+            "poincare_delta_m has 0 entries: allowed exactly 4",
+        ),
+        (
+            "/members/0/sweep/spec/record_periods",
+            serde_json::json!(5),
+            "sweep.spec = ",
+        ),
+        (
+            "/members/0/sweep/stats/steps",
+            serde_json::json!(1),
+            "its stats are not the totals of its points",
+        ),
+        (
+            "/members/0/sweep/points/0/impact",
+            "<script>".into(),
+            "impact = \"<script>\" is out of range",
+        ),
+    ];
+    for (k, (pointer, value, words)) in forgeries.iter().enumerate() {
+        let mut forged = good.clone();
+        *forged.pointer_mut(pointer).unwrap() = value.clone();
+        let bad = shards[2].with_file_name(format!("forged{k}.json"));
+        std::fs::write(&bad, forged.to_string()).unwrap();
+        let mut args = vec!["merge", "--out", out.to_str().unwrap()];
+        args.extend(shards[..2].iter().map(|p| p.to_str().unwrap()));
+        args.push(bad.to_str().unwrap());
+        let r = gearshock(&args);
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert_eq!(r.status.code(), Some(2), "{pointer}: {err}");
+        assert!(err.contains(words), "{pointer}: `{words}` not in {err}");
+        assert!(err.contains(&format!("forged{k}.json")), "{err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    }
+    assert!(files(&out).is_empty(), "a refused merge wrote files");
 }

@@ -9,7 +9,6 @@
 
 use serde_json::Value;
 use std::collections::HashMap;
-use std::process::Command;
 use std::sync::{Arc, Mutex, OnceLock};
 
 fn doc() -> String {
@@ -33,16 +32,7 @@ fn gearshock(line: &str) -> Value {
 
 fn run(line: &str) -> Value {
     let args: Vec<&str> = line.split_whitespace().skip(1).collect();
-    let out = Command::new(env!("CARGO_BIN_EXE_gearshock"))
-        .args(&args)
-        .output()
-        .expect("run gearshock");
-    assert!(
-        out.status.success(),
-        "{line}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).expect("JSON on stdout")
+    test_support::cli::json(&args)
 }
 
 /// Every command line quoted in a row must appear in the document too.

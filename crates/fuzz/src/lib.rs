@@ -10,9 +10,11 @@
 //! - `params`: the parameter JSON ([`solver::keys::from_json_str`]) on
 //!   random objects, mutated real parameter files and raw text. A set it
 //!   accepts must round-trip through [`solver::keys::to_json`].
-//! - `shards`: the shard merger ([`solver::report::merge_shards`],
-//!   [`solver::report::merge_maps`]) on real shards of a tiny sweep and map
-//!   with forged fields, dropped, doubled or swapped shards and mutated
+//! - `shards`: the shard merger ([`report::merge_shards`],
+//!   [`report::merge_maps`]) on real shards of a tiny sweep and map
+//!   with forged fields (per-point contents too: an accepted merge's points
+//!   must have whole counters and Poincaré arrays of `record_periods`
+//!   entries), dropped, doubled or swapped shards and mutated
 //!   text. A merge it accepts must hold every grid point exactly once.
 //!
 //! Inputs are reproducible from the seed and the input number. `cargo test
@@ -366,7 +368,7 @@ pub fn base_shards() -> (Vec<Value>, Vec<Value>) {
                 pts.extend(sweep.advance(8));
             }
             canonical_order(&mut pts);
-            sweeps.push(solver::report::sweep_json(&model, &params, &spec, &pts));
+            sweeps.push(report::sweep_json(&model, &params, &spec, &pts));
         }
         let mut mspec = MapSpec::new((0.5, 0.6, 2), "backlash_um", (50.0, 60.0, 2));
         mspec.steady.transient_periods = 5;
@@ -377,15 +379,16 @@ pub fn base_shards() -> (Vec<Value>, Vec<Value>) {
             while !map.is_finished() {
                 cells.extend(map.advance(8));
             }
-            maps.push(solver::report::map_json(&model, &params, &mspec, &cells));
+            maps.push(report::map_json(&model, &params, &mspec, &cells));
         }
     }
     (sweeps, maps)
 }
 
-/// Numbers that forged counts and indices have used.
+/// Numbers that forged counts, indices and counters have used (issue 25:
+/// 1e300, 1e20, 1.5, "7" and null as step counts).
 fn forged_number(r: &mut Rng) -> Value {
-    match r.below(8) {
+    match r.below(13) {
         0 => json!(u64::MAX),
         1 => json!(i64::MIN),
         2 => json!(0),
@@ -393,6 +396,11 @@ fn forged_number(r: &mut Rng) -> Value {
         4 => json!(999.0),
         5 => json!(-1),
         6 => json!(r.below(8)),
+        7 => json!(1e300),
+        8 => json!(1e20),
+        9 => json!(1.5),
+        10 => json!("7"),
+        11 => Value::Null,
         _ => json!(r.bits() >> r.below(64)),
     }
 }
@@ -528,7 +536,7 @@ pub fn check_params(text: &str) -> Result<(), String> {
 
 /// Checks the shard merger on one input.
 pub fn check_shards(shards: &[Value]) -> Result<(), String> {
-    if let Ok(v) = solver::report::merge_shards(shards) {
+    if let Ok(v) = report::merge_shards(shards) {
         let spec = &v["spec"];
         let dirs = if spec["direction"] == "both" { 2 } else { 1 };
         let expected = spec["points"].as_u64().unwrap_or(0) * dirs;
@@ -538,14 +546,54 @@ pub fn check_shards(shards: &[Value]) -> Result<(), String> {
                 "merged sweep has {got} points, its grid {expected}"
             ));
         }
+        sweep_points_well_formed(&v)?;
     }
-    if let Ok(v) = solver::report::merge_maps(shards) {
+    if let Ok(v) = report::merge_maps(shards) {
         let spec = &v["spec"];
         let expected =
             spec["omega_points"].as_u64().unwrap_or(0) * spec["value_points"].as_u64().unwrap_or(0);
         let got = v["cells"].as_array().map_or(0, Vec::len) as u64;
         if got != expected {
             return Err(format!("merged map has {got} cells, its grid {expected}"));
+        }
+    }
+    Ok(())
+}
+
+/// Every point of an accepted sweep is one gearshock writes: its work
+/// counters whole numbers up to 2^53, `settled` true or false, and each
+/// Poincaré array `record_periods` long (a forged point would otherwise be
+/// copied into the merged output).
+fn sweep_points_well_formed(v: &Value) -> Result<(), String> {
+    let record = v["spec"]["record_periods"].as_u64().unwrap_or(0) as usize;
+    for p in v["points"].as_array().map_or(&[][..], Vec::as_slice) {
+        if p.get("error").is_some() {
+            continue;
+        }
+        let stats = p["stats"].as_object().ok_or("a point without stats")?;
+        for (k, x) in stats {
+            let fine = if k == "settled" {
+                x.is_boolean()
+            } else {
+                x.as_u64().is_some_and(|n| n <= 1 << 53)
+            };
+            if !fine {
+                return Err(format!("accepted a point with stats.{k} = {x}"));
+            }
+        }
+        let meshes: Vec<&Value> = match p.get("meshes").and_then(Value::as_object) {
+            Some(m) => m.values().collect(),
+            None => vec![p],
+        };
+        for m in meshes {
+            for key in ["poincare_delta_m", "poincare_velocity_m_s"] {
+                let n = m[key].as_array().map(Vec::len);
+                if n != Some(record) {
+                    return Err(format!(
+                        "accepted a point whose {key} has {n:?} entries, not {record}"
+                    ));
+                }
+            }
         }
     }
     Ok(())

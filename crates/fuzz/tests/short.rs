@@ -54,7 +54,7 @@ fn the_generators_reach_what_they_target() {
             params_ok += 1;
         }
         let s = fuzz::shards_input(&mut r, &sweeps, &maps);
-        if solver::report::merge_shards(&s).is_ok() || solver::report::merge_maps(&s).is_ok() {
+        if report::merge_shards(&s).is_ok() || report::merge_maps(&s).is_ok() {
             merged += 1;
         } else {
             refused += 1;

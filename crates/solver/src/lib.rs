@@ -5,7 +5,8 @@
 //! The crate is pure computation: no web, UI, clock, thread or I/O
 //! dependency, so it builds unchanged for native targets and
 //! `wasm32-unknown-unknown`. The physics is `MODEL.md`'s; see the
-//! repository's `ARCHITECTURE.md` for the map.
+//! repository's `ARCHITECTURE.md` for the map. Results as JSON and the
+//! merge of sharded runs live outside it, in the `report` crate.
 //!
 //! - [`params`] and [`keys`]: the parameter sets and their flat user-facing keys.
 //! - [`system`]: the compiled model (mass matrix, mesh vectors, loads).
@@ -24,7 +25,6 @@
 //! - [`shooting`]: periodic orbits by Newton on the Poincaré map, Floquet
 //!   multipliers, continuation of periodic branches.
 //! - [`orbits`]: branches of periodic orbits by shooting continuation in Omega.
-//! - [`report`]: results as JSON, shared by the CLI and the browser.
 
 pub mod bifurcation;
 pub mod dynamics;
@@ -40,7 +40,6 @@ pub mod ode;
 pub mod orbits;
 pub mod parametric;
 pub mod params;
-pub mod report;
 pub mod shooting;
 pub mod steady;
 pub mod sweep;

@@ -78,7 +78,8 @@ impl Directions {
         }
     }
 
-    pub(crate) fn list(self) -> &'static [Direction] {
+    /// The directions swept, in order (up first).
+    pub fn list(self) -> &'static [Direction] {
         match self {
             Directions::Up => &[Direction::Up],
             Directions::Down => &[Direction::Down],

@@ -90,12 +90,11 @@ fn the_solver_source_uses_no_clock_thread_or_io() {
     assert!(files.contains(&hbm), "the walk reaches src/hbm/");
 }
 
-#[path = "support/modgraph.rs"]
-mod modgraph;
+use test_support::modgraph;
 
 /// Architecture invariant: no import cycle in the solver, between its
 /// top-level modules or between any two of its files (see
-/// `support/modgraph.rs` for how the graph is read).
+/// `test_support::modgraph` for how the graph is read).
 #[test]
 fn the_solver_has_no_import_cycle() {
     let g = modgraph::read(&Path::new(env!("CARGO_MANIFEST_DIR")).join("src"));
@@ -150,4 +149,19 @@ fn the_cycle_finder_finds_cycles() {
     ]);
     assert_eq!(modgraph::cycle(&g, 1), None);
     assert!(modgraph::cycle(&g, 2).is_some(), "h::p <-> h::q");
+}
+
+/// Architecture invariant: no solver source file is over 800 lines, so
+/// each holds one concept a reader can take in (`hbm/continuation/`,
+/// `steady/`, `keys/` are split by concept).
+#[test]
+fn no_solver_source_file_is_over_800_lines() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    source_files(&src, &mut files);
+    for path in &files {
+        let lines = std::fs::read_to_string(path).expect("read").lines().count();
+        let rel = path.strip_prefix(&src).expect("below src");
+        assert!(lines <= 800, "{}: {lines} lines", rel.display());
+    }
 }

@@ -8,7 +8,6 @@ use serde_json::Value;
 use solver::keys;
 use solver::parametric::Parametric;
 use solver::params::ModelParams;
-use solver::report;
 use solver::steady::Model;
 use solver::sweep::{canonical_order, BifurcationSweep, Directions, SweepPoint, SweepSpec};
 

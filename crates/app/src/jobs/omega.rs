@@ -7,7 +7,6 @@ use super::{excitation_at, failed, round_um, Job, SLICE_STEPS};
 use crate::protocol::{
     history_start, AnimHistory, FromWorker, JobId, MeshSummary, OmegaResult, RunOptions,
 };
-use solver::report;
 use solver::steady::{spectrum, steady_state, Model, SteadyOptions, SteadyRun, SteadyState};
 
 /// An Omega job waiting for its one step (also the page's preview run).

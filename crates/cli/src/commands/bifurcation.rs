@@ -1,7 +1,7 @@
 //! `gearshock bifurcation`: Poincaré samples over a sweep of Omega, in
 //! interleaved chains, optionally one shard of them.
 
-use crate::args::{meshes, parse_shard, stream_header, Format, ParamArgs, RunArgs};
+use crate::args::{meshes, parse_shard, stream_header, Format, OmegaRange, ParamArgs, RunArgs};
 use crate::budget::{check_work, MAX_SAMPLES};
 use crate::csv;
 use crate::failure::{usage, Failure};
@@ -9,7 +9,6 @@ use crate::output::output;
 use crate::sweep::{self, Lines};
 use clap::Args;
 use solver::keys;
-use solver::report;
 use solver::sweep::{canonical_order, BifurcationSweep, Directions, SweepSpec};
 
 /// Options of `gearshock bifurcation`.
@@ -17,12 +16,8 @@ use solver::sweep::{canonical_order, BifurcationSweep, Directions, SweepSpec};
 pub struct BifurcationArgs {
     #[command(flatten)]
     p: ParamArgs,
-    /// First Omega.
-    #[arg(long, allow_hyphen_values = true)]
-    omega_from: f64,
-    /// Last Omega.
-    #[arg(long, allow_hyphen_values = true)]
-    omega_to: f64,
+    #[command(flatten)]
+    range: OmegaRange,
     /// Number of Omega points.
     #[arg(long, default_value_t = 200)]
     points: u32,
@@ -45,7 +40,7 @@ pub struct BifurcationArgs {
 /// Checks the options and the budget, runs the sweep and prints it.
 pub fn run(a: &BifurcationArgs) -> Result<(), Failure> {
     let (params, model) = a.p.load()?;
-    let mut spec = SweepSpec::new(a.omega_from, a.omega_to, a.points);
+    let mut spec = SweepSpec::new(a.range.omega_from, a.range.omega_to, a.points);
     a.run.apply(&mut spec.steady);
     spec.directions = Directions::from_name(&a.direction).ok_or_else(|| {
         usage(format!(

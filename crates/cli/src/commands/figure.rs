@@ -11,18 +11,21 @@
 //! colour per value named in words, as the page's frequency response draws
 //! a family.
 //!
-//! Sharding (the heavy figures, 4-11): `--shard i/n` computes the panels of
-//! members i, i + n, ... only and prints them, files and all, as one JSON
-//! shard; `gearshock merge --out DIR` checks that the shards are all of one
-//! figure, computed with the same options, each member exactly once, and
-//! writes the same files as the unsharded run, byte for byte. Figs. 2 and 3
-//! are not sharded: each of their panels holds every member's branch.
+//! Sharding (the heavy figures, 4-11): `--shard i/n` computes the sweeps or
+//! orbits of members i, i + n, ... only and prints them as one JSON shard
+//! ([`shard`]); `gearshock merge --out DIR` checks them against the
+//! figure's definition and draws every file itself, as the unsharded run
+//! does (which draws from the same JSON), so the files are the unsharded
+//! run's byte for byte and no file text is ever passed through. Figs. 2 and
+//! 3 are not sharded: each of their panels holds every member's branch.
+
+pub mod shard;
 
 use crate::failure::{usage, Failure};
-use crate::progress;
+use crate::{output, progress};
 use app::jobs::omega::{omega_result, OmegaJob};
 use app::presets::{preset, Preset};
-use app::protocol::RunOptions;
+use app::protocol::{OmegaResult, RunOptions};
 use app::views::bif::{BifPoint, BifView};
 use app::views::omega::OmegaView;
 use clap::Args;
@@ -42,39 +45,39 @@ const SAMPLES_PER_PERIOD: u32 = 64;
 #[derive(Debug, Args)]
 pub struct FigureArgs {
     /// The figure's preset id, e.g. fig5 (see `gearshock presets`).
-    id: String,
+    pub(crate) id: String,
     /// Directory for the SVG, JSON and CSV files (created if missing);
     /// not with --shard, whose JSON goes to `gearshock merge --out DIR`.
     #[arg(long, value_name = "DIR")]
-    out: Option<PathBuf>,
+    pub(crate) out: Option<PathBuf>,
     /// Omega points of a bifurcation panel, or the nominal points of a
     /// frequency-response branch (default: the preset's, 100 or 150).
     #[arg(long)]
-    points: Option<u32>,
+    pub(crate) points: Option<u32>,
     /// Maximum transient mesh periods (default: the preset's, 300).
     #[arg(long)]
-    transient_periods: Option<u32>,
+    pub(crate) transient_periods: Option<u32>,
     /// Recorded mesh periods (default: the preset's, 100).
     #[arg(long)]
-    record_periods: Option<u32>,
+    pub(crate) record_periods: Option<u32>,
     /// Compute only shard i of n (the panels of members i, i + n, ...) of
     /// a bifurcation or orbit figure and print it as JSON; join the shards
     /// with `gearshock merge --out DIR`.
     #[arg(long, value_name = "I/N")]
-    shard: Option<String>,
+    pub(crate) shard: Option<String>,
 }
 
 /// The files of a figure's panels, in order: (file name, contents).
-type Files = Vec<(String, String)>;
+pub(crate) type Files = Vec<(String, String)>;
 
 /// One member of the family: its link and decoded settings.
-struct Member {
-    query: String,
-    settings: app::settings::Settings,
-    model: Model,
+pub(crate) struct Member {
+    pub(crate) query: String,
+    pub(crate) settings: app::settings::Settings,
+    pub(crate) model: Model,
 }
 
-fn members(p: &Preset) -> Result<Vec<Member>, Failure> {
+pub(crate) fn members(p: &Preset) -> Result<Vec<Member>, Failure> {
     let count = p.family.map_or(1, |f| f.values.len());
     (0..count)
         .map(|m| {
@@ -91,13 +94,6 @@ fn members(p: &Preset) -> Result<Vec<Member>, Failure> {
             })
         })
         .collect()
-}
-
-fn write(path: &Path, text: &str) -> Result<(), Failure> {
-    std::fs::write(path, text).map_err(|e| Failure {
-        code: 1,
-        message: format!("cannot write {}: {e}", path.display()),
-    })
 }
 
 fn drawn<T, E: std::fmt::Display>(name: &str, result: Result<T, E>) -> Result<T, Failure> {
@@ -123,8 +119,22 @@ fn member_label(p: &Preset, i: usize) -> String {
     }
 }
 
-fn panel_letter(i: usize) -> char {
+pub(crate) fn panel_letter(i: usize) -> char {
     char::from(b'a' + (i % 26) as u8)
+}
+
+/// The options' ranges (a merge checks a shard's options by them too).
+pub(crate) fn check_options(args: &FigureArgs) -> Result<(), Failure> {
+    for (flag, value, min, max) in [
+        ("--points", args.points, 2, 2000),
+        ("--transient-periods", args.transient_periods, 1, 100_000),
+        ("--record-periods", args.record_periods, 1, 10_000),
+    ] {
+        if let Some(v) = value.filter(|v| !(min..=max).contains(v)) {
+            return Err(usage(format!("{flag} {v}: allowed {min} ..= {max}")));
+        }
+    }
+    Ok(())
 }
 
 /// Runs the command; returns the list of panels and files written.
@@ -141,15 +151,7 @@ pub fn run(args: &FigureArgs) -> Result<Value, Failure> {
             ids.join(", ")
         )));
     };
-    for (flag, value, min, max) in [
-        ("--points", args.points, 2, 2000),
-        ("--transient-periods", args.transient_periods, 1, 100_000),
-        ("--record-periods", args.record_periods, 1, 10_000),
-    ] {
-        if let Some(v) = value.filter(|v| !(min..=max).contains(v)) {
-            return Err(usage(format!("{flag} {v}: allowed {min} ..= {max}")));
-        }
-    }
+    check_options(args)?;
     let is = |key: &str| p.settings.iter().any(|(k, _)| *k == key);
     if p.family.is_none() {
         return Err(usage(format!(
@@ -186,26 +188,20 @@ pub fn run(args: &FigureArgs) -> Result<Value, Failure> {
         }
     };
     if let Some((i, n)) = shard {
-        // One shard: its members' panels, files and all, as JSON.
-        let only = |m: usize| m % n == i;
-        let mut files = Files::new();
-        let panels = if is("bif_dir") {
-            bifurcation_panels(p, &members, args, &only, &mut files)?
-        } else {
-            orbit_panels(p, &members, args, &only, &mut files)?
-        };
-        return Ok(shard_json(p, args, (i, n), members.len(), panels, &files));
+        // One shard: its members' sweeps or orbits as JSON; the merge draws.
+        return shard::compute(p, &members, args, (i, n), is("bif_dir"));
     }
     let out = args
         .out
         .as_ref()
         .ok_or_else(|| usage("figure: --out DIR is required (or --shard i/n)"))?;
+    // Before the work: a folder that cannot take the files would lose it.
+    output::check_dir("--out", out)?;
     let mut files = Files::new();
-    let all = |_: usize| true;
     let panels = if is("bif_dir") {
-        bifurcation_panels(p, &members, args, &all, &mut files)?
+        bifurcation_panels(p, &members, args, &mut files)?
     } else if is("omega") {
-        orbit_panels(p, &members, args, &all, &mut files)?
+        orbit_panels(p, &members, args, &mut files)?
     } else {
         frf_panels(p, &members, args, &mut files)?
     };
@@ -214,193 +210,15 @@ pub fn run(args: &FigureArgs) -> Result<Value, Failure> {
 }
 
 /// The command's report: the figure and its panels, sorted a, b, c, ...
-fn listing(p: &Preset, out: &Path, mut panels: Vec<Value>) -> Value {
+pub(crate) fn listing(p: &Preset, out: &Path, mut panels: Vec<Value>) -> Value {
     panels.sort_by(|a, b| a["panel"].as_str().cmp(&b["panel"].as_str()));
     json!({ "id": p.id, "title": p.title, "out": out.display().to_string(), "panels": panels })
 }
 
-/// Creates `out` and writes the files into it.
-fn write_all(out: &Path, files: &Files) -> Result<(), Failure> {
-    std::fs::create_dir_all(out).map_err(|e| usage(format!("--out {}: {e}", out.display())))?;
-    for (name, text) in files {
-        write(&out.join(name), text)?;
-    }
-    Ok(())
-}
-
-/// The options a shard was computed with: every shard of one figure must
-/// carry the same.
-fn options_json(args: &FigureArgs) -> Value {
-    json!({
-        "points": args.points,
-        "transient_periods": args.transient_periods,
-        "record_periods": args.record_periods,
-    })
-}
-
-/// One shard as JSON: what it is, its panels' listing and their files.
-fn shard_json(
-    p: &Preset,
-    args: &FigureArgs,
-    (i, n): (usize, usize),
-    count: usize,
-    panels: Vec<Value>,
-    files: &Files,
-) -> Value {
-    let members: Vec<usize> = (i..count).step_by(n).collect();
-    json!({
-        "figure_shard": {
-            "id": p.id,
-            "shard": i,
-            "shards": n,
-            "members": members,
-            "options": options_json(args),
-        },
-        "panels": panels,
-        "files": files.iter().map(|(name, text)| json!({ "name": name, "text": text })).collect::<Vec<_>>(),
-    })
-}
-
-/// The file names of member `m`'s panels of figure `p` with `count`
-/// members: a bifurcation figure's panel m; an orbit figure's m and
-/// count + m (the Poincaré sections).
-fn member_files(p: &Preset, m: usize, count: usize) -> Vec<String> {
-    let bif = p.settings.iter().any(|(k, _)| *k == "bif_dir");
-    let letters = if bif { vec![m] } else { vec![m, count + m] };
-    letters
-        .into_iter()
-        .flat_map(|k| {
-            let panel = format!("{}{}", p.id, panel_letter(k));
-            ["svg", "json", "csv"].map(|ext| format!("{panel}.{ext}"))
-        })
-        .collect()
-}
-
-/// `gearshock merge --out DIR` of figure shards: checks that they are all
-/// the shards of one figure computed with the same options, each member's
-/// panels exactly once and nothing else, then writes the files as the
-/// unsharded run does and returns its report. Every refusal names the
-/// shard and why (exit 2).
-pub fn merge(shards: &[Value], out: Option<&Path>) -> Result<Value, Failure> {
-    let bad = |k: usize, why: String| usage(format!("merge: shard file {}: {why}", k + 1));
-    let head = |k: usize, v: &Value| -> Result<(String, u64, u64, Value), Failure> {
-        let h = v
-            .get("figure_shard")
-            .ok_or_else(|| bad(k, "not a figure shard (no figure_shard)".into()))?;
-        let id = h["id"]
-            .as_str()
-            .ok_or_else(|| bad(k, "no figure id".into()))?;
-        let (Some(i), Some(n)) = (h["shard"].as_u64(), h["shards"].as_u64()) else {
-            return Err(bad(k, "no shard i/n".into()));
-        };
-        Ok((id.to_string(), i, n, h["options"].clone()))
-    };
-    let (id, _, n, options) = head(0, &shards[0])?;
-    let p = preset(&id)
-        .filter(|p| p.family.is_some() && p.meshes.is_none())
-        .ok_or_else(|| {
-            bad(
-                0,
-                format!(
-                    "{} is not a sharded figure",
-                    solver::keys::truncate(&id, 30)
-                ),
-            )
-        })?;
-    let Some(out) = out else {
-        return Err(usage(
-            "merge: figure shards need --out DIR for the figure's files",
-        ));
-    };
-    let count = p.family.map_or(1, |f| f.values.len());
-    if n == 0 || n as usize > count || shards.len() as u64 != n {
-        return Err(usage(format!(
-            "merge: figure {id} was split into {n} shards; {} files were given",
-            shards.len()
-        )));
-    }
-    let mut seen = vec![false; n as usize];
-    let mut files = Files::new();
-    let mut panels = Vec::new();
-    for (k, v) in shards.iter().enumerate() {
-        let (kid, i, kn, kopt) = head(k, v)?;
-        if kid != id {
-            return Err(bad(
-                k,
-                format!("of figure {} (not {id})", solver::keys::truncate(&kid, 30)),
-            ));
-        }
-        if kn != n || i >= n {
-            return Err(bad(k, format!("shard {i}/{kn}, not one of {n} shards")));
-        }
-        if kopt != options {
-            return Err(bad(
-                k,
-                format!("computed with other options ({kopt}, not {options})"),
-            ));
-        }
-        if std::mem::replace(&mut seen[i as usize], true) {
-            return Err(bad(k, format!("shard {i}/{n} is given twice")));
-        }
-        // Exactly the files of this shard's members, each once.
-        let mut want: Vec<String> = (i as usize..count)
-            .step_by(n as usize)
-            .flat_map(|m| member_files(p, m, count))
-            .collect();
-        let listed = v["files"]
-            .as_array()
-            .ok_or_else(|| bad(k, "no files".into()))?;
-        for f in listed {
-            let (Some(name), Some(text)) = (f["name"].as_str(), f["text"].as_str()) else {
-                return Err(bad(k, "a file without its name or text".into()));
-            };
-            let Some(pos) = want.iter().position(|w| w == name) else {
-                return Err(bad(
-                    k,
-                    format!(
-                        "file {} is not one of shard {i}/{n}'s panels",
-                        solver::keys::truncate(name, 40)
-                    ),
-                ));
-            };
-            want.remove(pos);
-            files.push((name.to_string(), text.to_string()));
-        }
-        if let Some(missing) = want.first() {
-            return Err(bad(k, format!("file {missing} is missing")));
-        }
-        let list = v["panels"]
-            .as_array()
-            .ok_or_else(|| bad(k, "no panels".into()))?;
-        for entry in list {
-            let name = entry["panel"].as_str().unwrap_or_default();
-            let known = files.iter().any(|(f, _)| f == &format!("{name}.svg"));
-            let twice = panels
-                .iter()
-                .any(|p: &Value| p["panel"].as_str() == Some(name));
-            if !known || twice {
-                return Err(bad(
-                    k,
-                    format!(
-                        "panel {} is not one of its panels, or is given twice",
-                        solver::keys::truncate(name, 40)
-                    ),
-                ));
-            }
-            panels.push(entry.clone());
-        }
-    }
-    // Every panel listed once: three files each.
-    if panels.len() * 3 != files.len() {
-        return Err(usage(format!(
-            "merge: the shards list {} panels for {} files",
-            panels.len(),
-            files.len()
-        )));
-    }
-    files.sort_by(|a, b| a.0.cmp(&b.0));
-    write_all(out, &files)?;
-    Ok(listing(p, out, panels))
+/// Creates `out` and writes the files into it, each whole or not at all.
+pub(crate) fn write_all(out: &Path, files: &Files) -> Result<(), Failure> {
+    output::check_dir("--out", out)?;
+    output::write_files(out, files)
 }
 
 /// Panels a-d: one mesh each; every member's branch on every panel.
@@ -451,7 +269,7 @@ fn frf_panels(
                 m.model.system.mesh_index(name).ok_or_else(|| {
                     usage(format!("figure {}: no mesh {name} in this model", p.id))
                 })?;
-            let mut data = solver::report::frf_json(
+            let mut data = report::frf_json(
                 &m.model,
                 &m.settings.params,
                 &c,
@@ -587,7 +405,7 @@ fn frf_view(
     Ok(view)
 }
 
-fn run_options(m: &Member, args: &FigureArgs) -> RunOptions {
+pub(crate) fn run_options(m: &Member, args: &FigureArgs) -> RunOptions {
     RunOptions {
         transient_periods: args
             .transient_periods
@@ -598,18 +416,16 @@ fn run_options(m: &Member, args: &FigureArgs) -> RunOptions {
     }
 }
 
-/// Panels a-c: phase portraits; d-f: Poincaré sections.
-fn orbit_panels(
-    p: &Preset,
+/// The steady states of the members `only` keeps, at each member's
+/// selected Omega: (member, orbit as [`shard::orbit_json`] writes it).
+pub(crate) fn orbits(
     members: &[Member],
     args: &FigureArgs,
     only: &dyn Fn(usize) -> bool,
-    files: &mut Files,
-) -> Result<Vec<Value>, Failure> {
-    let mut out = Vec::new();
-    let n = members.len();
-    let mine = (0..n).filter(|&i| only(i)).count();
+) -> Result<Vec<(usize, Value)>, Failure> {
+    let mine = (0..members.len()).filter(|&i| only(i)).count();
     let mut bar = progress::Progress::new(mine, "panels", false);
+    let mut out = Vec::new();
     for (i, m) in members.iter().enumerate().filter(|(i, _)| only(*i)) {
         let job = OmegaJob {
             id: i as u64,
@@ -624,66 +440,104 @@ fn orbit_panels(
             code: 1,
             message: e.to_string(),
         })?;
-        let label = member_label(p, i);
-        for (k, view) in [(i, OmegaView::Phase), (n + i, OmegaView::Poincare)] {
-            let name = format!("{}{}", p.id, panel_letter(k));
-            let svg = format!("{name}.svg");
-            let mut text = String::new();
-            {
-                let root = SVGBackend::with_string(&mut text, SIZE).into_drawing_area();
-                drawn(
-                    &svg,
-                    match view {
-                        OmegaView::Poincare => app::plots::draw_poincare(&root, &r, &label),
-                        _ => app::plots::draw_phase(&root, &r, &label),
-                    },
-                )?;
-            }
-            files.push((svg, text));
-            let mut data = app::views::omega::omega_json(&r, view);
-            data["query"] = json!(m.query);
-            files.push((format!("{name}.json"), data.to_string()));
-            files.push((
-                format!("{name}.csv"),
-                app::views::omega::omega_csv(&r, view),
-            ));
-            out.push(json!({
-                "panel": name,
-                "view": if matches!(view, OmegaView::Poincare) { "poincare" } else { "phase" },
-                "query": m.query,
-                "period": r.period,
-                "impact": r.regime.solver_name(),
-                "files": [format!("{name}.svg"), format!("{name}.json"), format!("{name}.csv")],
-            }));
-        }
-        bar.update(out.len() / 2);
+        out.push((i, shard::orbit_json(&r)));
+        bar.update(out.len());
     }
     bar.finish();
+    Ok(out)
+}
+
+/// Member `i`'s two panels (its phase portrait `i`, its Poincaré section
+/// `n + i`), drawn from its orbit `r`: the files pushed to `files`, the
+/// listing entries returned.
+pub(crate) fn orbit_files(
+    p: &Preset,
+    (i, n): (usize, usize),
+    m: &Member,
+    r: &OmegaResult,
+    files: &mut Files,
+) -> Result<Vec<Value>, Failure> {
+    let label = member_label(p, i);
+    let mut out = Vec::new();
+    for (k, view) in [(i, OmegaView::Phase), (n + i, OmegaView::Poincare)] {
+        let name = format!("{}{}", p.id, panel_letter(k));
+        let svg = format!("{name}.svg");
+        let mut text = String::new();
+        {
+            let root = SVGBackend::with_string(&mut text, SIZE).into_drawing_area();
+            drawn(
+                &svg,
+                match view {
+                    OmegaView::Poincare => app::plots::draw_poincare(&root, r, &label),
+                    _ => app::plots::draw_phase(&root, r, &label),
+                },
+            )?;
+        }
+        files.push((svg, text));
+        let mut data = app::views::omega::omega_json(r, view);
+        data["query"] = json!(m.query);
+        files.push((format!("{name}.json"), data.to_string()));
+        files.push((format!("{name}.csv"), app::views::omega::omega_csv(r, view)));
+        out.push(json!({
+            "panel": name,
+            "view": if matches!(view, OmegaView::Poincare) { "poincare" } else { "phase" },
+            "query": m.query,
+            "period": r.period,
+            "impact": r.regime.solver_name(),
+            "files": [format!("{name}.svg"), format!("{name}.json"), format!("{name}.csv")],
+        }));
+    }
+    Ok(out)
+}
+
+/// Panels a-c: phase portraits; d-f: Poincaré sections. Every panel is
+/// drawn from its orbit read back from JSON, as a merge of shards draws it.
+fn orbit_panels(
+    p: &Preset,
+    members: &[Member],
+    args: &FigureArgs,
+    files: &mut Files,
+) -> Result<Vec<Value>, Failure> {
+    let n = members.len();
+    let mut out = Vec::new();
+    for (i, orbit) in orbits(members, args, &|_| true)? {
+        let r =
+            shard::orbit_from_json(&orbit, &members[i], args, "figure").map_err(|e| Failure {
+                code: 1,
+                message: e,
+            })?;
+        out.extend(orbit_files(p, (i, n), &members[i], &r, files)?);
+    }
     out.sort_by(|a, b| a["panel"].as_str().cmp(&b["panel"].as_str()));
     Ok(out)
 }
 
-/// Panels a-c: one bifurcation diagram per member.
-fn bifurcation_panels(
-    p: &Preset,
+/// The sweep spec of member `m`'s bifurcation panel.
+pub(crate) fn bif_spec(m: &Member, args: &FigureArgs) -> SweepSpec {
+    let v = &m.settings.view;
+    let mut spec = SweepSpec::new(
+        v.omega_from,
+        v.omega_to,
+        args.points.unwrap_or(v.bif_points),
+    );
+    let run = run_options(m, args);
+    spec.steady.transient_periods = run.transient_periods;
+    spec.steady.record_periods = run.record_periods;
+    spec.directions = v.bif_dir;
+    spec.meshes = vec![m.settings.mesh_index(&m.model).unwrap_or(0)];
+    spec
+}
+
+/// The sweeps of the members `only` keeps: (member, `gearshock
+/// bifurcation` JSON of its sweep).
+pub(crate) fn sweeps(
     members: &[Member],
     args: &FigureArgs,
     only: &dyn Fn(usize) -> bool,
-    files: &mut Files,
-) -> Result<Vec<Value>, Failure> {
+) -> Result<Vec<(usize, Value)>, Failure> {
     let mut sweeps = Vec::new();
     for (i, m) in members.iter().enumerate() {
-        let v = &m.settings.view;
-        let mut spec = SweepSpec::new(
-            v.omega_from,
-            v.omega_to,
-            args.points.unwrap_or(v.bif_points),
-        );
-        let run = run_options(m, args);
-        spec.steady.transient_periods = run.transient_periods;
-        spec.steady.record_periods = run.record_periods;
-        spec.directions = v.bif_dir;
-        spec.meshes = vec![m.settings.mesh_index(&m.model).unwrap_or(0)];
+        let spec = bif_spec(m, args);
         sweeps.push((
             i,
             spec.clone(),
@@ -704,26 +558,57 @@ fn bifurcation_panels(
         }
         done += sweep.total();
         canonical_order(&mut pts);
-        let name = format!("{}{}", p.id, panel_letter(i));
-        let data = solver::report::sweep_json(&m.model, &m.settings.params, &spec, &pts);
-        files.push((format!("{name}.json"), data.to_string()));
-        files.push((format!("{name}.csv"), crate::csv::sweep(&data)));
-        let view = bif_view(m, &spec, &pts)?;
-        let natural = app::views::natural_in_range(&m.model, spec.omega_from, spec.omega_to);
-        let svg = format!("{name}.svg");
-        let text = drawn(&svg, bif_svg(&view, &natural, &member_label(p, i)))?;
-        files.push((svg, text));
-        let failed = pts.iter().filter(|p| p.error.is_some()).count();
-        out.push(json!({
-            "panel": name,
-            "view": "bifurcation",
-            "query": m.query,
-            "points": pts.len(),
-            "failed": failed,
-            "files": [format!("{name}.svg"), format!("{name}.json"), format!("{name}.csv")],
-        }));
+        out.push((
+            i,
+            report::sweep_json(&m.model, &m.settings.params, &spec, &pts),
+        ));
     }
     bar.finish();
+    Ok(out)
+}
+
+/// Member `i`'s bifurcation panel drawn from its sweep's JSON `data`: the
+/// files pushed to `files`, the listing entry returned.
+pub(crate) fn bif_files(
+    p: &Preset,
+    i: usize,
+    m: &Member,
+    spec: &SweepSpec,
+    data: &Value,
+    files: &mut Files,
+) -> Result<Value, Failure> {
+    let name = format!("{}{}", p.id, panel_letter(i));
+    files.push((format!("{name}.json"), data.to_string()));
+    files.push((format!("{name}.csv"), crate::csv::sweep(data)));
+    let view = bif_view(m, spec, data)?;
+    let natural = app::views::natural_in_range(&m.model, spec.omega_from, spec.omega_to);
+    let svg = format!("{name}.svg");
+    let text = drawn(&svg, bif_svg(&view, &natural, &member_label(p, i)))?;
+    files.push((svg, text));
+    let pts = data["points"].as_array().map_or(&[][..], Vec::as_slice);
+    let failed = pts.iter().filter(|p| p.get("error").is_some()).count();
+    Ok(json!({
+        "panel": name,
+        "view": "bifurcation",
+        "query": m.query,
+        "points": pts.len(),
+        "failed": failed,
+        "files": [format!("{name}.svg"), format!("{name}.json"), format!("{name}.csv")],
+    }))
+}
+
+/// Panels a-c: one bifurcation diagram per member.
+fn bifurcation_panels(
+    p: &Preset,
+    members: &[Member],
+    args: &FigureArgs,
+    files: &mut Files,
+) -> Result<Vec<Value>, Failure> {
+    let mut out = Vec::new();
+    for (i, data) in sweeps(members, args, &|_| true)? {
+        let m = &members[i];
+        out.push(bif_files(p, i, m, &bif_spec(m, args), &data, files)?);
+    }
     Ok(out)
 }
 
@@ -744,32 +629,35 @@ fn bif_svg(
     app::plots::svg_with_dots(&chart, SIZE, &groups).map_err(|e| e.to_string())
 }
 
-/// The page's bifurcation view of one sweep: Poincaré samples of x = delta - e.
-fn bif_view(
-    m: &Member,
-    spec: &SweepSpec,
-    pts: &[solver::sweep::SweepPoint],
-) -> Result<BifView, solver::SolverError> {
+/// The page's bifurcation view of one sweep, from its JSON (one mesh, its
+/// fields inline): Poincaré samples of x = delta - e.
+fn bif_view(m: &Member, spec: &SweepSpec, data: &Value) -> Result<BifView, solver::SolverError> {
     let mesh = spec.meshes[0];
     let def = &m.model.system.meshes[mesh];
     let mut points = Vec::new();
     let mut failed = Vec::new();
+    let pts = data["points"].as_array().map_or(&[][..], Vec::as_slice);
     for p in pts {
-        if let Some(e) = &p.error {
-            failed.push((p.omega, e.clone()));
+        let omega = p["omega"].as_f64().unwrap_or(f64::NAN);
+        if let Some(e) = p.get("error") {
+            failed.push((omega, e.as_str().unwrap_or_default().to_string()));
             continue;
         }
-        let w = p.omega * m.model.system.omega_ref_rad_s;
+        let w = omega * m.model.system.omega_ref_rad_s;
         // The TE at the Poincaré phase (t = n T).
         let (_, e0, _) = def.excitation(w, 1.0, 0.0);
-        for pm in &p.meshes {
-            points.extend(pm.poincare_delta_m.iter().map(|d| BifPoint {
-                omega: p.omega,
-                x_um: (d - e0) * 1e6,
-                regime: pm.impact.into(),
-                up: p.direction == Direction::Up,
-            }));
-        }
+        let regime = report::impact_of(&p["impact"]).unwrap_or(solver::steady::Impact::None);
+        let up = p["direction"].as_str() == Some(Direction::Up.name());
+        let deltas = p["poincare_delta_m"]
+            .as_array()
+            .map_or(&[][..], Vec::as_slice);
+        // null is what JSON holds for a non-finite number.
+        points.extend(deltas.iter().map(|d| BifPoint {
+            omega,
+            x_um: (d.as_f64().unwrap_or(f64::NAN) - e0) * 1e6,
+            regime: regime.into(),
+            up,
+        }));
     }
     Ok(BifView {
         mesh_label: def.name.clone(),

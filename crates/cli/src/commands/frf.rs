@@ -2,17 +2,16 @@
 //! arclength continuation. A solver failure still writes the branch up to
 //! there, marked incomplete, and exits with code 1.
 
-use crate::args::{meshes, ParamArgs};
+use crate::args::{meshes, OmegaRange, ParamArgs};
 use crate::budget::MAX_FRF_WORK;
 use crate::csv;
 use crate::failure::{usage, Failure};
-use crate::output::output;
+use crate::output::{note, output};
 use crate::sweep::{self, Sweep};
 use clap::Args;
 use solver::hbm::{BranchPoint, FrfContinuation, FrfSpec, Method};
 use solver::keys;
 use solver::orbits::{ShootFrfSpec, ShootingContinuation};
-use solver::report;
 use solver::sweep::Direction;
 use solver::SolverError;
 
@@ -21,12 +20,8 @@ use solver::SolverError;
 pub struct FrfArgs {
     #[command(flatten)]
     p: ParamArgs,
-    /// First Omega.
-    #[arg(long, allow_hyphen_values = true)]
-    omega_from: f64,
-    /// Last Omega.
-    #[arg(long, allow_hyphen_values = true)]
-    omega_to: f64,
+    #[command(flatten)]
+    range: OmegaRange,
     /// Nominal points: the largest continuation step is range / points.
     #[arg(long, default_value_t = 400)]
     points: u32,
@@ -98,7 +93,7 @@ pub fn run(a: &FrfArgs) -> Result<(), Failure> {
         return run_shooting(a);
     }
     let (params, model) = a.p.load()?;
-    let mut spec = FrfSpec::new(a.omega_from, a.omega_to, a.points);
+    let mut spec = FrfSpec::new(a.range.omega_from, a.range.omega_to, a.points);
     spec.harmonics = a.harmonics;
     spec.method = Method::from_name(&a.method).ok_or_else(|| {
         usage(format!(
@@ -138,18 +133,18 @@ pub fn run(a: &FrfArgs) -> Result<(), Failure> {
     output(a.p.format, &value, csv::frf)?;
     // Restarts and left-out gaps are in the JSON; say them here too.
     for n in c.notes() {
-        eprintln!("gearshock: note: {n}");
+        note(&format!("note: {n}"));
     }
     if failure.is_none() && c.left_at_start() {
-        eprintln!(
-            "gearshock: note: the branch turned back at a fold and left the range at its start; \
+        note(&format!(
+            "note: the branch turned back at a fold and left the range at its start; \
              continue from the other end with --direction {} to see the rest",
             if c.spec().direction == Direction::Up {
                 "down"
             } else {
                 "up"
             }
-        );
+        ));
     }
     match failure {
         // The partial branch is written (marked `complete: false`),
@@ -165,7 +160,7 @@ pub fn run(a: &FrfArgs) -> Result<(), Failure> {
 /// `--method shooting`: the periodic branches by shooting continuation.
 fn run_shooting(a: &FrfArgs) -> Result<(), Failure> {
     let (params, model) = a.p.load()?;
-    let mut spec = ShootFrfSpec::new(a.omega_from, a.omega_to, a.points);
+    let mut spec = ShootFrfSpec::new(a.range.omega_from, a.range.omega_to, a.points);
     spec.direction = Direction::from_name(&a.direction).ok_or_else(|| {
         usage(format!(
             "--direction {}: allowed up, down",
@@ -188,18 +183,18 @@ fn run_shooting(a: &FrfArgs) -> Result<(), Failure> {
         }
         if a.p.progress {
             if let Some(p) = points.last() {
-                eprintln!(
-                    "gearshock: {} points, Omega {:.4}",
+                note(&format!(
+                    "{} points, Omega {:.4}",
                     points.len(),
                     p.point.omega
-                );
+                ));
             }
         }
     }
     let value = report::shooting_frf_json(&model, &params, &c, &points, &meshes, failure.as_ref());
     output(a.p.format, &value, |_| String::new())?;
     for n in c.notes() {
-        eprintln!("gearshock: note: {n}");
+        note(&format!("note: {n}"));
     }
     match failure {
         Some(e) => Err(Failure {

@@ -1,26 +1,21 @@
 //! `gearshock instability`: the Floquet spectral radius of the fully
 //! engaged linear system over Omega, and its unstable bands.
 
-use crate::args::{omega_grid, stream_header, ParamArgs};
+use crate::args::{omega_grid, stream_header, OmegaRange, ParamArgs};
 use crate::csv;
 use crate::failure::Failure;
-use crate::output::output;
+use crate::output::{note, output};
 use crate::sweep::{self, Lines, Points};
 use clap::Args;
 use solver::parametric::Parametric;
-use solver::report;
 
 /// Options of `gearshock instability`.
 #[derive(Debug, Args)]
 pub struct InstabilityArgs {
     #[command(flatten)]
     p: ParamArgs,
-    /// First Omega.
-    #[arg(long, allow_hyphen_values = true)]
-    omega_from: f64,
-    /// Last Omega.
-    #[arg(long, allow_hyphen_values = true)]
-    omega_to: f64,
+    #[command(flatten)]
+    range: OmegaRange,
     /// Number of Omega points.
     #[arg(long, default_value_t = 200)]
     points: u32,
@@ -29,7 +24,7 @@ pub struct InstabilityArgs {
 /// Scans Omega, says the unstable bands on stderr and prints the points.
 pub fn run(a: &InstabilityArgs) -> Result<(), Failure> {
     let (params, model) = a.p.load()?;
-    let omegas = omega_grid(a.omega_from, a.omega_to, a.points, 100_000)?;
+    let omegas = omega_grid(a.range.omega_from, a.range.omega_to, a.points, 100_000)?;
     let engaged = Parametric::new(&model)?;
     let lines = Lines {
         header: stream_header(&model, &params, None),
@@ -44,14 +39,14 @@ pub fn run(a: &InstabilityArgs) -> Result<(), Failure> {
         .iter()
         .map(|(a, b)| format!("Omega {a:.4} to {b:.4}"))
         .collect();
-    eprintln!(
-        "gearshock: unstable bands of the engaged system: {}",
+    note(&format!(
+        "unstable bands of the engaged system: {}",
         if text.is_empty() {
             "none in the scanned range".to_string()
         } else {
             text.join(", ")
         }
-    );
+    ));
     if kept.is_none() {
         return Ok(());
     }

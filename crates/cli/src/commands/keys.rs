@@ -19,6 +19,5 @@ pub fn run(a: &KeysArgs) -> Result<(), Failure> {
         csv::keys_markdown()
     } else {
         csv::keys_text()
-    });
-    Ok(())
+    })
 }

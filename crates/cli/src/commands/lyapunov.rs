@@ -1,7 +1,7 @@
 //! `gearshock lyapunov`: the largest Lyapunov exponent of the Poincaré map
 //! over a sweep of Omega, each point continued from the last one's end state.
 
-use crate::args::{omega_grid, stream_header, ParamArgs};
+use crate::args::{omega_grid, stream_header, OmegaRange, ParamArgs};
 use crate::budget::check_work;
 use crate::csv;
 use crate::failure::Failure;
@@ -9,19 +9,14 @@ use crate::output::output;
 use crate::sweep::{self, Lines, Points};
 use clap::Args;
 use solver::lyapunov::{largest_exponent, LyapunovOptions};
-use solver::report;
 
 /// Options of `gearshock lyapunov`.
 #[derive(Debug, Args)]
 pub struct LyapunovArgs {
     #[command(flatten)]
     p: ParamArgs,
-    /// First Omega.
-    #[arg(long, allow_hyphen_values = true)]
-    omega_from: f64,
-    /// Last Omega.
-    #[arg(long, allow_hyphen_values = true)]
-    omega_to: f64,
+    #[command(flatten)]
+    range: OmegaRange,
     /// Number of Omega points.
     #[arg(long, default_value_t = 50)]
     points: u32,
@@ -37,8 +32,8 @@ pub struct LyapunovArgs {
 pub fn run(a: &LyapunovArgs) -> Result<(), Failure> {
     let (params, model) = a.p.load()?;
     let (points, transient_periods, periods) = (a.points, a.transient_periods, a.periods);
-    let omegas = omega_grid(a.omega_from, a.omega_to, points, 10_000)?;
-    let mut opts = LyapunovOptions::new(a.omega_from);
+    let omegas = omega_grid(a.range.omega_from, a.range.omega_to, points, 10_000)?;
+    let mut opts = LyapunovOptions::new(a.range.omega_from);
     opts.transient_periods = transient_periods;
     opts.periods = periods;
     // Every option checked before the first point is computed.

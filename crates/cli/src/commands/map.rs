@@ -1,7 +1,7 @@
 //! `gearshock map`: the impact-regime map over Omega (columns) and any
 //! numeric key (rows), optionally one shard of its rows.
 
-use crate::args::{mesh_index, parse_shard, stream_header, ParamArgs, RunArgs};
+use crate::args::{mesh_index, parse_shard, stream_header, OmegaRange, ParamArgs, RunArgs};
 use crate::budget::check_work;
 use crate::csv;
 use crate::failure::Failure;
@@ -9,19 +9,14 @@ use crate::output::output;
 use crate::sweep::{self, Lines};
 use clap::Args;
 use solver::map::{MapSpec, RegimeMap};
-use solver::report;
 
 /// Options of `gearshock map`.
 #[derive(Debug, Args)]
 pub struct MapArgs {
     #[command(flatten)]
     p: ParamArgs,
-    /// First Omega.
-    #[arg(long, allow_hyphen_values = true)]
-    omega_from: f64,
-    /// Last Omega.
-    #[arg(long, allow_hyphen_values = true)]
-    omega_to: f64,
+    #[command(flatten)]
+    range: OmegaRange,
     /// Number of Omega columns.
     #[arg(long, default_value_t = 100)]
     omega_points: u32,
@@ -52,7 +47,7 @@ pub fn run(a: &MapArgs) -> Result<(), Failure> {
     let (params, model) = a.p.load()?;
     // `+ 0.0` turns a typed -0 into 0, so the echoed spec reads 0.
     let mut spec = MapSpec::new(
-        (a.omega_from, a.omega_to, a.omega_points),
+        (a.range.omega_from, a.range.omega_to, a.omega_points),
         &a.key,
         (a.value_from + 0.0, a.value_to + 0.0, a.value_points),
     );

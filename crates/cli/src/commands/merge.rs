@@ -7,7 +7,6 @@ use crate::failure::{usage, Failure};
 use crate::input::{bytes_text, read_json, MAX_MERGE_BYTES, MAX_SHARD_BYTES};
 use crate::output::emit;
 use clap::Args;
-use solver::report;
 
 /// Options of `gearshock merge`.
 #[derive(Debug, Args)]
@@ -54,18 +53,20 @@ pub fn run(a: &MergeArgs) -> Result<(), Failure> {
         left -= read;
         shards.push(v);
     }
+    // Messages name each shard by its file.
+    let names: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
     if shards
         .first()
         .is_some_and(|v| v.get("figure_shard").is_some())
     {
-        emit(&figure::merge(&shards, out.as_deref())?)
+        emit(&figure::shard::merge(&shards, &names, out.as_deref())?)
     } else if out.is_some() {
         Err(usage(
             "merge --out: only figure shards (gearshock figure ID --shard i/n) write files",
         ))
     } else if shards.first().is_some_and(|v| v.get("cells").is_some()) {
-        emit(&report::merge_maps(&shards)?)
+        emit(&report::merge_map_files(&shards, &names)?)
     } else {
-        emit(&report::merge_shards(&shards)?)
+        emit(&report::merge_sweep_files(&shards, &names)?)
     }
 }

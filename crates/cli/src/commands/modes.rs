@@ -4,7 +4,6 @@ use crate::args::{Format, ParamArgs};
 use crate::csv;
 use crate::failure::Failure;
 use crate::output::{emit_text, output};
-use solver::report;
 
 /// Prints the model's statics and modes.
 pub fn run(p: &ParamArgs) -> Result<(), Failure> {
@@ -13,9 +12,6 @@ pub fn run(p: &ParamArgs) -> Result<(), Failure> {
         Format::Json | Format::Jsonl => {
             output(p.format, &report::modes_json(&model), |_| String::new())
         }
-        Format::Csv => {
-            emit_text(&csv::modes(&model));
-            Ok(())
-        }
+        Format::Csv => emit_text(&csv::modes(&model)),
     }
 }

@@ -14,13 +14,7 @@ pub fn run(p: &ParamArgs) -> Result<(), Failure> {
     let (params, _) = p.load()?;
     match p.format {
         Format::Json => emit(&Value::Object(keys::to_json(&params))),
-        Format::Jsonl => {
-            emit_line(&Value::Object(keys::to_json(&params)));
-            Ok(())
-        }
-        Format::Csv => {
-            emit_text(&csv::params(&params));
-            Ok(())
-        }
+        Format::Jsonl => emit_line(&Value::Object(keys::to_json(&params))),
+        Format::Csv => emit_text(&csv::params(&params)),
     }
 }

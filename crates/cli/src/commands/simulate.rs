@@ -4,10 +4,9 @@
 use crate::args::{mesh_index, Format, ParamArgs, RunArgs};
 use crate::csv;
 use crate::failure::{usage, Failure};
-use crate::output::{emit_text, output};
+use crate::output::{emit_text, note, output};
 use clap::Args;
 use solver::lyapunov::{largest_exponent, LyapunovOptions};
-use solver::report;
 use solver::steady::{steady_state, Motion, SteadyOptions};
 
 /// Options of `gearshock simulate`.
@@ -73,15 +72,12 @@ pub fn run(a: &SimulateArgs) -> Result<(), Failure> {
         }
         value["verdict"] = serde_json::json!(verdict);
     }
-    eprintln!("gearshock: {verdict}");
-    if let Some(note) = &ss.shooting_note {
-        eprintln!("gearshock: note: {note}");
+    note(&verdict);
+    if let Some(n) = &ss.shooting_note {
+        note(&format!("note: {n}"));
     }
     match a.p.format {
         Format::Json | Format::Jsonl => output(a.p.format, &value, |_| String::new()),
-        Format::Csv => {
-            emit_text(&csv::history(&ss, j));
-            Ok(())
-        }
+        Format::Csv => emit_text(&csv::history(&ss, j)),
     }
 }

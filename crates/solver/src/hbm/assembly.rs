@@ -189,8 +189,21 @@ impl Assembly {
                 self.u_coef[cc] = (0..m).map(|i| ch.d[i] * x[cc * m + i]).sum();
             }
             self.channel_coef[ch_idx * nc..(ch_idx + 1) * nc].copy_from_slice(&self.u_coef);
-            match self.method {
-                Method::Aft => channel_aft(
+            let exact = self.method == Method::Exact
+                && channel_exact(
+                    self.h,
+                    &self.switch_table,
+                    &ch.law,
+                    &self.u_coef,
+                    &mut self.exact_scratch,
+                    &mut self.force,
+                    &mut self.slope,
+                );
+            if self.method == Method::DescribingFunction {
+                channel_df(&ch.law, &self.u_coef, &mut self.force, &mut self.slope);
+            } else if !exact {
+                // AFT, and the exact method's fallback for laws it does not integrate.
+                channel_aft(
                     &self.grid,
                     &ch.law,
                     &self.tables[ch_idx],
@@ -198,31 +211,7 @@ impl Assembly {
                     &mut self.scratch,
                     &mut self.force,
                     &mut self.slope,
-                ),
-                Method::DescribingFunction => {
-                    channel_df(&ch.law, &self.u_coef, &mut self.force, &mut self.slope)
-                }
-                Method::Exact => {
-                    if !channel_exact(
-                        self.h,
-                        &self.switch_table,
-                        &ch.law,
-                        &self.u_coef,
-                        &mut self.exact_scratch,
-                        &mut self.force,
-                        &mut self.slope,
-                    ) {
-                        channel_aft(
-                            &self.grid,
-                            &ch.law,
-                            &self.tables[ch_idx],
-                            &self.u_coef,
-                            &mut self.scratch,
-                            &mut self.force,
-                            &mut self.slope,
-                        );
-                    }
-                }
+                );
             }
             let w = ch.multiplicity;
             for cc in 0..nc {

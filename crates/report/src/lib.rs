@@ -1,4 +1,6 @@
-//! Results as JSON, in one format shared by the CLI and the browser app.
+//! Results as JSON, in one format shared by the CLI and the browser app,
+//! and the merge of sharded runs ([`merge`]). Kept outside the solver, which
+//! computes and never formats.
 //!
 //! Field names carry SI units (`_m`, `_hz`, `_n`, `_nm`, `_s`, `_m_s`);
 //! dimensionless quantities (`omega`, `dynamic_factor`) carry none. Building
@@ -7,13 +9,19 @@
 mod orbits;
 pub use orbits::shooting_frf_json;
 
-use crate::error::{Result, SolverError};
-use crate::keys;
-use crate::modal::Mode;
-use crate::params::{ModelKind, ModelParams};
-use crate::steady::{spectrum, Impact, Model, SteadyState, SteadyStats};
-use crate::sweep::{Direction, PointMesh, SweepPoint, SweepSpec};
 use serde_json::{json, Map, Value};
+use solver::error::SolverError;
+use solver::keys;
+use solver::modal::Mode;
+use solver::params::{ModelKind, ModelParams};
+use solver::steady::{spectrum, Impact, Model, SteadyState, SteadyStats};
+use solver::sweep::{PointMesh, SweepPoint, SweepSpec};
+
+pub mod check;
+pub mod merge;
+pub use merge::{
+    check_sweep, merge_map_files, merge_maps, merge_shards, merge_sweep_files, MAX_SHARDS,
+};
 
 /// `null` for non-finite numbers (JSON has no NaN).
 pub fn num(x: f64) -> Value {
@@ -260,7 +268,7 @@ pub fn sweep_stats_json(points: &[Value]) -> Value {
 }
 
 /// The totals; with `saturate` false, `None` if a sum overflows.
-fn stats_totals(points: &[Value], saturate: bool) -> Option<Value> {
+pub(crate) fn stats_totals(points: &[Value], saturate: bool) -> Option<Value> {
     let mut totals: Map<String, Value> = Map::new();
     let mut failed = 0u64;
     for p in points {
@@ -304,259 +312,13 @@ pub fn sweep_json(
     })
 }
 
-/// The first input, its spec without `shard`, and every item with its shard.
-type Joined<'a> = (&'a Value, Map<String, Value>, Vec<(u64, Value)>);
-
-/// Most shards one run may be split into (as `--shard i/n` allows).
-pub const MAX_SHARDS: u64 = 10_000;
-
-/// Largest work counter one merged point may carry: 2^53, the largest
-/// integer every JSON reader holds exactly.
-const MAX_COUNTER: u64 = 1 << 53;
-
-/// Checks that `shards` are the `n` shards `i/n` of one run (`n` read from
-/// `spec[count_key]`, at most [`MAX_SHARDS`], which must equal the number
-/// of inputs): every input has the first one's spec (but for `shard`) and
-/// params, and each shard appears exactly once. Nothing is sized from the
-/// inputs before `n` is bounded. Returns the first input, its spec
-/// with `shard` cleared, and every shard's `items` with the shard's number,
-/// in input order.
-fn join_shards<'a>(
-    shards: &'a [Value],
-    count_key: &str,
-    items: &str,
-    what: &str,
-) -> Result<Joined<'a>> {
-    let bad = |m: String| SolverError::Parse(m);
-    let first = shards
-        .first()
-        .ok_or_else(|| bad("merge needs at least one shard".into()))?;
-    let spec_of = |v: &Value| -> Result<Map<String, Value>> {
-        match v.get("spec") {
-            Some(Value::Object(m)) => {
-                let mut m = m.clone();
-                m.insert("shard".into(), Value::Null);
-                Ok(m)
-            }
-            _ => Err(bad(format!(
-                "a shard has no `spec` object: is it gearshock {what} output?"
-            ))),
-        }
-    };
-    let base = spec_of(first)?;
-    // The parameter set is copied to the output: it must be one gearshock reads.
-    match first.get("params") {
-        Some(Value::Object(p)) => {
-            keys::from_json(p).map_err(|e| bad(format!("the shards' params: {e}")))?;
-        }
-        _ => return Err(bad("a shard has no `params` object".into())),
-    }
-    let n = base
-        .get(count_key)
-        .and_then(Value::as_u64)
-        .ok_or_else(|| bad(format!("shard spec has no whole number `{count_key}`")))?;
-    if n == 0 || n > MAX_SHARDS {
-        return Err(bad(format!(
-            "spec.{count_key} = {n} is out of range: allowed 1 ..= {MAX_SHARDS}"
-        )));
-    }
-    // Bounded by MAX_SHARDS just above.
-    let mut seen = vec![false; n as usize];
-    let mut all = Vec::new();
-    for (k, sh) in shards.iter().enumerate() {
-        let shard = sh
-            .get("spec")
-            .and_then(|s| s.get("shard"))
-            .and_then(Value::as_str)
-            .and_then(|s| s.split_once('/'))
-            .and_then(|(i, _)| i.parse::<u64>().ok())
-            .ok_or_else(|| {
-                bad(format!(
-                    "input {} is not a shard (spec.shard is missing)",
-                    k + 1
-                ))
-            })?;
-        if spec_of(sh)? != base || sh.get("params") != first.get("params") {
-            return Err(bad(format!(
-                "input {} belongs to a different {what} (its spec or params differ from the first input's)",
-                k + 1
-            )));
-        }
-        let slot = usize::try_from(shard).ok().filter(|&s| s < seen.len());
-        match slot {
-            Some(s) if !seen[s] => seen[s] = true,
-            _ => {
-                return Err(bad(format!(
-                    "shard {shard}/{n} is given twice or out of range"
-                )))
-            }
-        }
-        match sh.get(items) {
-            Some(Value::Array(p)) => all.extend(p.iter().map(|v| (shard, v.clone()))),
-            _ => {
-                return Err(bad(format!(
-                    "input {} (shard {shard}/{n}) has no `{items}` array",
-                    k + 1
-                )))
-            }
-        }
-    }
-    if let Some(missing) = seen.iter().position(|s| !s) {
-        return Err(bad(format!(
-            "shard {missing}/{n} is missing ({count_key} = {n}, {} given)",
-            shards.len()
-        )));
-    }
-    Ok((first, base, all))
-}
-
-/// A number field of a spec, or a message naming it.
-fn spec_f64(spec: &Map<String, Value>, key: &str) -> Result<f64> {
-    spec.get(key)
-        .and_then(Value::as_f64)
-        .filter(|x| x.is_finite())
-        .ok_or_else(|| SolverError::Parse(format!("shard spec has no finite number `{key}`")))
-}
-
-/// A whole-number field of a spec in `1 ..= max`, or a message naming it.
-fn spec_count(spec: &Map<String, Value>, key: &str, max: u64) -> Result<u64> {
-    let n = spec
-        .get(key)
-        .and_then(Value::as_u64)
-        .ok_or_else(|| SolverError::Parse(format!("shard spec has no whole number `{key}`")))?;
-    if n == 0 || n > max {
-        return Err(SolverError::Parse(format!(
-            "spec.{key} = {n} is out of range: allowed 1 ..= {max}"
-        )));
-    }
-    Ok(n)
-}
-
-/// Whether a value read back from JSON is the grid value `expected` (JSON
-/// round-trips a number to within an ulp or so).
-fn on_grid(got: f64, expected: f64) -> bool {
-    (got - expected).abs() <= 1e-9 * expected.abs().max(1.0)
-}
-
-/// Checks one merged point's or cell's work counters: whole numbers no
-/// larger than [`MAX_COUNTER`].
-fn check_counters(item: &Value, what: &str) -> Result<()> {
-    if let Some(Value::Object(s)) = item.get("stats") {
-        for (k, v) in s {
-            if v.as_u64().is_some_and(|x| x > MAX_COUNTER) || v.as_i64().is_some_and(|x| x < 0) {
-                return Err(SolverError::Parse(format!(
-                    "{what}: stats.{} = {} is out of range: allowed 0 ..= {MAX_COUNTER}",
-                    keys::truncate(k, 40),
-                    keys::truncate(&v.to_string(), 40)
-                )));
-            }
-        }
-    }
-    Ok(())
-}
-
-/// Merges the JSON outputs of the shards `0/n .. n-1/n` of one sweep into the
-/// JSON of the unsharded run with `chains = n`. Every point must lie on the
-/// spec's grid (its index below `points`, its Omega that index's, its
-/// direction one the spec sweeps, its index in its shard's chain) and appear
-/// once, and every grid point must be present.
-pub fn merge_shards(shards: &[Value]) -> Result<Value> {
-    let (first, base_spec, tagged) = join_shards(shards, "chains", "points", "sweep")?;
-    let bad = |m: String| SolverError::Parse(m);
-    let points_n = spec_count(&base_spec, "points", u64::from(crate::sweep::MAX_POINTS))?;
-    let chains = spec_count(&base_spec, "chains", points_n)?;
-    let grid = SweepSpec::new(
-        spec_f64(&base_spec, "omega_from")?,
-        spec_f64(&base_spec, "omega_to")?,
-        points_n as u32,
-    );
-    let directions = base_spec
-        .get("direction")
-        .and_then(Value::as_str)
-        .and_then(crate::sweep::Directions::from_name)
-        .ok_or_else(|| bad("shard spec has no `direction` (up, down or both)".into()))?;
-    let dirs = directions.list();
-    // One flag per (direction, index): at most 2 * MAX_POINTS, checked above.
-    let mut seen = vec![false; dirs.len() * points_n as usize];
-    let mut points = Vec::with_capacity(tagged.len().min(seen.len()));
-    for (shard, p) in tagged {
-        let index = p.get("index").and_then(Value::as_u64);
-        let direction = p
-            .get("direction")
-            .and_then(Value::as_str)
-            .and_then(Direction::from_name);
-        let omega = p.get("omega").and_then(Value::as_f64);
-        let where_ = format!(
-            "a point of shard {shard}/{chains} (index {}, direction {}, omega {})",
-            index.map_or("missing".into(), |i| i.to_string()),
-            direction.map_or("missing", Direction::name),
-            omega.map_or("missing".into(), |o| o.to_string()),
-        );
-        let (Some(index), Some(direction), Some(omega)) = (index, direction, omega) else {
-            return Err(bad(format!("{where_} lacks its index, direction or omega")));
-        };
-        let d = dirs.iter().position(|&x| x == direction).ok_or_else(|| {
-            bad(format!(
-                "{where_}: the sweep runs {} only",
-                directions.name()
-            ))
-        })?;
-        if index >= points_n || index % chains != shard {
-            return Err(bad(format!(
-                "{where_} is not on the sweep's grid: shard {shard}/{chains} holds indices {shard}, {}, ... below {points_n}",
-                shard + chains
-            )));
-        }
-        if !on_grid(omega, grid.omega(index as u32)) {
-            return Err(bad(format!(
-                "{where_} is not on the sweep's grid: point {index} is at omega {}",
-                grid.omega(index as u32)
-            )));
-        }
-        let slot = d * points_n as usize + index as usize;
-        if seen[slot] {
-            return Err(bad(format!("{where_} is given twice")));
-        }
-        seen[slot] = true;
-        check_counters(&p, &where_)?;
-        points.push(p);
-    }
-    if let Some(slot) = seen.iter().position(|s| !s) {
-        return Err(bad(format!(
-            "point {} ({}) is missing from the shards",
-            slot % points_n as usize,
-            dirs[slot / points_n as usize].name()
-        )));
-    }
-    points.sort_by_key(|p| {
-        let idx = p.get("index").and_then(Value::as_i64).unwrap_or(0);
-        match p
-            .get("direction")
-            .and_then(Value::as_str)
-            .and_then(Direction::from_name)
-        {
-            Some(Direction::Down) => (1, -idx),
-            _ => (0, idx),
-        }
-    });
-    let stats = stats_totals(&points, false)
-        .ok_or_else(|| bad("the shards' work counters overflow when summed".into()))?;
-    Ok(json!({
-        "model": first.get("model").cloned().unwrap_or(Value::Null),
-        "params": first.get("params").cloned().unwrap_or(Value::Null),
-        "spec": Value::Object(base_spec),
-        "stats": stats,
-        "points": points,
-    }))
-}
-
 /// Parses an impact name in JSON (for readers of sweep output).
 pub fn impact_of(v: &Value) -> Option<Impact> {
     v.as_str().and_then(Impact::from_name)
 }
 
 /// The options of a harmonic-balance frequency response as JSON.
-pub fn frf_spec_json(spec: &crate::hbm::FrfSpec, grid: usize) -> Value {
+pub fn frf_spec_json(spec: &solver::hbm::FrfSpec, grid: usize) -> Value {
     json!({
         "omega_from": num(spec.omega_from),
         "omega_to": num(spec.omega_to),
@@ -570,7 +332,7 @@ pub fn frf_spec_json(spec: &crate::hbm::FrfSpec, grid: usize) -> Value {
     })
 }
 
-fn branch_mesh_json(m: &crate::hbm::BranchMesh) -> Map<String, Value> {
+fn branch_mesh_json(m: &solver::hbm::BranchMesh) -> Map<String, Value> {
     let mut o = Map::new();
     o.insert("delta_max_m".into(), num(m.delta_max_m));
     o.insert("delta_min_m".into(), num(m.delta_min_m));
@@ -584,7 +346,7 @@ fn branch_mesh_json(m: &crate::hbm::BranchMesh) -> Map<String, Value> {
 
 /// One branch point. With one requested mesh its fields are inlined; with
 /// several they sit under `meshes` keyed by name. `rel_*` is `x = delta - e`.
-pub fn branch_point_json(model: &Model, p: &crate::hbm::BranchPoint, meshes: &[usize]) -> Value {
+pub fn branch_point_json(model: &Model, p: &solver::hbm::BranchPoint, meshes: &[usize]) -> Value {
     let mut o = Map::new();
     o.insert("omega".into(), num(p.omega));
     if let [j] = meshes {
@@ -624,8 +386,8 @@ pub fn branch_point_json(model: &Model, p: &crate::hbm::BranchPoint, meshes: &[u
 pub fn frf_json(
     model: &Model,
     params: &ModelParams,
-    continuation: &crate::hbm::FrfContinuation,
-    branch: &[crate::hbm::BranchPoint],
+    continuation: &solver::hbm::FrfContinuation,
+    branch: &[solver::hbm::BranchPoint],
     meshes: &[usize],
     error: Option<&SolverError>,
 ) -> Value {
@@ -667,7 +429,7 @@ pub fn frf_json(
 }
 
 /// The specification of a regime map as JSON (checked by merge).
-pub fn map_spec_json(model: &Model, spec: &crate::map::MapSpec) -> Value {
+pub fn map_spec_json(model: &Model, spec: &solver::map::MapSpec) -> Value {
     json!({
         "omega_from": num(spec.omega_from),
         "omega_to": num(spec.omega_to),
@@ -686,7 +448,7 @@ pub fn map_spec_json(model: &Model, spec: &crate::map::MapSpec) -> Value {
 }
 
 /// A map cell as JSON.
-pub fn map_cell_json(c: &crate::map::MapCell) -> Value {
+pub fn map_cell_json(c: &solver::map::MapCell) -> Value {
     json!({
         "row": c.row,
         "column": c.column,
@@ -702,8 +464,8 @@ pub fn map_cell_json(c: &crate::map::MapCell) -> Value {
 pub fn map_json(
     model: &Model,
     params: &ModelParams,
-    spec: &crate::map::MapSpec,
-    cells: &[crate::map::MapCell],
+    spec: &solver::map::MapSpec,
+    cells: &[solver::map::MapCell],
 ) -> Value {
     json!({
         "model": model.system.model.name(),
@@ -713,101 +475,14 @@ pub fn map_json(
     })
 }
 
-/// Merges the shards `0/n .. n-1/n` of one regime map into the unsharded
-/// map. Every cell must lie on the spec's grid (row and column in range,
-/// its Omega and value those of its column and row, its row in its shard)
-/// and appear once, and every cell of the grid must be present.
-pub fn merge_maps(shards: &[Value]) -> Result<Value> {
-    let (first, mut base, tagged) = join_shards(shards, "shards", "cells", "map")?;
-    let bad = |m: String| SolverError::Parse(m);
-    let n = spec_count(&base, "shards", MAX_SHARDS)?;
-    let columns = spec_count(&base, "omega_points", 2000)?;
-    let rows = spec_count(&base, "value_points", 2000)?;
-    if columns < 2 {
-        return Err(bad(
-            "spec.omega_points = 1 is out of range: allowed 2 ..= 2000".into(),
-        ));
-    }
-    let grid = crate::map::MapSpec::new(
-        (
-            spec_f64(&base, "omega_from")?,
-            spec_f64(&base, "omega_to")?,
-            columns as u32,
-        ),
-        "",
-        (
-            spec_f64(&base, "value_from")?,
-            spec_f64(&base, "value_to")?,
-            rows as u32,
-        ),
-    );
-    // At most 2000 x 2000 flags, checked above.
-    let mut seen = vec![false; (rows * columns) as usize];
-    let mut cells = Vec::with_capacity(tagged.len().min(seen.len()));
-    for (shard, c) in tagged {
-        let row = c.get("row").and_then(Value::as_u64);
-        let column = c.get("column").and_then(Value::as_u64);
-        let omega = c.get("omega").and_then(Value::as_f64);
-        let value = c.get("value").and_then(Value::as_f64);
-        let where_ = format!(
-            "a cell of shard {shard}/{n} (row {}, column {})",
-            row.map_or("missing".into(), |i| i.to_string()),
-            column.map_or("missing".into(), |i| i.to_string()),
-        );
-        let (Some(row), Some(column), Some(omega), Some(value)) = (row, column, omega, value)
-        else {
-            return Err(bad(format!(
-                "{where_} lacks its row, column, omega or value"
-            )));
-        };
-        if row >= rows || column >= columns || row % n != shard {
-            return Err(bad(format!(
-                "{where_} is not on the map's grid of {rows} rows x {columns} columns (shard {shard}/{n} holds rows {shard}, {}, ...)",
-                shard + n
-            )));
-        }
-        let (r, col) = (row as u32, column as u32);
-        if !on_grid(omega, grid.omega(col)) || !on_grid(value, grid.value(r)) {
-            return Err(bad(format!(
-                "{where_} is not on the map's grid: its omega {omega} and value {value} should be {} and {}",
-                grid.omega(col),
-                grid.value(r)
-            )));
-        }
-        let slot = (row * columns + column) as usize;
-        if seen[slot] {
-            return Err(bad(format!("{where_} is given twice")));
-        }
-        seen[slot] = true;
-        cells.push(c);
-    }
-    if let Some(slot) = seen.iter().position(|s| !s) {
-        return Err(bad(format!(
-            "cell (row {}, column {}) is missing from the shards",
-            slot as u64 / columns,
-            slot as u64 % columns
-        )));
-    }
-    // The merged map is the unsharded one.
-    base.insert("shards".into(), json!(1));
-    let key = |v: &Value, f: &str| v.get(f).and_then(Value::as_u64).unwrap_or(0);
-    cells.sort_by_key(|c| (key(c, "row"), key(c, "column")));
-    Ok(json!({
-        "model": first.get("model").cloned().unwrap_or(Value::Null),
-        "params": first.get("params").cloned().unwrap_or(Value::Null),
-        "spec": Value::Object(base),
-        "cells": cells,
-    }))
-}
-
 /// A parametric-instability scan: the engaged system's Floquet spectral
 /// radius per Omega, its logarithm (growth of large motion per mesh period)
 /// and whether it exceeds 1; then the unstable bands
-/// ([`crate::parametric::unstable_bands`] of the points, ascending Omega).
+/// ([`solver::parametric::unstable_bands`] of the points, ascending Omega).
 pub fn instability_json(
     model: &Model,
     params: &ModelParams,
-    points: &[crate::parametric::EngagedStability],
+    points: &[solver::parametric::EngagedStability],
 ) -> Value {
     json!({
         "model": model.system.model.name(),
@@ -821,7 +496,7 @@ pub fn instability_json(
 }
 
 /// One point of a parametric-instability scan.
-pub fn instability_point_json(p: &crate::parametric::EngagedStability) -> Value {
+pub fn instability_point_json(p: &solver::parametric::EngagedStability) -> Value {
     json!({
         "omega": num(p.omega),
         "spectral_radius": num(p.spectral_radius),
@@ -831,7 +506,7 @@ pub fn instability_point_json(p: &crate::parametric::EngagedStability) -> Value 
 }
 
 /// The options of a Lyapunov-exponent sweep.
-pub fn lyapunov_spec_json(opts: &crate::lyapunov::LyapunovOptions) -> Value {
+pub fn lyapunov_spec_json(opts: &solver::lyapunov::LyapunovOptions) -> Value {
     json!({
         "transient_periods": opts.transient_periods,
         "periods": opts.periods,
@@ -842,7 +517,7 @@ pub fn lyapunov_spec_json(opts: &crate::lyapunov::LyapunovOptions) -> Value {
 }
 
 /// One point of a Lyapunov-exponent sweep.
-pub fn lyapunov_point_json(l: &crate::lyapunov::Lyapunov) -> Value {
+pub fn lyapunov_point_json(l: &solver::lyapunov::Lyapunov) -> Value {
     json!({
         "omega": num(l.omega),
         "exponent_per_period": num(l.per_period),
@@ -851,21 +526,21 @@ pub fn lyapunov_point_json(l: &crate::lyapunov::Lyapunov) -> Value {
 }
 
 /// The unstable bands of a scan's points (ascending Omega).
-pub fn instability_bands(points: &[crate::parametric::EngagedStability]) -> Vec<(f64, f64)> {
+pub fn instability_bands(points: &[solver::parametric::EngagedStability]) -> Vec<(f64, f64)> {
     let growth: Vec<(f64, f64)> = points
         .iter()
         .map(|p| (p.omega, p.growth_per_period()))
         .collect();
     let end = growth.last().map_or(0.0, |g| g.0);
-    crate::parametric::unstable_bands(&growth, end)
+    solver::parametric::unstable_bands(&growth, end)
 }
 
 /// A Lyapunov-exponent sweep as JSON.
 pub fn lyapunov_json(
     model: &Model,
     params: &ModelParams,
-    opts: &crate::lyapunov::LyapunovOptions,
-    points: &[crate::lyapunov::Lyapunov],
+    opts: &solver::lyapunov::LyapunovOptions,
+    points: &[solver::lyapunov::Lyapunov],
 ) -> Value {
     json!({
         "model": model.system.model.name(),

@@ -3,11 +3,11 @@
 //! extremes) plus each point's `period`.
 
 use super::{branch_point_json, num};
-use crate::keys;
-use crate::orbits::{ShootPoint, ShootingContinuation};
-use crate::params::ModelParams;
-use crate::{Model, SolverError};
 use serde_json::{json, Value};
+use solver::keys;
+use solver::orbits::{ShootPoint, ShootingContinuation};
+use solver::params::ModelParams;
+use solver::{Model, SolverError};
 
 /// A whole shooting frequency response.
 pub fn shooting_frf_json(

@@ -16,8 +16,6 @@
 //! worker_core -> plots` was one), a large depth every file
 //! (`hbm::assembly -> hbm::harmonic -> hbm::stability -> hbm::assembly`).
 
-#![allow(dead_code)]
-
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 

@@ -1,0 +1,151 @@
+//! `gearshock figure`: the files of a figure's panels (shards: `figure_shards.rs`).
+
+// Tests may panic: that is how they fail.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+use serde_json::Value;
+use test_support::cli::{gearshock, json};
+
+#[test]
+fn figure_fig5_writes_three_phase_portraits_and_three_poincare_sections() {
+    let dir = std::env::temp_dir().join(format!("gearshock-fig5-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = dir.to_str().expect("path");
+    let v = json(&[
+        "figure",
+        "fig5",
+        "--out",
+        out,
+        "--transient-periods",
+        "40",
+        "--record-periods",
+        "8",
+    ]);
+    let panels = v["panels"].as_array().expect("panels");
+    let names: Vec<&str> = panels
+        .iter()
+        .map(|p| p["panel"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        names,
+        ["fig5a", "fig5b", "fig5c", "fig5d", "fig5e", "fig5f"]
+    );
+    for (i, p) in panels.iter().enumerate() {
+        let view = if i < 3 { "phase" } else { "poincare" };
+        assert_eq!(p["view"], view);
+        // Panels a and d are TE 0 um, b and e 20 um, c and f 30 um (Fig. 5).
+        let te = ["te_um=0", "te_um=20", "te_um=30"][i % 3];
+        assert!(p["query"].as_str().unwrap().ends_with(te), "{p}");
+        assert!(p["query"].as_str().unwrap().contains("omega=0.5"));
+        let name = names[i];
+        let svg = std::fs::read_to_string(dir.join(format!("{name}.svg"))).expect("svg");
+        assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+        let title = if i < 3 {
+            "Phase portrait"
+        } else {
+            "Poincaré section"
+        };
+        assert!(svg.contains(title), "{name}");
+        assert!(
+            svg.contains(&format!("TE {} µm", [0, 20, 30][i % 3])),
+            "{name}"
+        );
+        let data: Value = serde_json::from_str(
+            &std::fs::read_to_string(dir.join(format!("{name}.json"))).unwrap(),
+        )
+        .unwrap();
+        assert_eq!(data["view"]["omega"], 0.5);
+        assert_eq!(data["view"]["backlash_um"], 200.0);
+        let csv = std::fs::read_to_string(dir.join(format!("{name}.csv"))).expect("csv");
+        // 8 recorded periods: 8 Poincaré samples, or 8 x 64 orbit samples.
+        let rows = csv.lines().count() - 1;
+        assert_eq!(rows, if i < 3 { 8 * 64 } else { 8 }, "{name}");
+    }
+    // A bifurcation figure: three panels, one sweep each, on a small grid.
+    let v = json(&[
+        "figure",
+        "fig8",
+        "--out",
+        out,
+        "--points",
+        "3",
+        "--transient-periods",
+        "20",
+        "--record-periods",
+        "4",
+    ]);
+    let panels = v["panels"].as_array().expect("panels");
+    assert_eq!(panels.len(), 3);
+    for (p, b) in panels.iter().zip([50, 100, 200]) {
+        assert_eq!(p["points"], 6, "3 points up and down");
+        assert!(p["query"]
+            .as_str()
+            .unwrap()
+            .ends_with(&format!("backlash_um={b}")));
+        let name = p["panel"].as_str().unwrap();
+        let svg = std::fs::read_to_string(dir.join(format!("{name}.svg"))).expect("svg");
+        assert!(svg.contains("Bifurcation diagram") && svg.contains(&format!("backlash {b} µm")));
+        // The dots: 6 sweep points x up to 4 Poincaré samples, one
+        // rectangle per pixel, inside the one SVG document (a point on an
+        // exact periodic orbit draws its 4 samples on one pixel: at least
+        // one dot per point).
+        assert!(svg.matches("<rect").count() > 6, "{name}");
+        assert_eq!(svg.matches("</svg>").count(), 1, "{name}");
+    }
+    // A frequency-response figure: four mesh panels, every member's branch
+    // in each, overlaid in the SVG one colour per value, named in words.
+    let v = json(&["figure", "fig3", "--out", out, "--points", "10"]);
+    let panels = v["panels"].as_array().expect("panels");
+    let meshes: Vec<&str> = panels.iter().map(|p| p["mesh"].as_str().unwrap()).collect();
+    assert_eq!(meshes, ["s1a1", "s2b1", "a1b1", "rb1"]);
+    for p in panels {
+        let name = p["panel"].as_str().unwrap();
+        assert!(
+            p["svg"] == format!("{name}.svg") && p["complete"] == true,
+            "{p}"
+        );
+        let svg = std::fs::read_to_string(dir.join(format!("{name}.svg"))).expect("svg");
+        assert!(
+            svg.contains(&format!("mesh {}", p["mesh"].as_str().unwrap())),
+            "{name}"
+        );
+        for (i, b) in [50, 100, 150, 200].iter().enumerate() {
+            assert!(svg.contains(&format!("backlash {b} µm")), "{name}: {b}");
+            let c = app::plots::family_color(i);
+            let hex = format!("#{:02X}{:02X}{:02X}", c.0, c.1, c.2);
+            assert!(svg.contains(&hex), "{name}: the colour of backlash {b} µm");
+        }
+        // Every member's ±b: the key names all four.
+        assert!(svg.contains("b = 50, 100, 150, 200 µm"), "{name}");
+        let data: Value = serde_json::from_str(
+            &std::fs::read_to_string(dir.join(format!("{name}.json"))).unwrap(),
+        )
+        .unwrap();
+        let members = data["members"].as_array().unwrap();
+        let b: Vec<f64> = members
+            .iter()
+            .map(|m| m["member"].as_f64().unwrap())
+            .collect();
+        assert_eq!(b, [50.0, 100.0, 150.0, 200.0]);
+        for m in members {
+            assert_eq!(m["params"]["te_sin_s1a_um"], 60);
+            assert_eq!(m["params"]["backlash_rb_um"].as_f64(), m["member"].as_f64());
+            assert!(m["branch"].as_array().unwrap().len() > 5);
+        }
+    }
+    // A bad option: exit 2 naming it and its range, before any work.
+    let o = gearshock(&["figure", "fig8", "--out", out, "--points", "1"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--points 1: allowed 2 ..= 2000"));
+    // Not a figure: exit 2 naming it.
+    for (id, words) in [
+        ("fig99", "no such figure"),
+        ("table1", "not one of the paper's figures"),
+    ] {
+        let o = gearshock(&["figure", id, "--out", out]);
+        assert_eq!(o.status.code(), Some(2), "{id}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains(id) && err.contains(words), "{err}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

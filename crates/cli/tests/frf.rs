@@ -1,0 +1,72 @@
+//! `gearshock frf`: the harmonic-balance branch with stability and
+//! bifurcations, and its options refused with exit 2 naming them.
+
+// Tests may panic: that is how they fail.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+use test_support::cli::{gearshock, json, words};
+
+#[test]
+fn frf_reports_the_branch_with_stability_and_bifurcations() {
+    // The gear pair's hysteresis band (folds near Omega 0.49 and 0.60).
+    let v = json(&words(
+        "frf --model gear-pair --omega-from 0.4 --omega-to 0.7 --points 100 --harmonics 5",
+    ));
+    assert_eq!(v["complete"], true);
+    assert_eq!(v["spec"]["harmonics"], 5);
+    assert_eq!(v["spec"]["method"], "exact");
+    let branch = v["branch"].as_array().expect("branch");
+    assert!(branch.len() >= 100);
+    assert_eq!(v["stats"]["points"].as_u64(), Some(branch.len() as u64));
+    for p in branch {
+        let (max, min, amp) = (
+            p["delta_max_m"].as_f64().unwrap(),
+            p["delta_min_m"].as_f64().unwrap(),
+            p["delta_amplitude_m"].as_f64().unwrap(),
+        );
+        assert!((amp - 0.5 * (max - min)).abs() <= 1e-12 * max.abs());
+        assert_eq!(p["harmonics_m"].as_array().unwrap().len(), 6);
+        assert!(p["stable"].is_boolean());
+    }
+    let folds = branch.iter().filter(|p| p["bifurcation"] == "fold").count();
+    assert!(folds >= 2, "{folds} folds");
+    assert!(branch.iter().any(|p| p["stable"] == false));
+    // The seed's describing function at H = 1, and CSV.
+    let out = gearshock(&words("frf --model gear-pair --omega-from 1.2 --omega-to 1.5 --points 20 --harmonics 1 --method describing-function --format csv"));
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.starts_with("index,omega,mesh,delta_max_m"));
+    assert!(text.lines().count() > 20);
+}
+
+#[test]
+fn frf_bad_options_exit_2_naming_them() {
+    for (args, needle) in [
+        (
+            vec!["frf", "--omega-from", "0.5", "--omega-to", "0.4"],
+            "omega-to",
+        ),
+        (
+            words("frf --omega-from 0.1 --omega-to 1 --harmonics 99"),
+            "harmonics",
+        ),
+        (
+            words("frf --omega-from 0.1 --omega-to 1 --method magic"),
+            "--method",
+        ),
+        (
+            words("frf --omega-from 0.1 --omega-to 1 --direction sideways"),
+            "--direction",
+        ),
+        (
+            vec!["frf", "--omega-from", "NaN", "--omega-to", "1"],
+            "omega-from",
+        ),
+    ] {
+        let out = gearshock(&args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.contains(needle), "{args:?}: {err}");
+    }
+}
