@@ -72,9 +72,13 @@ pub struct RunArgs {
     /// Recorded mesh periods.
     #[arg(long, default_value_t = 100)]
     pub record_periods: u32,
-    /// Always integrate every transient period.
+    /// Always integrate every transient period (no early end, no shooting).
     #[arg(long)]
     pub full_transient: bool,
+    /// Do not look for a periodic orbit by shooting during the transient:
+    /// integrate only, as before issue 19.
+    #[arg(long)]
+    pub no_shooting: bool,
     /// Relative tolerance of the integrator.
     #[arg(long, default_value_t = solver::steady::DEFAULT_RTOL, allow_hyphen_values = true)]
     pub rtol: f64,
@@ -88,6 +92,7 @@ impl RunArgs {
         opts.transient_periods = self.transient_periods;
         opts.record_periods = self.record_periods;
         opts.early_settle = !self.full_transient;
+        opts.shooting = !(self.full_transient || self.no_shooting);
         opts.rtol = self.rtol;
         opts.atol_m = self.atol;
     }

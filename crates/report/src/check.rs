@@ -172,7 +172,7 @@ const MESH_FIELDS: [&str; 6] = [
     "impact",
     "dynamic_factor",
 ];
-const STATS: [&str; 7] = [
+const STATS: [&str; 9] = [
     "transient_periods_run",
     "settled",
     "steps",
@@ -180,6 +180,17 @@ const STATS: [&str; 7] = [
     "event_retakes",
     "rhs_evaluations",
     "contact_switches",
+    "shooting_attempts",
+    "shooting_steps",
+];
+
+/// The names a point's `motion` may take (`solver::steady::Motion::name`).
+const MOTIONS: [&str; 5] = [
+    "periodic-exact",
+    "periodic",
+    "period-above-maximum",
+    "still-settling",
+    "not-periodic",
 ];
 
 /// One mesh's fields of a sweep point.
@@ -208,7 +219,15 @@ pub fn sweep_point(p: &Value, shape: &SweepShape, where_: &str) -> Result<()> {
     } else {
         fields.push("meshes");
     }
-    fields.extend(["impact_worst", "worst_mesh", "period", "stats"]);
+    fields.extend([
+        "impact_worst",
+        "worst_mesh",
+        "period",
+        "exact",
+        "max_multiplier_modulus",
+        "motion",
+        "stats",
+    ]);
     exact_keys(o, &fields, &top)?;
     if let [_] = shape.meshes[..] {
         point_mesh(o, shape, &top)?;
@@ -235,6 +254,18 @@ pub fn sweep_point(p: &Value, shape: &SweepShape, where_: &str) -> Result<()> {
         ));
     }
     period(o, shape.record_periods, &top)?;
+    if !o["exact"].is_boolean() {
+        return Err(refuse(where_, "exact", o.get("exact"), "true or false"));
+    }
+    number_or_null(o, "max_multiplier_modulus", &top)?;
+    if !o["motion"].as_str().is_some_and(|m| MOTIONS.contains(&m)) {
+        return Err(refuse(
+            where_,
+            "motion",
+            o.get("motion"),
+            &format!("one of {}", MOTIONS.join(", ")),
+        ));
+    }
     let at = At(where_, "stats.".into());
     let stats = at.object(&o["stats"], "")?;
     exact_keys(stats, &STATS, &at)?;

@@ -6,6 +6,9 @@
 //! dimensionless quantities (`omega`, `dynamic_factor`) carry none. Building
 //! JSON values is pure computation; writing them out is the caller's job.
 
+mod orbits;
+pub use orbits::shooting_frf_json;
+
 use serde_json::{json, Map, Value};
 use solver::error::SolverError;
 use solver::keys;
@@ -104,6 +107,8 @@ fn stats_json(s: &SteadyStats) -> Value {
         "event_retakes": s.integrator.event_retakes,
         "rhs_evaluations": s.integrator.rhs_evaluations,
         "contact_switches": s.integrator.events,
+        "shooting_attempts": s.shooting_attempts,
+        "shooting_steps": s.shooting_steps,
     })
 }
 
@@ -151,6 +156,11 @@ pub fn simulate_json(model: &Model, ss: &SteadyState, mesh: usize, max_order: f6
         "dynamic_factor": m.dynamic_factor.map_or(Value::Null, num),
         "impact": m.impact.name(),
         "period": ss.period,
+        "exact": ss.motion.is_exact(),
+        "max_multiplier_modulus": ss.motion.max_multiplier_modulus().map_or(Value::Null, num),
+        "motion": ss.motion.name(),
+        "verdict": ss.motion.words(ss.stats.transient_periods_run),
+        "shooting_note": ss.shooting_note,
         "contact_fraction": {
             "drive": num(m.contact_fraction[0]),
             "apart": num(m.contact_fraction[1]),
@@ -240,6 +250,12 @@ pub fn sweep_point_json(model: &Model, p: &SweepPoint) -> Value {
         json!(model.system.meshes[p.worst_mesh].name),
     );
     o.insert("period".into(), json!(p.period));
+    o.insert("exact".into(), json!(p.motion.is_exact()));
+    o.insert(
+        "max_multiplier_modulus".into(),
+        p.motion.max_multiplier_modulus().map_or(Value::Null, num),
+    );
+    o.insert("motion".into(), json!(p.motion.name()));
     o.insert("stats".into(), stats_json(&p.stats));
     Value::Object(o)
 }

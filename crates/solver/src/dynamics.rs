@@ -295,6 +295,51 @@ impl MeshOde {
         }
     }
 
+    /// The right-hand side's Jacobian applied to tangent vectors: `z` holds
+    /// vectors `(dq, dv)` of `2n` entries one after another, and `dz`
+    /// receives `(dv, -M^-1 (K_sup dq + sum_j w_j (k_j(t) g_j'(x_j) w_j.dq
+    /// + c_j w_j.dv)))` for each. The dead zone's slope `g_j'` is 1 in
+    /// contact and 0 apart, on the side [`crate::system::dead_zone`] takes
+    /// at `x = +-b`; the variational equations of shooting integrate it
+    /// alongside the orbit (`crate::shooting`).
+    pub fn tangent(&self, t: f64, y: &[f64], z: &[f64], dz: &mut [f64]) {
+        let (n, p) = (self.n, self.padded);
+        let q = &y[..n];
+        let (s, c) = phase_sin_cos(self.omega_rad_s * t);
+        for (zc, dc) in z.chunks_exact(2 * n).zip(dz.chunks_exact_mut(2 * n)) {
+            let (dq, dv) = zc.split_at(n);
+            let (ddq, ddv) = dc.split_at_mut(n);
+            ddq.copy_from_slice(dv);
+            ddv.fill(0.0);
+            for (&col, a) in self
+                .support_cols
+                .iter()
+                .zip(self.accel_per_support.chunks_exact(p))
+            {
+                let qc = dq[col];
+                for (d, &ai) in ddv.iter_mut().zip(a) {
+                    *d -= qc * ai;
+                }
+            }
+        }
+        for (m, a) in self.meshes.iter().zip(self.accel_per_force.chunks_exact(p)) {
+            let (k, e, _) = self.excitation(m, c, s);
+            let x = m.dot(q) - e;
+            let slope = if x > m.backlash || x < -m.backlash {
+                k
+            } else {
+                0.0
+            };
+            for (zc, dc) in z.chunks_exact(2 * n).zip(dz.chunks_exact_mut(2 * n)) {
+                let (dq, dv) = zc.split_at(n);
+                let f = slope * m.dot(dq) + m.damping * m.dot(dv);
+                for (d, &ai) in dc[n..].iter_mut().zip(a) {
+                    *d -= f * ai;
+                }
+            }
+        }
+    }
+
     /// Number of meshes.
     pub fn n_meshes(&self) -> usize {
         self.meshes.len()
@@ -377,6 +422,30 @@ impl Ode for MeshOde {
         let (s, c) = phase_sin_cos(self.omega_rad_s * t);
         let (_, e, _) = self.excitation(m, c, s);
         self.dot(m, &y[..self.n]) - e - side * m.backlash
+    }
+}
+
+/// The integrator's tolerances for a run at `omega`: `atol_m` as a mesh
+/// deflection, scaled to each coordinate's length (and, for rates, by the
+/// larger of the mesh and reference frequencies); steps between
+/// `h_min_periods` and an eighth of a mesh period.
+pub(crate) fn tolerances(
+    sys: &crate::system::MeshSystem,
+    omega: f64,
+    rtol: f64,
+    atol_m: f64,
+    period: f64,
+    h_min_periods: f64,
+) -> crate::ode::Tolerances {
+    let lengths = sys.dof_length_m();
+    let v_scale = sys.omega_ref_rad_s * omega.max(1.0);
+    let mut atol: Vec<f64> = lengths.iter().map(|l| atol_m / l).collect();
+    atol.extend(lengths.iter().map(|l| atol_m / l * v_scale));
+    crate::ode::Tolerances {
+        rtol,
+        atol,
+        h_min: period * h_min_periods,
+        h_max: period / 8.0,
     }
 }
 

@@ -22,7 +22,11 @@
 //! - [`lyapunov`]: the largest Lyapunov exponent of the Poincaré map.
 //! - [`parametric`]: parametric instability of the fully engaged set over Omega.
 //! - [`map`]: impact-regime maps over Omega and a second parameter.
+//! - [`shooting`]: periodic orbits by Newton on the Poincaré map, Floquet
+//!   multipliers, continuation of periodic branches.
+//! - [`orbits`]: branches of periodic orbits by shooting continuation in Omega.
 
+pub mod bifurcation;
 pub mod dynamics;
 pub mod error;
 pub mod fastmath;
@@ -33,8 +37,10 @@ pub mod map;
 pub mod modal;
 pub mod model;
 pub mod ode;
+pub mod orbits;
 pub mod parametric;
 pub mod params;
+pub mod shooting;
 pub mod steady;
 pub mod sweep;
 pub mod system;

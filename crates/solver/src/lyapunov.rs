@@ -315,7 +315,8 @@ impl Measure {
         let sys = &model.system;
         let omega_rad_s = opts.omega * sys.omega_ref_rad_s;
         let period = 2.0 * PI / omega_rad_s;
-        let tol = crate::steady::tolerances(sys, opts.omega, opts.rtol, opts.atol_m, period, 1e-14);
+        let tol =
+            crate::dynamics::tolerances(sys, opts.omega, opts.rtol, opts.atol_m, period, 1e-14);
         let lengths = sys.dof_length_m();
         let n = y0.len();
         let dof = sys.dof();

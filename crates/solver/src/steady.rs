@@ -28,17 +28,24 @@
 //! wherever a deflection's rate changes sign inside a step, the extremum is
 //! located on a cubic Hermite model and evaluated on the dense output.
 
+use crate::dynamics::tolerances;
 use crate::dynamics::MeshOde;
 use crate::error::{Result, SolverError};
 use crate::fastmath::{max, min};
 use crate::ode::{Dopri5, IntegratorStats, Tolerances};
+use crate::shooting::{ShootOutcome, ShootRun};
 use std::f64::consts::PI;
 
 mod record;
 mod spectrum;
+mod verdict;
 
 use record::Recorder;
 pub use spectrum::{spectrum, Spectrum};
+pub use verdict::{
+    candidate_period, classify_recorded, loose_tol_um, pipeline_options, Motion, CHECKPOINTS,
+    PIPELINE_ITERATIONS,
+};
 
 /// The model moved to [`crate::model`]; these names stay here so that
 /// `steady::Model` keeps meaning what it always did.
@@ -115,6 +122,9 @@ pub struct SteadyOptions {
     pub atol_m: f64,
     /// Step budget per mesh period (a blow-up guard).
     pub max_steps_per_period: u64,
+    /// Find a periodic steady state by shooting during the transient
+    /// (`crate::shooting::pipeline`); off, the run only integrates.
+    pub shooting: bool,
 }
 
 /// Default relative tolerance of the integrator.
@@ -140,6 +150,7 @@ impl SteadyOptions {
             rtol: DEFAULT_RTOL,
             atol_m: DEFAULT_ATOL_M,
             max_steps_per_period: 200_000,
+            shooting: true,
         }
     }
 
@@ -240,6 +251,10 @@ pub struct SteadyStats {
     pub settled: bool,
     /// Integrator counters.
     pub integrator: IntegratorStats,
+    /// Shooting attempts made during the transient.
+    pub shooting_attempts: u32,
+    /// Integrator steps of those attempts (tangents included).
+    pub shooting_steps: u64,
 }
 
 /// A steady-state response.
@@ -266,6 +281,12 @@ pub struct SteadyState {
     /// Period of the Poincaré orbit in mesh periods, `None` if not periodic
     /// within the recorded window.
     pub period: Option<u32>,
+    /// The classification: exact orbit, periodic by integration, still
+    /// settling, not periodic; `period` is its period.
+    pub motion: Motion,
+    /// What shooting did when it did not give the steady state (a failed or
+    /// unstable attempt), in words.
+    pub shooting_note: Option<String>,
     /// Work figures.
     pub stats: SteadyStats,
 }
@@ -287,35 +308,11 @@ impl SteadyState {
 }
 
 /// Largest orbit period tested.
-pub const MAX_PERIOD: usize = 32;
+pub const MAX_PERIOD: usize = crate::shooting::MAX_SHOOT_PERIOD as usize;
 
 /// Settle tolerance (um) for deflections spanning `span_um`.
 pub fn settle_tol_um(span_um: f64) -> f64 {
     1e-4 + 1e-5 * span_um
-}
-
-/// The integrator's tolerances for a run at `omega`: `atol_m` as a mesh
-/// deflection, scaled to each coordinate's length (and, for rates, by the
-/// larger of the mesh and reference frequencies); steps between
-/// `h_min_periods` and an eighth of a mesh period.
-pub(crate) fn tolerances(
-    sys: &crate::system::MeshSystem,
-    omega: f64,
-    rtol: f64,
-    atol_m: f64,
-    period: f64,
-    h_min_periods: f64,
-) -> Tolerances {
-    let lengths = sys.dof_length_m();
-    let v_scale = sys.omega_ref_rad_s * omega.max(1.0);
-    let mut atol: Vec<f64> = lengths.iter().map(|l| atol_m / l).collect();
-    atol.extend(lengths.iter().map(|l| atol_m / l * v_scale));
-    Tolerances {
-        rtol,
-        atol,
-        h_min: period * h_min_periods,
-        h_max: period / 8.0,
-    }
 }
 
 /// Runs one steady-state response from `start` (or the static equilibrium).
@@ -345,6 +342,14 @@ enum Phase {
         t_rec: f64,
         rec: Box<Recorder>,
     },
+    /// Shooting for a periodic orbit from the state at the end of transient
+    /// period `periods_run`; `settled` if the early-settle test started it
+    /// (a failure then records from the integrated state).
+    Shoot {
+        run: Box<ShootRun>,
+        period: u32,
+        settled: bool,
+    },
     /// Finished or failed: nothing left to do.
     Done,
 }
@@ -371,6 +376,15 @@ pub struct SteadyRun {
     periods_run: u32,
     settled: bool,
     phase: Phase,
+    /// The integrator's tolerances (a converged orbit restarts it).
+    tol: Tolerances,
+    /// The latest Poincaré points, for the candidate period.
+    pipe_hist: Vec<Vec<f64>>,
+    /// The exact orbit's verdict, once shooting has found it.
+    exact: Option<Motion>,
+    shooting_note: Option<String>,
+    shooting_attempts: u32,
+    shooting_steps: u64,
 }
 
 impl SteadyRun {
@@ -387,7 +401,7 @@ impl SteadyRun {
             _ => model.static_state(),
         };
         let tol = tolerances(sys, opts.omega, opts.rtol, opts.atol_m, period, 1e-13);
-        let int = Dopri5::new(&mut ode, 0.0, &y0, period / 200.0, tol);
+        let int = Dopri5::new(&mut ode, 0.0, &y0, period / 200.0, tol.clone());
         let n_mesh = sys.meshes.len();
         let budget = opts
             .max_steps_per_period
@@ -407,12 +421,18 @@ impl SteadyRun {
             periods_run: 0,
             settled: false,
             phase: Phase::Transient { p: 1 },
+            tol,
+            pipe_hist: Vec::new(),
+            exact: None,
+            shooting_note: None,
+            shooting_attempts: 0,
+            shooting_steps: 0,
         })
     }
 
-    /// Integrator steps taken so far.
+    /// Integrator steps taken so far (shooting's included).
     pub fn steps(&self) -> u64 {
-        self.int.stats.steps
+        self.int.stats.steps + self.shooting_steps
     }
 
     /// Whether the run has returned its result or failed.
@@ -454,7 +474,7 @@ impl SteadyRun {
                             .map_err(|e| model.explain_failure(&self.ode, &self.int, e))?;
                         steps += 1;
                         guard(&self.int, self.budget)?;
-                        if self.opts.early_settle {
+                        if self.opts.early_settle || self.opts.shooting {
                             self.ode
                                 .deflections(&self.int.y()[..dof], &mut self.deflections);
                             self.span.add(&self.deflections);
@@ -463,24 +483,63 @@ impl SteadyRun {
                     self.periods_run = p_now;
                     model.check_bounded(&self.ode, self.int.t(), self.int.y(), self.bound_m)?;
                     self.phase = Phase::Transient { p: p_now + 1 };
+                    let span_um = self.span.span_um();
+                    let point =
+                        poincare_point(&self.ode, self.int.t(), self.int.y(), self.omega_rad_s);
+                    if self.opts.shooting {
+                        self.pipe_hist.push(point.clone());
+                        if self.pipe_hist.len() > 2 * MAX_PERIOD + 1 {
+                            self.pipe_hist.remove(0);
+                        }
+                    }
                     if self.opts.early_settle {
                         let hist = &mut self.poincare_hist;
-                        hist.push(poincare_point(
-                            &self.ode,
-                            self.int.t(),
-                            self.int.y(),
-                            self.omega_rad_s,
-                        ));
+                        hist.push(point);
                         if hist.len() > SETTLE_DISTANCES * 8 + 1 {
                             hist.remove(0);
                         }
-                        let tol = settle_tol_um(self.span.span_um());
+                        let tol = settle_tol_um(span_um);
                         if p_now >= 5 && has_settled(hist, tol, self.rho_modal) {
                             self.settled = true;
-                            self.start_recording(model);
+                            let candidate = candidate_period(&self.pipe_hist, 10.0 * tol);
+                            match candidate {
+                                Some(n) if self.opts.shooting => {
+                                    self.start_shooting(model, n, span_um, true)?;
+                                }
+                                _ => self.start_recording(model),
+                            }
                             continue;
                         }
-                        self.span.reset_keep_last();
+                    }
+                    if self.opts.shooting && CHECKPOINTS.contains(&p_now) {
+                        if let Some(n) = candidate_period(&self.pipe_hist, loose_tol_um(span_um)) {
+                            self.span.reset_keep_last();
+                            self.start_shooting(model, n, span_um, false)?;
+                            continue;
+                        }
+                    }
+                    self.span.reset_keep_last();
+                }
+                Phase::Shoot {
+                    run,
+                    period,
+                    settled,
+                } => {
+                    let (n, settled) = (*period, *settled);
+                    if steps >= max_steps {
+                        return Ok(None);
+                    }
+                    let before = run.steps();
+                    let out = run.advance(max_steps - steps.min(max_steps));
+                    let taken = run.steps() - before;
+                    steps += taken;
+                    self.shooting_steps += taken;
+                    let Some(out) = out? else {
+                        return Ok(None);
+                    };
+                    self.after_shooting(model, out, n, settled)?;
+                    if steps >= max_steps && !matches!(self.phase, Phase::Done) {
+                        return Ok(None);
                     }
                 }
                 Phase::Record { r, t_rec, rec } => {
@@ -515,6 +574,101 @@ impl SteadyRun {
         }
     }
 
+    /// Starts a shooting attempt for a period-`n` orbit from the current
+    /// state (the end of transient period `periods_run`).
+    fn start_shooting(&mut self, model: &Model, n: u32, span_um: f64, settled: bool) -> Result<()> {
+        let opts = pipeline_options(n, self.opts.rtol, self.opts.atol_m, span_um);
+        let run = ShootRun::new(model, self.opts.omega, self.int.y(), &opts)?;
+        self.shooting_attempts += 1;
+        self.phase = Phase::Shoot {
+            run: Box::new(run),
+            period: n,
+            settled,
+        };
+        Ok(())
+    }
+
+    /// What follows a shooting attempt: a stable orbit is recorded from its
+    /// exact start; an orbit unstable by a period doubling is followed by
+    /// an attempt at twice the period; anything else goes back to the
+    /// integration (or records what it has, if the transient had settled).
+    fn after_shooting(
+        &mut self,
+        model: &Model,
+        out: ShootOutcome,
+        n: u32,
+        settled: bool,
+    ) -> Result<()> {
+        match out {
+            ShootOutcome::Converged(orbit) if orbit.is_stable() => {
+                let t = f64::from(self.periods_run) * self.period;
+                let stats = self.int.stats;
+                self.int = Dopri5::new(
+                    &mut self.ode,
+                    t,
+                    &orbit.start_state,
+                    self.period / 200.0,
+                    self.tol.clone(),
+                );
+                self.int.stats = stats;
+                self.exact = Some(Motion::PeriodicExact {
+                    period: n,
+                    max_multiplier_modulus: orbit.max_multiplier_modulus(),
+                    newton_iterations: orbit.iterations,
+                });
+                self.settled = true;
+                self.start_recording(model);
+                return Ok(());
+            }
+            ShootOutcome::Converged(orbit) => {
+                let doubled = orbit
+                    .multipliers
+                    .as_ref()
+                    .and_then(|m| m.most_negative_real())
+                    .is_some_and(|mu| mu < -1.0);
+                if doubled && 2 * n as usize <= MAX_PERIOD {
+                    let span_um = self.span.span_um();
+                    return self.start_shooting(model, 2 * n, span_um, settled);
+                }
+                let how = match orbit.multipliers.as_ref().and_then(|m| m.critical()) {
+                    Some(mu) if mu.im.abs() > 1e-9 * mu.norm() => "a complex pair outside the unit circle, as past a Neimark-Sacker point (a torus nearby)",
+                    Some(mu) if mu.re < 0.0 => "a multiplier below -1, as past a period doubling",
+                    _ => "a multiplier above +1",
+                };
+                self.note_attempt(format!(
+                    "shooting after {} periods found a period-{n} orbit, but it is unstable ({how}; largest Floquet multiplier modulus {:.4})",
+                    self.periods_run,
+                    orbit.max_multiplier_modulus()
+                ));
+            }
+            ShootOutcome::Failed(f) => {
+                self.note_attempt(format!(
+                    "shooting after {} periods for a period-{n} orbit did not converge ({})",
+                    self.periods_run, f.reason
+                ));
+            }
+        }
+        if settled {
+            self.start_recording(model);
+        } else {
+            self.phase = Phase::Transient {
+                p: self.periods_run + 1,
+            };
+        }
+        Ok(())
+    }
+
+    /// Adds a shooting attempt that did not give the steady state to the note.
+    fn note_attempt(&mut self, what: String) {
+        match &mut self.shooting_note {
+            Some(note) => {
+                note.push_str("; ");
+                note.push_str(&what);
+            }
+            None => self.shooting_note = Some(what),
+        }
+    }
+
     /// Ends the transient: the recorded window starts at the last whole period.
     fn start_recording(&mut self, model: &Model) {
         let t_rec = f64::from(self.periods_run) * self.period;
@@ -540,7 +694,24 @@ impl SteadyRun {
             .iter()
             .map(|m| (m.delta_max_m - m.delta_min_m) * 1e6)
             .fold(0.0, f64::max);
-        let period_detected = detect_period(&pc_points, 10.0 * settle_tol_um(span_um));
+        let period_tol = 10.0 * settle_tol_um(span_um);
+        let period_detected = detect_period(&pc_points, period_tol);
+        let motion = match &self.exact {
+            // The recorded points may show a shorter period that divides
+            // the one shot for (the orbit repeats sooner).
+            Some(Motion::PeriodicExact {
+                period,
+                max_multiplier_modulus,
+                newton_iterations,
+            }) => Motion::PeriodicExact {
+                period: period_detected
+                    .filter(|d| period % d == 0)
+                    .unwrap_or(*period),
+                max_multiplier_modulus: *max_multiplier_modulus,
+                newton_iterations: *newton_iterations,
+            },
+            _ => classify_recorded(&pc_points, period_detected, period_tol),
+        };
         SteadyState {
             omega: self.opts.omega,
             omega_rad_s: self.omega_rad_s,
@@ -551,11 +722,15 @@ impl SteadyRun {
             sample_times_s: times,
             histories,
             end_state,
-            period: period_detected,
+            period: motion.period(),
+            motion,
+            shooting_note: self.shooting_note.clone(),
             stats: SteadyStats {
                 transient_periods_run: self.periods_run,
                 settled: self.settled,
                 integrator: self.int.stats,
+                shooting_attempts: self.shooting_attempts,
+                shooting_steps: self.shooting_steps,
             },
         }
     }

@@ -17,7 +17,7 @@
 //! follow a branch.
 
 use crate::error::{Result, SolverError};
-use crate::steady::{Impact, Model, SteadyOptions, SteadyRun, SteadyState, SteadyStats};
+use crate::steady::{Impact, Model, Motion, SteadyOptions, SteadyRun, SteadyState, SteadyStats};
 
 /// Direction of one swept point.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -232,6 +232,8 @@ pub struct SweepPoint {
     pub worst_mesh: usize,
     /// Period of the Poincaré orbit, if periodic.
     pub period: Option<u32>,
+    /// The classification of the steady state (not periodic for a failed point).
+    pub motion: Motion,
     /// Work figures.
     pub stats: SteadyStats,
     /// Why the point failed (solver failure is reported, never shown as data).
@@ -420,6 +422,7 @@ impl BifurcationSweep {
                     impact_worst,
                     worst_mesh,
                     period: ss.period,
+                    motion: ss.motion,
                     stats: ss.stats,
                     error: None,
                 }
@@ -433,6 +436,7 @@ impl BifurcationSweep {
                 impact_worst: Impact::None,
                 worst_mesh: 0,
                 period: None,
+                motion: Motion::NotPeriodic,
                 stats: SteadyStats::default(),
                 error: Some(e.to_string()),
             },

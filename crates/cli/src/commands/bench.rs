@@ -24,6 +24,9 @@ pub struct BenchArgs {
     /// Fewer points and periods (for smoke tests).
     #[arg(long)]
     quick: bool,
+    /// Only the steady-state pipeline's before/after figure (issue 19).
+    #[arg(long)]
+    pipeline_only: bool,
 }
 
 /// Checks the options, runs every benchmark and prints the figures.
@@ -33,6 +36,17 @@ pub fn run_command(a: &BenchArgs) -> Result<(), crate::failure::Failure> {
             "--repeats {}: allowed 1 ..= 100",
             a.repeats
         )));
+    }
+    if a.pipeline_only {
+        let model = Model::new(&ModelParams::default()).map_err(crate::failure::Failure::from)?;
+        let (points, transient, record) = if a.quick {
+            (4, 30, 10)
+        } else {
+            (200, 300, 100)
+        };
+        let v = pipeline_bench(&model, points, a.repeats, transient, record)
+            .map_err(crate::failure::Failure::from)?;
+        return crate::output::emit(&json!({ "bifurcation_pipeline": v }));
     }
     crate::output::emit(&run(a.repeats, a.quick)?)
 }
@@ -113,6 +127,18 @@ pub fn run(repeats: u32, quick: bool) -> Result<Value, SolverError> {
         settled_points = pts.iter().filter(|p| p.stats.settled).count();
     }
     let sweep_median = median(sweep_s.clone());
+
+    // Issue 19: the default bifurcation diagram (the default model, Omega
+    // 0.1 ..= 2, 200 points up and down: 400 steady states) integrated
+    // with a fixed 300 + 100 periods, with today's early settle, and by
+    // the pipeline (transient, candidate period, shooting), in one run.
+    let pipeline = pipeline_bench(
+        &model,
+        if quick { 4 } else { 200 },
+        sweep_repeats,
+        transient,
+        record,
+    )?;
 
     // A regime map of the page's default kind: Omega 0.1..2 in 100 columns,
     // backlash 10..200 um in 4 rows (a tenth of the page's 100 x 40 map).
@@ -326,6 +352,7 @@ pub fn run(repeats: u32, quick: bool) -> Result<Value, SolverError> {
             "median_s": map_median,
             "ms_per_cell": map_median * 1e3 / f64::from(columns * rows),
         },
+        "bifurcation_pipeline": pipeline,
         "bifurcation": {
             "omega_from": 0.05,
             "omega_to": 2.0,
@@ -337,4 +364,67 @@ pub fn run(repeats: u32, quick: bool) -> Result<Value, SolverError> {
             "points_settled_early": settled_points,
         },
     }))
+}
+
+/// The before/after figures of issue 19 (see `run`): medians over
+/// `repeats` of one single-chain sweep each, and what each called the
+/// 400 steady states.
+fn pipeline_bench(
+    model: &Model,
+    points: u32,
+    repeats: u32,
+    transient: u32,
+    record: u32,
+) -> Result<Value, SolverError> {
+    let variants: [(&str, bool, bool); 3] = [
+        ("fixed_integration", false, false),
+        ("early_settle_integration", true, false),
+        ("pipeline", true, true),
+    ];
+    let mut out = serde_json::Map::new();
+    let mut medians = Vec::new();
+    for (name, early_settle, shooting) in variants {
+        let mut secs = Vec::new();
+        let mut verdicts = std::collections::BTreeMap::new();
+        for _ in 0..repeats {
+            let mut spec = SweepSpec::new(0.1, 2.0, points);
+            spec.directions = solver::sweep::Directions::Both;
+            spec.chains = 1;
+            spec.steady.transient_periods = transient;
+            spec.steady.record_periods = record;
+            spec.steady.early_settle = early_settle;
+            spec.steady.shooting = shooting;
+            let mut sweep = BifurcationSweep::new(model.clone(), spec)?;
+            let start = Instant::now();
+            let mut pts = Vec::new();
+            while !sweep.is_finished() {
+                pts.extend(sweep.advance(16));
+            }
+            secs.push(start.elapsed().as_secs_f64());
+            verdicts.clear();
+            for p in &pts {
+                let key = match p.motion.period() {
+                    Some(n) if p.motion.is_exact() => format!("period {n} (exact)"),
+                    Some(n) => format!("period {n}"),
+                    None => p.motion.name().to_string(),
+                };
+                *verdicts.entry(key).or_insert(0u32) += 1;
+            }
+        }
+        let med = median(secs.clone());
+        medians.push(med);
+        out.insert(
+            name.into(),
+            json!({ "median_s": med, "runs_s": secs, "verdicts": verdicts }),
+        );
+    }
+    out.insert("steady_states".into(), json!(2 * points));
+    out.insert("transient_periods".into(), json!(transient));
+    out.insert("record_periods".into(), json!(record));
+    out.insert("speedup_vs_fixed".into(), json!(medians[0] / medians[2]));
+    out.insert(
+        "speedup_vs_early_settle".into(),
+        json!(medians[1] / medians[2]),
+    );
+    Ok(Value::Object(out))
 }

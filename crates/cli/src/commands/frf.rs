@@ -11,6 +11,7 @@ use crate::sweep::{self, Sweep};
 use clap::Args;
 use solver::hbm::{BranchPoint, FrfContinuation, FrfSpec, Method};
 use solver::keys;
+use solver::orbits::{ShootFrfSpec, ShootingContinuation};
 use solver::sweep::Direction;
 use solver::SolverError;
 
@@ -28,9 +29,17 @@ pub struct FrfArgs {
     #[arg(long, default_value_t = 7)]
     harmonics: usize,
     /// aft (time grid, any H), exact (closed-form integration between the
-    /// contact switches, any H) or describing-function (the seed's Eqs. 9-13, H = 1).
+    /// contact switches, any H), describing-function (the seed's Eqs. 9-13,
+    /// H = 1) or shooting (periodic orbits of the time integration by
+    /// Newton, continued in Omega; period doublings followed).
     #[arg(long, default_value = "exact")]
     method: String,
+    /// With --method shooting: the first branch's period in mesh periods.
+    #[arg(long, default_value_t = 1)]
+    period: u32,
+    /// With --method shooting: do not follow the period-doubled branches.
+    #[arg(long)]
+    no_switch: bool,
     /// Continue up from --omega-from or down from --omega-to.
     #[arg(long, default_value = "up")]
     direction: String,
@@ -80,12 +89,15 @@ impl Sweep for Branch {
 
 /// Checks the options and the budget, follows the branch and prints it.
 pub fn run(a: &FrfArgs) -> Result<(), Failure> {
+    if a.method == "shooting" {
+        return run_shooting(a);
+    }
     let (params, model) = a.p.load()?;
     let mut spec = FrfSpec::new(a.range.omega_from, a.range.omega_to, a.points);
     spec.harmonics = a.harmonics;
     spec.method = Method::from_name(&a.method).ok_or_else(|| {
         usage(format!(
-            "--method {}: allowed aft, exact, describing-function",
+            "--method {}: allowed aft, exact, describing-function, shooting",
             keys::truncate(&a.method, 30)
         ))
     })?;
@@ -137,6 +149,54 @@ pub fn run(a: &FrfArgs) -> Result<(), Failure> {
     match failure {
         // The partial branch is written (marked `complete: false`),
         // and the failure is reported with exit code 1.
+        Some(e) => Err(Failure {
+            code: 1,
+            message: format!("{e} (the branch up to there was written, marked incomplete)"),
+        }),
+        None => Ok(()),
+    }
+}
+
+/// `--method shooting`: the periodic branches by shooting continuation.
+fn run_shooting(a: &FrfArgs) -> Result<(), Failure> {
+    let (params, model) = a.p.load()?;
+    let mut spec = ShootFrfSpec::new(a.range.omega_from, a.range.omega_to, a.points);
+    spec.direction = Direction::from_name(&a.direction).ok_or_else(|| {
+        usage(format!(
+            "--direction {}: allowed up, down",
+            keys::truncate(&a.direction, 20)
+        ))
+    })?;
+    spec.period = a.period;
+    spec.switch_branches = !a.no_switch;
+    let meshes = meshes(&model, a.mesh.as_deref())?;
+    let mut c = ShootingContinuation::new(&model, spec)?;
+    let mut points = vec![c.first_point()?];
+    let mut failure = None;
+    while !c.is_finished() {
+        match c.advance(8) {
+            Ok(p) => points.extend(p),
+            Err(e) => {
+                failure = Some(e);
+                break;
+            }
+        }
+        if a.p.progress {
+            if let Some(p) = points.last() {
+                note(&format!(
+                    "{} points, Omega {:.4}",
+                    points.len(),
+                    p.point.omega
+                ));
+            }
+        }
+    }
+    let value = report::shooting_frf_json(&model, &params, &c, &points, &meshes, failure.as_ref());
+    output(a.p.format, &value, |_| String::new())?;
+    for n in c.notes() {
+        note(&format!("note: {n}"));
+    }
+    match failure {
         Some(e) => Err(Failure {
             code: 1,
             message: format!("{e} (the branch up to there was written, marked incomplete)"),

@@ -4,9 +4,10 @@
 use crate::args::{mesh_index, Format, ParamArgs, RunArgs};
 use crate::csv;
 use crate::failure::{usage, Failure};
-use crate::output::{emit_text, output};
+use crate::output::{emit_text, note, output};
 use clap::Args;
-use solver::steady::{steady_state, SteadyOptions};
+use solver::lyapunov::{largest_exponent, LyapunovOptions};
+use solver::steady::{steady_state, Motion, SteadyOptions};
 
 /// Options of `gearshock simulate`.
 #[derive(Debug, Args)]
@@ -41,12 +42,42 @@ pub fn run(a: &SimulateArgs) -> Result<(), Failure> {
     }
     opts.validate()?;
     let ss = steady_state(&model, &opts, None)?;
+    let mut value = report::simulate_json(&model, &ss, j, max_order);
+    let mut verdict = ss.motion.words(ss.stats.transient_periods_run);
+    // Evidence for a motion that is not periodic: the largest Lyapunov
+    // exponent of the Poincaré map, continued from the end state (200
+    // periods, two trajectories: a few times the steady run's own work).
+    if matches!(
+        ss.motion,
+        Motion::NotPeriodic | Motion::StillSettling { .. }
+    ) {
+        let mut lo = LyapunovOptions::new(a.omega);
+        lo.transient_periods = 0;
+        match largest_exponent(&model, &lo, Some(&ss.end_state)) {
+            Ok(l) => {
+                let kind = if l.per_period > 0.01 {
+                    "chaotic"
+                } else if l.per_period > -0.01 {
+                    "quasi-periodic or near a bifurcation"
+                } else {
+                    "contracting: still settling"
+                };
+                verdict = format!(
+                    "{verdict}; largest Lyapunov exponent {:.3} per period: {kind}",
+                    l.per_period
+                );
+                value["lyapunov_per_period"] = serde_json::json!(l.per_period);
+            }
+            Err(e) => verdict = format!("{verdict}; the Lyapunov exponent failed: {e}"),
+        }
+        value["verdict"] = serde_json::json!(verdict);
+    }
+    note(&verdict);
+    if let Some(n) = &ss.shooting_note {
+        note(&format!("note: {n}"));
+    }
     match a.p.format {
-        Format::Json | Format::Jsonl => output(
-            a.p.format,
-            &report::simulate_json(&model, &ss, j, max_order),
-            |_| String::new(),
-        ),
+        Format::Json | Format::Jsonl => output(a.p.format, &value, |_| String::new()),
         Format::Csv => emit_text(&csv::history(&ss, j)),
     }
 }

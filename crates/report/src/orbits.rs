@@ -1,0 +1,58 @@
+//! `gearshock frf --method shooting` as JSON: the harmonic-balance
+//! response's `branch` shape (`omega`, `stable`, `bifurcation`, the mesh's
+//! extremes) plus each point's `period`.
+
+use super::{branch_point_json, num};
+use serde_json::{json, Value};
+use solver::keys;
+use solver::orbits::{ShootPoint, ShootingContinuation};
+use solver::params::ModelParams;
+use solver::{Model, SolverError};
+
+/// A whole shooting frequency response.
+pub fn shooting_frf_json(
+    model: &Model,
+    params: &ModelParams,
+    c: &ShootingContinuation,
+    branch: &[ShootPoint],
+    meshes: &[usize],
+    error: Option<&SolverError>,
+) -> Value {
+    let names: Vec<&str> = meshes
+        .iter()
+        .filter_map(|&j| model.system.meshes.get(j).map(|m| m.name.as_str()))
+        .collect();
+    let spec = c.spec();
+    let s = c.stats;
+    json!({
+        "model": model.system.model.name(),
+        "params": Value::Object(keys::to_json(params)),
+        "omega_ref_rad_s": num(model.system.omega_ref_rad_s),
+        "spec": {
+            "method": "shooting",
+            "omega_from": num(spec.omega_from),
+            "omega_to": num(spec.omega_to),
+            "points": spec.points,
+            "direction": spec.direction.name(),
+            "period": spec.period,
+            "switch_branches": spec.switch_branches,
+            "rtol": num(spec.shooting.rtol),
+            "atol_m": num(spec.shooting.atol_m),
+        },
+        "meshes": names,
+        "complete": error.is_none(),
+        "notes": c.notes(),
+        "error": error.map_or(Value::Null, |e| Value::from(e.to_string())),
+        "branch": branch.iter().map(|p| {
+            let mut v = branch_point_json(model, &p.point, meshes);
+            v["period"] = json!(p.period);
+            v
+        }).collect::<Vec<_>>(),
+        "stats": {
+            "points": s.points,
+            "newton_iterations": s.newton_iterations,
+            "rejected_steps": s.rejected_steps,
+            "integrator_steps": s.integrator_steps,
+        },
+    })
+}

@@ -1,0 +1,198 @@
+//! The steady-state pipeline's pieces that belong to shooting: when to try
+//! it, which period to try, its options, and the verdict a run ends with.
+//!
+//! A steady run ([`super::SteadyRun`]) integrates a short
+//! transient; at the checkpoints [`CHECKPOINTS`] (and whenever the
+//! early-settle test fires) it reads a candidate period from its recent
+//! Poincaré points with a loose tolerance ([`candidate_period`]) and shoots
+//! for that period from the current state. A converged, stable orbit is the
+//! steady state: the run records its periods from the orbit's exact start
+//! and calls it [`Motion::PeriodicExact`]. A converged orbit that lost
+//! stability by a period doubling leads to a second attempt at twice the
+//! period. Anything else (no candidate, Newton failing, an unstable orbit)
+//! lets the integration go on, up to the transient budget; the recorded
+//! window then decides ([`classify_recorded`]), and a failed attempt is
+//! said in the verdict's note, never shown as an orbit.
+
+use super::{settle_tol_um, MAX_PERIOD};
+use crate::shooting::ShootOptions;
+
+/// The transient periods after which a candidate period is looked for.
+pub const CHECKPOINTS: &[u32] = &[12, 24, 48, 96, 192, 384, 768, 1536, 3072, 6144];
+
+/// Newton iterations a steady run gives one shooting attempt.
+pub const PIPELINE_ITERATIONS: u32 = 8;
+
+/// How a steady state was classified.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Motion {
+    /// A periodic orbit found by shooting and stable: exact to the
+    /// integrator's accuracy.
+    PeriodicExact {
+        /// Period in mesh periods.
+        period: u32,
+        /// The largest Floquet multiplier's modulus (below 1).
+        max_multiplier_modulus: f64,
+        /// Newton iterations.
+        newton_iterations: u32,
+    },
+    /// The recorded Poincaré points repeat after `period` mesh periods
+    /// within the period tolerance, but no orbit was confirmed by shooting.
+    Periodic {
+        /// Period in mesh periods.
+        period: u32,
+    },
+    /// The recorded points repeat, but only after more than
+    /// [`MAX_PERIOD`] mesh periods: beyond what is classified.
+    PeriodAboveMaximum {
+        /// The shortest repeat found in the recorded window.
+        period: u32,
+    },
+    /// The points still approach a repeat of `period` mesh periods
+    /// geometrically: the transient budget ran out first.
+    StillSettling {
+        /// The period they approach.
+        period: u32,
+    },
+    /// No repeat within the recorded window and nothing approaching one.
+    NotPeriodic,
+}
+
+impl Motion {
+    /// The period, where the motion has one within the maximum.
+    pub fn period(&self) -> Option<u32> {
+        match self {
+            Motion::PeriodicExact { period, .. } | Motion::Periodic { period } => Some(*period),
+            _ => None,
+        }
+    }
+
+    /// Whether the orbit was found by shooting.
+    pub fn is_exact(&self) -> bool {
+        matches!(self, Motion::PeriodicExact { .. })
+    }
+
+    /// The largest multiplier's modulus, for an exact orbit.
+    pub fn max_multiplier_modulus(&self) -> Option<f64> {
+        match self {
+            Motion::PeriodicExact {
+                max_multiplier_modulus,
+                ..
+            } => Some(*max_multiplier_modulus),
+            _ => None,
+        }
+    }
+
+    /// A short name for output: `periodic-exact`, `periodic`,
+    /// `period-above-maximum`, `still-settling`, `not-periodic`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Motion::PeriodicExact { .. } => "periodic-exact",
+            Motion::Periodic { .. } => "periodic",
+            Motion::PeriodAboveMaximum { .. } => "period-above-maximum",
+            Motion::StillSettling { .. } => "still-settling",
+            Motion::NotPeriodic => "not-periodic",
+        }
+    }
+
+    /// The verdict in words, e.g. "period 2 (exact)" or "not periodic after
+    /// 300 periods".
+    pub fn words(&self, periods_run: u32) -> String {
+        match self {
+            Motion::PeriodicExact {
+                period,
+                max_multiplier_modulus,
+                ..
+            } => format!(
+                "period {period} (exact; largest Floquet multiplier {max_multiplier_modulus:.4})"
+            ),
+            Motion::Periodic { period } => {
+                format!("period {period} (by integration, not confirmed by shooting)")
+            }
+            Motion::PeriodAboveMaximum { period } => format!(
+                "repeats after {period} periods, above the largest period classified ({MAX_PERIOD})"
+            ),
+            Motion::StillSettling { period } => format!(
+                "still settling towards period {period} after {periods_run} transient periods"
+            ),
+            Motion::NotPeriodic => format!("not periodic after {periods_run} transient periods"),
+        }
+    }
+}
+
+/// The shooting options of a steady run whose integrator uses `rtol` and
+/// `atol_m`: a hundred times tighter (at most 1e-9 and 1e-12 m), so that
+/// the orbit is exact at the run's own accuracy, and a residual tolerance
+/// a hundredth of the period test's (a tenth of the settle test's).
+pub fn pipeline_options(period: u32, rtol: f64, atol_m: f64, span_um: f64) -> ShootOptions {
+    let mut o = ShootOptions::new(period);
+    o.max_iterations = PIPELINE_ITERATIONS;
+    o.rtol = (rtol * 1e-2).clamp(1e-13, 1e-9);
+    o.atol_m = (atol_m * 1e-2).clamp(1e-16, 1e-12);
+    o.tol_abs_um = 0.1 * settle_tol_um(span_um);
+    o.tol_rel = 0.0;
+    o
+}
+
+/// The loose tolerance (µm) of [`candidate_period`] for an orbit whose
+/// deflections span `span_um`: 2 % of the span, plus the settle tolerance.
+pub fn loose_tol_um(span_um: f64) -> f64 {
+    0.02 * span_um + settle_tol_um(span_um)
+}
+
+fn dist_inf(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}
+
+/// The smallest `p <= MAX_PERIOD` such that the last `p` Poincaré points
+/// (newest last) each lie within `tol` of the point `p` before it, if the
+/// history holds `2 p` points.
+pub fn candidate_period(points: &[Vec<f64>], tol: f64) -> Option<u32> {
+    let n = points.len();
+    (1..=MAX_PERIOD.min(n / 2)).find_map(|p| {
+        (0..p)
+            .all(|k| dist_inf(&points[n - 1 - k], &points[n - 1 - k - p]) <= tol)
+            .then_some(p as u32)
+    })
+}
+
+/// The verdict of a recorded window without an exact orbit: its Poincaré
+/// points (newest last), the period detected in them (if any) and the
+/// period tolerance (µm).
+pub fn classify_recorded(points: &[Vec<f64>], detected: Option<u32>, tol: f64) -> Motion {
+    if let Some(period) = detected {
+        return Motion::Periodic { period };
+    }
+    let n = points.len();
+    // A repeat beyond the maximum, seen at least twice.
+    if let Some(p) = (MAX_PERIOD + 1..=n / 3)
+        .find(|&p| (0..n - p).all(|i| dist_inf(&points[i], &points[i + p]) <= tol))
+    {
+        return Motion::PeriodAboveMaximum { period: p as u32 };
+    }
+    // Still settling: for some period, the distance between cycles shrinks
+    // steadily over the window (each quarter's largest at most 0.8 of the
+    // previous one's) without reaching the tolerance.
+    let settling = (1..=MAX_PERIOD.min(n / 8)).find(|&p| {
+        let d: Vec<f64> = (p..n)
+            .map(|i| dist_inf(&points[i], &points[i - p]))
+            .collect();
+        let q = d.len() / 4;
+        if q == 0 {
+            return false;
+        }
+        let quarter_max: Vec<f64> = d
+            .chunks(q)
+            .take(4)
+            .map(|c| c.iter().copied().fold(0.0, f64::max))
+            .collect();
+        quarter_max.windows(2).all(|w| w[1] <= 0.8 * w[0])
+    });
+    match settling {
+        Some(p) => Motion::StillSettling { period: p as u32 },
+        None => Motion::NotPeriodic,
+    }
+}
