@@ -14,8 +14,10 @@
 //! window then decides ([`classify_recorded`]), and a failed attempt is
 //! said in the verdict's note, never shown as an orbit.
 
-use super::{settle_tol_um, MAX_PERIOD};
-use crate::shooting::ShootOptions;
+use super::{settle_tol_um, Model, Phase, SteadyRun, MAX_PERIOD};
+use crate::error::Result;
+use crate::ode::Dopri5;
+use crate::shooting::{ShootOptions, ShootOutcome, ShootRun};
 
 /// The transient periods after which a candidate period is looked for.
 pub const CHECKPOINTS: &[u32] = &[12, 24, 48, 96, 192, 384, 768, 1536, 3072, 6144];
@@ -194,5 +196,108 @@ pub fn classify_recorded(points: &[Vec<f64>], detected: Option<u32>, tol: f64) -
     match settling {
         Some(p) => Motion::StillSettling { period: p as u32 },
         None => Motion::NotPeriodic,
+    }
+}
+
+impl SteadyRun {
+    /// Starts a shooting attempt for a period-`n` orbit from the current
+    /// state (the end of transient period `periods_run`).
+    pub(super) fn start_shooting(
+        &mut self,
+        model: &Model,
+        n: u32,
+        span_um: f64,
+        settled: bool,
+    ) -> Result<()> {
+        let opts = pipeline_options(n, self.opts.rtol, self.opts.atol_m, span_um);
+        let run = ShootRun::new(model, self.opts.omega, self.int.y(), &opts)?;
+        self.shooting_attempts += 1;
+        self.phase = Phase::Shoot {
+            run: Box::new(run),
+            period: n,
+            settled,
+        };
+        Ok(())
+    }
+
+    /// What follows a shooting attempt: a stable orbit is recorded from its
+    /// exact start; an orbit unstable by a period doubling is followed by
+    /// an attempt at twice the period; anything else goes back to the
+    /// integration (or records what it has, if the transient had settled).
+    pub(super) fn after_shooting(
+        &mut self,
+        model: &Model,
+        out: ShootOutcome,
+        n: u32,
+        settled: bool,
+    ) -> Result<()> {
+        match out {
+            ShootOutcome::Converged(orbit) if orbit.is_stable() => {
+                let t = f64::from(self.periods_run) * self.period;
+                let stats = self.int.stats;
+                self.int = Dopri5::new(
+                    &mut self.ode,
+                    t,
+                    &orbit.start_state,
+                    self.period / 200.0,
+                    self.tol.clone(),
+                );
+                self.int.stats = stats;
+                self.exact = Some(Motion::PeriodicExact {
+                    period: n,
+                    max_multiplier_modulus: orbit.max_multiplier_modulus(),
+                    newton_iterations: orbit.iterations,
+                });
+                self.settled = true;
+                self.start_recording(model);
+                return Ok(());
+            }
+            ShootOutcome::Converged(orbit) => {
+                let doubled = orbit
+                    .multipliers
+                    .as_ref()
+                    .and_then(|m| m.most_negative_real())
+                    .is_some_and(|mu| mu < -1.0);
+                if doubled && 2 * n as usize <= MAX_PERIOD {
+                    let span_um = self.span.span_um();
+                    return self.start_shooting(model, 2 * n, span_um, settled);
+                }
+                let how = match orbit.multipliers.as_ref().and_then(|m| m.critical()) {
+                    Some(mu) if mu.im.abs() > 1e-9 * mu.norm() => "a complex pair outside the unit circle, as past a Neimark-Sacker point (a torus nearby)",
+                    Some(mu) if mu.re < 0.0 => "a multiplier below -1, as past a period doubling",
+                    _ => "a multiplier above +1",
+                };
+                self.note_attempt(format!(
+                    "shooting after {} periods found a period-{n} orbit, but it is unstable ({how}; largest Floquet multiplier modulus {:.4})",
+                    self.periods_run,
+                    orbit.max_multiplier_modulus()
+                ));
+            }
+            ShootOutcome::Failed(f) => {
+                self.note_attempt(format!(
+                    "shooting after {} periods for a period-{n} orbit did not converge ({})",
+                    self.periods_run, f.reason
+                ));
+            }
+        }
+        if settled {
+            self.start_recording(model);
+        } else {
+            self.phase = Phase::Transient {
+                p: self.periods_run + 1,
+            };
+        }
+        Ok(())
+    }
+
+    /// Adds a shooting attempt that did not give the steady state to the note.
+    fn note_attempt(&mut self, what: String) {
+        match &mut self.shooting_note {
+            Some(note) => {
+                note.push_str("; ");
+                note.push_str(&what);
+            }
+            None => self.shooting_note = Some(what),
+        }
     }
 }
