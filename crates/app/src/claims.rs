@@ -61,8 +61,8 @@ pub const CLAIMS: &[Claim] = &[
     Claim {
         id: "4",
         says: "TE has little effect at Ω 1.2–2",
-        verdict: "not reproduced: the amplitude there grows 8.8 → 116.7 µm",
-        evidence: "the largest amplitude at Ω ≥ 1.2 grows from 8.8 µm (no TE) to 79.9 (20 µm) and 116.7 µm (30 µm)",
+        verdict: "not reproduced: the amplitude there grows 8.8 → 109.4 µm",
+        evidence: "the largest amplitude at Ω ≥ 1.2 grows from 8.8 µm (no TE) to 76.2 (20 µm) and 109.4 µm (30 µm)",
         figure: Some("fig4"),
         command: SWEEP,
         with: "with `b` = 200 and `te` = 0, 20, 30",
@@ -97,7 +97,7 @@ pub const CLAIMS: &[Claim] = &[
     Claim {
         id: "8",
         says: "more backlash advances chaos from Ω 0.8 to 0.4",
-        verdict: "not reproduced: chaos starts at Ω 0.50–0.55 for every backlash",
+        verdict: "not reproduced: chaos starts at Ω 0.50–0.50 for every backlash",
         evidence: "period-1 motion ends at Ω 0.50 for 50, 100 and 200 µm alike, and the Lyapunov exponent turns positive at Ω 0.50, 0.50 and 0.55.",
         figure: Some("fig8"),
         command: LYAPUNOV,
@@ -115,7 +115,7 @@ pub const CLAIMS: &[Claim] = &[
     Claim {
         id: "10",
         says: "keep the speed below Ω 0.8",
-        verdict: "depends on the frequency scale: in gearshock's, the motion is chaotic from Ω 0.50–0.55",
+        verdict: "depends on the frequency scale: in gearshock's, the motion is chaotic from Ω 0.50–0.50",
         evidence: "the first band of parametric instability lies at 0.460–0.465; so below Ω 0.8 is not a safe range there, below about 0.45 is.",
         figure: Some("fig8"),
         command: LYAPUNOV,
