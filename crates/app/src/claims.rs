@@ -97,7 +97,7 @@ pub const CLAIMS: &[Claim] = &[
     Claim {
         id: "8",
         says: "more backlash advances chaos from Ω 0.8 to 0.4",
-        verdict: "not reproduced: chaos starts at Ω 0.50–0.50 for every backlash",
+        verdict: "not reproduced: chaos starts at Ω 0.50 for every backlash",
         evidence: "period-1 motion ends at Ω 0.50 for 50, 100 and 200 µm alike, and the Lyapunov exponent turns positive at Ω 0.50, 0.50 and 0.55.",
         figure: Some("fig8"),
         command: LYAPUNOV,
@@ -115,7 +115,7 @@ pub const CLAIMS: &[Claim] = &[
     Claim {
         id: "10",
         says: "keep the speed below Ω 0.8",
-        verdict: "depends on the frequency scale: in gearshock's, the motion is chaotic from Ω 0.50–0.50",
+        verdict: "depends on the frequency scale: in gearshock's, the motion is chaotic from Ω 0.50",
         evidence: "the first band of parametric instability lies at 0.460–0.465; so below Ω 0.8 is not a safe range there, below about 0.45 is.",
         figure: Some("fig8"),
         command: LYAPUNOV,
