@@ -56,8 +56,8 @@ fi
 [[ -x /usr/bin/chromium && -x /usr/bin/chromedriver ]] || need_chromium=1
 
 if (( need_target )); then say "to install: the wasm32-unknown-unknown target (rustup; the page's compile target; about 20 s)"; else say "present: the wasm32-unknown-unknown target"; fi
-if (( need_trunk )); then say "to install: trunk ${TRUNK_VERSION} from crates.io: the build tool that bundles the page (about 5 min on 2 cores, once)"; else say "present: trunk ${TRUNK_VERSION}"; fi
-if (( need_bindgen )); then say "to install: wasm-bindgen-cli ${WASM_BINDGEN_VERSION} from crates.io: writes the JavaScript glue for the page's WebAssembly (about 5 min on 2 cores, once; side by side with trunk)"; else say "present: wasm-bindgen-cli ${WASM_BINDGEN_VERSION}"; fi
+if (( need_trunk )); then say "to install: trunk ${TRUNK_VERSION} from crates.io: the build tool that bundles the page (about 6 min on 2 cores, once)"; else say "present: trunk ${TRUNK_VERSION}"; fi
+if (( need_bindgen )); then say "to install: wasm-bindgen-cli ${WASM_BINDGEN_VERSION} from crates.io: writes the JavaScript glue for the page's WebAssembly (about 6 min on 2 cores, once; side by side with trunk)"; else say "present: wasm-bindgen-cli ${WASM_BINDGEN_VERSION}"; fi
 if (( need_npm )); then say "to install: npm ci: binaryen's wasm-opt 132 (shrinks the page's WebAssembly) and playwright-core (drives chromium in the browser tests; about 10 s)"; else say "present: node_modules (wasm-opt 132, playwright-core)"; fi
 if (( need_chromium )); then say "to install: Debian's chromium and chromium-driver (apt-get): the headless browser of the browser tests (about 1 min)"; else say "present: chromium and chromium-driver"; fi
 if (( DRY_RUN )); then
