@@ -381,6 +381,15 @@ pub fn branch_point_json(model: &Model, p: &solver::hbm::BranchPoint, meshes: &[
     Value::Object(o)
 }
 
+/// The names of the meshes `meshes` (indices into the model's meshes), as
+/// a frequency response's JSON lists them.
+pub(crate) fn mesh_names<'a>(model: &'a Model, meshes: &[usize]) -> Vec<&'a str> {
+    meshes
+        .iter()
+        .filter_map(|&j| model.system.meshes.get(j).map(|m| m.name.as_str()))
+        .collect()
+}
+
 /// A whole frequency response: spec, branch, work counters and, when the
 /// continuation failed part-way, the error (the branch is then partial).
 pub fn frf_json(
@@ -391,10 +400,7 @@ pub fn frf_json(
     meshes: &[usize],
     error: Option<&SolverError>,
 ) -> Value {
-    let names: Vec<&str> = meshes
-        .iter()
-        .filter_map(|&j| model.system.meshes.get(j).map(|m| m.name.as_str()))
-        .collect();
+    let names = mesh_names(model, meshes);
     let s = continuation.stats;
     json!({
         "model": model.system.model.name(),

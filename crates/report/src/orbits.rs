@@ -2,7 +2,7 @@
 //! response's `branch` shape (`omega`, `stable`, `bifurcation`, the mesh's
 //! extremes) plus each point's `period`.
 
-use super::{branch_point_json, num};
+use super::{branch_point_json, mesh_names, num};
 use serde_json::{json, Value};
 use solver::keys;
 use solver::orbits::{ShootPoint, ShootingContinuation};
@@ -18,10 +18,7 @@ pub fn shooting_frf_json(
     meshes: &[usize],
     error: Option<&SolverError>,
 ) -> Value {
-    let names: Vec<&str> = meshes
-        .iter()
-        .filter_map(|&j| model.system.meshes.get(j).map(|m| m.name.as_str()))
-        .collect();
+    let names = mesh_names(model, meshes);
     let spec = c.spec();
     let s = c.stats;
     json!({
