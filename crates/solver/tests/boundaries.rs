@@ -97,9 +97,10 @@ fn fold_curves_pass_through_the_one_parameter_folds_at_every_level() {
 #[test]
 fn each_cusp_has_two_folds_on_one_side_and_none_on_the_other() {
     let t = te_trace();
-    // The primary resonance's jump disappears at small TE, and the
-    // secondary jump near Omega 0.46 below TE 22 um.
-    assert!(t.cusps().len() >= 2, "cusps {:?}", t.cusps());
+    // The secondary jump near Omega 0.46 disappears below TE 22 um (the
+    // primary resonance's persists down to TE 0: the stiffness
+    // fluctuation under load excites it alone).
+    assert!(!t.cusps().is_empty(), "cusps {:?}", t.cusps());
     for cusp in t.cusps() {
         // The two folds leave the cusp toward the same side of its value.
         let curve = &t.curves()[cusp.curve];
@@ -115,7 +116,10 @@ fn each_cusp_has_two_folds_on_one_side_and_none_on_the_other() {
         let inside = folds_at(cusp.value + side * delta, window, 400);
         let outside = folds_at(cusp.value - side * delta, window, 400);
         assert_eq!(inside.len(), 2, "cusp {cusp:?}: folds beyond it {inside:?}");
-        assert!(outside.is_empty(), "cusp {cusp:?}: folds before it {outside:?}");
+        assert!(
+            outside.is_empty(),
+            "cusp {cusp:?}: folds before it {outside:?}"
+        );
     }
 }
 
@@ -131,17 +135,25 @@ fn regime(omega: f64, te_um: f64) -> Impact {
 #[test]
 fn contact_boundaries_agree_with_time_integration_a_small_step_either_side() {
     let t = te_trace();
-    let folds: Vec<&Curve> = t.curves().iter().filter(|c| c.kind == CurveKind::Fold).collect();
+    let folds: Vec<&Curve> = t
+        .curves()
+        .iter()
+        .filter(|c| c.kind == CurveKind::Fold)
+        .collect();
     let (om, pr) = (0.9, 39.8);
     let mut checked = 0;
-    for c in t.curves().iter().filter(|c| c.kind == CurveKind::DriveFlanksPart) {
+    for c in t
+        .curves()
+        .iter()
+        .filter(|c| c.kind == CurveKind::DriveFlanksPart)
+    {
         // A few points per curve, away from the box's edges and from every
         // fold (where the periodic branch need not be what the gears do).
-        for p in c.points.iter().step_by(15) {
+        for p in c.points.iter().step_by(6) {
             let clear = folds.iter().all(|f| {
                 f.points
                     .iter()
-                    .all(|q| ((q.omega - p.omega) / om).hypot((q.value - p.value) / pr) > 0.06)
+                    .all(|q| ((q.omega - p.omega) / om).hypot((q.value - p.value) / pr) > 0.04)
             });
             let inner = p.omega > 0.45 && p.omega < 1.25 && p.value > 1.0 && p.value < 38.0;
             if !(clear && inner) {
@@ -191,15 +203,26 @@ fn keys_that_move_the_modes_and_empty_ranges_are_refused() {
     };
     // The mean stiffness moves the natural modes: not a boundary key.
     let e = refused("stiffness_n_m", (1e8, 1e9), (0.4, 1.0));
-    assert!(matches!(&e, SolverError::BadOption { option, .. } if option == "key"), "{e}");
+    assert!(
+        matches!(&e, SolverError::BadOption { option, .. } if option == "key"),
+        "{e}"
+    );
     assert!(e.to_string().contains("backlash_um"), "{e}");
     // An integer key.
-    assert!(refused("teeth_pinion", (20.0, 40.0), (0.4, 1.0)).to_string().contains("teeth_pinion"));
+    assert!(refused("teeth_pinion", (20.0, 40.0), (0.4, 1.0))
+        .to_string()
+        .contains("teeth_pinion"));
     // Empty ranges name their flag.
     let e = refused("te_um", (10.0, 10.0), (0.4, 1.0));
-    assert!(matches!(&e, SolverError::BadOption { option, .. } if option == "value-to"), "{e}");
+    assert!(
+        matches!(&e, SolverError::BadOption { option, .. } if option == "value-to"),
+        "{e}"
+    );
     let e = refused("te_um", (1.0, 10.0), (1.0, 0.4));
-    assert!(matches!(&e, SolverError::BadOption { option, .. } if option == "omega-to"), "{e}");
+    assert!(
+        matches!(&e, SolverError::BadOption { option, .. } if option == "omega-to"),
+        "{e}"
+    );
     // A value outside the key's own range names the key and its range.
     let e = refused("backlash_um", (-5.0, 10.0), (0.4, 1.0));
     assert!(e.to_string().contains("backlash_um"), "{e}");

@@ -146,7 +146,10 @@ impl Family {
             && ha.transform == hb.transform
             && ha.stiffness == hb.stiffness
             && ha.channels.len() == hb.channels.len()
-            && ha.channels.iter().zip(&hb.channels).all(|(x, y)| x.d == y.d))
+            && ha
+                .channels
+                .iter()
+                .zip(&hb.channels)
+                .all(|(x, y)| x.d == y.d))
     }
 }
-

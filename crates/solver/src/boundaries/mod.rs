@@ -85,8 +85,12 @@ impl CurveKind {
     pub fn meaning(self) -> &'static str {
         match self {
             CurveKind::Fold => "the jump",
-            CurveKind::DriveFlanksPart => "the drive flanks start to part (single-sided impact begins)",
-            CurveKind::BackFlanksTouch => "the back flanks start to touch (double-sided impact begins)",
+            CurveKind::DriveFlanksPart => {
+                "the drive flanks start to part (single-sided impact begins)"
+            }
+            CurveKind::BackFlanksTouch => {
+                "the back flanks start to touch (double-sided impact begins)"
+            }
             CurveKind::DriveFlanksTouch => "the drive flanks start to touch",
         }
     }
@@ -288,7 +292,8 @@ pub struct BoundaryStats {
 /// The keys whose value the trace can vary: those that change only the
 /// contact laws, the transmission error, the loads or the damping, never
 /// the modes the harmonic balance is written in.
-pub const VARIABLE_KEYS: &str = "backlash_um, te_um, damping_ratio, stiffness_variation, the torques \
+pub const VARIABLE_KEYS: &str =
+    "backlash_um, te_um, damping_ratio, stiffness_variation, the torques \
      and the per-mesh backlash and TE keys";
 
 /// A curve being traced.
@@ -340,14 +345,13 @@ impl BoundaryTrace {
             spec.value_to - spec.value_from,
         )?;
         let mid = 0.5 * (spec.value_from + spec.value_to);
-        if !(fam.same_basis(spec.value_from, spec.value_to)? && fam.same_basis(spec.value_from, mid)?)
+        if !(fam.same_basis(spec.value_from, spec.value_to)?
+            && fam.same_basis(spec.value_from, mid)?)
         {
             return Err(SolverError::BadOption {
                 option: "key".into(),
                 value: spec.key.clone(),
-                allowed: format!(
-                    "a key that leaves the natural modes unchanged: {VARIABLE_KEYS}"
-                ),
+                allowed: format!("a key that leaves the natural modes unchanged: {VARIABLE_KEYS}"),
             });
         }
         Ok(BoundaryTrace {
@@ -389,7 +393,9 @@ impl BoundaryTrace {
 
     /// Whether every level and every start is done.
     pub fn is_finished(&self) -> bool {
-        self.level >= self.spec.levels && self.running.is_none() && self.next_start >= self.starts.len()
+        self.level >= self.spec.levels
+            && self.running.is_none()
+            && self.next_start >= self.starts.len()
     }
 
     /// A rough fraction done, for progress bars: the levels count half,

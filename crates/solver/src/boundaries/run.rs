@@ -24,9 +24,7 @@ impl BoundaryTrace {
             return;
         }
         let system = match (start.kind, start.channel) {
-            (CurveKind::Fold, _) => {
-                System::fold(&mut self.fam, &start.z[..n - 2], omega, p)
-            }
+            (CurveKind::Fold, _) => System::fold(&mut self.fam, &start.z[..n - 2], omega, p),
             (kind, Some(channel)) => Ok(System::Contact { channel, kind }),
             (_, None) => return,
         };
@@ -38,7 +36,8 @@ impl BoundaryTrace {
             self.spec.value_to,
         );
         let ds_max = 1.0 / f64::from(self.spec.points);
-        let started = system.and_then(|s| Tracer::start(&mut self.fam, s, start.z.clone(), m, bounds, ds_max));
+        let started = system
+            .and_then(|s| Tracer::start(&mut self.fam, s, start.z.clone(), m, bounds, ds_max));
         match started {
             Err(e) => self.notes.push(format!(
                 "A {} start at Omega {omega:.4}, {} = {p} was not corrected ({e}); no curve from it.",
@@ -129,6 +128,9 @@ impl BoundaryTrace {
     fn finish(&mut self, run: Running, back_end: super::TraceEnd, front_end: super::TraceEnd) {
         let mut traced: Vec<Traced> = run.backward.into_iter().rev().collect();
         traced.extend(run.forward);
+        // A start on the box's edge is also the other direction's clipped
+        // end: keep one of each run of equal points.
+        traced.dedup_by(|a, b| a.z[a.z.len() - 2..] == b.z[b.z.len() - 2..]);
         self.stats.curve_points += traced.len() as u64;
         let om = self.spec.omega_to - self.spec.omega_from;
         let pr = self.spec.value_to - self.spec.value_from;

@@ -91,7 +91,8 @@ pub(crate) fn find(fam: &mut Family, points: &[BranchPoint], p: f64) -> Vec<Star
                 for (r, e) in rel.iter_mut().zip(te) {
                     *r -= e;
                 }
-                let sample = |i: usize| eval_coef(&rel, h, 2.0 * PI * i as f64 / PHASE_SAMPLES as f64);
+                let sample =
+                    |i: usize| eval_coef(&rel, h, 2.0 * PI * i as f64 / PHASE_SAMPLES as f64);
                 let pick = (0..PHASE_SAMPLES).max_by(|&i, &j| {
                     let (a, b) = (sample(i), sample(j));
                     if kind == CurveKind::DriveFlanksTouch {

@@ -244,9 +244,13 @@ fn rel_coef(fam: &mut Family, x: &[f64], p: f64, channel: usize) -> Result<(Vec<
     let asm = fam.assembly(p)?;
     let m = asm.model.m;
     let nc = n_coef(asm.h);
-    let ch = asm.model.channels.get(channel).ok_or_else(|| SolverError::Singular {
-        what: format!("no channel {channel}"),
-    })?;
+    let ch = asm
+        .model
+        .channels
+        .get(channel)
+        .ok_or_else(|| SolverError::Singular {
+            what: format!("no channel {channel}"),
+        })?;
     let mut coef: Vec<f64> = (0..nc)
         .map(|c| (0..m).map(|i| ch.d[i] * x[c * m + i]).sum())
         .collect();

@@ -192,7 +192,10 @@ impl Tracer {
         let (om, p) = (z[n - 2], z[n - 1]);
         let (a, b, c, d) = self.bounds;
         let tol = 1e-12;
-        om >= a - tol * (b - a) && om <= b + tol * (b - a) && p >= c - tol * (d - c) && p <= d + tol * (d - c)
+        om >= a - tol * (b - a)
+            && om <= b + tol * (b - a)
+            && p >= c - tol * (d - c)
+            && p <= d + tol * (d - c)
     }
 
     /// Newton on the system bordered by `row . (z - pred) = 0`.
@@ -278,9 +281,11 @@ impl Tracer {
             let pred: Vec<f64> = (0..n).map(|i| self.z[i] + ds * self.t[i]).collect();
             let row: Vec<f64> = (0..n).map(|i| self.metric[i] * self.t[i]).collect();
             let outcome = self.correct(fam, &pred, &row).and_then(|(z, ev, it)| {
-                let t = self.tangent(&ev, &row).ok_or_else(|| SolverError::Singular {
-                    what: "boundary tangent".into(),
-                })?;
+                let t = self
+                    .tangent(&ev, &row)
+                    .ok_or_else(|| SolverError::Singular {
+                        what: "boundary tangent".into(),
+                    })?;
                 Ok((z, ev, it, t))
             });
             match outcome {
