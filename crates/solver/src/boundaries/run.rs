@@ -153,7 +153,11 @@ impl BoundaryTrace {
         if run.kind == CurveKind::Fold {
             for (i, pair) in traced.windows(2).enumerate() {
                 let (ka, kb) = (pair[0].cusp, pair[1].cusp);
-                if ka != 0.0 && kb != 0.0 && ka.signum() != kb.signum() {
+                if ka != 0.0
+                    && kb != 0.0
+                    && ka.signum() != kb.signum()
+                    && turns_back(&points, i, (om, pr))
+                {
                     let s = ka / (ka - kb);
                     let (pa, pb) = (&points[i], &points[i + 1]);
                     self.cusps.push(Cusp {
@@ -183,4 +187,21 @@ fn segment_distance(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
         0.0
     };
     (p.0 - a.0 - s * dx).hypot(p.1 - a.1 - s * dy)
+}
+
+/// Whether the curve's projection on the plane (in units of the box,
+/// `scale`) turns back between points `i` and `i + 1`, as it does at a
+/// cusp: the segments two points before and after point in opposite
+/// directions. A sign change of the fold's quadratic coefficient without
+/// it (next to a failed end, where the corrector lost the curve) is no cusp.
+fn turns_back(points: &[CurvePoint], i: usize, scale: (f64, f64)) -> bool {
+    if i < 2 || i + 3 >= points.len() {
+        return false;
+    }
+    let dir = |a: &CurvePoint, b: &CurvePoint| {
+        ((b.omega - a.omega) / scale.0, (b.value - a.value) / scale.1)
+    };
+    let before = dir(&points[i - 2], &points[i]);
+    let after = dir(&points[i + 1], &points[i + 3]);
+    before.0 * after.0 + before.1 * after.1 < 0.0
 }
