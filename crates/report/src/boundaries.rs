@@ -28,6 +28,7 @@ fn curve_json(model: &Model, c: &Curve) -> Value {
             "omega": num(p.omega),
             "value": num(p.value),
             "stable_side": p.stable_side.name(),
+            "others_stable": p.others_stable,
         })).collect::<Vec<_>>(),
     })
 }

@@ -94,6 +94,51 @@ fn fold_curves_pass_through_the_one_parameter_folds_at_every_level() {
     }
 }
 
+/// The period doublings a one-parameter continuation (H = 7, exact, with
+/// stability) labels at `te_um`: the Omega interval between the point
+/// before the crossing and the labelled point.
+fn doublings_at(te_um: f64) -> Vec<(f64, f64)> {
+    let model = Model::new(&pair(&[&format!("te_um={te_um}")])).unwrap();
+    let mut spec = FrfSpec::new(0.4, 1.3, 400);
+    spec.harmonics = 7;
+    let mut c = FrfContinuation::new(&model, spec).unwrap();
+    let mut out = Vec::new();
+    let mut prev = f64::NAN;
+    while !c.is_finished() {
+        for p in c.advance(64).unwrap() {
+            if p.bifurcation == Some(Bifurcation::PeriodDoubling) {
+                out.push((prev.min(p.omega), prev.max(p.omega)));
+            }
+            prev = p.omega;
+        }
+    }
+    out
+}
+
+#[test]
+fn period_doubling_curves_pass_through_the_one_parameter_doublings() {
+    let t = te_trace();
+    assert!(t
+        .curves()
+        .iter()
+        .any(|c| c.kind == CurveKind::PeriodDoubling));
+    for te in [13.0, 25.0, 36.0] {
+        let one = doublings_at(te);
+        let two = crossings(t.curves(), CurveKind::PeriodDoubling, te);
+        assert_eq!(
+            one.len(),
+            two.len(),
+            "TE {te}: one-parameter doublings {one:?}, curves cross at {two:?}"
+        );
+        for &(a, b) in &one {
+            assert!(
+                two.iter().any(|&w| a - 2e-3 <= w && w <= b + 2e-3),
+                "TE {te}: doubling in {a}..{b}, curves cross at {two:?}"
+            );
+        }
+    }
+}
+
 #[test]
 fn each_cusp_has_two_folds_on_one_side_and_none_on_the_other() {
     let t = te_trace();
@@ -174,6 +219,66 @@ fn contact_boundaries_agree_with_time_integration_a_small_step_either_side() {
         }
     }
     assert!(checked >= 3, "only {checked} contact points checked");
+}
+
+/// The period (in mesh periods) of the motion by time integration.
+fn period(omega: f64, te_um: f64) -> Option<u32> {
+    let model = Model::new(&pair(&[&format!("te_um={te_um}")])).unwrap();
+    let mut opts = SteadyOptions::new(omega);
+    opts.transient_periods = 600;
+    opts.record_periods = 32;
+    steady_state(&model, &opts, None).unwrap().period
+}
+
+#[test]
+fn period_doubling_curves_agree_with_time_integration_a_small_step_either_side() {
+    // Where the doubling happens on a stable orbit (every other multiplier
+    // inside the unit circle) and the branch is the only one: period 1 on
+    // the stable side, 2 on the other.
+    let t = te_trace();
+    let folds: Vec<&Curve> = t
+        .curves()
+        .iter()
+        .filter(|c| c.kind == CurveKind::Fold)
+        .collect();
+    let (om, pr) = (0.9, 39.8);
+    let mut checked = 0;
+    for c in t
+        .curves()
+        .iter()
+        .filter(|c| c.kind == CurveKind::PeriodDoubling)
+    {
+        for p in c.points.iter().step_by(10) {
+            let clear = folds.iter().all(|f| {
+                f.points
+                    .iter()
+                    .all(|q| ((q.omega - p.omega) / om).hypot((q.value - p.value) / pr) > 0.04)
+            });
+            let inner = p.omega > 0.45 && p.omega < 1.25 && p.value > 1.0 && p.value < 38.0;
+            // Inside a jump's hysteresis band (between two fold crossings
+            // at this TE) time integration from rest may settle on the
+            // other branch: the comparison holds where the branch is unique.
+            let band = crossings(t.curves(), CurveKind::Fold, p.value);
+            let unique = band
+                .chunks(2)
+                .all(|w| w.len() < 2 || p.omega < w[0] - 0.02 || p.omega > w[1] + 0.02);
+            if !(clear && inner && unique && p.others_stable == Some(true)) {
+                continue;
+            }
+            let at = |s: f64| {
+                (
+                    p.omega + s * 0.02 * om * p.normal.0,
+                    p.value + s * 0.02 * pr * p.normal.1,
+                )
+            };
+            let (w1, v1) = at(1.0);
+            let (w2, v2) = at(-1.0);
+            assert_eq!(period(w1, v1), Some(1), "stable side of {p:?}");
+            assert_eq!(period(w2, v2), Some(2), "other side of {p:?}");
+            checked += 1;
+        }
+    }
+    assert!(checked >= 3, "only {checked} points checked");
 }
 
 #[test]

@@ -5,6 +5,7 @@
 //! relative displacement reaches `+b` or `-b`), with the cusps where two
 //! folds meet and the jump disappears.
 //!
+//! - [`doubling`]: the period-doubling test function on the monodromy.
 //! - [`family`]: the harmonic-balance residual as a function of `p`.
 //! - [`systems`]: the augmented systems (the branch equations plus the
 //!   condition that vanishes on the boundary).
@@ -25,11 +26,12 @@
 //! bounded per call: [`BoundaryTrace::advance`] computes at most `k`
 //! branch or curve points.
 //!
-//! Period doublings: the harmonic-balance branch labels them from its
-//! Floquet multipliers (a real multiplier through -1), but their test
-//! function (the monodromy's eigenvalue at -1) is not continued here yet;
-//! [`BoundaryTrace::notes`] says where the level branches found some.
+//! Period doublings: the seeding branches compute Floquet stability and
+//! label where a real multiplier passes -1; each such point starts a
+//! curve of the bordered test function on the monodromy `M + I`
+//! ([`doubling`]).
 
+mod doubling;
 mod family;
 mod run;
 mod starts;
@@ -37,7 +39,7 @@ mod systems;
 mod trace;
 
 use crate::error::{Result, SolverError};
-use crate::hbm::{Bifurcation, BranchPoint, FrfContinuation, FrfSpec, Method};
+use crate::hbm::{BranchPoint, FrfContinuation, FrfSpec, Method};
 use crate::keys;
 use crate::params::ModelParams;
 use family::Family;
@@ -51,6 +53,8 @@ pub use trace::TraceEnd;
 pub enum CurveKind {
     /// A fold of the periodic branch: the jump.
     Fold,
+    /// A Floquet multiplier of the periodic branch at -1: period doubling begins.
+    PeriodDoubling,
     /// The smallest relative displacement reaches `+b`: the drive flanks
     /// start to part (single-sided impact begins).
     DriveFlanksPart,
@@ -64,8 +68,9 @@ pub enum CurveKind {
 
 impl CurveKind {
     /// Every kind, in output order.
-    pub const ALL: [CurveKind; 4] = [
+    pub const ALL: [CurveKind; 5] = [
         CurveKind::Fold,
+        CurveKind::PeriodDoubling,
         CurveKind::DriveFlanksPart,
         CurveKind::BackFlanksTouch,
         CurveKind::DriveFlanksTouch,
@@ -75,6 +80,7 @@ impl CurveKind {
     pub fn name(self) -> &'static str {
         match self {
             CurveKind::Fold => "fold",
+            CurveKind::PeriodDoubling => "period-doubling",
             CurveKind::DriveFlanksPart => "drive-flanks-part",
             CurveKind::BackFlanksTouch => "back-flanks-touch",
             CurveKind::DriveFlanksTouch => "drive-flanks-touch",
@@ -85,6 +91,7 @@ impl CurveKind {
     pub fn meaning(self) -> &'static str {
         match self {
             CurveKind::Fold => "the jump",
+            CurveKind::PeriodDoubling => "period doubling begins",
             CurveKind::DriveFlanksPart => {
                 "the drive flanks start to part (single-sided impact begins)"
             }
@@ -150,6 +157,11 @@ pub struct CurvePoint {
     pub stable_side: Side,
     /// The side's normal in units of the box (`omega / range`, `value / range`), unit length.
     pub normal: (f64, f64),
+    /// Period doublings only: whether the orbit's other Floquet multipliers
+    /// are inside the unit circle, so that the doubling happens on a stable
+    /// orbit and time integration sees it (`false`: it happens on an
+    /// unstable part of the branch, which the gears do not follow).
+    pub others_stable: Option<bool>,
 }
 
 /// A traced boundary.
@@ -385,8 +397,7 @@ impl BoundaryTrace {
     }
 
     /// Plain sentences on what the trace could not do (a seeding branch
-    /// that failed, a start the corrector did not reach, period doublings
-    /// seen but not continued).
+    /// that failed, a start the corrector did not reach).
     pub fn notes(&self) -> &[String] {
         &self.notes
     }
@@ -458,19 +469,6 @@ impl BoundaryTrace {
             self.notes.push(format!(
                 "The branch at {} = {p} failed ({e}); its points before the failure seed the curves.",
                 self.spec.key
-            ));
-        }
-        let pd: Vec<String> = points
-            .iter()
-            .filter(|q| q.bifurcation == Some(Bifurcation::PeriodDoubling))
-            .map(|q| format!("{:.4}", q.omega))
-            .collect();
-        if !pd.is_empty() {
-            self.notes.push(format!(
-                "The branch at {} = {p} doubles its period at Omega {}; \
-                 period-doubling curves are not traced yet.",
-                self.spec.key,
-                pd.join(", ")
             ));
         }
         let found = starts::find(&mut self.fam, &points, p);

@@ -25,6 +25,9 @@ impl BoundaryTrace {
         }
         let system = match (start.kind, start.channel) {
             (CurveKind::Fold, _) => System::fold(&mut self.fam, &start.z[..n - 2], omega, p),
+            (CurveKind::PeriodDoubling, _) => {
+                System::doubling(&mut self.fam, &start.z[..n - 2], omega, p)
+            }
             (kind, Some(channel)) => Ok(System::Contact { channel, kind }),
             (_, None) => return,
         };
@@ -146,6 +149,7 @@ impl BoundaryTrace {
                     value: t.z[n - 1],
                     stable_side: Side::of(normal),
                     normal,
+                    others_stable: t.others_stable,
                 }
             })
             .collect();

@@ -30,6 +30,16 @@ const PHASE_SAMPLES: usize = 512;
 pub(crate) fn find(fam: &mut Family, points: &[BranchPoint], p: f64) -> Vec<Start> {
     let mut out = Vec::new();
     for q in points {
+        if q.bifurcation == Some(Bifurcation::PeriodDoubling) {
+            let mut z = q.coefficients.clone();
+            z.extend([q.omega, p]);
+            out.push(Start {
+                kind: CurveKind::PeriodDoubling,
+                channel: None,
+                mesh: None,
+                z,
+            });
+        }
         if q.bifurcation == Some(Bifurcation::Fold) {
             let mut z = q.coefficients.clone();
             z.extend([q.omega, p]);

@@ -44,6 +44,9 @@ pub(crate) struct Eval {
     pub(crate) cusp: f64,
     /// Scale of the orbit (largest coefficient, um).
     pub(crate) scale: f64,
+    /// Period doublings only: whether every other Floquet multiplier is
+    /// inside the unit circle (the doubling happens on a stable orbit).
+    pub(crate) others_stable: Option<bool>,
 }
 
 /// The condition a curve follows.
@@ -58,6 +61,15 @@ pub(crate) enum System {
         w: DVector<f64>,
         v: DVector<f64>,
     },
+    /// A Floquet multiplier at -1.
+    Doubling {
+        /// The block (0 main, 1 the planet block under the symmetric reduction).
+        block: usize,
+        /// Bordering vectors and the last right null vector.
+        b: DVector<f64>,
+        c: DVector<f64>,
+        v: DVector<f64>,
+    },
     /// A channel's extremum at `+-b`.
     Contact {
         /// The channel (mesh, or mesh kind under the symmetric reduction).
@@ -68,6 +80,17 @@ pub(crate) enum System {
 }
 
 impl System {
+    /// The period-doubling system at `(x, omega, p)`.
+    pub(crate) fn doubling(fam: &mut Family, x: &[f64], omega: f64, p: f64) -> Result<Self> {
+        let (block, b, c) = super::doubling::start(fam, x, omega, p)?;
+        Ok(System::Doubling {
+            block,
+            v: c.clone(),
+            b,
+            c,
+        })
+    }
+
     /// The fold system at `(x, omega, p)`, its bordering vectors from the
     /// smallest singular value's vectors of `dR/dX` there.
     pub(crate) fn fold(fam: &mut Family, x: &[f64], omega: f64, p: f64) -> Result<Self> {
@@ -101,16 +124,20 @@ impl System {
     /// Auxiliary unknowns between `X` and `(Omega, p)`.
     pub(crate) fn n_aux(&self) -> usize {
         match self {
-            System::Fold { .. } => 0,
+            System::Fold { .. } | System::Doubling { .. } => 0,
             System::Contact { .. } => 1,
         }
     }
 
     /// Takes the last evaluation's null vectors as the next bordering.
     pub(crate) fn accept(&mut self) {
-        if let System::Fold { b, c, w, v } = self {
-            *b = w.normalize();
-            *c = v.normalize();
+        match self {
+            System::Fold { b, c, w, v } => {
+                *b = w.normalize();
+                *c = v.normalize();
+            }
+            System::Doubling { c, v, .. } => *c = v.normalize(),
+            System::Contact { .. } => {}
         }
     }
 
@@ -118,6 +145,7 @@ impl System {
     pub(crate) fn eval(&mut self, fam: &mut Family, z: &[f64]) -> Result<Eval> {
         match self {
             System::Fold { b, c, w, v } => fold_eval(fam, z, b, c, w, v),
+            System::Doubling { block, b, c, v } => super::doubling::eval(fam, z, *block, b, c, v),
             System::Contact { channel, kind } => contact_eval(fam, z, *channel, *kind),
         }
     }
@@ -137,6 +165,25 @@ fn bordered(jx: &DMatrix<f64>, b: &DVector<f64>, c: &DVector<f64>) -> DMatrix<f6
         a[(nx, i)] = c[i];
     }
     a
+}
+
+/// Solves `[A b; c^T 0] [v; g] = [0; 1]`: `(g, v)`.
+pub(crate) fn bordered_solve(
+    a: &DMatrix<f64>,
+    b: &DVector<f64>,
+    c: &DVector<f64>,
+    omega: f64,
+) -> Result<(f64, DVector<f64>)> {
+    let n = a.nrows();
+    let mut e = DVector::zeros(n + 1);
+    e[n] = 1.0;
+    let sol = bordered(a, b, c)
+        .lu()
+        .solve(&e)
+        .ok_or_else(|| SolverError::Singular {
+            what: format!("bordered matrix at Omega = {omega}"),
+        })?;
+    Ok((sol[n], sol.rows(0, n).into_owned()))
 }
 
 fn fold_eval(
@@ -213,6 +260,7 @@ fn fold_eval(
         side: (s * w_omega, s * w_p),
         cusp: kappa,
         scale,
+        others_stable: None,
     })
 }
 
@@ -347,5 +395,6 @@ fn contact_eval(fam: &mut Family, z: &[f64], channel: usize, kind: CurveKind) ->
         side: (toward * g_om, toward * g_p),
         cusp: 0.0,
         scale: 1.0 + inf_norm(x),
+        others_stable: None,
     })
 }

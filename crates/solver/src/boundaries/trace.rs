@@ -34,6 +34,8 @@ pub(crate) struct Traced {
     pub(crate) side: (f64, f64),
     /// See [`Eval::cusp`].
     pub(crate) cusp: f64,
+    /// See [`Eval::others_stable`].
+    pub(crate) others_stable: Option<bool>,
 }
 
 /// How one direction of a curve ended.
@@ -184,6 +186,7 @@ impl Tracer {
             z: self.z.clone(),
             side: ev.side,
             cusp: ev.cusp,
+            others_stable: ev.others_stable,
         }
     }
 
