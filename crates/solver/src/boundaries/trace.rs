@@ -10,8 +10,9 @@
 //! 1 um) and the auxiliary phase in units of a period, so that a step of
 //! `ds` moves the curve by at most `ds` of the box in the plane.
 
+use super::bordered::Eval;
 use super::family::Family;
-use super::systems::{Eval, System};
+use super::systems::System;
 use crate::error::{Result, SolverError};
 use nalgebra::{DMatrix, DVector};
 use std::f64::consts::PI;
