@@ -28,6 +28,11 @@ pub const MAX_SAMPLES: u64 = 2_000_000;
 /// coordinate, so its work grows like the cube; this allows every point
 /// count up to H = 27 and some hours at H = 40.
 pub const MAX_FRF_WORK: u64 = 2_000_000_000;
+/// Most `--levels x --points x (2 --harmonics + 1)^3` of one boundary
+/// trace: each level is a frequency response of `--points`, and each curve
+/// point a corrector whose iterations assemble some seven Jacobians, so a
+/// tenth of a frequency response's budget per level.
+pub const MAX_BOUNDARY_WORK: u64 = 200_000_000;
 
 /// Steps a mesh period takes for accuracy alone, whatever the stiffness
 /// (measured on the default model: 18 to 67 between Omega 2 and 0.1).
