@@ -591,7 +591,7 @@ fn backlash_and_the_onset_of_chaos_fig8() {
     };
     rows.push(format!("chaos starts at Ω {onset} for every backlash"));
     rows.push(format!(
-        "a negative x first appears at Ω {}, {} and {}",
+        "a negative tooth deflection x, TE included, first appears at Ω {}, {} and {}",
         negative[0], negative[1], negative[2]
     ));
     assert_rows(&rows, &commands);
