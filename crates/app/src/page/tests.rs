@@ -181,7 +181,7 @@ fn progress_shows_after_a_while_with_the_status_line() {
 fn a_preview_drawn_leaves_its_marker_in_the_status() {
     let (mut p, fx) = page("transient_periods=40&record_periods=10&bif_points=4");
     run_omega(&mut p, &fx, 5.0);
-    assert!(p.status(6.0, serde_json::Value::Null)["preview_drawn"].is_null());
+    assert!(p.status(6.0)["preview_drawn"].is_null());
     p.input("backlash_um", "150", 10.0);
     let (fx, _) = p.apply_pending(11.0);
     p.begin_frame(16.0);
@@ -191,7 +191,7 @@ fn a_preview_drawn_leaves_its_marker_in_the_status() {
     p.drawn(ViewId::Phase, (16.0, 18.0), 16.0);
     // The full run replaces the preview; the marker stays.
     run_omega(&mut p, &fx, 30.0);
-    let s = p.status(31.0, serde_json::Value::Null);
+    let s = p.status(31.0);
     assert_eq!(s["preview_drawn"]["ms"], 18.0);
     let summary = s["preview_drawn"]["summary"].as_str().unwrap();
     assert!(summary.starts_with("Preview ("), "{summary}");

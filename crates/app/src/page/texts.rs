@@ -128,8 +128,8 @@ impl Page {
 
     /// Everything the tests and the benchmark read: the controller's
     /// status, the draw counters, the frames, the timings, the preview
-    /// marker, and `extra` (the gear set's last frame) under `anim`.
-    pub fn status(&self, now_ms: f64, extra: serde_json::Value) -> serde_json::Value {
+    /// marker, and the gear set's last frame under `anim`.
+    pub fn status(&self, now_ms: f64) -> serde_json::Value {
         let mut v = self.ctl.status(now_ms);
         let frame_json = |f: Option<crate::plots::PlotFrame>| {
             serde_json::json!(f.map(|f| [
@@ -181,7 +181,10 @@ impl Page {
                     .as_ref()
                     .map(|(ms, summary)| serde_json::json!({"ms": ms, "summary": summary}))),
             );
-            o.insert("anim".into(), extra);
+            o.insert("anim".into(), self.anim.info.clone());
+            let (n, last) = self.gestures;
+            o.insert("gesture".into(), serde_json::json!({"n": n, "last": last}));
+            o.insert("see_orbit".into(), serde_json::json!(self.see_orbit));
         }
         v
     }
