@@ -13,8 +13,8 @@
 //! failure leaves the page usable is passed to [`check`], which logs it.
 use crate::controller::{pool_size, Controller, Effect};
 use crate::page::redraw::Decision;
-use crate::page::{screen_size, Page, Phase, PointerIn, Write};
-use crate::plots::{self, PlotFrame, PointGroup};
+use crate::page::{Page, Phase, PointerIn, Write};
+use crate::plots;
 use crate::views::ViewId;
 use plotters::coord::Shift;
 use plotters::prelude::{DrawingArea, IntoDrawingArea};
@@ -131,7 +131,7 @@ pub fn start_app() {
         workers: Vec::new(),
     }));
     panel::build(&page);
-    fit_canvases(&doc, narrow);
+    paint(&page.borrow(), page.borrow().core.fit_writes());
     build_canvas_events(&page);
     start_workers(&page);
     run_effects(&page, effects);
@@ -255,7 +255,6 @@ fn frame(page: &Shared, ts: f64) {
     paint(&p, writes);
     let writes = p.core.end_frame(&d);
     paint(&p, writes);
-    highlight_mesh(&p);
     if p.core.next_frame() {
         let page2 = page.clone();
         let cb = Closure::once_into_js(move |ts: f64| frame(&page2, ts));
@@ -267,26 +266,11 @@ fn frame(page: &Shared, ts: f64) {
 
 /// Makes the core's writes in the document (each only if it changes it).
 fn paint(p: &Shell, writes: Vec<Write>) {
-    let doc = &p.doc;
     for w in writes {
-        let id = match &w {
-            Write::Url(q) => {
-                if let Ok(h) = p.window.history() {
-                    check(h.replace_state_with_url(&JsValue::NULL, "", Some(&format!("?{q}"))));
-                }
-                continue;
+        let Some(e) = w.id().and_then(|id| p.doc.get_element_by_id(id)) else {
+            if let (Write::Url(q), Ok(h)) = (&w, p.window.history()) {
+                check(h.replace_state_with_url(&JsValue::NULL, "", Some(&format!("?{q}"))));
             }
-            Write::Progress { view, .. } => format!("progress-{}", view.key()),
-            Write::Text { id, .. }
-            | Write::Attr { id, .. }
-            | Write::Hidden { id, .. }
-            | Write::Class { id, .. }
-            | Write::Value { id, .. }
-            | Write::Options { id, .. }
-            | Write::Flag { id, .. }
-            | Write::Scroll(id) => id.clone(),
-        };
-        let Some(e) = doc.get_element_by_id(&id) else {
             continue;
         };
         match w {
@@ -296,42 +280,21 @@ fn paint(p: &Shell, writes: Vec<Write>) {
                     check(e.set_attribute(name, &value));
                 }
             }
-            Write::Hidden { hidden, .. } => {
-                if e.has_attribute("hidden") != hidden {
-                    check(e.toggle_attribute_with_force("hidden", hidden));
+            Write::Hidden { hidden: on, .. } => {
+                if e.has_attribute("hidden") != on {
+                    check(e.toggle_attribute_with_force("hidden", on));
                 }
             }
-            Write::Class { class, on, .. } => {
-                check(e.class_list().toggle_with_force(class, on));
-            }
-            Write::Flag { name, on, .. } => {
-                check(e.toggle_attribute_with_force(name, on));
-            }
+            Write::Flag { name, on, .. } => check(e.toggle_attribute_with_force(name, on)),
+            Write::Class { class, on, .. } => check(e.class_list().toggle_with_force(class, on)),
             Write::Value { value, .. } => {
                 let v = JsValue::from_str(&value);
                 check(js_sys::Reflect::set(&e, &JsValue::from_str("value"), &v));
             }
-            Write::Options { options, .. } => panel::set_options(doc, &e, &options),
+            Write::Options { options, .. } => panel::set_options(&p.doc, &e, &options),
             Write::Scroll(_) => e.scroll_into_view(),
-            Write::Progress { shown, .. } => paint_progress(&e, shown),
             Write::Url(_) => {}
         }
-    }
-}
-
-fn paint_progress(el: &Element, shown: Option<(f64, String)>) {
-    check(el.toggle_attribute_with_force("hidden", shown.is_none()));
-    let Some((frac, label)) = shown else {
-        return;
-    };
-    if let Ok(Some(bar)) = el.query_selector(".bar") {
-        let style = format!("width:{:.1}%", 100.0 * frac);
-        if bar.get_attribute("style").as_deref() != Some(style.as_str()) {
-            check(bar.set_attribute("style", &style));
-        }
-    }
-    if let Ok(Some(l)) = el.query_selector(".label") {
-        set_text_of(&l, &label);
     }
 }
 
@@ -354,86 +317,11 @@ fn draw_view(p: &mut Shell, v: ViewId) -> Vec<Write> {
         return Vec::new();
     };
     let root: Area = b.into_drawing_area();
-    let (writes, drawn) = p.core.draw_view(v, &root, fr.as_ref());
+    let (writes, overlay) = p.core.draw_view(v, &root, fr.as_ref());
     if let Some(ctx) = ctx2d(&cv) {
-        fill_groups(&ctx, &drawn.dots);
-        if let (Some(f), Some(o)) = (drawn.frame, &drawn.map) {
-            fill_map(&ctx, &f, o);
-        }
+        anim::paint_items(&ctx, &overlay, (f64::from(w), f64::from(h)));
     }
     writes
-}
-
-fn fill_groups(ctx: &CanvasRenderingContext2d, groups: &[PointGroup]) {
-    for g in groups {
-        let c = format!("rgb({},{},{})", g.color.0, g.color.1, g.color.2);
-        let half = if g.filled { 1.25 } else { 2.5 };
-        ctx.begin_path();
-        for &(x, y) in &g.px {
-            ctx.rect(
-                f64::from(x) - half,
-                f64::from(y) - half,
-                2.0 * half,
-                2.0 * half,
-            );
-        }
-        if g.filled {
-            ctx.set_fill_style_str(&c);
-            ctx.fill();
-        } else {
-            ctx.set_stroke_style_str(&c);
-            ctx.set_line_width(1.0);
-            ctx.stroke();
-        }
-    }
-}
-
-/// The map's cells, one path per colour, then the period dots and the cursor.
-fn fill_map(ctx: &CanvasRenderingContext2d, f: &PlotFrame, o: &plots::maps::MapOverlay) {
-    for (c, rects) in &o.cells {
-        ctx.begin_path();
-        for r in rects {
-            ctx.rect(r[0], r[1], r[2], r[3]);
-        }
-        ctx.set_fill_style_str(&format!("rgb({},{},{})", c.0, c.1, c.2));
-        ctx.fill();
-    }
-    ctx.begin_path();
-    for d in &o.dots {
-        ctx.move_to(d[0] + o.dot_radius, d[1]);
-        check(ctx.arc(d[0], d[1], o.dot_radius, 0.0, std::f64::consts::TAU));
-    }
-    ctx.set_fill_style_str("#000");
-    ctx.fill();
-    ctx.set_stroke_style_str("rgba(0,0,0,0.7)");
-    ctx.set_line_width(1.0);
-    ctx.begin_path();
-    if let Some(x) = o.cursor.0 {
-        ctx.move_to(x, f.top_left.y);
-        ctx.line_to(x, f.bottom_right.y);
-    }
-    if let Some(y) = o.cursor.1 {
-        ctx.move_to(f.top_left.x, y);
-        ctx.line_to(f.bottom_right.x, y);
-    }
-    ctx.stroke();
-}
-
-/// The schematic's plotted mesh, and the schematic of the model shown.
-fn highlight_mesh(p: &Shell) {
-    let selected = format!("mesh-{}", p.core.ctl().highlighted_mesh());
-    if let Ok(list) = p.doc.query_selector_all("#schematic .mesh") {
-        for e in (0..list.length()).filter_map(|i| list.get(i)?.dyn_into::<Element>().ok()) {
-            let on = e.id() == selected;
-            check(e.class_list().toggle_with_force("selected", on));
-        }
-    }
-    let pair = p.core.ctl().settings().params.kind() == solver::ModelKind::GearPair;
-    for (id, show) in [("schem-ravigneaux", !pair), ("schem-pair", pair)] {
-        if let Some(e) = p.doc.get_element_by_id(id) {
-            check(e.set_attribute("style", if show { "" } else { "display:none" }));
-        }
-    }
 }
 
 /// A mouse event's position in the canvas's drawing pixels.
@@ -444,20 +332,6 @@ fn canvas_xy(cv: &HtmlCanvasElement, e: &MouseEvent) -> (f64, f64) {
         f64::from(e.offset_x()) * f64::from(cv.width()) / css_w,
         f64::from(e.offset_y()) * f64::from(cv.height()) / css_h,
     )
-}
-
-/// On a narrow screen every plot's canvas draws on fewer, larger pixels
-/// ([`screen_size`]); the gear set keeps its drawing.
-fn fit_canvases(doc: &Document, narrow: bool) {
-    let Ok(all) = doc.query_selector_all("canvas") else {
-        return;
-    };
-    let all = (0..all.length()).filter_map(|k| all.item(k)?.dyn_into::<HtmlCanvasElement>().ok());
-    for cv in all.filter(|cv| narrow && cv.id() != "canvas-anim") {
-        let (w, h) = screen_size((cv.width(), cv.height()), cv.id() == "canvas-fr", true);
-        cv.set_width(w);
-        cv.set_height(h);
-    }
 }
 
 /// The canvases' events: a click on the map picks a cell, on the time

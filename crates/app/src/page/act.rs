@@ -159,7 +159,7 @@ impl Page {
 
     /// Every control's value, visibility and options as the state has them
     /// (after a link, a preset, a reset, a tour step or a refused value).
-    pub fn control_writes(&self) -> Vec<Write> {
+    pub fn control_writes(&mut self) -> Vec<Write> {
         let params = &self.ctl.settings().params;
         let model = params.kind();
         let mut w = Vec::new();
@@ -168,10 +168,13 @@ impl Page {
         let mut options: Vec<(String, String)> =
             names.iter().map(|n| (n.clone(), n.clone())).collect();
         options.push(("worst".into(), "worst (largest dynamic factor)".into()));
-        w.push(Write::Options {
-            id: "sel-mesh".into(),
-            options,
-        });
+        if options != self.schematic.1 {
+            self.schematic.1 = options.clone();
+            w.push(Write::Options {
+                id: "sel-mesh".into(),
+                options,
+            });
+        }
         for c in controls() {
             w.push(Write::Hidden {
                 id: format!("control-{}", c.key),

@@ -6,8 +6,9 @@
 
 use super::{Page, Write};
 use crate::gearset::{AnimClock, GearSet};
-use crate::scene::{anim_note, gear_scene, Scene};
+use crate::scene::{anim_note, gear_scene, Item, Scene, SubPath};
 use crate::views::ViewId;
+use glam::DVec2;
 
 /// The gear set's animation.
 #[derive(Debug, Default)]
@@ -184,15 +185,27 @@ impl Page {
         Some((scene, writes))
     }
 
-    /// The time history's cursor at the clock's instant: its x and the
-    /// plot's top and bottom (pixels).
-    pub fn time_cursor(&self) -> Option<(f64, f64, f64)> {
-        let f = self.frame(ViewId::Time)?;
-        let r = self.ctl.main().omega.as_ref()?;
+    /// The time history's cursor canvas at the clock's instant: cleared,
+    /// and a red line across the plot at that time.
+    pub fn time_cursor(&self) -> Vec<Item> {
+        let mut items = vec![Item::Erase];
+        let (Some(f), Some(r)) = (self.frame(ViewId::Time), self.ctl.main().omega.as_ref()) else {
+            return items;
+        };
         let t = self
             .anim
             .clock
             .time_periods((r.anim.start_sample, r.samples_per_period));
-        Some((f.to_px(t, f.y_range.0).x, f.top_left.y, f.bottom_right.y))
+        let x = f.to_px(t, f.y_range.0).x;
+        items.push(Item::Shape {
+            parts: vec![SubPath::Polyline(vec![
+                DVec2::new(x, f.top_left.y),
+                DVec2::new(x, f.bottom_right.y),
+            ])],
+            fill: None,
+            even_odd: false,
+            stroke: Some(("rgba(220,20,60,0.9)".into(), 2.0)),
+        });
+        items
     }
 }

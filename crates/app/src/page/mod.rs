@@ -64,13 +64,6 @@ pub enum Write {
         /// On or off.
         on: bool,
     },
-    /// A view's progress bar: its fill (0 ..= 1) and label, or hidden.
-    Progress {
-        /// The view.
-        view: ViewId,
-        /// Fill and label while it shows.
-        shown: Option<(f64, String)>,
-    },
     /// A field's or a drop-down's value.
     Value {
         /// The element's id.
@@ -105,6 +98,21 @@ impl Write {
         Write::Text {
             id: id.to_string(),
             text: text.into(),
+        }
+    }
+
+    /// The id of the element it changes (none for the address).
+    pub fn id(&self) -> Option<&str> {
+        match self {
+            Write::Text { id, .. }
+            | Write::Attr { id, .. }
+            | Write::Hidden { id, .. }
+            | Write::Class { id, .. }
+            | Write::Value { id, .. }
+            | Write::Options { id, .. }
+            | Write::Flag { id, .. }
+            | Write::Scroll(id) => Some(id),
+            Write::Url(_) => None,
         }
     }
 }
@@ -146,6 +154,9 @@ pub struct Page {
     family_input: (String, String),
     /// The family the bar's fields last showed (its link code).
     family_shown: String,
+    /// The mesh the schematic last highlighted, and the plotted mesh's
+    /// options last written (the drop-down is rebuilt only when they change).
+    schematic: (String, Vec<(String, String)>),
     /// When the last input arrived (ms).
     last_input_ms: f64,
     /// The longest handling of one worker message (ms).
@@ -184,6 +195,7 @@ impl Page {
                 String::new(),
             ),
             family_shown: String::new(),
+            schematic: (String::new(), Vec::new()),
             last_input_ms: 0.0,
             max_message_ms: 0.0,
             max_frame_ms: 0.0,
@@ -395,6 +407,7 @@ impl Page {
         if d.controls {
             w.extend(self.control_writes());
         }
+        w.extend(self.schematic_writes());
         w
     }
 

@@ -161,19 +161,21 @@ fn a_frame_draws_the_changed_views_in_order_and_writes_the_texts() {
 #[test]
 fn progress_shows_after_a_while_with_the_status_line() {
     let (p, _) = page("");
-    let bar = |w: &[Write], view: ViewId| {
-        w.iter().find_map(|x| match x {
-            Write::Progress { view: v, shown } if *v == view => Some(shown.clone()),
-            _ => None,
-        })
+    let hidden = |hidden: bool| Write::Hidden {
+        id: "progress-bif".into(),
+        hidden,
     };
     let early = p.progress(100.0);
-    assert_eq!(bar(&early, ViewId::Bif), Some(None));
+    assert!(early.contains(&hidden(true)));
     assert!(early.contains(&Write::text("status", "")));
     let later = p.progress(1000.0);
-    let (frac, label) = bar(&later, ViewId::Bif).flatten().expect("a bar");
-    assert_eq!(frac, 0.0);
-    assert_eq!(label, "computing 0/200 points");
+    assert!(later.contains(&hidden(false)));
+    assert!(later.contains(&Write::Attr {
+        id: "progress-bif-bar".into(),
+        name: "style",
+        value: "width:0.0%".into()
+    }));
+    assert!(later.contains(&Write::text("progress-bif-label", "computing 0/200 points")));
     assert!(later.contains(&Write::text("status", texts::COMPUTING)));
 }
 

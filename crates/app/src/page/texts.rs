@@ -64,22 +64,33 @@ impl Page {
     /// is time-based: the page asks ten times a second).
     pub fn progress(&self, now_ms: f64) -> Vec<Write> {
         let mut busy = false;
-        let mut w: Vec<Write> = ViewId::ALL
-            .into_iter()
-            .map(|view| {
-                let prog = self.ctl.view_status(view).progress(now_ms);
-                busy |= prog.is_some();
-                let shown = prog.map(|(done, total)| {
-                    let frac = if total > 0 {
-                        done as f64 / total as f64
-                    } else {
-                        0.0
-                    };
-                    (frac, view.progress_label(done, total))
-                });
-                Write::Progress { view, shown }
-            })
-            .collect();
+        let mut w = Vec::new();
+        for view in ViewId::ALL {
+            let prog = self.ctl.view_status(view).progress(now_ms);
+            busy |= prog.is_some();
+            let id = format!("progress-{}", view.key());
+            w.push(Write::Hidden {
+                id: id.clone(),
+                hidden: prog.is_none(),
+            });
+            let Some((done, total)) = prog else {
+                continue;
+            };
+            let frac = if total > 0 {
+                done as f64 / total as f64
+            } else {
+                0.0
+            };
+            w.push(Write::Attr {
+                id: format!("{id}-bar"),
+                name: "style",
+                value: format!("width:{:.1}%", 100.0 * frac),
+            });
+            w.push(Write::text(
+                &format!("{id}-label"),
+                view.progress_label(done, total),
+            ));
+        }
         w.push(Write::text("status", if busy { COMPUTING } else { "" }));
         w
     }

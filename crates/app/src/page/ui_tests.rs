@@ -230,3 +230,21 @@ fn a_view_draws_on_svg_with_its_text_alternative_and_frame() {
     // The frequency response and the map map clicks as soon as they draw.
     assert!(p.frame(ViewId::Fr).is_some() && p.frame(ViewId::Map).is_some());
 }
+
+/// The PNG export rasterizes the SVG picture: a file with anything after
+/// its end does not load (the regime map's cells and cursor were drawn
+/// after plotters had closed it).
+#[test]
+fn every_views_svg_is_one_closed_picture() {
+    let p = page("");
+    for v in ViewId::ALL {
+        let Ok(svg) = p.ctl().plot_svg(v) else {
+            continue;
+        };
+        assert_eq!(svg.matches("</svg>").count(), 1, "{}", v.key());
+        assert!(svg.trim_end().ends_with("</svg>"), "{}", v.key());
+    }
+    let map = p.ctl().plot_svg(ViewId::Map).expect("the map draws");
+    // Its cursor lines are inside.
+    assert!(map.contains("<polyline") || map.contains("<path"), "{map}");
+}

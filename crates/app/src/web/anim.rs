@@ -8,7 +8,7 @@
 use super::*;
 use crate::page::anim::ANIM_CANVASES;
 use crate::page::AnimDraw;
-use crate::scene::{Item, Scene, SubPath};
+use crate::scene::{Item, SubPath};
 use web_sys::{IntersectionObserver, IntersectionObserverEntry};
 
 /// Tells the core whether the animation's two canvases are on screen.
@@ -107,18 +107,20 @@ fn trace(ctx: &CanvasRenderingContext2d, part: &SubPath) {
             ctx.move_to(c.x + r, c.y);
             check(ctx.arc(c.x, c.y, *r, 0.0, std::f64::consts::TAU));
         }
+        SubPath::Rect { at, size } => ctx.rect(at.x, at.y, size.x, size.y),
     }
 }
 
-/// Rasterizes a scene on a canvas of `size` pixels.
-fn paint_scene(ctx: &CanvasRenderingContext2d, scene: &Scene, size: (f64, f64)) {
+/// Rasterizes scene items on a canvas of `size` pixels.
+pub(super) fn paint_items(ctx: &CanvasRenderingContext2d, items: &[Item], size: (f64, f64)) {
     ctx.set_font("12px sans-serif");
-    for item in &scene.items {
+    for item in items {
         match item {
             Item::Clear(color) => {
                 ctx.set_fill_style_str(color);
                 ctx.fill_rect(0.0, 0.0, size.0, size.1);
             }
+            Item::Erase => ctx.clear_rect(0.0, 0.0, size.0, size.1),
             Item::Shape {
                 parts,
                 fill,
@@ -169,7 +171,7 @@ fn draw_anim(p: &mut Shell) {
     let Some(ctx) = ctx2d(&cv) else { return };
     let size = (f64::from(cv.width()), f64::from(cv.height()));
     if let Some((scene, writes)) = p.core.anim_scene(size) {
-        paint_scene(&ctx, &scene, size);
+        paint_items(&ctx, &scene.items, size);
         paint(p, writes);
     }
 }
@@ -178,15 +180,8 @@ fn draw_time_cursor(p: &Shell) {
     let Some(cv) = by_id::<HtmlCanvasElement>(&p.doc, "canvas-time-cursor") else {
         return;
     };
-    let Some(ctx) = ctx2d(&cv) else { return };
-    ctx.clear_rect(0.0, 0.0, f64::from(cv.width()), f64::from(cv.height()));
-    let Some((x, top, bottom)) = p.core.time_cursor() else {
-        return;
-    };
-    ctx.set_stroke_style_str("rgba(220,20,60,0.9)");
-    ctx.set_line_width(2.0);
-    ctx.begin_path();
-    ctx.move_to(x, top);
-    ctx.line_to(x, bottom);
-    ctx.stroke();
+    if let Some(ctx) = ctx2d(&cv) {
+        let size = (f64::from(cv.width()), f64::from(cv.height()));
+        paint_items(&ctx, &p.core.time_cursor(), size);
+    }
 }

@@ -79,35 +79,16 @@ fn act(page: &Shared, action: Action, ev: &EventIn) {
     }
 }
 
-/// A drop-down's options, replaced if they differ.
+/// A drop-down's options, replaced.
 pub(super) fn set_options(doc: &Document, sel: &Element, options: &[(String, String)]) {
-    let Ok(now) = sel.query_selector_all("option") else {
-        return;
-    };
-    let current: Vec<String> = (0..now.length())
-        .filter_map(|i| {
-            now.item(i)?
-                .dyn_into::<Element>()
-                .ok()?
-                .get_attribute("value")
-        })
-        .collect();
-    if current.iter().eq(options.iter().map(|(v, _)| v)) {
-        return;
-    }
     sel.set_text_content(None);
     for (value, text) in options {
-        if let Some(o) = make_option(doc, value, text) {
+        if let Ok(o) = doc.create_element("option") {
+            check(o.set_attribute("value", value));
+            o.set_text_content(Some(text));
             check(sel.append_child(&o));
         }
     }
-}
-
-fn make_option(doc: &Document, value: &str, text: &str) -> Option<Element> {
-    let o = doc.create_element("option").ok()?;
-    check(o.set_attribute("value", value));
-    o.set_text_content(Some(text));
-    Some(o)
 }
 
 /// Shows `text` next to the Copy link button for about two seconds (the

@@ -201,20 +201,20 @@ impl Controller {
     /// The view drawn as SVG text, as the page shows it (without the
     /// progress captions).
     pub fn plot_svg(&self, view: ViewId) -> Result<String, SvgError> {
+        let size = self.canvas_size(view);
         let mut s = String::new();
-        let dots = {
-            let root = SVGBackend::with_string(&mut s, self.canvas_size(view)).into_drawing_area();
+        let d = {
+            let root = SVGBackend::with_string(&mut s, size).into_drawing_area();
             let d = self.draw_view(view, &root, "", None)?;
-            if let (Some(f), Some(o)) = (d.frame, &d.map) {
-                draw_map_cells(&root, &f, o)?;
-            }
             root.present().map_err(plots::err)?;
-            d.dots
+            d
         };
-        if dots.is_empty() {
-            return Ok(s);
-        }
-        Ok(plots::svg_with_dots(&s, self.canvas_size(view), &dots)?)
+        // What the canvas fills itself goes inside the closed chart.
+        Ok(match (d.frame, &d.map) {
+            (Some(f), Some(o)) => plots::svg_with(&s, size, |root| draw_map_cells(root, &f, o))?,
+            _ if !d.dots.is_empty() => plots::svg_with_dots(&s, size, &d.dots)?,
+            _ => s,
+        })
     }
 
     /// The view as an SVG file to download.
