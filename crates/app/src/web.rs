@@ -143,8 +143,10 @@ pub fn start_app() {
     let tick = {
         let page = page.clone();
         Closure::<dyn FnMut()>::new(move || {
-            let p = page.borrow();
-            paint(&p, p.core.progress(now(&p.window)));
+            let mut p = page.borrow_mut();
+            let t = now(&p.window);
+            let w = p.core.progress(t);
+            paint(&p, w);
         })
     };
     check(
@@ -349,13 +351,7 @@ fn build_canvas_events(page: &Shared) {
             let fx = {
                 let mut p = p2.borrow_mut();
                 let t = now(&p.window);
-                match view {
-                    ViewId::Map => p.core.map_click(x, y, t),
-                    _ => {
-                        p.core.anim_seek(x, y);
-                        Vec::new()
-                    }
-                }
+                p.core.click(view, x, y, t)
             };
             run_effects(&p2, fx);
             request_frame(&p2);

@@ -9,6 +9,8 @@ use crate::gearset::{AnimClock, GearSet};
 use crate::scene::{anim_note, gear_scene, Item, Scene, SubPath};
 use crate::views::ViewId;
 use glam::DVec2;
+use plotters::coord::Shift;
+use plotters::prelude::{DrawingArea, DrawingBackend};
 
 /// The gear set's animation.
 #[derive(Debug, Default)]
@@ -183,6 +185,15 @@ impl Page {
             Write::text("anim-play", if clock.playing { "Pause" } else { "Play" }),
         ];
         Some((scene, writes))
+    }
+
+    /// Draws on the gear set's canvas a frame and a line saying the
+    /// motion is on its way (before any motion: never a blank canvas).
+    pub fn draw_anim_placeholder<DB: DrawingBackend>(&mut self, root: &DrawingArea<DB, Shift>) {
+        let why = "The gear set and its meshes appear here once the motion at the selected Ω is computed.";
+        if let Err(e) = crate::plots::draw_message(root, "The gear set", why) {
+            self.issue(e.to_string());
+        }
     }
 
     /// The time history's cursor canvas at the clock's instant: cleared,

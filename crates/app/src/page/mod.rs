@@ -142,6 +142,8 @@ pub struct Page {
     narrow: bool,
     /// What a pressed pointer on an Omega axis is doing.
     gesture: gesture::Gesture,
+    /// When the Copy link's confirmation goes (ms).
+    toast_until: Option<f64>,
     /// How many gestures on an Omega axis ended, and how the last did.
     gestures: (u32, &'static str),
     /// Whether the phone's "see the motion" jump is offered.
@@ -185,6 +187,7 @@ impl Page {
             narrow,
             gesture: gesture::Gesture::Idle,
             gestures: (0, ""),
+            toast_until: None,
             see_orbit: false,
             anim: anim::Anim::default(),
             frame_requested: false,
@@ -249,6 +252,19 @@ impl Page {
         let step = (v.omega_to - v.omega_from) * share;
         self.pending_omega = Some((from + dir * step).clamp(v.omega_from, v.omega_to));
         true
+    }
+
+    /// A click at pixel `(x, y)` of `view`: on the map, that cell's value
+    /// and Omega; on the time history, the animation's instant.
+    pub fn click(&mut self, view: ViewId, x: f64, y: f64, now_ms: f64) -> Vec<Effect> {
+        match view {
+            ViewId::Map => self.map_click(x, y, now_ms),
+            ViewId::Time => {
+                self.anim_seek(x, y);
+                Vec::new()
+            }
+            _ => Vec::new(),
+        }
     }
 
     /// A click at pixel `(x, y)` of the map: that cell's value and Omega.

@@ -160,7 +160,7 @@ fn a_frame_draws_the_changed_views_in_order_and_writes_the_texts() {
 
 #[test]
 fn progress_shows_after_a_while_with_the_status_line() {
-    let (p, _) = page("");
+    let (mut p, _) = page("");
     let hidden = |hidden: bool| Write::Hidden {
         id: "progress-bif".into(),
         hidden,
@@ -177,6 +177,19 @@ fn progress_shows_after_a_while_with_the_status_line() {
     }));
     assert!(later.contains(&Write::text("progress-bif-label", "computing 0/200 points")));
     assert!(later.contains(&Write::text("status", texts::COMPUTING)));
+    // The Copy link's confirmation shows for two seconds, then goes.
+    let shown = p.confirm("Link copied.", 1000.0, 5.0);
+    assert!(shown.contains(&Write::Hidden {
+        id: "copy-done".into(),
+        hidden: false
+    }));
+    let gone = Write::Hidden {
+        id: "copy-done".into(),
+        hidden: true,
+    };
+    assert!(!p.progress(2990.0).contains(&gone));
+    assert!(p.progress(3000.0).contains(&gone));
+    assert!(!p.progress(3100.0).contains(&gone), "once");
 }
 
 #[test]

@@ -7,6 +7,9 @@ use crate::protocol::JobKind;
 use crate::views::fr::FrView;
 use crate::views::ViewId;
 
+/// How long the Copy link's confirmation shows (ms).
+pub(crate) const TOAST_MS: f64 = 2000.0;
+
 /// The status line while any job shows progress.
 pub(crate) const COMPUTING: &str = "Computing in Web Workers…";
 
@@ -62,7 +65,7 @@ impl Page {
 
     /// Every view's progress bar at `now_ms` and the status line (progress
     /// is time-based: the page asks ten times a second).
-    pub fn progress(&self, now_ms: f64) -> Vec<Write> {
+    pub fn progress(&mut self, now_ms: f64) -> Vec<Write> {
         let mut busy = false;
         let mut w = Vec::new();
         for view in ViewId::ALL {
@@ -92,7 +95,33 @@ impl Page {
             ));
         }
         w.push(Write::text("status", if busy { COMPUTING } else { "" }));
+        // The Copy link's confirmation goes after its two seconds.
+        if self.toast_until.is_some_and(|t| now_ms >= t) {
+            self.toast_until = None;
+            w.push(Write::Hidden {
+                id: "copy-done".into(),
+                hidden: true,
+            });
+        }
         w
+    }
+
+    /// The Copy link's confirmation `text`, shown from `now_ms` for
+    /// [`TOAST_MS`]; `stamp` (the wall clock's ms) marks it for the tests.
+    pub fn confirm(&mut self, text: &str, now_ms: f64, stamp: f64) -> Vec<Write> {
+        self.toast_until = Some(now_ms + TOAST_MS);
+        vec![
+            Write::text("copy-done", text),
+            Write::Attr {
+                id: "copy-done".into(),
+                name: "data-shown",
+                value: format!("{stamp}"),
+            },
+            Write::Hidden {
+                id: "copy-done".into(),
+                hidden: false,
+            },
+        ]
     }
 
     /// Whether any job of `kind` runs, the current state's or a member's.

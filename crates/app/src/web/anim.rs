@@ -64,28 +64,16 @@ fn anim_tick(page: &Shared, ts: f64) {
     let mut p = page.borrow_mut();
     match p.core.anim_tick(ts) {
         AnimDraw::Nothing => {}
-        AnimDraw::Placeholder => draw_anim_placeholder(&p),
+        AnimDraw::Placeholder => {
+            let cv = by_id::<HtmlCanvasElement>(&p.doc, "canvas-anim");
+            if let Some(b) = cv.as_ref().and_then(canvas::Canvas::new) {
+                p.core.draw_anim_placeholder(&b.into_drawing_area());
+            }
+        }
         AnimDraw::Scene => {
             draw_anim(&mut p);
             draw_time_cursor(&p);
         }
-    }
-}
-
-/// Fills the gear set's canvas with a frame and a line saying the motion is
-/// on its way.
-fn draw_anim_placeholder(p: &Shell) {
-    let Some(b) = by_id::<HtmlCanvasElement>(&p.doc, "canvas-anim")
-        .as_ref()
-        .and_then(canvas::Canvas::new)
-    else {
-        return;
-    };
-    let root: Area = b.into_drawing_area();
-    let why =
-        "The gear set and its meshes appear here once the motion at the selected Ω is computed.";
-    if let Err(e) = plots::draw_message(&root, "The gear set", why) {
-        web_sys::console::warn_1(&JsValue::from_str(&e.to_string()));
     }
 }
 

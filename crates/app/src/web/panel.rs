@@ -91,36 +91,21 @@ pub(super) fn set_options(doc: &Document, sel: &Element, options: &[(String, Str
     }
 }
 
-/// Shows `text` next to the Copy link button for about two seconds (the
-/// status line is rewritten every frame, so it has its own element).
-fn confirm(window: &Window, doc: &Document, text: &str) {
-    let Some(e) = doc.get_element_by_id("copy-done") else {
-        return;
-    };
-    e.set_text_content(Some(text));
-    check(e.remove_attribute("hidden"));
-    let stamp = format!("{}", js_sys::Date::now());
-    check(e.set_attribute("data-shown", &stamp));
-    let hide = Closure::<dyn FnMut()>::new(move || {
-        // A later click restarts the two seconds: only its own timer hides it.
-        if e.get_attribute("data-shown").as_deref() == Some(stamp.as_str()) {
-            check(e.set_attribute("hidden", ""));
-        }
-    });
-    let cb = hide.as_ref().unchecked_ref();
-    check(window.set_timeout_with_callback_and_timeout_and_arguments_0(cb, 2000));
-    hide.forget();
-}
-
 fn copy_link(page: &Shared) {
     let (window, doc) = {
         let p = page.borrow();
         (p.window.clone(), p.doc.clone())
     };
     let href = window.location().href().unwrap_or_default();
+    // Shown next to the button (the status line is rewritten every frame).
     let said = |text: &'static str| {
-        let (doc, window) = (doc.clone(), window.clone());
-        Closure::<dyn FnMut(JsValue)>::new(move |_v: JsValue| confirm(&window, &doc, text))
+        let page = page.clone();
+        Closure::<dyn FnMut(JsValue)>::new(move |_v: JsValue| {
+            let mut p = page.borrow_mut();
+            let t = now(&p.window);
+            let w = p.core.confirm(text, t, js_sys::Date::now());
+            paint(&p, w);
+        })
     };
     let ok = said("Link copied to the clipboard.");
     let fail = said("Could not copy; the link is in the address bar.");
@@ -136,12 +121,16 @@ fn copy_link(page: &Shared) {
 }
 
 pub(super) fn download_text(doc: &Document, name: &str, mime: &str, text: &str) {
+    if let Ok(blob) = blob(text, mime) {
+        download_blob(doc, name, &blob);
+    }
+}
+
+fn blob(text: &str, mime: &str) -> Result<Blob, JsValue> {
     let parts = js_sys::Array::of1(&JsValue::from_str(text));
     let opts = BlobPropertyBag::new();
     opts.set_type(mime);
-    if let Ok(blob) = Blob::new_with_str_sequence_and_options(&parts, &opts) {
-        download_blob(doc, name, &blob);
-    }
+    Blob::new_with_str_sequence_and_options(&parts, &opts)
 }
 
 /// Offers `blob` as the file `name` through an object URL (a data URL
@@ -211,13 +200,7 @@ fn png_2x(page: &Shared, v: ViewId) {
     // One pair per click, small: leaked rather than tracked.
     onload.forget();
     onerror.forget();
-    let blob = {
-        let parts = js_sys::Array::of1(&JsValue::from_str(&svg));
-        let opts = BlobPropertyBag::new();
-        opts.set_type("image/svg+xml");
-        Blob::new_with_str_sequence_and_options(&parts, &opts)
-    };
-    match blob.and_then(|b| Url::create_object_url_with_blob(&b)) {
+    match blob(&svg, "image/svg+xml").and_then(|b| Url::create_object_url_with_blob(&b)) {
         Ok(url) => img.set_src(&url),
         Err(_) => failed(page, "the picture could not be stored"),
     }
