@@ -123,7 +123,9 @@ impl Tracer {
             ds: 0.25 * ds_max,
             ds_max,
             steps: 0,
-            max_steps: (40.0 / ds_max) as usize + 100,
+            // Twelve times across the box at the largest step: more is a
+            // curve wound up where its conditions degenerate.
+            max_steps: (12.0 / ds_max) as usize + 100,
             last: None,
             newton_iterations: 0,
         };
