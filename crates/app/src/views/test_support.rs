@@ -3,7 +3,7 @@
 //! extremes built from a few numbers.
 
 use super::ViewContext;
-use crate::protocol::{HbmMesh, HbmSample, MeshExtremes, Regime};
+use crate::protocol::{HbmMesh, HbmSample, MapSample, MeshExtremes, Regime};
 
 /// The view context of the tests: Omega 0.1 to 2, 0.5 selected, mesh s1a1,
 /// no natural frequencies.
@@ -51,5 +51,19 @@ pub(crate) fn ext(lo: f64, hi: f64, df: Option<f64>) -> MeshExtremes {
         rel_max_um: hi,
         regime: Regime::SingleSided,
         dynamic_factor: df,
+    }
+}
+
+/// A map cell at `(row, column)` with its regime and period (Omega and
+/// value left at 0: the stores place cells by their indices).
+pub(crate) fn map_cell(row: u32, column: u32, regime: Regime, period: Option<u32>) -> MapSample {
+    MapSample {
+        row,
+        column,
+        omega: 0.0,
+        value: 0.0,
+        regime,
+        period,
+        error: None,
     }
 }
