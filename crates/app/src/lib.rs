@@ -21,7 +21,7 @@
 pub mod claims;
 pub mod controller;
 pub mod controls;
-pub mod family;
+pub mod family_spec;
 pub mod gearset;
 pub mod link;
 pub mod page;

@@ -688,8 +688,8 @@ impl Controller {
 mod export;
 mod text;
 pub use export::{ExportError, Format};
-mod family;
-pub use family::{Family, Member};
+mod members;
+pub use members::{Family, Member};
 mod jobs;
 mod panels;
 use pinned::pinned_backlash;
@@ -700,6 +700,6 @@ pub use export::{view_size, Drawn, SvgError};
 pub use pinned::Pinned;
 
 #[cfg(test)]
-mod family_tests;
+mod members_tests;
 #[cfg(test)]
 mod tests;

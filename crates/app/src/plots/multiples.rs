@@ -10,8 +10,8 @@ use super::fr::{branch_items, draw_branch};
 use super::*;
 use crate::protocol::OmegaResult;
 use crate::views::bif::BifView;
-use crate::views::family::Panel;
 use crate::views::fr::FrView;
+use crate::views::multiples::Panel;
 
 /// Room for the title above the panels and the key under them (pixels).
 const TOP: u32 = 28;

@@ -281,7 +281,7 @@ fn a_family_overlays_one_colour_per_value_named_in_words() {
 
 #[test]
 fn small_multiples_draw_every_panel_with_its_title() {
-    use crate::views::family::Panel;
+    use crate::views::multiples::Panel;
     let mut other = result();
     other.x_um.iter_mut().for_each(|x| *x -= 400.0);
     other.period = None;
@@ -588,7 +588,7 @@ fn polyline_points(svg: &str) -> usize {
 /// a short record is drawn whole and the key says nothing of a cut.
 #[test]
 fn family_phase_panels_draw_the_last_periods_within_a_budget() {
-    use crate::views::family::Panel;
+    use crate::views::multiples::Panel;
     use std::f64::consts::TAU;
     // Quasi-periodic: no period retraces another's pixels.
     let long = |k: usize| {

@@ -5,9 +5,9 @@
 //! whenever the data does.
 
 use super::bif::BifView;
-use super::family::Panel;
 use super::fr::FrView;
 use super::map::MapStore;
+use super::multiples::Panel;
 use super::unstable::{short, strip_from_overlay, unstable_ranges, unstable_sentence};
 use crate::protocol::{OmegaResult, Regime};
 

@@ -7,11 +7,11 @@
 //! export formats come from [`VIEWS`] and nowhere else.
 
 pub mod bif;
-pub mod family;
 pub mod fr;
 pub mod labels;
 pub mod lyap;
 pub mod map;
+pub mod multiples;
 pub mod omega;
 mod table;
 #[cfg(test)]

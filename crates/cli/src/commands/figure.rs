@@ -400,7 +400,8 @@ fn frf_view(
     let label = |i: usize| match p.family {
         Some(f) => {
             let x = f.values.get(i).copied().unwrap_or(f64::NAN);
-            app::family::family_key(f.key).map_or_else(|| format!("{} {x}", f.key), |k| k.label(x))
+            app::family_spec::family_key(f.key)
+                .map_or_else(|| format!("{} {x}", f.key), |k| k.label(x))
         }
         None => String::new(),
     };

@@ -306,6 +306,6 @@ impl Controller {
     }
 }
 
-mod family;
+mod members;
 mod svg;
 pub use svg::{view_size, Drawn, SvgError};

@@ -5,9 +5,9 @@
 
 use super::jobs::MEMBER_KINDS;
 use super::*;
-use crate::family::FamilySpec;
+use crate::family_spec::FamilySpec;
 use crate::views::bif::BifView;
-use crate::views::family::{panel_titles, Panel};
+use crate::views::multiples::{panel_titles, Panel};
 
 /// One family member besides the current state, and its results (its
 /// branch, its sweep, its selected-Omega run).
@@ -66,7 +66,7 @@ impl Controller {
         values: &str,
         now_ms: f64,
     ) -> Result<Vec<Effect>, String> {
-        let spec = crate::family::parse_parts(key, values, &self.settings.params)?;
+        let spec = crate::family_spec::parse_parts(key, values, &self.settings.params)?;
         self.set_family(spec, now_ms)
     }
 
