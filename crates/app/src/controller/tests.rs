@@ -342,6 +342,7 @@ fn at_the_defaults_the_frequency_response_shows_the_sweeps_steady_states() {
         }],
         worst_mesh: 0,
         period: None,
+        motion: Default::default(),
         error: None,
     };
     c.dirty.jobs = KindSet::NONE;

@@ -38,7 +38,7 @@ impl Controller {
                 "The gear set in slow motion at Ω {}, each mesh coloured by its contact state; mesh {}: {}.",
                 crate::views::unstable::short(r.omega),
                 r.mesh_name,
-                r.regime.label()
+                crate::story::contact_tag(r.regime, r.backlash_um)
             ),
             None => "The gear set in slow motion: computing the motion.".into(),
         }

@@ -28,7 +28,7 @@ pub use fr::{draw_fr, fr_height, FR_MIN_CHART};
 pub(crate) use key::*;
 pub use omega::{
     draw_phase, draw_phase_with, draw_poincare, draw_poincare_with, draw_spectrum, draw_time,
-    draw_time_with,
+    draw_time_with, poincare_key,
 };
 
 use crate::protocol::Regime;

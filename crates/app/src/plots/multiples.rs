@@ -317,9 +317,10 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
         ),
         None => format!("{what}{status}"),
     };
-    // A period found before the transient settled is starred in the
-    // panel's title (the title has no room for the words) and said in the key.
-    let unsettled = |r: &OmegaResult| r.period.is_some_and(|p| p > 1) && !r.settled;
+    // A motion still settling is starred in the panel's title (the title
+    // has no room for the words) and said in the key.
+    let unsettled =
+        |r: &OmegaResult| matches!(r.motion, crate::protocol::MotionClass::StillSettling { .. });
     let mut key = key.to_string();
     // The orbits cut to the panels' budget, in words: "the last 250 of 1000
     // recorded periods" (the largest of the panels' cuts).
@@ -338,7 +339,8 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
         );
     }
     if panels.iter().any(|p| p.data.as_ref().is_ok_and(unsettled)) {
-        key.push_str("; *: still settling, more transient periods may show another period");
+        key.push_str("; ");
+        key.push_str(crate::story::STILL_SETTLING_KEY);
     }
     let (areas, cols) = layout(root, &title, &key, panels.len())?;
     for (k, (area, p)) in areas.iter().zip(panels).enumerate() {
@@ -349,10 +351,7 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
                 continue;
             }
         };
-        let period = match r.period {
-            Some(n) if unsettled(r) => format!("period {n}*"),
-            p => crate::words::period_words(p, true),
-        };
+        let period = crate::story::motion_tag_short(r.motion);
         let t = format!("{}: {period}", p.title);
         let mut chart = panel_chart(area, &t, (x, y), ("x (µm)", "ẋ (m/s)"), k % cols == 0)?;
         let b = r.backlash_um;

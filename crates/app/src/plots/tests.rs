@@ -22,39 +22,7 @@ fn svg_sized<F: FnOnce(&DrawingArea<SVGBackend, Shift>) -> Res<()>>(
 }
 
 fn result() -> OmegaResult {
-    let n = 64 * 20;
-    let x: Vec<f64> = (0..n)
-        .map(|k| 110.0 + 30.0 * (k as f64 / 64.0 * std::f64::consts::TAU).sin())
-        .collect();
-    let v: Vec<f64> = (0..n)
-        .map(|k| 0.5 * (k as f64 / 64.0 * std::f64::consts::TAU).cos())
-        .collect();
-    OmegaResult {
-        omega: 0.84,
-        mesh: 0,
-        mesh_name: "s1a1".into(),
-        backlash_um: 100.0,
-        regime: Regime::SingleSided,
-        period: Some(1),
-        dynamic_factor: Some(1.4),
-        mesh_freq_hz: 4500.0,
-        transient_periods_run: 100,
-        settled: true,
-        samples_per_period: 64,
-        record_periods: 20,
-        x_um: x,
-        xdot_m_s: v,
-        poincare_x_um: vec![110.0; 20],
-        poincare_xdot_m_s: vec![0.5; 20],
-        spectrum_order: vec![0.0, 1.0, 2.0],
-        spectrum_um: vec![110.0, 30.0, 0.1],
-        all_meshes: vec![],
-        anim: Default::default(),
-        steps: 1,
-        cli_json: "{}".into(),
-        preview: false,
-        end_state: vec![],
-    }
+    crate::views::test_support::omega_result()
 }
 
 #[test]
@@ -285,6 +253,7 @@ fn small_multiples_draw_every_panel_with_its_title() {
     let mut other = result();
     other.x_um.iter_mut().for_each(|x| *x -= 400.0);
     other.period = None;
+    other.motion = crate::protocol::MotionClass::NotPeriodic;
     let panels = vec![
         Panel {
             title: "(a) TE 0 µm".into(),
@@ -305,7 +274,7 @@ fn small_multiples_draw_every_panel_with_its_title() {
     for poincare in [false, true] {
         let s = svg(|root| multiples::draw_phase_panels(root, &panels, poincare, ""));
         for text in [
-            "(a) TE 0 µm: period 1",
+            "(a) TE 0 µm: period 1 (exact)",
             "(b) TE 20 µm: not periodic",
             "(c) TE 30 µm",
             "Computing",
@@ -486,6 +455,7 @@ fn every_key_is_under_its_chart_never_over_the_data() {
         pinned: (0..19).map(|k| bp(k, true)).collect(),
         pinned_backlash_um: vec![60.0],
         ab_labels: Some(("backlash 60 µm".into(), "backlash 100 µm".into())),
+        motions: Vec::new(),
         done: 19,
         total: 19,
         whole_clearance: true,
@@ -551,7 +521,7 @@ fn every_key_is_under_its_chart_never_over_the_data() {
     assert_key_outside(
         "Poincaré section",
         &poincare,
-        &["20 Poincaré points (period 1)", "±b contact"],
+        &["20 Poincaré points: period 1 (exact)", "±b contact"],
         "sampled once",
         None,
     );

@@ -29,7 +29,9 @@ use solver::steady::Impact;
 pub type JobId = u64;
 
 mod kinds;
+mod motion;
 pub use kinds::{JobKind, KindSet, Target};
+pub use motion::MotionClass;
 
 /// Transient and recorded mesh periods of each steady state.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -384,6 +386,9 @@ pub struct BifSample {
     pub worst_mesh: usize,
     /// Period of the Poincaré orbit, if periodic.
     pub period: Option<u32>,
+    /// The classification of the point's steady state.
+    #[serde(default)]
+    pub motion: MotionClass,
     /// Why the point failed.
     pub error: Option<String>,
 }
@@ -485,6 +490,10 @@ pub struct OmegaResult {
     pub regime: Regime,
     /// Period in mesh periods, `None` if not periodic within the record.
     pub period: Option<u32>,
+    /// The classification (exact orbit, periodic, still settling, not
+    /// periodic): the one source of the page's words about the motion.
+    #[serde(default)]
+    pub motion: MotionClass,
     /// Dynamic factor of the plotted mesh.
     pub dynamic_factor: Option<f64>,
     /// Mesh frequency (Hz).

@@ -15,7 +15,7 @@ pub mod map;
 pub mod omega;
 mod table;
 #[cfg(test)]
-mod test_support;
+pub(crate) mod test_support;
 pub mod unstable;
 
 pub use table::{part_number, PagePart, ViewId, ViewSpec, DRAW_ORDER, PAGE, VIEWS};

@@ -675,6 +675,7 @@ fn bif_view(m: &Member, spec: &SweepSpec, data: &Value) -> Result<BifView, solve
         pinned: Vec::new(),
         pinned_backlash_um: Vec::new(),
         ab_labels: None,
+        motions: Vec::new(),
         done: pts.len(),
         total: pts.len(),
         whole_clearance: true,
