@@ -291,8 +291,8 @@ pub fn controls() -> Vec<Control> {
         view("omega", "Selected Ω", (0.01, 3.0, 0.001)),
         view("omega_from", "Frequency range: from Ω", (0.01, 3.0, 0.01)),
         view("omega_to", "Frequency range: to Ω", (0.01, 3.0, 0.01)),
-        view("harmonics", "HBM harmonics H", (1.0, 15.0, 1.0)),
-        view("fr_points", "HBM points (nominal)", (2.0, 400.0, 1.0)),
+        view("harmonics", "Harmonics in the balance", (1.0, 15.0, 1.0)),
+        view("fr_points", "Points along the curve (about)", (2.0, 400.0, 1.0)),
         view(
             "fr_ti_points",
             "Own time-integration dots (0 = the bifurcation sweep's)",
@@ -300,7 +300,7 @@ pub fn controls() -> Vec<Control> {
         ),
         view(
             "fr_record_periods",
-            "Overlay recorded periods",
+            "Periods recorded per dot",
             (1.0, 100.0, 1.0),
         ),
         view("bif_points", "Bifurcation points", (2.0, 400.0, 1.0)),
@@ -308,7 +308,7 @@ pub fn controls() -> Vec<Control> {
         view("clearance", "Axes of x", (0.0, 0.0, 0.0)),
         view(
             "transient_periods",
-            "Transient periods (max)",
+            "Periods to settle (at most)",
             (0.0, 1000.0, 10.0),
         ),
         view("record_periods", "Recorded periods", (1.0, 400.0, 1.0)),

@@ -623,6 +623,7 @@ impl Controller {
             "omega_result": main.omega.as_ref().map(|r| serde_json::json!({
                 "omega": r.omega, "mesh": r.mesh_name, "impact": r.regime.solver_name(),
                 "period": r.period, "preview": r.preview,
+                "motion": crate::story::motion_tag(r.motion),
             })),
         })
     }

@@ -289,6 +289,12 @@ pub fn draw_bif_panels<DB: DrawingBackend>(
     Ok((frames, groups))
 }
 
+/// A family member's phase portrait or Poincaré section title: the
+/// member and its motion's classification ("(a) TE 5 µm: period 1 (exact)").
+pub fn phase_panel_title(title: &str, r: &OmegaResult) -> String {
+    format!("{title}: {}", crate::story::motion_tag_short(r.motion))
+}
+
 /// The phase portraits (`poincare` false) or Poincaré sections of a
 /// family side by side, on shared axes.
 pub fn draw_phase_panels<DB: DrawingBackend>(
@@ -351,8 +357,7 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
                 continue;
             }
         };
-        let period = crate::story::motion_tag_short(r.motion);
-        let t = format!("{}: {period}", p.title);
+        let t = phase_panel_title(&p.title, r);
         let mut chart = panel_chart(area, &t, (x, y), ("x (µm)", "ẋ (m/s)"), k % cols == 0)?;
         let b = r.backlash_um;
         // The contact lines where they fall in range (the axes fit the data).
