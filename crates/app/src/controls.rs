@@ -292,7 +292,11 @@ pub fn controls() -> Vec<Control> {
         view("omega_from", "Frequency range: from Ω", (0.01, 3.0, 0.01)),
         view("omega_to", "Frequency range: to Ω", (0.01, 3.0, 0.01)),
         view("harmonics", "Harmonics in the balance", (1.0, 15.0, 1.0)),
-        view("fr_points", "Points along the curve (about)", (2.0, 400.0, 1.0)),
+        view(
+            "fr_points",
+            "Points along the curve (about)",
+            (2.0, 400.0, 1.0),
+        ),
         view(
             "fr_ti_points",
             "Own time-integration dots (0 = the bifurcation sweep's)",

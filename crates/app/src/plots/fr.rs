@@ -197,7 +197,7 @@ pub fn fr_full_key(v: &FrView) -> Vec<String> {
                 format!("{symbol} {}", k.explain())
             }
             KeyIcon::Regime(r) => format!(
-                "{text}: {}",
+                "regime strip: {}",
                 crate::story::contact_sentence(r, v.backlash_um.first().copied().unwrap_or(0.0))
             ),
             _ => text,
@@ -260,10 +260,9 @@ pub(crate) fn fr_key(v: &FrView, y: (f64, f64)) -> KeyItems {
             v.overlay.len()
         );
         if let Some(m) = d.max_um {
-            text.push_str(&format!(
-                "; within {m:.1} µm of the stable branch at {}",
-                d.compared
-            ));
+            // Where the curve is stable the dots should lie on it: how far
+            // the farthest of them is.
+            text.push_str(&format!("; within {m:.1} µm of the stable curve"));
         }
         text.push(')');
         items.push((KeyIcon::Overlay, text));

@@ -316,6 +316,16 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
             "Line: the recorded orbit; red dots: its Poincaré points; dashed: ±b",
         )
     };
+    // Without backlash the dashed line is x = 0, not ±b.
+    let no_backlash = panels
+        .iter()
+        .filter_map(|p| p.data.as_ref().ok())
+        .all(|r| !crate::story::has_backlash(r.backlash_um));
+    let key = if no_backlash {
+        key.replace("dashed: ±b", "dashed: x = 0 (no backlash)")
+    } else {
+        key.to_string()
+    };
     let title = match first {
         Some(r) => format!(
             "{what}, mesh {}, Ω = {:.4}, shared axes{status}",
@@ -327,7 +337,7 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
     // has no room for the words) and said in the key.
     let unsettled =
         |r: &OmegaResult| matches!(r.motion, crate::protocol::MotionClass::StillSettling { .. });
-    let mut key = key.to_string();
+    let mut key = key;
     // The orbits cut to the panels' budget, in words: "the last 250 of 1000
     // recorded periods" (the largest of the panels' cuts).
     let n = panels.len();
@@ -341,7 +351,8 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
         .max_by_key(|&(shown, _)| shown);
     if let (false, Some((shown, recorded))) = (poincare, cut) {
         key = format!(
-            "Line: the orbit's last {shown} of {recorded} recorded periods; red dots: the Poincaré points of all of them; dashed: ±b"
+            "Line: the orbit's last {shown} of {recorded} recorded periods; red dots: the Poincaré points of all of them; dashed: {}",
+            if no_backlash { "x = 0 (no backlash)" } else { "±b" }
         );
     }
     if panels.iter().any(|p| p.data.as_ref().is_ok_and(unsettled)) {

@@ -1,10 +1,10 @@
 //! The plots drawn to SVG natively: labels, units, legends, ranges.
 
+use super::fr::{compact_key, fr_key};
 use super::*;
 use crate::protocol::OmegaResult;
 use crate::views::fr::FrView;
 use crate::views::fr::{FrBranch, FrCurvePoint, FrMarker, FrMarkerKind, FrSource};
-use super::fr::{compact_key, fr_key};
 
 fn svg<F: FnOnce(&DrawingArea<SVGBackend, Shift>) -> Res<()>>(f: F) -> String {
     svg_sized((WIDTH, HEIGHT), f)
@@ -149,7 +149,7 @@ fn every_plot_draws_labels_units_and_legends() {
         "harmonic balance, H = 5, exact",
         "unstable (Floquet): dashed",
         "6 more in the full key under the plot",
-        "time integration: the actual response (1 points; within 1.5 µm of the stable branch at 1)",
+        "time integration: the actual response (1 points; within 1.5 µm of the stable curve)",
         "Solver failure after Ω = 1.9000",
         "(partial)",
         "max x (A: backlash_um=100)",
@@ -662,7 +662,11 @@ fn the_drawn_key_is_short_and_the_full_key_complete() {
         })
         .collect();
     let full = fr_key(&fr, (0.0, 200.0));
-    assert!(full.len() > KEY_MAX, "the case needs a long key: {}", full.len());
+    assert!(
+        full.len() > KEY_MAX,
+        "the case needs a long key: {}",
+        full.len()
+    );
     let drawn = compact_key(full.clone());
     assert!(drawn.len() <= KEY_MAX, "{} entries", drawn.len());
     // The branches and the dots stay in the drawn key.
@@ -676,9 +680,12 @@ fn the_drawn_key_is_short_and_the_full_key_complete() {
     for kind in FrMarkerKind::ALL {
         assert!(lines.iter().any(|l| l.contains(kind.explain())), "{kind:?}");
     }
-    assert!(lines
-        .iter()
-        .any(|l| l.contains("period doubling: the motion starts repeating every two mesh periods")));
+    assert!(
+        lines
+            .iter()
+            .any(|l| l
+                .contains("period doubling: the motion starts repeating every two mesh periods"))
+    );
     // A short key is drawn as it is.
     let short: KeyItems = full.into_iter().take(KEY_MAX).collect();
     let texts = |k: &KeyItems| k.iter().map(|i| i.1.clone()).collect::<Vec<_>>();

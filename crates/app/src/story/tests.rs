@@ -243,7 +243,11 @@ fn the_page_opens_on_the_periodic_state_the_first_tour_step_explains() {
     use crate::worker::jobs::omega::{omega_result, selected_spec, OmegaJob};
     let step = &crate::tour::TOUR[0];
     let omega = crate::settings::DEFAULT_OMEGA.to_string();
-    assert!(step.set.contains(&("omega", omega.as_str())), "{:?}", step.set);
+    assert!(
+        step.set.contains(&("omega", omega.as_str())),
+        "{:?}",
+        step.set
+    );
     assert!(step.text.contains(&format!("Ω {omega}")), "{}", step.text);
     let s = crate::settings::Settings::default();
     let model = solver::model::Model::new(&s.params).expect("model");
@@ -264,7 +268,14 @@ fn the_page_opens_on_the_periodic_state_the_first_tour_step_explains() {
     );
     assert_eq!(r.regime, Regime::NoImpact);
     // What the step claims, in the summary's words too.
-    assert!(step.text.contains("stay in contact") && step.text.contains("repeats exactly every mesh period"));
+    assert!(
+        step.text.contains("stay in contact")
+            && step.text.contains("repeats exactly every mesh period")
+    );
     let summary = crate::views::omega::student_summary(&r);
-    assert!(summary.contains("stay in contact") && summary.contains("repeats exactly every mesh period"), "{summary}");
+    assert!(
+        summary.contains("stay in contact")
+            && summary.contains("repeats exactly every mesh period"),
+        "{summary}"
+    );
 }
