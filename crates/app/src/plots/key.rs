@@ -146,7 +146,7 @@ pub(crate) fn contact_item(backlash_um: &[f64], shown: (f64, f64)) -> Option<(Ke
     } else {
         format!("±b contact lines (b = {} µm)", bs.join(", "))
     };
-    (!bs.is_empty()).then(|| (KeyIcon::Line(CONTACT, true), text))
+    (!bs.is_empty()).then_some((KeyIcon::Line(CONTACT, true), text))
 }
 
 /// The key items of the ±b contact lines shown in `y`: the current
