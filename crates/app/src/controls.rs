@@ -180,6 +180,8 @@ fn view_in(
                                 "te_um" => "TE amplitude (µm)",
                                 "fit" => "fit the data",
                                 "whole" => "show the whole clearance ±b",
+                                "on" => "shown: stable solid, unstable thin",
+                                "off" => "hidden",
                                 other => other,
                             };
                             (w.to_string(), text.to_string())
@@ -310,6 +312,11 @@ pub fn controls() -> Vec<Control> {
         view("bif_points", "Bifurcation points", (2.0, 400.0, 1.0)),
         view("bif_dir", "Bifurcation sweep", (0.0, 0.0, 0.0)),
         view("clearance", "Axes of x", (0.0, 0.0, 0.0)),
+        view(
+            "branches",
+            "Branches of repeating motion (found by shooting)",
+            (0.0, 0.0, 0.0),
+        ),
         view(
             "transient_periods",
             "Periods to settle (at most)",

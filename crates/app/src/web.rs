@@ -411,7 +411,7 @@ fn draw_view(p: &mut Shell, v: ViewId) -> Vec<Write> {
             JobKind::HarmonicBalance | JobKind::Overlay => {
                 fr.map_or(Ok(()), |fr| draw_fr(p, &root, &fr, &suffix))
             }
-            JobKind::Bif => draw_bif(p, &root, &cv, &suffix),
+            JobKind::Bif | JobKind::Orbits => draw_bif(p, &root, &cv, &suffix),
             JobKind::Omega => draw_omega_view(p, v, &root, &suffix),
             JobKind::Map => draw_map(p, &root, &cv, &suffix),
             JobKind::Lyap => draw_lyap(p, &root, &suffix),

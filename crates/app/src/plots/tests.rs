@@ -453,6 +453,8 @@ fn every_key_is_under_its_chart_never_over_the_data() {
         pinned: (0..19).map(|k| bp(k, true)).collect(),
         pinned_backlash_um: vec![60.0],
         ab_labels: Some(("backlash 60 µm".into(), "backlash 100 µm".into())),
+        branches: Vec::new(),
+        branch_markers: Vec::new(),
         motions: Vec::new(),
         done: 19,
         total: 19,

@@ -44,6 +44,12 @@ pub struct BifView {
     pub pinned_backlash_um: Vec<f64>,
     /// Legend texts of A and B when comparing.
     pub ab_labels: Option<(String, String)>,
+    /// The shooting branches' lines (stable solid, unstable thin).
+    #[serde(skip)]
+    pub branches: Vec<super::orbits::OrbitLine>,
+    /// The bifurcations located on them.
+    #[serde(skip)]
+    pub branch_markers: Vec<super::orbits::OrbitMarker>,
     /// Every swept point's classification, `(omega, up, motion)`, in the
     /// sweep's order: the text alternative's words about the motion.
     #[serde(skip)]
@@ -122,6 +128,8 @@ impl BifStore {
             pinned: Vec::new(),
             pinned_backlash_um: Vec::new(),
             ab_labels: None,
+            branches: Vec::new(),
+            branch_markers: Vec::new(),
             motions,
             done: self.samples.len(),
             total: self.total,

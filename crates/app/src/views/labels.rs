@@ -150,6 +150,22 @@ pub fn bif_label(v: &BifView) -> String {
         s.push_str("; upward sweep: ");
         s.push_str(&regimes);
     }
+    if !v.branches.is_empty() {
+        let stable = v.branches.iter().filter(|l| l.stable).count();
+        s.push_str(&format!(
+            "; branches of periodic motion found by shooting: {stable} stable and {} unstable stretches",
+            v.branches.len() - stable
+        ));
+        let marks: Vec<String> = v
+            .branch_markers
+            .iter()
+            .take(6)
+            .map(|m| format!("{} at Ω {}", m.kind.label(), short(m.omega)))
+            .collect();
+        if !marks.is_empty() {
+            s.push_str(&format!(" ({})", marks.join(", ")));
+        }
+    }
     let motions = motion_runs(&v.motions);
     if !motions.is_empty() {
         s.push_str("; motion on the upward sweep: ");

@@ -675,6 +675,8 @@ fn bif_view(m: &Member, spec: &SweepSpec, data: &Value) -> Result<BifView, solve
         pinned: Vec::new(),
         pinned_backlash_um: Vec::new(),
         ab_labels: None,
+        branches: Vec::new(),
+        branch_markers: Vec::new(),
         motions: Vec::new(),
         done: pts.len(),
         total: pts.len(),

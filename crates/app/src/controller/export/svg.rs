@@ -78,7 +78,7 @@ impl Controller {
                     let panels = self.bif_panels();
                     dots = plots::multiples::draw_bif_panels(&root, &panels, &mesh, "")?.1;
                 }
-                JobKind::Bif => {
+                JobKind::Bif | JobKind::Orbits => {
                     dots = plots::draw_bif(&root, &self.bif_view(), &natural, "")?.1;
                 }
                 JobKind::Map => {
