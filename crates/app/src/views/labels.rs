@@ -131,7 +131,9 @@ pub fn bif_label(v: &BifView) -> String {
         let mut by: Vec<(Regime, f64, f64)> = Vec::new();
         let mut pts: Vec<_> = v.points.iter().filter(|p| p.up).collect();
         pts.sort_by(|a, b| a.omega.total_cmp(&b.omega));
-        let step = (v.omega_to - v.omega_from) / omegas.len().max(1) as f64;
+        // The grid's spacing: each point stands for the Ω up to half way to
+        // its neighbours, so neighbours of one regime join into one run.
+        let step = (v.omega_to - v.omega_from) / (omegas.len().max(2) - 1) as f64;
         for p in pts {
             by.push((p.regime, p.omega - 0.5 * step, p.omega + 0.5 * step));
         }
