@@ -141,8 +141,7 @@ fn draw_plane<DB: DrawingBackend>(
     root.fill(&WHITE).map_err(err)?;
     let (x, y) = phase_ranges(r, whole);
     let (mut items, what, radius): (KeyItems, _, i32) = if poincare {
-        let period = crate::words::period_words(r.period, r.settled);
-        let points = format!("{} Poincaré points ({period})", r.poincare_x_um.len());
+        let points = poincare_key(r);
         let what = (
             "Poincaré section",
             "x = δ − e (µm), sampled once per mesh period",
@@ -173,6 +172,16 @@ fn draw_plane<DB: DrawingBackend>(
         .map_err(err)?;
     draw_key(root, &items, &plan)?;
     root.present().map_err(err)
+}
+
+/// The Poincaré section's key entry: how many points, and the motion's
+/// classification ("100 Poincaré points: period 1 (exact)").
+pub fn poincare_key(r: &OmegaResult) -> String {
+    format!(
+        "{} Poincaré points: {}",
+        r.poincare_x_um.len(),
+        crate::story::motion_tag(r.motion)
+    )
 }
 
 /// `ViewId::Time`: the time history of the last recorded periods.

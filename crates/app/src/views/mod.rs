@@ -13,6 +13,7 @@ pub mod lyap;
 pub mod map;
 pub mod multiples;
 pub mod omega;
+pub mod orbits;
 mod table;
 #[cfg(test)]
 pub(crate) mod test_support;
