@@ -11,7 +11,9 @@
 //! dimensionless quantities (`omega`, `dynamic_factor`) carry none. Building
 //! JSON values is pure computation; writing them out is the caller's job.
 
+mod boundaries;
 mod orbits;
+pub use boundaries::boundaries_json;
 pub use orbits::shooting_frf_json;
 
 use serde_json::{json, Map, Value};

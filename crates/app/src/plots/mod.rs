@@ -24,7 +24,7 @@ pub mod maps;
 pub mod multiples;
 mod omega;
 
-pub use bif::{draw_bif, draw_groups, failed_label, svg_with_dots};
+pub use bif::{draw_bif, draw_groups, failed_label, svg_with, svg_with_dots};
 pub use fr::{draw_fr, fr_height, FR_MIN_CHART};
 pub(crate) use key::*;
 pub use omega::{
