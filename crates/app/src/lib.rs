@@ -32,6 +32,7 @@ pub mod protocol;
 pub mod scene;
 pub mod settings;
 pub mod store;
+pub mod story;
 pub mod tour;
 pub mod views;
 pub mod words;

@@ -454,7 +454,7 @@ mod tests {
         let s = Settings::default();
         let q = encode(&s);
         assert!(
-            q.starts_with("model=ravigneaux&omega=0.84&mesh=s1a1"),
+            q.starts_with("model=ravigneaux&omega=0.35&mesh=s1a1"),
             "{q}"
         );
         let d = decode(&q);

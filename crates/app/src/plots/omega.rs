@@ -151,11 +151,7 @@ pub fn draw_poincare_with<DB: DrawingBackend>(
 ) -> Res<()> {
     root.fill(&WHITE).map_err(err)?;
     let (x, y) = phase_ranges(r, whole);
-    let period = crate::words::period_words(r.period, r.settled);
-    let mut items: KeyItems = vec![(
-        KeyIcon::Dot(CURSOR, 3),
-        format!("{} Poincaré points ({period})", r.poincare_x_um.len()),
-    )];
+    let mut items: KeyItems = vec![(KeyIcon::Dot(CURSOR, 3), poincare_key(r))];
     items.extend(contact_item(&[r.backlash_um], x));
     let plan = plan_key(root, &items, Vec::new());
     let area = chart_area(root, &plan);
@@ -170,6 +166,16 @@ pub fn draw_poincare_with<DB: DrawingBackend>(
         .map_err(err)?;
     draw_key(root, &items, &plan)?;
     root.present().map_err(err)
+}
+
+/// The Poincaré section's key entry: how many points, and the motion's
+/// classification ("100 Poincaré points: period 1 (exact)").
+pub fn poincare_key(r: &OmegaResult) -> String {
+    format!(
+        "{} Poincaré points: {}",
+        r.poincare_x_um.len(),
+        crate::story::motion_tag(r.motion)
+    )
 }
 
 /// `ViewId::Time`: the time history of the last recorded periods.

@@ -13,9 +13,10 @@ pub mod labels;
 pub mod lyap;
 pub mod map;
 pub mod omega;
+pub mod orbits;
 mod table;
 #[cfg(test)]
-mod test_support;
+pub(crate) mod test_support;
 pub mod unstable;
 
 pub use table::{part_number, PagePart, ViewId, ViewSpec, DRAW_ORDER, PAGE, VIEWS};
