@@ -50,7 +50,7 @@ trunk --version 2>/dev/null | grep -q "trunk ${TRUNK_VERSION}\$" || need_trunk=1
 wasm-bindgen --version 2>/dev/null | grep -q "wasm-bindgen ${WASM_BINDGEN_VERSION}\$" || need_bindgen=1
 stamp=node_modules/.package-lock.json
 if ! [[ -f "$stamp" && ! package-lock.json -nt "$stamp" \
-  && -x node_modules/.bin/wasm-opt && -d node_modules/playwright-core ]]; then
+  && -x node_modules/.bin/wasm-opt && -d node_modules/playwright-core && -d node_modules/axe-core ]]; then
   need_npm=1
 fi
 [[ -x /usr/bin/chromium && -x /usr/bin/chromedriver ]] || need_chromium=1

@@ -122,7 +122,12 @@ test('every export button of every view gives its file', async () => {
         return null;
       })();
       const [dl] = await Promise.all([
-        Promise.race([page.waitForEvent('download', { timeout: 120000 }), said]),
+        Promise.race([
+          page.waitForEvent('download', { timeout: 120000 }).catch((e) => {
+            throw new Error(`${bar} ${label}: ${e.message}`);
+          }),
+          said,
+        ]),
         page.locator(`#${bar} button`).nth(i).click(),
       ]);
       done = true;

@@ -27,7 +27,7 @@ pub const TOUR: [TourStep; 5] = [
     },
     TourStep {
         title: "Backlash and the frequency response",
-        text: "With 100 µm of backlash, each Ω (mesh frequency) gives the largest and smallest relative displacement x. Below +b the teeth have separated. Where the curve is dashed no periodic motion is stable: the dots are what the gears actually do. Try the backlash slider.",
+        text: "With 100 µm of backlash, each Ω (mesh frequency) gives the largest and smallest tooth deflection x (TE included). Below +b the teeth have separated. Where the curve is dashed no periodic motion is stable: the dots are what the gears actually do. Try the backlash slider.",
         target: "view-fr",
         set: &[("backlash_um", "100")],
     },
