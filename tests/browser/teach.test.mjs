@@ -175,8 +175,9 @@ test('on a phone (390x844) nothing scrolls sideways, the settings are a closed d
   const w = await page.evaluate(() => ({ scroll: document.documentElement.scrollWidth, body: document.body.scrollWidth, view: window.innerWidth }));
   assert.ok(w.scroll <= 390 && w.body <= 390, JSON.stringify(w));
   assert.equal(await page.evaluate(() => document.getElementById('drawer').open), false);
-  const skip = page.locator('a.skip-link');
+  const skip = page.locator('a.skip-link').first();
   assert.equal(await skip.getAttribute('href'), '#views');
+  assert.equal(await page.locator('a.skip-link').nth(1).getAttribute('href'), '#drawer');
   // The skip link is the first Tab stop and takes the focus to the plots.
   await page.keyboard.press('Tab');
   assert.equal(await page.evaluate(() => document.activeElement.className), 'skip-link');

@@ -123,26 +123,50 @@ pub const PRESETS: &[Preset] = &[
     },
     Preset {
         id: "fig2",
-        title: "Fig. 2: frequency response, TE 5-30 µm, no backlash",
+        title: "Fig. 2: frequency response, TE 5-30 µm, no backlash (several harmonics, converged)",
         settings: &[MODEL, ("backlash_um", "0"), ("te_meshes", "all"), RANGE[0], RANGE[1]],
         family: Some(Family {
             key: "te_um",
             values: &[5.0, 10.0, 15.0, 20.0, 25.0, 30.0],
         }),
         meshes: Some(FOUR_MESHES),
-        note: "The paper shows the harmonic-balance response of each kind of mesh (panels a-d) with no backlash as the TE's sine amplitude on all meshes rises from 5 to 30 µm. gearshock puts the same sine on every mesh (switch to the small-sun meshes only to compare) and draws steps of 5 µm over Ω 0.1 to 2, neither of which the paper states.",
+        note: "The paper shows the harmonic-balance response of the tooth deflection x, TE included, of each kind of mesh (panels a-d) with no backlash as the TE's sine amplitude on all meshes rises from 5 to 30 µm. This is gearshock's converged branch with several harmonics (the harmonics setting; \"Fig. 2, one harmonic\" is the paper's own method), with the same sine on every mesh (switch to the small-sun meshes only to compare; the paper's superscript c may also mean a cosine) in steps of 5 µm over Ω 0.1 to 2, none of which the paper states.",
+        pinned: None,
+    },
+    Preset {
+        id: "fig2h1",
+        title: "Fig. 2, one harmonic: frequency response as the paper computed it, TE 5-30 µm, no backlash",
+        settings: &[MODEL, ("backlash_um", "0"), ("te_meshes", "all"), RANGE[0], RANGE[1], ("harmonics", "1")],
+        family: Some(Family {
+            key: "te_um",
+            values: &[5.0, 10.0, 15.0, 20.0, 25.0, 30.0],
+        }),
+        meshes: Some(FOUR_MESHES),
+        note: "Fig. 2 as the paper computed it: the tooth deflection x, TE included, of each kind of mesh from one harmonic (H = 1, the describing function of its equations 9 to 13) with no backlash, as the TE's sine amplitude on every mesh rises from 5 to 30 µm. One harmonic overstates the first-mode peak by about a quarter and misses the superharmonic peak near Ω 0.12; the preset \"Fig. 2\" is the converged branch.",
         pinned: None,
     },
     Preset {
         id: "fig3",
-        title: "Fig. 3: frequency response, backlash 50-200 µm, TE 60 µm",
+        title: "Fig. 3: frequency response, backlash 50-200 µm, TE 60 µm (several harmonics, converged)",
         settings: &[MODEL, ("te_um", "60"), ("te_meshes", "s1a"), RANGE[0], RANGE[1]],
         family: Some(Family {
             key: "backlash_um",
             values: &[50.0, 100.0, 150.0, 200.0],
         }),
         meshes: Some(FOUR_MESHES),
-        note: "The paper shows the harmonic-balance response of each kind of mesh (panels a-d) with a 60 µm TE fundamental as the backlash of every mesh rises from 50 to 200 µm. gearshock takes the 60 µm as a sine on the small-sun meshes and draws 50, 100, 150 and 200 µm; the paper gives only the range.",
+        note: "The paper shows the harmonic-balance response of the tooth deflection x, TE included, of each kind of mesh (panels a-d) with a 60 µm TE fundamental as the backlash of every mesh rises from 50 to 200 µm. This is gearshock's converged branch with several harmonics (the harmonics setting), unstable over most of the range (\"Fig. 3, one harmonic\" is the paper's own method), with the 60 µm as a sine on the small-sun meshes (read as a mean it would have no dynamic effect) and 50, 100, 150 and 200 µm; the paper gives only the range.",
+        pinned: None,
+    },
+    Preset {
+        id: "fig3h1",
+        title: "Fig. 3, one harmonic: frequency response as the paper computed it, backlash 50-200 µm, TE 60 µm",
+        settings: &[MODEL, ("te_um", "60"), ("te_meshes", "s1a"), RANGE[0], RANGE[1], ("harmonics", "1")],
+        family: Some(Family {
+            key: "backlash_um",
+            values: &[50.0, 100.0, 150.0, 200.0],
+        }),
+        meshes: Some(FOUR_MESHES),
+        note: "Fig. 3 as the paper computed it: the tooth deflection x, TE included, of each kind of mesh from one harmonic (H = 1, the describing function of its equations 9 to 13), with a 60 µm TE sine on the small-sun meshes, as the backlash of every mesh rises from 50 to 200 µm. The preset \"Fig. 3\" is the converged branch with several harmonics.",
         pinned: None,
     },
     Preset {
@@ -151,7 +175,7 @@ pub const PRESETS: &[Preset] = &[
         settings: bifurcation!("backlash_um" = "200"),
         family: Some(TE_0_20_30),
         meshes: None,
-        note: "The paper shows bifurcation diagrams of mesh s1a1 over Ω 0 to 2, one hundred samples per Ω, with 200 µm backlash and TE 0, 20 and 30 µm in panels a-c. gearshock puts the TE as a sine on the small-sun meshes, starts at Ω 0.1 and sweeps up and down; the paper states neither its sweep nor its frequency scale.",
+        note: "The paper shows bifurcation diagrams of the tooth deflection x, TE included, of mesh s1a1 over Ω 0 to 2, one hundred samples per Ω, with 200 µm backlash and TE 0, 20 and 30 µm in panels a-c. gearshock puts the TE as a sine on the small-sun meshes, starts at Ω 0.1 and sweeps up and down; the paper states neither its sweep nor its frequency scale.",
         pinned: None,
     },
     Preset {
@@ -160,7 +184,7 @@ pub const PRESETS: &[Preset] = &[
         settings: orbit!("0.5", "backlash_um" = "200"),
         family: Some(TE_0_20_30),
         meshes: None,
-        note: "The paper shows phase portraits (panels a-c) and Poincaré sections (d-f) at Ω 0.5 as the TE increases: a period-1 motion doubles. It states neither the TE values nor the backlash or the mesh here; gearshock takes Fig. 4's 200 µm and TE 0, 20 and 30 µm (a sine on the small-sun meshes) on mesh s1a1.",
+        note: "The paper shows the tooth deflection x, TE included, and its rate: phase portraits (panels a-c) and Poincaré sections (d-f) at Ω 0.5 as the TE increases: a period-1 motion doubles. It states neither the TE values nor the backlash or the mesh here; gearshock takes Fig. 4's 200 µm and TE 0, 20 and 30 µm (a sine on the small-sun meshes) on mesh s1a1.",
         pinned: None,
     },
     Preset {
@@ -169,7 +193,7 @@ pub const PRESETS: &[Preset] = &[
         settings: orbit!("0.84", "backlash_um" = "200"),
         family: Some(TE_0_20_30),
         meshes: None,
-        note: "The paper shows phase portraits (panels a-c) and Poincaré sections (d-f) at Ω 0.84 as the TE increases: a period-1 motion turns quasi-periodic. It states neither the TE values nor the backlash or the mesh here; gearshock takes Fig. 4's 200 µm and TE 0, 20 and 30 µm (a sine on the small-sun meshes) on mesh s1a1.",
+        note: "The paper shows the tooth deflection x, TE included, and its rate: phase portraits (panels a-c) and Poincaré sections (d-f) at Ω 0.84 as the TE increases: a period-1 motion turns quasi-periodic. It states neither the TE values nor the backlash or the mesh here; gearshock takes Fig. 4's 200 µm and TE 0, 20 and 30 µm (a sine on the small-sun meshes) on mesh s1a1.",
         pinned: None,
     },
     Preset {
@@ -178,7 +202,7 @@ pub const PRESETS: &[Preset] = &[
         settings: orbit!("1.97", "backlash_um" = "200"),
         family: Some(TE_0_20_30),
         meshes: None,
-        note: "The paper shows mesh s1a1 at Ω 1.97 with 200 µm backlash as the TE increases: phase portraits in panels a-c, Poincaré sections in d-f (its caption says \"different backlashes\" for d-f, its text says TE). gearshock takes TE 0, 20 and 30 µm as in Fig. 4, a sine on the small-sun meshes; the paper does not state the values here.",
+        note: "The paper shows the tooth deflection x, TE included, of mesh s1a1 and its rate at Ω 1.97 with 200 µm backlash as the TE increases: phase portraits in panels a-c, Poincaré sections in d-f (its caption says \"different backlashes\" for d-f, its text says TE). gearshock takes TE 0, 20 and 30 µm as in Fig. 4, a sine on the small-sun meshes; the paper does not state the values here.",
         pinned: None,
     },
     Preset {
@@ -187,7 +211,7 @@ pub const PRESETS: &[Preset] = &[
         settings: bifurcation!("te_um" = "20"),
         family: Some(B_50_100_200),
         meshes: None,
-        note: "The paper shows bifurcation diagrams of mesh s1a1 with 20 µm TE and backlash 50, 100 and 200 µm in panels a-c. gearshock assumes Fig. 4's Ω range and one hundred samples per Ω (the paper does not restate them), the TE as a sine on the small-sun meshes, and sweeps up and down.",
+        note: "The paper shows bifurcation diagrams of the tooth deflection x, TE included, of mesh s1a1 with 20 µm TE and backlash 50, 100 and 200 µm in panels a-c. gearshock assumes Fig. 4's Ω range and one hundred samples per Ω (the paper does not restate them), the TE as a sine on the small-sun meshes, and sweeps up and down.",
         pinned: None,
     },
     Preset {
@@ -196,7 +220,7 @@ pub const PRESETS: &[Preset] = &[
         settings: orbit!("0.5", "te_um" = "20"),
         family: Some(B_50_100_200),
         meshes: None,
-        note: "The paper shows phase portraits (panels a-c) and Poincaré sections (d-f) at Ω 0.5 as the backlash increases. It states neither the backlash values nor the TE or the mesh here; gearshock takes Fig. 8's 50, 100 and 200 µm and 20 µm TE (a sine on the small-sun meshes) on mesh s1a1.",
+        note: "The paper shows the tooth deflection x, TE included, and its rate: phase portraits (panels a-c) and Poincaré sections (d-f) at Ω 0.5 as the backlash increases. It states neither the backlash values nor the TE or the mesh here; gearshock takes Fig. 8's 50, 100 and 200 µm and 20 µm TE (a sine on the small-sun meshes) on mesh s1a1.",
         pinned: None,
     },
     Preset {
@@ -205,7 +229,7 @@ pub const PRESETS: &[Preset] = &[
         settings: orbit!("0.84", "te_um" = "20"),
         family: Some(B_50_100_200),
         meshes: None,
-        note: "The paper shows phase portraits (panels a-c) and Poincaré sections (d-f) at Ω 0.84 as the backlash increases. It states neither the backlash values nor the TE or the mesh here; gearshock takes Fig. 8's 50, 100 and 200 µm and 20 µm TE (a sine on the small-sun meshes) on mesh s1a1.",
+        note: "The paper shows the tooth deflection x, TE included, and its rate: phase portraits (panels a-c) and Poincaré sections (d-f) at Ω 0.84 as the backlash increases. It states neither the backlash values nor the TE or the mesh here; gearshock takes Fig. 8's 50, 100 and 200 µm and 20 µm TE (a sine on the small-sun meshes) on mesh s1a1.",
         pinned: None,
     },
     Preset {
@@ -214,7 +238,7 @@ pub const PRESETS: &[Preset] = &[
         settings: orbit!("1.97", "te_um" = "20"),
         family: Some(B_50_100_200),
         meshes: None,
-        note: "The paper shows phase portraits (panels a-c) and Poincaré sections (d-f) at Ω 1.97 as the backlash increases. It states neither the backlash values nor the TE or the mesh here; gearshock takes Fig. 8's 50, 100 and 200 µm and 20 µm TE (a sine on the small-sun meshes) on mesh s1a1.",
+        note: "The paper shows the tooth deflection x, TE included, and its rate: phase portraits (panels a-c) and Poincaré sections (d-f) at Ω 1.97 as the backlash increases. It states neither the backlash values nor the TE or the mesh here; gearshock takes Fig. 8's 50, 100 and 200 µm and 20 µm TE (a sine on the small-sun meshes) on mesh s1a1.",
         pinned: None,
     },
     Preset {
@@ -236,6 +260,11 @@ pub const PRESETS: &[Preset] = &[
         pinned: None,
     },
 ];
+
+/// The plotted quantity in plain words, as every figure preset's note and
+/// the claims name it: x = delta - e, the paper's relative meshing
+/// displacement.
+pub const X_WORDS: &str = "tooth deflection x, TE included";
 
 /// Finds a preset by id.
 pub fn preset(id: &str) -> Option<&'static Preset> {

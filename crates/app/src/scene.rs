@@ -1,7 +1,8 @@
 //! The animated gear set's picture at one instant, as a scene: shapes
 //! (polygons, circles, lines with their paint) and text, in canvas pixels,
-//! in drawing order. `web.rs` only rasterizes it; everything it shows is
-//! computed here and tested natively.
+//! in drawing order. `web/anim.rs` only rasterizes it (and the plots'
+//! overlays made of the same items); everything it shows is computed here
+//! and tested natively.
 
 use crate::gearset::{
     gauge_factor, sample_at, tooth_outline, view_transform, AnimClock, BodyKind, Contact, GearSet,
@@ -23,6 +24,13 @@ pub enum SubPath {
         /// Radius (px).
         r: f64,
     },
+    /// An axis-aligned rectangle.
+    Rect {
+        /// Top-left corner (px).
+        at: DVec2,
+        /// Width and height (px).
+        size: DVec2,
+    },
 }
 
 /// Something drawn.
@@ -30,6 +38,8 @@ pub enum SubPath {
 pub enum Item {
     /// The whole canvas filled with a colour.
     Clear(String),
+    /// The whole canvas made transparent (an overlay's canvas).
+    Erase,
     /// A path, filled and/or stroked.
     Shape {
         /// Its pieces (all one path: filled together, stroked together).

@@ -39,7 +39,14 @@ struct Figure {
     /// gearshock's reading of where the TE acts (the paper's "Ec_all" for
     /// Fig. 2; Table 1's sun-s1 eccentricity elsewhere).
     te_meshes: &'static str,
+    /// The harmonics of a frequency response: the paper's own method has
+    /// one (its describing function), gearshock's converged branch the
+    /// page's default.
+    harmonics: u32,
 }
+
+/// The page's default harmonics of a frequency response.
+const CONVERGED: u32 = 5;
 
 const FOUR: &[&str] = &["s1a1", "s2b1", "a1b1", "rb1"];
 const S1A1: &[&str] = &["s1a1"];
@@ -54,6 +61,18 @@ const PAPER: &[Figure] = &[
         omega: None,
         bifurcation: false,
         te_meshes: "all",
+        harmonics: CONVERGED,
+    },
+    // Fig. 2 as the paper computed it, one harmonic; 3.1.1: b = 0, the TE sine amplitude "increased from 5 um to 30 um".
+    Figure {
+        id: "fig2h1",
+        meshes: FOUR,
+        backlash_um: Stated::Fixed(0.0),
+        te_um: Stated::Range(5.0, 30.0),
+        omega: None,
+        bifurcation: false,
+        te_meshes: "all",
+        harmonics: 1,
     },
     // 3.1.2: TE fundamental 60 um, backlash "increasing from 50 um to 200 um".
     Figure {
@@ -64,6 +83,18 @@ const PAPER: &[Figure] = &[
         omega: None,
         bifurcation: false,
         te_meshes: "s1a",
+        harmonics: CONVERGED,
+    },
+    // Fig. 3 as the paper computed it, one harmonic; 3.1.2: TE fundamental 60 um, backlash "increasing from 50 um to 200 um".
+    Figure {
+        id: "fig3h1",
+        meshes: FOUR,
+        backlash_um: Stated::Range(50.0, 200.0),
+        te_um: Stated::Fixed(60.0),
+        omega: None,
+        bifurcation: false,
+        te_meshes: "s1a",
+        harmonics: 1,
     },
     // Fig. 4 caption: backlash 200 um, TE 0 / 20 / 30 um.
     Figure {
@@ -74,6 +105,7 @@ const PAPER: &[Figure] = &[
         omega: None,
         bifurcation: true,
         te_meshes: "s1a",
+        harmonics: CONVERGED,
     },
     // Figs. 5-7: one Omega each, b = 200 um, TE varied across panels.
     Figure {
@@ -84,6 +116,7 @@ const PAPER: &[Figure] = &[
         omega: Some(0.5),
         bifurcation: false,
         te_meshes: "s1a",
+        harmonics: CONVERGED,
     },
     Figure {
         id: "fig6",
@@ -93,6 +126,7 @@ const PAPER: &[Figure] = &[
         omega: Some(0.84),
         bifurcation: false,
         te_meshes: "s1a",
+        harmonics: CONVERGED,
     },
     Figure {
         id: "fig7",
@@ -102,6 +136,7 @@ const PAPER: &[Figure] = &[
         omega: Some(1.97),
         bifurcation: false,
         te_meshes: "s1a",
+        harmonics: CONVERGED,
     },
     // Fig. 8 caption: TE 20 um, backlash 50 / 100 / 200 um.
     Figure {
@@ -112,6 +147,7 @@ const PAPER: &[Figure] = &[
         omega: None,
         bifurcation: true,
         te_meshes: "s1a",
+        harmonics: CONVERGED,
     },
     // Figs. 9-11: "the backlash increases" (Fig. 8's values, MODEL.md).
     Figure {
@@ -122,6 +158,7 @@ const PAPER: &[Figure] = &[
         omega: Some(0.5),
         bifurcation: false,
         te_meshes: "s1a",
+        harmonics: CONVERGED,
     },
     Figure {
         id: "fig10",
@@ -131,6 +168,7 @@ const PAPER: &[Figure] = &[
         omega: Some(0.84),
         bifurcation: false,
         te_meshes: "s1a",
+        harmonics: CONVERGED,
     },
     Figure {
         id: "fig11",
@@ -140,6 +178,7 @@ const PAPER: &[Figure] = &[
         omega: Some(1.97),
         bifurcation: false,
         te_meshes: "s1a",
+        harmonics: CONVERGED,
     },
 ];
 
@@ -217,6 +256,11 @@ fn every_figure_preset_holds_the_papers_family_and_panels() {
                     "{}",
                     fig.id
                 );
+                if fig.meshes.len() > 1 {
+                    assert_eq!(d.settings.view.harmonics, fig.harmonics, "{}", fig.id);
+                }
+                // The note names the plotted quantity in plain words.
+                assert!(p.note.contains(app::presets::X_WORDS), "{}", fig.id);
                 if let Some(omega) = fig.omega {
                     assert_eq!(d.settings.view.omega, omega, "{}", fig.id);
                     assert!(p.settings.contains(&("omega", &omega.to_string()[..])));

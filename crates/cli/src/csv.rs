@@ -236,3 +236,32 @@ pub fn instability(v: &Value) -> String {
     let fields = ["omega", "spectral_radius", "growth_per_period", "unstable"];
     table(&fields.join(","), v["points"].as_array(), &fields)
 }
+
+/// Boundaries: one row per curve point (`curve` its index, `kind` its
+/// name), then the cusps as rows of kind `cusp` (`curve` the fold curve).
+pub fn boundaries(v: &Value) -> String {
+    let key = cell(&v["spec"]["key"]);
+    let mut s = format!("curve,kind,omega,{key},stable_side\n");
+    for (i, c) in v["curves"].as_array().into_iter().flatten().enumerate() {
+        for p in c["points"].as_array().into_iter().flatten() {
+            let _ = writeln!(
+                s,
+                "{i},{},{},{},{}",
+                cell(&c["kind"]),
+                cell(&p["omega"]),
+                cell(&p["value"]),
+                cell(&p["stable_side"])
+            );
+        }
+    }
+    for c in v["cusps"].as_array().into_iter().flatten() {
+        let _ = writeln!(
+            s,
+            "{},cusp,{},{},",
+            cell(&c["curve"]),
+            cell(&c["omega"]),
+            cell(&c["value"])
+        );
+    }
+    s
+}

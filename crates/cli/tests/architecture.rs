@@ -84,9 +84,16 @@ fn one_module_per_subcommand_and_one_sweep_loop() {
     assert_eq!(modules, expected, "commands/NAME.rs per subcommand");
     for (file, text) in &sources {
         let text = code(text);
-        let sweep = ["bifurcation", "frf", "map", "lyapunov", "instability"]
-            .iter()
-            .any(|s| *file == format!("commands/{s}.rs"));
+        let sweep = [
+            "bifurcation",
+            "frf",
+            "map",
+            "lyapunov",
+            "instability",
+            "boundaries",
+        ]
+        .iter()
+        .any(|s| *file == format!("commands/{s}.rs"));
         if sweep {
             assert!(text.contains("sweep::run("), "{file} runs its own loop");
         }

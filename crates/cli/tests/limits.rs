@@ -73,7 +73,7 @@ fn total_work_and_memory_are_capped_naming_the_options() {
     // until they died, or ran for days.
     refused(
         &words("bifurcation --omega-from 0.1 --omega-to 2 --points 100000 --record-periods 100000 --mesh all"),
-        &["--points", "--record-periods", "100000000", "--shard"],
+        &["--points", "--record-periods", "integration steps", "4e9", "--shard"],
     );
     refused(
         &words("bifurcation --omega-from 0.1 --omega-to 2 --points 1000 --record-periods 10000 --transient-periods 0 --mesh all"),
@@ -81,11 +81,11 @@ fn total_work_and_memory_are_capped_naming_the_options() {
     );
     refused(
         &words("lyapunov --omega-from 0.1 --omega-to 2 --points 10000 --transient-periods 1000000 --periods 100000"),
-        &["--points 10000", "--periods 100000", "100000000"],
+        &["--points 10000", "--periods 100000", "4e9"],
     );
     refused(
         &words("map --omega-from 0.1 --omega-to 2 --omega-points 2000 --value-from 10 --value-to 200 --value-points 500"),
-        &["--omega-points", "--value-points", "100000000"],
+        &["--omega-points", "--value-points", "4e9"],
     );
     refused(
         &words("frf --omega-from 0.1 --omega-to 2 --points 100000 --harmonics 40"),
@@ -110,6 +110,56 @@ fn total_work_and_memory_are_capped_naming_the_options() {
             &[flag, "4294967295"],
         );
     }
+}
+
+#[test]
+fn work_is_priced_in_integration_steps_by_the_stiffest_mode_before_any_work() {
+    // The same options: accepted on the default model (its header line
+    // is streamed, which only happens after the budget's check; the run is
+    // then stopped), refused when 1e12 N/m planet-planet and ring-planet
+    // stiffnesses raise the stiffest mode about 20 times, and with it the
+    // steps a period takes.
+    let opts = "--omega-from 0.05 --omega-to 0.2 --points 60 --transient-periods 100000 --record-periods 1 --direction up --format jsonl";
+    let mut child = test_support::cli::command(&words(&format!("bifurcation {opts}")))
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut header = String::new();
+    std::io::BufRead::read_line(
+        &mut std::io::BufReader::new(child.stdout.take().unwrap()),
+        &mut header,
+    )
+    .unwrap();
+    child.kill().unwrap();
+    child.wait().unwrap();
+    assert!(header.contains("\"spec\""), "accepted: {header}");
+    let err = refused(
+        &words(&format!(
+            "bifurcation {opts} --set stiffness_ab_n_m=1e12 --set stiffness_rb_n_m=1e12"
+        )),
+        &["integration steps", "4e9"],
+    );
+    assert!(err.len() <= 300, "{err}");
+    // A figure has a budget too, checked before its first panel.
+    refused(
+        &words("figure fig8 --points 2000 --transient-periods 100000 --record-periods 100 --out /tmp/never-written"),
+        &["figure fig8", "integration steps", "--shard"],
+    );
+    assert!(!std::path::Path::new("/tmp/never-written").exists());
+    refused(
+        &words("figure fig8 --points 2000 --transient-periods 100 --record-periods 10000 --out /tmp/never-written"),
+        &["figure fig8", "Poincaré samples"],
+    );
+    // Integer keys take whole values in every row; shards are rows.
+    refused(
+        &words("map --omega-from 0.1 --omega-to 2 --key planets --value-from 3 --value-to 6 --value-points 7"),
+        &["--value-points 7", "planets", "3.5"],
+    );
+    refused(
+        &words("map --omega-from 0.1 --omega-to 2 --value-from 0 --value-to 100 --value-points 2 --shard 0/100"),
+        &["--shard 0/100", "--value-points 2"],
+    );
 }
 
 #[test]

@@ -586,7 +586,12 @@ fn sweep_points_well_formed(v: &Value) -> Result<(), String> {
             None => vec![p],
         };
         for m in meshes {
-            for key in ["poincare_delta_m", "poincare_velocity_m_s"] {
+            for key in [
+                "poincare_x_m",
+                "poincare_x_velocity_m_s",
+                "poincare_delta_m",
+                "poincare_velocity_m_s",
+            ] {
                 let n = m[key].as_array().map(Vec::len);
                 if n != Some(record) {
                     return Err(format!(

@@ -164,7 +164,12 @@ pub struct SweepShape {
 }
 
 const POINT_HEAD: [&str; 3] = ["omega", "index", "direction"];
-const MESH_FIELDS: [&str; 6] = [
+const MESH_FIELDS: [&str; 11] = [
+    "poincare_x_m",
+    "poincare_x_velocity_m_s",
+    "x_min_m",
+    "x_max_m",
+    "x_amplitude_m",
     "poincare_delta_m",
     "poincare_velocity_m_s",
     "delta_min_m",
@@ -195,6 +200,11 @@ const MOTIONS: [&str; 5] = [
 
 /// One mesh's fields of a sweep point.
 fn point_mesh(o: &Map<String, Value>, shape: &SweepShape, at: &At) -> Result<()> {
+    numbers(o, "poincare_x_m", shape.record_periods, at)?;
+    numbers(o, "poincare_x_velocity_m_s", shape.record_periods, at)?;
+    number_or_null(o, "x_min_m", at)?;
+    number_or_null(o, "x_max_m", at)?;
+    number_or_null(o, "x_amplitude_m", at)?;
     numbers(o, "poincare_delta_m", shape.record_periods, at)?;
     numbers(o, "poincare_velocity_m_s", shape.record_periods, at)?;
     number_or_null(o, "delta_min_m", at)?;

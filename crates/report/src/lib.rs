@@ -2,11 +2,18 @@
 //! and the merge of sharded runs ([`merge`]). Kept outside the solver, which
 //! computes and never formats.
 //!
+//! The tooth deflection `x = delta - e` (TE included: the dead zone's
+//! argument and the quantity the seed paper plots) is given as `x_*` and
+//! `poincare_x_*`; `delta_*` and `poincare_delta_*` are the rotations'
+//! part alone, which swings with the TE itself.
+//!
 //! Field names carry SI units (`_m`, `_hz`, `_n`, `_nm`, `_s`, `_m_s`);
 //! dimensionless quantities (`omega`, `dynamic_factor`) carry none. Building
 //! JSON values is pure computation; writing them out is the caller's job.
 
+mod boundaries;
 mod orbits;
+pub use boundaries::boundaries_json;
 pub use orbits::shooting_frf_json;
 
 use serde_json::{json, Map, Value};
@@ -130,6 +137,9 @@ pub fn simulate_json(model: &Model, ss: &SteadyState, mesh: usize, max_order: f6
         all.insert(
             mesh_def.name.clone(),
             json!({
+                "x_min_m": num(ms.rel_min_m),
+                "x_max_m": num(ms.rel_max_m),
+                "x_amplitude_m": num(0.5 * (ms.rel_max_m - ms.rel_min_m)),
                 "delta_min_m": num(ms.delta_min_m),
                 "delta_max_m": num(ms.delta_max_m),
                 "impact": ms.impact.name(),
@@ -144,6 +154,9 @@ pub fn simulate_json(model: &Model, ss: &SteadyState, mesh: usize, max_order: f6
         "input_speed_rpm": num(sys.speed.input_speed_rpm(ss.mesh_freq_hz)),
         "mesh": sys.meshes[mesh].name,
         "backlash_m": num(sys.meshes[mesh].backlash_m),
+        "x_min_m": num(m.rel_min_m),
+        "x_max_m": num(m.rel_max_m),
+        "x_amplitude_m": num(0.5 * (m.rel_max_m - m.rel_min_m)),
         "delta_min_m": num(m.delta_min_m),
         "delta_max_m": num(m.delta_max_m),
         "delta_mean_m": num(m.delta_mean_m),
@@ -168,6 +181,8 @@ pub fn simulate_json(model: &Model, ss: &SteadyState, mesh: usize, max_order: f6
             "back": num(m.contact_fraction[2]),
         },
         "poincare": {
+            "x_m": nums(&m.poincare_x_m),
+            "x_velocity_m_s": nums(&m.poincare_x_velocity_m_s),
             "delta_m": nums(&m.poincare_delta_m),
             "velocity_m_s": nums(&m.poincare_velocity_m_s),
         },
@@ -207,6 +222,17 @@ pub fn sweep_spec_json(model: &Model, spec: &SweepSpec) -> Value {
 
 fn point_mesh_json(pm: &PointMesh) -> Map<String, Value> {
     let mut m = Map::new();
+    m.insert("poincare_x_m".into(), nums(&pm.poincare_x_m));
+    m.insert(
+        "poincare_x_velocity_m_s".into(),
+        nums(&pm.poincare_x_velocity_m_s),
+    );
+    m.insert("x_min_m".into(), num(pm.rel_min_m));
+    m.insert("x_max_m".into(), num(pm.rel_max_m));
+    m.insert(
+        "x_amplitude_m".into(),
+        num(0.5 * (pm.rel_max_m - pm.rel_min_m)),
+    );
     m.insert("poincare_delta_m".into(), nums(&pm.poincare_delta_m));
     m.insert(
         "poincare_velocity_m_s".into(),
@@ -339,6 +365,12 @@ pub fn frf_spec_json(spec: &solver::hbm::FrfSpec, grid: usize) -> Value {
 
 fn branch_mesh_json(m: &solver::hbm::BranchMesh) -> Map<String, Value> {
     let mut o = Map::new();
+    o.insert("x_max_m".into(), num(m.rel_max_m));
+    o.insert("x_min_m".into(), num(m.rel_min_m));
+    o.insert(
+        "x_amplitude_m".into(),
+        num(0.5 * (m.rel_max_m - m.rel_min_m)),
+    );
     o.insert("delta_max_m".into(), num(m.delta_max_m));
     o.insert("delta_min_m".into(), num(m.delta_min_m));
     o.insert("delta_amplitude_m".into(), num(m.delta_amplitude_m));
@@ -350,7 +382,9 @@ fn branch_mesh_json(m: &solver::hbm::BranchMesh) -> Map<String, Value> {
 }
 
 /// One branch point. With one requested mesh its fields are inlined; with
-/// several they sit under `meshes` keyed by name. `rel_*` is `x = delta - e`.
+/// several they sit under `meshes` keyed by name. `x_*` is the tooth
+/// deflection `x = delta - e` (TE included), `delta_*` the rotations' part;
+/// `rel_*` repeats `x_min_m` and `x_max_m` under their older names.
 pub fn branch_point_json(model: &Model, p: &solver::hbm::BranchPoint, meshes: &[usize]) -> Value {
     let mut o = Map::new();
     o.insert("omega".into(), num(p.omega));

@@ -23,11 +23,13 @@
 //! - `separation`: mesh-space separations shared by it and the steady run's probe.
 //! - [`parametric`]: parametric instability of the fully engaged set over Omega.
 //! - [`map`]: impact-regime maps over Omega and a second parameter.
+//! - [`boundaries`]: the map's boundaries (folds, contact changes, cusps) traced as curves.
 //! - [`shooting`]: periodic orbits by Newton on the Poincaré map, Floquet
 //!   multipliers, continuation of periodic branches.
 //! - [`orbits`]: branches of periodic orbits by shooting continuation in Omega.
 
 pub mod bifurcation;
+pub mod boundaries;
 pub mod dynamics;
 pub mod error;
 pub mod fastmath;

@@ -162,6 +162,36 @@ impl RegimeMap {
     /// range fails at once, naming the key and the value).
     pub fn new(base: &ModelParams, spec: MapSpec) -> Result<Self> {
         spec.validate()?;
+        if let Some((i, n)) = spec.shard {
+            if n > spec.value_points {
+                return SolverError::bad_option(
+                    "shard",
+                    format!("{i}/{n}"),
+                    &format!(
+                        "at most as many shards as rows: n <= --value-points {}",
+                        spec.value_points
+                    ),
+                );
+            }
+        }
+        // An integer key (planets) takes whole values only: every row's,
+        // checked before any cell is computed.
+        if let Some(k) = keys::spec(&spec.key) {
+            if matches!(k.ty, keys::KeyType::Int { .. }) {
+                if let Some(r) = (0..spec.value_points).find(|&r| spec.value(r).fract() != 0.0) {
+                    return SolverError::bad_option(
+                        "value-points",
+                        spec.value_points,
+                        &format!(
+                            "a count whose rows give {} whole values (row {} would be {})",
+                            spec.key,
+                            r + 1,
+                            spec.value(r)
+                        ),
+                    );
+                }
+            }
+        }
         for r in [0, spec.value_points - 1] {
             let mut p = base.clone();
             keys::set(&mut p, &spec.key, Value::Num(spec.value(r)))?;

@@ -203,17 +203,21 @@ impl SteadyOptions {
 /// Per-mesh results of a steady run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MeshSteady {
-    /// Smallest deflection delta (m).
+    /// Smallest deflection delta (m): the rotations' part, without the
+    /// TE (the seed's plotted quantity is x, [`Self::rel_min_m`]).
     pub delta_min_m: f64,
-    /// Largest deflection delta (m).
+    /// Largest deflection delta (m), the rotations' part.
     pub delta_max_m: f64,
-    /// Mean deflection (m), from the uniform samples (NaN without samples).
+    /// Mean deflection delta (m), the rotations' part, from the uniform
+    /// samples (NaN without samples).
     pub delta_mean_m: f64,
-    /// RMS of delta about zero (m), from the uniform samples (NaN without samples).
+    /// RMS of delta about zero (m), the rotations' part, from the uniform
+    /// samples (NaN without samples).
     pub delta_rms_m: f64,
-    /// Smallest relative displacement x = delta - e (m).
+    /// Smallest tooth deflection x = delta - e (m), TE included: the dead
+    /// zone's argument and the seed's plotted quantity.
     pub rel_min_m: f64,
-    /// Largest relative displacement x = delta - e (m).
+    /// Largest tooth deflection x = delta - e (m), TE included.
     pub rel_max_m: f64,
     /// Largest mesh force (N).
     pub force_max_n: f64,
@@ -225,10 +229,16 @@ pub struct MeshSteady {
     pub dynamic_factor: Option<f64>,
     /// Impact regime.
     pub impact: Impact,
-    /// Poincaré samples of delta (m), one per recorded period.
+    /// Poincaré samples of delta (m), the rotations' part, one per
+    /// recorded period.
     pub poincare_delta_m: Vec<f64>,
-    /// Poincaré samples of delta' (m/s).
+    /// Poincaré samples of delta' (m/s), the rotations' part.
     pub poincare_velocity_m_s: Vec<f64>,
+    /// Poincaré samples of x = delta - e (m), TE included (the seed's
+    /// penetration depth), one per recorded period.
+    pub poincare_x_m: Vec<f64>,
+    /// Poincaré samples of x' (m/s) (the seed's penetration velocity).
+    pub poincare_x_velocity_m_s: Vec<f64>,
     /// Fraction of the recorded time in drive contact, apart and in back contact
     /// (from the uniform samples; zeros without samples).
     pub contact_fraction: [f64; 3],

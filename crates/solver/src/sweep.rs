@@ -199,17 +199,22 @@ impl SweepSpec {
 pub struct PointMesh {
     /// Mesh index.
     pub mesh: usize,
-    /// Poincaré samples of delta (m).
+    /// Poincaré samples of delta (m), the rotations' part.
     pub poincare_delta_m: Vec<f64>,
-    /// Poincaré samples of delta' (m/s).
+    /// Poincaré samples of delta' (m/s), the rotations' part.
     pub poincare_velocity_m_s: Vec<f64>,
-    /// Smallest delta over the recorded periods (m).
+    /// Poincaré samples of the tooth deflection x = delta - e (m), TE included.
+    pub poincare_x_m: Vec<f64>,
+    /// Poincaré samples of x' (m/s).
+    pub poincare_x_velocity_m_s: Vec<f64>,
+    /// Smallest delta over the recorded periods (m), the rotations' part.
     pub delta_min_m: f64,
-    /// Largest delta (m).
+    /// Largest delta (m), the rotations' part.
     pub delta_max_m: f64,
-    /// Smallest relative displacement x = delta - e over the recorded periods (m).
+    /// Smallest tooth deflection x = delta - e over the recorded periods
+    /// (m), TE included: the seed's plotted quantity.
     pub rel_min_m: f64,
-    /// Largest relative displacement x = delta - e (m).
+    /// Largest tooth deflection x = delta - e (m), TE included.
     pub rel_max_m: f64,
     /// Impact regime.
     pub impact: Impact,
@@ -414,6 +419,8 @@ impl BifurcationSweep {
                                 mesh: j,
                                 poincare_delta_m: m.poincare_delta_m.clone(),
                                 poincare_velocity_m_s: m.poincare_velocity_m_s.clone(),
+                                poincare_x_m: m.poincare_x_m.clone(),
+                                poincare_x_velocity_m_s: m.poincare_x_velocity_m_s.clone(),
                                 delta_min_m: m.delta_min_m,
                                 delta_max_m: m.delta_max_m,
                                 rel_min_m: m.rel_min_m,

@@ -695,7 +695,7 @@ mod panels;
 use pinned::pinned_backlash;
 mod messages;
 mod pinned;
-pub use export::{view_size, SvgError};
+pub use export::{view_size, Drawn, SvgError};
 
 pub use pinned::Pinned;
 

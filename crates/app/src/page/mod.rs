@@ -10,6 +10,11 @@
 //! [`Controller::issue`]; what to redraw and when comes from
 //! [`redraw::Redraw`] and [`redraw::FrameTurn`].
 
+mod act;
+pub mod anim;
+pub mod dom;
+pub mod gesture;
+mod paint;
 pub mod redraw;
 mod texts;
 
@@ -18,6 +23,11 @@ use crate::plots::{self, PlotFrame};
 use crate::store::status::Dirty;
 use crate::views::{ViewId, DRAW_ORDER, VIEWS};
 use redraw::{Decision, FrameTurn, Redraw};
+
+pub use act::{Acted, EventIn};
+pub use anim::AnimDraw;
+pub use dom::{Action, Node};
+pub use gesture::{Phase, PointerIn};
 
 /// One change to the page's document, for the web layer to make.
 #[derive(Debug, Clone, PartialEq)]
@@ -54,13 +64,31 @@ pub enum Write {
         /// On or off.
         on: bool,
     },
-    /// A view's progress bar: its fill (0 ..= 1) and label, or hidden.
-    Progress {
-        /// The view.
-        view: ViewId,
-        /// Fill and label while it shows.
-        shown: Option<(f64, String)>,
+    /// A field's or a drop-down's value.
+    Value {
+        /// The element's id.
+        id: String,
+        /// Its value.
+        value: String,
     },
+    /// A drop-down's options (value, text), replaced if they differ.
+    Options {
+        /// The drop-down's id.
+        id: String,
+        /// Its options.
+        options: Vec<(String, String)>,
+    },
+    /// A boolean attribute (`disabled`) set or removed.
+    Flag {
+        /// The element's id.
+        id: String,
+        /// The attribute.
+        name: &'static str,
+        /// Set or removed.
+        on: bool,
+    },
+    /// An element scrolled into view.
+    Scroll(String),
     /// The page's address (the query, without `?`).
     Url(String),
 }
@@ -70,6 +98,21 @@ impl Write {
         Write::Text {
             id: id.to_string(),
             text: text.into(),
+        }
+    }
+
+    /// The id of the element it changes (none for the address).
+    pub fn id(&self) -> Option<&str> {
+        match self {
+            Write::Text { id, .. }
+            | Write::Attr { id, .. }
+            | Write::Hidden { id, .. }
+            | Write::Class { id, .. }
+            | Write::Value { id, .. }
+            | Write::Options { id, .. }
+            | Write::Flag { id, .. }
+            | Write::Scroll(id) => Some(id),
+            Write::Url(_) => None,
         }
     }
 }
@@ -97,8 +140,25 @@ pub struct Page {
     last_query: String,
     /// Whether the screen is narrow (a phone): plots draw on fewer, larger pixels.
     narrow: bool,
-    /// Whether a pointer drags on an Omega axis.
-    dragging: bool,
+    /// What a pressed pointer on an Omega axis is doing.
+    gesture: gesture::Gesture,
+    /// When the Copy link's confirmation goes (ms).
+    toast_until: Option<f64>,
+    /// How many gestures on an Omega axis ended, and how the last did.
+    gestures: (u32, &'static str),
+    /// Whether the phone's "see the motion" jump is offered.
+    see_orbit: bool,
+    /// The gear set's animation.
+    anim: anim::Anim,
+    /// Whether an animation frame is requested for the views.
+    frame_requested: bool,
+    /// The family bar's key and values as chosen and typed.
+    family_input: (String, String),
+    /// The family the bar's fields last showed (its link code).
+    family_shown: String,
+    /// The mesh the schematic last highlighted, and the plotted mesh's
+    /// options last written (the drop-down is rebuilt only when they change).
+    schematic: (String, Vec<(String, String)>),
     /// When the last input arrived (ms).
     last_input_ms: f64,
     /// The longest handling of one worker message (ms).
@@ -125,7 +185,20 @@ impl Page {
             frames: [None; VIEWS.len()],
             last_query: String::new(),
             narrow,
-            dragging: false,
+            gesture: gesture::Gesture::Idle,
+            gestures: (0, ""),
+            toast_until: None,
+            see_orbit: false,
+            anim: anim::Anim::default(),
+            frame_requested: false,
+            family_input: (
+                crate::family::FAMILY_KEYS
+                    .first()
+                    .map_or_else(String::new, |k| k.key.to_string()),
+                String::new(),
+            ),
+            family_shown: String::new(),
+            schematic: (String::new(), Vec::new()),
             last_input_ms: 0.0,
             max_message_ms: 0.0,
             max_frame_ms: 0.0,
@@ -164,24 +237,6 @@ impl Page {
         self.pending.push((key.to_string(), value.to_string()));
     }
 
-    /// A pointer pressed (`Some(true)`), released (`Some(false)`) or moved
-    /// (`None`, with the button `held`) at pixel `x` of `view`'s canvas:
-    /// a press or a drag selects the Omega there. Whether a frame is needed.
-    pub fn pointer(&mut self, view: ViewId, x: f64, press: Option<bool>, held: bool) -> bool {
-        match press {
-            Some(false) => {
-                self.dragging = false;
-                return false;
-            }
-            Some(true) => self.dragging = true,
-            None if !(self.dragging && held) => return false,
-            None => {}
-        }
-        let omega = self.frames[view.slot()].and_then(|f| f.x_at(x));
-        self.pending_omega = omega.or(self.pending_omega);
-        omega.is_some()
-    }
-
     /// A key pressed on an Omega axis: the arrows move the selected Omega
     /// by [`OMEGA_STEP`] of the range ([`OMEGA_STEP_SHIFT`] with Shift),
     /// within the range. Whether the key was taken.
@@ -197,6 +252,19 @@ impl Page {
         let step = (v.omega_to - v.omega_from) * share;
         self.pending_omega = Some((from + dir * step).clamp(v.omega_from, v.omega_to));
         true
+    }
+
+    /// A click at pixel `(x, y)` of `view`: on the map, that cell's value
+    /// and Omega; on the time history, the animation's instant.
+    pub fn click(&mut self, view: ViewId, x: f64, y: f64, now_ms: f64) -> Vec<Effect> {
+        match view {
+            ViewId::Map => self.map_click(x, y, now_ms),
+            ViewId::Time => {
+                self.anim_seek(x, y);
+                Vec::new()
+            }
+            _ => Vec::new(),
+        }
     }
 
     /// A click at pixel `(x, y)` of the map: that cell's value and Omega.
@@ -229,6 +297,7 @@ impl Page {
     /// refused one marks its control invalid and says why), then a picked
     /// Omega. Returns the messages to post and the controls to mark.
     pub fn apply_pending(&mut self, now_ms: f64) -> (Vec<Effect>, Vec<Write>) {
+        self.frame_requested = false;
         let mut fx = Vec::new();
         let mut writes = Vec::new();
         for (key, value) in std::mem::take(&mut self.pending) {
@@ -257,6 +326,7 @@ impl Page {
         }
         if let Some(o) = self.pending_omega.take() {
             fx.extend(self.ctl.select_omega(o, now_ms));
+            writes.extend(self.see_orbit_writes());
         }
         (fx, writes)
     }
@@ -347,7 +417,13 @@ impl Page {
             }
             w.push(Write::text("cli-command", self.ctl.cli_commands()));
             w.extend(self.comparison());
+            w.extend(self.family_writes());
+            w.extend(self.tour_writes(false));
         }
+        if d.controls {
+            w.extend(self.control_writes());
+        }
+        w.extend(self.schematic_writes());
         w
     }
 
@@ -384,3 +460,5 @@ pub fn screen_size((w, h): (u32, u32), fr: bool, narrow: bool) -> (u32, u32) {
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod ui_tests;

@@ -160,28 +160,43 @@ fn a_frame_draws_the_changed_views_in_order_and_writes_the_texts() {
 
 #[test]
 fn progress_shows_after_a_while_with_the_status_line() {
-    let (p, _) = page("");
-    let bar = |w: &[Write], view: ViewId| {
-        w.iter().find_map(|x| match x {
-            Write::Progress { view: v, shown } if *v == view => Some(shown.clone()),
-            _ => None,
-        })
+    let (mut p, _) = page("");
+    let hidden = |hidden: bool| Write::Hidden {
+        id: "progress-bif".into(),
+        hidden,
     };
     let early = p.progress(100.0);
-    assert_eq!(bar(&early, ViewId::Bif), Some(None));
+    assert!(early.contains(&hidden(true)));
     assert!(early.contains(&Write::text("status", "")));
     let later = p.progress(1000.0);
-    let (frac, label) = bar(&later, ViewId::Bif).flatten().expect("a bar");
-    assert_eq!(frac, 0.0);
-    assert_eq!(label, "computing 0/200 points");
+    assert!(later.contains(&hidden(false)));
+    assert!(later.contains(&Write::Attr {
+        id: "progress-bif-bar".into(),
+        name: "style",
+        value: "width:0.0%".into()
+    }));
+    assert!(later.contains(&Write::text("progress-bif-label", "computing 0/200 points")));
     assert!(later.contains(&Write::text("status", texts::COMPUTING)));
+    // The Copy link's confirmation shows for two seconds, then goes.
+    let shown = p.confirm("Link copied.", 1000.0, 5.0);
+    assert!(shown.contains(&Write::Hidden {
+        id: "copy-done".into(),
+        hidden: false
+    }));
+    let gone = Write::Hidden {
+        id: "copy-done".into(),
+        hidden: true,
+    };
+    assert!(!p.progress(2990.0).contains(&gone));
+    assert!(p.progress(3000.0).contains(&gone));
+    assert!(!p.progress(3100.0).contains(&gone), "once");
 }
 
 #[test]
 fn a_preview_drawn_leaves_its_marker_in_the_status() {
     let (mut p, fx) = page("transient_periods=40&record_periods=10&bif_points=4");
     run_omega(&mut p, &fx, 5.0);
-    assert!(p.status(6.0, serde_json::Value::Null)["preview_drawn"].is_null());
+    assert!(p.status(6.0)["preview_drawn"].is_null());
     p.input("backlash_um", "150", 10.0);
     let (fx, _) = p.apply_pending(11.0);
     p.begin_frame(16.0);
@@ -191,7 +206,7 @@ fn a_preview_drawn_leaves_its_marker_in_the_status() {
     p.drawn(ViewId::Phase, (16.0, 18.0), 16.0);
     // The full run replaces the preview; the marker stays.
     run_omega(&mut p, &fx, 30.0);
-    let s = p.status(31.0, serde_json::Value::Null);
+    let s = p.status(31.0);
     assert_eq!(s["preview_drawn"]["ms"], 18.0);
     let summary = s["preview_drawn"]["summary"].as_str().unwrap();
     assert!(summary.starts_with("Preview ("), "{summary}");

@@ -7,6 +7,9 @@ use crate::protocol::JobKind;
 use crate::views::fr::FrView;
 use crate::views::ViewId;
 
+/// How long the Copy link's confirmation shows (ms).
+pub(crate) const TOAST_MS: f64 = 2000.0;
+
 /// The status line while any job shows progress.
 pub(crate) const COMPUTING: &str = "Computing in Web Workers…";
 
@@ -62,26 +65,63 @@ impl Page {
 
     /// Every view's progress bar at `now_ms` and the status line (progress
     /// is time-based: the page asks ten times a second).
-    pub fn progress(&self, now_ms: f64) -> Vec<Write> {
+    pub fn progress(&mut self, now_ms: f64) -> Vec<Write> {
         let mut busy = false;
-        let mut w: Vec<Write> = ViewId::ALL
-            .into_iter()
-            .map(|view| {
-                let prog = self.ctl.view_status(view).progress(now_ms);
-                busy |= prog.is_some();
-                let shown = prog.map(|(done, total)| {
-                    let frac = if total > 0 {
-                        done as f64 / total as f64
-                    } else {
-                        0.0
-                    };
-                    (frac, view.progress_label(done, total))
-                });
-                Write::Progress { view, shown }
-            })
-            .collect();
+        let mut w = Vec::new();
+        for view in ViewId::ALL {
+            let prog = self.ctl.view_status(view).progress(now_ms);
+            busy |= prog.is_some();
+            let id = format!("progress-{}", view.key());
+            w.push(Write::Hidden {
+                id: id.clone(),
+                hidden: prog.is_none(),
+            });
+            let Some((done, total)) = prog else {
+                continue;
+            };
+            let frac = if total > 0 {
+                done as f64 / total as f64
+            } else {
+                0.0
+            };
+            w.push(Write::Attr {
+                id: format!("{id}-bar"),
+                name: "style",
+                value: format!("width:{:.1}%", 100.0 * frac),
+            });
+            w.push(Write::text(
+                &format!("{id}-label"),
+                view.progress_label(done, total),
+            ));
+        }
         w.push(Write::text("status", if busy { COMPUTING } else { "" }));
+        // The Copy link's confirmation goes after its two seconds.
+        if self.toast_until.is_some_and(|t| now_ms >= t) {
+            self.toast_until = None;
+            w.push(Write::Hidden {
+                id: "copy-done".into(),
+                hidden: true,
+            });
+        }
         w
+    }
+
+    /// The Copy link's confirmation `text`, shown from `now_ms` for
+    /// [`TOAST_MS`]; `stamp` (the wall clock's ms) marks it for the tests.
+    pub fn confirm(&mut self, text: &str, now_ms: f64, stamp: f64) -> Vec<Write> {
+        self.toast_until = Some(now_ms + TOAST_MS);
+        vec![
+            Write::text("copy-done", text),
+            Write::Attr {
+                id: "copy-done".into(),
+                name: "data-shown",
+                value: format!("{stamp}"),
+            },
+            Write::Hidden {
+                id: "copy-done".into(),
+                hidden: false,
+            },
+        ]
     }
 
     /// Whether any job of `kind` runs, the current state's or a member's.
@@ -128,8 +168,8 @@ impl Page {
 
     /// Everything the tests and the benchmark read: the controller's
     /// status, the draw counters, the frames, the timings, the preview
-    /// marker, and `extra` (the gear set's last frame) under `anim`.
-    pub fn status(&self, now_ms: f64, extra: serde_json::Value) -> serde_json::Value {
+    /// marker, and the gear set's last frame under `anim`.
+    pub fn status(&self, now_ms: f64) -> serde_json::Value {
         let mut v = self.ctl.status(now_ms);
         let frame_json = |f: Option<crate::plots::PlotFrame>| {
             serde_json::json!(f.map(|f| [
@@ -181,7 +221,10 @@ impl Page {
                     .as_ref()
                     .map(|(ms, summary)| serde_json::json!({"ms": ms, "summary": summary}))),
             );
-            o.insert("anim".into(), extra);
+            o.insert("anim".into(), self.anim.info.clone());
+            let (n, last) = self.gestures;
+            o.insert("gesture".into(), serde_json::json!({"n": n, "last": last}));
+            o.insert("see_orbit".into(), serde_json::json!(self.see_orbit));
         }
         v
     }

@@ -142,24 +142,34 @@ pub fn draw_bif<DB: DrawingBackend>(
     Ok((frame, groups))
 }
 
-/// A bifurcation chart's SVG text with its dots: plotters closes an SVG
-/// when the chart is presented, so the dots are drawn into a second SVG of
-/// the same `size` whose body goes inside the first, before its end.
+/// A bifurcation chart's SVG text with its dots ([`svg_with`]).
 pub fn svg_with_dots(chart: &str, size: (u32, u32), groups: &[PointGroup]) -> Res<String> {
-    let mut dots = String::new();
+    svg_with(chart, size, |root| draw_groups(root, groups))
+}
+
+/// A chart's SVG text with more drawn over it: plotters closes an SVG when
+/// the chart is presented (anything drawn after lands behind its end and
+/// no viewer shows the file), so `draw` draws into a second SVG of the
+/// same `size` whose body goes inside the first, before its end.
+pub fn svg_with(
+    chart: &str,
+    size: (u32, u32),
+    draw: impl FnOnce(&DrawingArea<plotters::prelude::SVGBackend<'_>, Shift>) -> Res<()>,
+) -> Res<String> {
+    let mut over = String::new();
     {
-        let root = plotters::prelude::SVGBackend::with_string(&mut dots, size).into_drawing_area();
-        draw_groups(&root, groups)?;
+        let root = plotters::prelude::SVGBackend::with_string(&mut over, size).into_drawing_area();
+        draw(&root)?;
     }
     let head = chart
         .trim_end()
         .strip_suffix("</svg>")
         .ok_or_else(|| DrawError("the chart is not a complete SVG".into()))?;
-    let body = dots
+    let body = over
         .split_once('>')
         .map(|(_, rest)| rest.trim_end())
         .and_then(|rest| rest.strip_suffix("</svg>"))
-        .ok_or_else(|| DrawError("the dots are not a complete SVG".into()))?;
+        .ok_or_else(|| DrawError("the overlay is not a complete SVG".into()))?;
     Ok(format!("{head}{body}</svg>\n"))
 }
 

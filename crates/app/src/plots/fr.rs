@@ -26,18 +26,30 @@ pub fn fr_height(v: &FrView, (w, h): (u32, u32)) -> u32 {
 
 /// The frequency response's y range: the data in the Ω range and the
 /// contact lines asked for (the key is under the chart, so the axes fit
-/// the data alone).
-fn fr_y_range(v: &FrView) -> (f64, f64) {
+/// the data alone), the first mode's spike clipped and marked when it
+/// would flatten the rest ([`super::clip`]).
+fn fr_clipped(v: &FrView) -> super::clip::Clipped {
     let in_range = |o: f64| o >= v.omega_from && o <= v.omega_to;
-    let all = v
+    let points: Vec<(f64, f64, f64)> = v
         .branches
         .iter()
         .flat_map(|b| b.points.iter())
         .chain(v.overlay.iter())
         .filter(|p| in_range(p.omega))
-        .flat_map(|p| [p.max_um, p.min_um]);
+        .map(|p| (p.omega, p.max_um, p.min_um))
+        .collect();
+    let natural: Vec<f64> = v
+        .natural
+        .iter()
+        .map(|n| n.omega)
+        .filter(|&w| in_range(w))
+        .collect();
     let extra = contact_levels(&v.backlash_um, &v.pinned_backlash_um, v.whole_clearance);
-    padded_range(all, &extra, 20.0)
+    super::clip::clipped_range(&points, &natural, &extra)
+}
+
+fn fr_y_range(v: &FrView) -> (f64, f64) {
+    fr_clipped(v).range
 }
 
 /// `ViewId::Fr`: the frequency response (harmonic-balance branch, stable solid,
@@ -50,7 +62,8 @@ pub fn draw_fr<DB: DrawingBackend>(
     root.fill(&WHITE).map_err(err)?;
     let x = (v.omega_from, v.omega_to);
     let in_range = |o: f64| o >= x.0 && o <= x.1;
-    let y = fr_y_range(v);
+    let clipped = fr_clipped(v);
+    let y = clipped.range;
     let items = fr_key(v, y);
     let plan = plan_key(root, &items, fr_lines(v, line_chars(root.dim_in_pixel().0)));
     let upper = chart_area(root, &plan);
@@ -88,10 +101,15 @@ pub fn draw_fr<DB: DrawingBackend>(
                 .map(|c| Circle::new(c, 4, OVERLAY.stroke_width(1))),
         )
         .map_err(err)?;
-    for m in v.markers.iter().filter(|m| in_range(m.omega)) {
+    for m in v
+        .markers
+        .iter()
+        .filter(|m| in_range(m.omega) && (y.0..=y.1).contains(&m.value_um))
+    {
         let c = chart.backend_coord(&(m.omega, m.value_um));
         draw_marker_px(root, m.kind, c)?;
     }
+    super::clip::mark_clipped(&mut chart, &clipped)?;
     if let Some((at, _)) = &v.branch_error {
         chart
             .draw_series(DashedLineSeries::new(

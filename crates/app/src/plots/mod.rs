@@ -16,6 +16,7 @@
 //! key (in `key`); each view kind's plot in its own module.
 
 mod bif;
+mod clip;
 pub mod decimate;
 mod fr;
 mod key;
@@ -23,7 +24,7 @@ pub mod maps;
 pub mod multiples;
 mod omega;
 
-pub use bif::{draw_bif, draw_groups, failed_label, svg_with_dots};
+pub use bif::{draw_bif, draw_groups, failed_label, svg_with, svg_with_dots};
 pub use fr::{draw_fr, fr_height, FR_MIN_CHART};
 pub(crate) use key::*;
 pub use omega::{

@@ -448,15 +448,23 @@ pub fn draw_fr_panels<DB: DrawingBackend>(
         let x = (v.omega_from, v.omega_to);
         let in_range = |o: f64| o >= x.0 && o <= x.1;
         let levels = contact_levels(&v.backlash_um, &v.pinned_backlash_um, v.whole_clearance);
-        let y = padded_range(
-            v.branches
-                .iter()
-                .flat_map(|b| b.points.iter())
-                .filter(|p| in_range(p.omega))
-                .flat_map(|p| [p.max_um, p.min_um]),
-            &levels,
-            20.0,
-        );
+        // A lightly damped first mode's spike would flatten the rest: the
+        // axis fits the rest and the clipped peak is marked with its value.
+        let points: Vec<(f64, f64, f64)> = v
+            .branches
+            .iter()
+            .flat_map(|b| b.points.iter())
+            .filter(|p| in_range(p.omega))
+            .map(|p| (p.omega, p.max_um, p.min_um))
+            .collect();
+        let natural: Vec<f64> = v
+            .natural
+            .iter()
+            .map(|n| n.omega)
+            .filter(|&w| in_range(w))
+            .collect();
+        let clipped = super::clip::clipped_range(&points, &natural, &levels);
+        let y = clipped.range;
         let mut chart = panel_chart(
             area,
             &p.title,
@@ -474,6 +482,7 @@ pub fn draw_fr_panels<DB: DrawingBackend>(
         for br in v.branches.iter() {
             draw_branch(&mut chart, br)?;
         }
+        super::clip::mark_clipped(&mut chart, &clipped)?;
         frames.push(Some(frame_of(&chart, x, y)));
     }
     root.present().map_err(err)?;

@@ -1,8 +1,10 @@
 //! The Web Worker's shell: feeds the page's messages to the job runner
-//! ([`WorkerCore`]) and runs its steps in time slices, yielding to the
-//! worker's event loop so that newer jobs and cancels arrive.
+//! ([`WorkerCore`]) and runs its steps in time slices ([`Slicer`] says when
+//! to yield and when to pause), yielding to the worker's event loop so
+//! that newer jobs and cancels arrive.
 
 use super::check;
+use crate::worker::slicer::{Next, Slicer, SLICE_PAUSE_MS};
 use crate::worker::{ready_message, WorkerCore};
 use std::cell::{Cell, RefCell};
 use std::rc::Rc;
@@ -10,19 +12,9 @@ use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
 use web_sys::{DedicatedWorkerGlobalScope, MessageChannel, MessageEvent};
 
-/// A worker's time slice (ms) before it yields to its event loop.
-const SLICE_MS: f64 = 25.0;
-/// The pause (ms) after `PAUSE_EVERY_MS` of work: see `start_worker`.
-const SLICE_PAUSE_MS: i32 = 3;
-/// Work (ms) between two pauses.
-const PAUSE_EVERY_MS: f64 = 100.0;
-
 /// Runs a Web Worker: posts "ready", then serves jobs in bounded chunks,
-/// yielding to the event loop so that newer jobs and cancels arrive:
-/// through a `MessageChannel` (which, unlike `setTimeout`, is not clamped)
-/// after a slice, through a `SLICE_PAUSE_MS` timer once `PAUSE_EVERY_MS`
-/// of work have passed since the last pause, to leave the page's main thread
-/// room on two cores.
+/// yielding to the event loop through a `MessageChannel` (which, unlike
+/// `setTimeout`, is not clamped) after a slice, through a timer for a pause.
 pub fn start_worker() {
     let scope: DedicatedWorkerGlobalScope = js_sys::global().unchecked_into();
     let core = Rc::new(RefCell::new(WorkerCore::new()));
@@ -52,9 +44,6 @@ pub fn start_worker() {
         }
     };
 
-    // Every PAUSE_EVERY_MS of work the worker pauses briefly (a timer, not the
-    // unclamped channel): on the 2-core target two busy workers otherwise
-    // leave the page's main thread too little CPU to draw within 100 ms.
     let resume = {
         let port = port.clone();
         Closure::<dyn FnMut()>::new(move || {
@@ -74,34 +63,28 @@ pub fn start_worker() {
             }
         }
     };
-    let busy_ms = Rc::new(Cell::new(0.0));
+    let slicer = Rc::new(Cell::new(Slicer::default()));
     let tick = {
-        let core = core.clone();
-        let scheduled = scheduled.clone();
-        let busy_ms = busy_ms.clone();
-        let post = post.clone();
+        let (core, scheduled, post) = (core.clone(), scheduled.clone(), post.clone());
         let schedule = schedule.clone();
         Closure::<dyn FnMut(MessageEvent)>::new(move |_e: MessageEvent| {
             scheduled.set(false);
             let start = js_sys::Date::now();
-            // A time slice of about 25 ms, then yield; one step is one steady state.
+            // One step is one steady state.
             loop {
                 let msgs = core.borrow_mut().step();
                 post(msgs);
-                if !core.borrow().has_work() || js_sys::Date::now() - start > SLICE_MS {
+                if !core.borrow().has_work() || Slicer::over(js_sys::Date::now() - start) {
                     break;
                 }
             }
-            if core.borrow().has_work() {
-                busy_ms.set(busy_ms.get() + js_sys::Date::now() - start);
-                if busy_ms.get() > PAUSE_EVERY_MS {
-                    busy_ms.set(0.0);
-                    pause();
-                } else {
-                    schedule();
-                }
-            } else {
-                busy_ms.set(0.0);
+            let mut s = slicer.get();
+            let next = s.after(js_sys::Date::now() - start, core.borrow().has_work());
+            slicer.set(s);
+            match next {
+                Next::Idle => {}
+                Next::Yield => schedule(),
+                Next::Pause => pause(),
             }
         })
     };

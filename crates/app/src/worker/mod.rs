@@ -25,6 +25,7 @@ use serde_json::Value;
 
 pub mod jobs;
 mod runner;
+pub mod slicer;
 
 /// The worker's state: a list of computations (the current state's, the
 /// pinned A's, each family member's), each with at most one job of each

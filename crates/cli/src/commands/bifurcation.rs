@@ -2,7 +2,7 @@
 //! interleaved chains, optionally one shard of them.
 
 use crate::args::{meshes, parse_shard, stream_header, Format, OmegaRange, ParamArgs, RunArgs};
-use crate::budget::{check_work, MAX_SAMPLES};
+use crate::budget::{check_work, StepCost, MAX_SAMPLES};
 use crate::csv;
 use crate::failure::{usage, Failure};
 use crate::output::output;
@@ -71,6 +71,7 @@ pub fn run(a: &BifurcationArgs) -> Result<(), Failure> {
     );
     check_work(
         total * (transient + record),
+        StepCost::of(&model).mean_per_period(spec.omega_from, spec.omega_to, spec.points),
         &format!(
             "{total} points (--points over --direction and --shard) x (--transient-periods {transient} + --record-periods {record})"
         ),

@@ -19,6 +19,7 @@
 //! run's byte for byte and no file text is ever passed through. Figs. 2 and
 //! 3 are not sharded: each of their panels holds every member's branch.
 
+mod cost;
 pub mod shard;
 
 use crate::failure::{usage, Failure};
@@ -159,6 +160,14 @@ pub fn run(args: &FigureArgs) -> Result<Value, Failure> {
     }
     let members = members(p)?;
     let heavy = is("bif_dir") || is("omega");
+    let panels = if is("bif_dir") {
+        cost::Panels::Bifurcation
+    } else if heavy {
+        cost::Panels::Orbits
+    } else {
+        cost::Panels::FrequencyResponse
+    };
+
     let shard = match &args.shard {
         None => None,
         Some(_) if !heavy => {
@@ -185,6 +194,14 @@ pub fn run(args: &FigureArgs) -> Result<Value, Failure> {
             Some((i as usize, n as usize))
         }
     };
+    // The work of this command's members (a shard's only), before any.
+    let mine: Vec<&Member> = members
+        .iter()
+        .enumerate()
+        .filter(|(k, _)| shard.is_none_or(|(i, n)| k % n == i))
+        .map(|(_, m)| m)
+        .collect();
+    cost::check(p.id, panels, &mine, args)?;
     if let Some((i, n)) = shard {
         // One shard: its members' sweeps or orbits as JSON; the merge draws.
         return shard::compute(p, &members, args, (i, n), is("bif_dir"));

@@ -2,7 +2,7 @@
 //! over a sweep of Omega, each point continued from the last one's end state.
 
 use crate::args::{omega_grid, stream_header, OmegaRange, ParamArgs};
-use crate::budget::check_work;
+use crate::budget::{check_work, StepCost};
 use crate::csv;
 use crate::failure::Failure;
 use crate::output::output;
@@ -41,6 +41,7 @@ pub fn run(a: &LyapunovArgs) -> Result<(), Failure> {
     // The transient once, then two trajectories over the periods.
     check_work(
         u64::from(points) * (u64::from(transient_periods) + 2 * u64::from(periods)),
+        StepCost::of(&model).mean_per_period(a.range.omega_from, a.range.omega_to, points),
         &format!(
             "--points {points} x (--transient-periods {transient_periods} + 2 x --periods {periods})"
         ),

@@ -2,7 +2,7 @@
 //! numeric key (rows), optionally one shard of its rows.
 
 use crate::args::{mesh_index, parse_shard, stream_header, OmegaRange, ParamArgs, RunArgs};
-use crate::budget::check_work;
+use crate::budget::{check_work, StepCost};
 use crate::csv;
 use crate::failure::Failure;
 use crate::output::output;
@@ -62,8 +62,20 @@ pub fn run(a: &MapArgs) -> Result<(), Failure> {
     let mut map = RegimeMap::new(&params, spec.clone())?;
     let total = map.total() as u64;
     let (transient, record) = (a.run.transient_periods, a.run.record_periods);
+    // The row key may change the modes (a stiffness, an inertia): the
+    // dearer end of its range prices every row.
+    let mut cost = StepCost::of(&model);
+    for v in [spec.value_from, spec.value_to] {
+        let mut row = params.clone();
+        if solver::keys::set(&mut row, &spec.key, solver::keys::Value::Num(v)).is_ok() {
+            if let Ok(m) = solver::steady::Model::new(&row) {
+                cost = cost.max(StepCost::of(&m));
+            }
+        }
+    }
     check_work(
         total * (u64::from(transient) + u64::from(record)),
+        cost.mean_per_period(spec.omega_from, spec.omega_to, spec.omega_points),
         &format!(
             "{total} cells (--omega-points x --value-points over --shard) x (--transient-periods {transient} + --record-periods {record})"
         ),

@@ -4,6 +4,7 @@
 
 mod bench;
 mod bifurcation;
+mod boundaries;
 mod figure;
 mod frf;
 mod instability;
@@ -50,6 +51,10 @@ pub enum Command {
     /// Impact-regime map over Omega (columns) and a parameter (rows).
     #[command(allow_negative_numbers = true)]
     Map(map::MapArgs),
+    /// The map's boundaries traced as curves in Omega and one key: folds
+    /// (the jump), contact changes, cusps.
+    #[command(allow_negative_numbers = true)]
+    Boundaries(boundaries::BoundariesArgs),
     /// Largest Lyapunov exponent of the Poincaré map over a sweep of Omega.
     #[command(allow_negative_numbers = true)]
     Lyapunov(lyapunov::LyapunovArgs),
@@ -83,6 +88,7 @@ pub fn run(command: Command) -> Result<(), Failure> {
         Command::Bifurcation(a) => bifurcation::run(&a),
         Command::Frf(a) => frf::run(&a),
         Command::Map(a) => map::run(&a),
+        Command::Boundaries(a) => boundaries::run(&a),
         Command::Lyapunov(a) => lyapunov::run(&a),
         Command::Instability(a) => instability::run(&a),
         Command::Merge(a) => merge::run(&a),

@@ -300,6 +300,59 @@ fn monodromy(
     coefs: Option<&[Vec<f64>]>,
     steps_per_fastest: f64,
 ) -> Option<Floquet> {
+    let (main, planet) = integrate_blocks(asm, omega, cuts, coefs, steps_per_fastest)?;
+    let multipliers = main.multipliers()?;
+    let planet_multipliers = match &planet {
+        Some(pb) => pb.multipliers()?,
+        None => Vec::new(),
+    };
+    Some(Floquet {
+        multipliers,
+        planet_multipliers,
+    })
+}
+
+/// The monodromy matrices (`2m x 2m`, then the planet block's `4 x 4` under
+/// the symmetric reduction) of the orbit `x` at `omega`, as [`floquet`]
+/// computes them: for test functions on the multipliers (the boundaries'
+/// period doublings). `None` if they are not finite.
+pub fn monodromy_matrices(
+    asm: &Assembly,
+    x: &[f64],
+    omega: f64,
+) -> Option<(DMatrix<f64>, Option<DMatrix<f64>>)> {
+    let m = asm.model.m;
+    let nc = n_coef(asm.h);
+    let coefs: Vec<Vec<f64>> = asm
+        .model
+        .channels
+        .iter()
+        .map(|ch| {
+            (0..nc)
+                .map(|c| (0..m).map(|i| ch.d[i] * x[c * m + i]).sum())
+                .collect()
+        })
+        .collect();
+    let mut cuts = vec![0.0];
+    cuts.extend(switch_phases(asm, &coefs));
+    cuts.push(2.0 * PI);
+    let (main, planet) = integrate_blocks(asm, omega, &cuts, Some(&coefs), 8.0)?;
+    let finite = |b: &LtpBlock| b.phi.iter().all(|v| v.is_finite());
+    if !finite(&main) || planet.as_ref().is_some_and(|p| !finite(p)) {
+        return None;
+    }
+    let mat = |b: &LtpBlock| DMatrix::from_row_slice(2 * b.m, 2 * b.m, &b.phi);
+    Some((mat(&main), planet.as_ref().map(mat)))
+}
+
+/// Integrates the main and planet blocks over the period split at `cuts`.
+fn integrate_blocks(
+    asm: &Assembly,
+    omega: f64,
+    cuts: &[f64],
+    coefs: Option<&[Vec<f64>]>,
+    steps_per_fastest: f64,
+) -> Option<(LtpBlock, Option<LtpBlock>)> {
     let model = &asm.model;
     let m = model.m;
     let h = asm.h;
@@ -398,13 +451,5 @@ fn monodromy(
             }
         }
     }
-    let multipliers = main.multipliers()?;
-    let planet_multipliers = match &planet {
-        Some(pb) => pb.multipliers()?,
-        None => Vec::new(),
-    };
-    Some(Floquet {
-        multipliers,
-        planet_multipliers,
-    })
+    Some((main, planet))
 }

@@ -30,6 +30,8 @@ pub(super) struct Recorder {
     n_samples: u64,
     pc_delta: Vec<Vec<f64>>,
     pc_vel: Vec<Vec<f64>>,
+    pc_x: Vec<Vec<f64>>,
+    pc_xv: Vec<Vec<f64>>,
     pc_points: Vec<Vec<f64>>,
     history_meshes: Vec<usize>,
     histories: Vec<MeshHistory>,
@@ -81,6 +83,8 @@ impl Recorder {
             n_samples: 0,
             pc_delta: vec![Vec::new(); n_mesh],
             pc_vel: vec![Vec::new(); n_mesh],
+            pc_x: vec![Vec::new(); n_mesh],
+            pc_xv: vec![Vec::new(); n_mesh],
             pc_points: Vec::new(),
             histories: history_meshes
                 .iter()
@@ -194,6 +198,8 @@ impl Recorder {
             let mi = ode.mesh_instant(j, t, y);
             self.pc_delta[j].push(mi.delta);
             self.pc_vel[j].push(mi.delta_dot);
+            self.pc_x[j].push(mi.rel);
+            self.pc_xv[j].push(mi.rel_dot);
         }
         self.pc_points.push(poincare_point(ode, t, y, omega_rad_s));
     }
@@ -255,6 +261,8 @@ impl Recorder {
                     impact: Impact::classify(self.x_min[j], self.x_max[j], b),
                     poincare_delta_m: self.pc_delta[j].clone(),
                     poincare_velocity_m_s: self.pc_vel[j].clone(),
+                    poincare_x_m: self.pc_x[j].clone(),
+                    poincare_x_velocity_m_s: self.pc_xv[j].clone(),
                     contact_fraction: if ns > 0.0 {
                         let c = self.contact[j];
                         [c[0] as f64 / ns, c[1] as f64 / ns, c[2] as f64 / ns]

@@ -308,4 +308,4 @@ impl Controller {
 
 mod family;
 mod svg;
-pub use svg::{view_size, SvgError};
+pub use svg::{view_size, Drawn, SvgError};

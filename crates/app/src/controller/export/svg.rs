@@ -4,8 +4,11 @@
 
 use super::super::*;
 use super::ExportError;
-use crate::plots::{self, maps, DrawError};
+use crate::plots::maps::{self, MapOverlay};
+use crate::plots::{self, DrawError, PlotFrame, PointGroup};
+use crate::views::fr::FrView;
 use crate::views::ViewId;
+use plotters::coord::Shift;
 use plotters::prelude::*;
 
 /// A view's drawing size in pixels (its canvas's size on the page).
@@ -26,6 +29,62 @@ pub enum SvgError {
     /// The drawing itself failed.
     #[error(transparent)]
     Draw(#[from] DrawError),
+}
+
+/// What [`Controller::draw_view`] leaves to its caller: the plot frame
+/// that maps pixels to data (the views one clicks on), and what a canvas
+/// fills faster itself than plotters does: the bifurcation dots and the
+/// map's cells.
+#[derive(Debug, Clone, Default)]
+pub struct Drawn {
+    /// The plot's frame (the first panel's, for small multiples).
+    pub frame: Option<PlotFrame>,
+    /// The bifurcation diagram's dots, by colour and shape.
+    pub dots: Vec<PointGroup>,
+    /// The map's cells, period dots and cursor.
+    pub map: Option<MapOverlay>,
+}
+
+/// The map's cells, period dots and cursor lines drawn with plotters (the
+/// canvas fills them itself).
+fn draw_map_cells<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    f: &PlotFrame,
+    o: &MapOverlay,
+) -> Result<(), DrawError> {
+    for (c, rects) in &o.cells {
+        for r in rects {
+            let (x, y) = (r[0].round() as i32, r[1].round() as i32);
+            let (w, h) = (r[2].round() as i32, r[3].round() as i32);
+            root.draw(&Rectangle::new([(x, y), (x + w, y + h)], c.filled()))
+                .map_err(plots::err)?;
+        }
+    }
+    for d in &o.dots {
+        let c = (d[0].round() as i32, d[1].round() as i32);
+        root.draw(&Circle::new(c, o.dot_radius.round() as i32, BLACK.filled()))
+            .map_err(plots::err)?;
+    }
+    let line = BLACK.mix(0.7).stroke_width(1);
+    let (t, b) = (f.top_left, f.bottom_right);
+    let mut lines = Vec::new();
+    if let Some(x) = o.cursor.0 {
+        lines.push([
+            (x.round() as i32, t.y as i32),
+            (x.round() as i32, b.y as i32),
+        ]);
+    }
+    if let Some(y) = o.cursor.1 {
+        lines.push([
+            (t.x as i32, y.round() as i32),
+            (b.x as i32, y.round() as i32),
+        ]);
+    }
+    for l in lines {
+        root.draw(&PathElement::new(l.to_vec(), line))
+            .map_err(plots::err)?;
+    }
+    Ok(())
 }
 
 impl Controller {
@@ -54,104 +113,108 @@ impl Controller {
         }
     }
 
+    /// Draws `view` on any plotters backend, as the page and the SVG
+    /// export both do, with `status` after its title (the page's progress
+    /// caption; empty for a file) and, for the frequency response, its
+    /// view model `fr` if the caller built it already. What the backend
+    /// draws faster itself is returned, not drawn: the bifurcation dots and
+    /// the map's cells ([`Drawn`]).
+    pub fn draw_view<DB: DrawingBackend>(
+        &self,
+        view: ViewId,
+        root: &DrawingArea<DB, Shift>,
+        status: &str,
+        fr: Option<&FrView>,
+    ) -> Result<Drawn, SvgError> {
+        let natural = self.view_context().natural;
+        let v = &self.settings.view;
+        let whole = v.whole_clearance;
+        let first = |frames: Vec<Option<PlotFrame>>| frames.into_iter().flatten().next();
+        let mut d = Drawn::default();
+        match view.spec().data {
+            // Clicks pick Omega on the first panel's axis (all share it).
+            JobKind::HarmonicBalance | JobKind::Overlay if self.panels.is_some() => {
+                d.frame = first(plots::multiples::draw_fr_panels(
+                    root,
+                    &self.fr_panels(),
+                    status,
+                )?);
+            }
+            JobKind::HarmonicBalance | JobKind::Overlay => {
+                let own;
+                let fr = match fr {
+                    Some(fr) => fr,
+                    None => {
+                        own = self.fr_view();
+                        &own
+                    }
+                };
+                d.frame = Some(plots::draw_fr(root, fr, status)?);
+            }
+            // A family: its small multiples.
+            JobKind::Bif if self.family.is_some() => {
+                let mesh = self.view_context().mesh_label;
+                let (frames, dots) =
+                    plots::multiples::draw_bif_panels(root, &self.bif_panels(), &mesh, status)?;
+                (d.frame, d.dots) = (first(frames), dots);
+            }
+            JobKind::Bif => {
+                let (frame, dots) = plots::draw_bif(root, &self.bif_view(), &natural, status)?;
+                (d.frame, d.dots) = (Some(frame), dots);
+            }
+            JobKind::Map => {
+                let (f, o) = maps::draw_map(root, &self.map_view(), status)?;
+                (d.frame, d.map) = (Some(f), Some(o));
+            }
+            JobKind::Lyap => {
+                let range = (v.omega_from, v.omega_to);
+                d.frame = Some(maps::draw_lyap(
+                    root,
+                    &self.main.lyap,
+                    range,
+                    &natural,
+                    v.omega,
+                    status,
+                )?);
+            }
+            JobKind::Omega
+                if self.family.is_some() && matches!(view, ViewId::Phase | ViewId::Poincare) =>
+            {
+                let poincare = view == ViewId::Poincare;
+                let n = self.family.as_ref().map_or(0, |f| f.spec.values.len());
+                let panels = self.omega_panels(if poincare { n } else { 0 });
+                plots::multiples::draw_phase_panels(root, &panels, poincare, status)?;
+            }
+            JobKind::Omega => {
+                let r = self.main.omega.as_ref().ok_or(ExportError::NotComputed)?;
+                match view {
+                    ViewId::Phase => plots::draw_phase_with(root, r, status, whole)?,
+                    ViewId::Poincare => plots::draw_poincare_with(root, r, status, whole)?,
+                    ViewId::Time => d.frame = Some(plots::draw_time_with(root, r, status, whole)?),
+                    _ => plots::draw_spectrum(root, r, status)?,
+                }
+            }
+        }
+        Ok(d)
+    }
+
     /// The view drawn as SVG text, as the page shows it (without the
     /// progress captions).
     pub fn plot_svg(&self, view: ViewId) -> Result<String, SvgError> {
+        let size = self.canvas_size(view);
         let mut s = String::new();
-        // The bifurcation diagram's dots, drawn after the chart is closed.
-        let mut dots = Vec::new();
-        {
-            let root = SVGBackend::with_string(&mut s, self.canvas_size(view)).into_drawing_area();
-            let natural = self.view_context().natural;
-            let v = &self.settings.view;
-            let whole = v.whole_clearance;
-            match view.spec().data {
-                JobKind::HarmonicBalance | JobKind::Overlay if self.panels.is_some() => {
-                    plots::multiples::draw_fr_panels(&root, &self.fr_panels(), "")?;
-                }
-                JobKind::HarmonicBalance | JobKind::Overlay => {
-                    plots::draw_fr(&root, &self.fr_view(), "")?;
-                }
-                // A family: its small multiples, as the page draws them.
-                JobKind::Bif if self.family.is_some() => {
-                    let mesh = self.view_context().mesh_label;
-                    let panels = self.bif_panels();
-                    dots = plots::multiples::draw_bif_panels(&root, &panels, &mesh, "")?.1;
-                }
-                JobKind::Bif => {
-                    dots = plots::draw_bif(&root, &self.bif_view(), &natural, "")?.1;
-                }
-                JobKind::Map => {
-                    let (f, o) = maps::draw_map(&root, &self.map_view(), "")?;
-                    for (c, rects) in &o.cells {
-                        for r in rects {
-                            let (x, y) = (r[0].round() as i32, r[1].round() as i32);
-                            let (w, h) = (r[2].round() as i32, r[3].round() as i32);
-                            root.draw(&Rectangle::new([(x, y), (x + w, y + h)], c.filled()))
-                                .map_err(plots::err)?;
-                        }
-                    }
-                    for d in &o.dots {
-                        let c = (d[0].round() as i32, d[1].round() as i32);
-                        root.draw(&Circle::new(c, o.dot_radius.round() as i32, BLACK.filled()))
-                            .map_err(plots::err)?;
-                    }
-                    let line = BLACK.mix(0.7).stroke_width(1);
-                    let (t, b) = (f.top_left, f.bottom_right);
-                    if let Some(x) = o.cursor.0 {
-                        let x = x.round() as i32;
-                        root.draw(&PathElement::new(
-                            vec![(x, t.y as i32), (x, b.y as i32)],
-                            line,
-                        ))
-                        .map_err(plots::err)?;
-                    }
-                    if let Some(y) = o.cursor.1 {
-                        let y = y.round() as i32;
-                        root.draw(&PathElement::new(
-                            vec![(t.x as i32, y), (b.x as i32, y)],
-                            line,
-                        ))
-                        .map_err(plots::err)?;
-                    }
-                }
-                JobKind::Lyap => {
-                    maps::draw_lyap(
-                        &root,
-                        &self.main.lyap,
-                        (v.omega_from, v.omega_to),
-                        &natural,
-                        v.omega,
-                        "",
-                    )?;
-                }
-                JobKind::Omega
-                    if self.family.is_some()
-                        && matches!(view, ViewId::Phase | ViewId::Poincare) =>
-                {
-                    let poincare = view == ViewId::Poincare;
-                    let n = self.family.as_ref().map_or(0, |f| f.spec.values.len());
-                    let panels = self.omega_panels(if poincare { n } else { 0 });
-                    plots::multiples::draw_phase_panels(&root, &panels, poincare, "")?;
-                }
-                JobKind::Omega => {
-                    let r = self.main.omega.as_ref().ok_or(ExportError::NotComputed)?;
-                    match view {
-                        ViewId::Phase => plots::draw_phase_with(&root, r, "", whole)?,
-                        ViewId::Poincare => plots::draw_poincare_with(&root, r, "", whole)?,
-                        ViewId::Time => {
-                            plots::draw_time_with(&root, r, "", whole)?;
-                        }
-                        _ => plots::draw_spectrum(&root, r, "")?,
-                    }
-                }
-            }
+        let d = {
+            let root = SVGBackend::with_string(&mut s, size).into_drawing_area();
+            let d = self.draw_view(view, &root, "", None)?;
             root.present().map_err(plots::err)?;
-        }
-        if dots.is_empty() {
-            return Ok(s);
-        }
-        Ok(plots::svg_with_dots(&s, self.canvas_size(view), &dots)?)
+            d
+        };
+        // What the canvas fills itself goes inside the closed chart.
+        Ok(match (d.frame, &d.map) {
+            (Some(f), Some(o)) => plots::svg_with(&s, size, |root| draw_map_cells(root, &f, o))?,
+            _ if !d.dots.is_empty() => plots::svg_with_dots(&s, size, &d.dots)?,
+            _ => s,
+        })
     }
 
     /// The view as an SVG file to download.

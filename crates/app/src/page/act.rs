@@ -1,0 +1,295 @@
+//! What the page does on a user's [`Action`] (a button, a drop-down, a
+//! field), and what the controls, the tour's panel and the family bar
+//! show after a change: everything the web layer's listeners used to
+//! decide, as [`Write`]s and [`Effect`]s the native tests read.
+
+use super::dom::{Action, TourMove};
+use super::{Page, Write};
+use crate::controller::Effect;
+use crate::controls::{controls, field_text, shown_for, Target, Widget};
+use crate::tour::{counter, TOUR};
+
+/// What a user's event carries: the element's value (a field's text, a
+/// drop-down's choice) and, for a key press, the key.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct EventIn {
+    /// The element's `value`, if it has one.
+    pub value: String,
+    /// The key pressed (`keydown` only).
+    pub key: Option<String>,
+}
+
+/// What an action asks of the web layer.
+#[derive(Debug, Default)]
+pub struct Acted {
+    /// Messages to post, files to offer.
+    pub effects: Vec<Effect>,
+    /// Changes to the document.
+    pub writes: Vec<Write>,
+    /// Whether a frame is needed.
+    pub frame: bool,
+}
+
+impl Page {
+    /// Does `action` at `now_ms` with the event `ev`. The copy to the
+    /// clipboard and the PNG's rasterizing are the web layer's own (they
+    /// wait for the browser); they ask nothing here.
+    pub fn act(&mut self, action: Action, ev: &EventIn, now_ms: f64) -> Acted {
+        let mut out = Acted {
+            frame: true,
+            ..Acted::default()
+        };
+        let ctl = &mut self.ctl;
+        let fx = match action {
+            Action::Slide(key) => {
+                out.writes.push(Write::Value {
+                    id: format!("num-{key}"),
+                    value: ev.value.clone(),
+                });
+                self.input(key, &ev.value, now_ms);
+                Vec::new()
+            }
+            Action::Set(key) => {
+                self.input(key, &ev.value, now_ms);
+                Vec::new()
+            }
+            Action::Preset if ev.value.is_empty() => Vec::new(),
+            Action::Preset => ctl.apply_preset(&ev.value, now_ms),
+            Action::LoadPreset(id) => ctl.apply_preset(id, now_ms),
+            Action::Reset => ctl.load_query("", now_ms),
+            Action::PinA => ctl.pin_a(now_ms),
+            Action::ClearA => ctl.clear_a(),
+            Action::ClearMessages => {
+                ctl.clear_issues();
+                Vec::new()
+            }
+            Action::Svg(v) => {
+                let r = self.ctl.export_svg(v).map(|e| vec![e]);
+                self.offer(r)
+            }
+            Action::Data(v, fmt) => {
+                let r = self.ctl.export(v, fmt).map(|e| vec![e]);
+                self.offer(r)
+            }
+            Action::Cli(v) => {
+                let r = self.ctl.export_cli(v);
+                self.offer(r)
+            }
+            Action::Params => vec![ctl.export_params()],
+            Action::Tour(m) => {
+                let now = ctl.tour();
+                let step = match m {
+                    TourMove::Start => Some(0),
+                    TourMove::Back => now.map(|s| s.saturating_sub(1)),
+                    TourMove::Next => now.map(|s| s + 1).filter(|&s| s < TOUR.len()),
+                    TourMove::Skip => None,
+                };
+                let fx = ctl.tour_go(step, now_ms);
+                out.writes.extend(self.tour_writes(true));
+                fx
+            }
+            Action::FamilyKey => {
+                self.family_input.0 = ev.value.clone();
+                out.frame = false;
+                Vec::new()
+            }
+            Action::FamilyValues => {
+                self.family_input.1 = ev.value.clone();
+                out.frame = false;
+                Vec::new()
+            }
+            Action::FamilyApply if ev.key.as_ref().is_some_and(|k| k != "Enter") => {
+                out.frame = false;
+                Vec::new()
+            }
+            Action::FamilyApply => {
+                let (key, values) = self.family_input.clone();
+                let r = self.ctl.set_family_text(&key, &values, now_ms);
+                let error = r.as_ref().err().cloned().unwrap_or_default();
+                out.writes.push(Write::text("family-error", error));
+                r.unwrap_or_default()
+            }
+            Action::FamilyClear => {
+                out.writes.push(Write::text("family-error", ""));
+                ctl.clear_family()
+            }
+            Action::AnimPlay => {
+                self.anim_play();
+                Vec::new()
+            }
+            Action::AnimStep(n) => {
+                self.anim_step(n);
+                Vec::new()
+            }
+            Action::AnimSpeed => {
+                self.anim_speed(&ev.value);
+                Vec::new()
+            }
+            Action::SeeOrbit => {
+                self.see_orbit = false;
+                out.writes.push(Write::Hidden {
+                    id: "see-orbit".into(),
+                    hidden: true,
+                });
+                out.writes.push(Write::Scroll("view-phase".into()));
+                Vec::new()
+            }
+            Action::CopyLink | Action::Png(_) => {
+                out.frame = false;
+                Vec::new()
+            }
+        };
+        out.effects = fx;
+        out
+    }
+
+    /// An export's files, or its reason in the messages.
+    fn offer<E: std::fmt::Display>(&mut self, r: Result<Vec<Effect>, E>) -> Vec<Effect> {
+        r.unwrap_or_else(|e| {
+            self.ctl.issue(e.to_string());
+            Vec::new()
+        })
+    }
+
+    /// A PNG export could not be made (the browser's reason).
+    pub fn png_failed(&mut self, why: &str) {
+        self.ctl
+            .issue(format!("The PNG image could not be made: {why}"));
+    }
+
+    /// Every control's value, visibility and options as the state has them
+    /// (after a link, a preset, a reset, a tour step or a refused value).
+    pub fn control_writes(&mut self) -> Vec<Write> {
+        let params = &self.ctl.settings().params;
+        let model = params.kind();
+        let mut w = Vec::new();
+        // The mesh list depends on the model.
+        let names = self.ctl.mesh_names();
+        let mut options: Vec<(String, String)> =
+            names.iter().map(|n| (n.clone(), n.clone())).collect();
+        options.push(("worst".into(), "worst (largest dynamic factor)".into()));
+        if options != self.schematic.1 {
+            self.schematic.1 = options.clone();
+            w.push(Write::Options {
+                id: "sel-mesh".into(),
+                options,
+            });
+        }
+        for c in controls() {
+            w.push(Write::Hidden {
+                id: format!("control-{}", c.key),
+                hidden: !shown_for(&c, model),
+            });
+            let text = match c.target {
+                Target::Param => match solver::keys::get(params, c.key) {
+                    Some(solver::keys::Value::Num(x)) => field_text(x),
+                    Some(solver::keys::Value::Text(t)) => t,
+                    None => continue,
+                },
+                Target::View => match self.ctl.settings().view.get(c.key) {
+                    Some(t) => t,
+                    None => continue,
+                },
+            };
+            match c.widget {
+                Widget::Slider { .. } => {
+                    let mixed = if text.is_empty() { "mixed" } else { "" };
+                    w.push(Write::Attr {
+                        id: format!("num-{}", c.key),
+                        name: "placeholder",
+                        value: mixed.into(),
+                    });
+                    if !text.is_empty() {
+                        w.push(Write::Value {
+                            id: format!("slider-{}", c.key),
+                            value: text.clone(),
+                        });
+                    }
+                    w.push(Write::Value {
+                        id: format!("num-{}", c.key),
+                        value: text,
+                    });
+                }
+                Widget::Select(_) => w.push(Write::Value {
+                    id: format!("sel-{}", c.key),
+                    value: text,
+                }),
+            }
+        }
+        w
+    }
+
+    /// The family bar's fields after a change: the family shown, written
+    /// when the family changed, not while it is typed.
+    pub fn family_writes(&mut self) -> Vec<Write> {
+        let Some(f) = self.ctl.family() else {
+            return Vec::new();
+        };
+        let code = f.spec.encode();
+        if code == self.family_shown {
+            return Vec::new();
+        }
+        let values: Vec<String> = f
+            .spec
+            .values
+            .iter()
+            .map(|x| crate::settings::fmt_exact(*x))
+            .collect();
+        self.family_input = (f.spec.key.key.to_string(), values.join(", "));
+        self.family_shown = code;
+        vec![
+            Write::Value {
+                id: "family-key".into(),
+                value: self.family_input.0.clone(),
+            },
+            Write::Value {
+                id: "family-values".into(),
+                value: self.family_input.1.clone(),
+            },
+        ]
+    }
+
+    /// The tour's panel for the current step (or hidden), its target
+    /// highlighted and, if `scroll`, scrolled to.
+    pub fn tour_writes(&self, scroll: bool) -> Vec<Write> {
+        let step = self.ctl.tour();
+        let mut w: Vec<Write> = TOUR
+            .iter()
+            .enumerate()
+            .map(|(i, s)| Write::Class {
+                id: s.target.into(),
+                class: "tour-target",
+                on: step == Some(i),
+            })
+            .collect();
+        w.push(Write::Hidden {
+            id: "tour".into(),
+            hidden: step.is_none(),
+        });
+        let Some(step) = step else {
+            return w;
+        };
+        let s = &TOUR[step];
+        let last = step + 1 == TOUR.len();
+        w.extend([
+            Write::Attr {
+                id: "tour".into(),
+                name: "data-step",
+                value: (step + 1).to_string(),
+            },
+            Write::text("tour-count", counter(step)),
+            Write::text("tour-title", s.title),
+            Write::text("tour-text", s.text),
+            Write::text("tour-next", if last { "Finish" } else { "Next" }),
+            Write::Flag {
+                id: "tour-back".into(),
+                name: "disabled",
+                on: step == 0,
+            },
+        ]);
+        if scroll {
+            w.push(Write::Scroll(s.target.into()));
+        }
+        w
+    }
+}

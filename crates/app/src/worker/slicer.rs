@@ -1,0 +1,70 @@
+//! When a Web Worker yields: it computes in slices of about
+//! [`SLICE_MS`], yielding to its event loop after each so that newer jobs
+//! and cancels arrive, and after [`PAUSE_EVERY_MS`] of work it pauses
+//! [`SLICE_PAUSE_MS`] on a timer: on two cores, two busy workers otherwise
+//! leave the page's main thread too little CPU to draw within 100 ms.
+//! `web/worker.rs` keeps the clock and the event loop; this decides.
+
+/// A worker's time slice (ms) before it yields to its event loop.
+pub const SLICE_MS: f64 = 25.0;
+/// The pause (ms) after [`PAUSE_EVERY_MS`] of work.
+pub const SLICE_PAUSE_MS: i32 = 3;
+/// Work (ms) between two pauses.
+pub const PAUSE_EVERY_MS: f64 = 100.0;
+
+/// What a worker does after a slice.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Next {
+    /// No work left: wait for a message.
+    Idle,
+    /// Go on at once after the event loop (an unclamped channel message).
+    Yield,
+    /// Go on after a [`SLICE_PAUSE_MS`] timer.
+    Pause,
+}
+
+/// The work done since the last pause.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Slicer {
+    busy_ms: f64,
+}
+
+impl Slicer {
+    /// Whether a slice begun `elapsed_ms` ago is over.
+    pub fn over(elapsed_ms: f64) -> bool {
+        elapsed_ms > SLICE_MS
+    }
+
+    /// After a slice of `elapsed_ms`, with work left or not.
+    pub fn after(&mut self, elapsed_ms: f64, has_work: bool) -> Next {
+        if !has_work {
+            self.busy_ms = 0.0;
+            return Next::Idle;
+        }
+        self.busy_ms += elapsed_ms;
+        if self.busy_ms > PAUSE_EVERY_MS {
+            self.busy_ms = 0.0;
+            Next::Pause
+        } else {
+            Next::Yield
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_busy_worker_pauses_once_per_hundred_ms_of_work_and_idles_without_work() {
+        let mut s = Slicer::default();
+        assert!(!Slicer::over(SLICE_MS) && Slicer::over(SLICE_MS + 1.0));
+        // Four slices of 26 ms: the fourth passes 100 ms and pauses.
+        let next: Vec<Next> = (0..5).map(|_| s.after(26.0, true)).collect();
+        use Next::*;
+        assert_eq!(next, [Yield, Yield, Yield, Pause, Yield]);
+        assert_eq!(s.after(10.0, false), Idle);
+        // Idle resets the count.
+        assert_eq!(s.after(90.0, true), Yield);
+    }
+}

@@ -1,0 +1,130 @@
+//! `gearshock boundaries`: the regime map's boundaries traced as curves in
+//! Omega and one key (folds of the periodic branch, where the response
+//! jumps; where the drive flanks start to part and the back flanks start
+//! to touch; the cusps where a jump disappears). A solver failure still
+//! writes the curves traced up to there, marked incomplete, and exits
+//! with code 1.
+
+use crate::args::{OmegaRange, ParamArgs};
+use crate::budget::MAX_BOUNDARY_WORK;
+use crate::csv;
+use crate::failure::{usage, Failure};
+use crate::output::{note, output};
+use crate::sweep::{self, Sweep};
+use clap::Args;
+use solver::boundaries::{BoundarySpec, BoundaryTrace};
+use solver::hbm::Method;
+use solver::keys;
+use solver::SolverError;
+
+/// Options of `gearshock boundaries`.
+#[derive(Debug, Args)]
+pub struct BoundariesArgs {
+    #[command(flatten)]
+    p: ParamArgs,
+    #[command(flatten)]
+    range: OmegaRange,
+    /// The key varied with Omega: one that leaves the natural modes
+    /// unchanged (backlash_um, te_um, damping_ratio, stiffness_variation,
+    /// a torque, a per-mesh backlash or TE key).
+    #[arg(long, default_value = "backlash_um")]
+    key: String,
+    /// First value of the key.
+    #[arg(long, allow_hyphen_values = true)]
+    value_from: f64,
+    /// Last value of the key.
+    #[arg(long, allow_hyphen_values = true)]
+    value_to: f64,
+    /// Values of the key (spread over its range) at which a frequency
+    /// response seeds the curves (2 ..= 50).
+    #[arg(long, default_value_t = 5)]
+    levels: u32,
+    /// Resolution: a curve's step moves at most 1 / points of the plane,
+    /// and each seeding response has this many nominal points (10 ..= 2000).
+    #[arg(long, default_value_t = 100)]
+    points: u32,
+    /// Harmonics H (1 ..= 40).
+    #[arg(long, default_value_t = 7)]
+    harmonics: usize,
+    /// exact (closed-form integration between the contact switches) or aft.
+    #[arg(long, default_value = "exact")]
+    method: String,
+}
+
+/// The trace as a sweep of per mille of its work (levels, then curves); a
+/// failure ends it and is kept, so the curves up to there are still written.
+struct Trace {
+    t: BoundaryTrace,
+    failure: Option<SolverError>,
+}
+
+impl Sweep for Trace {
+    type Item = ();
+    fn total(&self) -> usize {
+        1000
+    }
+    fn done(&self) -> usize {
+        (self.t.progress() * 1000.0) as usize
+    }
+    fn is_finished(&self) -> bool {
+        self.failure.is_some() || self.t.is_finished()
+    }
+    fn advance(&mut self) -> Result<Vec<()>, Failure> {
+        if let Err(e) = self.t.advance(16) {
+            self.failure = Some(e);
+        }
+        Ok(Vec::new())
+    }
+}
+
+/// Checks the options and the budget, traces the curves and prints them.
+pub fn run(a: &BoundariesArgs) -> Result<(), Failure> {
+    let (params, model) = a.p.load()?;
+    let mut spec = BoundarySpec::new(
+        &a.key,
+        (a.value_from + 0.0, a.value_to + 0.0),
+        (a.range.omega_from, a.range.omega_to),
+    );
+    spec.levels = a.levels;
+    spec.points = a.points;
+    spec.harmonics = a.harmonics;
+    spec.method = match Method::from_name(&a.method) {
+        Some(m @ (Method::Exact | Method::Aft)) => m,
+        _ => {
+            return Err(usage(format!(
+                "--method {}: allowed exact, aft",
+                keys::truncate(&a.method, 30)
+            )))
+        }
+    };
+    // Out-of-range levels, points and harmonics are refused by the
+    // solver's own check, naming them; the budget is their product.
+    if (2..=50).contains(&a.levels) && (10..=2000).contains(&a.points) && a.harmonics <= 40 {
+        let work = u64::from(a.levels) * u64::from(a.points) * (2 * a.harmonics as u64 + 1).pow(3);
+        if work > MAX_BOUNDARY_WORK {
+            return Err(usage(format!(
+                "--levels {} x --points {} x (2 x --harmonics {} + 1)^3 = {work} is more than the {} \
+                 one boundary trace may take: use fewer levels, points or harmonics",
+                a.levels, a.points, a.harmonics, MAX_BOUNDARY_WORK
+            )));
+        }
+    }
+    let mut run = Trace {
+        t: BoundaryTrace::new(&params, spec)?,
+        failure: None,
+    };
+    sweep::run(&mut run, &a.p, "per mille of the work", None)?;
+    let Trace { t: trace, failure } = run;
+    let value = report::boundaries_json(&model, &params, &trace, failure.as_ref());
+    output(a.p.format, &value, csv::boundaries)?;
+    for n in trace.notes() {
+        note(&format!("note: {n}"));
+    }
+    match failure {
+        Some(e) => Err(Failure {
+            code: 1,
+            message: format!("{e} (the curves up to there were written, marked incomplete)"),
+        }),
+        None => Ok(()),
+    }
+}

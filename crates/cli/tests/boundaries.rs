@@ -1,0 +1,76 @@
+//! `gearshock boundaries`: the curves as JSON and CSV, and bad input
+//! refused naming the flag and its range.
+
+// Tests may panic: that is how they fail.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+use test_support::cli::{json, ok, refused, words};
+
+const TRACE: &str = "boundaries --model gear-pair --key te_um --value-from 0.2 --value-to 40 \
+     --omega-from 0.4 --omega-to 1.3 --points 40";
+
+#[test]
+fn the_curves_are_json_with_kinds_points_and_cusps_and_csv_alike() {
+    let v = json(&words(TRACE));
+    let curves = v["curves"].as_array().unwrap();
+    assert!(curves.iter().any(|c| c["kind"] == "fold"), "{v}");
+    assert!(
+        curves.iter().any(|c| c["kind"] == "drive-flanks-part"),
+        "{v}"
+    );
+    for c in curves {
+        for p in c["points"].as_array().unwrap() {
+            let (w, x) = (p["omega"].as_f64().unwrap(), p["value"].as_f64().unwrap());
+            assert!((0.4..=1.3).contains(&w) && (0.2..=40.0).contains(&x), "{p}");
+            assert!(p["stable_side"].is_string(), "{p}");
+        }
+    }
+    // The secondary jump near Omega 0.46 disappears at a cusp.
+    let cusps = v["cusps"].as_array().unwrap();
+    assert!(!cusps.is_empty(), "{v}");
+    assert_eq!(v["complete"], true);
+    // CSV: a header, one row per point, one per cusp.
+    let mut args = words(TRACE);
+    args.extend(["--format", "csv"]);
+    let text = String::from_utf8(ok(&args)).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("curve,kind,omega,te_um,stable_side"));
+    let points: usize = curves
+        .iter()
+        .map(|c| c["points"].as_array().unwrap().len())
+        .sum();
+    assert_eq!(lines.count(), points + cusps.len());
+}
+
+#[test]
+fn bad_input_names_the_flag_and_its_range() {
+    let base = "boundaries --model gear-pair --omega-from 0.4 --omega-to 1.3";
+    let cases: [(&str, &[&str]); 4] = [
+        (
+            "--key te_um --value-from 10 --value-to 10",
+            &["value-to", "10"],
+        ),
+        (
+            "--key stiffness_n_m --value-from 1e8 --value-to 1e9",
+            &["key", "stiffness_n_m", "backlash_um"],
+        ),
+        (
+            "--key te_um --value-from 1 --value-to 40 --levels 50 --points 2000",
+            &["--levels 50", "--points 2000", "more than"],
+        ),
+        (
+            "--key te_um --value-from 1 --value-to 40 --levels 1",
+            &["levels", "2 ..= 50"],
+        ),
+    ];
+    for (extra, needles) in cases {
+        let line = format!("{base} {extra}");
+        refused(&words(&line), needles);
+    }
+    refused(
+        &words(
+            "boundaries --key te_um --value-from 1 --value-to 10 --omega-from 1.3 --omega-to 0.4",
+        ),
+        &["omega-to"],
+    );
+}

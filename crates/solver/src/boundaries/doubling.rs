@@ -1,0 +1,193 @@
+//! The period-doubling test function on the harmonic-balance branch: the
+//! monodromy matrix `M` of the orbit (as [`crate::hbm::stability`] computes
+//! its Floquet multipliers) has a multiplier at -1 where the bordered
+//! `[M + I b; c^T 0] [v; g] = [0; 1]` gives `g = 0`. `g`'s gradient is
+//! differenced (one monodromy per unknown): the monodromy is integrated
+//! piecewise between the contact switches, so its derivatives have no
+//! closed form here.
+//!
+//! Stable side: the side where the critical multiplier is inside the unit
+//! circle (`lambda > -1`), read from how `g` and `lambda + 1` move together
+//! along the branch.
+
+use super::family::Family;
+use super::systems::{bordered_solve, Eval};
+use crate::error::{Result, SolverError};
+use crate::hbm::stability::monodromy_matrices;
+use nalgebra::{DMatrix, DVector};
+
+/// Whether every multiplier but the one closest to -1 (of `block`) is
+/// inside the unit circle; `None` if the monodromy failed.
+fn others_stable(fam: &mut Family, x: &[f64], omega: f64, p: f64, block: usize) -> Option<bool> {
+    let asm = fam.assembly(p).ok()?;
+    let (main, planet) = monodromy_matrices(asm, x, omega)?;
+    let mut all: Vec<(usize, nalgebra::Complex<f64>)> =
+        main.complex_eigenvalues().iter().map(|&z| (0, z)).collect();
+    if let Some(pl) = planet {
+        all.extend(pl.complex_eigenvalues().iter().map(|&z| (1, z)));
+    }
+    let critical = all
+        .iter()
+        .enumerate()
+        .filter(|(_, (b, _))| *b == block)
+        .min_by(|(_, (_, u)), (_, (_, v))| (u + 1.0).norm().total_cmp(&(v + 1.0).norm()))
+        .map(|(i, _)| i)?;
+    Some(
+        all.iter()
+            .enumerate()
+            .all(|(i, (_, z))| i == critical || z.norm() <= 1.0 + 1e-6),
+    )
+}
+
+/// `M + I` of block `block` (0: the main block, 1: the planet block).
+fn shifted(fam: &mut Family, x: &[f64], omega: f64, p: f64, block: usize) -> Result<DMatrix<f64>> {
+    let asm = fam.assembly(p)?;
+    let failed = || SolverError::Singular {
+        what: format!("monodromy at Omega = {omega}"),
+    };
+    let (main, planet) = monodromy_matrices(asm, x, omega).ok_or_else(failed)?;
+    let mut mat = if block == 0 {
+        main
+    } else {
+        planet.ok_or_else(failed)?
+    };
+    for i in 0..mat.nrows() {
+        mat[(i, i)] += 1.0;
+    }
+    Ok(mat)
+}
+
+/// The real multiplier closest to -1 of block `block`, plus one.
+fn critical(fam: &mut Family, x: &[f64], omega: f64, p: f64, block: usize) -> Result<f64> {
+    let a = shifted(fam, x, omega, p, block)?;
+    let eig = a.complex_eigenvalues();
+    Ok(eig
+        .iter()
+        .min_by(|u, v| u.norm().total_cmp(&v.norm()))
+        .map_or(f64::NAN, |z| z.re))
+}
+
+/// The block whose multiplier is closest to -1 at `(x, omega, p)`, and the
+/// bordering vectors for it (the smallest singular value's vectors of `M + I`).
+pub(crate) fn start(
+    fam: &mut Family,
+    x: &[f64],
+    omega: f64,
+    p: f64,
+) -> Result<(usize, DVector<f64>, DVector<f64>)> {
+    let mut best: Option<(f64, usize)> = None;
+    for block in 0..2 {
+        if let Ok(mu) = critical(fam, x, omega, p, block) {
+            if best.is_none_or(|(b, _)| mu.abs() < b) {
+                best = Some((mu.abs(), block));
+            }
+        }
+    }
+    let (_, block) = best.ok_or_else(|| SolverError::Singular {
+        what: format!("monodromy at Omega = {omega}"),
+    })?;
+    let a = shifted(fam, x, omega, p, block)?;
+    let n = a.nrows();
+    let svd = a.svd(true, true);
+    let (Some(u), Some(vt)) = (svd.u, svd.v_t) else {
+        return Err(SolverError::Singular {
+            what: format!("period-doubling start at Omega = {omega}"),
+        });
+    };
+    let k = (0..n)
+        .min_by(|&i, &j| svd.singular_values[i].total_cmp(&svd.singular_values[j]))
+        .unwrap_or(0);
+    Ok((block, u.column(k).into_owned(), vt.row(k).transpose()))
+}
+
+/// `g` and the right null vector `v` at `(x, omega, p)`.
+fn test(
+    fam: &mut Family,
+    z: &[f64],
+    block: usize,
+    b: &DVector<f64>,
+    c: &DVector<f64>,
+) -> Result<(f64, DVector<f64>)> {
+    let nx = z.len() - 2;
+    let a = shifted(fam, &z[..nx], z[nx], z[nx + 1], block)?;
+    bordered_solve(&a, b, c, z[nx])
+}
+
+/// The period-doubling system at `z = (X, Omega, p)`.
+pub(crate) fn eval(
+    fam: &mut Family,
+    z: &[f64],
+    block: usize,
+    b: &DVector<f64>,
+    c: &DVector<f64>,
+    v_out: &mut DVector<f64>,
+) -> Result<Eval> {
+    let nx = z.len() - 2;
+    let (x, omega, p) = (&z[..nx], z[nx], z[nx + 1]);
+    let mut r = vec![0.0; nx];
+    let mut j = DMatrix::zeros(nx, nx + 1);
+    fam.evaluate(x, omega, p, &mut r, Some(&mut j))?;
+    let (lo, hi) = fam.neighbours(p);
+    let (mut rp, mut rm) = (vec![0.0; nx], vec![0.0; nx]);
+    fam.evaluate(x, omega, hi, &mut rp, None)?;
+    fam.evaluate(x, omega, lo, &mut rm, None)?;
+    let r_p: Vec<f64> = (0..nx).map(|i| (rp[i] - rm[i]) / (hi - lo)).collect();
+    let (g, v) = test(fam, z, block, b, c)?;
+    let scale = 1.0 + x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut grad = vec![0.0; nx + 2];
+    let mut zz = z.to_vec();
+    for (i, gi) in grad.iter_mut().enumerate() {
+        let h = if i < nx {
+            1e-6 * scale
+        } else if i == nx {
+            1e-7 * (1.0 + omega.abs())
+        } else {
+            fam.dp
+        };
+        let keep = zz[i];
+        zz[i] = keep + h;
+        let (gh, _) = test(fam, &zz, block, b, c)?;
+        zz[i] = keep;
+        *gi = (gh - g) / h;
+    }
+    let mut res = DVector::zeros(nx + 1);
+    let mut jac = DMatrix::zeros(nx + 1, nx + 2);
+    for i in 0..nx {
+        res[i] = r[i];
+        for k in 0..=nx {
+            jac[(i, k)] = j[(i, k)];
+        }
+        jac[(i, nx + 1)] = r_p[i];
+    }
+    res[nx] = g;
+    for (k, &gk) in grad.iter().enumerate() {
+        jac[(nx, k)] = gk;
+    }
+    // g along the branch: dX = -J^-1 (R_Omega dOmega + R_p dp).
+    let lu = j.columns(0, nx).into_owned().lu();
+    let g_x = DVector::from_column_slice(&grad[..nx]);
+    let (dx_om, dx_p) = match (
+        lu.solve(&j.column(nx).into_owned()),
+        lu.solve(&DVector::from_vec(r_p)),
+    ) {
+        (Some(a), Some(b)) => (-a, -b),
+        _ => (DVector::zeros(nx), DVector::zeros(nx)),
+    };
+    let g_om = g_x.dot(&dx_om) + grad[nx];
+    let g_p = g_x.dot(&dx_p) + grad[nx + 1];
+    // Whether g grows with lambda + 1: a small step along the branch in Omega.
+    let step = 1e-4 * (1.0 + omega.abs());
+    let moved: Vec<f64> = (0..nx).map(|i| x[i] + step * dx_om[i]).collect();
+    let mu0 = critical(fam, x, omega, p, block)?;
+    let mu1 = critical(fam, &moved, omega + step, p, block)?;
+    let orient = if (mu1 - mu0) * g_om >= 0.0 { 1.0 } else { -1.0 };
+    *v_out = v;
+    Ok(Eval {
+        res,
+        jac,
+        side: (orient * g_om, orient * g_p),
+        cusp: 0.0,
+        scale,
+        others_stable: others_stable(fam, x, omega, p, block),
+    })
+}

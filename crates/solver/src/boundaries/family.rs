@@ -1,0 +1,155 @@
+//! The harmonic-balance residual as a function of the orbit, Omega and a
+//! second parameter `p` (any numeric key that leaves the modal basis
+//! unchanged): one [`Assembly`] per value of `p`, built from the parameter
+//! set through the key table, and the derivatives in `p` by central
+//! differences.
+
+use crate::error::{Result, SolverError};
+use crate::hbm::harmonic::Grid;
+use crate::hbm::{Assembly, HbmModel, Method};
+use crate::keys::{self, KeyType, Value};
+use crate::model::Model;
+use crate::params::ModelParams;
+use nalgebra::DMatrix;
+
+/// Assemblies kept for recent values of `p` (the point and its two
+/// difference neighbours).
+const CACHE: usize = 6;
+
+/// The family of harmonic-balance problems along a parameter key.
+#[derive(Debug, Clone)]
+pub(crate) struct Family {
+    base: ModelParams,
+    key: String,
+    h: usize,
+    method: Method,
+    symmetric: bool,
+    /// Allowed range of the key.
+    key_min: f64,
+    key_max: f64,
+    /// Relative step of the differences in `p` (of the traced range).
+    pub(crate) dp: f64,
+    cache: Vec<(u64, Assembly)>,
+}
+
+impl Family {
+    /// The family along `key` from `base`; `p_scale` is the traced range
+    /// (sets the difference step).
+    pub(crate) fn new(
+        base: &ModelParams,
+        key: &str,
+        h: usize,
+        method: Method,
+        symmetric: bool,
+        p_scale: f64,
+    ) -> Result<Self> {
+        let spec = keys::spec(key).ok_or_else(|| SolverError::UnknownKey {
+            key: key.into(),
+            hint: String::new(),
+        })?;
+        let (key_min, key_max) = match spec.ty {
+            KeyType::Float { min, max } => (min, max),
+            _ => {
+                return Err(SolverError::BadOption {
+                    option: "key".into(),
+                    value: key.into(),
+                    allowed: "a key with a real-number value".into(),
+                })
+            }
+        };
+        Ok(Family {
+            base: base.clone(),
+            key: key.into(),
+            h,
+            method,
+            symmetric,
+            key_min,
+            key_max,
+            dp: 1e-6 * p_scale.abs().max(1e-3),
+            cache: Vec::new(),
+        })
+    }
+
+    /// The parameter set at `p`.
+    pub(crate) fn params_at(&self, p: f64) -> Result<ModelParams> {
+        let mut params = self.base.clone();
+        keys::set(&mut params, &self.key, Value::Num(p))?;
+        Ok(params)
+    }
+
+    /// The compiled model at `p`.
+    pub(crate) fn model_at(&self, p: f64) -> Result<Model> {
+        Model::new(&self.params_at(p)?)
+    }
+
+    /// The harmonic-balance problem at `p` (as the one-parameter
+    /// continuation builds it).
+    pub(crate) fn hbm_at(&self, p: f64) -> Result<HbmModel> {
+        HbmModel::from_system(&self.model_at(p)?.system, self.symmetric)
+    }
+
+    /// The evaluator at `p`, built once per value.
+    pub(crate) fn assembly(&mut self, p: f64) -> Result<&mut Assembly> {
+        let bits = p.to_bits();
+        let index = match self.cache.iter().position(|(b, _)| *b == bits) {
+            Some(i) => i,
+            None => {
+                let hbm = self.hbm_at(p)?;
+                let grid = Grid::default_size(self.h);
+                if self.cache.len() >= CACHE {
+                    self.cache.remove(0);
+                }
+                self.cache
+                    .push((bits, Assembly::new(hbm, self.h, self.method, grid)));
+                self.cache.len() - 1
+            }
+        };
+        Ok(&mut self.cache[index].1)
+    }
+
+    /// The two values of `p` a derivative is differenced over, and their
+    /// distance: central inside the key's range, one-sided at its ends.
+    pub(crate) fn neighbours(&self, p: f64) -> (f64, f64) {
+        let lo = (p - self.dp).max(self.key_min);
+        let hi = (p + self.dp).min(self.key_max);
+        (lo, hi)
+    }
+
+    /// Residual and Jacobian (`n_x` columns of `dR/dX`, then `dR/dOmega`) at
+    /// `(x, omega, p)`.
+    pub(crate) fn evaluate(
+        &mut self,
+        x: &[f64],
+        omega: f64,
+        p: f64,
+        r: &mut [f64],
+        jac: Option<&mut DMatrix<f64>>,
+    ) -> Result<()> {
+        self.assembly(p)?.evaluate(x, omega, r, jac);
+        if r.iter().all(|v| v.is_finite()) {
+            Ok(())
+        } else {
+            Err(SolverError::NotConverged {
+                omega,
+                residual: f64::NAN,
+                iterations: 0,
+            })
+        }
+    }
+
+    /// Whether the key changes only what the harmonic balance's laws, loads
+    /// and damping hold, so that the coordinates mean the same at every
+    /// value: the modal basis at `a` and `b` is the same.
+    pub(crate) fn same_basis(&self, a: f64, b: f64) -> Result<bool> {
+        let (ha, hb) = (self.hbm_at(a)?, self.hbm_at(b)?);
+        Ok(ha.m == hb.m
+            && ha.transform == hb.transform
+            && ha.stiffness == hb.stiffness
+            && ha.channels.len() == hb.channels.len()
+            && ha
+                .channels
+                .iter()
+                .zip(&hb.channels)
+                .all(|(x, y)| x.d == y.d))
+    }
+}

@@ -1,0 +1,367 @@
+//! Pseudo-arclength continuation of an augmented system's solution curve
+//! in `(X, aux, Omega, p)`: tangent predictor, Newton corrector on the
+//! system bordered by the arclength equation, step control from the
+//! corrector's effort and the tangent's turn, and the curve's ends (it
+//! leaves the box of the two ranges, closes on itself, or the corrector
+//! fails at the smallest step).
+//!
+//! The metric measures Omega and `p` in units of their ranges, the orbit's
+//! coefficients in units of three times their RMS at the start (at least
+//! 1 um) and the auxiliary phase in units of a period, so that a step of
+//! `ds` moves the curve by at most `ds` of the box in the plane.
+
+use super::family::Family;
+use super::systems::{Eval, System};
+use crate::error::{Result, SolverError};
+use nalgebra::{DMatrix, DVector};
+use std::f64::consts::PI;
+
+const NEWTON_MAX: usize = 12;
+/// Converged when the scaled Newton step is below this.
+const STEP_TOL: f64 = 1e-10;
+/// Largest turn of the tangent per step (radians).
+const ALPHA_MAX: f64 = 0.25;
+
+/// The box the curve is traced in: `(omega_lo, omega_hi, p_lo, p_hi)`.
+pub(crate) type Bounds = (f64, f64, f64, f64);
+
+/// One traced point.
+#[derive(Debug, Clone)]
+pub(crate) struct Traced {
+    /// The unknowns.
+    pub(crate) z: Vec<f64>,
+    /// See [`Eval::side`].
+    pub(crate) side: (f64, f64),
+    /// See [`Eval::cusp`].
+    pub(crate) cusp: f64,
+    /// See [`Eval::others_stable`].
+    pub(crate) others_stable: Option<bool>,
+}
+
+/// How one direction of a curve ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TraceEnd {
+    /// It left the box of the two ranges.
+    LeftRange,
+    /// It came back to its start.
+    Closed,
+    /// The corrector failed at the smallest step.
+    Failed,
+    /// It used its point budget.
+    Budget,
+}
+
+/// One step's outcome.
+#[derive(Debug, Clone)]
+pub(crate) enum Stepped {
+    /// A new point inside the box.
+    Point(Traced),
+    /// The end of this direction, with the last point (clipped to the box)
+    /// if there is one.
+    End(TraceEnd, Option<Traced>),
+}
+
+/// A curve being traced in one direction.
+#[derive(Debug, Clone)]
+pub(crate) struct Tracer {
+    pub(crate) system: System,
+    metric: Vec<f64>,
+    bounds: Bounds,
+    z: Vec<f64>,
+    t: Vec<f64>,
+    /// The tangent at the start (the other direction starts along its opposite).
+    t0: Vec<f64>,
+    start: Vec<f64>,
+    ds: f64,
+    ds_max: f64,
+    steps: usize,
+    max_steps: usize,
+    last: Option<Traced>,
+    /// Newton iterations so far.
+    pub(crate) newton_iterations: u64,
+}
+
+fn rms(v: &[f64]) -> f64 {
+    if v.is_empty() {
+        return 0.0;
+    }
+    (v.iter().map(|x| x * x).sum::<f64>() / v.len() as f64).sqrt()
+}
+
+impl Tracer {
+    /// A tracer for `system` from the guess `z0`, first corrected at fixed
+    /// `p`; `m` is the number of coordinates (the mean's coefficients are
+    /// left out of the scale), `ds_max` the largest step in the box.
+    pub(crate) fn start(
+        fam: &mut Family,
+        mut system: System,
+        z0: Vec<f64>,
+        m: usize,
+        bounds: Bounds,
+        ds_max: f64,
+    ) -> Result<(Self, Traced)> {
+        let n = z0.len();
+        let n_aux = system.n_aux();
+        let nx = n - 2 - n_aux;
+        let scale = (3.0 * rms(&z0[m.min(nx)..nx])).max(1.0);
+        let mut metric = vec![1.0 / (scale * scale * nx as f64); n];
+        for w in metric.iter_mut().skip(nx).take(n_aux) {
+            *w = 1.0 / (4.0 * PI * PI);
+        }
+        let (om, pr) = (bounds.1 - bounds.0, bounds.3 - bounds.2);
+        metric[n - 2] = 1.0 / (om * om);
+        metric[n - 1] = 1.0 / (pr * pr);
+        let mut tracer = Tracer {
+            system: system.clone(),
+            metric,
+            bounds,
+            z: z0.clone(),
+            t: vec![0.0; n],
+            t0: vec![0.0; n],
+            start: z0.clone(),
+            ds: 0.25 * ds_max,
+            ds_max,
+            steps: 0,
+            max_steps: (40.0 / ds_max) as usize + 100,
+            last: None,
+            newton_iterations: 0,
+        };
+        // At fixed p: the arclength row is the unit vector of p.
+        let mut row = vec![0.0; n];
+        row[n - 1] = 1.0;
+        let (z, ev, _) = tracer.correct(fam, &z0, &row)?;
+        tracer.system.accept();
+        system = tracer.system.clone();
+        // The tangent: the null vector of the system's Jacobian.
+        let mut sq = DMatrix::zeros(n, n);
+        sq.view_mut((0, 0), (n - 1, n)).copy_from(&ev.jac);
+        let svd = sq.svd(false, true);
+        let vt = svd.v_t.ok_or_else(|| SolverError::Singular {
+            what: "tangent of a boundary curve".into(),
+        })?;
+        let k = (0..n)
+            .min_by(|&a, &b| svd.singular_values[a].total_cmp(&svd.singular_values[b]))
+            .unwrap_or(0);
+        let mut t: Vec<f64> = vt.row(k).iter().copied().collect();
+        tracer.normalize(&mut t);
+        tracer.system = system;
+        tracer.z = z.clone();
+        tracer.start = z;
+        tracer.t0 = t.clone();
+        tracer.t = t;
+        let first = tracer.traced(&ev);
+        tracer.last = Some(first.clone());
+        Ok((tracer, first))
+    }
+
+    /// The same curve from the same start, in the other direction.
+    pub(crate) fn reversed(&self, first: &Traced) -> Self {
+        let mut r = self.clone();
+        r.z = first.z.clone();
+        r.start = first.z.clone();
+        r.t = self.t0_reversed();
+        r.ds = 0.25 * self.ds_max;
+        r.steps = 0;
+        r.last = Some(first.clone());
+        r.newton_iterations = 0;
+        r
+    }
+
+    fn t0_reversed(&self) -> Vec<f64> {
+        self.t0.iter().map(|v| -v).collect()
+    }
+
+    fn normalize(&self, t: &mut [f64]) {
+        let norm = (0..t.len())
+            .map(|i| self.metric[i] * t[i] * t[i])
+            .sum::<f64>()
+            .sqrt();
+        for v in t.iter_mut() {
+            *v /= norm;
+        }
+    }
+
+    fn traced(&self, ev: &Eval) -> Traced {
+        Traced {
+            z: self.z.clone(),
+            side: ev.side,
+            cusp: ev.cusp,
+            others_stable: ev.others_stable,
+        }
+    }
+
+    fn inside(&self, z: &[f64]) -> bool {
+        let n = z.len();
+        let (om, p) = (z[n - 2], z[n - 1]);
+        let (a, b, c, d) = self.bounds;
+        let tol = 1e-12;
+        om >= a - tol * (b - a)
+            && om <= b + tol * (b - a)
+            && p >= c - tol * (d - c)
+            && p <= d + tol * (d - c)
+    }
+
+    /// Newton on the system bordered by `row . (z - pred) = 0`.
+    fn correct(
+        &mut self,
+        fam: &mut Family,
+        pred: &[f64],
+        row: &[f64],
+    ) -> Result<(Vec<f64>, Eval, usize)> {
+        let n = pred.len();
+        let mut z = pred.to_vec();
+        let mut last_res = f64::NAN;
+        for iteration in 1..=NEWTON_MAX {
+            let ev = self.system.eval(fam, &z)?;
+            self.newton_iterations += 1;
+            let mut a = DMatrix::zeros(n, n);
+            a.view_mut((0, 0), (n - 1, n)).copy_from(&ev.jac);
+            let mut g = DVector::zeros(n);
+            g.rows_mut(0, n - 1).copy_from(&ev.res);
+            for i in 0..n {
+                a[(n - 1, i)] = row[i];
+                g[n - 1] += row[i] * (z[i] - pred[i]);
+            }
+            last_res = ev.res.amax();
+            let dz = a.lu().solve(&g).ok_or_else(|| SolverError::Singular {
+                what: format!("boundary corrector at Omega = {}", z[n - 2]),
+            })?;
+            let step = (0..n)
+                .map(|i| dz[i].abs() * self.metric[i].sqrt())
+                .fold(0.0, f64::max);
+            for i in 0..n {
+                z[i] -= dz[i];
+            }
+            if !step.is_finite() {
+                break;
+            }
+            if step <= STEP_TOL {
+                let ev = self.system.eval(fam, &z)?;
+                if ev.res.amax() <= 1e-6 * ev.scale {
+                    return Ok((z, ev, iteration));
+                }
+                last_res = ev.res.amax();
+                break;
+            }
+        }
+        Err(SolverError::NotConverged {
+            omega: z[n - 2],
+            residual: last_res,
+            iterations: NEWTON_MAX,
+        })
+    }
+
+    /// The tangent at a converged point: `[J; row] t = [0; 1]`, in the
+    /// metric's unit length, oriented like the last one.
+    fn tangent(&self, ev: &Eval, row: &[f64]) -> Option<Vec<f64>> {
+        let n = row.len();
+        let mut a = DMatrix::zeros(n, n);
+        a.view_mut((0, 0), (n - 1, n)).copy_from(&ev.jac);
+        for i in 0..n {
+            a[(n - 1, i)] = row[i];
+        }
+        let mut e = DVector::zeros(n);
+        e[n - 1] = 1.0;
+        let t = a.lu().solve(&e)?;
+        let mut t: Vec<f64> = t.iter().copied().collect();
+        self.normalize(&mut t);
+        let dot: f64 = (0..n).map(|i| self.metric[i] * t[i] * self.t[i]).sum();
+        if dot < 0.0 {
+            t.iter_mut().for_each(|v| *v = -*v);
+        }
+        Some(t)
+    }
+
+    /// One predictor-corrector step.
+    pub(crate) fn step(&mut self, fam: &mut Family) -> Stepped {
+        let n = self.z.len();
+        let ds_min = 1e-4 * self.ds_max;
+        if self.steps >= self.max_steps {
+            return Stepped::End(TraceEnd::Budget, None);
+        }
+        loop {
+            let ds = self.ds;
+            let pred: Vec<f64> = (0..n).map(|i| self.z[i] + ds * self.t[i]).collect();
+            let row: Vec<f64> = (0..n).map(|i| self.metric[i] * self.t[i]).collect();
+            let outcome = self.correct(fam, &pred, &row).and_then(|(z, ev, it)| {
+                let t = self
+                    .tangent(&ev, &row)
+                    .ok_or_else(|| SolverError::Singular {
+                        what: "boundary tangent".into(),
+                    })?;
+                Ok((z, ev, it, t))
+            });
+            match outcome {
+                Ok((z, ev, iterations, t)) => {
+                    let cos: f64 = (0..n).map(|i| self.metric[i] * t[i] * self.t[i]).sum();
+                    let alpha = cos.clamp(-1.0, 1.0).acos();
+                    if alpha > ALPHA_MAX && ds > ds_min {
+                        self.ds = (ds * 0.5).max(ds_min);
+                        continue;
+                    }
+                    self.ds = if iterations <= 3 && alpha < 0.5 * ALPHA_MAX {
+                        (ds * 1.5).min(self.ds_max)
+                    } else if iterations >= 6 {
+                        (ds * 0.6).max(ds_min)
+                    } else {
+                        ds
+                    };
+                    self.steps += 1;
+                    self.system.accept();
+                    self.z = z;
+                    self.t = t;
+                    let point = self.traced(&ev);
+                    if !self.inside(&self.z) {
+                        let clipped = self.clip(point);
+                        return Stepped::End(TraceEnd::LeftRange, Some(clipped));
+                    }
+                    let back: f64 = (0..n)
+                        .map(|i| self.metric[i] * (self.z[i] - self.start[i]).powi(2))
+                        .sum::<f64>()
+                        .sqrt();
+                    self.last = Some(point.clone());
+                    if self.steps > 8 && back < 1.5 * ds {
+                        let mut closing = point;
+                        closing.z = self.start.clone();
+                        return Stepped::End(TraceEnd::Closed, Some(closing));
+                    }
+                    return Stepped::Point(point);
+                }
+                Err(_) if ds > ds_min => {
+                    self.ds = (ds * 0.5).max(ds_min);
+                }
+                Err(_) => return Stepped::End(TraceEnd::Failed, None),
+            }
+        }
+    }
+
+    /// The point where the segment from the last point to `p` leaves the
+    /// box (linear in Omega and p).
+    fn clip(&self, p: Traced) -> Traced {
+        let Some(last) = &self.last else { return p };
+        let n = p.z.len();
+        let (a0, b0) = (last.z[n - 2], last.z[n - 1]);
+        let (a1, b1) = (p.z[n - 2], p.z[n - 1]);
+        let (lo, hi, plo, phi) = self.bounds;
+        let mut s: f64 = 1.0;
+        let frac = |from: f64, to: f64, edge: f64| (edge - from) / (to - from);
+        if a1 > hi {
+            s = s.min(frac(a0, a1, hi));
+        }
+        if a1 < lo {
+            s = s.min(frac(a0, a1, lo));
+        }
+        if b1 > phi {
+            s = s.min(frac(b0, b1, phi));
+        }
+        if b1 < plo {
+            s = s.min(frac(b0, b1, plo));
+        }
+        let s = s.clamp(0.0, 1.0);
+        let mut out = p;
+        out.z = (0..n)
+            .map(|i| last.z[i] + s * (out.z[i] - last.z[i]))
+            .collect();
+        out
+    }
+}

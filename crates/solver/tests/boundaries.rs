@@ -1,0 +1,334 @@
+//! Boundaries traced in two parameters on the single gear pair (Kahraman &
+//! Singh's form), against independent facts: one-parameter continuations
+//! at levels the trace did not start from, one-parameter runs on either
+//! side of each cusp, and time integration on either side of each contact
+//! boundary.
+
+// Tests may panic: that is how they fail.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+use solver::boundaries::{BoundarySpec, BoundaryTrace, Curve, CurveKind, Side};
+use solver::hbm::{Bifurcation, FrfContinuation, FrfSpec};
+use solver::keys;
+use solver::params::ModelParams;
+use solver::steady::{steady_state, Impact, Model, SteadyOptions};
+use solver::SolverError;
+use std::sync::OnceLock;
+
+fn pair(assignments: &[&str]) -> ModelParams {
+    let mut p = ModelParams::default();
+    keys::set_assignment(&mut p, "model=gear-pair").unwrap();
+    for a in assignments {
+        keys::set_assignment(&mut p, a).unwrap();
+    }
+    p
+}
+
+/// The (Omega, TE amplitude) trace every test reads: TE 0.2-40 um, Omega
+/// 0.4-1.3, seeded at TE 0.2, 10.15, 20.1, 30.05 and 40 um.
+fn te_trace() -> &'static BoundaryTrace {
+    static TRACE: OnceLock<BoundaryTrace> = OnceLock::new();
+    TRACE.get_or_init(|| {
+        let mut spec = BoundarySpec::new("te_um", (0.2, 40.0), (0.4, 1.3));
+        spec.levels = 5;
+        spec.points = 80;
+        let mut t = BoundaryTrace::new(&pair(&[]), spec).unwrap();
+        while !t.is_finished() {
+            t.advance(50).unwrap();
+        }
+        t
+    })
+}
+
+/// The folds of a one-parameter continuation (H = 7, exact) at `te_um`.
+fn folds_at(te_um: f64, omega: (f64, f64), points: u32) -> Vec<f64> {
+    let model = Model::new(&pair(&[&format!("te_um={te_um}")])).unwrap();
+    let mut spec = FrfSpec::new(omega.0, omega.1, points);
+    spec.harmonics = 7;
+    spec.stability = false;
+    let mut c = FrfContinuation::new(&model, spec).unwrap();
+    let mut folds = Vec::new();
+    while !c.is_finished() {
+        for p in c.advance(64).unwrap() {
+            if p.bifurcation == Some(Bifurcation::Fold) {
+                folds.push(p.omega);
+            }
+        }
+    }
+    folds
+}
+
+/// Where the curves of `kind` cross the level `value` (linear between points).
+fn crossings(curves: &[Curve], kind: CurveKind, value: f64) -> Vec<f64> {
+    let mut out = Vec::new();
+    for c in curves.iter().filter(|c| c.kind == kind) {
+        for s in c.points.windows(2) {
+            let (a, b) = (&s[0], &s[1]);
+            if (a.value - value) * (b.value - value) <= 0.0 && a.value != b.value {
+                let t = (value - a.value) / (b.value - a.value);
+                out.push(a.omega + t * (b.omega - a.omega));
+            }
+        }
+    }
+    out.sort_by(f64::total_cmp);
+    out
+}
+
+#[test]
+fn fold_curves_pass_through_the_one_parameter_folds_at_every_level() {
+    let t = te_trace();
+    assert!(t.curves().iter().any(|c| c.kind == CurveKind::Fold));
+    // Levels the trace was not seeded from.
+    for te in [3.0, 13.0, 25.0, 36.0] {
+        let mut one = folds_at(te, (0.4, 1.3), 400);
+        one.sort_by(f64::total_cmp);
+        let two = crossings(t.curves(), CurveKind::Fold, te);
+        assert_eq!(
+            one.len(),
+            two.len(),
+            "TE {te}: one-parameter folds {one:?}, fold curves cross at {two:?}"
+        );
+        for (a, b) in one.iter().zip(&two) {
+            assert!((a - b).abs() < 2e-3, "TE {te}: fold at {a}, curve at {b}");
+        }
+    }
+}
+
+/// The period doublings a one-parameter continuation (H = 7, exact, with
+/// stability) labels at `te_um`: the Omega interval between the point
+/// before the crossing and the labelled point.
+fn doublings_at(te_um: f64) -> Vec<(f64, f64)> {
+    let model = Model::new(&pair(&[&format!("te_um={te_um}")])).unwrap();
+    let mut spec = FrfSpec::new(0.4, 1.3, 400);
+    spec.harmonics = 7;
+    let mut c = FrfContinuation::new(&model, spec).unwrap();
+    let mut out = Vec::new();
+    let mut prev = f64::NAN;
+    while !c.is_finished() {
+        for p in c.advance(64).unwrap() {
+            if p.bifurcation == Some(Bifurcation::PeriodDoubling) {
+                out.push((prev.min(p.omega), prev.max(p.omega)));
+            }
+            prev = p.omega;
+        }
+    }
+    out
+}
+
+#[test]
+fn period_doubling_curves_pass_through_the_one_parameter_doublings() {
+    let t = te_trace();
+    assert!(t
+        .curves()
+        .iter()
+        .any(|c| c.kind == CurveKind::PeriodDoubling));
+    for te in [13.0, 25.0, 36.0] {
+        let one = doublings_at(te);
+        let two = crossings(t.curves(), CurveKind::PeriodDoubling, te);
+        assert_eq!(
+            one.len(),
+            two.len(),
+            "TE {te}: one-parameter doublings {one:?}, curves cross at {two:?}"
+        );
+        for &(a, b) in &one {
+            assert!(
+                two.iter().any(|&w| a - 2e-3 <= w && w <= b + 2e-3),
+                "TE {te}: doubling in {a}..{b}, curves cross at {two:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn each_cusp_has_two_folds_on_one_side_and_none_on_the_other() {
+    let t = te_trace();
+    // The secondary jump near Omega 0.46 disappears below TE 22 um (the
+    // primary resonance's persists down to TE 0: the stiffness
+    // fluctuation under load excites it alone).
+    assert!(!t.cusps().is_empty(), "cusps {:?}", t.cusps());
+    for cusp in t.cusps() {
+        // The two folds leave the cusp toward the same side of its value.
+        let curve = &t.curves()[cusp.curve];
+        let near: Vec<f64> = curve
+            .points
+            .iter()
+            .filter(|p| (p.omega - cusp.omega).abs() < 0.03)
+            .map(|p| p.value - cusp.value)
+            .collect();
+        let side = near.iter().sum::<f64>().signum();
+        let delta = (0.05 * 39.8f64).min(0.2 * cusp.value.abs());
+        let window = (cusp.omega - 0.06, cusp.omega + 0.06);
+        let inside = folds_at(cusp.value + side * delta, window, 400);
+        let outside = folds_at(cusp.value - side * delta, window, 400);
+        assert_eq!(inside.len(), 2, "cusp {cusp:?}: folds beyond it {inside:?}");
+        assert!(
+            outside.is_empty(),
+            "cusp {cusp:?}: folds before it {outside:?}"
+        );
+    }
+}
+
+/// The regime of mesh 0 by time integration at `(omega, te_um)`.
+fn regime(omega: f64, te_um: f64) -> Impact {
+    let model = Model::new(&pair(&[&format!("te_um={te_um}")])).unwrap();
+    let mut opts = SteadyOptions::new(omega);
+    opts.transient_periods = 400;
+    opts.record_periods = 20;
+    steady_state(&model, &opts, None).unwrap().meshes[0].impact
+}
+
+#[test]
+fn contact_boundaries_agree_with_time_integration_a_small_step_either_side() {
+    let t = te_trace();
+    let folds: Vec<&Curve> = t
+        .curves()
+        .iter()
+        .filter(|c| c.kind == CurveKind::Fold)
+        .collect();
+    let (om, pr) = (0.9, 39.8);
+    let mut checked = 0;
+    for c in t
+        .curves()
+        .iter()
+        .filter(|c| c.kind == CurveKind::DriveFlanksPart)
+    {
+        // A few points per curve, away from the box's edges and from every
+        // fold (where the periodic branch need not be what the gears do).
+        for p in c.points.iter().step_by(6) {
+            let clear = folds.iter().all(|f| {
+                f.points
+                    .iter()
+                    .all(|q| ((q.omega - p.omega) / om).hypot((q.value - p.value) / pr) > 0.04)
+            });
+            let inner = p.omega > 0.45 && p.omega < 1.25 && p.value > 1.0 && p.value < 38.0;
+            if !(clear && inner) {
+                continue;
+            }
+            let step = 0.02;
+            let at = |s: f64| {
+                (
+                    p.omega + s * step * om * p.normal.0,
+                    p.value + s * step * pr * p.normal.1,
+                )
+            };
+            let (w1, v1) = at(1.0);
+            let (w2, v2) = at(-1.0);
+            assert_eq!(regime(w1, v1), Impact::None, "stable side of {p:?}");
+            assert_ne!(regime(w2, v2), Impact::None, "other side of {p:?}");
+            checked += 1;
+        }
+    }
+    assert!(checked >= 3, "only {checked} contact points checked");
+}
+
+/// The period (in mesh periods) of the motion by time integration.
+fn period(omega: f64, te_um: f64) -> Option<u32> {
+    let model = Model::new(&pair(&[&format!("te_um={te_um}")])).unwrap();
+    let mut opts = SteadyOptions::new(omega);
+    opts.transient_periods = 600;
+    opts.record_periods = 32;
+    steady_state(&model, &opts, None).unwrap().period
+}
+
+#[test]
+fn period_doubling_curves_agree_with_time_integration_a_small_step_either_side() {
+    // Where the doubling happens on a stable orbit (every other multiplier
+    // inside the unit circle) and the branch is the only one: period 1 on
+    // the stable side, 2 on the other.
+    let t = te_trace();
+    let folds: Vec<&Curve> = t
+        .curves()
+        .iter()
+        .filter(|c| c.kind == CurveKind::Fold)
+        .collect();
+    let (om, pr) = (0.9, 39.8);
+    let mut checked = 0;
+    for c in t
+        .curves()
+        .iter()
+        .filter(|c| c.kind == CurveKind::PeriodDoubling)
+    {
+        for p in c.points.iter().step_by(10) {
+            let clear = folds.iter().all(|f| {
+                f.points
+                    .iter()
+                    .all(|q| ((q.omega - p.omega) / om).hypot((q.value - p.value) / pr) > 0.04)
+            });
+            let inner = p.omega > 0.45 && p.omega < 1.25 && p.value > 1.0 && p.value < 38.0;
+            // Inside a jump's hysteresis band (between two fold crossings
+            // at this TE) time integration from rest may settle on the
+            // other branch: the comparison holds where the branch is unique.
+            let band = crossings(t.curves(), CurveKind::Fold, p.value);
+            let unique = band
+                .chunks(2)
+                .all(|w| w.len() < 2 || p.omega < w[0] - 0.02 || p.omega > w[1] + 0.02);
+            if !(clear && inner && unique && p.others_stable == Some(true)) {
+                continue;
+            }
+            let at = |s: f64| {
+                (
+                    p.omega + s * 0.02 * om * p.normal.0,
+                    p.value + s * 0.02 * pr * p.normal.1,
+                )
+            };
+            let (w1, v1) = at(1.0);
+            let (w2, v2) = at(-1.0);
+            assert_eq!(period(w1, v1), Some(1), "stable side of {p:?}");
+            assert_eq!(period(w2, v2), Some(2), "other side of {p:?}");
+            checked += 1;
+        }
+    }
+    assert!(checked >= 3, "only {checked} points checked");
+}
+
+#[test]
+fn the_stable_side_of_a_fold_is_where_its_branch_exists() {
+    // On the primary resonance's jump at TE 20 um the upper fold's branch
+    // exists below it in Omega, the lower fold's above it.
+    let t = te_trace();
+    let mut seen = Vec::new();
+    for c in t.curves().iter().filter(|c| c.kind == CurveKind::Fold) {
+        for s in c.points.windows(2) {
+            if (s[0].value - 20.0) * (s[1].value - 20.0) <= 0.0 && s[0].omega > 0.47 {
+                seen.push((s[0].omega, s[0].stable_side));
+            }
+        }
+    }
+    seen.sort_by(|a, b| a.0.total_cmp(&b.0));
+    assert_eq!(seen.len(), 2, "{seen:?}");
+    assert_eq!(seen[0].1, Side::HigherOmega, "{seen:?}");
+    assert_eq!(seen[1].1, Side::LowerOmega, "{seen:?}");
+}
+
+#[test]
+fn keys_that_move_the_modes_and_empty_ranges_are_refused() {
+    let base = pair(&[]);
+    let refused = |key: &str, values: (f64, f64), omegas: (f64, f64)| {
+        BoundaryTrace::new(&base, BoundarySpec::new(key, values, omegas)).unwrap_err()
+    };
+    // The mean stiffness moves the natural modes: not a boundary key.
+    let e = refused("stiffness_n_m", (1e8, 1e9), (0.4, 1.0));
+    assert!(
+        matches!(&e, SolverError::BadOption { option, .. } if option == "key"),
+        "{e}"
+    );
+    assert!(e.to_string().contains("backlash_um"), "{e}");
+    // An integer key.
+    assert!(refused("teeth_pinion", (20.0, 40.0), (0.4, 1.0))
+        .to_string()
+        .contains("teeth_pinion"));
+    // Empty ranges name their flag.
+    let e = refused("te_um", (10.0, 10.0), (0.4, 1.0));
+    assert!(
+        matches!(&e, SolverError::BadOption { option, .. } if option == "value-to"),
+        "{e}"
+    );
+    let e = refused("te_um", (1.0, 10.0), (1.0, 0.4));
+    assert!(
+        matches!(&e, SolverError::BadOption { option, .. } if option == "omega-to"),
+        "{e}"
+    );
+    // A value outside the key's own range names the key and its range.
+    let e = refused("backlash_um", (-5.0, 10.0), (0.4, 1.0));
+    assert!(e.to_string().contains("backlash_um"), "{e}");
+}
