@@ -51,7 +51,7 @@ use settle::{has_settled, SpanTracker, SETTLE_DISTANCES};
 pub use spectrum::{spectrum, Spectrum};
 pub use verdict::{
     candidate_period, classify_recorded, loose_tol_um, pipeline_options, Motion, CHECKPOINTS,
-    MAX_PROBES, PIPELINE_ITERATIONS,
+    MAX_PROBES, PIPELINE_ITERATIONS, PROBE_FROM_REST,
 };
 
 /// The model moved to [`crate::model`]; these names stay here so that
@@ -425,6 +425,10 @@ pub struct SteadyRun {
     probe: Option<Box<Probe>>,
     /// Probes started so far (at most `verdict::MAX_PROBES`).
     probes: u32,
+    /// The first transient period after which a probe may start: later
+    /// from the static equilibrium, whose transient from rest can look
+    /// chaotic for dozens of periods (`verdict::PROBE_FROM_REST`).
+    probe_from: u32,
     /// Its finished probe's evidence, and the neighbour's steps.
     lyapunov: Option<LyapunovEvidence>,
     probe_steps: u64,
@@ -472,6 +476,7 @@ impl SteadyRun {
             shooting_steps: 0,
             probe: None,
             probes: 0,
+            probe_from: if start.is_some() { 0 } else { PROBE_FROM_REST },
             lyapunov: None,
             probe_steps: 0,
         })
@@ -567,7 +572,7 @@ impl SteadyRun {
                             self.start_shooting(model, n, span_um, false)?;
                             continue;
                         }
-                        if self.probes < MAX_PROBES {
+                        if self.probes < MAX_PROBES && p_now >= self.probe_from {
                             self.span.reset_keep_last();
                             self.start_probe(model)?;
                             continue;

@@ -102,12 +102,9 @@ fn a_chaotic_case_stays_not_periodic_with_a_positive_exponent() {
     let l = largest_exponent(&m, &lo, Some(&ss.end_state)).unwrap();
     assert!(l.per_period > 0.05, "exponent {}", l.per_period);
     // Both estimate the same exponent (0.28 per period in docs/paper.md),
-    // the probe's over fewer periods.
-    assert!(
-        (ev.per_period - l.per_period).abs() < 0.15,
-        "{ev:?} vs {}",
-        l.per_period
-    );
+    // the probe's over as few as 16 periods: within a factor of two.
+    let ratio = ev.per_period / l.per_period;
+    assert!((0.5..=2.0).contains(&ratio), "{ev:?} vs {}", l.per_period);
 }
 
 /// Synthetic Poincaré points: a repeat after more than the largest period
