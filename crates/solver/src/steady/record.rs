@@ -213,7 +213,11 @@ impl Recorder {
         if n == 0 || self.pc_points.len() < n {
             return;
         }
-        for series in self.pc_delta.iter_mut().chain(self.pc_vel.iter_mut()) {
+        let all = (self.pc_delta.iter_mut())
+            .chain(self.pc_vel.iter_mut())
+            .chain(self.pc_x.iter_mut())
+            .chain(self.pc_xv.iter_mut());
+        for series in all {
             while series.len() < total {
                 series.push(series[series.len() - n]);
             }
