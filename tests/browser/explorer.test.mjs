@@ -72,7 +72,9 @@ test('a slider change previews the selected-Omega views at once, then the full s
   // not count on it: it waits for the marker the page leaves when it draws
   // a preview (its time and the summary it showed), whatever the full
   // run's speed, then for the full run.
-  const { page, errors } = await open(h.browser, h.url, 'bif_points=4&transient_periods=2500&record_periods=100');
+  // At Ω 0.84: at the default 0.35 a mesh period takes more steps than
+  // the preview's budget, and the page shows the full run only.
+  const { page, errors } = await open(h.browser, h.url, 'omega=0.84&bif_points=4&transient_periods=2500&record_periods=100');
   await waitStatus(page, (s) => s.omega_job.finished_ms, 90000, 'the first Omega job');
   const before = await canvasStats(page, 'canvas-phase');
   const t0 = await page.evaluate(() => {
@@ -202,7 +204,7 @@ test('exports: CSV and JSON of the views, and the CLI formats of simulate and bi
   assert.equal(frJson.method, 'harmonic balance, H = 5, exact');
   const sim = JSON.parse((await grab('phase', 'CLI JSON')).text);
   assert.equal(sim.mesh, 's1a1');
-  assert.equal(sim.omega, 0.84);
+  assert.equal(sim.omega, 0.35);
   assert.ok(Array.isArray(sim.poincare.delta_m) && sim.poincare.delta_m.length === 40);
   const bif = JSON.parse((await grab('bif', 'CLI JSON')).text);
   assert.equal(bif.spec.chains, 2);

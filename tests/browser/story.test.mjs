@@ -1,3 +1,70 @@
+// Browser tests of one story (issues 19 and 24): the page's words about a
+// steady state come from its one classification. The Fig. 2 preset (no
+// backlash, a linear system) at the page's defaults is period 1, found
+// exactly, in its panel titles and its summary, which says nothing of
+// impacts; the page opens on the periodic state the tour's first step
+// explains, with the method note and the full key behind "details".
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { start, open, waitStatus, waitText, shot } from './harness.mjs';
+
+let h;
+before(async () => {
+  h = await start();
+});
+after(async () => {
+  await h?.close();
+});
+
+const omegaDone = (s) => s.omega_result && !s.omega_result.preview && s.omega_job.finished_ms;
+
+test('the Fig. 2 preset at the page defaults is period 1 (exact) in its panel titles and summary', async () => {
+  const { page, errors } = await open(h.browser, h.url);
+  await waitStatus(page, (s) => s.workers_ready === 2, 30000, 'the workers');
+  await page.selectOption('#preset', 'fig2');
+  const s = await waitStatus(
+    page,
+    (x) => x.family && x.family.values.length === 6 && omegaDone(x) && x.family.members.every((m) => m.motion),
+    120000,
+    'every member\'s steady state',
+  );
+  assert.equal(s.omega_result.motion, 'period 1 (exact)');
+  for (const m of s.family.members) assert.equal(m.motion, 'period 1 (exact)', JSON.stringify(m));
+  assert.equal(s.family.omega_titles.length, 6);
+  for (const t of s.family.omega_titles) assert.match(t, /^\([a-f]\) TE \d+ µm: period 1 \(exact\)$/);
+  const summary = await waitText(page, '#summary', /repeats exactly every mesh period/);
+  assert.match(summary, /no backlash/);
+  assert.doesNotMatch(summary, /does not repeat|not periodic|cross the whole backlash|impact/);
+  const label = await waitText(page, '#canvas-phase', /period 1 \(exact\)/, { attr: 'aria-label' });
+  assert.doesNotMatch(label, /not periodic|impact/);
+  await page.locator('#view-phase').scrollIntoViewIfNeeded();
+  await shot(page.locator('#view-phase'), '40-fig2-phase-period1-exact');
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('the page opens on a periodic state the first tour step explains, the method and full key behind details', async () => {
+  const { page, errors } = await open(h.browser, h.url);
+  const s = await waitStatus(page, (x) => omegaDone(x) && x.fr.finished_ms, 120000, 'the default steady state and branch');
+  assert.equal(s.omega, 0.35);
+  assert.equal(s.omega_result.motion, 'period 1 (exact)');
+  assert.equal(s.omega_result.impact, 'none');
+  const summary = await waitText(page, '#summary', /repeats exactly every mesh period/);
+  assert.match(summary, /stay in contact/);
+  // The method note and the full key are folded; their text is there.
+  assert.equal(await page.locator('#note-fr').isVisible(), false);
+  assert.equal(await page.locator('#key-fr').isVisible(), false);
+  await waitText(page, '#note-fr', /Method: harmonic balance/);
+  const key = await waitText(page, '#key-fr', /\S/);
+  assert.ok(key.split('\n').length >= 3, key);
+  await page.locator('#view-fr').scrollIntoViewIfNeeded();
+  await shot(page.locator('#view-fr'), '41-default-fr-short-key');
+  // The first tour step sets the state it explains.
+  await page.click('#tour-start');
+  await waitText(page, '#tour-text', /The page opens at Ω 0\.35, a calm motion/);
+  assert.deepEqual(errors, []);
+  await page.close();
+});
 
 test('the bifurcation diagram draws the shooting branches, stable solid and unstable thin, each bifurcation explained', async () => {
   // The gear pair's branches are short (its period-1 branch turns back at

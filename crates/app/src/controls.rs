@@ -180,6 +180,8 @@ fn view_in(
                                 "te_um" => "TE amplitude (µm)",
                                 "fit" => "fit the data",
                                 "whole" => "show the whole clearance ±b",
+                                "on" => "shown: stable solid, unstable thin",
+                                "off" => "hidden",
                                 other => other,
                             };
                             (w.to_string(), text.to_string())
@@ -291,8 +293,12 @@ pub fn controls() -> Vec<Control> {
         view("omega", "Selected Ω", (0.01, 3.0, 0.001)),
         view("omega_from", "Frequency range: from Ω", (0.01, 3.0, 0.01)),
         view("omega_to", "Frequency range: to Ω", (0.01, 3.0, 0.01)),
-        view("harmonics", "HBM harmonics H", (1.0, 15.0, 1.0)),
-        view("fr_points", "HBM points (nominal)", (2.0, 400.0, 1.0)),
+        view("harmonics", "Harmonics in the balance", (1.0, 15.0, 1.0)),
+        view(
+            "fr_points",
+            "Points along the curve (about)",
+            (2.0, 400.0, 1.0),
+        ),
         view(
             "fr_ti_points",
             "Own time-integration dots (0 = the bifurcation sweep's)",
@@ -300,15 +306,20 @@ pub fn controls() -> Vec<Control> {
         ),
         view(
             "fr_record_periods",
-            "Overlay recorded periods",
+            "Periods recorded per dot",
             (1.0, 100.0, 1.0),
         ),
         view("bif_points", "Bifurcation points", (2.0, 400.0, 1.0)),
         view("bif_dir", "Bifurcation sweep", (0.0, 0.0, 0.0)),
         view("clearance", "Axes of x", (0.0, 0.0, 0.0)),
         view(
+            "branches",
+            "Branches of repeating motion (found by shooting)",
+            (0.0, 0.0, 0.0),
+        ),
+        view(
             "transient_periods",
-            "Transient periods (max)",
+            "Periods to settle (at most)",
             (0.0, 1000.0, 10.0),
         ),
         view("record_periods", "Recorded periods", (1.0, 400.0, 1.0)),

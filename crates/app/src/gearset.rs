@@ -257,24 +257,17 @@ impl GearSet {
             let psi = 2.0 * PI * i as f64 / n as f64 + PI / 2.0;
             let ca = DVec2::from_angle(psi) * g.r_ca_m;
             let cb = DVec2::from_angle(psi + g.pair_angle_rad) * g.r_cb_m;
-            let mut a = Body {
-                name: format!("a{}", i + 1),
+            let planet = |name: &str, teeth, centre_m, spin_rad| Body {
+                name: format!("{name}{}", i + 1),
                 kind: BodyKind::Planet,
-                teeth: za,
-                pitch_radius_m: pitch(za),
-                centre_m: ca,
-                spin_rad: u_a * step,
+                teeth,
+                pitch_radius_m: pitch(teeth),
+                centre_m,
+                spin_rad,
                 phase_rad: 0.0,
             };
-            let mut b = Body {
-                name: format!("b{}", i + 1),
-                kind: BodyKind::Planet,
-                teeth: zb,
-                pitch_radius_m: pitch(zb),
-                centre_m: cb,
-                spin_rad: u_b * step,
-                phase_rad: 0.0,
-            };
+            let mut a = planet("a", za, ca, u_a * step);
+            let mut b = planet("b", zb, cb, u_b * step);
             // Teeth interlock: s1 -> a -> b (the suns and ring are drawn with
             // their own phases; with the default counts they interlock too).
             let p_s1a = ca.normalize() * pitch(z1);

@@ -21,7 +21,7 @@
 pub mod claims;
 pub mod controller;
 pub mod controls;
-pub mod family;
+pub mod family_spec;
 pub mod gearset;
 pub mod link;
 pub mod page;
@@ -32,6 +32,7 @@ pub mod protocol;
 pub mod scene;
 pub mod settings;
 pub mod store;
+pub mod story;
 pub mod tour;
 pub mod views;
 pub mod words;

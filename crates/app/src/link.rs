@@ -19,7 +19,7 @@
 //! its default while the others apply. The text of a link is untrusted: the
 //! page shows these messages with `textContent` only.
 
-use crate::family::{FamilySpec, FAMILY_KEY};
+use crate::family_spec::{FamilySpec, FAMILY_KEY};
 use crate::panels::PANELS_KEY;
 use crate::settings::{fmt_exact, mesh_names, view_key, Settings};
 use solver::keys::{self, Value};
@@ -169,7 +169,7 @@ pub fn decode(query: &str) -> Decoded {
     }
     let (mut settings, more) = decode_one_pairs(all);
     issues.extend(more);
-    let family = family_text.and_then(|t| match crate::family::parse(&t, &settings.params) {
+    let family = family_text.and_then(|t| match crate::family_spec::parse(&t, &settings.params) {
         Ok(f) => {
             // The first member is the current state.
             match f.member_params(&settings.params, 0) {
@@ -454,7 +454,7 @@ mod tests {
         let s = Settings::default();
         let q = encode(&s);
         assert!(
-            q.starts_with("model=ravigneaux&omega=0.84&mesh=s1a1"),
+            q.starts_with("model=ravigneaux&omega=0.35&mesh=s1a1"),
             "{q}"
         );
         let d = decode(&q);

@@ -21,9 +21,9 @@ pub struct TourStep {
 pub const TOUR: [TourStep; 5] = [
     TourStep {
         title: "The gear set and its meshes",
-        text: "The small sun s1 drives three short planets, each meshing with a long planet, which meshes with the large sun s2 and the ring: twelve tooth meshes. The highlighted one, s1a1, is the mesh the plots show; the animation (view 8) shows all of them.",
+        text: "The small sun s1 drives three short planets, each meshing with a long planet, which meshes with the large sun s2 and the ring: twelve tooth meshes. The highlighted one, s1a1, is the mesh the plots show; the animation (view 8) shows all of them. The page opens at Ω 0.35, a calm motion: the teeth of s1a1 stay in contact and the motion repeats exactly every mesh period, one closed loop in the phase portrait (view 5) and one dot in the Poincaré section (view 6).",
         target: "schematic",
-        set: &[("mesh", "s1a1")],
+        set: &[("mesh", "s1a1"), ("omega", "0.35")],
     },
     TourStep {
         title: "Backlash and the frequency response",

@@ -168,7 +168,7 @@ fn start_workers(page: &Shared) {
             continue;
         };
         let p2 = page.clone();
-        let onmessage = Closure::<dyn FnMut(MessageEvent)>::new(move |e: MessageEvent| {
+        listen(&worker, "message", move |e: MessageEvent| {
             let text = e.data().as_string().unwrap_or_default();
             let fx = {
                 let mut p = p2.borrow_mut();
@@ -181,16 +181,12 @@ fn start_workers(page: &Shared) {
             run_effects(&p2, fx);
             request_frame(&p2);
         });
-        worker.set_onmessage(Some(onmessage.as_ref().unchecked_ref()));
-        onmessage.forget();
         let p2 = page.clone();
-        let onerror = Closure::<dyn FnMut(Event)>::new(move |_e: Event| {
+        listen(&worker, "error", move |_e: Event| {
             let msg = format!("Web Worker {w} failed to load or crashed");
             p2.borrow_mut().core.issue(msg);
             request_frame(&p2);
         });
-        worker.set_onerror(Some(onerror.as_ref().unchecked_ref()));
-        onerror.forget();
         page.borrow_mut().workers.push(worker);
     }
 }

@@ -212,21 +212,6 @@ pub fn must_be(key: &str, typed: &str) -> String {
     )
 }
 
-/// The period of a motion in words: "period 2", "not periodic", or, for a
-/// period above 1 found after a transient that never passed the settle test
-/// (`settled` false), "period 11 (still settling)". A lightly damped mode
-/// that turns by nearly a whole number of turns in p periods makes a
-/// decaying transient repeat after p periods within the period test's
-/// tolerance; at the default 300 transient periods Fig. 6's TE 0 µm motion
-/// reads as period 11, and as period 1 after 3000.
-pub fn period_words(period: Option<u32>, settled: bool) -> String {
-    match period {
-        Some(p) if p > 1 && !settled => format!("period {p} (still settling)"),
-        Some(p) => format!("period {p}"),
-        None => "not periodic".into(),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -279,15 +264,5 @@ mod tests {
                 );
             }
         }
-    }
-
-    /// A period above 1 found before the transient settled is flagged;
-    /// period 1 and a settled period are not.
-    #[test]
-    fn an_unsettled_period_says_so() {
-        assert_eq!(period_words(Some(11), false), "period 11 (still settling)");
-        assert_eq!(period_words(Some(11), true), "period 11");
-        assert_eq!(period_words(Some(1), false), "period 1");
-        assert_eq!(period_words(None, false), "not periodic");
     }
 }

@@ -46,13 +46,14 @@ pub fn run<S: Sweep>(
     lines: Option<Lines<'_, S::Item>>,
 ) -> Result<Option<Vec<S::Item>>, Failure> {
     let mut bar = Progress::new(sweep.total(), unit, p.progress);
-    // A first line at once: a log shows the run started, however long its
-    // first item takes.
-    bar.update(0);
     let lines = lines.filter(|_| p.format == Format::Jsonl);
     if let Some(l) = &lines {
         emit_line(&l.header)?;
     }
+    // A first line at once (after the header, so a reader already gone
+    // hears nothing): a log shows the run started, however long its first
+    // item takes.
+    bar.update(0);
     let mut kept = Vec::new();
     let mut streamed = 0usize;
     while !sweep.is_finished() {

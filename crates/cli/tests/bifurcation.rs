@@ -51,8 +51,13 @@ fn progress_lines_go_to_stderr_on_request_even_when_it_is_not_a_terminal() {
     assert!(out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
     let lines: Vec<&str> = err.lines().collect();
-    assert_eq!(lines.len(), 3, "one line per point here: {err}");
-    assert_eq!(lines[2], "gearshock: progress 3/3 points (100 %)");
+    assert_eq!(
+        lines.len(),
+        4,
+        "a line at the start, then one per point here: {err}"
+    );
+    assert_eq!(lines[0], "gearshock: progress 0/3 points (0 %)");
+    assert_eq!(lines[3], "gearshock: progress 3/3 points (100 %)");
     // The result is unchanged.
     let a: Value = serde_json::from_slice(&quiet.stdout).expect("json");
     let b: Value = serde_json::from_slice(&out.stdout).expect("json");

@@ -12,28 +12,24 @@ use test_support::cli::{bin, json, refused, temp_dir, write_json};
 fn tiny_sweep_shards() -> Vec<Value> {
     (0..2)
         .map(|i| {
-            let shard = format!("{i}/2");
-            json(&[
+            shard(
                 "bifurcation",
-                "--model",
-                "gear-pair",
-                "--omega-from",
-                "0.5",
-                "--omega-to",
-                "0.7",
-                "--points",
-                "3",
-                "--direction",
-                "both",
-                "--transient-periods",
-                "5",
-                "--record-periods",
-                "2",
-                "--shard",
-                &shard,
-            ])
+                "--omega-from 0.5 --omega-to 0.7 --points 3 --direction both",
+                i,
+            )
         })
         .collect()
+}
+
+/// Shard `i` of 2 of a short gear-pair run of `command` on `grid` (its
+/// flags, separated by spaces), as JSON.
+fn shard(command: &str, grid: &str, i: u32) -> Value {
+    let shard = format!("{i}/2");
+    let mut args = vec![command, "--model", "gear-pair"];
+    args.extend(grid.split_whitespace());
+    args.extend(["--transient-periods", "5", "--record-periods", "2"]);
+    args.extend(["--shard", &shard]);
+    json(&args)
 }
 
 #[test]
@@ -72,78 +68,75 @@ fn merge_refuses_forged_shards_before_sizing_anything() {
         }
         merge(&forged, &["chains", needle]);
     }
-    let mut forged = good.clone();
-    for v in &mut forged {
-        v["spec"]["points"] = json!(u64::MAX);
-    }
-    merge(&forged, &["points", "out of range"]);
+    // Each shard set forged from the genuine one by `edit`.
+    let forge = |base: &[Value], edit: &dyn Fn(&mut [Value]), needles: &[&str]| {
+        let mut forged = base.to_vec();
+        edit(&mut forged);
+        merge(&forged, needles);
+    };
+    let every = |key: &'static str, field: &'static str, value: Value| {
+        move |f: &mut [Value]| f.iter_mut().for_each(|v| v[key][field] = value.clone())
+    };
+    forge(
+        &good,
+        &every("spec", "points", json!(u64::MAX)),
+        &["points", "out of range"],
+    );
     // A foreign point (omega 999) was copied into the output.
-    let mut forged = good.clone();
-    forged[0]["points"][0]["omega"] = json!(999.0);
-    merge(&forged, &["omega 999", "not on the sweep's grid"]);
-    let mut forged = good.clone();
-    forged[0]["points"][0]["index"] = json!(1);
-    merge(&forged, &["index 1", "not on the sweep's grid"]);
-    let mut forged = good.clone();
-    let extra = forged[0]["points"][0].clone();
-    forged[0]["points"]
-        .as_array_mut()
-        .expect("points")
-        .push(extra);
-    merge(&forged, &["given twice"]);
-    let mut forged = good.clone();
-    forged[1]["points"].as_array_mut().expect("points").pop();
-    merge(&forged, &["missing"]);
+    let first = |f: &mut [Value], key: &str, value: Value| f[0]["points"][0][key] = value;
+    forge(
+        &good,
+        &|f| first(f, "omega", json!(999.0)),
+        &["omega 999", "not on the sweep's grid"],
+    );
+    forge(
+        &good,
+        &|f| first(f, "index", json!(1)),
+        &["index 1", "not on the sweep's grid"],
+    );
+    let twice = |f: &mut [Value]| {
+        let extra = f[0]["points"][0].clone();
+        f[0]["points"].as_array_mut().expect("points").push(extra);
+    };
+    forge(&good, &twice, &["given twice"]);
+    let missing = |f: &mut [Value]| drop(f[1]["points"].as_array_mut().expect("points").pop());
+    forge(&good, &missing, &["missing"]);
     // A forged parameter set would be copied into the output.
-    let mut forged = good.clone();
-    for v in &mut forged {
-        v["params"]["backlash_um"] = json!(-5);
-    }
-    merge(&forged, &["params", "backlash_um"]);
+    forge(
+        &good,
+        &every("params", "backlash_um", json!(-5)),
+        &["params", "backlash_um"],
+    );
     // Step counts that wrapped when summed.
-    let mut forged = good.clone();
-    forged[0]["points"][0]["stats"]["steps"] = json!(u64::MAX);
-    merge(&forged, &["stats.steps", "out of range"]);
+    let wrapped = |f: &mut [Value]| f[0]["points"][0]["stats"]["steps"] = json!(u64::MAX);
+    forge(&good, &wrapped, &["stats.steps", "out of range"]);
 
     // Maps: forged shard count and a cell off the grid.
     let map_shard = |i: u32| {
-        let shard = format!("{i}/2");
-        json(&[
+        let grid = "--omega-from 0.5 --omega-to 0.6 --omega-points 2";
+        shard(
             "map",
-            "--model",
-            "gear-pair",
-            "--omega-from",
-            "0.5",
-            "--omega-to",
-            "0.6",
-            "--omega-points",
-            "2",
-            "--value-from",
-            "50",
-            "--value-to",
-            "60",
-            "--value-points",
-            "2",
-            "--transient-periods",
-            "5",
-            "--record-periods",
-            "2",
-            "--shard",
-            &shard,
-        ])
+            &format!("{grid} --value-from 50 --value-to 60 --value-points 2"),
+            i,
+        )
     };
     let maps = vec![map_shard(0), map_shard(1)];
-    let mut forged = maps.clone();
-    for v in &mut forged {
-        v["spec"]["shards"] = json!(4_000_000_000u64);
-    }
-    merge(&forged, &["shards", "out of range"]);
-    let mut forged = maps.clone();
-    forged[1]["cells"][0]["row"] = json!(999);
-    merge(&forged, &["row 999", "not on the map's grid"]);
-    let mut forged = maps.clone();
-    forged[1]["cells"][0]["value"] = json!(1e300);
-    merge(&forged, &["not on the map's grid"]);
+    forge(
+        &maps,
+        &every("spec", "shards", json!(4_000_000_000u64)),
+        &["shards", "out of range"],
+    );
+    let cell = |f: &mut [Value], key: &str, value: Value| f[1]["cells"][0][key] = value;
+    forge(
+        &maps,
+        &|f| cell(f, "row", json!(999)),
+        &["row 999", "not on the map's grid"],
+    );
+    forge(
+        &maps,
+        &|f| cell(f, "value", json!(1e300)),
+        &["not on the map's grid"],
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -125,9 +125,11 @@ fn progress_counts(err: &str) -> Vec<u64> {
 fn a_reader_that_goes_away_stops_the_sweep_quietly_with_exit_3() {
     // Closed before the first line: not one point is computed (a computed
     // point prints a progress line).
-    let mut child = long_stream().spawn().unwrap();
-    drop(child.stdout.take());
-    let out = child.wait_with_output().unwrap();
+    // The pipe's reading end is closed before the program starts, so no
+    // scheduling lets it write first.
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    let out = long_stream().stdout(writer).output().unwrap();
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(3), "{err}");
     assert!(progress_counts(&err).is_empty(), "no point computed: {err}");

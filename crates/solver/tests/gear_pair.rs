@@ -8,6 +8,7 @@ use nalgebra::Complex;
 use solver::keys;
 use solver::params::ModelParams;
 use solver::steady::{steady_state, Impact, Model, SteadyOptions};
+use test_support::models::strict_run;
 
 fn pair(assignments: &[&str]) -> Model {
     let mut p = ModelParams::default();
@@ -32,12 +33,7 @@ fn linear_limit_is_the_single_degree_of_freedom_receptance() {
         // m x'' + c (x' - e') + k (x - e) = F, e = E sin(wt): |x_hat| = |k + i w c| E / |k - w^2 m + i w c|.
         let amp =
             Complex::new(k, w * c).norm() * 20e-6 / Complex::new(k - w * w * me, w * c).norm();
-        let mut opts = SteadyOptions::new(omega);
-        opts.transient_periods = 600;
-        opts.early_settle = false;
-        opts.record_periods = 10;
-        opts.rtol = 1e-10;
-        opts.atol_m = 1e-15;
+        let opts = strict_run(omega, (600, 10), (1e-10, 1e-15));
         let ss = steady_state(&m, &opts, None).expect("run");
         let r = &ss.meshes[0];
         let half_pp = 0.5 * (r.delta_max_m - r.delta_min_m);

@@ -9,19 +9,10 @@
 use solver::hbm::{
     Bifurcation, BranchPoint, FrfContinuation, FrfSpec, HbmModel, Method, PieceEnd, StepControl,
 };
-use solver::keys;
 use solver::modal::linear_receptance;
-use solver::params::ModelParams;
 use solver::steady::{steady_state, Model, SteadyOptions, SteadyState};
 use solver::sweep::Direction;
-
-fn model(assignments: &[&str]) -> Model {
-    let mut p = ModelParams::default();
-    for a in assignments {
-        keys::set_assignment(&mut p, a).expect(a);
-    }
-    Model::new(&p).expect("model")
-}
+use test_support::models::model;
 
 fn branch(c: &mut FrfContinuation) -> Vec<BranchPoint> {
     let mut out = Vec::new();
@@ -149,11 +140,7 @@ fn duffing_peak_and_folds_match_the_closed_form() {
             "off the curve at {w}: {lhs}"
         );
     }
-    let found: Vec<f64> = pts
-        .iter()
-        .filter(|p| p.bifurcation == Some(Bifurcation::Fold))
-        .map(|p| p.omega)
-        .collect();
+    let found = fold_omegas(&pts);
     assert_eq!(found.len(), 2, "folds found {found:?}");
     // The upper fold is met first on the way up; each is located on the
     // branch (regula falsi on the tangent's Omega component), so it equals
@@ -200,6 +187,23 @@ fn discrepancy(p: &BranchPoint, ti: &SteadyState) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// Harmonic balance with `harmonics` and time integration at `omega`: both
+/// period 1, the balance stable, and their extremes within 1 % of the
+/// peak-to-peak. Returns both for the caller's further checks.
+fn agree_within_a_percent(m: &Model, omega: f64, harmonics: usize) -> (BranchPoint, SteadyState) {
+    let p = solve_at(m, omega, harmonics, Method::Aft, None);
+    let ti = time_integration(m, omega);
+    assert_eq!(ti.period, Some(1), "Omega {omega}");
+    assert_eq!(p.stable, Some(true), "Omega {omega}");
+    let d = discrepancy(&p, &ti);
+    assert!(
+        d < 0.01,
+        "Omega {omega}: {:.3} % of the peak-to-peak",
+        100.0 * d
+    );
+    (p, ti)
+}
+
 #[test]
 fn gear_pair_hbm_agrees_with_time_integration_where_it_is_period_one_and_stable() {
     // The pair's default: TE 20 um, backlash 100 um; Omega 0.65 and 0.7 and
@@ -207,16 +211,7 @@ fn gear_pair_hbm_agrees_with_time_integration_where_it_is_period_one_and_stable(
     let m = model(&["model=gear-pair"]);
     let mut impacts = 0;
     for omega in [0.35, 0.45, 0.65, 0.7, 1.9] {
-        let p = solve_at(&m, omega, 15, Method::Aft, None);
-        let ti = time_integration(&m, omega);
-        assert_eq!(ti.period, Some(1), "Omega {omega}");
-        assert_eq!(p.stable, Some(true), "Omega {omega}");
-        let d = discrepancy(&p, &ti);
-        assert!(
-            d < 0.01,
-            "Omega {omega}: {:.3} % of the peak-to-peak",
-            100.0 * d
-        );
+        let (p, ti) = agree_within_a_percent(&m, omega, 15);
         assert_eq!(p.meshes[0].impact, ti.meshes[0].impact, "Omega {omega}");
         if p.meshes[0].impact != solver::steady::Impact::None {
             impacts += 1;
@@ -230,16 +225,7 @@ fn ravigneaux_hbm_agrees_with_time_integration_on_every_mesh() {
     let m = model(&[]);
     let mut impacts = 0;
     for omega in [0.15, 0.3, 0.45] {
-        let p = solve_at(&m, omega, 9, Method::Aft, None);
-        let ti = time_integration(&m, omega);
-        assert_eq!(ti.period, Some(1), "Omega {omega}");
-        assert_eq!(p.stable, Some(true), "Omega {omega}");
-        let d = discrepancy(&p, &ti);
-        assert!(
-            d < 0.01,
-            "Omega {omega}: {:.3} % of the peak-to-peak",
-            100.0 * d
-        );
+        let (p, ti) = agree_within_a_percent(&m, omega, 9);
         for (h, t) in p.meshes.iter().zip(&ti.meshes) {
             assert_eq!(h.impact, t.impact, "Omega {omega}");
         }
@@ -297,6 +283,14 @@ fn jump(sweep: &[(f64, f64)]) -> (f64, f64) {
     (w[0].0.min(w[1].0), w[0].0.max(w[1].0))
 }
 
+/// The Omegas of a branch's folds, in branch order.
+fn fold_omegas(pts: &[BranchPoint]) -> Vec<f64> {
+    pts.iter()
+        .filter(|p| p.bifurcation == Some(Bifurcation::Fold))
+        .map(|p| p.omega)
+        .collect()
+}
+
 #[test]
 fn continuation_passes_the_folds_where_the_sweeps_jump() {
     let m = model(&["model=gear-pair"]);
@@ -305,11 +299,7 @@ fn continuation_passes_the_folds_where_the_sweeps_jump() {
     let mut c = FrfContinuation::new(&m, spec).unwrap();
     let pts = branch(&mut c);
     // The branch turns back: Omega is not monotonic along it.
-    let folds: Vec<f64> = pts
-        .iter()
-        .filter(|p| p.bifurcation == Some(Bifurcation::Fold))
-        .map(|p| p.omega)
-        .collect();
+    let folds = fold_omegas(&pts);
     assert!(folds.len() >= 2, "folds {folds:?}");
     let upper = folds.iter().copied().fold(f64::MIN, f64::max);
     let lower = folds.iter().copied().fold(f64::MAX, f64::min);
@@ -511,11 +501,7 @@ fn geometric_step_control_halves_the_points_and_keeps_the_folds() {
         spec.step_control = control;
         let mut c = FrfContinuation::new(&m, spec).unwrap();
         let pts = branch(&mut c);
-        let folds: Vec<f64> = pts
-            .iter()
-            .filter(|p| p.bifurcation == Some(Bifurcation::Fold))
-            .map(|p| p.omega)
-            .collect();
+        let folds = fold_omegas(&pts);
         (pts, folds)
     };
     let (new, new_folds) = run(StepControl::Geometry, 50);

@@ -10,24 +10,14 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use solver::hbm::{BranchPoint, FrfContinuation, FrfSpec, LeftOutReason};
-use solver::keys;
-use solver::params::ModelParams;
-use solver::steady::Model;
-
-fn model(assignments: &[String]) -> Model {
-    let mut p = ModelParams::default();
-    for a in assignments {
-        keys::set_assignment(&mut p, a).expect(a);
-    }
-    Model::new(&p).expect("model")
-}
+use test_support::models::model;
 
 /// Runs one case; returns the branch and the continuation.
 fn run(b: f64, te: f64, zeta: f64, points: u32) -> (Vec<BranchPoint>, FrfContinuation) {
     let m = model(&[
-        format!("backlash_um={b}"),
-        format!("te_um={te}"),
-        format!("damping_ratio={zeta}"),
+        &format!("backlash_um={b}"),
+        &format!("te_um={te}"),
+        &format!("damping_ratio={zeta}"),
     ]);
     let spec = FrfSpec::new(0.1, 2.0, points);
     let mut c = FrfContinuation::new(&m, spec).expect("spec");

@@ -7,19 +7,10 @@
 // Tests may panic: that is how they fail.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use solver::keys;
 use solver::lyapunov::{largest_exponent, LyapunovOptions};
-use solver::params::ModelParams;
-use solver::steady::{steady_state, Model, SteadyOptions};
+use solver::steady::{steady_state, SteadyOptions};
 use std::f64::consts::PI;
-
-fn model(assignments: &[&str]) -> Model {
-    let mut p = ModelParams::default();
-    for a in assignments {
-        keys::set_assignment(&mut p, a).expect(a);
-    }
-    Model::new(&p).expect("model")
-}
+use test_support::models::model;
 
 #[test]
 fn linear_gear_pair_exponent_is_the_damped_decay_rate() {

@@ -8,11 +8,11 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use solver::lyapunov::{largest_exponent, Lyapunov, LyapunovOptions, LyapunovRun};
-use solver::params::ModelParams;
 use solver::steady::Model;
+use test_support::models::in_slices;
 
 fn model() -> Model {
-    Model::new(&ModelParams::default()).expect("default model")
+    test_support::models::model(&[])
 }
 
 /// Runs `opts` in slices of `slice` steps: the result, the number of pauses
@@ -24,20 +24,12 @@ fn sliced(
     slice: u64,
 ) -> (Lyapunov, u64, u64) {
     let mut run = LyapunovRun::new(model, opts, start).expect("valid options");
-    let mut pauses = 0;
-    loop {
+    let (l, pauses) = in_slices(slice, |k| {
         let before = run.steps();
-        let out = run.advance(model, slice).expect("the run succeeds");
-        assert!(
-            run.steps() - before <= slice,
-            "a slice took more than {slice} steps"
-        );
-        match out {
-            Some(l) => return (l, pauses, run.steps()),
-            None => pauses += 1,
-        }
-        assert!(pauses < 10_000_000, "the run never ends");
-    }
+        let out = run.advance(model, k).expect("the run succeeds");
+        (out, run.steps() - before)
+    });
+    (l, pauses, run.steps())
 }
 
 /// Bit-for-bit equality (f64's `==` would let -0 equal 0 and fail on NaN).

@@ -5,20 +5,11 @@
 // Tests may panic: that is how they fail.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use solver::keys;
 use solver::parametric::Parametric;
-use solver::params::ModelParams;
 use solver::steady::{steady_state, Model, SteadyOptions};
 use solver::SolverError;
 use std::f64::consts::PI;
-
-fn model(assignments: &[&str]) -> Model {
-    let mut p = ModelParams::default();
-    for a in assignments {
-        keys::set_assignment(&mut p, a).expect(a);
-    }
-    Model::new(&p).expect("model")
-}
+use test_support::models::model;
 
 fn gear_pair(variation: f64, zeta: f64) -> Model {
     model(&[

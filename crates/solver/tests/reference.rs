@@ -9,7 +9,8 @@
 
 use solver::keys::{self, Value as KeyValue};
 use solver::params::ModelParams;
-use solver::steady::{steady_state, Model, SteadyOptions};
+use solver::steady::{steady_state, Model};
+use test_support::models::strict_run;
 
 #[test]
 fn poincare_samples_match_the_scipy_reference() {
@@ -33,13 +34,8 @@ fn poincare_samples_match_the_scipy_reference() {
             .iter()
             .map(|x| x.as_f64().expect("number"))
             .collect();
-        let mut opts = SteadyOptions::new(omega);
-        opts.transient_periods = 0;
-        opts.record_periods = 40;
-        opts.early_settle = false;
+        let mut opts = strict_run(omega, (0, 40), (1e-10, 1e-16));
         opts.samples_per_period = 0;
-        opts.rtol = 1e-10;
-        opts.atol_m = 1e-16;
         let ss = steady_state(&model, &opts, None).expect("run");
         let ours = &ss.meshes[0].poincare_delta_m;
         // The responses are sensitive (chaotic transients), so differences

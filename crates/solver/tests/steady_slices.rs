@@ -7,11 +7,11 @@
 // Tests may panic: that is how they fail.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use solver::params::ModelParams;
 use solver::steady::{steady_state, Model, SteadyOptions, SteadyRun, SteadyState};
+use test_support::models::in_slices;
 
 fn model() -> Model {
-    Model::new(&ModelParams::default()).expect("default model")
+    test_support::models::model(&[])
 }
 
 /// Runs `opts` in slices of `slice` steps: the result and the number of
@@ -21,22 +21,13 @@ fn sliced(
     opts: &SteadyOptions,
     start: Option<&[f64]>,
     slice: u64,
-) -> (SteadyState, u32) {
+) -> (SteadyState, u64) {
     let mut run = SteadyRun::new(model, opts, start).expect("valid options");
-    let mut pauses = 0;
-    loop {
+    in_slices(slice, |k| {
         let before = run.steps();
-        let out = run.advance(model, slice).expect("the run succeeds");
-        assert!(
-            run.steps() - before <= slice,
-            "a slice took more than {slice} steps"
-        );
-        match out {
-            Some(ss) => return (ss, pauses),
-            None => pauses += 1,
-        }
-        assert!(pauses < 10_000_000, "the run never ends");
-    }
+        let out = run.advance(model, k).expect("the run succeeds");
+        (out, run.steps() - before)
+    })
 }
 
 #[test]
@@ -59,11 +50,7 @@ fn a_sliced_run_is_bit_identical_to_the_one_shot_run() {
             // run's own, shooting's and the Lyapunov probe's).
             let st = whole.stats;
             let steps = st.integrator.steps + st.shooting_steps + st.probe_steps;
-            assert_eq!(
-                u64::from(pauses),
-                steps.div_ceil(slice) - 1,
-                "Omega {omega}"
-            );
+            assert_eq!(pauses, steps.div_ceil(slice) - 1, "Omega {omega}");
         }
         // Continued from another run's end state, as the sweeps do.
         let from = steady_state(&m, &SteadyOptions::new(omega * 1.05), None)

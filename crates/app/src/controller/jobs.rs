@@ -260,6 +260,8 @@ impl Controller {
                 Some((self.workers.len() as u32).min(v.map_value_points))
             }
             JobKind::Lyap => (v.lyap_points >= 2).then(|| chain_count(v.lyap_points)),
+            // One continuation, on one worker.
+            JobKind::Orbits => v.branches.then_some(1),
         };
         let Some(chains) = shards else {
             return self.switch_off(target, kind);
@@ -271,6 +273,7 @@ impl Controller {
             JobKind::Bif => bif_total(v),
             JobKind::Map => self.map_grid().cells(),
             JobKind::Lyap => v.lyap_points as usize,
+            JobKind::Orbits => crate::worker::jobs::orbits::MAX_ORBIT_POINTS,
         };
         let id = self.next_job();
         let grid = self.map_grid();
@@ -298,6 +301,7 @@ impl Controller {
             JobKind::Bif => c.bif = BifStore::new(id, total),
             JobKind::Map => c.map = MapStore::new(id, grid.clone(), map_signature),
             JobKind::Lyap => c.lyap = LyapStore::new(id, total, v.lyap_periods),
+            JobKind::Orbits => c.orbits = OrbitStore::new(id),
         }
         if main {
             self.dirty.data(kind);
@@ -372,6 +376,11 @@ impl Controller {
                 transient_periods: v.lyap_transient_periods,
                 periods: v.lyap_periods,
             },
+            JobKind::Orbits => JobSpec::Orbits {
+                omega_from: v.omega_from,
+                omega_to: v.omega_to,
+                points: v.bif_points,
+            },
         });
         if main && kind == JobKind::Omega {
             self.preview_omega(&input.model, id, now_ms);
@@ -390,6 +399,7 @@ impl Controller {
         match kind {
             JobKind::Overlay => c.overlay = FrStore::default(),
             JobKind::Lyap => c.lyap = LyapStore::default(),
+            JobKind::Orbits => c.orbits = OrbitStore::default(),
             _ => {}
         }
         self.dirty.data(kind);

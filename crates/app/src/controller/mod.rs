@@ -31,6 +31,7 @@ use crate::views::bif::{BifStore, BifView};
 use crate::views::fr::{fr_view, FrBranch, FrSource, FrStore, FrView, HbmStore};
 use crate::views::lyap::LyapStore;
 use crate::views::map::{MapGrid, MapStore, MapView};
+use crate::views::orbits::OrbitStore;
 use crate::views::{distinct, natural_in_range, ViewContext};
 use solver::keys;
 use solver::model::Model;
@@ -559,6 +560,12 @@ impl Controller {
         let mut v = self.main.bif.view(mesh, &b, &ctx);
         v.whole_clearance = self.settings.view.whole_clearance;
         v.unstable_bands = self.instability_bands();
+        // The shooting branches, on a named mesh (a "worst" diagram takes
+        // each point's own mesh; a branch has no one mesh to follow).
+        if let Some(j) = mesh {
+            v.branches = self.main.orbits.lines(j);
+            v.branch_markers = self.main.orbits.markers(j);
+        }
         if let Some(p) = &self.pinned {
             v.pinned = p.comp.bif.view(mesh, &b, &ctx).points;
             v.pinned_backlash_um = distinct(&pinned_backlash(&p.settings), mesh);
@@ -580,7 +587,21 @@ impl Controller {
         let fr = self.fr_view();
         let main = &self.main;
         let st = |k| main.status(k);
-        serde_json::json!({
+        // What the bifurcation diagram draws of the shooting branches.
+        let bif_branches = {
+            let v = self.bif_view();
+            let periods: std::collections::BTreeSet<u32> =
+                v.branches.iter().map(|l| l.period).collect();
+            serde_json::json!({
+                "job": st(JobKind::Orbits),
+                "points": main.orbits.points.len(),
+                "stable_lines": v.branches.iter().filter(|l| l.stable).count(),
+                "unstable_lines": v.branches.iter().filter(|l| !l.stable).count(),
+                "periods": periods,
+                "markers": v.branch_markers.iter().map(|m| m.kind.label()).collect::<Vec<_>>(),
+            })
+        };
+        let mut out = serde_json::json!({
             "query": self.query(),
             "issues": self.issues,
             "omega": self.settings.view.omega,
@@ -623,8 +644,13 @@ impl Controller {
             "omega_result": main.omega.as_ref().map(|r| serde_json::json!({
                 "omega": r.omega, "mesh": r.mesh_name, "impact": r.regime.solver_name(),
                 "period": r.period, "preview": r.preview,
+                "motion": crate::story::motion_tag(r.motion),
             })),
-        })
+        });
+        if let Some(o) = out.as_object_mut() {
+            o.insert("bif_branches".into(), bif_branches);
+        }
+        out
     }
 
     /// What a link restores.
@@ -688,8 +714,8 @@ impl Controller {
 mod export;
 mod text;
 pub use export::{ExportError, Format};
-mod family;
-pub use family::{Family, Member};
+mod members;
+pub use members::{Family, Member};
 mod jobs;
 mod panels;
 use pinned::pinned_backlash;
@@ -700,6 +726,6 @@ pub use export::{view_size, Drawn, SvgError};
 pub use pinned::Pinned;
 
 #[cfg(test)]
-mod family_tests;
+mod members_tests;
 #[cfg(test)]
 mod tests;

@@ -6,7 +6,7 @@
 
 use super::*;
 use crate::panels::mesh_words;
-use crate::views::family::{panel_titles, Panel};
+use crate::views::multiples::{panel_titles, Panel};
 
 impl Controller {
     /// The frequency response of each panel's mesh, titled with the mesh

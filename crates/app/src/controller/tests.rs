@@ -73,8 +73,9 @@ fn jobs_queue_until_ready_then_split_over_two_workers() {
     let p = ready(&mut c);
     // Omega on worker 0, the HBM branch on worker 1, bifurcation shards on
     // both; no time-integration overlay by default.
-    // Map rows and Lyapunov chains are shared by both workers too.
-    assert_eq!(p.iter().filter(|(w, _)| *w == 0).count(), 4);
+    // Map rows and Lyapunov chains are shared by both workers too; the
+    // shooting branches go to one.
+    assert_eq!(p.iter().filter(|(w, _)| *w == 0).count(), 5);
     assert_eq!(p.iter().filter(|(w, _)| *w == 1).count(), 4);
     assert!(p.iter().any(|(w, m)| *w == c.hbm_worker()
         && matches!(
@@ -112,9 +113,10 @@ fn slider_change_restarts_and_stale_replies_are_ignored() {
     ready(&mut c);
     let old = c.main.hbm.id;
     let fx = c.set_key("backlash_um", "150", 10.0).unwrap();
-    // Omega, branch, two bifurcation and two Lyapunov shards; the map over
-    // backlash does not depend on the backlash, so it goes on.
-    assert_eq!(posts(&fx).len(), 6);
+    // Omega, branch, two bifurcation and two Lyapunov shards, the shooting
+    // branches; the map over backlash does not depend on the backlash, so
+    // it goes on.
+    assert_eq!(posts(&fx).len(), 7);
     assert_ne!(c.main.hbm.id, old);
     assert!(c.query().contains("backlash_um=150"));
     c.worker_message(1, &hbm_points(old, &[0.1], false, None), 11.0);
@@ -342,6 +344,7 @@ fn at_the_defaults_the_frequency_response_shows_the_sweeps_steady_states() {
         }],
         worst_mesh: 0,
         period: None,
+        motion: Default::default(),
         error: None,
     };
     c.dirty.jobs = KindSet::NONE;
@@ -402,17 +405,9 @@ fn map_cells(id: JobId, cells: &[(u32, u32, crate::protocol::Regime, Option<u32>
         id,
         cells: cells
             .iter()
-            .map(
-                |&(row, column, regime, period)| crate::protocol::MapSample {
-                    row,
-                    column,
-                    omega: 0.0,
-                    value: 0.0,
-                    regime,
-                    period,
-                    error: None,
-                },
-            )
+            .map(|&(row, column, regime, period)| {
+                crate::views::test_support::map_cell(row, column, regime, period)
+            })
             .collect(),
     })
 }

@@ -20,7 +20,7 @@ impl Controller {
                 labels::fr_panels_label(&self.fr_panels())
             }
             JobKind::HarmonicBalance | JobKind::Overlay => labels::fr_label(&self.fr_view()),
-            JobKind::Bif => labels::bif_label(&self.bif_view()),
+            JobKind::Bif | JobKind::Orbits => labels::bif_label(&self.bif_view()),
             JobKind::Map => labels::map_label(&self.main.map),
             JobKind::Lyap => labels::lyap_label(&self.main.lyap.curve()),
             JobKind::Omega => match (&self.main.omega, &self.main.status(JobKind::Omega).error) {
@@ -38,7 +38,7 @@ impl Controller {
                 "The gear set in slow motion at Ω {}, each mesh coloured by its contact state; mesh {}: {}.",
                 crate::views::unstable::short(r.omega),
                 r.mesh_name,
-                r.regime.label()
+                crate::story::contact_tag(r.regime, r.backlash_um)
             ),
             None => "The gear set in slow motion: computing the motion.".into(),
         }
@@ -100,7 +100,7 @@ impl Controller {
                     v.branches.iter().any(|b| !b.points.is_empty()) || !v.overlay.is_empty();
                 (!has_data).then(|| not_computed(e))
             }
-            JobKind::Bif => st
+            JobKind::Bif | JobKind::Orbits => st
                 .error
                 .as_ref()
                 .filter(|_| self.main.bif.samples.is_empty())

@@ -7,7 +7,7 @@
 use crate::claims::{heading, with_text, CLAIMS};
 use crate::controller::Format;
 use crate::controls::{controls, Group, Widget};
-use crate::family::FAMILY_KEYS;
+use crate::family_spec::FAMILY_KEYS;
 use crate::presets::{preset, PRESETS};
 use crate::views::ViewId;
 

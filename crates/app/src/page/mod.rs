@@ -192,7 +192,7 @@ impl Page {
             anim: anim::Anim::default(),
             frame_requested: false,
             family_input: (
-                crate::family::FAMILY_KEYS
+                crate::family_spec::FAMILY_KEYS
                     .first()
                     .map_or_else(String::new, |k| k.key.to_string()),
                 String::new(),

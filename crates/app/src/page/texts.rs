@@ -150,20 +150,32 @@ impl Page {
         }
     }
 
-    /// The note under a view (the frequency response's, the map's), if it has one.
-    pub fn note(&self, view: ViewId, fr: Option<&FrView>) -> Option<Write> {
+    /// The note under a view (the frequency response's, the map's), if it
+    /// has one, and the frequency response's full key (one line per entry,
+    /// behind "details"; empty for the mesh panels, whose key is complete).
+    pub fn note(&self, view: ViewId, fr: Option<&FrView>) -> Vec<Write> {
         let text = match (view, fr) {
             (ViewId::Fr, Some(fr)) if self.ctl.panels().is_some() => {
-                crate::views::fr::fr_panels_note(fr)
+                let note = crate::views::fr::fr_panels_note(fr);
+                return vec![
+                    Write::text("note-fr", note),
+                    Write::text("key-fr", String::new()),
+                ];
             }
-            (ViewId::Fr, Some(fr)) => crate::views::fr::fr_note(fr),
+            (ViewId::Fr, Some(fr)) => {
+                let key = crate::plots::fr_full_key(fr).join("\n");
+                return vec![
+                    Write::text("note-fr", crate::views::fr::fr_note(fr)),
+                    Write::text("key-fr", key),
+                ];
+            }
             (ViewId::Map, _) => {
                 let main = self.ctl.main();
                 crate::views::map::map_note(&main.map, main.status(JobKind::Map).total)
             }
-            _ => return None,
+            _ => return Vec::new(),
         };
-        Some(Write::text(&format!("note-{}", view.key()), text))
+        vec![Write::text(&format!("note-{}", view.key()), text)]
     }
 
     /// Everything the tests and the benchmark read: the controller's

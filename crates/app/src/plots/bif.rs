@@ -78,8 +78,19 @@ pub fn draw_bif<DB: DrawingBackend>(
     let x = (v.omega_from, v.omega_to);
     let extra = contact_levels(&v.backlash_um, &v.pinned_backlash_um, v.whole_clearance);
     // The key is under the chart, so the axes fit the data alone.
+    let in_range = |o: f64| o >= x.0 && o <= x.1;
+    let branch_x = v
+        .branches
+        .iter()
+        .flat_map(|l| l.points.iter())
+        .filter(|p| in_range(p.0))
+        .map(|p| p.1);
     let y = padded_range(
-        v.points.iter().chain(v.pinned.iter()).map(|p| p.x_um),
+        v.points
+            .iter()
+            .chain(v.pinned.iter())
+            .map(|p| p.x_um)
+            .chain(branch_x),
         &extra,
         20.0,
     );
@@ -102,7 +113,12 @@ pub fn draw_bif<DB: DrawingBackend>(
             .map_err(err)?;
     }
     omega_decorations(&mut chart, natural, v.selected_omega, y)?;
+    draw_branches(&mut chart, v)?;
     let frame = frame_of(&chart, x, y);
+    for m in v.branch_markers.iter().filter(|m| in_range(m.omega)) {
+        let q = frame.to_px(m.omega, m.x_um);
+        draw_marker_px(root, m.kind, (q.x.round() as i32, q.y.round() as i32))?;
+    }
     let mut groups: Vec<PointGroup> = Vec::new();
     if !v.pinned.is_empty() {
         // A's dots first, so B's are drawn over them.
@@ -140,6 +156,29 @@ pub fn draw_bif<DB: DrawingBackend>(
     draw_key(root, &items, &plan)?;
     root.present().map_err(err)?;
     Ok((frame, groups))
+}
+
+/// The colour of the shooting branches.
+const BRANCH: RGBColor = RGBColor(20, 20, 20);
+
+/// The shooting branches: stable stretches solid (2 px), unstable ones
+/// thin and dashed, as continuation tools draw their diagrams.
+fn draw_branches<DB: DrawingBackend>(chart: &mut Chart<'_, DB>, v: &BifView) -> Res<()> {
+    for line in &v.branches {
+        let pts = line.points.iter().copied();
+        if line.stable {
+            let style = ShapeStyle::from(&BRANCH).stroke_width(2);
+            chart
+                .draw_series(LineSeries::new(pts, style))
+                .map_err(err)?;
+        } else {
+            let style = ShapeStyle::from(&BRANCH).stroke_width(1);
+            chart
+                .draw_series(DashedLineSeries::new(pts, 4, 3, style))
+                .map_err(err)?;
+        }
+    }
+    Ok(())
 }
 
 /// A bifurcation chart's SVG text with its dots ([`svg_with`]).
@@ -205,6 +244,24 @@ fn bif_key(v: &BifView, natural: &[NaturalFreq], y: (f64, f64)) -> KeyItems {
         ));
     }
     items.extend(omega_items(natural, v.selected_omega));
+    if v.branches.iter().any(|l| l.stable) {
+        items.push((
+            KeyIcon::Line(BRANCH, false),
+            "periodic motion found by shooting, stable: solid".into(),
+        ));
+    }
+    if v.branches.iter().any(|l| !l.stable) {
+        items.push((
+            KeyIcon::Line(BRANCH, true),
+            "unstable (never seen in a sweep): thin dashed".into(),
+        ));
+    }
+    // Each bifurcation kind drawn, with its one plain line.
+    for k in crate::views::fr::FrMarkerKind::ALL {
+        if v.branch_markers.iter().any(|m| m.kind == k) {
+            items.push((KeyIcon::Marker(k), k.explain().to_string()));
+        }
+    }
     if !v.failed.is_empty() {
         items.push((KeyIcon::Cross(FAILED_CROSS), failed_label(&v.failed)));
     }

@@ -18,7 +18,7 @@ pub const FR_MIN_CHART: u32 = 270;
 /// height): taller where its key would leave the chart less than
 /// [`FR_MIN_CHART`] pixels.
 pub fn fr_height(v: &FrView, (w, h): (u32, u32)) -> u32 {
-    let items = fr_key(v, fr_y_range(v));
+    let items = compact_key(fr_key(v, fr_y_range(v)));
     let lines = fr_lines(v, line_chars(w)).len();
     let key = key_height_estimate(&items, lines, w).max(0) as u32;
     h.max(FR_MIN_CHART + key)
@@ -64,7 +64,7 @@ pub fn draw_fr<DB: DrawingBackend>(
     let in_range = |o: f64| o >= x.0 && o <= x.1;
     let clipped = fr_clipped(v);
     let y = clipped.range;
-    let items = fr_key(v, y);
+    let items = compact_key(fr_key(v, y));
     let plan = plan_key(root, &items, fr_lines(v, line_chars(root.dim_in_pixel().0)));
     let upper = chart_area(root, &plan);
     let caption = if v.branches.iter().any(|b| b.member.is_some()) {
@@ -126,11 +126,108 @@ pub fn draw_fr<DB: DrawingBackend>(
     Ok(frame)
 }
 
+/// The most entries the key drawn under the frequency response has; the
+/// full key, every entry explained, is the text under the plot
+/// ([`fr_full_key`]).
+pub const KEY_MAX: usize = 8;
+
+/// The key drawn under the plot: `items` while they are at most
+/// [`KEY_MAX`]; else the regimes' colours become one entry and the
+/// bifurcation symbols another, and then the entries a reader needs least
+/// to read the curves (natural frequencies, the selected Ω, the symbols,
+/// the regime strip, the contact lines, in that order) give way to one
+/// last entry that counts them and points at the full key.
+pub(crate) fn compact_key(items: KeyItems) -> KeyItems {
+    let collapse = |items: KeyItems, is: fn(&KeyIcon) -> bool, text: &str| -> KeyItems {
+        if items.len() <= KEY_MAX || items.iter().filter(|i| is(&i.0)).count() < 2 {
+            return items;
+        }
+        let mut out: KeyItems = Vec::new();
+        for (icon, t) in items {
+            if !is(&icon) {
+                out.push((icon, t));
+            } else if !out.iter().any(|i| is(&i.0)) {
+                out.push((icon, text.to_string()));
+            }
+        }
+        out
+    };
+    let items = collapse(
+        items,
+        |i| matches!(i, KeyIcon::Regime(_)),
+        "regime strip: coloured by what the teeth do",
+    );
+    let items = collapse(
+        items,
+        |i| matches!(i, KeyIcon::Marker(_)),
+        "black symbols: bifurcations",
+    );
+    if items.len() <= KEY_MAX {
+        return items;
+    }
+    // Which entry gives way first (lowest first).
+    let rank = |(icon, text): &(KeyIcon, String)| match icon {
+        KeyIcon::Line(..) if text.starts_with("natural") => 0,
+        KeyIcon::Line(..) if text.starts_with("selected") => 1,
+        KeyIcon::Marker(_) => 2,
+        KeyIcon::Regime(_) => 3,
+        KeyIcon::Line(..) if text.contains("±b") => 4,
+        _ => 9,
+    };
+    let drop = items.len() - (KEY_MAX - 1);
+    let mut order: Vec<usize> = (0..items.len()).collect();
+    order.sort_by_key(|&i| rank(&items[i]));
+    let dropped: Vec<usize> = order
+        .into_iter()
+        .take(drop)
+        .filter(|&i| rank(&items[i]) < 9)
+        .collect();
+    let more = dropped.len();
+    let mut out: KeyItems = items
+        .into_iter()
+        .enumerate()
+        .filter(|(i, _)| !dropped.contains(i))
+        .map(|(_, item)| item)
+        .collect();
+    if more > 0 {
+        out.push((
+            KeyIcon::Dot(WHITE, 0),
+            format!("{more} more in the full key under the plot"),
+        ));
+    }
+    out
+}
+
+/// The full key of the frequency response, one line per entry, each
+/// regime and bifurcation kind with its plain explanation: the text in
+/// "details" under the plot.
+pub fn fr_full_key(v: &FrView) -> Vec<String> {
+    fr_key(v, fr_y_range(v))
+        .into_iter()
+        .map(|(icon, text)| match icon {
+            KeyIcon::Marker(k) => {
+                let symbol = match k {
+                    FrMarkerKind::Fold => "▲",
+                    FrMarkerKind::PeriodDoubling => "✕",
+                    FrMarkerKind::NeimarkSacker => "○",
+                    FrMarkerKind::BranchPoint => "□",
+                };
+                format!("{symbol} {}", k.explain())
+            }
+            KeyIcon::Regime(r) => format!(
+                "regime strip: {}",
+                crate::story::contact_sentence(r, v.backlash_um.first().copied().unwrap_or(0.0))
+            ),
+            _ => text,
+        })
+        .collect()
+}
+
 /// The frequency response's key: the branches (a family's member and the
 /// faded previous branch once each, else max and min), the contact lines,
 /// natural frequencies and cursor, the unstable dash, the regimes present,
 /// the bifurcation kinds present, the overlay and a failure's line.
-fn fr_key(v: &FrView, y: (f64, f64)) -> KeyItems {
+pub(crate) fn fr_key(v: &FrView, y: (f64, f64)) -> KeyItems {
     let mut items: KeyItems = Vec::new();
     items.extend(branch_items(&v.branches));
     if v.branches.iter().any(|b| b.faded) {
@@ -181,10 +278,9 @@ fn fr_key(v: &FrView, y: (f64, f64)) -> KeyItems {
             v.overlay.len()
         );
         if let Some(m) = d.max_um {
-            text.push_str(&format!(
-                "; within {m:.1} µm of the stable branch at {}",
-                d.compared
-            ));
+            // Where the curve is stable the dots should lie on it: how far
+            // the farthest of them is.
+            text.push_str(&format!("; within {m:.1} µm of the stable curve"));
         }
         text.push(')');
         items.push((KeyIcon::Overlay, text));

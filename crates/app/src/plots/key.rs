@@ -140,12 +140,13 @@ pub(crate) fn contact_item(backlash_um: &[f64], shown: (f64, f64)) -> Option<(Ke
         .filter(|b| r.contains(*b) || r.contains(&-**b))
         .map(|b| format!("{b}"))
         .collect();
-    (!bs.is_empty()).then(|| {
-        (
-            KeyIcon::Line(CONTACT, true),
-            format!("±b contact lines (b = {} µm)", bs.join(", ")),
-        )
-    })
+    // Without backlash the two lines are one, at x = 0: no gap to cross.
+    let text = if backlash_um.iter().all(|b| !crate::story::has_backlash(*b)) {
+        "x = 0: no backlash, the flanks always touch".to_string()
+    } else {
+        format!("±b contact lines (b = {} µm)", bs.join(", "))
+    };
+    (!bs.is_empty()).then_some((KeyIcon::Line(CONTACT, true), text))
 }
 
 /// The key items of the ±b contact lines shown in `y`: the current

@@ -25,11 +25,11 @@ pub mod multiples;
 mod omega;
 
 pub use bif::{draw_bif, draw_groups, failed_label, svg_with, svg_with_dots};
-pub use fr::{draw_fr, fr_height, FR_MIN_CHART};
+pub use fr::{draw_fr, fr_full_key, fr_height, FR_MIN_CHART, KEY_MAX};
 pub(crate) use key::*;
 pub use omega::{
     draw_phase, draw_phase_with, draw_poincare, draw_poincare_with, draw_spectrum, draw_time,
-    draw_time_with,
+    draw_time_with, poincare_key,
 };
 
 use crate::protocol::Regime;

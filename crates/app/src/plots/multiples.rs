@@ -10,8 +10,8 @@ use super::fr::{branch_items, draw_branch};
 use super::*;
 use crate::protocol::OmegaResult;
 use crate::views::bif::BifView;
-use crate::views::family::Panel;
 use crate::views::fr::FrView;
+use crate::views::multiples::Panel;
 
 /// Room for the title above the panels and the key under them (pixels).
 const TOP: u32 = 28;
@@ -289,6 +289,12 @@ pub fn draw_bif_panels<DB: DrawingBackend>(
     Ok((frames, groups))
 }
 
+/// A family member's phase portrait or Poincaré section title: the
+/// member and its motion's classification ("(a) TE 5 µm: period 1 (exact)").
+pub fn phase_panel_title(title: &str, r: &OmegaResult) -> String {
+    format!("{title}: {}", crate::story::motion_tag_short(r.motion))
+}
+
 /// The phase portraits (`poincare` false) or Poincaré sections of a
 /// family side by side, on shared axes.
 pub fn draw_phase_panels<DB: DrawingBackend>(
@@ -310,6 +316,16 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
             "Line: the recorded orbit; red dots: its Poincaré points; dashed: ±b",
         )
     };
+    // Without backlash the dashed line is x = 0, not ±b.
+    let no_backlash = panels
+        .iter()
+        .filter_map(|p| p.data.as_ref().ok())
+        .all(|r| !crate::story::has_backlash(r.backlash_um));
+    let key = if no_backlash {
+        key.replace("dashed: ±b", "dashed: x = 0 (no backlash)")
+    } else {
+        key.to_string()
+    };
     let title = match first {
         Some(r) => format!(
             "{what}, mesh {}, Ω = {:.4}, shared axes{status}",
@@ -317,10 +333,11 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
         ),
         None => format!("{what}{status}"),
     };
-    // A period found before the transient settled is starred in the
-    // panel's title (the title has no room for the words) and said in the key.
-    let unsettled = |r: &OmegaResult| r.period.is_some_and(|p| p > 1) && !r.settled;
-    let mut key = key.to_string();
+    // A motion still settling is starred in the panel's title (the title
+    // has no room for the words) and said in the key.
+    let unsettled =
+        |r: &OmegaResult| matches!(r.motion, crate::protocol::MotionClass::StillSettling { .. });
+    let mut key = key;
     // The orbits cut to the panels' budget, in words: "the last 250 of 1000
     // recorded periods" (the largest of the panels' cuts).
     let n = panels.len();
@@ -334,11 +351,13 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
         .max_by_key(|&(shown, _)| shown);
     if let (false, Some((shown, recorded))) = (poincare, cut) {
         key = format!(
-            "Line: the orbit's last {shown} of {recorded} recorded periods; red dots: the Poincaré points of all of them; dashed: ±b"
+            "Line: the orbit's last {shown} of {recorded} recorded periods; red dots: the Poincaré points of all of them; dashed: {}",
+            if no_backlash { "x = 0 (no backlash)" } else { "±b" }
         );
     }
     if panels.iter().any(|p| p.data.as_ref().is_ok_and(unsettled)) {
-        key.push_str("; *: still settling, more transient periods may show another period");
+        key.push_str("; ");
+        key.push_str(crate::story::STILL_SETTLING_KEY);
     }
     let (areas, cols) = layout(root, &title, &key, panels.len())?;
     for (k, (area, p)) in areas.iter().zip(panels).enumerate() {
@@ -349,11 +368,7 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
                 continue;
             }
         };
-        let period = match r.period {
-            Some(n) if unsettled(r) => format!("period {n}*"),
-            p => crate::words::period_words(p, true),
-        };
-        let t = format!("{}: {period}", p.title);
+        let t = phase_panel_title(&p.title, r);
         let mut chart = panel_chart(area, &t, (x, y), ("x (µm)", "ẋ (m/s)"), k % cols == 0)?;
         let b = r.backlash_um;
         // The contact lines where they fall in range (the axes fit the data).

@@ -107,30 +107,7 @@ pub fn draw_phase_with<DB: DrawingBackend>(
     status: &str,
     whole: bool,
 ) -> Res<()> {
-    root.fill(&WHITE).map_err(err)?;
-    let (x, y) = phase_ranges(r, whole);
-    let mut items: KeyItems = vec![
-        (
-            KeyIcon::Line(ORBIT, false),
-            format!("orbit over {} recorded periods", r.record_periods),
-        ),
-        (
-            KeyIcon::Dot(CURSOR, 4),
-            "Poincaré points (once per mesh period)".into(),
-        ),
-    ];
-    items.extend(contact_item(&[r.backlash_um], x));
-    let plan = plan_key(root, &items, Vec::new());
-    let area = chart_area(root, &plan);
-    let what = ("Phase portrait", "x = δ − e (µm)");
-    let mut chart = phase_plane(&area, r, what, status, (x, y))?;
-    draw_orbit(&mut chart, r, 0, ORBIT)?;
-    let dots = poincare_dots(r, |p| chart.backend_coord(&p));
-    chart
-        .draw_series(dots.into_iter().map(|p| Circle::new(p, 4, CURSOR.filled())))
-        .map_err(err)?;
-    draw_key(root, &items, &plan)?;
-    root.present().map_err(err)
+    draw_plane(root, r, status, whole, false)
 }
 
 /// `ViewId::Poincare`: the Poincaré section, on the orbit's axes so that one point reads as one point.
@@ -149,27 +126,62 @@ pub fn draw_poincare_with<DB: DrawingBackend>(
     status: &str,
     whole: bool,
 ) -> Res<()> {
+    draw_plane(root, r, status, whole, true)
+}
+
+/// The phase plane: the orbit with its Poincaré points, or (`poincare`)
+/// the points alone, larger.
+fn draw_plane<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    r: &OmegaResult,
+    status: &str,
+    whole: bool,
+    poincare: bool,
+) -> Res<()> {
     root.fill(&WHITE).map_err(err)?;
     let (x, y) = phase_ranges(r, whole);
-    let period = crate::words::period_words(r.period, r.settled);
-    let mut items: KeyItems = vec![(
-        KeyIcon::Dot(CURSOR, 3),
-        format!("{} Poincaré points ({period})", r.poincare_x_um.len()),
-    )];
+    let (mut items, what, radius): (KeyItems, _, i32) = if poincare {
+        let points = poincare_key(r);
+        let what = (
+            "Poincaré section",
+            "x = δ − e (µm), sampled once per mesh period",
+        );
+        (vec![(KeyIcon::Dot(CURSOR, 3), points)], what, 3)
+    } else {
+        let orbit = format!("orbit over {} recorded periods", r.record_periods);
+        let points = "Poincaré points (once per mesh period)".to_string();
+        let items = vec![
+            (KeyIcon::Line(ORBIT, false), orbit),
+            (KeyIcon::Dot(CURSOR, 4), points),
+        ];
+        (items, ("Phase portrait", "x = δ − e (µm)"), 4)
+    };
     items.extend(contact_item(&[r.backlash_um], x));
     let plan = plan_key(root, &items, Vec::new());
     let area = chart_area(root, &plan);
-    let what = (
-        "Poincaré section",
-        "x = δ − e (µm), sampled once per mesh period",
-    );
     let mut chart = phase_plane(&area, r, what, status, (x, y))?;
+    if !poincare {
+        draw_orbit(&mut chart, r, 0, ORBIT)?;
+    }
     let dots = poincare_dots(r, |p| chart.backend_coord(&p));
     chart
-        .draw_series(dots.into_iter().map(|p| Circle::new(p, 3, CURSOR.filled())))
+        .draw_series(
+            dots.into_iter()
+                .map(|p| Circle::new(p, radius, CURSOR.filled())),
+        )
         .map_err(err)?;
     draw_key(root, &items, &plan)?;
     root.present().map_err(err)
+}
+
+/// The Poincaré section's key entry: how many points, and the motion's
+/// classification ("100 Poincaré points: period 1 (exact)").
+pub fn poincare_key(r: &OmegaResult) -> String {
+    format!(
+        "{} Poincaré points: {}",
+        r.poincare_x_um.len(),
+        crate::story::motion_tag(r.motion)
+    )
 }
 
 /// `ViewId::Time`: the time history of the last recorded periods.

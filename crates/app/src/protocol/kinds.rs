@@ -25,17 +25,21 @@ pub enum JobKind {
     Map = 4,
     /// The largest Lyapunov exponent over Omega (`ViewId::Lyap`).
     Lyap = 5,
+    /// The periodic orbits' branches by shooting, on the bifurcation
+    /// diagram (`ViewId::Bif`).
+    Orbits = 6,
 }
 
 impl JobKind {
     /// Every kind, by slot.
-    pub const ALL: [JobKind; 6] = [
+    pub const ALL: [JobKind; 7] = [
         JobKind::Omega,
         JobKind::HarmonicBalance,
         JobKind::Overlay,
         JobKind::Bif,
         JobKind::Map,
         JobKind::Lyap,
+        JobKind::Orbits,
     ];
     /// How many kinds there are (the length of per-kind arrays).
     pub const COUNT: usize = Self::ALL.len();

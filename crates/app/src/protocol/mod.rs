@@ -29,7 +29,11 @@ use solver::steady::Impact;
 pub type JobId = u64;
 
 mod kinds;
+mod motion;
+mod orbits;
 pub use kinds::{JobKind, KindSet, Target};
+pub use motion::MotionClass;
+pub use orbits::OrbitSample;
 
 /// Transient and recorded mesh periods of each steady state.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -157,6 +161,17 @@ pub enum JobSpec {
         /// Periods averaged over.
         periods: u32,
     },
+    /// The periodic orbits' branches by shooting continuation
+    /// (`solver::orbits`) over the range, period doublings followed: drawn
+    /// on the bifurcation diagram.
+    Orbits {
+        /// Start of the Omega range.
+        omega_from: f64,
+        /// End of the Omega range.
+        omega_to: f64,
+        /// Resolution (the largest step is range / points).
+        points: u32,
+    },
 }
 
 impl JobSpec {
@@ -169,6 +184,7 @@ impl JobSpec {
             JobSpec::Bif { .. } => JobKind::Bif,
             JobSpec::Map { .. } => JobKind::Map,
             JobSpec::Lyap { .. } => JobKind::Lyap,
+            JobSpec::Orbits { .. } => JobKind::Orbits,
         }
     }
 }
@@ -384,6 +400,9 @@ pub struct BifSample {
     pub worst_mesh: usize,
     /// Period of the Poincaré orbit, if periodic.
     pub period: Option<u32>,
+    /// The classification of the point's steady state.
+    #[serde(default)]
+    pub motion: MotionClass,
     /// Why the point failed.
     pub error: Option<String>,
 }
@@ -485,6 +504,10 @@ pub struct OmegaResult {
     pub regime: Regime,
     /// Period in mesh periods, `None` if not periodic within the record.
     pub period: Option<u32>,
+    /// The classification (exact orbit, periodic, still settling, not
+    /// periodic): the one source of the page's words about the motion.
+    #[serde(default)]
+    pub motion: MotionClass,
     /// Dynamic factor of the plotted mesh.
     pub dynamic_factor: Option<f64>,
     /// Mesh frequency (Hz).
@@ -581,6 +604,18 @@ pub enum FromWorker {
         id: JobId,
         /// The points.
         points: Vec<BifSample>,
+    },
+    /// New points of the shooting branches (`JobSpec::Orbits`).
+    OrbitPoints {
+        /// Job id.
+        id: JobId,
+        /// The points, in continuation order.
+        points: Vec<OrbitSample>,
+        /// Every branch has ended (or the budget ran out, or it failed).
+        finished: bool,
+        /// The failure that ended the continuation, if any: the points
+        /// before it stay valid.
+        error: Option<String>,
     },
     /// New cells of a map job.
     MapCells {

@@ -14,6 +14,7 @@ use crate::views::bif::BifStore;
 use crate::views::fr::{FrStore, HbmStore};
 use crate::views::lyap::LyapStore;
 use crate::views::map::MapStore;
+use crate::views::orbits::OrbitStore;
 use status::{Dirty, JobStatus};
 
 /// How a failure of the harmonic-balance branch starts in the messages (a
@@ -43,6 +44,8 @@ pub struct Computation {
     pub map: MapStore,
     /// The Lyapunov curve's points ([`JobKind::Lyap`]).
     pub lyap: LyapStore,
+    /// The shooting branches' points ([`JobKind::Orbits`]; id 0: off).
+    pub orbits: OrbitStore,
     /// Each kind's job status, by [`JobKind::slot`].
     status: [JobStatus; JobKind::COUNT],
 }
@@ -178,6 +181,30 @@ impl Computation {
                 let done = self.lyap.points.len();
                 self.status_mut(JobKind::Lyap).record(done, now_ms);
                 dirty.data(JobKind::Lyap);
+                fed.matched = true;
+            }
+            FromWorker::OrbitPoints {
+                id,
+                points,
+                finished,
+                error,
+            } if ours(*id, self.orbits.id) => {
+                self.orbits.points.extend(points.iter().cloned());
+                self.orbits.finished = *finished;
+                let done = self.orbits.points.len();
+                let st = self.status_mut(JobKind::Orbits);
+                st.record(done, now_ms);
+                if *finished {
+                    st.finished_ms = Some(now_ms);
+                }
+                if let Some(e) = error {
+                    let msg = format!(
+                        "Shooting branches: the continuation failed ({e}); the branches drawn are partial"
+                    );
+                    self.orbits.error = Some(msg.clone());
+                    fed.issues.push(msg);
+                }
+                dirty.data(JobKind::Orbits);
                 fed.matched = true;
             }
             FromWorker::Omega { id, result } if ours(*id, self.status(JobKind::Omega).id) => {

@@ -2,7 +2,7 @@
 //! samples from both workers, the dots the plot draws, and the CSV export.
 
 use super::{csv_num, distinct, ViewContext};
-use crate::protocol::{BifSample, Regime};
+use crate::protocol::{BifSample, MotionClass, Regime};
 use serde::Serialize;
 
 /// One dot of the bifurcation diagram.
@@ -44,6 +44,16 @@ pub struct BifView {
     pub pinned_backlash_um: Vec<f64>,
     /// Legend texts of A and B when comparing.
     pub ab_labels: Option<(String, String)>,
+    /// The shooting branches' lines (stable solid, unstable thin).
+    #[serde(skip)]
+    pub branches: Vec<super::orbits::OrbitLine>,
+    /// The bifurcations located on them.
+    #[serde(skip)]
+    pub branch_markers: Vec<super::orbits::OrbitMarker>,
+    /// Every swept point's classification, `(omega, up, motion)`, in the
+    /// sweep's order: the text alternative's words about the motion.
+    #[serde(skip)]
+    pub motions: Vec<(f64, bool, MotionClass)>,
     /// Swept points received.
     pub done: usize,
     /// Swept points in all.
@@ -78,6 +88,7 @@ impl BifStore {
     pub fn view(&self, mesh: Option<usize>, backlash_um: &[f64], ctx: &ViewContext) -> BifView {
         let mut points = Vec::new();
         let mut failed = Vec::new();
+        let mut motions = Vec::new();
         // In the sweep's order (up by rising Omega, then down by falling
         // Omega), whatever order the workers' samples arrived in, so that
         // the export is the same on any pool.
@@ -97,6 +108,7 @@ impl BifStore {
             }
             let j = mesh.unwrap_or(s.worst_mesh);
             let Some(m) = s.meshes.get(j) else { continue };
+            motions.push((s.omega, s.up, s.motion));
             points.extend(m.x_um.iter().map(|&x| BifPoint {
                 omega: s.omega,
                 x_um: x,
@@ -116,6 +128,9 @@ impl BifStore {
             pinned: Vec::new(),
             pinned_backlash_um: Vec::new(),
             ab_labels: None,
+            branches: Vec::new(),
+            branch_markers: Vec::new(),
+            motions,
             done: self.samples.len(),
             total: self.total,
             whole_clearance: true,
@@ -159,6 +174,7 @@ mod tests {
             }],
             worst_mesh: 0,
             period: Some(2),
+            motion: crate::protocol::MotionClass::Periodic { period: 2 },
             error: None,
         });
         let v = st.view(None, &[100.0], &ctx());

@@ -132,6 +132,25 @@ impl FrMarkerKind {
             FrMarkerKind::BranchPoint => "branch point",
         }
     }
+
+    /// What the bifurcation means, in one plain line (the full key and the
+    /// bifurcation diagram say it where the kind is drawn).
+    pub fn explain(self) -> &'static str {
+        match self {
+            FrMarkerKind::Fold => {
+                "fold: the curve turns back; sweeping Ω past it, the response jumps to another curve"
+            }
+            FrMarkerKind::PeriodDoubling => {
+                "period doubling: the motion starts repeating every two mesh periods instead of every one"
+            }
+            FrMarkerKind::NeimarkSacker => {
+                "Neimark–Sacker: a second, slower rhythm appears, so the motion no longer repeats and its Poincaré dots trace a closed curve"
+            }
+            FrMarkerKind::BranchPoint => {
+                "branch point: another curve of repeating motion crosses this one here"
+            }
+        }
+    }
 }
 
 impl From<BranchBif> for FrMarkerKind {

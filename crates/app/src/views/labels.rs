@@ -5,9 +5,9 @@
 //! whenever the data does.
 
 use super::bif::BifView;
-use super::family::Panel;
 use super::fr::FrView;
 use super::map::MapStore;
+use super::multiples::Panel;
 use super::unstable::{short, strip_from_overlay, unstable_ranges, unstable_sentence};
 use crate::protocol::{OmegaResult, Regime};
 
@@ -131,7 +131,9 @@ pub fn bif_label(v: &BifView) -> String {
         let mut by: Vec<(Regime, f64, f64)> = Vec::new();
         let mut pts: Vec<_> = v.points.iter().filter(|p| p.up).collect();
         pts.sort_by(|a, b| a.omega.total_cmp(&b.omega));
-        let step = (v.omega_to - v.omega_from) / omegas.len().max(1) as f64;
+        // The grid's spacing: each point stands for the Ω up to half way to
+        // its neighbours, so neighbours of one regime join into one run.
+        let step = (v.omega_to - v.omega_from) / (omegas.len().max(2) - 1) as f64;
         for p in pts {
             by.push((p.regime, p.omega - 0.5 * step, p.omega + 0.5 * step));
         }
@@ -150,8 +152,73 @@ pub fn bif_label(v: &BifView) -> String {
         s.push_str("; upward sweep: ");
         s.push_str(&regimes);
     }
+    if !v.branches.is_empty() {
+        let stable = v.branches.iter().filter(|l| l.stable).count();
+        s.push_str(&format!(
+            "; branches of periodic motion found by shooting: {stable} stable and {} unstable stretches",
+            v.branches.len() - stable
+        ));
+        let marks: Vec<String> = v
+            .branch_markers
+            .iter()
+            .take(6)
+            .map(|m| format!("{} at Ω {}", m.kind.label(), short(m.omega)))
+            .collect();
+        if !marks.is_empty() {
+            s.push_str(&format!(" ({})", marks.join(", ")));
+        }
+    }
+    let motions = motion_runs(&v.motions);
+    if !motions.is_empty() {
+        s.push_str("; motion on the upward sweep: ");
+        s.push_str(&motions);
+    }
     s.push_str(&format!(" ({} of {} points computed).", v.done, v.total));
     s
+}
+
+/// Runs of one classification along the upward sweep, in the words of
+/// [`crate::story::motion_tag`]: "period 1 (exact) from Ω 0.1 to 0.9; not
+/// periodic at Ω 1".
+fn motion_runs(motions: &[(f64, bool, crate::protocol::MotionClass)]) -> String {
+    let mut up: Vec<(f64, String)> = motions
+        .iter()
+        .filter(|m| m.1)
+        .map(|&(o, _, m)| (o, crate::story::motion_tag(m)))
+        .collect();
+    up.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut runs: Vec<(String, f64, f64)> = Vec::new();
+    let n = up.len();
+    let mut counts: Vec<(String, usize)> = Vec::new();
+    for (o, tag) in up {
+        match counts.iter_mut().find(|c| c.0 == tag) {
+            Some(c) => c.1 += 1,
+            None => counts.push((tag.clone(), 1)),
+        }
+        match runs.last_mut() {
+            Some(last) if last.0 == tag => last.2 = o,
+            _ => runs.push((tag, o, o)),
+        }
+    }
+    // Many short runs read better as counts.
+    if runs.len() > 6 {
+        counts.sort_by_key(|c| std::cmp::Reverse(c.1));
+        return counts
+            .into_iter()
+            .map(|(tag, k)| format!("{tag} at {k} of {n} values of Ω"))
+            .collect::<Vec<_>>()
+            .join(", ");
+    }
+    runs.into_iter()
+        .map(|(tag, a, b)| {
+            if a == b {
+                format!("{tag} at Ω {}", short(a))
+            } else {
+                format!("{tag} from Ω {} to {}", short(a), short(b))
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("; ")
 }
 
 /// The impact-regime map: its axes, how many cells of each regime, and
@@ -218,10 +285,7 @@ pub fn lyap_label(curve: &[(f64, f64)]) -> String {
 pub fn omega_label(title: &str, r: &OmegaResult) -> String {
     let lo = r.x_um.iter().copied().fold(f64::INFINITY, f64::min);
     let hi = r.x_um.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    let period = match r.period {
-        None => "not periodic within the record".into(),
-        p => crate::words::period_words(p, r.settled),
-    };
+    let period = crate::story::motion_tag(r.motion);
     let range = if lo.is_finite() && hi.is_finite() {
         format!(
             ", x from {lo:.0} to {hi:.0} µm (backlash {:.0} µm)",
@@ -235,7 +299,7 @@ pub fn omega_label(title: &str, r: &OmegaResult) -> String {
         "{title} of {} at Ω {}{preview}: {}, {period}{range}.",
         r.mesh_name,
         short(r.omega),
-        r.regime.label()
+        crate::story::contact_tag(r.regime, r.backlash_um)
     )
 }
 

@@ -316,15 +316,7 @@ mod tests {
     #[test]
     fn the_store_counts_regimes_once_per_cell() {
         let mut s = MapStore::new(7, grid(), "sig".into());
-        let cell = |row, column, regime, period| MapSample {
-            row,
-            column,
-            omega: 0.0,
-            value: 0.0,
-            regime,
-            period,
-            error: None,
-        };
+        let cell = crate::views::test_support::map_cell;
         s.add(vec![
             cell(0, 0, Regime::NoImpact, Some(1)),
             cell(0, 1, Regime::DoubleSided, Some(2)),

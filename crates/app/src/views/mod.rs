@@ -7,15 +7,16 @@
 //! export formats come from [`VIEWS`] and nowhere else.
 
 pub mod bif;
-pub mod family;
 pub mod fr;
 pub mod labels;
 pub mod lyap;
 pub mod map;
+pub mod multiples;
 pub mod omega;
+pub mod orbits;
 mod table;
 #[cfg(test)]
-mod test_support;
+pub(crate) mod test_support;
 pub mod unstable;
 
 pub use table::{part_number, PagePart, ViewId, ViewSpec, DRAW_ORDER, PAGE, VIEWS};

@@ -3,16 +3,13 @@
 //! history's and spectrum's CSV and JSON exports.
 
 use super::{csv_num, NaturalFreq};
-use crate::protocol::{OmegaResult, Regime};
+use crate::protocol::{MotionClass, OmegaResult};
 use solver::model::Model;
 use solver::params::MeshKind;
 
 /// The one-line summary at the selected Omega (under the selected-Omega views).
 pub fn summary_line(r: &OmegaResult, natural: &[NaturalFreq]) -> String {
-    let period = match r.period {
-        None => "not periodic (within the recorded periods)".into(),
-        p => crate::words::period_words(p, r.settled),
-    };
+    let period = crate::story::motion_tag(r.motion);
     let df = r.dynamic_factor.map_or("n/a".into(), |d| format!("{d:.3}"));
     let nat = if natural.is_empty() {
         "none in range".to_string()
@@ -31,43 +28,31 @@ pub fn summary_line(r: &OmegaResult, natural: &[NaturalFreq]) -> String {
     } else {
         String::new()
     };
+    let multiplier = match r.motion {
+        MotionClass::PeriodicExact {
+            max_multiplier_modulus,
+            ..
+        } => format!(", largest Floquet multiplier {max_multiplier_modulus:.3}"),
+        _ => String::new(),
+    };
     format!(
-        "{preview}Ω = {:.4} ({:.0} Hz mesh frequency), mesh {}: {}, {}, dynamic factor {}. Natural frequencies in range (Ω): {}.",
+        "{preview}Ω = {:.4} ({:.0} Hz mesh frequency), mesh {}: {}, {period}{multiplier}, dynamic factor {}. Natural frequencies in range (Ω): {}.",
         r.omega,
         r.mesh_freq_hz,
         r.mesh_name,
-        r.regime.label(),
-        period,
+        crate::story::contact_tag(r.regime, r.backlash_um),
         df,
         nat
     )
 }
 
 /// The summary for students: two sentences at the selected Omega, what
-/// the teeth do (the regime in words), whether the motion repeats, and the
-/// dynamic factor explained.
+/// the teeth do (the regime in words, read against the backlash), whether
+/// the motion repeats (its classification), and the dynamic factor
+/// explained.
 pub fn student_summary(r: &OmegaResult) -> String {
-    let what = match r.regime {
-        Regime::NoImpact => "the teeth stay in contact all the time (no impact)",
-        Regime::SingleSided => {
-            "the teeth separate once a cycle and strike the driving flank again (single-sided impact)"
-        }
-        Regime::DoubleSided => {
-            "the teeth cross the whole backlash and also hit the back flank (double-sided impact)"
-        }
-        Regime::NoContact => "the teeth never touch (no contact)",
-    };
-    let repeats = match r.period {
-        Some(1) => "the motion repeats every mesh period".to_string(),
-        Some(n) if !r.settled => format!(
-            "the motion nearly repeats every {n} mesh periods, but it had not settled by the end of the transient, so more transient periods (in the settings) may show another period"
-        ),
-        Some(n) => format!("the motion repeats every {n} mesh periods (period {n})"),
-        None => {
-            "the motion does not repeat within the recorded periods (quasi-periodic or chaotic)"
-                .to_string()
-        }
-    };
+    let what = crate::story::contact_sentence(r.regime, r.backlash_um);
+    let repeats = crate::story::motion_sentence(r.motion, r.transient_periods_run);
     let preview = if r.preview { "Preview: " } else { "" };
     let first = format!(
         "{preview}At Ω {} ({:.0} Hz mesh frequency) on mesh {}, {what}; {repeats}.",
@@ -223,6 +208,12 @@ pub fn omega_json(r: &OmegaResult, which: OmegaView) -> serde_json::Value {
         "backlash_um": r.backlash_um,
         "impact": r.regime.solver_name(),
         "period": r.period,
+        "motion": r.motion.name(),
+        "exact": r.motion.is_exact(),
+        "max_multiplier_modulus": match r.motion {
+            MotionClass::PeriodicExact { max_multiplier_modulus, .. } => Some(max_multiplier_modulus),
+            _ => None,
+        },
         "dynamic_factor": r.dynamic_factor,
         "samples_per_period": r.samples_per_period,
         "record_periods": r.record_periods,

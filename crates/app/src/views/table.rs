@@ -60,7 +60,7 @@ pub const VIEWS: [ViewSpec; 8] = [
         key: "bif",
         title: "Bifurcation diagram",
         data: JobKind::Bif,
-        shows: JobKind::Bif.set(),
+        shows: KindSet::of(&[JobKind::Bif, JobKind::Orbits]),
         progressive: true,
     },
     ViewSpec {
@@ -229,7 +229,9 @@ impl ViewId {
             JobKind::HarmonicBalance | JobKind::Overlay => {
                 format!("harmonic balance: {done}% of the Ω range")
             }
-            JobKind::Bif | JobKind::Lyap => format!("computing {done}/{total} points"),
+            JobKind::Bif | JobKind::Lyap | JobKind::Orbits => {
+                format!("computing {done}/{total} points")
+            }
             JobKind::Map => format!("computing {done}/{total} cells"),
             JobKind::Omega => "computing…".into(),
         }

@@ -3,7 +3,9 @@
 //! extremes built from a few numbers.
 
 use super::ViewContext;
-use crate::protocol::{HbmMesh, HbmSample, MeshExtremes, Regime};
+use crate::protocol::{
+    HbmMesh, HbmSample, MapSample, MeshExtremes, MotionClass, OmegaResult, Regime,
+};
 
 /// The view context of the tests: Omega 0.1 to 2, 0.5 selected, mesh s1a1,
 /// no natural frequencies.
@@ -51,5 +53,61 @@ pub(crate) fn ext(lo: f64, hi: f64, df: Option<f64>) -> MeshExtremes {
         rel_max_um: hi,
         regime: Regime::SingleSided,
         dynamic_factor: df,
+    }
+}
+
+/// A map cell at `(row, column)` with its regime and period (Omega and
+/// value left at 0: the stores place cells by their indices).
+pub(crate) fn map_cell(row: u32, column: u32, regime: Regime, period: Option<u32>) -> MapSample {
+    MapSample {
+        row,
+        column,
+        omega: 0.0,
+        value: 0.0,
+        regime,
+        period,
+        error: None,
+    }
+}
+
+/// A period-1 exact steady state at Ω 0.84 on s1a1 (100 µm backlash,
+/// single-sided impact): x = 110 + 30 sin, 20 recorded periods.
+pub(crate) fn omega_result() -> OmegaResult {
+    let n = 64 * 20;
+    let x: Vec<f64> = (0..n)
+        .map(|k| 110.0 + 30.0 * (k as f64 / 64.0 * std::f64::consts::TAU).sin())
+        .collect();
+    let v: Vec<f64> = (0..n)
+        .map(|k| 0.5 * (k as f64 / 64.0 * std::f64::consts::TAU).cos())
+        .collect();
+    OmegaResult {
+        omega: 0.84,
+        mesh: 0,
+        mesh_name: "s1a1".into(),
+        backlash_um: 100.0,
+        regime: Regime::SingleSided,
+        period: Some(1),
+        motion: MotionClass::PeriodicExact {
+            period: 1,
+            max_multiplier_modulus: 0.9,
+        },
+        dynamic_factor: Some(1.4),
+        mesh_freq_hz: 4500.0,
+        transient_periods_run: 100,
+        settled: true,
+        samples_per_period: 64,
+        record_periods: 20,
+        x_um: x,
+        xdot_m_s: v,
+        poincare_x_um: vec![110.0; 20],
+        poincare_xdot_m_s: vec![0.5; 20],
+        spectrum_order: vec![0.0, 1.0, 2.0],
+        spectrum_um: vec![110.0, 30.0, 0.1],
+        all_meshes: vec![],
+        anim: Default::default(),
+        steps: 1,
+        cli_json: "{}".into(),
+        preview: false,
+        end_state: vec![],
     }
 }

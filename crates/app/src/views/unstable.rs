@@ -146,44 +146,26 @@ mod tests {
         let s = Some(true);
         let u = Some(false);
         let r = Regime::NoImpact;
+        let curve = |pts: &[(f64, Option<bool>)]| -> Vec<FrCurvePoint> {
+            pts.iter().map(|&(o, st)| pt(o, st, r)).collect()
+        };
         // Stable 0.1..0.4, unstable 0.4..1.0 then 1.0..1.7, stable again to 2.
-        let branch: Vec<FrCurvePoint> =
-            [(0.1, s), (0.4, s), (0.7, u), (1.0, u), (1.7, s), (2.0, s)]
-                .iter()
-                .map(|&(o, st)| pt(o, st, r))
-                .collect();
+        let branch = curve(&[(0.1, s), (0.4, s), (0.7, u), (1.0, u), (1.7, s), (2.0, s)]);
         assert_eq!(unstable_ranges(&branch), vec![(0.4, 1.7)]);
         // A fold: up 0.1..0.8 stable, back 0.8..0.5 unstable, up 0.5..2 stable.
-        let fold: Vec<FrCurvePoint> = [(0.1, s), (0.8, s), (0.5, u), (0.5, s), (2.0, s)]
-            .iter()
-            .map(|&(o, st)| pt(o, st, r))
-            .collect();
+        let fold = curve(&[(0.1, s), (0.8, s), (0.5, u), (0.5, s), (2.0, s)]);
         assert!(unstable_ranges(&fold).is_empty());
         // Unknown stability counts as stable; a gap under 2 % is dropped.
-        let unknown = vec![pt(0.1, None, r), pt(2.0, None, r)];
-        assert!(unstable_ranges(&unknown).is_empty());
-        let tiny = vec![pt(0.0, s, r), pt(1.0, s, r), pt(1.01, u, r), pt(2.0, s, r)];
+        assert!(unstable_ranges(&curve(&[(0.1, None), (2.0, None)])).is_empty());
+        let tiny = curve(&[(0.0, s), (1.0, s), (1.01, u), (2.0, s)]);
         assert_eq!(unstable_ranges(&tiny), vec![(1.0, 2.0)]);
-        let tiny2 = vec![
-            pt(0.0, s, r),
-            pt(1.0, s, r),
-            pt(1.01, u, r),
-            pt(1.02, s, r),
-            pt(2.0, s, r),
-        ];
+        let tiny2 = curve(&[(0.0, s), (1.0, s), (1.01, u), (1.02, s), (2.0, s)]);
         assert!(unstable_ranges(&tiny2).is_empty());
         // A stable island under 2 % of the reach does not split a range.
-        let island = vec![
-            pt(0.0, s, r),
-            pt(0.5, s, r),
-            pt(0.8, u, r),
-            pt(0.81, s, r),
-            pt(0.82, s, r),
-            pt(1.5, u, r),
-            pt(1.6, s, r),
-            pt(2.0, s, r),
-        ];
-        assert_eq!(unstable_ranges(&island), vec![(0.5, 1.6)]);
+        let island = [0.0, 0.5, 0.8, 0.81, 0.82, 1.5, 1.6, 2.0];
+        let stable = [s, s, u, s, s, u, s, s];
+        let island: Vec<(f64, Option<bool>)> = island.into_iter().zip(stable).collect();
+        assert_eq!(unstable_ranges(&curve(&island)), vec![(0.5, 1.6)]);
         assert_eq!(short(0.45), "0.45");
         assert_eq!(short(1.7), "1.7");
         assert_eq!(short(2.0), "2");

@@ -42,22 +42,13 @@ pub(super) fn observe_anim_visibility(page: &Shared) {
 /// vertices and a cursor line per frame, well under a millisecond to draw,
 /// but two canvas updates for the browser to commit.
 pub(super) fn start_anim_loop(page: &Shared) {
-    type Cb = Closure<dyn FnMut(f64)>;
-    let slot: Rc<RefCell<Option<Cb>>> = Rc::new(RefCell::new(None));
-    let slot2 = slot.clone();
     let page2 = page.clone();
-    *slot.borrow_mut() = Some(Closure::new(move |ts: f64| {
+    let cb = Closure::once_into_js(move |ts: f64| {
         anim_tick(&page2, ts);
-        let window = page2.borrow().window.clone();
-        if let Some(cb) = slot2.borrow().as_ref() {
-            check(window.request_animation_frame(cb.as_ref().unchecked_ref()));
-        }
-    }));
+        start_anim_loop(&page2);
+    });
     let window = page.borrow().window.clone();
-    let first = slot.borrow();
-    if let Some(cb) = first.as_ref() {
-        check(window.request_animation_frame(cb.as_ref().unchecked_ref()));
-    }
+    check(window.request_animation_frame(cb.unchecked_ref()));
 }
 
 fn anim_tick(page: &Shared, ts: f64) {

@@ -73,7 +73,7 @@ impl WorkerCore {
                 job,
             } => {
                 if let Target::Member(m) = target {
-                    if m == 0 || m as usize > crate::family::MAX_MEMBERS {
+                    if m == 0 || m as usize > crate::family_spec::MAX_MEMBERS {
                         return vec![failed(id, format!("no family member {m}"))];
                     }
                 }

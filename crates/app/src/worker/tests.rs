@@ -1,7 +1,7 @@
 //! The worker job runner's tests: real jobs on small models.
 
 use super::*;
-use crate::protocol::{encode, JobSpec, OmegaSpec, RunOptions};
+use crate::protocol::{encode, JobSpec, OmegaSpec, OrbitSample, RunOptions};
 use crate::worker::jobs::hbm::HBM_CHUNK;
 use serde_json::Map;
 use solver::keys;
@@ -573,6 +573,71 @@ fn a_new_omega_job_preempts_a_running_steady_state_within_one_slice() {
     assert!(drain(&mut core)
         .iter()
         .any(|m| matches!(m, FromWorker::BifPoints { id: 7, .. })));
+}
+
+/// The shooting branches' job streams orbits whose Poincaré samples are
+/// the steady state's: at the range's start, the first orbit's x on the
+/// gear pair equals the selected-Omega run's (a transient integrated, then
+/// the steady pipeline), and the job ends by itself.
+#[test]
+fn the_orbits_job_streams_orbits_that_the_steady_state_confirms() {
+    let mut core = WorkerCore::new();
+    let p = ModelParams::defaults(solver::ModelKind::GearPair);
+    core.handle(&run_msg(
+        3,
+        &p,
+        JobSpec::Orbits {
+            omega_from: 0.15,
+            omega_to: 0.6,
+            points: 20,
+        },
+    ));
+    let out = drain(&mut core);
+    let points: Vec<&OrbitSample> = out
+        .iter()
+        .flat_map(|m| match m {
+            FromWorker::OrbitPoints { id: 3, points, .. } => points.iter().collect(),
+            _ => Vec::new(),
+        })
+        .collect();
+    assert!(points.len() > 3, "{out:?}");
+    assert!(out.iter().any(|m| matches!(
+        m,
+        FromWorker::OrbitPoints {
+            finished: true,
+            error: None,
+            ..
+        }
+    )));
+    let first = points[0];
+    assert_eq!((first.omega, first.period), (0.15, 1));
+    assert_eq!(first.x_um.len(), 1);
+    core.handle(&run_msg(
+        4,
+        &p,
+        JobSpec::Omega(OmegaSpec {
+            omega: 0.15,
+            mesh: None,
+            run: RunOptions {
+                transient_periods: 300,
+                record_periods: 4,
+            },
+            samples_per_period: 32,
+            max_order: 4.0,
+        }),
+    ));
+    let out = drain(&mut core);
+    let Some(FromWorker::Omega { result, .. }) = out.first() else {
+        panic!("expected an Omega result, got {out:?}");
+    };
+    assert_eq!(result.motion.period(), Some(1), "{:?}", result.motion);
+    for x in &result.poincare_x_um {
+        assert!(
+            (x - first.x_um[0][0]).abs() < 1e-3,
+            "{x} µm against the orbit's {} µm",
+            first.x_um[0][0]
+        );
+    }
 }
 
 mod slices;

@@ -400,7 +400,8 @@ fn frf_view(
     let label = |i: usize| match p.family {
         Some(f) => {
             let x = f.values.get(i).copied().unwrap_or(f64::NAN);
-            app::family::family_key(f.key).map_or_else(|| format!("{} {x}", f.key), |k| k.label(x))
+            app::family_spec::family_key(f.key)
+                .map_or_else(|| format!("{} {x}", f.key), |k| k.label(x))
         }
         None => String::new(),
     };
@@ -692,6 +693,9 @@ fn bif_view(m: &Member, spec: &SweepSpec, data: &Value) -> Result<BifView, solve
         pinned: Vec::new(),
         pinned_backlash_um: Vec::new(),
         ab_labels: None,
+        branches: Vec::new(),
+        branch_markers: Vec::new(),
+        motions: Vec::new(),
         done: pts.len(),
         total: pts.len(),
         whole_clearance: true,

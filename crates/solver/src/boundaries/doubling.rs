@@ -10,8 +10,8 @@
 //! circle (`lambda > -1`), read from how `g` and `lambda + 1` move together
 //! along the branch.
 
+use super::bordered::{bordered_solve, Eval};
 use super::family::Family;
-use super::systems::{bordered_solve, Eval};
 use crate::error::{Result, SolverError};
 use crate::hbm::stability::monodromy_matrices;
 use nalgebra::{DMatrix, DVector};

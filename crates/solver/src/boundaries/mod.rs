@@ -5,6 +5,7 @@
 //! relative displacement reaches `+b` or `-b`), with the cusps where two
 //! folds meet and the jump disappears.
 //!
+//! - [`bordered`]: what the systems share (an evaluation, the bordered test).
 //! - [`doubling`]: the period-doubling test function on the monodromy.
 //! - [`family`]: the harmonic-balance residual as a function of `p`.
 //! - [`systems`]: the augmented systems (the branch equations plus the
@@ -31,6 +32,7 @@
 //! curve of the bordered test function on the monodromy `M + I`
 //! ([`doubling`]).
 
+mod bordered;
 mod doubling;
 mod family;
 mod run;

@@ -10,8 +10,9 @@
 //! 1 um) and the auxiliary phase in units of a period, so that a step of
 //! `ds` moves the curve by at most `ds` of the box in the plane.
 
+use super::bordered::Eval;
 use super::family::Family;
-use super::systems::{Eval, System};
+use super::systems::System;
 use crate::error::{Result, SolverError};
 use nalgebra::{DMatrix, DVector};
 use std::f64::consts::PI;
@@ -122,7 +123,9 @@ impl Tracer {
             ds: 0.25 * ds_max,
             ds_max,
             steps: 0,
-            max_steps: (40.0 / ds_max) as usize + 100,
+            // Twelve times across the box at the largest step: more is a
+            // curve wound up where its conditions degenerate.
+            max_steps: (12.0 / ds_max) as usize + 100,
             last: None,
             newton_iterations: 0,
         };

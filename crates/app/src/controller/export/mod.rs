@@ -90,7 +90,7 @@ impl Controller {
             }
             // A family: every member, named.
             JobKind::Bif if self.family.is_some() => self.family_bif_export(csv)?,
-            JobKind::Bif => {
+            JobKind::Bif | JobKind::Orbits => {
                 let v = self.bif_view();
                 if csv {
                     crate::views::bif::bif_csv(&v)
@@ -306,6 +306,6 @@ impl Controller {
     }
 }
 
-mod family;
+mod members;
 mod svg;
 pub use svg::{view_size, Drawn, SvgError};

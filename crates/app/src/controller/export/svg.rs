@@ -158,7 +158,7 @@ impl Controller {
                     plots::multiples::draw_bif_panels(root, &self.bif_panels(), &mesh, status)?;
                 (d.frame, d.dots) = (first(frames), dots);
             }
-            JobKind::Bif => {
+            JobKind::Bif | JobKind::Orbits => {
                 let (frame, dots) = plots::draw_bif(root, &self.bif_view(), &natural, status)?;
                 (d.frame, d.dots) = (Some(frame), dots);
             }

@@ -12,8 +12,8 @@
 //! Architecture invariant: a job's step is bounded: [`SLICE_STEPS`]
 //! integrator steps of the point in progress (the selected-Omega run, a
 //! bifurcation point, an overlay point, a Lyapunov point, a map cell; the
-//! run pauses and resumes without changing a bit), or [`hbm::HBM_CHUNK`]
-//! branch points. A newer job or a cancel waits at most one step.
+//! run pauses and resumes without changing a bit), [`hbm::HBM_CHUNK`]
+//! branch points, or one shooting branch point ([`orbits`]). A newer job or a cancel waits at most one step.
 
 pub mod bif;
 pub mod chain;
@@ -21,6 +21,7 @@ pub mod hbm;
 pub mod lyap;
 pub mod map;
 pub mod omega;
+pub mod orbits;
 pub mod overlay;
 
 use crate::protocol::{FromWorker, JobId, JobSpec};
@@ -176,6 +177,15 @@ pub(crate) fn start(
             (omega_from, omega_to, points),
             (chains, shard),
             (transient_periods, periods),
+        )),
+        JobSpec::Orbits {
+            omega_from,
+            omega_to,
+            points,
+        } => boxed(orbits::OrbitsJob::start(
+            id,
+            model,
+            (omega_from, omega_to, points),
         )),
     }
 }

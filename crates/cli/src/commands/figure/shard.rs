@@ -14,7 +14,7 @@ use super::{
 };
 use crate::failure::{usage, Failure};
 use app::presets::{preset, Preset};
-use app::protocol::{AnimHistory, OmegaResult, Regime};
+use app::protocol::{AnimHistory, MotionClass, OmegaResult, Regime};
 use app::worker::jobs::omega::SAMPLES_PER_PERIOD;
 use serde_json::{json, Map, Value};
 use solver::keys::truncate;
@@ -72,6 +72,7 @@ pub fn orbit_json(r: &OmegaResult) -> Value {
         "backlash_um": r.backlash_um,
         "regime": r.regime,
         "period": r.period,
+        "motion": r.motion,
         "settled": r.settled,
         "dynamic_factor": r.dynamic_factor,
         "samples_per_period": r.samples_per_period,
@@ -188,6 +189,23 @@ pub fn orbit_from_json(
         .get("settled")
         .and_then(Value::as_bool)
         .ok_or_else(|| bad("settled", o.get("settled"), "true or false"))?;
+    // The classification as the page's own form writes it; a shard
+    // without it keeps what its period says.
+    let motion = match o.get("motion") {
+        None => match period {
+            Some(period) => MotionClass::Periodic { period },
+            None => MotionClass::NotPeriodic,
+        },
+        Some(v) => serde_json::from_value::<MotionClass>(v.clone())
+            .ok()
+            .ok_or_else(|| {
+                bad(
+                    "motion",
+                    Some(v),
+                    "a classification (kind periodic-exact, periodic, period-above-maximum, still-settling or not-periodic)",
+                )
+            })?,
+    };
     Ok(OmegaResult {
         omega: m.settings.view.omega,
         mesh,
@@ -195,6 +213,7 @@ pub fn orbit_from_json(
         backlash_um: (def.backlash_m * 1e6 * 1e6).round() / 1e6,
         regime,
         period,
+        motion,
         dynamic_factor,
         mesh_freq_hz: 0.0,
         transient_periods_run: 0,
@@ -217,8 +236,9 @@ pub fn orbit_from_json(
 }
 
 /// The fields [`orbit_json`] writes.
-fn orbit_json_fields() -> [&'static str; 14] {
+fn orbit_json_fields() -> [&'static str; 15] {
     [
+        "motion",
         "omega",
         "mesh",
         "mesh_name",

@@ -5,9 +5,9 @@
 
 use super::jobs::MEMBER_KINDS;
 use super::*;
-use crate::family::FamilySpec;
+use crate::family_spec::FamilySpec;
 use crate::views::bif::BifView;
-use crate::views::family::{panel_titles, Panel};
+use crate::views::multiples::{panel_titles, Panel};
 
 /// One family member besides the current state, and its results (its
 /// branch, its sweep, its selected-Omega run).
@@ -66,7 +66,7 @@ impl Controller {
         values: &str,
         now_ms: f64,
     ) -> Result<Vec<Effect>, String> {
-        let spec = crate::family::parse_parts(key, values, &self.settings.params)?;
+        let spec = crate::family_spec::parse_parts(key, values, &self.settings.params)?;
         self.set_family(spec, now_ms)
     }
 
@@ -239,10 +239,22 @@ impl Controller {
                     "bif_points": c.bif.samples.len(),
                     "omega_job": c.status(JobKind::Omega),
                     "period": c.omega.as_ref().map(|r| r.period),
+                    "motion": c.omega.as_ref().map(|r| crate::story::motion_tag(r.motion)),
                 })
             })
             .collect();
+        // The phase portraits' panel titles as drawn (a member still
+        // computing shows its bare title).
+        let titles: Vec<String> = self
+            .omega_panels(0)
+            .iter()
+            .map(|p| match &p.data {
+                Ok(r) => crate::plots::multiples::phase_panel_title(&p.title, r),
+                Err(_) => p.title.clone(),
+            })
+            .collect();
         serde_json::json!({
+            "omega_titles": titles,
             "key": f.spec.key.key,
             "values": f.spec.values,
             "labels": (0..f.spec.values.len()).map(|i| f.spec.label(i)).collect::<Vec<_>>(),

@@ -1,0 +1,119 @@
+//! One story: every phrase the page says about a steady state, built from
+//! its one classification ([`MotionClass`]: the solver's verdict) and its
+//! impact regime read against the mesh's backlash. The summary, the keys,
+//! the panel titles and the text alternatives all take their words from
+//! here, so that no sentence can say "repeats every mesh period" while
+//! another says "does not repeat", and no mesh without backlash is said to
+//! cross one.
+
+use crate::protocol::{MotionClass, Regime};
+use solver::steady::MAX_PERIOD;
+
+/// A backlash (µm) below this counts as none: the mesh is a linear spring.
+const NO_BACKLASH_UM: f64 = 1e-6;
+
+/// Whether a mesh of backlash half-width `backlash_um` has any backlash.
+pub fn has_backlash(backlash_um: f64) -> bool {
+    backlash_um.abs() >= NO_BACKLASH_UM
+}
+
+/// The motion's period in a few words, for titles, keys and labels:
+/// "period 1 (exact)", "period 2", "period 11 (still settling)", "repeats
+/// after 40 periods (above 16)", "not periodic".
+pub fn motion_tag(m: MotionClass) -> String {
+    match m {
+        MotionClass::PeriodicExact { period, .. } => format!("period {period} (exact)"),
+        MotionClass::Periodic { period } => format!("period {period}"),
+        MotionClass::StillSettling { period } => format!("period {period} (still settling)"),
+        MotionClass::PeriodAboveMaximum { period } => {
+            format!("repeats after {period} periods (above {MAX_PERIOD})")
+        }
+        MotionClass::NotPeriodic => "not periodic".into(),
+    }
+}
+
+/// The motion's period for a small panel's title: [`motion_tag`] with the
+/// still-settling words shortened to a star (the key explains it).
+pub fn motion_tag_short(m: MotionClass) -> String {
+    match m {
+        MotionClass::StillSettling { period } => format!("period {period}*"),
+        MotionClass::PeriodAboveMaximum { .. } => format!("period above {MAX_PERIOD}"),
+        m => motion_tag(m),
+    }
+}
+
+/// What the star of [`motion_tag_short`] means, for a key.
+pub const STILL_SETTLING_KEY: &str =
+    "*: still settling, more transient periods may show another period";
+
+/// Whether the motion repeats, as the student summary says it, after
+/// `periods_run` transient periods.
+pub fn motion_sentence(m: MotionClass, periods_run: u32) -> String {
+    let every = |n: u32| {
+        if n == 1 {
+            "every mesh period".to_string()
+        } else {
+            format!("every {n} mesh periods")
+        }
+    };
+    match m {
+        MotionClass::PeriodicExact { period, .. } => format!(
+            "the motion repeats exactly {} (period {period}: the periodic orbit itself was found, and it is stable)",
+            every(period)
+        ),
+        MotionClass::Periodic { period } => format!(
+            "the motion repeats {} within the recorded periods (period {period})",
+            every(period)
+        ),
+        MotionClass::StillSettling { period } => format!(
+            "the motion is still settling towards a repeat {} after {periods_run} transient periods, so more transient periods (in the settings) may show another period",
+            every(period)
+        ),
+        MotionClass::PeriodAboveMaximum { period } => format!(
+            "the motion repeats only after {period} mesh periods, longer than the longest period classified ({MAX_PERIOD})"
+        ),
+        MotionClass::NotPeriodic => {
+            "the motion does not repeat within the recorded periods (quasi-periodic or chaotic)"
+                .into()
+        }
+    }
+}
+
+/// The impact regime in a few words, read against the mesh's backlash:
+/// without backlash the mesh is a linear spring and nothing impacts.
+pub fn contact_tag(regime: Regime, backlash_um: f64) -> &'static str {
+    if has_backlash(backlash_um) {
+        return regime.label();
+    }
+    match regime {
+        Regime::DoubleSided => "no backlash, load reverses",
+        _ => "no backlash, always in contact",
+    }
+}
+
+/// What the teeth do, as the student summary says it.
+pub fn contact_sentence(regime: Regime, backlash_um: f64) -> &'static str {
+    if !has_backlash(backlash_um) {
+        return match regime {
+            Regime::DoubleSided => {
+                "there is no backlash, so the teeth never separate: the mesh acts as a spring whose force changes sign, from the driving flank to the back flank and back"
+            }
+            _ => {
+                "there is no backlash, so the teeth never separate: the mesh acts as a spring that stays loaded on the driving flank"
+            }
+        };
+    }
+    match regime {
+        Regime::NoImpact => "the teeth stay in contact all the time (no impact)",
+        Regime::SingleSided => {
+            "the teeth separate and strike the driving flank again (single-sided impact)"
+        }
+        Regime::DoubleSided => {
+            "the teeth cross the whole backlash and also hit the back flank (double-sided impact)"
+        }
+        Regime::NoContact => "the teeth never touch (no contact)",
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,281 @@
+//! No sentence contradicts the classification: every text the page shows
+//! about a steady state, for every verdict, regime and backlash, checked
+//! against what the verdict and the backlash allow a sentence to say.
+
+use super::*;
+use crate::protocol::OmegaResult;
+use crate::views::test_support::omega_result;
+
+/// Every verdict the solver can give.
+fn verdicts() -> Vec<MotionClass> {
+    vec![
+        MotionClass::PeriodicExact {
+            period: 1,
+            max_multiplier_modulus: 0.97,
+        },
+        MotionClass::PeriodicExact {
+            period: 2,
+            max_multiplier_modulus: 0.5,
+        },
+        MotionClass::Periodic { period: 1 },
+        MotionClass::Periodic { period: 3 },
+        MotionClass::StillSettling { period: 11 },
+        MotionClass::PeriodAboveMaximum { period: 40 },
+        MotionClass::Periodic { period: 12 },
+        MotionClass::NotPeriodic,
+    ]
+}
+
+/// Every text the page shows about one steady state: the expert summary,
+/// the student summary, the selected-Omega views' text alternative, the
+/// Poincaré key, a family panel's title and the bifurcation diagram's
+/// text alternative.
+fn texts(r: &OmegaResult) -> Vec<String> {
+    let mut bif = crate::views::bif::BifStore::new(1, 1).view(
+        Some(0),
+        &[r.backlash_um],
+        &crate::views::test_support::ctx(),
+    );
+    bif.points.push(crate::views::bif::BifPoint {
+        omega: r.omega,
+        x_um: 1.0,
+        regime: r.regime,
+        up: true,
+    });
+    bif.motions.push((r.omega, true, r.motion));
+    vec![
+        crate::views::omega::summary_line(r, &[]),
+        crate::views::omega::student_summary(r),
+        crate::views::labels::omega_label("Phase portrait", r),
+        crate::plots::poincare_key(r),
+        format!("TE 5 µm: {}", motion_tag_short(r.motion)),
+        crate::views::labels::bif_label(&bif),
+    ]
+}
+
+/// Whether `text` says "period {n}" (not "period {n}0").
+fn says_period(text: &str, n: u32) -> bool {
+    let p = format!("period {n}");
+    text.match_indices(&p).any(|(i, _)| {
+        !text[i + p.len()..]
+            .chars()
+            .next()
+            .is_some_and(|c| c.is_ascii_digit())
+    })
+}
+
+/// The phrases a text may not contain, and one of which it must contain,
+/// for verdict `m`: derived from what each verdict means, not from the
+/// functions under test.
+fn allowed(m: MotionClass) -> (Vec<&'static str>, Vec<String>) {
+    let aperiodic = vec![
+        "not periodic",
+        "does not repeat",
+        "quasi-periodic",
+        "chaotic",
+    ];
+    match m {
+        MotionClass::PeriodicExact { period, .. } => {
+            let mut no = aperiodic;
+            no.extend(["settling", "nearly"]);
+            (
+                no,
+                vec![format!("period {period} (exact)"), "exactly".into()],
+            )
+        }
+        MotionClass::Periodic { period } => {
+            let mut no = aperiodic;
+            no.extend(["exact", "settling"]);
+            (no, vec![format!("period {period}")])
+        }
+        MotionClass::StillSettling { .. } => {
+            let mut no = aperiodic;
+            no.extend(["exact", "repeats every"]);
+            (no, vec!["settling".into(), "*".into()])
+        }
+        MotionClass::PeriodAboveMaximum { .. } => {
+            let mut no = aperiodic;
+            no.extend(["exact", "repeats every"]);
+            (
+                no,
+                vec![format!("above {MAX_PERIOD}"), format!("({MAX_PERIOD})")],
+            )
+        }
+        MotionClass::NotPeriodic => (
+            vec!["repeats every", "repeats exactly", "exact", "settling"],
+            vec!["not periodic".into(), "does not repeat".into()],
+        ),
+    }
+}
+
+#[test]
+fn no_sentence_contradicts_the_classification() {
+    for m in verdicts() {
+        for regime in Regime::ALL {
+            for backlash_um in [0.0, 100.0] {
+                let mut r = omega_result();
+                r.motion = m;
+                r.period = m.period();
+                r.regime = regime;
+                r.backlash_um = backlash_um;
+                let (never, one_of) = allowed(m);
+                for t in texts(&r) {
+                    let case = format!("{m:?}, {regime:?}, b {backlash_um}: {t}");
+                    for w in &never {
+                        assert!(!t.contains(w), "says {w:?}: {case}");
+                    }
+                    assert!(one_of.iter().any(|w| t.contains(w.as_str())), "{case}");
+                    // A period is said only where the verdict has it.
+                    for n in 1..=40 {
+                        if says_period(&t, n) {
+                            let own = match m {
+                                MotionClass::PeriodicExact { period, .. }
+                                | MotionClass::Periodic { period }
+                                | MotionClass::StillSettling { period }
+                                | MotionClass::PeriodAboveMaximum { period } => period,
+                                MotionClass::NotPeriodic => 0,
+                            };
+                            assert_eq!(n, own, "another period: {case}");
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Impact words follow the backlash: a mesh without backlash never
+/// crosses one, never impacts and never separates; one with backlash
+/// names its regime.
+#[test]
+fn impact_words_follow_the_backlash() {
+    for m in verdicts() {
+        for regime in Regime::ALL {
+            let mut r = omega_result();
+            r.motion = m;
+            r.period = m.period();
+            r.regime = regime;
+            r.backlash_um = 0.0;
+            for t in texts(&r)
+                .into_iter()
+                .take(3)
+                .chain([crate::views::labels::omega_label("Time history", &r)])
+            {
+                for w in [
+                    "cross",
+                    "impact",
+                    "hit",
+                    "strike",
+                    "separate and",
+                    "no contact",
+                ] {
+                    assert!(!t.contains(w), "says {w:?} without backlash: {t}");
+                }
+                assert!(t.contains("no backlash"), "{t}");
+            }
+            r.backlash_um = 40.0;
+            let summary = crate::views::omega::summary_line(&r, &[]);
+            assert!(summary.contains(regime.label()), "{summary}");
+            assert!(!summary.contains("no backlash"), "{summary}");
+        }
+    }
+}
+
+/// The expert summary gives an exact orbit's largest Floquet multiplier,
+/// and only an exact orbit's.
+#[test]
+fn only_an_exact_orbit_has_a_multiplier() {
+    for m in verdicts() {
+        let mut r = omega_result();
+        r.motion = m;
+        let s = crate::views::omega::summary_line(&r, &[]);
+        assert_eq!(s.contains("Floquet multiplier"), m.is_exact(), "{s}");
+    }
+}
+
+/// Issue 19's first case: the Fig. 2 preset's first member (no backlash,
+/// TE 5 µm on every mesh, the page's Ω 0.84 and periods) is linear, so its
+/// steady state is period 1, found exactly; the summary says so and says
+/// nothing of impacts.
+#[test]
+fn the_fig2_preset_at_the_page_defaults_is_period_1_exact() {
+    use crate::protocol::RunOptions;
+    use crate::worker::jobs::omega::{omega_result, selected_spec, OmegaJob};
+    let preset = crate::presets::preset("fig2").expect("the Fig. 2 preset");
+    let d = crate::link::decode(&preset.query());
+    let model = solver::model::Model::new(&d.settings.params).expect("model");
+    let v = &d.settings.view;
+    let run = RunOptions {
+        transient_periods: v.transient_periods,
+        record_periods: v.record_periods,
+    };
+    let spec = selected_spec(&d.settings, &model, run);
+    let job = OmegaJob { id: 1, model, spec };
+    let r = omega_result(&job, None).expect("the steady state");
+    assert_eq!(r.backlash_um, 0.0);
+    assert!(
+        matches!(r.motion, MotionClass::PeriodicExact { period: 1, .. }),
+        "{:?}",
+        r.motion
+    );
+    // The Poincaré samples of an exact period-1 orbit coincide.
+    let spread = r
+        .poincare_x_um
+        .iter()
+        .fold(0.0_f64, |m, x| m.max((x - r.poincare_x_um[0]).abs()));
+    assert!(spread < 1e-3, "Poincaré samples spread over {spread} µm");
+    for t in texts(&r) {
+        assert!(t.contains("period 1"), "{t}");
+    }
+    let s = crate::views::omega::student_summary(&r);
+    assert!(
+        s.contains("no backlash") && s.contains("repeats exactly every mesh period"),
+        "{s}"
+    );
+}
+
+/// The page opens on a periodic state, and the tour's first step, which
+/// sets it, says what it is: at the default Ω the plotted mesh's motion is
+/// period 1, found exactly, without impact, as the step's text claims.
+#[test]
+fn the_page_opens_on_the_periodic_state_the_first_tour_step_explains() {
+    use crate::protocol::RunOptions;
+    use crate::worker::jobs::omega::{omega_result, selected_spec, OmegaJob};
+    let step = &crate::tour::TOUR[0];
+    let omega = crate::settings::DEFAULT_OMEGA.to_string();
+    assert!(
+        step.set.contains(&("omega", omega.as_str())),
+        "{:?}",
+        step.set
+    );
+    assert!(step.text.contains(&format!("Ω {omega}")), "{}", step.text);
+    let s = crate::settings::Settings::default();
+    let model = solver::model::Model::new(&s.params).expect("model");
+    let run = RunOptions {
+        transient_periods: s.view.transient_periods,
+        record_periods: s.view.record_periods,
+    };
+    let job = OmegaJob {
+        id: 1,
+        spec: selected_spec(&s, &model, run),
+        model,
+    };
+    let r = omega_result(&job, None).expect("the steady state");
+    assert!(
+        matches!(r.motion, MotionClass::PeriodicExact { period: 1, .. }),
+        "{:?}",
+        r.motion
+    );
+    assert_eq!(r.regime, Regime::NoImpact);
+    // What the step claims, in the summary's words too.
+    assert!(
+        step.text.contains("stay in contact")
+            && step.text.contains("repeats exactly every mesh period")
+    );
+    let summary = crate::views::omega::student_summary(&r);
+    assert!(
+        summary.contains("stay in contact")
+            && summary.contains("repeats exactly every mesh period"),
+        "{summary}"
+    );
+}
