@@ -70,3 +70,49 @@ fn frf_bad_options_exit_2_naming_them() {
         assert!(err.contains(needle), "{args:?}: {err}");
     }
 }
+
+/// `frf --method shooting`: the same JSON branch (omega, stable,
+/// bifurcation) plus each point's period; the gear pair's two folds bound
+/// its hysteresis band, a period doubling starts a period-2 branch, and
+/// stability changes only at a located bifurcation or a piece's end.
+#[test]
+fn frf_by_shooting_reports_periodic_branches_with_their_period() {
+    let v = json(&words(
+        "frf --model gear-pair --omega-from 0.3 --omega-to 1.5 --points 200 --method shooting",
+    ));
+    assert_eq!(v["complete"], true);
+    let branch = v["branch"].as_array().expect("branch");
+    assert!(branch.len() >= 200, "{} points", branch.len());
+    for p in branch {
+        let w = p["omega"].as_f64().unwrap();
+        assert!((0.3 - 1e-9..=1.5 + 1e-9).contains(&w), "omega {w}");
+        assert!(p["stable"].is_boolean());
+        assert!(p["period"].as_u64().is_some_and(|n| (1..=32).contains(&n)));
+        assert!(p["bifurcation"].is_null() || p["bifurcation"].is_string());
+        // A stable orbit's multipliers lie inside the unit circle (on it,
+        // to the location's accuracy, at a located bifurcation).
+        if p["stable"] == true {
+            let slack = if p["bifurcation"].is_null() {
+                1e-9
+            } else {
+                1e-6
+            };
+            let modulus = p["max_multiplier_modulus"].as_f64().unwrap();
+            assert!(modulus <= 1.0 + slack, "{p}");
+        }
+    }
+    let of = |kind: &str, period: u64| -> Vec<f64> {
+        branch
+            .iter()
+            .filter(|p| p["bifurcation"] == kind && p["period"] == period)
+            .map(|p| p["omega"].as_f64().unwrap())
+            .collect()
+    };
+    let folds = of("fold", 1);
+    assert_eq!(folds.len(), 2, "{folds:?}");
+    // The hysteresis band of the harmonic-balance test above (0.49 to 0.60).
+    assert!(folds.iter().any(|f| (0.47..0.50).contains(f)), "{folds:?}");
+    assert!(folds.iter().any(|f| (0.59..0.62).contains(f)), "{folds:?}");
+    assert!(!of("period-doubling", 1).is_empty());
+    assert!(branch.iter().any(|p| p["period"] == 2));
+}

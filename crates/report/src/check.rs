@@ -236,6 +236,7 @@ pub fn sweep_point(p: &Value, shape: &SweepShape, where_: &str) -> Result<()> {
         "exact",
         "max_multiplier_modulus",
         "motion",
+        "lyapunov_per_period",
         "stats",
     ]);
     exact_keys(o, &fields, &top)?;
@@ -264,18 +265,7 @@ pub fn sweep_point(p: &Value, shape: &SweepShape, where_: &str) -> Result<()> {
         ));
     }
     period(o, shape.record_periods, &top)?;
-    if !o["exact"].is_boolean() {
-        return Err(refuse(where_, "exact", o.get("exact"), "true or false"));
-    }
-    number_or_null(o, "max_multiplier_modulus", &top)?;
-    if !o["motion"].as_str().is_some_and(|m| MOTIONS.contains(&m)) {
-        return Err(refuse(
-            where_,
-            "motion",
-            o.get("motion"),
-            &format!("one of {}", MOTIONS.join(", ")),
-        ));
-    }
+    motion_fields(o, &top, where_)?;
     let at = At(where_, "stats.".into());
     let stats = at.object(&o["stats"], "")?;
     exact_keys(stats, &STATS, &at)?;
@@ -299,6 +289,26 @@ pub fn sweep_point(p: &Value, shape: &SweepShape, where_: &str) -> Result<()> {
     Ok(())
 }
 
+/// The classification's fields of a point or cell: `exact` (a boolean),
+/// `max_multiplier_modulus` and `lyapunov_per_period` (numbers or null),
+/// `motion` (one of [`MOTIONS`]).
+fn motion_fields(o: &Map<String, Value>, top: &At, where_: &str) -> Result<()> {
+    if !o["exact"].is_boolean() {
+        return Err(refuse(where_, "exact", o.get("exact"), "true or false"));
+    }
+    number_or_null(o, "max_multiplier_modulus", top)?;
+    number_or_null(o, "lyapunov_per_period", top)?;
+    if !o["motion"].as_str().is_some_and(|m| MOTIONS.contains(&m)) {
+        return Err(refuse(
+            where_,
+            "motion",
+            o.get("motion"),
+            &format!("one of {}", MOTIONS.join(", ")),
+        ));
+    }
+    Ok(())
+}
+
 /// `period`: `null` (not periodic within the record) or a whole number of
 /// mesh periods no longer than the record.
 fn period(o: &Map<String, Value>, record_periods: u64, at: &At) -> Result<()> {
@@ -316,11 +326,22 @@ pub fn map_cell(c: &Value, record_periods: u64, where_: &str) -> Result<()> {
     exact_keys(
         o,
         &[
-            "row", "column", "omega", "value", "impact", "period", "error",
+            "row",
+            "column",
+            "omega",
+            "value",
+            "impact",
+            "period",
+            "exact",
+            "max_multiplier_modulus",
+            "motion",
+            "lyapunov_per_period",
+            "error",
         ],
         &top,
     )?;
     period(o, record_periods, &top)?;
+    motion_fields(o, &top, where_)?;
     if o["error"].is_null() {
         impact(o, "impact", &top)
     } else if o["impact"].is_null() {

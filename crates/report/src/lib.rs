@@ -172,8 +172,9 @@ pub fn simulate_json(model: &Model, ss: &SteadyState, mesh: usize, max_order: f6
         "exact": ss.motion.is_exact(),
         "max_multiplier_modulus": ss.motion.max_multiplier_modulus().map_or(Value::Null, num),
         "motion": ss.motion.name(),
-        "verdict": ss.motion.words(ss.stats.transient_periods_run),
+        "verdict": ss.verdict(),
         "shooting_note": ss.shooting_note,
+        "lyapunov_per_period": ss.lyapunov.map_or(Value::Null, |l| num(l.per_period)),
         "contact_fraction": {
             "drive": num(m.contact_fraction[0]),
             "apart": num(m.contact_fraction[1]),
@@ -282,6 +283,10 @@ pub fn sweep_point_json(model: &Model, p: &SweepPoint) -> Value {
         p.motion.max_multiplier_modulus().map_or(Value::Null, num),
     );
     o.insert("motion".into(), json!(p.motion.name()));
+    o.insert(
+        "lyapunov_per_period".into(),
+        p.lyapunov.map_or(Value::Null, |l| num(l.per_period)),
+    );
     o.insert("stats".into(), stats_json(&p.stats));
     Value::Object(o)
 }
@@ -496,6 +501,10 @@ pub fn map_cell_json(c: &solver::map::MapCell) -> Value {
         "value": num(c.value),
         "impact": if c.error.is_some() { Value::Null } else { Value::from(c.impact.name()) },
         "period": c.period,
+        "exact": c.motion.is_exact(),
+        "max_multiplier_modulus": c.motion.max_multiplier_modulus().map_or(Value::Null, num),
+        "motion": c.motion.name(),
+        "lyapunov_per_period": c.lyapunov.map_or(Value::Null, |l| num(l.per_period)),
         "error": c.error,
     })
 }

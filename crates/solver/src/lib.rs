@@ -20,6 +20,7 @@
 //! - [`sweep`]: bifurcation sweeps with bounded work per call.
 //! - [`hbm`]: harmonic balance, continuation, Floquet stability.
 //! - [`lyapunov`]: the largest Lyapunov exponent of the Poincaré map.
+//! - `separation`: mesh-space separations shared by it and the steady run's probe.
 //! - [`parametric`]: parametric instability of the fully engaged set over Omega.
 //! - [`map`]: impact-regime maps over Omega and a second parameter.
 //! - [`boundaries`]: the map's boundaries (folds, contact changes, cusps) traced as curves.
@@ -42,6 +43,7 @@ pub mod ode;
 pub mod orbits;
 pub mod parametric;
 pub mod params;
+pub(crate) mod separation;
 pub mod shooting;
 pub mod steady;
 pub mod sweep;

@@ -24,6 +24,7 @@
 use crate::dynamics::MeshOde;
 use crate::error::{Result, SolverError};
 use crate::ode::{Dopri5, Tolerances};
+use crate::separation::{dist2, mesh_point, neighbour, Rigid};
 use crate::steady::{Model, SteadyOptions, SteadyRun};
 use std::f64::consts::PI;
 
@@ -111,24 +112,6 @@ pub struct Lyapunov {
     pub end_state: Vec<f64>,
 }
 
-/// Mesh-space coordinates (um) of a state: every mesh's delta and delta'/omega.
-fn mesh_point(ode: &MeshOde, t: f64, y: &[f64], omega_rad_s: f64, out: &mut Vec<f64>) {
-    out.clear();
-    for j in 0..ode.n_meshes() {
-        let mi = ode.mesh_instant(j, t, y);
-        out.push(mi.delta * 1e6);
-        out.push(mi.delta_dot / omega_rad_s * 1e6);
-    }
-}
-
-fn dist2(a: &[f64], b: &[f64]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| (x - y) * (x - y))
-        .sum::<f64>()
-        .sqrt()
-}
-
 /// Computes the largest Lyapunov exponent of the stroboscopic map at
 /// `opts.omega`, from `start` (or the static equilibrium).
 ///
@@ -169,47 +152,6 @@ enum Phase {
     Measure(Box<Measure>),
     /// Finished or failed: nothing left to do.
     Done,
-}
-
-/// The rigid-body mode `phi`, `M phi` and `phi' M phi`, to remove a
-/// separation along the free rotation (M-orthogonally).
-#[derive(Debug, Clone)]
-struct Rigid {
-    phi: Vec<f64>,
-    m_phi: Vec<f64>,
-    norm: f64,
-}
-
-impl Rigid {
-    fn of(model: &Model) -> Option<Self> {
-        let sys = &model.system;
-        let dof = sys.dof();
-        let phi = model
-            .modes
-            .modes
-            .iter()
-            .find(|m| m.kind == crate::modal::ModeKind::RigidBody)
-            .map(|m| m.shape.clone())?;
-        let m_phi: Vec<f64> = (0..dof)
-            .map(|i| (0..dof).map(|k| sys.mass[(i, k)] * phi[k]).sum())
-            .collect();
-        let norm: f64 = (0..dof).map(|i| phi[i] * m_phi[i]).sum();
-        Some(Rigid { phi, m_phi, norm })
-    }
-
-    /// Removes the rigid-body component of positions and rates of `dy`.
-    fn project_out(rigid: Option<&Self>, dy: &mut [f64]) {
-        let Some(r) = rigid else { return };
-        let dof = r.phi.len();
-        if r.norm > 0.0 {
-            for half in [0, dof] {
-                let c: f64 = (0..dof).map(|i| r.m_phi[i] * dy[half + i]).sum::<f64>() / r.norm;
-                for i in 0..dof {
-                    dy[half + i] -= c * r.phi[i];
-                }
-            }
-        }
-    }
 }
 
 /// The measured phase: the reference `a`, the neighbour `b`, and the sums.
@@ -317,43 +259,15 @@ impl Measure {
         let period = 2.0 * PI / omega_rad_s;
         let tol =
             crate::dynamics::tolerances(sys, opts.omega, opts.rtol, opts.atol_m, period, 1e-14);
-        let lengths = sys.dof_length_m();
-        let n = y0.len();
-        let dof = sys.dof();
         let mut ode_a = MeshOde::new(sys, omega_rad_s);
         let mut ode_b = MeshOde::new(sys, omega_rad_s);
         let mut pa = Vec::new();
         let mut pb = Vec::new();
-        mesh_point(&ode_a, 0.0, y0, omega_rad_s, &mut pa);
-        let mut y1 = y0.to_vec();
-        for (i, v) in y1.iter_mut().enumerate() {
-            let scale = if i < dof {
-                lengths[i]
-            } else {
-                lengths[i - dof] * omega_rad_s
-            };
-            *v += scale * 1e-6 * (1.0 + 0.37 * i as f64).sin();
-        }
-        mesh_point(&ode_b, 0.0, &y1, omega_rad_s, &mut pb);
-        let d_init = dist2(&pa, &pb);
-        if !(d_init > 0.0 && d_init.is_finite()) {
-            return Err(SolverError::Singular {
-                what: "Lyapunov: the initial perturbation has no mesh-space component".into(),
-            });
-        }
         let d0 = opts.perturbation_um;
-        for i in 0..n {
-            y1[i] = y0[i] + (y1[i] - y0[i]) * d0 / d_init;
-        }
-        // The free rigid-body rotation: a separation along it is invisible
-        // in mesh space and never decays, and the pull-back would inflate it
-        // without bound; it is removed (M-orthogonally) at every pull-back.
         let rigid = Rigid::of(model);
-        let mut dy: Vec<f64> = (0..n).map(|i| y1[i] - y0[i]).collect();
-        Rigid::project_out(rigid.as_ref(), &mut dy);
-        for i in 0..n {
-            y1[i] = y0[i] + dy[i];
-        }
+        let y1 = neighbour(model, &ode_a, 0.0, y0, d0, rigid.as_ref())?;
+        mesh_point(&ode_a, 0.0, y0, omega_rad_s, &mut pa);
+        mesh_point(&ode_b, 0.0, &y1, omega_rad_s, &mut pb);
         let a = Dopri5::new(&mut ode_a, 0.0, y0, period / 200.0, tol.clone());
         let b = Dopri5::new(&mut ode_b, 0.0, &y1, period / 200.0, tol.clone());
         Ok(Measure {

@@ -14,7 +14,7 @@
 use crate::error::{Result, SolverError};
 use crate::keys::{self, Value};
 use crate::params::ModelParams;
-use crate::steady::{Impact, Model, SteadyOptions, SteadyRun};
+use crate::steady::{Impact, LyapunovEvidence, Model, Motion, SteadyOptions, SteadyRun};
 use crate::sweep::severity;
 
 /// What to compute.
@@ -133,6 +133,11 @@ pub struct MapCell {
     pub impact: Impact,
     /// Period of the Poincaré orbit in mesh periods, `None` if not periodic.
     pub period: Option<u32>,
+    /// The steady state's classification (exact orbit, periodic by
+    /// integration, not periodic, ...): not periodic for a failed cell.
+    pub motion: Motion,
+    /// The Lyapunov probe's evidence, where it ran.
+    pub lyapunov: Option<LyapunovEvidence>,
     /// A solver failure at this cell (the cell then has no regime).
     pub error: Option<String>,
 }
@@ -251,13 +256,15 @@ impl RegimeMap {
         let value = self.spec.value(row);
         let column = self.next_column;
         let omega = self.spec.omega(column);
-        let cell = |impact, period, error| MapCell {
+        let cell = |impact, motion: Motion, lyapunov, error| MapCell {
             row,
             column,
             omega,
             value,
             impact,
-            period,
+            period: motion.period(),
+            motion,
+            lyapunov,
             error,
         };
         if self.model.is_none() {
@@ -276,6 +283,8 @@ impl RegimeMap {
                             value,
                             impact: Impact::None,
                             period: None,
+                            motion: Motion::NotPeriodic,
+                            lyapunov: None,
                             error: Some(e.to_string()),
                         })
                         .collect();
@@ -298,9 +307,10 @@ impl RegimeMap {
                 match SteadyRun::new(model, &opts, self.state.as_deref()) {
                     Ok(run) => self.pending.insert(run),
                     Err(e) => {
-                        return vec![
-                            self.cell_done(cell(Impact::None, None, Some(e.to_string())), None)
-                        ]
+                        return vec![self.cell_done(
+                            cell(Impact::None, Motion::NotPeriodic, None, Some(e.to_string())),
+                            None,
+                        )]
                     }
                 }
             }
@@ -317,10 +327,13 @@ impl RegimeMap {
                         .max_by_key(|&i| severity(i))
                         .unwrap_or(Impact::None),
                 };
-                let c = cell(impact, ss.period, None);
+                let c = cell(impact, ss.motion.clone(), ss.lyapunov, None);
                 self.cell_done(c, Some(ss.end_state))
             }
-            Err(e) => self.cell_done(cell(Impact::None, None, Some(e.to_string())), None),
+            Err(e) => self.cell_done(
+                cell(Impact::None, Motion::NotPeriodic, None, Some(e.to_string())),
+                None,
+            ),
         };
         vec![c]
     }

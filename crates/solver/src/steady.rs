@@ -31,20 +31,27 @@
 use crate::dynamics::tolerances;
 use crate::dynamics::MeshOde;
 use crate::error::{Result, SolverError};
-use crate::fastmath::{max, min};
 use crate::ode::{Dopri5, IntegratorStats, Tolerances};
 use crate::shooting::ShootRun;
 use std::f64::consts::PI;
 
+mod probe;
 mod record;
+mod settle;
 mod spectrum;
+#[cfg(test)]
+mod tests;
 mod verdict;
 
+use probe::Probe;
+pub use probe::{decide, LyapunovEvidence, DECIDE_AT, LAMBDA_MIN, PROBE_SEPARATION_UM};
 use record::Recorder;
+pub use settle::detect_period;
+use settle::{has_settled, SpanTracker, SETTLE_DISTANCES};
 pub use spectrum::{spectrum, Spectrum};
 pub use verdict::{
     candidate_period, classify_recorded, loose_tol_um, pipeline_options, Motion, CHECKPOINTS,
-    PIPELINE_ITERATIONS,
+    MAX_PROBES, PIPELINE_ITERATIONS, PROBE_FROM_REST,
 };
 
 /// The model moved to [`crate::model`]; these names stay here so that
@@ -265,6 +272,8 @@ pub struct SteadyStats {
     pub shooting_attempts: u32,
     /// Integrator steps of those attempts (tangents included).
     pub shooting_steps: u64,
+    /// Integrator steps of the Lyapunov probe's neighbour trajectory.
+    pub probe_steps: u64,
 }
 
 /// A steady-state response.
@@ -297,11 +306,28 @@ pub struct SteadyState {
     /// What shooting did when it did not give the steady state (a failed or
     /// unstable attempt), in words.
     pub shooting_note: Option<String>,
+    /// The largest Lyapunov exponent measured beside the run where
+    /// shooting found no steady state (see `steady::probe`).
+    pub lyapunov: Option<LyapunovEvidence>,
     /// Work figures.
     pub stats: SteadyStats,
 }
 
 impl SteadyState {
+    /// The verdict in words: the motion's, and for motion that is not
+    /// periodic the Lyapunov evidence, e.g. "not periodic after 12
+    /// transient periods; largest Lyapunov exponent 0.280 per period over
+    /// 24 periods: chaotic".
+    pub fn verdict(&self) -> String {
+        let words = self.motion.words(self.stats.transient_periods_run);
+        match (&self.motion, &self.lyapunov) {
+            (Motion::NotPeriodic | Motion::StillSettling { .. }, Some(ev)) => {
+                format!("{words}; {}", ev.words())
+            }
+            _ => words,
+        }
+    }
+
     /// The mesh with the largest dynamic factor (the first on a tie, mesh 0
     /// when none has one): the "worst" mesh of sweeps and views.
     pub fn worst_mesh(&self) -> usize {
@@ -395,6 +421,17 @@ pub struct SteadyRun {
     shooting_note: Option<String>,
     shooting_attempts: u32,
     shooting_steps: u64,
+    /// The Lyapunov probe beside a recording started without an orbit.
+    probe: Option<Box<Probe>>,
+    /// Probes started so far (at most `verdict::MAX_PROBES`).
+    probes: u32,
+    /// The first transient period after which a probe may start: later
+    /// from the static equilibrium, whose transient from rest can look
+    /// chaotic for dozens of periods (`verdict::PROBE_FROM_REST`).
+    probe_from: u32,
+    /// Its finished probe's evidence, and the neighbour's steps.
+    lyapunov: Option<LyapunovEvidence>,
+    probe_steps: u64,
 }
 
 impl SteadyRun {
@@ -437,12 +474,20 @@ impl SteadyRun {
             shooting_note: None,
             shooting_attempts: 0,
             shooting_steps: 0,
+            probe: None,
+            probes: 0,
+            probe_from: if start.is_some() { 0 } else { PROBE_FROM_REST },
+            lyapunov: None,
+            probe_steps: 0,
         })
     }
 
     /// Integrator steps taken so far (shooting's included).
     pub fn steps(&self) -> u64 {
-        self.int.stats.steps + self.shooting_steps
+        self.int.stats.steps
+            + self.shooting_steps
+            + self.probe_steps
+            + self.probe.as_ref().map_or(0, |p| p.steps())
     }
 
     /// Whether the run has returned its result or failed.
@@ -527,6 +572,11 @@ impl SteadyRun {
                             self.start_shooting(model, n, span_um, false)?;
                             continue;
                         }
+                        if self.probes < MAX_PROBES && p_now >= self.probe_from {
+                            self.span.reset_keep_last();
+                            self.start_probe(model)?;
+                            continue;
+                        }
                     }
                     self.span.reset_keep_last();
                 }
@@ -566,9 +616,28 @@ impl SteadyRun {
                         guard(&self.int, self.budget)?;
                         rec.on_step(&self.ode, &self.int, info);
                     }
+                    if let Some(pr) = &mut self.probe {
+                        loop {
+                            if steps >= max_steps {
+                                return Ok(None);
+                            }
+                            if !pr.step_towards(model, t_end)? {
+                                break;
+                            }
+                            steps += 1;
+                        }
+                    }
                     model.check_bounded(&self.ode, self.int.t(), self.int.y(), self.bound_m)?;
                     rec.on_period(&self.ode, self.int.t(), self.int.y(), self.omega_rad_s);
-                    if *r < self.opts.record_periods {
+                    let r_now = *r;
+                    let target = self.record_target();
+                    if self.probe.is_some() && self.probe_period(model, r_now, target)? {
+                        continue;
+                    }
+                    let Phase::Record { r, t_rec, .. } = &mut self.phase else {
+                        continue;
+                    };
+                    if *r < target {
                         *r += 1;
                     } else {
                         let t_rec = *t_rec;
@@ -577,7 +646,11 @@ impl SteadyRun {
                         else {
                             return Ok(None);
                         };
-                        return Ok(Some(self.finish(model, t_rec, *rec)));
+                        let mut rec = *rec;
+                        if let Some(n) = self.exact.as_ref().and_then(Motion::period) {
+                            rec.repeat_poincare(n as usize, self.opts.record_periods as usize);
+                        }
+                        return Ok(Some(self.finish(model, t_rec, rec)));
                     }
                 }
             }
@@ -640,12 +713,14 @@ impl SteadyRun {
             period: motion.period(),
             motion,
             shooting_note: self.shooting_note.clone(),
+            lyapunov: self.lyapunov,
             stats: SteadyStats {
                 transient_periods_run: self.periods_run,
                 settled: self.settled,
                 integrator: self.int.stats,
                 shooting_attempts: self.shooting_attempts,
                 shooting_steps: self.shooting_steps,
+                probe_steps: self.probe_steps,
             },
         }
     }
@@ -670,101 +745,4 @@ fn poincare_point(ode: &MeshOde, t: f64, y: &[f64], omega_rad_s: f64) -> Vec<f64
         p.push(mi.delta_dot / omega_rad_s * 1e6);
     }
     p
-}
-
-fn dist_inf(a: &[f64], b: &[f64]) -> f64 {
-    // fastmath::max: with f64::max this was a call per entry in wasm32.
-    a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, max)
-}
-
-/// Distances between Poincaré points `p` apart used by the settle test.
-const SETTLE_DISTANCES: usize = 5;
-
-/// The early-settle test on the last Poincaré points (newest last).
-///
-/// For each candidate period `p`, with `d_k` the distance between points `p`
-/// apart (`d_0` newest, `k < 5`), the contraction per `p` periods is taken as
-/// the worst of the observed ratios `d_k / d_(k+1)` (those above the noise
-/// level `tol / 1000`) and of the slowest modal decay `rho_modal(p)` of the
-/// linearized system; the transient has settled when the geometric bound
-/// `d_0 rho / (1 - rho)` on the remaining drift is below `tol / 2`.
-///
-/// Why both: several modes decaying at once make the observed ratios beat,
-/// and a lightly damped mode that turns by nearly a whole number of turns in
-/// `p` periods hardly shows in `p`-step differences at all (its share of
-/// `d_k` is scaled by `2 |sin(p theta / 2)|`) while it still holds most of the
-/// remaining error. The modal floor keeps the bound honest for it.
-fn has_settled(hist: &[Vec<f64>], tol: f64, rho_modal_per_period: f64) -> bool {
-    let n = hist.len();
-    let noise = 1e-3 * tol;
-    (1..=8).any(|p| {
-        if n < SETTLE_DISTANCES * p + 1 {
-            return false;
-        }
-        let d: Vec<f64> = (0..SETTLE_DISTANCES)
-            .map(|k| dist_inf(&hist[n - 1 - k * p], &hist[n - 1 - (k + 1) * p]))
-            .collect();
-        if d[0] > tol {
-            return false;
-        }
-        let observed = d
-            .windows(2)
-            .filter(|w| w[0] > noise || w[1] > noise)
-            .map(|w| {
-                if w[1] > 0.0 {
-                    w[0] / w[1]
-                } else {
-                    f64::INFINITY
-                }
-            })
-            .fold(0.0, f64::max);
-        let rho = observed.max(rho_modal_per_period.powi(p as i32));
-        rho < 1.0 && d[0] * rho / (1.0 - rho) <= 0.5 * tol
-    })
-}
-
-/// Smallest `p` such that every recorded Poincaré point repeats after `p`
-/// periods within `tol` (um); at least three repetitions must be seen.
-pub fn detect_period(points: &[Vec<f64>], tol: f64) -> Option<u32> {
-    let n = points.len();
-    (1..=MAX_PERIOD.min(n / 3))
-        .find(|&p| (0..n - p).all(|i| dist_inf(&points[i], &points[i + p]) <= tol))
-        .map(|p| p as u32)
-}
-
-/// Running range of all mesh deflections (for the settle tolerance).
-#[derive(Debug, Clone)]
-struct SpanTracker {
-    lo: Vec<f64>,
-    hi: Vec<f64>,
-}
-
-impl SpanTracker {
-    fn new(n: usize) -> Self {
-        SpanTracker {
-            lo: vec![f64::INFINITY; n],
-            hi: vec![f64::NEG_INFINITY; n],
-        }
-    }
-    fn add(&mut self, deflections: &[f64]) {
-        for (j, &d) in deflections.iter().enumerate() {
-            self.lo[j] = min(self.lo[j], d);
-            self.hi[j] = max(self.hi[j], d);
-        }
-    }
-    fn span_um(&self) -> f64 {
-        self.lo
-            .iter()
-            .zip(&self.hi)
-            .map(|(l, h)| h - l)
-            .filter(|d| d.is_finite())
-            .fold(0.0, f64::max)
-            * 1e6
-    }
-    fn reset_keep_last(&mut self) {
-        // The span of the latest period only: the transient's start must not
-        // inflate the tolerance.
-        self.lo.fill(f64::INFINITY);
-        self.hi.fill(f64::NEG_INFINITY);
-    }
 }

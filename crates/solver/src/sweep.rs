@@ -17,7 +17,9 @@
 //! follow a branch.
 
 use crate::error::{Result, SolverError};
-use crate::steady::{Impact, Model, Motion, SteadyOptions, SteadyRun, SteadyState, SteadyStats};
+use crate::steady::{
+    Impact, LyapunovEvidence, Model, Motion, SteadyOptions, SteadyRun, SteadyState, SteadyStats,
+};
 
 /// Direction of one swept point.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -239,6 +241,8 @@ pub struct SweepPoint {
     pub period: Option<u32>,
     /// The classification of the steady state (not periodic for a failed point).
     pub motion: Motion,
+    /// The Lyapunov probe's evidence, where it ran (see `steady::probe`).
+    pub lyapunov: Option<LyapunovEvidence>,
     /// Work figures.
     pub stats: SteadyStats,
     /// Why the point failed (solver failure is reported, never shown as data).
@@ -430,6 +434,7 @@ impl BifurcationSweep {
                     worst_mesh,
                     period: ss.period,
                     motion: ss.motion,
+                    lyapunov: ss.lyapunov,
                     stats: ss.stats,
                     error: None,
                 }
@@ -444,6 +449,7 @@ impl BifurcationSweep {
                 worst_mesh: 0,
                 period: None,
                 motion: Motion::NotPeriodic,
+                lyapunov: None,
                 stats: SteadyStats::default(),
                 error: Some(e.to_string()),
             },

@@ -91,3 +91,96 @@ fn shooting_folds_agree_with_harmonic_balance_and_doublings_sit_at_minus_one() {
     // The period-doubled branches are followed.
     assert!(pts.iter().any(|p| p.period == 2));
 }
+
+/// The mesh-space distance (µm) between two full states at `omega`.
+fn distance_um(m: &Model, omega: f64, a: &[f64], b: &[f64]) -> f64 {
+    let red = solver::shooting::Reduced::new(m, omega);
+    let (za, _) = red.from_state(a);
+    let (zb, _) = red.from_state(b);
+    let d: Vec<f64> = za.iter().zip(&zb).map(|(x, y)| x - y).collect();
+    red.mesh_norm_um(&d)
+}
+
+/// Folds located to 1e-6 in Omega, period doublings to 1e-4, checked by
+/// brackets that do not use the continuation: 1e-6 on the branch's side of
+/// a fold, Newton from the fold's orbit finds a period-1 orbit next to it,
+/// and 1e-6 beyond it finds none nearby (a fold has orbits on one side
+/// only); 1e-4 either side of a period doubling, fresh shooting runs find
+/// the real multiplier on either side of -1.
+#[test]
+fn folds_are_located_to_1e_6_and_period_doublings_to_1e_4() {
+    let m = gear_pair();
+    let pts = shooting_branch(&m);
+    let mut opts = ShootOptions::new(1);
+    opts.rtol = 1e-11;
+    opts.max_iterations = 30;
+    let mut folds = 0;
+    for (i, p) in pts.iter().enumerate() {
+        if p.period != 1 || p.point.bifurcation != Some(Bifurcation::Fold) {
+            continue;
+        }
+        folds += 1;
+        let w = p.point.omega;
+        let before = pts[..i].iter().rev().find(|q| q.period == 1).unwrap();
+        let inside = (before.point.omega - w).signum();
+        let state = |q: &ShootPoint| {
+            solver::shooting::Reduced::new(&m, q.point.omega)
+                .to_state(&q.point.coefficients, (0.0, 0.0))
+        };
+        let fold_state = state(p);
+        let starts = [state(before), fold_state.clone()];
+        let span_um = (p.point.meshes[0].delta_max_m - p.point.meshes[0].delta_min_m) * 1e6;
+        // The smallest distance (over the two starts) from the fold's orbit
+        // of an orbit that Newton finds at `omega`, as a part of the span.
+        let nearest = |omega: f64| -> Option<f64> {
+            starts
+                .iter()
+                .filter_map(|s| match shoot(&m, omega, s, &opts).unwrap() {
+                    ShootOutcome::Converged(o) => {
+                        Some(distance_um(&m, omega, &o.start_state, &fold_state) / span_um)
+                    }
+                    ShootOutcome::Failed(_) => None,
+                })
+                .reduce(f64::min)
+        };
+        let d_in = nearest(w + inside * 1e-6);
+        assert!(
+            d_in.is_some_and(|d| d < 0.05),
+            "fold {w}: 1e-6 inside, {d_in:?}"
+        );
+        let d_out = nearest(w - inside * 1e-6);
+        assert!(
+            d_out.is_none_or(|d| d > 0.05),
+            "fold {w}: an orbit 1e-6 beyond it ({d_out:?})"
+        );
+    }
+    assert_eq!(folds, 2);
+    let mut doublings = 0;
+    for p in pts
+        .iter()
+        .filter(|p| p.period == 1 && p.point.bifurcation == Some(Bifurcation::PeriodDoubling))
+    {
+        doublings += 1;
+        let w = p.point.omega;
+        let red = solver::shooting::Reduced::new(&m, w);
+        let start = red.to_state(&p.point.coefficients, (0.0, 0.0));
+        let most_negative = |omega: f64| -> f64 {
+            let ShootOutcome::Converged(o) = shoot(&m, omega, &start, &opts).unwrap() else {
+                panic!("no orbit at Omega {omega}");
+            };
+            o.multipliers
+                .unwrap()
+                .values
+                .iter()
+                .filter(|v| v.im.abs() < 1e-9)
+                .map(|v| v.re)
+                .fold(f64::INFINITY, f64::min)
+        };
+        let (lo, hi) = (most_negative(w - 1e-4), most_negative(w + 1e-4));
+        assert!(
+            (lo + 1.0) * (hi + 1.0) < 0.0,
+            "period doubling {w}: multipliers {lo} and {hi} at +-1e-4"
+        );
+    }
+    assert!(doublings >= 2);
+}

@@ -27,6 +27,11 @@ pub struct BenchArgs {
     /// Only the steady-state pipeline's before/after figure (issue 19).
     #[arg(long)]
     pipeline_only: bool,
+    /// Only the pipeline's classification check: at a dozen Omega values,
+    /// the pipeline's verdict (300 + 100 periods) beside 20 000 + 100
+    /// periods of plain integration.
+    #[arg(long)]
+    classification: bool,
 }
 
 /// Checks the options, runs every benchmark and prints the figures.
@@ -36,6 +41,12 @@ pub fn run_command(a: &BenchArgs) -> Result<(), crate::failure::Failure> {
             "--repeats {}: allowed 1 ..= 100",
             a.repeats
         )));
+    }
+    if a.classification {
+        let model = Model::new(&ModelParams::default()).map_err(crate::failure::Failure::from)?;
+        let long = if a.quick { 600 } else { 20_000 };
+        let v = classification_check(&model, long).map_err(crate::failure::Failure::from)?;
+        return crate::output::emit(&json!({ "classification": v }));
     }
     if a.pipeline_only {
         let model = Model::new(&ModelParams::default()).map_err(crate::failure::Failure::from)?;
@@ -383,8 +394,10 @@ fn pipeline_bench(
     ];
     let mut out = serde_json::Map::new();
     let mut medians = Vec::new();
+    let mut cpu_medians = Vec::new();
     for (name, early_settle, shooting) in variants {
         let mut secs = Vec::new();
+        let mut cpu = Vec::new();
         let mut verdicts = std::collections::BTreeMap::new();
         for _ in 0..repeats {
             let mut spec = SweepSpec::new(0.1, 2.0, points);
@@ -396,11 +409,15 @@ fn pipeline_bench(
             spec.steady.shooting = shooting;
             let mut sweep = BifurcationSweep::new(model.clone(), spec)?;
             let start = Instant::now();
+            let cpu_start = thread_cpu_s();
             let mut pts = Vec::new();
             while !sweep.is_finished() {
                 pts.extend(sweep.advance(16));
             }
             secs.push(start.elapsed().as_secs_f64());
+            if let (Some(a), Some(b)) = (cpu_start, thread_cpu_s()) {
+                cpu.push(b - a);
+            }
             verdicts.clear();
             for p in &pts {
                 let key = match p.motion.period() {
@@ -413,9 +430,17 @@ fn pipeline_bench(
         }
         let med = median(secs.clone());
         medians.push(med);
+        let cpu_med = (!cpu.is_empty()).then(|| median(cpu.clone()));
+        cpu_medians.push(cpu_med);
         out.insert(
             name.into(),
-            json!({ "median_s": med, "runs_s": secs, "verdicts": verdicts }),
+            json!({
+                "median_s": med,
+                "runs_s": secs,
+                "cpu_median_s": cpu_med,
+                "cpu_runs_s": cpu,
+                "verdicts": verdicts,
+            }),
         );
     }
     out.insert("steady_states".into(), json!(2 * points));
@@ -426,5 +451,61 @@ fn pipeline_bench(
         "speedup_vs_early_settle".into(),
         json!(medians[1] / medians[2]),
     );
+    if let [Some(fixed), Some(early), Some(pipe)] = cpu_medians[..] {
+        out.insert("cpu_speedup_vs_fixed".into(), json!(fixed / pipe));
+        out.insert("cpu_speedup_vs_early_settle".into(), json!(early / pipe));
+    }
     Ok(Value::Object(out))
+}
+
+/// The calling thread's CPU time (s), from Linux's
+/// `/proc/thread-self/schedstat` (nanoseconds on the CPU): on a shared
+/// machine the wall clock also counts the other programs' turns. `None`
+/// elsewhere.
+fn thread_cpu_s() -> Option<f64> {
+    let s = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    let ns: f64 = s.split_whitespace().next()?.parse().ok()?;
+    Some(ns * 1e-9)
+}
+
+/// The Omega values of the classification check: the default model's
+/// period-1 branch below the main resonance, the onset of chaos near 0.5,
+/// the chaotic band, and the periodic and quasi-periodic motion above it.
+pub const CHECK_OMEGAS: [f64; 12] = [
+    0.15, 0.3, 0.45, 0.5, 0.6, 0.7, 0.84, 1.0, 1.2, 1.36, 1.6, 1.9,
+];
+
+/// The classification check (issue 19): at each of [`CHECK_OMEGAS`], from
+/// the static equilibrium, the pipeline at the page's defaults (300 + 100
+/// periods) and plain integration (no early settle, no shooting) over
+/// `long` + 100 periods. They agree when both find the same period, or
+/// both none within the largest period classified.
+fn classification_check(model: &Model, long: u32) -> Result<Value, SolverError> {
+    let mut rows = Vec::new();
+    let mut agree = 0;
+    for &omega in &CHECK_OMEGAS {
+        let pipe = steady_state(model, &SteadyOptions::new(omega), None)?;
+        let mut o = SteadyOptions::new(omega);
+        o.transient_periods = long;
+        o.early_settle = false;
+        o.shooting = false;
+        o.samples_per_period = 0;
+        let reference = steady_state(model, &o, None)?;
+        let same = pipe.motion.period() == reference.motion.period();
+        agree += u32::from(same);
+        rows.push(json!({
+            "omega": omega,
+            "pipeline": pipe.verdict(),
+            "pipeline_transient_periods": pipe.stats.transient_periods_run,
+            "reference": reference.motion.words(reference.stats.transient_periods_run),
+            "agree": same,
+        }));
+    }
+    Ok(json!({
+        "reference_transient_periods": long,
+        "record_periods": 100,
+        "agree": agree,
+        "of": CHECK_OMEGAS.len(),
+        "rows": rows,
+    }))
 }

@@ -7,7 +7,7 @@ use crate::failure::{usage, Failure};
 use crate::output::{emit_text, note, output};
 use clap::Args;
 use solver::lyapunov::{largest_exponent, LyapunovOptions};
-use solver::steady::{steady_state, Motion, SteadyOptions};
+use solver::steady::{steady_state, LyapunovEvidence, Motion, SteadyOptions, LAMBDA_MIN};
 
 /// Options of `gearshock simulate`.
 #[derive(Debug, Args)]
@@ -43,29 +43,27 @@ pub fn run(a: &SimulateArgs) -> Result<(), Failure> {
     opts.validate()?;
     let ss = steady_state(&model, &opts, None)?;
     let mut value = report::simulate_json(&model, &ss, j, max_order);
-    let mut verdict = ss.motion.words(ss.stats.transient_periods_run);
-    // Evidence for a motion that is not periodic: the largest Lyapunov
-    // exponent of the Poincaré map, continued from the end state (200
-    // periods, two trajectories: a few times the steady run's own work).
+    let mut verdict = ss.verdict();
+    // Evidence for a motion that is not periodic where the run's own
+    // Lyapunov probe did not find chaos: the largest exponent of the
+    // Poincaré map, continued from the end state (200 periods, two
+    // trajectories: a few times the steady run's own work).
     if matches!(
         ss.motion,
         Motion::NotPeriodic | Motion::StillSettling { .. }
-    ) {
+    ) && !ss.lyapunov.is_some_and(|l| l.chaotic)
+    {
+        verdict = ss.motion.words(ss.stats.transient_periods_run);
         let mut lo = LyapunovOptions::new(a.omega);
         lo.transient_periods = 0;
         match largest_exponent(&model, &lo, Some(&ss.end_state)) {
             Ok(l) => {
-                let kind = if l.per_period > 0.01 {
-                    "chaotic"
-                } else if l.per_period > -0.01 {
-                    "quasi-periodic or near a bifurcation"
-                } else {
-                    "contracting: still settling"
+                let evidence = LyapunovEvidence {
+                    per_period: l.per_period,
+                    periods: lo.periods,
+                    chaotic: l.per_period >= LAMBDA_MIN,
                 };
-                verdict = format!(
-                    "{verdict}; largest Lyapunov exponent {:.3} per period: {kind}",
-                    l.per_period
-                );
+                verdict = format!("{verdict}; {}", evidence.words());
                 value["lyapunov_per_period"] = serde_json::json!(l.per_period);
             }
             Err(e) => verdict = format!("{verdict}; the Lyapunov exponent failed: {e}"),

@@ -204,6 +204,40 @@ impl Recorder {
         self.pc_points.push(poincare_point(ode, t, y, omega_rad_s));
     }
 
+    /// Extends the Poincaré samples of an exact period-`n` orbit, recorded
+    /// over at least `n` periods, to `total` by its periodicity: the
+    /// samples of the orbit repeat after `n` periods (to the shooting
+    /// tolerance, checked on the recorded ones), so the rest of the window
+    /// need not be integrated.
+    pub(super) fn repeat_poincare(&mut self, n: usize, total: usize) {
+        if n == 0 || self.pc_points.len() < n {
+            return;
+        }
+        let all = (self.pc_delta.iter_mut())
+            .chain(self.pc_vel.iter_mut())
+            .chain(self.pc_x.iter_mut())
+            .chain(self.pc_xv.iter_mut());
+        for series in all {
+            while series.len() < total {
+                series.push(series[series.len() - n]);
+            }
+        }
+        while self.pc_points.len() < total {
+            self.pc_points
+                .push(self.pc_points[self.pc_points.len() - n].clone());
+        }
+    }
+
+    /// The largest range of a mesh deflection so far (µm).
+    pub(super) fn span_um(&self) -> f64 {
+        self.d_min
+            .iter()
+            .zip(&self.d_max)
+            .map(|(lo, hi)| hi - lo)
+            .fold(0.0, f64::max)
+            * 1e6
+    }
+
     pub(super) fn finish(
         self,
         model: &Model,

@@ -14,13 +14,25 @@
 //! window then decides ([`classify_recorded`]), and a failed attempt is
 //! said in the verdict's note, never shown as an orbit.
 
-use super::{settle_tol_um, Model, Phase, SteadyRun, MAX_PERIOD};
+use super::probe::Probe;
+use super::{poincare_point, settle_tol_um, Model, Phase, SteadyRun, MAX_PERIOD, SETTLE_DISTANCES};
 use crate::error::Result;
 use crate::ode::Dopri5;
 use crate::shooting::{ShootOptions, ShootOutcome, ShootRun};
 
 /// The transient periods after which a candidate period is looked for.
-pub const CHECKPOINTS: &[u32] = &[12, 24, 48, 96, 192, 384, 768, 1536, 3072, 6144];
+pub const CHECKPOINTS: &[u32] = &[6, 12, 24, 48, 96, 192, 384, 768, 1536, 3072, 6144];
+
+/// Lyapunov probes a steady run makes at most.
+pub const MAX_PROBES: u32 = 2;
+
+/// Transient periods before a run from the static equilibrium may start
+/// the probe: the motion from rest can look chaotic for dozens of periods
+/// before it settles (the gear pair with TE 21.4 µm at Omega 0.747: an
+/// exponent of 0.14 per period over periods 6 to 22, then a stable
+/// period-2 orbit). Runs continued from another state (sweeps, maps)
+/// probe from the first checkpoint.
+pub const PROBE_FROM_REST: u32 = 96;
 
 /// Newton iterations a steady run gives one shooting attempt.
 pub const PIPELINE_ITERATIONS: u32 = 8;
@@ -282,12 +294,86 @@ impl SteadyRun {
         }
         if settled {
             self.start_recording(model);
+        } else if self.probes < MAX_PROBES && self.periods_run >= self.probe_from {
+            self.start_probe(model)?;
         } else {
             self.phase = Phase::Transient {
                 p: self.periods_run + 1,
             };
         }
         Ok(())
+    }
+
+    /// Starts recording from the current state (the end of transient
+    /// period `periods_run`) with the Lyapunov probe beside it.
+    pub(super) fn start_probe(&mut self, model: &Model) -> Result<()> {
+        self.probes += 1;
+        let probe = Probe::new(model, &self.ode, self.int.t(), self.int.y(), &self.tol)?;
+        self.probe = Some(Box::new(probe));
+        self.start_recording(model);
+        Ok(())
+    }
+
+    /// How many periods the window records: all of them, but for an exact
+    /// orbit (without time histories) two of its periods, the rest of the
+    /// Poincaré samples following from its periodicity.
+    pub(super) fn record_target(&self) -> u32 {
+        match self.exact.as_ref().and_then(Motion::period) {
+            Some(n) if self.opts.history_meshes.is_empty() => {
+                (2 * n).clamp(1, self.opts.record_periods)
+            }
+            _ => self.opts.record_periods,
+        }
+    }
+
+    /// The probe's measurement at the end of recorded period `r` of
+    /// `target`: `true` if the run went back to its transient (the probe
+    /// found no chaos, or the window ended before it decided; a candidate
+    /// period in the latest points is then shot for at once), `false` if
+    /// the recording goes on (chaos, with the probe done, or undecided).
+    pub(super) fn probe_period(&mut self, model: &Model, r: u32, target: u32) -> Result<bool> {
+        let Some(pr) = self.probe.as_mut() else {
+            return Ok(false);
+        };
+        let (t, y) = (self.int.t(), self.int.y());
+        let ev = pr.measure(&self.ode, t, y)?;
+        // The recorded points feed the transient's tests too, should the
+        // run go back to it.
+        let point = poincare_point(&self.ode, t, y, self.omega_rad_s);
+        if self.opts.early_settle {
+            self.poincare_hist.push(point.clone());
+            if self.poincare_hist.len() > SETTLE_DISTANCES * 8 + 1 {
+                self.poincare_hist.remove(0);
+            }
+        }
+        self.pipe_hist.push(point);
+        if self.pipe_hist.len() > 2 * MAX_PERIOD + 1 {
+            self.pipe_hist.remove(0);
+        }
+        if ev.is_none() && r < target {
+            return Ok(false);
+        }
+        self.probe_steps += pr.steps();
+        self.probe = None;
+        if let Some(ev) = ev {
+            self.lyapunov = Some(ev);
+            if ev.chaotic {
+                return Ok(false);
+            }
+        }
+        let span_um = match &self.phase {
+            Phase::Record { rec, .. } => rec.span_um(),
+            _ => 0.0,
+        };
+        self.periods_run += r;
+        self.phase = Phase::Transient {
+            p: self.periods_run + 1,
+        };
+        self.span.reset_keep_last();
+        if let Some(n) = candidate_period(&self.pipe_hist, loose_tol_um(span_um)) {
+            self.start_shooting(model, n, span_um, false)?;
+        }
+        Ok(true)
     }
 
     /// Adds a shooting attempt that did not give the steady state to the note.
