@@ -69,7 +69,7 @@ test('the page opens on a periodic state the first tour step explains, the metho
 test('the bifurcation diagram draws the shooting branches, stable solid and unstable thin, each bifurcation explained', async () => {
   // The gear pair's branches are short (its period-1 branch turns back at
   // a fold near Ω 0.32), so the continuation finishes quickly.
-  const { page, errors } = await open(h.browser, h.url, 'model=gear-pair&bif_points=40&lyap_points=0&map_omega_points=2&map_value_points=1');
+  const { page, errors } = await open(h.browser, h.url, 'model=gear-pair&branches=on&bif_points=40&lyap_points=0&map_omega_points=2&map_value_points=1');
   const s = await waitStatus(
     page,
     (x) => x.bif_branches && x.bif_branches.job.finished_ms && x.bif.finished_ms,
