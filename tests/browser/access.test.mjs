@@ -181,7 +181,7 @@ test('reduced motion starts the gear set paused', async () => {
     assert.equal(s.anim.playing, false);
     assert.equal(await page.textContent('#anim-play'), 'Play');
     await page.click('#anim-play');
-    await waitStatus(page, (x) => x.anim.playing === true, 10000, 'Play to start it');
+    await waitStatus(page, (x) => x.anim.playing === true, 60000, 'Play to start it');
     assert.deepEqual(errors, []);
     await page.close();
   } finally {

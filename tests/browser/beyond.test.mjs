@@ -152,7 +152,7 @@ test('the animated gear set turns, and its mesh colours are the contact states o
   const scale = box.width / 760;
   const target = x0 + 0.25 * (x1 - x0);
   await page.mouse.click(box.x + (l + 0.25 * (r - l)) * scale, box.y + ((t + bt) / 2) * scale);
-  const s2 = await waitStatus(page, (s) => Math.abs(s.anim.history_sample / 64 - target) < 0.1, 5000, 'the clicked instant');
+  const s2 = await waitStatus(page, (s) => Math.abs(s.anim.history_sample / 64 - target) < 0.1, 60000, 'the clicked instant');
   assert.equal(s2.anim.playing, false);
   assert.deepEqual(errors, []);
   await page.close();
@@ -163,7 +163,7 @@ test('Pin as A draws B over A on both diagrams, and the link restores the compar
   const { page, errors } = await open(h.browser, h.url, q);
   await waitStatus(page, (s) => s.fr.finished_ms && s.bif.finished_ms, 90000, 'the first state');
   await page.click('#pin-a');
-  await waitStatus(page, (s) => s.pinned && s.query.includes('&a='), 5000, 'the pinned state');
+  await waitStatus(page, (s) => s.pinned && s.query.includes('&a='), 60000, 'the pinned state');
   // The status and the button are updated by different renders: wait for the
   // button itself rather than checking it the moment the status says pinned.
   await page.locator('#clear-a').waitFor({ state: 'visible', timeout: 10000 });

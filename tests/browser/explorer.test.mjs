@@ -83,7 +83,7 @@ test('a slider change previews the selected-Omega views at once, then the full s
     el.dispatchEvent(new Event('input', { bubbles: true }));
     return performance.now();
   });
-  const sp = await waitStatus(page, (s) => s.preview_drawn?.ms >= t0, 10000, 'the preview drawn');
+  const sp = await waitStatus(page, (s) => s.preview_drawn?.ms >= t0, 60000, 'the preview drawn');
   assert.match(sp.preview_drawn.summary, /^Preview \(20 \+ 10 periods continued from the previous state; the full run is computing\): Ω = /);
   assert.ok(sp.omega_job.preview_ms >= t0 && sp.preview_drawn.ms >= sp.omega_job.preview_ms);
   if (sp.omega_result.preview) {

@@ -48,7 +48,7 @@ test('a family typed on the page overlays one coloured curve per value on the fr
   await page.waitForFunction(() => /TE 5000/.test(document.querySelector('#family-error')?.textContent ?? ''));
   const err = await page.textContent('#family-error');
   assert.match(err, /-1000 to 1000 µm/);
-  const kept = await waitStatus(page, (x) => x.family, 5000, 'the family kept');
+  const kept = await waitStatus(page, (x) => x.family, 60000, 'the family kept');
   assert.equal(kept.query, s.query);
   await page.fill('#family-values', '1, 2, 3, 4, 5, 6, 7');
   await page.press('#family-values', 'Enter');
@@ -102,7 +102,7 @@ test('the Fig. 5 preset shows three phase portraits and three Poincaré sections
   assert.match(await page.textContent('#claim-8'), /gearshock lyapunov/);
   await shot(page.locator('#claims'), '33-claims');
   await page.locator('#claim-8 button').click();
-  const s8 = await waitStatus(page, (x) => x.family && x.family.key === 'backlash_um', 10000, 'the Fig. 8 family');
+  const s8 = await waitStatus(page, (x) => x.family && x.family.key === 'backlash_um', 60000, 'the Fig. 8 family');
   assert.deepEqual(s8.family.values, [50, 100, 200]);
   assert.deepEqual(errors, []);
   await page.close();
@@ -113,7 +113,7 @@ test('the Fig. 2 preset link shows its four mesh panels at once, every TE curve 
   // fewer harmonics and points so six branches finish quickly.
   const first = await open(h.browser, h.url, QUICK);
   await first.page.selectOption('#preset', 'fig2');
-  const p = await waitStatus(first.page, (s) => s.family && s.family.values.length === 6 && s.fr_panels, 10000, 'the Fig. 2 family');
+  const p = await waitStatus(first.page, (s) => s.family && s.family.values.length === 6 && s.fr_panels, 60000, 'the Fig. 2 family');
   assert.deepEqual(p.fr_panels, ['s1a1', 's2b1', 'a1b1', 'rb1']);
   assert.match(p.query, /&panels=s1a1%2Cs2b1%2Ca1b1%2Crb1/);
   await first.page.close();

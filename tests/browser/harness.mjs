@@ -92,7 +92,7 @@ export async function waitStatus(page, pred, timeoutMs = 60000, what = 'conditio
     const s = await status(page);
     if (pred(s)) return s;
     if (Date.now() - t0 > timeoutMs) {
-      throw new Error(`timed out after ${timeoutMs} ms waiting for ${what}; status: ${JSON.stringify(s).slice(0, 600)}`);
+      throw new Error(`timed out after ${timeoutMs} ms waiting for ${what}; status: ${JSON.stringify(s).slice(0, 2000)}`);
     }
     await page.waitForTimeout(50);
   }
@@ -104,7 +104,7 @@ export async function waitStatus(page, pred, timeoutMs = 60000, what = 'conditio
  * page writes its text in the animation frame after a result arrives, so
  * a test that waited for the status then reads the text waits for it too.
  */
-export async function waitText(page, selector, re, { not = false, attr = null, timeoutMs = 30000 } = {}) {
+export async function waitText(page, selector, re, { not = false, attr = null, timeoutMs = 60000 } = {}) {
   const read = () =>
     page.evaluate(({ selector, attr }) => {
       const e = document.querySelector(selector);

@@ -85,7 +85,7 @@ test('the bifurcation diagram draws the shooting branches, stable solid and unst
   await shot(page.locator('#view-bif'), '42-bif-shooting-branches');
   // One choice hides them.
   await page.selectOption('#sel-branches', 'off');
-  await waitStatus(page, (x) => x.bif_branches.stable_lines + x.bif_branches.unstable_lines === 0, 10000, 'no branches');
+  await waitStatus(page, (x) => x.bif_branches.stable_lines + x.bif_branches.unstable_lines === 0, 60000, 'no branches');
   assert.deepEqual(errors, []);
   await page.close();
 });

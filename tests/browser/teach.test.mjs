@@ -238,7 +238,7 @@ test('the Start here tour runs through all its steps, each pointing at its view,
     await page.waitForFunction((n) => location.search.includes(`tour=${n}`), i + 1);
     if (i === 3) {
       // This step sets its state: the motion at Ω 1.2.
-      await waitStatus(page, (x) => x.omega === 1.2, 10000, 'Ω 1.2');
+      await waitStatus(page, (x) => x.omega === 1.2, 60000, 'Ω 1.2');
       await shot(page, 'teach-07-tour-step-4');
     }
     await page.click('#tour-next');
@@ -373,7 +373,7 @@ test('on a phone (touch, 390x844) a tap or a sideways drag on the frequency resp
     // A tap on the frequency response: Ω changes and the orbit views redraw.
     let p = await at('canvas-fr', s0.fr_frame, 0.75);
     await page.touchscreen.tap(p.x, p.y);
-    await waitStatus(page, (x) => near(x, omegaAt(0.75)), 10000, 'the tapped Ω');
+    await waitStatus(page, (x) => near(x, omegaAt(0.75)), 60000, 'the tapped Ω');
     const s1 = await waitStatus(page, (x) => x.omega_job.finished_ms && x.omega_result && near(x.omega_result, omegaAt(0.75))
       && x.draws[2] > s0.draws[2] && x.draws[4] > s0.draws[4], 120000, 'the orbit views at the tapped Ω');
     await shot(page.locator('#view-fr'), 'teach-09-phone-touch-fr');
@@ -385,11 +385,11 @@ test('on a phone (touch, 390x844) a tap or a sideways drag on the frequency resp
     await touch('touchStart', p.x, p.y);
     for (let k = 1; k <= 8; k++) await touch('touchMove', p.x + ((q.x - p.x) * k) / 8, p.y);
     await touch('touchEnd');
-    await waitStatus(page, (x) => near(x, omegaAt(0.5)), 10000, 'the Ω where the drag ended');
+    await waitStatus(page, (x) => near(x, omegaAt(0.5)), 60000, 'the Ω where the drag ended');
     // A tap on the bifurcation diagram.
     p = await at('canvas-bif', s1.bif_frame, 0.25);
     await page.touchscreen.tap(p.x, p.y);
-    await waitStatus(page, (x) => near(x, omegaAt(0.25)), 10000, 'the Ω tapped on the bifurcation diagram');
+    await waitStatus(page, (x) => near(x, omegaAt(0.25)), 60000, 'the Ω tapped on the bifurcation diagram');
     await waitStatus(page, (x) => x.omega_job.finished_ms && x.omega_result && near(x.omega_result, omegaAt(0.25)), 120000, 'the orbit views');
     const w = await page.evaluate(() => ({ scroll: document.documentElement.scrollWidth, body: document.body.scrollWidth }));
     assert.ok(w.scroll <= 390 && w.body <= 390, JSON.stringify(w));
