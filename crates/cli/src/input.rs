@@ -46,6 +46,67 @@ pub fn bytes_text(n: u64) -> String {
     }
 }
 
+/// A file opened for reading through a limit of `limit` bytes; the
+/// failure names `what` (the flag or command), the file and `limit_text`
+/// (what the limit is).
+pub struct LimitedFile {
+    reader: Limited<std::io::BufReader<std::fs::File>>,
+    limit: u64,
+    too_large: String,
+    what: String,
+}
+
+impl LimitedFile {
+    /// Opens `path`, refusing at once a file larger than `limit`.
+    pub fn open(
+        path: &std::path::Path,
+        limit: u64,
+        what: &str,
+        limit_text: &str,
+    ) -> Result<Self, Failure> {
+        let shown = path.display();
+        let too_large = format!("{what} {shown}: larger than {limit_text}");
+        let file = std::fs::File::open(path).map_err(|e| usage(format!("{what} {shown}: {e}")))?;
+        if file
+            .metadata()
+            .is_ok_and(|m| m.is_file() && m.len() > limit)
+        {
+            return Err(usage(too_large));
+        }
+        Ok(LimitedFile {
+            reader: Limited {
+                inner: std::io::BufReader::with_capacity(1 << 16, file),
+                left: limit,
+            },
+            limit,
+            too_large,
+            what: format!("{what} {shown}"),
+        })
+    }
+
+    /// The reader.
+    pub fn reader(&mut self) -> &mut impl Read {
+        &mut self.reader
+    }
+
+    /// The bytes read so far.
+    pub fn read_bytes(&self) -> u64 {
+        self.limit - self.reader.left
+    }
+
+    /// A JSON reader's failure in words: over the limit, unreadable, or
+    /// not JSON.
+    pub fn failure(&self, e: &serde_json::Error) -> Failure {
+        if e.is_io() && e.to_string().contains("over the size limit") {
+            usage(self.too_large.clone())
+        } else if e.is_io() {
+            usage(format!("{}: {e}", self.what))
+        } else {
+            usage(format!("{}: not JSON: {e}", self.what))
+        }
+    }
+}
+
 /// Reads and parses a JSON file of at most `limit` bytes, returning the
 /// value and the bytes read; the failure names `what` (the flag or
 /// command), the file and `limit_text` (what the limit is).
@@ -55,27 +116,7 @@ pub fn read_json(
     what: &str,
     limit_text: &str,
 ) -> Result<(Value, u64), Failure> {
-    let shown = path.display();
-    let too_large = || usage(format!("{what} {shown}: larger than {limit_text}"));
-    let file = std::fs::File::open(path).map_err(|e| usage(format!("{what} {shown}: {e}")))?;
-    if file
-        .metadata()
-        .is_ok_and(|m| m.is_file() && m.len() > limit)
-    {
-        return Err(too_large());
-    }
-    let mut reader = Limited {
-        inner: std::io::BufReader::new(file),
-        left: limit,
-    };
-    let value = serde_json::from_reader(&mut reader).map_err(|e| {
-        if e.is_io() && e.to_string().contains("over the size limit") {
-            too_large()
-        } else if e.is_io() {
-            usage(format!("{what} {shown}: {e}"))
-        } else {
-            usage(format!("{what} {shown}: not JSON: {e}"))
-        }
-    })?;
-    Ok((value, limit - reader.left))
+    let mut file = LimitedFile::open(path, limit, what, limit_text)?;
+    let value = serde_json::from_reader(file.reader()).map_err(|e| file.failure(&e))?;
+    Ok((value, file.read_bytes()))
 }

@@ -13,7 +13,8 @@
 //! Rooms: [`commands`] holds one module per subcommand (its options and its
 //! run); [`sweep`] is the one loop every sweep runs (progress, streaming);
 //! [`output`] writes stdout; [`args`] holds the options the subcommands
-//! share and their checks; [`input`] reads files through a size limit;
+//! share and their checks; [`input`] reads files through a size limit
+//! ([`shards`] streams a shard file's items one at a time);
 //! [`budget`] caps each command's work; [`failure`] maps errors to exit codes.
 
 mod args;
@@ -24,6 +25,7 @@ mod failure;
 mod input;
 mod output;
 mod progress;
+mod shards;
 mod sweep;
 
 use clap::Parser;
