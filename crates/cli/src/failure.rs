@@ -30,6 +30,8 @@ const FLAGS: &[&str] = &[
     "shard",
     "harmonics",
     "grid",
+    "period",
+    "levels",
 ];
 
 impl From<SolverError> for Failure {

@@ -75,8 +75,11 @@ pub fn emit_text(text: &str) -> Result<(), Failure> {
     stdout(text.as_bytes())
 }
 
-/// One line on stderr, `gearshock: ` first.
+/// One line on stderr, `gearshock: ` first, its control characters
+/// escaped (a key or value echoed from the input cannot break the line or
+/// reach the terminal raw).
 pub fn note(text: &str) {
+    let text = crate::flags::escaped(text);
     let _ = writeln!(io::stderr().lock(), "gearshock: {text}");
 }
 

@@ -116,10 +116,12 @@ impl Merge {
         let kind = match items {
             "points" => &SWEEP,
             "cells" => &MAP,
-            other => return Err(bad(format!(
+            other => {
+                return Err(bad(format!(
                 "merge joins the points of bifurcation shards or the cells of map shards, not `{}`",
                 keys::truncate(other, 40)
-            ))),
+            )))
+            }
         };
         let name0 = names
             .first()

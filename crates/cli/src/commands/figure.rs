@@ -130,7 +130,9 @@ pub(crate) fn check_options(args: &FigureArgs) -> Result<(), Failure> {
         ("--record-periods", args.record_periods, 1, 10_000),
     ] {
         if let Some(v) = value.filter(|v| !(min..=max).contains(v)) {
-            return Err(usage(format!("{flag} {v}: allowed {min} ..= {max}")));
+            return Err(usage(format!(
+                "{flag} {v} is out of range: allowed {min} ..= {max}"
+            )));
         }
     }
     Ok(())

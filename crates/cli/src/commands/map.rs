@@ -24,10 +24,10 @@ pub struct MapArgs {
     #[arg(long, default_value = "backlash_um")]
     key: String,
     /// First value of the row parameter.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::flags::finite)]
     value_from: f64,
     /// Last value of the row parameter.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::flags::finite)]
     value_to: f64,
     /// Number of rows.
     #[arg(long, default_value_t = 40)]
