@@ -17,7 +17,8 @@ use serde_json::Value;
 use std::io::{self, Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 
-/// The exit code of a failed write (1 is a solver failure, 2 bad input).
+/// The exit code of a failed write (1 is a solver failure, 2 bad input):
+/// every failure to produce the output, never 1.
 pub const EXIT_IO: u8 = 3;
 
 /// The failure of a write to `what` (stdout or a file's path): quiet for a
@@ -57,7 +58,7 @@ pub fn output(format: Format, value: &Value, csv: fn(&Value) -> String) -> Resul
 /// Writes one pretty-printed JSON document.
 pub fn emit(value: &Value) -> Result<(), Failure> {
     let mut text = serde_json::to_string_pretty(value).map_err(|e| Failure {
-        code: 1,
+        code: EXIT_IO,
         message: format!("cannot write JSON: {e}"),
     })?;
     text.push('\n');
@@ -194,7 +195,7 @@ impl Document {
 
 fn json_failure(e: serde_json::Error) -> Failure {
     Failure {
-        code: 1,
+        code: EXIT_IO,
         message: format!("cannot write JSON: {e}"),
     }
 }

@@ -608,16 +608,27 @@ pub fn map_head_json(
 pub fn instability_json(
     model: &Model,
     params: &ModelParams,
+    spec: Value,
     points: &[solver::parametric::EngagedStability],
 ) -> Value {
     json!({
         "model": model.system.model.name(),
         "params": Value::Object(keys::to_json(params)),
+        "spec": spec,
         "points": points.iter().map(instability_point_json).collect::<Vec<_>>(),
         "unstable_bands": instability_bands(points).iter().map(|&(from, to)| json!({
             "omega_from": num(from),
             "omega_to": num(to),
         })).collect::<Vec<_>>(),
+    })
+}
+
+/// The specification of a parametric-instability scan: its Omega grid.
+pub fn instability_spec_json(omega_from: f64, omega_to: f64, points: u32) -> Value {
+    json!({
+        "omega_from": num(omega_from),
+        "omega_to": num(omega_to),
+        "points": points,
     })
 }
 

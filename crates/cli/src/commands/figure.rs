@@ -97,7 +97,7 @@ pub(crate) fn members(p: &Preset) -> Result<Vec<Member>, Failure> {
 
 fn drawn<T, E: std::fmt::Display>(name: &str, result: Result<T, E>) -> Result<T, Failure> {
     result.map_err(|e| Failure {
-        code: 1,
+        code: crate::output::EXIT_IO,
         message: format!("cannot draw {name}: {e}"),
     })
 }
