@@ -38,7 +38,7 @@ pub fn run(a: &InstabilityArgs) -> Result<(), Failure> {
     let kept = {
         let mut scan = Points::new(omegas, |omega| {
             let p = engaged.at(omega)?;
-            all.push(p.clone());
+            all.push(p);
             Ok(p)
         });
         sweep::run(&mut scan, &a.p, "points", Some(lines))?
