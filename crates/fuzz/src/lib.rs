@@ -17,7 +17,7 @@
 //!   Poincaré arrays of `record_periods` entries, its cells a period, motion
 //!   and regime gearshock writes), dropped, doubled or swapped shards and
 //!   mutated text. A merge it accepts must hold every grid point exactly
-//!   once, each one of its inputs' items verbatim ([`shards`]).
+//!   once, each one of its inputs' items verbatim.
 //! - figure shards: forged shard sets of a real figure
 //!   ([`figure_shards_input`]: members, smuggled file text, forged data and
 //!   options) checked by [`check_figure_merge`]; the figure merge draws
