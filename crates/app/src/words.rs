@@ -76,7 +76,9 @@ pub fn short(x: f64) -> String {
 
 fn num(x: f64) -> String {
     if x != 0.0 && (x.abs() >= 1e6 || x.abs() < 1e-3) {
-        let e = x.log10().floor();
+        // The exponent of the magnitude: a negative bound (a torque's
+        // -1e6) read "NaN×10^0" from the logarithm of a negative number.
+        let e = x.abs().log10().floor();
         let m = x / 10f64.powf(e);
         format!("{}×10^{}", short(m), e as i32)
     } else {
@@ -234,6 +236,25 @@ mod tests {
             tooltip("backlash_um", "backlash: half-width b of the dead zone, on all meshes"),
             "Backlash: half-width b of the dead zone, on all meshes. Allowed: between 0 and 1000 µm."
         );
+    }
+
+    /// Every range reads as numbers, negative bounds included (a torque's
+    /// range read "NaN×10^0").
+    #[test]
+    fn every_range_is_numbers() {
+        assert_eq!(num(-1e6), "-1×10^6");
+        assert_eq!(num(2.5e-5), "2.5×10^-5");
+        for k in keys::KEYS
+            .iter()
+            .map(|k| k.name)
+            .chain(crate::settings::VIEW_KEYS.iter().map(|k| k.name))
+        {
+            let text = allowed(k);
+            assert!(
+                !text.contains("NaN") && !text.contains("inf"),
+                "{k}: {text}"
+            );
+        }
     }
 
     /// Every key the page can set reads without key names or Rust ranges.
