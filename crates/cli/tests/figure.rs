@@ -56,6 +56,18 @@ fn figure_fig5_writes_three_phase_portraits_and_three_poincare_sections() {
         .unwrap();
         assert_eq!(data["view"]["omega"], 0.5);
         assert_eq!(data["view"]["backlash_um"], 200.0);
+        // The panel carries the pipeline's verdict on its orbit: the
+        // listing, the panel's data and its title say the same, and a
+        // member's phase portrait and Poincaré section agree.
+        assert_eq!(p["motion"], data["view"]["motion"], "{name}");
+        assert_eq!(p["exact"], data["view"]["exact"], "{name}");
+        assert_eq!(p["motion"], panels[i % 3]["motion"], "{name}");
+        let verdict = p["verdict"].as_str().unwrap();
+        assert!(svg.contains(&format!(": {verdict}")), "{name}: {verdict}");
+        match data["view"]["period"].as_u64() {
+            Some(n) => assert!(verdict.contains(&n.to_string()), "{verdict}"),
+            None => assert!(verdict.starts_with("not periodic"), "{verdict}"),
+        }
         let csv = std::fs::read_to_string(dir.join(format!("{name}.csv"))).expect("csv");
         // 8 recorded periods: 8 Poincaré samples, or 8 x 64 orbit samples.
         let rows = csv.lines().count() - 1;
