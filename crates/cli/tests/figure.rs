@@ -136,7 +136,8 @@ fn figure_fig5_writes_three_phase_portraits_and_three_poincare_sections() {
     // A bad option: exit 2 naming it and its range, before any work.
     let o = gearshock(&["figure", "fig8", "--out", out, "--points", "1"]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("--points 1: allowed 2 ..= 2000"));
+    assert!(String::from_utf8_lossy(&o.stderr)
+        .contains("--points 1 is out of range: allowed 2 ..= 2000"));
     // Not a figure: exit 2 naming it.
     for (id, words) in [
         ("fig99", "no such figure"),

@@ -97,7 +97,7 @@ pub(crate) fn members(p: &Preset) -> Result<Vec<Member>, Failure> {
 
 fn drawn<T, E: std::fmt::Display>(name: &str, result: Result<T, E>) -> Result<T, Failure> {
     result.map_err(|e| Failure {
-        code: 1,
+        code: crate::output::EXIT_IO,
         message: format!("cannot draw {name}: {e}"),
     })
 }
@@ -130,7 +130,9 @@ pub(crate) fn check_options(args: &FigureArgs) -> Result<(), Failure> {
         ("--record-periods", args.record_periods, 1, 10_000),
     ] {
         if let Some(v) = value.filter(|v| !(min..=max).contains(v)) {
-            return Err(usage(format!("{flag} {v}: allowed {min} ..= {max}")));
+            return Err(usage(format!(
+                "{flag} {v} is out of range: allowed {min} ..= {max}"
+            )));
         }
     }
     Ok(())
