@@ -13,10 +13,15 @@ use solver::params::ModelParams;
 /// harmonic-balance branch: the overlay and the bifurcation sweep take
 /// turns (so both diagrams fill in together and show their first points
 /// early), then the shooting branches drawn over the sweep, the Lyapunov
-/// curve, then the map (the slower, secondary views must not delay the
-/// main diagrams).
+/// curve, then the map and the boundaries drawn over it (the slower,
+/// secondary views must not delay the main diagrams).
 const TAKING_TURNS: [JobKind; 2] = [JobKind::Overlay, JobKind::Bif];
-const WHEN_IDLE: [JobKind; 3] = [JobKind::Orbits, JobKind::Lyap, JobKind::Map];
+const WHEN_IDLE: [JobKind; 4] = [
+    JobKind::Orbits,
+    JobKind::Lyap,
+    JobKind::Map,
+    JobKind::Boundaries,
+];
 
 /// One computation's jobs.
 #[derive(Default)]

@@ -13,9 +13,11 @@
 //! integrator steps of the point in progress (the selected-Omega run, a
 //! bifurcation point, an overlay point, a Lyapunov point, a map cell; the
 //! run pauses and resumes without changing a bit), [`hbm::HBM_CHUNK`]
-//! branch points, or one shooting branch point ([`orbits`]). A newer job or a cancel waits at most one step.
+//! branch points, one shooting branch point ([`orbits`]), or
+//! [`boundaries::BOUNDARY_CHUNK`] boundary points. A newer job or a cancel waits at most one step.
 
 pub mod bif;
+pub mod boundaries;
 pub mod chain;
 pub mod hbm;
 pub mod lyap;
@@ -187,6 +189,26 @@ pub(crate) fn start(
             model,
             (omega_from, omega_to, points),
         )),
+        JobSpec::Boundaries {
+            key,
+            omega_from,
+            omega_to,
+            value_from,
+            value_to,
+            levels,
+            points,
+            harmonics,
+        } => {
+            let mut spec = solver::boundaries::BoundarySpec::new(
+                &key,
+                (value_from, value_to),
+                (omega_from, omega_to),
+            );
+            spec.levels = levels;
+            spec.points = points;
+            spec.harmonics = harmonics;
+            boxed(boundaries::BoundariesJob::start(id, &params, spec))
+        }
     }
 }
 
