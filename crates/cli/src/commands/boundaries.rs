@@ -30,10 +30,10 @@ pub struct BoundariesArgs {
     #[arg(long, default_value = "backlash_um")]
     key: String,
     /// First value of the key.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::flags::finite)]
     value_from: f64,
     /// Last value of the key.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::flags::finite)]
     value_to: f64,
     /// Values of the key (spread over its range) at which a frequency
     /// response seeds the curves (2 ..= 50).

@@ -1,11 +1,11 @@
 //! `gearshock map`: the impact-regime map over Omega (columns) and any
 //! numeric key (rows), optionally one shard of its rows.
 
-use crate::args::{mesh_index, parse_shard, stream_header, OmegaRange, ParamArgs, RunArgs};
+use crate::args::{mesh_index, parse_shard, stream_header, Format, OmegaRange, ParamArgs, RunArgs};
 use crate::budget::{check_work, StepCost};
 use crate::csv;
 use crate::failure::Failure;
-use crate::output::output;
+use crate::output::{output, Document};
 use crate::sweep::{self, Lines};
 use clap::Args;
 use solver::map::{MapSpec, RegimeMap};
@@ -24,10 +24,10 @@ pub struct MapArgs {
     #[arg(long, default_value = "backlash_um")]
     key: String,
     /// First value of the row parameter.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::flags::finite)]
     value_from: f64,
     /// Last value of the row parameter.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::flags::finite)]
     value_to: f64,
     /// Number of rows.
     #[arg(long, default_value_t = 40)]
@@ -89,6 +89,14 @@ pub fn run(a: &MapArgs) -> Result<(), Failure> {
     let Some(cells) = sweep::run(&mut map, &a.p, "cells", Some(lines))? else {
         return Ok(());
     };
+    if a.p.format == Format::Json {
+        // Streamed, as bifurcation's points are: one cell's JSON at a time.
+        let mut doc = Document::begin(&report::map_head_json(&model, &params, &spec), "cells")?;
+        for c in &cells {
+            doc.item(&report::map_cell_json(c))?;
+        }
+        return doc.finish();
+    }
     let value = report::map_json(&model, &params, &spec, &cells);
     output(a.p.format, &value, csv::map)
 }

@@ -13,8 +13,11 @@
 //! integrator steps of the point in progress (the selected-Omega run, a
 //! bifurcation point, an overlay point, a Lyapunov point, a map cell; the
 //! run pauses and resumes without changing a bit), [`hbm::HBM_CHUNK`]
-//! branch points, one shooting branch point ([`orbits`]), or
-//! [`boundaries::BOUNDARY_CHUNK`] boundary points. A newer job or a cancel waits at most one step.
+//! branch points, [`SLICE_STEPS`] steps' work of a shooting branch
+//! step ([`orbits`]: a step carrying the monodromy's tangents counts one
+//! per vector; the branch step pauses and is taken up again, bit for bit),
+//! or [`boundaries::BOUNDARY_CHUNK`] boundary points.
+//! A newer job, a cancel or an export request waits at most one step.
 
 pub mod bif;
 pub mod boundaries;
