@@ -180,6 +180,7 @@ fn view_in(
                                 "te_um" => "TE amplitude (µm)",
                                 "fit" => "fit the data",
                                 "whole" => "show the whole clearance ±b",
+                                "on" if key == "boundaries" => "traced and drawn over the map",
                                 "on" => "shown: stable solid, unstable thin",
                                 "off" => "hidden",
                                 other => other,
@@ -324,6 +325,12 @@ pub fn controls() -> Vec<Control> {
         ),
         view("record_periods", "Recorded periods", (1.0, 400.0, 1.0)),
         view_in(Maps, "map_key", "Map: vertical axis", (0.0, 0.0, 0.0)),
+        view_in(
+            Maps,
+            "boundaries",
+            "Map: boundaries traced as curves",
+            (0.0, 0.0, 0.0),
+        ),
         view_in(Maps, "map_from", "Map: from", (0.0, 300.0, 1.0)),
         view_in(Maps, "map_to", "Map: to", (0.0, 300.0, 1.0)),
         view_in(
@@ -365,6 +372,23 @@ pub fn controls() -> Vec<Control> {
         ),
     ]);
     c.into_iter().flatten().collect()
+}
+
+/// A control's label for `model`: the gear pair has one mesh, so the
+/// compound set's "(all meshes)" or "(s1a meshes)" is dropped there.
+pub fn label_for(c: &Control, model: ModelKind) -> String {
+    match (model, c.label.split_once(" (")) {
+        (ModelKind::GearPair, Some((head, tail))) if tail.ends_with("meshes)") => head.to_string(),
+        _ => c.label.clone(),
+    }
+}
+
+/// The page's subtitle for `model`: what is being explored.
+pub fn model_subtitle(model: ModelKind) -> &'static str {
+    match model {
+        ModelKind::Ravigneaux => "gear rattle and shock in a Ravigneaux compound planetary set",
+        ModelKind::GearPair => "gear rattle and shock in a single spur gear pair",
+    }
 }
 
 /// Whether a control is shown for a model.

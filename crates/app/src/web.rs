@@ -53,7 +53,7 @@ struct Shell {
 }
 
 type Shared = Rc<RefCell<Shell>>;
-type Area = DrawingArea<canvas::Canvas, Shift>;
+type Area = DrawingArea<plots::Boxed<canvas::Canvas>, Shift>;
 
 fn now(window: &Window) -> f64 {
     window.performance().map_or(0.0, |p| p.now())
@@ -314,8 +314,11 @@ fn draw_view(p: &mut Shell, v: ViewId) -> Vec<Write> {
     let Some(b) = canvas::Canvas::new(&cv) else {
         return Vec::new();
     };
-    let root: Area = b.into_drawing_area();
+    let boxes = Rc::new(RefCell::new(Vec::new()));
+    let root: Area = plots::Boxed::new(b, boxes.clone()).into_drawing_area();
     let (writes, overlay) = p.core.draw_view(v, &root, fr.as_ref());
+    drop(root);
+    p.core.set_text_boxes(v, (w, h), boxes.take());
     if let Some(ctx) = ctx2d(&cv) {
         anim::paint_items(&ctx, &overlay, (f64::from(w), f64::from(h)));
     }

@@ -127,6 +127,8 @@ pub struct Controller {
     export: Option<PendingExport>,
     /// The "Start here" tour's step (0-based), if it is running.
     tour: Option<usize>,
+    /// What the boundary last clicked on the map marks, in a sentence.
+    picked_boundary: Option<String>,
 }
 
 impl Controller {
@@ -164,6 +166,7 @@ impl Controller {
             next_id: 0,
             export: None,
             tour,
+            picked_boundary: None,
         };
         c.rebuild_model();
         let mut fx = c.restart(KindSet::ALL, now_ms);
@@ -303,6 +306,10 @@ impl Controller {
             }
             self.dirty.controls = true;
         }
+        // Every control shows the state after the change: a shortcut
+        // (backlash on all meshes) sets the per-mesh-kind fields, and a
+        // per-kind value makes the shortcut's field read "mixed".
+        self.dirty.controls = true;
         self.preset_note = None;
         Ok(self.restart(KindSet::ALL, now_ms))
     }
@@ -382,6 +389,7 @@ impl Controller {
             Some(keys::Value::Num(x)) if x.is_finite() => Some(x),
             _ => None,
         };
+        let (boundaries, disagree, _) = self.map_boundaries();
         MapView {
             store: &self.main.map,
             mesh_label: match &self.settings.view.mesh {
@@ -389,7 +397,28 @@ impl Controller {
                 MeshSel::Worst => "most severe of all meshes".into(),
             },
             selected: (self.settings.view.omega, value),
+            boundaries,
+            cusps: self.main.boundaries.cusps.clone(),
+            disagree,
         }
+    }
+
+    /// The boundaries the map shows, and the cells that disagree with
+    /// them with how many cells were judged.
+    fn map_boundaries(&self) -> (Vec<&crate::protocol::BoundaryCurve>, Vec<(u32, u32)>, usize) {
+        let mesh = self
+            .model
+            .as_ref()
+            .ok()
+            .and_then(|m| self.settings.mesh_index(m));
+        let shown = self.main.boundaries.shown(mesh);
+        let (disagree, judged) = match &self.main.map.grid {
+            Some(g) if !shown.is_empty() => {
+                crate::views::boundaries::disagreements(g, &self.main.map, &shown)
+            }
+            _ => (Vec::new(), 0),
+        };
+        (shown, disagree, judged)
     }
 
     /// Loads a preset by id.
@@ -653,6 +682,7 @@ impl Controller {
         });
         if let Some(o) = out.as_object_mut() {
             o.insert("bif_branches".into(), bif_branches);
+            o.insert("map_boundaries".into(), self.boundaries_status());
         }
         out
     }
@@ -715,6 +745,7 @@ impl Controller {
     }
 }
 
+mod boundaries;
 mod export;
 mod text;
 pub use export::{ExportError, Format};

@@ -136,6 +136,9 @@ pub struct Page {
     /// Each view's plot frame as last drawn (views with pixel-to-data
     /// mappings), by [`ViewId::slot`].
     frames: [Option<PlotFrame>; VIEWS.len()],
+    /// Each view's canvas size and the boxes of the text last drawn on it
+    /// (the tests check that none overlap or leave the canvas).
+    text_boxes: [((u32, u32), Vec<crate::plots::TextBox>); VIEWS.len()],
     /// The link last written to the address bar.
     last_query: String,
     /// Whether the screen is narrow (a phone): plots draw on fewer, larger pixels.
@@ -148,6 +151,8 @@ pub struct Page {
     gestures: (u32, &'static str),
     /// Whether the phone's "see the motion" jump is offered.
     see_orbit: bool,
+    /// What the map's last drawing put over its cells (the tests read it).
+    map_drawn: serde_json::Value,
     /// The gear set's animation.
     anim: anim::Anim,
     /// Whether an animation frame is requested for the views.
@@ -183,12 +188,14 @@ impl Page {
             redraw: Redraw::default(),
             turn: FrameTurn::default(),
             frames: [None; VIEWS.len()],
+            text_boxes: std::array::from_fn(|_| ((0, 0), Vec::new())),
             last_query: String::new(),
             narrow,
             gesture: gesture::Gesture::Idle,
             gestures: (0, ""),
             toast_until: None,
             see_orbit: false,
+            map_drawn: serde_json::Value::Null,
             anim: anim::Anim::default(),
             frame_requested: false,
             family_input: (
@@ -269,9 +276,22 @@ impl Page {
 
     /// A click at pixel `(x, y)` of the map: that cell's value and Omega.
     pub fn map_click(&mut self, x: f64, y: f64, now_ms: f64) -> Vec<Effect> {
-        let Some(at) = self.frames[ViewId::Map.slot()].and_then(|f| f.point_at(x, y)) else {
+        let frame = self.frames[ViewId::Map.slot()];
+        let Some((f, at)) = frame.and_then(|f| f.point_at(x, y).map(|at| (f, at))) else {
             return Vec::new();
         };
+        // Near a traced boundary, the click picks the boundary's point.
+        let px = (
+            (f.bottom_right.x - f.top_left.x) / (f.x_range.1 - f.x_range.0),
+            (f.bottom_right.y - f.top_left.y) / (f.y_range.1 - f.y_range.0),
+        );
+        if let Some(r) = self.ctl.pick_map_boundary((at.x, at.y), px, now_ms) {
+            return r.unwrap_or_else(|e| {
+                self.issue(e);
+                Vec::new()
+            });
+        }
+        self.ctl.clear_picked_boundary();
         match self.ctl.pick_map_point(at.x, at.y, now_ms) {
             Ok(fx) => fx,
             Err(e) => {
@@ -381,6 +401,17 @@ impl Page {
         self.frames[view.slot()]
     }
 
+    /// Records the text boxes of `view`'s last drawing on its canvas of
+    /// `size` pixels.
+    pub fn set_text_boxes(
+        &mut self,
+        view: ViewId,
+        size: (u32, u32),
+        boxes: Vec<crate::plots::TextBox>,
+    ) {
+        self.text_boxes[view.slot()] = (size, boxes);
+    }
+
     /// Records the plot frame `view` was drawn in (`None`: nothing to click).
     pub fn set_frame(&mut self, view: ViewId, frame: Option<PlotFrame>) {
         self.frames[view.slot()] = frame;
@@ -458,6 +489,8 @@ pub fn screen_size((w, h): (u32, u32), fr: bool, narrow: bool) -> (u32, u32) {
     }
 }
 
+#[cfg(test)]
+mod state_tests;
 #[cfg(test)]
 mod tests;
 #[cfg(test)]

@@ -7,7 +7,7 @@
 //! worker at once. A click on a cell is turned back into that cell's two
 //! values by [`MapGrid::cell_at`].
 
-use crate::protocol::{MapSample, Regime};
+use crate::protocol::{BoundaryCurve, MapSample, Regime};
 use serde::Serialize;
 
 /// The grid of a map: what the job computes and the plot shows.
@@ -203,6 +203,12 @@ pub struct MapView<'a> {
     pub mesh_label: String,
     /// The page's selected Omega and the key's current value (the cursor).
     pub selected: (f64, Option<f64>),
+    /// The traced boundaries it shows (`views::boundaries`).
+    pub boundaries: Vec<&'a BoundaryCurve>,
+    /// The cusps: `(omega, value)`.
+    pub cusps: Vec<(f64, f64)>,
+    /// The cells `(row, column)` that disagree with the curves.
+    pub disagree: Vec<(u32, u32)>,
 }
 
 /// The map's cells as CSV, row by row (the format of `gearshock map --format csv`).

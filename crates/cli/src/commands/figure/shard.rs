@@ -316,6 +316,7 @@ fn options_of(id: &str, options: &Value, at: &str) -> Result<FigureArgs, Failure
         transient_periods: field("transient_periods")?,
         record_periods: field("record_periods")?,
         shard: None,
+        link: None,
     };
     check_options(&args).map_err(|e| bad(format!("figure_shard.options: {}", e.message)))?;
     Ok(args)
