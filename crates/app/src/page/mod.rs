@@ -12,7 +12,9 @@
 
 mod act;
 pub mod anim;
+pub mod boot;
 pub mod dom;
+mod frame;
 pub mod gesture;
 mod paint;
 pub mod redraw;
