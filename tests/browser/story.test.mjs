@@ -6,7 +6,7 @@
 // explains, with the method note and the full key behind "details".
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { start, open, waitStatus, waitText, shot } from './harness.mjs';
+import { start, open, status, waitStatus, waitText, shot } from './harness.mjs';
 
 let h;
 before(async () => {
@@ -67,9 +67,10 @@ test('the page opens on a periodic state the first tour step explains, the metho
 });
 
 test('the bifurcation diagram draws the shooting branches, stable solid and unstable thin, each bifurcation explained', async () => {
-  // The gear pair's branches are short (its period-1 branch turns back at
-  // a fold near Ω 0.32), so the continuation finishes quickly.
-  const { page, errors } = await open(h.browser, h.url, 'model=gear-pair&branches=on&bif_points=40&lyap_points=0&map_omega_points=2&map_value_points=1');
+  // The branches are on by default. The gear pair's are short (its
+  // period-1 branch turns back at a fold near Ω 0.32), so the
+  // continuation finishes quickly.
+  const { page, errors } = await open(h.browser, h.url, 'model=gear-pair&bif_points=40&lyap_points=0&map_omega_points=2&map_value_points=1');
   const s = await waitStatus(
     page,
     (x) => x.bif_branches && x.bif_branches.job.finished_ms && x.bif.finished_ms,
@@ -86,6 +87,52 @@ test('the bifurcation diagram draws the shooting branches, stable solid and unst
   // One choice hides them.
   await page.selectOption('#sel-branches', 'off');
   await waitStatus(page, (x) => x.bif_branches.stable_lines + x.bif_branches.unstable_lines === 0, 60000, 'no branches');
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('on the default compound set the shooting branches are on and draw as they come, and exports do not wait for them', async () => {
+  // The default model and Omega range: the continuation takes the better
+  // part of a minute here. It is sliced like every job and runs after the
+  // other views' jobs, so every view (the Lyapunov curve and the map
+  // included, which once waited behind it), the phase view's exports and
+  // the sweep's command-line JSON (which the workers assemble) arrive
+  // while it is still running.
+  const { page, errors } = await open(h.browser, h.url, 'transient_periods=120&record_periods=40&map_omega_points=8&map_value_points=4&lyap_points=8');
+  await waitStatus(
+    page,
+    (x) => omegaDone(x) && ['fr', 'bif', 'map', 'lyap'].every((k) => x[k].finished_ms) && x.bif_branches.points > 0 && !x.bif_branches.job.finished_ms,
+    240000,
+    'the first shooting branch points drawn while the continuation runs',
+  );
+  await page.evaluate(() => {
+    window.offers = [];
+    const click = HTMLAnchorElement.prototype.click;
+    HTMLAnchorElement.prototype.click = function () {
+      if (this.download) window.offers.push({ name: this.download, href: this.href });
+      return click.call(this);
+    };
+  });
+  const exports = [['exports-phase', 'JSON'], ['exports-phase', 'CLI JSON'], ['exports-bif', 'CLI JSON']];
+  for (const [bar, label] of exports) {
+    await page.locator(`#${bar} button`, { hasText: new RegExp(`^${label}$`) }).click();
+  }
+  await page.waitForFunction(
+    (n) => window.offers.length >= n || JSON.parse(window.gearshockStatus()).issues.length > 0,
+    exports.length,
+    { timeout: 120000, polling: 100 },
+  );
+  const s = await status(page);
+  assert.deepEqual(s.issues, []);
+  const names = await page.evaluate(() => window.offers.map((o) => o.name));
+  assert.deepEqual(names.map((n) => n.replace(/-[^-]*$/, '')), ['gearshock-phase', 'gearshock-simulate-s1a1', 'gearshock-bifurcation'], names.join());
+  assert.ok(!s.bif_branches.job.finished_ms, 'the continuation had finished before the exports arrived: the test shows nothing');
+  assert.ok(s.bif_branches.stable_lines + s.bif_branches.unstable_lines >= 1, JSON.stringify(s.bif_branches));
+  const texts = await page.evaluate(async () => Promise.all(window.offers.map(async (o) => (await fetch(o.href)).text())));
+  for (const t of texts) JSON.parse(t);
+  assert.equal(JSON.parse(texts[2]).points.length, 200);
+  await page.locator('#view-bif').scrollIntoViewIfNeeded();
+  await shot(page.locator('#view-bif'), '43-bif-branches-while-computing');
   assert.deepEqual(errors, []);
   await page.close();
 });

@@ -367,6 +367,23 @@ pub fn controls() -> Vec<Control> {
     c.into_iter().flatten().collect()
 }
 
+/// A control's label for `model`: the gear pair has one mesh, so the
+/// compound set's "(all meshes)" or "(s1a meshes)" is dropped there.
+pub fn label_for(c: &Control, model: ModelKind) -> String {
+    match (model, c.label.split_once(" (")) {
+        (ModelKind::GearPair, Some((head, tail))) if tail.ends_with("meshes)") => head.to_string(),
+        _ => c.label.clone(),
+    }
+}
+
+/// The page's subtitle for `model`: what is being explored.
+pub fn model_subtitle(model: ModelKind) -> &'static str {
+    match model {
+        ModelKind::Ravigneaux => "gear rattle and shock in a Ravigneaux compound planetary set",
+        ModelKind::GearPair => "gear rattle and shock in a single spur gear pair",
+    }
+}
+
 /// Whether a control is shown for a model.
 pub fn shown_for(c: &Control, model: ModelKind) -> bool {
     c.applies.includes(model)

@@ -475,7 +475,7 @@ impl Default for ViewOptions {
             lyap_transient_periods: 150,
             lyap_periods: 100,
             whole_clearance: false,
-            branches: false,
+            branches: true,
         }
     }
 }

@@ -15,8 +15,7 @@ use crate::controller::Effect;
 use crate::page::boot::{drawing_px, Browser, POINTER_EVENTS};
 use crate::page::{Page, Phase, PointerIn, Write};
 use crate::views::ViewId;
-use plotters::coord::Shift;
-use plotters::prelude::{DrawingArea, IntoDrawingArea};
+use plotters::prelude::IntoDrawingArea;
 use std::cell::RefCell;
 use std::rc::Rc;
 use wasm_bindgen::prelude::*;
@@ -52,7 +51,6 @@ struct Shell {
 }
 
 type Shared = Rc<RefCell<Shell>>;
-type Area = DrawingArea<canvas::Canvas, Shift>;
 
 fn now(window: &Window) -> f64 {
     window.performance().map_or(0.0, |p| p.now())
@@ -280,8 +278,7 @@ fn draw_view(core: &mut Page, doc: &Document, v: ViewId) -> Vec<Write> {
     let Some(b) = canvas::Canvas::new(&cv) else {
         return Vec::new();
     };
-    let root: Area = b.into_drawing_area();
-    let (writes, overlay) = core.draw_view(v, &root, fr.as_ref());
+    let (writes, overlay) = core.draw_on(v, b, fr.as_ref());
     if let Some(ctx) = ctx2d(&cv) {
         anim::paint_items(&ctx, &overlay, (f64::from(w), f64::from(h)));
     }

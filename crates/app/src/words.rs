@@ -75,8 +75,9 @@ pub fn short(x: f64) -> String {
 }
 
 fn num(x: f64) -> String {
-    if x != 0.0 && (x.abs() >= 1e6 || x.abs() < 1e-3) {
-        let e = x.log10().floor();
+    if x != 0.0 && x.is_finite() && (x.abs() >= 1e6 || x.abs() < 1e-3) {
+        // The exponent of the magnitude: a negative bound has one too.
+        let e = x.abs().log10().floor();
         let m = x / 10f64.powf(e);
         format!("{}×10^{}", short(m), e as i32)
     } else {
@@ -229,7 +230,12 @@ mod tests {
                 .any(|w| w.contains('_'));
             assert!(!code && !t.contains("..="), "{t}");
             assert!(t.contains(&allowed(c.key)) && t.ends_with('.'), "{t}");
+            assert!(!t.contains("NaN") && !t.contains("inf"), "{t}");
         }
+        // A negative bound is written with its own exponent (the torque
+        // tooltip once read "between NaN x 10^0 and 1 x 10^6 N m").
+        assert_eq!(num(-1e6), "-1×10^6");
+        assert_eq!(num(-2.5e-4), "-2.5×10^-4");
         assert_eq!(
             tooltip("backlash_um", "backlash: half-width b of the dead zone, on all meshes"),
             "Backlash: half-width b of the dead zone, on all meshes. Allowed: between 0 and 1000 µm."

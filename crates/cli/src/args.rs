@@ -55,10 +55,10 @@ pub struct ParamArgs {
 #[derive(Debug, Args)]
 pub struct OmegaRange {
     /// First Omega.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::flags::finite)]
     pub omega_from: f64,
     /// Last Omega.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::flags::finite)]
     pub omega_to: f64,
 }
 
@@ -73,10 +73,10 @@ pub struct KeyRange {
     #[arg(long, default_value = "backlash_um")]
     pub key: String,
     /// First value of the key.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::flags::finite)]
     pub value_from: f64,
     /// Last value of the key.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::flags::finite)]
     pub value_to: f64,
 }
 
@@ -98,10 +98,10 @@ pub struct RunArgs {
     #[arg(long)]
     pub no_shooting: bool,
     /// Relative tolerance of the integrator.
-    #[arg(long, default_value_t = solver::steady::DEFAULT_RTOL, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = solver::steady::DEFAULT_RTOL, allow_hyphen_values = true, value_parser = crate::flags::finite)]
     pub rtol: f64,
     /// Absolute tolerance as a mesh deflection (m).
-    #[arg(long, default_value_t = solver::steady::DEFAULT_ATOL_M, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = solver::steady::DEFAULT_ATOL_M, allow_hyphen_values = true, value_parser = crate::flags::finite)]
     pub atol: f64,
 }
 
@@ -253,7 +253,7 @@ pub fn omega_grid(
     }
     if !(2..=max_points).contains(&points) {
         return Err(usage(format!(
-            "--points {points}: allowed 2 ..= {max_points}"
+            "--points {points} is out of range: allowed 2 ..= {max_points}"
         )));
     }
     Ok((0..points)

@@ -1,6 +1,6 @@
 //! How a command fails: a message and an exit code (2 for bad input, 1 for
-//! a solver failure), with the solver's errors mapped to the flags the user
-//! typed.
+//! a solver failure, 3 for a failed write: [`crate::output::EXIT_IO`]),
+//! with the solver's errors mapped to the flags the user typed.
 
 use solver::SolverError;
 
@@ -30,6 +30,8 @@ const FLAGS: &[&str] = &[
     "shard",
     "harmonics",
     "grid",
+    "period",
+    "levels",
 ];
 
 impl From<SolverError> for Failure {

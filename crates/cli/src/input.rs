@@ -1,7 +1,9 @@
 //! Input files read through a size limit, so that no input (`/dev/zero`,
-//! a forged file) can grow memory without bound.
+//! a forged file) can grow memory without bound, and with every key of an
+//! object once.
 
 use crate::failure::{usage, Failure};
+use serde::de::{self, Deserialize, Deserializer, MapAccess, SeqAccess, Visitor};
 use serde_json::Value;
 use std::io::Read;
 
@@ -46,6 +48,67 @@ pub fn bytes_text(n: u64) -> String {
     }
 }
 
+/// A file opened for reading through a limit of `limit` bytes; the
+/// failure names `what` (the flag or command), the file and `limit_text`
+/// (what the limit is).
+pub struct LimitedFile {
+    reader: Limited<std::io::BufReader<std::fs::File>>,
+    limit: u64,
+    too_large: String,
+    what: String,
+}
+
+impl LimitedFile {
+    /// Opens `path`, refusing at once a file larger than `limit`.
+    pub fn open(
+        path: &std::path::Path,
+        limit: u64,
+        what: &str,
+        limit_text: &str,
+    ) -> Result<Self, Failure> {
+        let shown = path.display();
+        let too_large = format!("{what} {shown}: larger than {limit_text}");
+        let file = std::fs::File::open(path).map_err(|e| usage(format!("{what} {shown}: {e}")))?;
+        if file
+            .metadata()
+            .is_ok_and(|m| m.is_file() && m.len() > limit)
+        {
+            return Err(usage(too_large));
+        }
+        Ok(LimitedFile {
+            reader: Limited {
+                inner: std::io::BufReader::with_capacity(1 << 16, file),
+                left: limit,
+            },
+            limit,
+            too_large,
+            what: format!("{what} {shown}"),
+        })
+    }
+
+    /// The reader.
+    pub fn reader(&mut self) -> &mut impl Read {
+        &mut self.reader
+    }
+
+    /// The bytes read so far.
+    pub fn read_bytes(&self) -> u64 {
+        self.limit - self.reader.left
+    }
+
+    /// A JSON reader's failure in words: over the limit, unreadable, or
+    /// not JSON.
+    pub fn failure(&self, e: &serde_json::Error) -> Failure {
+        if e.is_io() && e.to_string().contains("over the size limit") {
+            usage(self.too_large.clone())
+        } else if e.is_io() || e.is_data() {
+            usage(format!("{}: {e}", self.what))
+        } else {
+            usage(format!("{}: not JSON: {e}", self.what))
+        }
+    }
+}
+
 /// Reads and parses a JSON file of at most `limit` bytes, returning the
 /// value and the bytes read; the failure names `what` (the flag or
 /// command), the file and `limit_text` (what the limit is).
@@ -55,27 +118,72 @@ pub fn read_json(
     what: &str,
     limit_text: &str,
 ) -> Result<(Value, u64), Failure> {
-    let shown = path.display();
-    let too_large = || usage(format!("{what} {shown}: larger than {limit_text}"));
-    let file = std::fs::File::open(path).map_err(|e| usage(format!("{what} {shown}: {e}")))?;
-    if file
-        .metadata()
-        .is_ok_and(|m| m.is_file() && m.len() > limit)
-    {
-        return Err(too_large());
+    let mut file = LimitedFile::open(path, limit, what, limit_text)?;
+    let Unique(value) = serde_json::from_reader(file.reader()).map_err(|e| file.failure(&e))?;
+    Ok((value, file.read_bytes()))
+}
+
+/// A JSON value whose objects hold each key once: a key given twice (which
+/// a plain reader would settle silently, the last one winning) is refused
+/// naming it.
+struct Unique(Value);
+
+impl<'de> Deserialize<'de> for Unique {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        d.deserialize_any(UniqueVisitor)
     }
-    let mut reader = Limited {
-        inner: std::io::BufReader::new(file),
-        left: limit,
-    };
-    let value = serde_json::from_reader(&mut reader).map_err(|e| {
-        if e.is_io() && e.to_string().contains("over the size limit") {
-            too_large()
-        } else if e.is_io() {
-            usage(format!("{what} {shown}: {e}"))
-        } else {
-            usage(format!("{what} {shown}: not JSON: {e}"))
+}
+
+struct UniqueVisitor;
+
+impl<'de> Visitor<'de> for UniqueVisitor {
+    type Value = Unique;
+    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str("a JSON value")
+    }
+    fn visit_bool<E: de::Error>(self, v: bool) -> Result<Unique, E> {
+        Ok(Unique(Value::Bool(v)))
+    }
+    fn visit_i64<E: de::Error>(self, v: i64) -> Result<Unique, E> {
+        Ok(Unique(Value::from(v)))
+    }
+    fn visit_u64<E: de::Error>(self, v: u64) -> Result<Unique, E> {
+        Ok(Unique(Value::from(v)))
+    }
+    fn visit_f64<E: de::Error>(self, v: f64) -> Result<Unique, E> {
+        Ok(Unique(Value::from(v)))
+    }
+    fn visit_str<E: de::Error>(self, v: &str) -> Result<Unique, E> {
+        Ok(Unique(Value::from(v)))
+    }
+    fn visit_string<E: de::Error>(self, v: String) -> Result<Unique, E> {
+        Ok(Unique(Value::String(v)))
+    }
+    fn visit_unit<E: de::Error>(self) -> Result<Unique, E> {
+        Ok(Unique(Value::Null))
+    }
+    fn visit_none<E: de::Error>(self) -> Result<Unique, E> {
+        Ok(Unique(Value::Null))
+    }
+    fn visit_seq<A: SeqAccess<'de>>(self, mut s: A) -> Result<Unique, A::Error> {
+        let mut items = Vec::new();
+        while let Some(Unique(v)) = s.next_element()? {
+            items.push(v);
         }
-    })?;
-    Ok((value, limit - reader.left))
+        Ok(Unique(Value::Array(items)))
+    }
+    fn visit_map<A: MapAccess<'de>>(self, mut m: A) -> Result<Unique, A::Error> {
+        let mut map = serde_json::Map::new();
+        while let Some(key) = m.next_key::<String>()? {
+            if map.contains_key(&key) {
+                return Err(de::Error::custom(format!(
+                    "key \"{}\" is given twice",
+                    crate::flags::shown(&key, 40)
+                )));
+            }
+            let Unique(v) = m.next_value()?;
+            map.insert(key, v);
+        }
+        Ok(Unique(Value::Object(map)))
+    }
 }

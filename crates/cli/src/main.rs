@@ -13,24 +13,28 @@
 //! Rooms: [`commands`] holds one module per subcommand (its options and its
 //! run); [`sweep`] is the one loop every sweep runs (progress, streaming);
 //! [`output`] writes stdout; [`args`] holds the options the subcommands
-//! share and their checks; [`input`] reads files through a size limit;
-//! [`budget`] caps each command's work; [`failure`] maps errors to exit codes.
+//! share and their checks; [`input`] reads files through a size limit
+//! ([`shards`] streams a shard file's items one at a time);
+//! [`budget`] caps each command's work; [`failure`] maps errors to exit codes;
+//! [`flags`] words clap's refusals (the flag, its value, its real range).
 
 mod args;
 mod budget;
 mod commands;
 mod csv;
 mod failure;
+mod flags;
 mod input;
 mod output;
 mod progress;
+mod shards;
 mod sweep;
 
-use clap::Parser;
+use clap::{CommandFactory, FromArgMatches};
 use std::process::ExitCode;
 
 /// Vibration and tooth impacts of a compound planetary gear set with backlash.
-#[derive(Debug, Parser)]
+#[derive(Debug, clap::Parser)]
 #[command(name = "gearshock", version, about, long_about = None)]
 struct Cli {
     #[command(subcommand)]
@@ -38,7 +42,13 @@ struct Cli {
 }
 
 fn main() -> ExitCode {
-    let cli = match Cli::try_parse() {
+    let argv: Vec<String> = std::env::args_os()
+        .map(|a| a.to_string_lossy().into_owned())
+        .collect();
+    let parsed = flags::hyphen_values(Cli::command())
+        .try_get_matches_from(&argv)
+        .and_then(|m| Cli::from_arg_matches(&m));
+    let cli = match parsed {
         Ok(cli) => cli,
         Err(e) => {
             use clap::error::ErrorKind;
@@ -48,16 +58,7 @@ fn main() -> ExitCode {
                     Err(f) => exit(&f),
                 };
             }
-            // One line: clap's message up to its usage block, joined.
-            let text = e.render().to_string();
-            let message: Vec<&str> = text
-                .lines()
-                .take_while(|l| !l.starts_with("Usage:") && !l.starts_with("For more information"))
-                .map(str::trim)
-                .filter(|l| !l.is_empty() && !l.starts_with("tip:"))
-                .collect();
-            let line = message.join(" ");
-            output::note(line.trim_start_matches("error: "));
+            output::note(&flags::message(&e, &argv));
             return ExitCode::from(2);
         }
     };

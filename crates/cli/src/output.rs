@@ -1,7 +1,8 @@
 //! Every byte the program writes goes through here: stdout (a JSON
-//! document, JSON lines flushed one by one, text such as CSV), files
-//! (written under a temporary name and renamed once complete) and notes on
-//! stderr.
+//! document, whole or streamed item by item ([`Document`]), JSON lines
+//! flushed one by one, text such as CSV), files (written under a temporary
+//! name and renamed once complete), notes on stderr, and a merge's scratch
+//! file ([`Spill`]).
 //!
 //! Each write to stdout or a file is flushed and checked. A failure (a full
 //! disk, `> /dev/full`) is an error naming stdout or the file, with its own
@@ -13,15 +14,16 @@
 use crate::args::Format;
 use crate::failure::Failure;
 use serde_json::Value;
-use std::io::{self, Write};
-use std::path::Path;
+use std::io::{self, Read, Seek, SeekFrom, Write};
+use std::path::{Path, PathBuf};
 
-/// The exit code of a failed write (1 is a solver failure, 2 bad input).
+/// The exit code of a failed write (1 is a solver failure, 2 bad input):
+/// every failure to produce the output, never 1.
 pub const EXIT_IO: u8 = 3;
 
 /// The failure of a write to `what` (stdout or a file's path): quiet for a
 /// closed pipe, whose reader has gone and wants nothing more.
-fn failed(what: &str, e: &io::Error) -> Failure {
+pub fn failed(what: &str, e: &io::Error) -> Failure {
     let message = if e.kind() == io::ErrorKind::BrokenPipe {
         String::new()
     } else {
@@ -56,7 +58,7 @@ pub fn output(format: Format, value: &Value, csv: fn(&Value) -> String) -> Resul
 /// Writes one pretty-printed JSON document.
 pub fn emit(value: &Value) -> Result<(), Failure> {
     let mut text = serde_json::to_string_pretty(value).map_err(|e| Failure {
-        code: 1,
+        code: EXIT_IO,
         message: format!("cannot write JSON: {e}"),
     })?;
     text.push('\n');
@@ -74,8 +76,11 @@ pub fn emit_text(text: &str) -> Result<(), Failure> {
     stdout(text.as_bytes())
 }
 
-/// One line on stderr, `gearshock: ` first.
+/// One line on stderr, `gearshock: ` first, its control characters
+/// escaped (a key or value echoed from the input cannot break the line or
+/// reach the terminal raw).
 pub fn note(text: &str) {
+    let text = crate::flags::escaped(text);
     let _ = writeln!(io::stderr().lock(), "gearshock: {text}");
 }
 
@@ -132,4 +137,184 @@ fn write_then_rename(
     }
     temps.clear();
     Ok(())
+}
+
+/// A pretty-printed JSON document written to stdout as it is made: its
+/// fields before a list (`head`), then the list's items one by one, each
+/// serialized when given. The text is that of `serde_json`'s pretty
+/// printer for the whole document, byte for byte, but only one item is
+/// held at a time, so memory stays that of the largest item however long
+/// the list.
+pub struct Document {
+    out: io::BufWriter<io::StdoutLock<'static>>,
+    items: usize,
+}
+
+impl Document {
+    /// Writes `head`'s fields and opens the list `key` after them.
+    pub fn begin(head: &serde_json::Map<String, Value>, key: &str) -> Result<Self, Failure> {
+        let mut doc = Document {
+            out: io::BufWriter::with_capacity(1 << 16, io::stdout().lock()),
+            items: 0,
+        };
+        let head_text = pretty(&Value::Object(head.clone()))?;
+        // `{\n  "a": 1\n}` without its closing `\n}`, or `{` for no field.
+        let open = head_text
+            .strip_suffix("\n}")
+            .map_or_else(|| "{".to_string(), |t| format!("{t},"));
+        let key_text = serde_json::to_string(key).map_err(json_failure)?;
+        doc.put(format!("{open}\n  {key_text}: [").as_bytes())?;
+        Ok(doc)
+    }
+
+    /// Writes one item of the list, serialized straight into stdout's
+    /// buffer (no copy of its text).
+    pub fn item(&mut self, v: &Value) -> Result<(), Failure> {
+        let sep = if self.items == 0 { "\n    " } else { ",\n    " };
+        self.items += 1;
+        self.put(sep.as_bytes())?;
+        serde_json::to_writer_pretty(Indented(&mut self.out), v)
+            .map_err(|e| failed("stdout", &io::Error::from(e)))
+    }
+
+    /// Closes the list and the document and flushes stdout.
+    pub fn finish(mut self) -> Result<(), Failure> {
+        let close: &[u8] = if self.items == 0 {
+            b"]\n}\n"
+        } else {
+            b"\n  ]\n}\n"
+        };
+        self.put(close)?;
+        self.out.flush().map_err(|e| failed("stdout", &e))
+    }
+
+    fn put(&mut self, bytes: &[u8]) -> Result<(), Failure> {
+        self.out.write_all(bytes).map_err(|e| failed("stdout", &e))
+    }
+}
+
+fn json_failure(e: serde_json::Error) -> Failure {
+    Failure {
+        code: EXIT_IO,
+        message: format!("cannot write JSON: {e}"),
+    }
+}
+
+fn pretty(v: &Value) -> Result<String, Failure> {
+    serde_json::to_string_pretty(v).map_err(json_failure)
+}
+
+/// Indents by a list item's depth (4 spaces) every line after the first of
+/// the text written through it: strings hold no raw line break, so every
+/// line break of a JSON text is one of its layout.
+struct Indented<'a, W: Write>(&'a mut W);
+
+impl<W: Write> Write for Indented<'_, W> {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        let mut lines = buf.split(|&b| b == b'\n');
+        if let Some(first) = lines.next() {
+            self.0.write_all(first)?;
+        }
+        for line in lines {
+            self.0.write_all(b"\n    ")?;
+            self.0.write_all(line)?;
+        }
+        Ok(buf.len())
+    }
+    fn flush(&mut self) -> io::Result<()> {
+        self.0.flush()
+    }
+}
+
+/// The checked items, put aside in a temporary file as compact JSON (which
+/// reads back to the same value: serde_json's `float_roundtrip`), with
+/// each one's place in the merged output. The file is removed when done.
+pub struct Spill {
+    path: PathBuf,
+    out: io::BufWriter<std::fs::File>,
+    at: u64,
+    /// Offset and length of each place's item (length 0: not yet given).
+    places: Vec<(u64, u32)>,
+}
+
+impl Spill {
+    /// A temporary file for `places` items.
+    pub fn new(places: usize) -> Result<Self, Failure> {
+        let path =
+            std::env::temp_dir().join(format!(".gearshock-merge-{}.json", std::process::id()));
+        let file = std::fs::OpenOptions::new()
+            .write(true)
+            .read(true)
+            .create(true)
+            .truncate(true)
+            .open(&path)
+            .map_err(|e| spill_failed(&path, &e))?;
+        Ok(Spill {
+            out: io::BufWriter::with_capacity(1 << 16, file),
+            path,
+            at: 0,
+            places: vec![(0, 0); places],
+        })
+    }
+
+    /// Puts aside the item of place `place`.
+    pub fn put(&mut self, place: usize, v: &Value) -> Result<(), Failure> {
+        let mut counted = Counted(&mut self.out, 0);
+        serde_json::to_writer(&mut counted, v)
+            .map_err(|e| spill_failed(&self.path, &io::Error::from(e)))?;
+        let len = counted.1;
+        // An item is at most a shard file's size (256 MiB), below u32::MAX.
+        self.places[place] = (self.at, len as u32);
+        self.at += len;
+        Ok(())
+    }
+
+    /// Hands every item to `f` in the order of their places.
+    pub fn replay(
+        mut self,
+        mut f: impl FnMut(Value) -> Result<(), Failure>,
+    ) -> Result<(), Failure> {
+        self.out.flush().map_err(|e| spill_failed(&self.path, &e))?;
+        let file = self.out.get_mut();
+        let mut buf = Vec::new();
+        for &(at, len) in &self.places {
+            buf.resize(len as usize, 0);
+            file.seek(SeekFrom::Start(at))
+                .and_then(|_| file.read_exact(&mut buf))
+                .map_err(|e| spill_failed(&self.path, &e))?;
+            let v = serde_json::from_slice(&buf)
+                .map_err(|e| crate::failure::usage(format!("merge: {e}")))?;
+            f(v)?;
+        }
+        Ok(())
+    }
+}
+
+/// A writer that counts the bytes written through it.
+struct Counted<'a, W: Write>(&'a mut W, u64);
+
+impl<W: Write> Write for Counted<'_, W> {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        let n = self.0.write(buf)?;
+        self.1 += n as u64;
+        Ok(n)
+    }
+    fn flush(&mut self) -> io::Result<()> {
+        self.0.flush()
+    }
+}
+
+impl Drop for Spill {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_file(&self.path);
+    }
+}
+
+/// A failure of the temporary file: an I/O failure, naming the file and
+/// where to put it instead.
+fn spill_failed(path: &Path, e: &io::Error) -> Failure {
+    let mut f = failed(&format!("the merge's temporary file {}", path.display()), e);
+    f.code = EXIT_IO;
+    f.message.push_str(" (TMPDIR chooses its folder)");
+    f
 }

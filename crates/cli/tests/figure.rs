@@ -56,6 +56,18 @@ fn figure_fig5_writes_three_phase_portraits_and_three_poincare_sections() {
         .unwrap();
         assert_eq!(data["view"]["omega"], 0.5);
         assert_eq!(data["view"]["backlash_um"], 200.0);
+        // The panel carries the pipeline's verdict on its orbit: the
+        // listing, the panel's data and its title say the same, and a
+        // member's phase portrait and Poincaré section agree.
+        assert_eq!(p["motion"], data["view"]["motion"], "{name}");
+        assert_eq!(p["exact"], data["view"]["exact"], "{name}");
+        assert_eq!(p["motion"], panels[i % 3]["motion"], "{name}");
+        let verdict = p["verdict"].as_str().unwrap();
+        assert!(svg.contains(&format!(": {verdict}")), "{name}: {verdict}");
+        match data["view"]["period"].as_u64() {
+            Some(n) => assert!(verdict.contains(&n.to_string()), "{verdict}"),
+            None => assert!(verdict.starts_with("not periodic"), "{verdict}"),
+        }
         let csv = std::fs::read_to_string(dir.join(format!("{name}.csv"))).expect("csv");
         // 8 recorded periods: 8 Poincaré samples, or 8 x 64 orbit samples.
         let rows = csv.lines().count() - 1;
@@ -136,7 +148,8 @@ fn figure_fig5_writes_three_phase_portraits_and_three_poincare_sections() {
     // A bad option: exit 2 naming it and its range, before any work.
     let o = gearshock(&["figure", "fig8", "--out", out, "--points", "1"]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("--points 1: allowed 2 ..= 2000"));
+    assert!(String::from_utf8_lossy(&o.stderr)
+        .contains("--points 1 is out of range: allowed 2 ..= 2000"));
     // Not a figure: exit 2 naming it.
     for (id, words) in [
         ("fig99", "no such figure"),

@@ -29,3 +29,28 @@ fn instability_finds_the_principal_parametric_resonance() {
     let bad = gearshock(&["instability", "--omega-from", "2", "--omega-to", "1"]);
     assert_eq!(bad.status.code(), Some(2));
 }
+
+/// Streamed (`--format jsonl`), the scan says the same bands as the
+/// document (not "none" while its lines say unstable), and its header
+/// carries the spec, as every streamed command's does.
+#[test]
+fn streamed_scan_says_its_bands_and_carries_its_spec() {
+    let scan = "instability --model gear-pair --set stiffness_variation=0.3 --set damping_ratio=0.05 --omega-from 1.0 --omega-to 2.0 --points 2";
+    let whole = json(&words(scan));
+    let mut args = words(scan);
+    args.extend(["--format", "jsonl"]);
+    let out = gearshock(&args);
+    assert_eq!(out.status.code(), Some(0));
+    let text = String::from_utf8_lossy(&out.stdout);
+    let header: serde_json::Value = serde_json::from_str(text.lines().next().unwrap()).unwrap();
+    assert_eq!(header["spec"], whole["spec"]);
+    assert_eq!(header["spec"]["points"], 2);
+    assert_eq!(header["spec"]["omega_to"], 2.0);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("to 2.0000") && !err.contains("none"), "{err}");
+    // Far from the resonance: plainly none.
+    let calm = words("instability --model gear-pair --set stiffness_variation=0.3 --set damping_ratio=0.05 --omega-from 1.0 --omega-to 1.2 --points 2 --format jsonl");
+    let out = gearshock(&calm);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("none in the scanned range"), "{err}");
+}

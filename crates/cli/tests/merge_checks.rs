@@ -187,10 +187,13 @@ fn forged_sweep_shards_are_refused_naming_file_field_value_and_range() {
             json!(1),
             &["stats.settled = 1", "true or false"],
         ),
+        // At most the 5 transient periods and the record periods of the
+        // two Lyapunov probes a run may hand back to its transient
+        // (5 + 2 x 3).
         (
             "/points/0/stats/transient_periods_run",
-            json!(6),
-            &["stats.transient_periods_run = 6", "0 ..= 5"],
+            json!(12),
+            &["stats.transient_periods_run = 12", "0 ..= 11"],
         ),
         // Poincaré arrays: exactly record_periods entries.
         (
@@ -237,7 +240,11 @@ fn forged_sweep_shards_are_refused_naming_file_field_value_and_range() {
             &["spec.shard = \"0/1000000000\"", "i/2", "0 ..= 1"],
         ),
         ("/spec/shard", json!("00/2"), &["spec.shard = \"00/2\""]),
-        ("/spec/record_periods", json!(0), &["different bifurcation"]),
+        (
+            "/spec/record_periods",
+            json!(0),
+            &["spec.record_periods = 0", "1 ..= 100000"],
+        ),
     ];
     all_refused(&d, &good, forgeries);
     let _ = std::fs::remove_dir_all(&d);

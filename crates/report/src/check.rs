@@ -155,7 +155,8 @@ impl At<'_> {
 pub struct SweepShape {
     /// The spec's `record_periods`: the length of every Poincaré array.
     pub record_periods: u64,
-    /// The spec's `transient_periods`: the most any point ran.
+    /// The spec's `transient_periods`: with the probes' periods (see
+    /// [`sweep_point`]), the most any point ran.
     pub transient_periods: u64,
     /// The meshes the spec asks for, by name.
     pub meshes: Vec<String>,
@@ -269,10 +270,13 @@ pub fn sweep_point(p: &Value, shape: &SweepShape, where_: &str) -> Result<()> {
     let at = At(where_, "stats.".into());
     let stats = at.object(&o["stats"], "")?;
     exact_keys(stats, &STATS, &at)?;
+    // A Lyapunov probe that finds no chaos hands its recorded periods back
+    // to the transient: each of at most `MAX_PROBES` adds up to a record.
+    let probes = u64::from(solver::steady::MAX_PROBES);
     whole(
         stats,
         "transient_periods_run",
-        (0, shape.transient_periods),
+        (0, shape.transient_periods + probes * shape.record_periods),
         &at,
     )?;
     if !stats["settled"].is_boolean() {

@@ -27,7 +27,7 @@ use solver::sweep::{PointMesh, SweepPoint, SweepSpec};
 pub mod check;
 pub mod merge;
 pub use merge::{
-    check_sweep, merge_map_files, merge_maps, merge_shards, merge_sweep_files, MAX_SHARDS,
+    check_sweep, merge_map_files, merge_maps, merge_shards, merge_sweep_files, Merge, MAX_SHARDS,
 };
 
 /// `null` for non-finite numbers (JSON has no NaN).
@@ -295,35 +295,102 @@ pub fn sweep_point_json(model: &Model, p: &SweepPoint) -> Value {
 /// own counters cannot come near `u64::MAX`; merged input is checked by
 /// [`merge_shards`] first).
 pub fn sweep_stats_json(points: &[Value]) -> Value {
-    stats_totals(points, true).unwrap_or(Value::Null)
+    let mut t = Totals::new(true);
+    points.iter().for_each(|p| t.add(p));
+    t.finish().unwrap_or(Value::Null)
 }
 
-/// The totals; with `saturate` false, `None` if a sum overflows.
-pub(crate) fn stats_totals(points: &[Value], saturate: bool) -> Option<Value> {
-    let mut totals: Map<String, Value> = Map::new();
-    let mut failed = 0u64;
-    for p in points {
-        if p.get("error").is_some() {
-            failed += 1;
-        }
-        if let Some(Value::Object(s)) = p.get("stats") {
-            for (k, v) in s {
-                if let Some(x) = v.as_u64() {
-                    let cur = totals.get(k).and_then(Value::as_u64).unwrap_or(0);
-                    let sum = if saturate {
-                        cur.saturating_add(x)
-                    } else {
-                        cur.checked_add(x)?
-                    };
-                    totals.insert(k.clone(), json!(sum));
-                }
-            }
+/// A sweep's work totals, summed one point at a time (so that a streamed
+/// writer or merge need not hold the points): every whole-number field of
+/// each point's `stats`, in the order first seen, then `points` and
+/// `failed_points`.
+pub struct Totals {
+    sums: Vec<(String, u64)>,
+    points: u64,
+    failed: u64,
+    saturate: bool,
+    overflowed: bool,
+}
+
+impl Totals {
+    /// No points yet; with `saturate` false a sum that overflows makes
+    /// [`Totals::finish`] return `None`.
+    pub fn new(saturate: bool) -> Self {
+        Totals {
+            sums: Vec::new(),
+            points: 0,
+            failed: 0,
+            saturate,
+            overflowed: false,
         }
     }
-    totals.insert("points".into(), json!(points.len()));
-    totals.insert("failed_points".into(), json!(failed));
-    totals.remove("transient_periods_run");
-    Some(Value::Object(totals))
+
+    /// Adds one point's JSON.
+    pub fn add(&mut self, p: &Value) {
+        self.points += 1;
+        if p.get("error").is_some() {
+            self.failed += 1;
+        }
+        let Some(Value::Object(s)) = p.get("stats") else {
+            return;
+        };
+        for (k, v) in s {
+            let Some(x) = v.as_u64() else { continue };
+            let i = match self.sums.iter().position(|(name, _)| name == k) {
+                Some(i) => i,
+                None => {
+                    self.sums.push((k.clone(), 0));
+                    self.sums.len() - 1
+                }
+            };
+            let slot = &mut self.sums[i].1;
+            *slot = if self.saturate {
+                slot.saturating_add(x)
+            } else if let Some(sum) = slot.checked_add(x) {
+                sum
+            } else {
+                self.overflowed = true;
+                *slot
+            };
+        }
+    }
+
+    /// The totals as JSON; `None` if a sum overflowed (not saturating).
+    pub fn finish(self) -> Option<Value> {
+        if self.overflowed {
+            return None;
+        }
+        let mut totals: Map<String, Value> =
+            self.sums.into_iter().map(|(k, v)| (k, json!(v))).collect();
+        totals.insert("points".into(), json!(self.points));
+        totals.insert("failed_points".into(), json!(self.failed));
+        // The order every sweep has written since the start (`remove`
+        // moves the last field into the removed one's place).
+        totals.remove("transient_periods_run");
+        Some(Value::Object(totals))
+    }
+}
+
+/// The fields of `gearshock bifurcation`'s document before its points
+/// (`model`, `params`, `spec`, `stats`): a writer streams the points after
+/// them, each made by [`sweep_point_json`] when written, so that the
+/// whole document never sits in memory.
+pub fn sweep_head_json(
+    model: &Model,
+    params: &ModelParams,
+    spec: &SweepSpec,
+    points: &[SweepPoint],
+) -> Map<String, Value> {
+    let mut totals = Totals::new(true);
+    for p in points {
+        totals.add(&sweep_point_json(model, p));
+    }
+    let mut head = Map::new();
+    head.insert("model".into(), json!(model.system.model.name()));
+    head.insert("params".into(), Value::Object(keys::to_json(params)));
+    head.insert("spec".into(), sweep_spec_json(model, spec));
+    head.insert("stats".into(), totals.finish().unwrap_or(Value::Null));
+    head
 }
 
 /// `gearshock bifurcation`: the whole result.
@@ -333,14 +400,10 @@ pub fn sweep_json(
     spec: &SweepSpec,
     points: &[SweepPoint],
 ) -> Value {
+    let mut head = sweep_head_json(model, params, spec, points);
     let pts: Vec<Value> = points.iter().map(|p| sweep_point_json(model, p)).collect();
-    json!({
-        "model": model.system.model.name(),
-        "params": Value::Object(keys::to_json(params)),
-        "spec": sweep_spec_json(model, spec),
-        "stats": sweep_stats_json(&pts),
-        "points": pts,
-    })
+    head.insert("points".into(), Value::Array(pts));
+    Value::Object(head)
 }
 
 /// Parses an impact name in JSON (for readers of sweep output).
@@ -516,12 +579,26 @@ pub fn map_json(
     spec: &solver::map::MapSpec,
     cells: &[solver::map::MapCell],
 ) -> Value {
-    json!({
-        "model": model.system.model.name(),
-        "params": Value::Object(keys::to_json(params)),
-        "spec": map_spec_json(model, spec),
-        "cells": cells.iter().map(map_cell_json).collect::<Vec<_>>(),
-    })
+    let mut head = map_head_json(model, params, spec);
+    head.insert(
+        "cells".into(),
+        cells.iter().map(map_cell_json).collect::<Vec<_>>().into(),
+    );
+    Value::Object(head)
+}
+
+/// The fields of a regime map's document before its cells (`model`,
+/// `params`, `spec`), for a writer that streams the cells.
+pub fn map_head_json(
+    model: &Model,
+    params: &ModelParams,
+    spec: &solver::map::MapSpec,
+) -> Map<String, Value> {
+    let mut head = Map::new();
+    head.insert("model".into(), json!(model.system.model.name()));
+    head.insert("params".into(), Value::Object(keys::to_json(params)));
+    head.insert("spec".into(), map_spec_json(model, spec));
+    head
 }
 
 /// A parametric-instability scan: the engaged system's Floquet spectral
@@ -531,16 +608,27 @@ pub fn map_json(
 pub fn instability_json(
     model: &Model,
     params: &ModelParams,
+    spec: Value,
     points: &[solver::parametric::EngagedStability],
 ) -> Value {
     json!({
         "model": model.system.model.name(),
         "params": Value::Object(keys::to_json(params)),
+        "spec": spec,
         "points": points.iter().map(instability_point_json).collect::<Vec<_>>(),
         "unstable_bands": instability_bands(points).iter().map(|&(from, to)| json!({
             "omega_from": num(from),
             "omega_to": num(to),
         })).collect::<Vec<_>>(),
+    })
+}
+
+/// The specification of a parametric-instability scan: its Omega grid.
+pub fn instability_spec_json(omega_from: f64, omega_to: f64, points: u32) -> Value {
+    json!({
+        "omega_from": num(omega_from),
+        "omega_to": num(omega_to),
+        "points": points,
     })
 }
 

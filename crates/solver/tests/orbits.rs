@@ -184,3 +184,26 @@ fn folds_are_located_to_1e_6_and_period_doublings_to_1e_4() {
     }
     assert!(doublings >= 2);
 }
+
+/// The branch computed in slices of a few hundred integrator steps (each
+/// call returning whatever points it finished) is the branch computed in
+/// one go, bit for bit: a paused step is taken up again, not restarted
+/// differently; and the slices really are short (most calls finish no
+/// point).
+#[test]
+fn a_sliced_continuation_gives_the_same_points() {
+    let m = gear_pair();
+    let whole = shooting_branch(&m);
+    let mut c = ShootingContinuation::new(&m, ShootFrfSpec::new(0.3, 1.5, 200)).unwrap();
+    let mut sliced = vec![c.first_point().unwrap()];
+    let (mut calls, mut empty) = (0, 0);
+    while !c.is_finished() {
+        let got = c.advance_within(1, 400).unwrap();
+        calls += 1;
+        empty += usize::from(got.is_empty());
+        sliced.extend(got);
+        assert!(calls < 1_000_000, "no progress");
+    }
+    assert_eq!(sliced, whole);
+    assert!(empty > 2 * whole.len(), "{empty} empty calls of {calls}");
+}

@@ -301,6 +301,10 @@ impl Controller {
             }
             self.dirty.controls = true;
         }
+        // Every control shows the state after the change: a shortcut
+        // (backlash on all meshes) sets the per-mesh-kind fields, and a
+        // per-kind value makes the shortcut's field read "mixed".
+        self.dirty.controls = true;
         self.preset_note = None;
         Ok(self.restart(KindSet::ALL, now_ms))
     }

@@ -6,7 +6,7 @@
 use super::dom::{Action, TourMove};
 use super::{Page, Write};
 use crate::controller::Effect;
-use crate::controls::{controls, field_text, shown_for, Target, Widget};
+use crate::controls::{controls, field_text, label_for, model_subtitle, shown_for, Target, Widget};
 use crate::tour::{counter, TOUR};
 
 /// What a user's event carries: the element's value (a field's text, a
@@ -175,11 +175,16 @@ impl Page {
                 options,
             });
         }
+        w.push(Write::text("model-subtitle", model_subtitle(model)));
         for c in controls() {
             w.push(Write::Hidden {
                 id: format!("control-{}", c.key),
                 hidden: !shown_for(&c, model),
             });
+            w.push(Write::text(
+                &format!("label-{}", c.key),
+                label_for(&c, model),
+            ));
             let text = match c.target {
                 Target::Param => match solver::keys::get(params, c.key) {
                     Some(solver::keys::Value::Num(x)) => field_text(x),

@@ -186,7 +186,9 @@ pub fn control_panel() -> Vec<Node> {
                         .attr("id", format!("control-{key}"))
                         .attr("title", tooltip)
                         .attr("data-applies", applies);
-                    let label = Node::new("label").text(c.label.clone());
+                    let label = Node::new("label")
+                        .attr("id", format!("label-{key}"))
+                        .text(c.label.clone());
                     match &c.widget {
                         Widget::Slider {
                             min,

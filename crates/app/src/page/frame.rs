@@ -5,7 +5,13 @@
 
 use super::redraw::Decision;
 use super::{Page, Write};
+use crate::plots::Boxed;
+use crate::scene::Item;
+use crate::views::fr::FrView;
 use crate::views::ViewId;
+use plotters::prelude::{DrawingBackend, IntoDrawingArea};
+use std::cell::RefCell;
+use std::rc::Rc;
 
 impl Page {
     /// Draws frame `ts`'s views: those changed, in draw order, until the
@@ -35,6 +41,23 @@ impl Page {
         }
         writes.extend(self.end_frame(&d));
         writes
+    }
+
+    /// Draws `view` on its canvas's backend `b` ([`Page::draw_view`]),
+    /// noting the box of every text drawn for the status (`text_boxes`).
+    pub fn draw_on<DB: DrawingBackend>(
+        &mut self,
+        view: ViewId,
+        b: DB,
+        fr: Option<&FrView>,
+    ) -> (Vec<Write>, Vec<Item>) {
+        let size = b.get_size();
+        let boxes = Rc::new(RefCell::new(Vec::new()));
+        let root = Boxed::new(b, boxes.clone()).into_drawing_area();
+        let drawn = self.draw_view(view, &root, fr);
+        drop(root);
+        self.set_text_boxes(view, size, boxes.take());
+        drawn
     }
 }
 
@@ -89,5 +112,24 @@ mod tests {
             ts += 16.0;
         }
         assert_eq!(more, DRAW_ORDER[fit..].to_vec());
+    }
+
+    #[test]
+    fn a_view_drawn_on_a_backend_leaves_its_text_boxes_in_the_status() {
+        let mut p = page();
+        let mut svg = String::new();
+        let (fr, size) = p.prepare(ViewId::Fr);
+        p.draw_on(
+            ViewId::Fr,
+            plotters::prelude::SVGBackend::with_string(&mut svg, size),
+            fr.as_ref(),
+        );
+        let s = p.status(0.0);
+        let fr_boxes = &s["text_boxes"][ViewId::Fr.key()];
+        assert_eq!(fr_boxes["size"], serde_json::json!([size.0, size.1]));
+        assert!(
+            !fr_boxes["boxes"].as_array().unwrap().is_empty(),
+            "{fr_boxes}"
+        );
     }
 }

@@ -138,6 +138,9 @@ pub struct Page {
     /// Each view's plot frame as last drawn (views with pixel-to-data
     /// mappings), by [`ViewId::slot`].
     frames: [Option<PlotFrame>; VIEWS.len()],
+    /// Each view's canvas size and the boxes of the text last drawn on it
+    /// (the tests check that none overlap or leave the canvas).
+    text_boxes: [((u32, u32), Vec<crate::plots::TextBox>); VIEWS.len()],
     /// The link last written to the address bar.
     last_query: String,
     /// Whether the screen is narrow (a phone): plots draw on fewer, larger pixels.
@@ -185,6 +188,7 @@ impl Page {
             redraw: Redraw::default(),
             turn: FrameTurn::default(),
             frames: [None; VIEWS.len()],
+            text_boxes: std::array::from_fn(|_| ((0, 0), Vec::new())),
             last_query: String::new(),
             narrow,
             gesture: gesture::Gesture::Idle,
@@ -383,6 +387,17 @@ impl Page {
         self.frames[view.slot()]
     }
 
+    /// Records the text boxes of `view`'s last drawing on its canvas of
+    /// `size` pixels.
+    pub fn set_text_boxes(
+        &mut self,
+        view: ViewId,
+        size: (u32, u32),
+        boxes: Vec<crate::plots::TextBox>,
+    ) {
+        self.text_boxes[view.slot()] = (size, boxes);
+    }
+
     /// Records the plot frame `view` was drawn in (`None`: nothing to click).
     pub fn set_frame(&mut self, view: ViewId, frame: Option<PlotFrame>) {
         self.frames[view.slot()] = frame;
@@ -460,6 +475,8 @@ pub fn screen_size((w, h): (u32, u32), fr: bool, narrow: bool) -> (u32, u32) {
     }
 }
 
+#[cfg(test)]
+mod state_tests;
 #[cfg(test)]
 mod tests;
 #[cfg(test)]

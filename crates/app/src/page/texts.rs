@@ -5,7 +5,7 @@
 use super::{Page, Write};
 use crate::protocol::JobKind;
 use crate::views::fr::FrView;
-use crate::views::ViewId;
+use crate::views::{ViewId, VIEWS};
 
 /// How long the Copy link's confirmation shows (ms).
 pub(crate) const TOAST_MS: f64 = 2000.0;
@@ -237,6 +237,17 @@ impl Page {
             let (n, last) = self.gestures;
             o.insert("gesture".into(), serde_json::json!({"n": n, "last": last}));
             o.insert("see_orbit".into(), serde_json::json!(self.see_orbit));
+            let boxes: serde_json::Map<String, serde_json::Value> = VIEWS
+                .iter()
+                .zip(&self.text_boxes)
+                .map(|(spec, (size, b))| {
+                    (
+                        spec.key.to_string(),
+                        serde_json::json!({"size": size, "boxes": b}),
+                    )
+                })
+                .collect();
+            o.insert("text_boxes".into(), serde_json::Value::Object(boxes));
         }
         v
     }

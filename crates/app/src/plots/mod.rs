@@ -16,6 +16,7 @@
 //! key (in `key`); each view kind's plot in its own module.
 
 mod bif;
+mod boxes;
 mod clip;
 pub mod decimate;
 mod fr;
@@ -25,6 +26,7 @@ pub mod multiples;
 mod omega;
 
 pub use bif::{draw_bif, draw_groups, failed_label, svg_with, svg_with_dots};
+pub use boxes::{text_box, Boxed, TextBox};
 pub use fr::{draw_fr, fr_full_key, fr_height, FR_MIN_CHART, KEY_MAX};
 pub(crate) use key::*;
 pub use omega::{
@@ -39,6 +41,7 @@ use glam::DVec2;
 use plotters::coord::ranged1d::{Ranged, ValueFormatter};
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 /// Plot size in pixels (the canvases' width and height attributes).
 pub const WIDTH: u32 = 760;
@@ -219,20 +222,9 @@ where
     }
 }
 
-pub(crate) fn caption_font() -> TextStyle<'static> {
-    ("sans-serif", 17).into_font().color(&BLACK)
-}
-
 /// The canvas width under which a plot is drawn for a phone (smaller
 /// caption, shorter lines).
 pub const NARROW: u32 = 600;
-
-/// The caption's font on an area `width` pixels wide: smaller when narrow,
-/// so that the caption fits.
-fn caption_font_for(width: u32) -> TextStyle<'static> {
-    let size = if width < NARROW { 14 } else { 17 };
-    ("sans-serif", size).into_font().color(&BLACK)
-}
 
 /// How many characters of 13-pixel text fit on a line across an area
 /// `width` pixels wide, less the key's left margin.
@@ -274,18 +266,110 @@ impl Axes {
     }
 }
 
-/// The one chart layout every plot uses on `area`: the caption, margins
-/// and label areas.
+/// Where a caption sits across its area.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Align {
+    /// Centred (a chart's caption).
+    Centre,
+    /// From the left edge (a canvas of panels, a message).
+    Left,
+}
+
+/// The smallest caption font: a caption too long for its area at its own
+/// size is drawn at this one before it is wrapped.
+const CAPTION_MIN: u32 = 13;
+
+/// Breaks `text` at spaces into lines that each measure at most `avail`
+/// pixels in `font` (a single word longer than that stays whole).
+fn measured_lines<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    text: &str,
+    font: &TextStyle<'_>,
+    avail: u32,
+) -> Vec<String> {
+    let width = |t: &str| {
+        area.estimate_text_size(t, font)
+            .map_or(u32::MAX, |(w, _)| w)
+    };
+    let mut lines: Vec<String> = Vec::new();
+    let mut cur = String::new();
+    for word in text.split_whitespace() {
+        let joined = if cur.is_empty() {
+            word.to_string()
+        } else {
+            format!("{cur} {word}")
+        };
+        if cur.is_empty() || width(&joined) <= avail {
+            cur = joined;
+        } else {
+            lines.push(std::mem::replace(&mut cur, word.to_string()));
+        }
+    }
+    if !cur.is_empty() {
+        lines.push(cur);
+    }
+    lines
+}
+
+/// Draws `text` as the caption of `area`, measured: on one line in the
+/// caption font for the area's width if it fits, else smaller, else
+/// wrapped at spaces (never cut mid-word). Returns the pixel row under it.
+pub(crate) fn draw_caption<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    text: &str,
+    align: Align,
+    font_px: u32,
+) -> Res<i32> {
+    let (w, _) = area.dim_in_pixel();
+    let (left, top) = (10i32, 6i32);
+    let avail = w.saturating_sub(2 * left as u32).max(40);
+    let font_of = |px: u32| ("sans-serif", px).into_font().color(&BLACK);
+    let mut lines = Vec::new();
+    let mut px = font_px;
+    for size in [font_px, (font_px - 2).max(CAPTION_MIN), CAPTION_MIN] {
+        px = size;
+        lines = measured_lines(area, text, &font_of(size), avail);
+        if lines.len() == 1 {
+            break;
+        }
+    }
+    let font = font_of(px);
+    let line_h = px as i32 + 5;
+    for (k, line) in lines.iter().enumerate() {
+        let y = top + line_h * k as i32;
+        let t = match align {
+            Align::Centre => Text::new(
+                line.clone(),
+                (w as i32 / 2, y),
+                font.pos(Pos::new(HPos::Center, VPos::Top)),
+            ),
+            Align::Left => Text::new(line.clone(), (left, y), font.clone()),
+        };
+        area.draw(&t).map_err(err)?;
+    }
+    Ok(top + line_h * lines.len() as i32)
+}
+
+/// The one chart layout every plot uses on `area`: the caption (measured,
+/// see [`draw_caption`]), margins and label areas. The right margin holds
+/// half of the last x tick label; the top one half of the top y label.
 pub(crate) fn chart_layout<'a, 'b, DB: DrawingBackend>(
     area: &'a DrawingArea<DB, Shift>,
     caption: &str,
-) -> ChartBuilder<'a, 'b, DB> {
+) -> Res<ChartBuilder<'a, 'b, DB>> {
+    let font_px = if area.dim_in_pixel().0 < NARROW {
+        14
+    } else {
+        17
+    };
+    let under = draw_caption(area, caption, Align::Centre, font_px)?;
     let mut b = ChartBuilder::on(area);
-    b.caption(caption, caption_font_for(area.dim_in_pixel().0))
-        .margin(8)
+    b.margin(8)
+        .margin_top(under + 10)
+        .margin_right(18)
         .x_label_area_size(44)
         .y_label_area_size(64);
-    b
+    Ok(b)
 }
 
 /// Draws a chart's grid, tick labels and axis descriptions.
@@ -297,7 +381,12 @@ where
     X: Ranged + ValueFormatter<X::ValueType>,
     Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
 {
+    let (plot_w, plot_h) = chart.plotting_area().dim_in_pixel();
+    let y_desc = fit_desc(chart.plotting_area(), &axes.y, plot_h);
     let mut mesh = chart.configure_mesh();
+    // Tick labels thinned to one per 64 pixels or so: on a phone's plot
+    // plotters' default ten would run together ("100.0110.0120.0").
+    mesh.x_labels((plot_w as usize / 64).clamp(3, 10));
     if axes.grid {
         mesh.light_line_style(GRID.mix(0.5)).bold_line_style(GRID);
     } else {
@@ -310,11 +399,35 @@ where
         mesh.y_label_formatter(f);
     }
     mesh.x_desc(axes.x.as_str())
-        .y_desc(axes.y.as_str())
+        .y_desc(y_desc.as_str())
         .label_style(small())
         .axis_desc_style(small())
         .draw()
         .map_err(err)
+}
+
+/// An axis description that fits `length` pixels in the small font: whole
+/// if it does, else its leading words dropped ("Poincaré samples of x (µm)"
+/// becomes "x (µm)"), never a cut word and never a lone "of".
+pub(crate) fn fit_desc<DB: DrawingBackend, CT: plotters::coord::CoordTranslate>(
+    area: &DrawingArea<DB, CT>,
+    desc: &str,
+    length: u32,
+) -> String {
+    let fits = |t: &str| {
+        area.estimate_text_size(t, &small())
+            .is_ok_and(|(w, _)| w <= length)
+    };
+    let words: Vec<&str> = desc.split_whitespace().collect();
+    (0..words.len())
+        .map(|k| words[k..].join(" "))
+        .filter(|t| {
+            !["of ", "per ", "in ", "at ", "and "]
+                .iter()
+                .any(|w| t.starts_with(w))
+        })
+        .find(|t| fits(t))
+        .unwrap_or_else(|| words.last().map_or(String::new(), |w| (*w).to_string()))
 }
 
 /// A linear chart over `x` and `y` with the shared layout and `axes`.
@@ -324,7 +437,7 @@ pub(crate) fn linear_chart<'a, DB: DrawingBackend>(
     (x, y): ((f64, f64), (f64, f64)),
     axes: &Axes,
 ) -> Res<Chart<'a, DB>> {
-    let mut chart = chart_layout(area, caption)
+    let mut chart = chart_layout(area, caption)?
         .build_cartesian_2d(x.0..x.1, y.0..y.1)
         .map_err(err)?;
     draw_axes(&mut chart, axes)?;
@@ -344,8 +457,7 @@ pub fn draw_message<DB: DrawingBackend>(
         ShapeStyle::from(&GRID).stroke_width(1),
     ))
     .map_err(err)?;
-    root.draw(&Text::new(title.to_string(), (12, 10), caption_font()))
-        .map_err(err)?;
+    draw_caption(root, title, Align::Left, 17)?;
     let chars = (w.saturating_sub(48) * 10 / 85).max(30) as usize;
     for (k, line) in wrap(message, chars).iter().enumerate() {
         root.draw(&Text::new(

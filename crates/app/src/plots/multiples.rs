@@ -109,8 +109,7 @@ fn layout<DB: DrawingBackend>(
         n.clamp(1, FAMILY_COLS)
     };
     let rows = n.max(1).div_ceil(cols);
-    root.draw(&Text::new(title.to_string(), (10, 6), caption_font()))
-        .map_err(err)?;
+    let top = TOP.max(super::draw_caption(root, title, super::Align::Left, 17)? as u32 + 4);
     // The key in lines under the panels (two on a wide canvas).
     let lines = wrap(key, super::line_chars(w + 64));
     let bottom = BOTTOM.max(8 + 16 * lines.len() as u32);
@@ -122,8 +121,8 @@ fn layout<DB: DrawingBackend>(
         ))
         .map_err(err)?;
     }
-    let (_, rest) = root.split_vertically(TOP);
-    let (middle, _) = rest.split_vertically(h.saturating_sub(TOP + bottom));
+    let (_, rest) = root.split_vertically(top);
+    let (middle, _) = rest.split_vertically(h.saturating_sub(top + bottom));
     let mut areas = middle.split_evenly((rows, cols));
     areas.truncate(n.max(1));
     Ok((areas, cols))
@@ -138,11 +137,12 @@ fn panel_chart<'a, DB: DrawingBackend>(
     (x_desc, y_desc): (&str, &str),
     first: bool,
 ) -> Res<Chart<'a, DB>> {
+    let under = super::draw_caption(area, title, super::Align::Centre, 15)?;
     let mut chart = ChartBuilder::on(area)
-        .caption(title, ("sans-serif", 15).into_font().color(&BLACK))
         .margin(6)
+        .margin_top(under as u32 + 8)
         .margin_right(16)
-        .x_label_area_size(36)
+        .x_label_area_size(42)
         .y_label_area_size(if first { 58 } else { 44 })
         .build_cartesian_2d(x.0..x.1, y.0..y.1)
         .map_err(err)?;
@@ -158,6 +158,11 @@ fn panel_chart<'a, DB: DrawingBackend>(
         }
     };
     let (fx, fy) = (fmt(x.1 - x.0), fmt(y.1 - y.0));
+    let y_desc = super::fit_desc(
+        chart.plotting_area(),
+        y_desc,
+        chart.plotting_area().dim_in_pixel().1,
+    );
     chart
         .configure_mesh()
         .light_line_style(GRID.mix(0.5))
@@ -167,7 +172,7 @@ fn panel_chart<'a, DB: DrawingBackend>(
         .x_label_formatter(&fx)
         .y_label_formatter(&fy)
         .x_desc(x_desc)
-        .y_desc(if first { y_desc } else { "" })
+        .y_desc(if first { y_desc.as_str() } else { "" })
         .label_style(("sans-serif", 11).into_font().color(&RGBColor(50, 50, 50)))
         .axis_desc_style(small())
         .draw()
@@ -193,15 +198,14 @@ fn panel_message<DB: DrawingBackend>(
     title: &str,
     message: &str,
 ) -> Res<()> {
-    area.draw(&Text::new(
-        title.to_string(),
-        (8, 4),
-        ("sans-serif", 15).into_font().color(&BLACK),
-    ))
-    .map_err(err)?;
+    let under = super::draw_caption(area, title, super::Align::Left, 15)?;
     for (k, line) in wrap(message, 30).iter().take(6).enumerate() {
-        area.draw(&Text::new(line.clone(), (8, 40 + 16 * k as i32), small()))
-            .map_err(err)?;
+        area.draw(&Text::new(
+            line.clone(),
+            (8, under + 12 + 16 * k as i32),
+            small(),
+        ))
+        .map_err(err)?;
     }
     Ok(())
 }
@@ -429,8 +433,7 @@ pub fn draw_fr_panels<DB: DrawingBackend>(
         "Frequency response of {} meshes: max and min x, Ω axis shared{status}",
         panels.len()
     );
-    root.draw(&Text::new(title, (10, 6), caption_font()))
-        .map_err(err)?;
+    let top = TOP.max(super::draw_caption(root, &title, super::Align::Left, 17)? as u32 + 4);
     // The key under the panels: one coloured line per curve, in words,
     // from the first panel with data (every panel holds the same curves),
     // then the line styles; as tall as it needs on a narrow canvas.
@@ -450,8 +453,8 @@ pub fn draw_fr_panels<DB: DrawingBackend>(
     )];
     let plan = plan_key(root, &items, lines);
     draw_key(root, &items, &plan)?;
-    let (_, rest) = root.split_vertically(TOP);
-    let (middle, _) = rest.split_vertically((plan.top.max(TOP as i32 + 40) as u32) - TOP);
+    let (_, rest) = root.split_vertically(top);
+    let (middle, _) = rest.split_vertically((plan.top.max(top as i32 + 40) as u32) - top);
     let (rows, cols) = fr_grid(panels.len());
     let areas = middle.split_evenly((rows, cols));
     let mut frames = Vec::new();

@@ -271,7 +271,7 @@ pub fn draw_spectrum<DB: DrawingBackend>(
     )];
     let plan = plan_key(root, &items, Vec::new());
     let area = chart_area(root, &plan);
-    let mut chart = chart_layout(&area, &omega_caption("Spectrum of x", r, status))
+    let mut chart = chart_layout(&area, &omega_caption("Spectrum of x", r, status))?
         .build_cartesian_2d(0.0..omax * 1.02, (floor..amax * 2.0).log_scale())
         .map_err(err)?;
     let axes = Axes::new(

@@ -14,8 +14,8 @@
 //! turns, and within one the harmonic-balance branch of the frequency
 //! response comes first (the view a slider drag watches, and the quickest
 //! sweep); the time-integration overlay and the bifurcation sweep then take
-//! turns, one slice each; the Lyapunov curve and then the impact-regime map
-//! run when those are idle.
+//! turns, one slice each; the Lyapunov curve, then the impact-regime map,
+//! then the shooting branches run when those are idle.
 
 use crate::protocol::{encode, FromWorker, JobId, JobKind, Target, ToWorker};
 use jobs::bif::BandsCache;

@@ -12,11 +12,13 @@ use solver::params::ModelParams;
 /// The kinds in the order a computation serves them after the
 /// harmonic-balance branch: the overlay and the bifurcation sweep take
 /// turns (so both diagrams fill in together and show their first points
-/// early), then the shooting branches drawn over the sweep, the Lyapunov
-/// curve, then the map (the slower, secondary views must not delay the
-/// main diagrams).
+/// early), then the Lyapunov curve, the map, and last the shooting
+/// branches drawn over the sweep (the slower, secondary views must not
+/// delay the main diagrams, and the branches, which can take a minute on
+/// the compound set, must not delay any view: they are drawn as they
+/// come, over whatever the sweep has drawn).
 const TAKING_TURNS: [JobKind; 2] = [JobKind::Overlay, JobKind::Bif];
-const WHEN_IDLE: [JobKind; 3] = [JobKind::Orbits, JobKind::Lyap, JobKind::Map];
+const WHEN_IDLE: [JobKind; 3] = [JobKind::Lyap, JobKind::Map, JobKind::Orbits];
 
 /// One computation's jobs.
 #[derive(Default)]

@@ -38,7 +38,7 @@ pub struct BenchArgs {
 pub fn run_command(a: &BenchArgs) -> Result<(), crate::failure::Failure> {
     if a.repeats == 0 || a.repeats > 100 {
         return Err(crate::failure::usage(format!(
-            "--repeats {}: allowed 1 ..= 100",
+            "--repeats {} is out of range: allowed 1 ..= 100",
             a.repeats
         )));
     }

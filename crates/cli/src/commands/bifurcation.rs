@@ -5,7 +5,7 @@ use crate::args::{meshes, parse_shard, stream_header, Format, OmegaRange, ParamA
 use crate::budget::{check_work, StepCost, MAX_SAMPLES};
 use crate::csv;
 use crate::failure::{usage, Failure};
-use crate::output::output;
+use crate::output::{output, Document};
 use crate::sweep::{self, Lines};
 use clap::Args;
 use solver::keys;
@@ -101,6 +101,17 @@ pub fn run(a: &BifurcationArgs) -> Result<(), Failure> {
         return Ok(());
     };
     canonical_order(&mut pts);
+    if a.p.format == Format::Json {
+        // Streamed: each point's JSON is made as it is written, so memory
+        // holds the solver's points (a quarter of their text) and one
+        // point's JSON, never the document.
+        let head = report::sweep_head_json(&model, &params, &spec, &pts);
+        let mut doc = Document::begin(&head, "points")?;
+        for p in &pts {
+            doc.item(&report::sweep_point_json(&model, p))?;
+        }
+        return doc.finish();
+    }
     let value = report::sweep_json(&model, &params, &spec, &pts);
     output(a.p.format, &value, csv::sweep)
 }

@@ -97,7 +97,7 @@ pub(crate) fn members(p: &Preset) -> Result<Vec<Member>, Failure> {
 
 fn drawn<T, E: std::fmt::Display>(name: &str, result: Result<T, E>) -> Result<T, Failure> {
     result.map_err(|e| Failure {
-        code: 1,
+        code: crate::output::EXIT_IO,
         message: format!("cannot draw {name}: {e}"),
     })
 }
@@ -130,7 +130,9 @@ pub(crate) fn check_options(args: &FigureArgs) -> Result<(), Failure> {
         ("--record-periods", args.record_periods, 1, 10_000),
     ] {
         if let Some(v) = value.filter(|v| !(min..=max).contains(v)) {
-            return Err(usage(format!("{flag} {v}: allowed {min} ..= {max}")));
+            return Err(usage(format!(
+                "{flag} {v} is out of range: allowed {min} ..= {max}"
+            )));
         }
     }
     Ok(())
@@ -472,7 +474,10 @@ pub(crate) fn orbit_files(
     r: &OmegaResult,
     files: &mut Files,
 ) -> Result<Vec<Value>, Failure> {
-    let label = member_label(p, i);
+    // The title names the member and the motion, from the one
+    // classification the page's panel titles use (`app::story`).
+    let verdict = app::story::motion_tag(r.motion);
+    let label = format!("{}: {verdict}", member_label(p, i));
     let mut out = Vec::new();
     for (k, view) in [(i, OmegaView::Phase), (n + i, OmegaView::Poincare)] {
         let name = format!("{}{}", p.id, panel_letter(k));
@@ -498,6 +503,9 @@ pub(crate) fn orbit_files(
             "view": if matches!(view, OmegaView::Poincare) { "poincare" } else { "phase" },
             "query": m.query,
             "period": r.period,
+            "motion": r.motion.name(),
+            "exact": r.motion.is_exact(),
+            "verdict": verdict,
             "impact": r.regime.solver_name(),
             "files": [format!("{name}.svg"), format!("{name}.json"), format!("{name}.csv")],
         }));

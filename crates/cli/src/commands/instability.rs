@@ -26,15 +26,24 @@ pub fn run(a: &InstabilityArgs) -> Result<(), Failure> {
     let (params, model) = a.p.load()?;
     let omegas = omega_grid(a.range.omega_from, a.range.omega_to, a.points, 100_000)?;
     let engaged = Parametric::new(&model)?;
+    let spec = report::instability_spec_json(a.range.omega_from, a.range.omega_to, a.points);
     let lines = Lines {
-        header: stream_header(&model, &params, None),
+        header: stream_header(&model, &params, Some(spec.clone())),
         line: &report::instability_point_json,
         count: "points",
     };
-    let mut scan = Points::new(omegas, |omega| Ok(engaged.at(omega)?));
-    let kept = sweep::run(&mut scan, &a.p, "points", Some(lines))?;
-    let out = kept.as_deref().unwrap_or_default();
-    let bands = report::instability_bands(out);
+    // Every point is kept for the bands (a few numbers each), streamed or
+    // not: the bands said at the end are those of the points written.
+    let mut all = Vec::new();
+    let kept = {
+        let mut scan = Points::new(omegas, |omega| {
+            let p = engaged.at(omega)?;
+            all.push(p);
+            Ok(p)
+        });
+        sweep::run(&mut scan, &a.p, "points", Some(lines))?
+    };
+    let bands = report::instability_bands(&all);
     let text: Vec<String> = bands
         .iter()
         .map(|(a, b)| format!("Omega {a:.4} to {b:.4}"))
@@ -50,6 +59,6 @@ pub fn run(a: &InstabilityArgs) -> Result<(), Failure> {
     if kept.is_none() {
         return Ok(());
     }
-    let value = report::instability_json(&model, &params, out);
+    let value = report::instability_json(&model, &params, spec, &all);
     output(a.p.format, &value, csv::instability)
 }

@@ -2,12 +2,12 @@
 //! numeric key (rows), optionally one shard of its rows.
 
 use crate::args::{
-    mesh_index, parse_shard, stream_header, KeyRange, OmegaRange, ParamArgs, RunArgs,
+    mesh_index, parse_shard, stream_header, Format, KeyRange, OmegaRange, ParamArgs, RunArgs,
 };
 use crate::budget::{check_work, StepCost};
 use crate::csv;
 use crate::failure::Failure;
-use crate::output::output;
+use crate::output::{output, Document};
 use crate::sweep::{self, Lines};
 use clap::Args;
 use solver::map::{MapSpec, RegimeMap};
@@ -88,6 +88,14 @@ pub fn run(a: &MapArgs) -> Result<(), Failure> {
     let Some(cells) = sweep::run(&mut map, &a.p, "cells", Some(lines))? else {
         return Ok(());
     };
+    if a.p.format == Format::Json {
+        // Streamed, as bifurcation's points are: one cell's JSON at a time.
+        let mut doc = Document::begin(&report::map_head_json(&model, &params, &spec), "cells")?;
+        for c in &cells {
+            doc.item(&report::map_cell_json(c))?;
+        }
+        return doc.finish();
+    }
     let value = report::map_json(&model, &params, &spec, &cells);
     output(a.p.format, &value, csv::map)
 }

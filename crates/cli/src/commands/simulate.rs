@@ -15,7 +15,7 @@ pub struct SimulateArgs {
     #[command(flatten)]
     p: ParamArgs,
     /// Dimensionless mesh frequency Omega = omega / omega_ref.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::flags::finite)]
     omega: f64,
     #[command(flatten)]
     run: RunArgs,
@@ -23,7 +23,7 @@ pub struct SimulateArgs {
     #[arg(long)]
     mesh: Option<String>,
     /// Highest harmonic order in the spectrum.
-    #[arg(long, default_value_t = 8.0, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 8.0, allow_hyphen_values = true, value_parser = crate::flags::finite)]
     max_order: f64,
 }
 

@@ -138,7 +138,7 @@ fn build_keys() -> Vec<KeySpec> {
             "torque_s1_nm",
             "N m",
             KeyType::Float {
-                min: -1e6,
+                min: 0.0,
                 max: 1e6
             },
             Ravigneaux,
@@ -377,10 +377,7 @@ fn build_keys() -> Vec<KeySpec> {
         key!(
             "torque_pinion_nm",
             "N m",
-            KeyType::Float {
-                min: -1e6,
-                max: 1e6
-            },
+            KeyType::Float { min: 0.0, max: 1e6 },
             GearPair,
             "torque on the pinion (the gear carries the balancing torque)"
         ),

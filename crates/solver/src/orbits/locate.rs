@@ -4,21 +4,21 @@
 //! plus one for a period doubling), each trial point corrected onto the
 //! branch on the hyperplane normal to the previous tangent.
 
+use super::replay::Step;
 use super::{Cursor, ShootPoint, ShootingContinuation, Solved};
 use crate::bifurcation::Bifurcation;
-use crate::error::Result;
 use crate::shooting::floquet::Multipliers;
 
 impl ShootingContinuation {
     /// The point at arclength `s` from the cursor along its tangent, solved.
-    pub(super) fn at(&mut self, c: &Cursor, s: f64) -> Result<Option<Solved>> {
+    pub(super) fn at(&mut self, c: &Cursor, s: f64) -> Step<Option<Solved>> {
         let pred: Vec<f64> = c.y.iter().zip(&c.tangent).map(|(y, t)| y + s * t).collect();
         self.correct(&pred, &c.tangent, c.period)
     }
 
     /// Locates a fold between the cursor and `end` (Illinois on the
     /// tangent's Omega component over the arclength).
-    pub(super) fn locate(&mut self, c: &Cursor, end: &Solved) -> Result<Option<ShootPoint>> {
+    pub(super) fn locate(&mut self, c: &Cursor, end: &Solved) -> Step<Option<ShootPoint>> {
         let n = c.y.len() - 1;
         let ds = c.ds;
         let f = |me: &Self, s: &Solved| me.tangent(s, &c.tangent).map(|t| t[n]);
@@ -60,7 +60,7 @@ impl ShootingContinuation {
             c.period,
             c.piece,
             Some(Bifurcation::Fold),
-        )))
+        )?))
     }
 
     /// Locates a period doubling between the cursor and `end` (Illinois on
@@ -70,7 +70,7 @@ impl ShootingContinuation {
         &mut self,
         c: &Cursor,
         end: &Solved,
-    ) -> Result<Option<(ShootPoint, Solved)>> {
+    ) -> Step<Option<(ShootPoint, Solved)>> {
         let ds = c.ds;
         let f = |s: &Solved| {
             Multipliers::of(&s.monodromy).and_then(|m| {
@@ -92,7 +92,7 @@ impl ShootingContinuation {
         if fa.signum() == fb.signum() {
             // The count changed, but not through the nearest real multiplier:
             // label the end point.
-            let p = self.emit(end, c.period, c.piece, Some(Bifurcation::PeriodDoubling));
+            let p = self.emit(end, c.period, c.piece, Some(Bifurcation::PeriodDoubling))?;
             return Ok(Some((p, end.clone())));
         }
         for _ in 0..40 {
@@ -121,7 +121,7 @@ impl ShootingContinuation {
                 side = 1;
             }
         }
-        let p = self.emit(&best, c.period, c.piece, Some(Bifurcation::PeriodDoubling));
+        let p = self.emit(&best, c.period, c.piece, Some(Bifurcation::PeriodDoubling))?;
         Ok(Some((p, best)))
     }
 }

@@ -26,19 +26,18 @@
 //! doubles again.
 
 use crate::bifurcation::Bifurcation;
-use crate::dynamics::{tolerances, MeshOde};
 use crate::error::{Result, SolverError};
-use crate::hbm::{BranchMesh, BranchPoint};
-use crate::ode::{Dopri5, Tolerances};
+use crate::hbm::BranchPoint;
 use crate::shooting::floquet::{real_eigenvector, Multipliers};
-use crate::shooting::variational::MapRun;
 use crate::shooting::{shoot, Reduced, ShootOptions, ShootOutcome, MAX_SHOOT_PERIOD};
-use crate::steady::{steady_state, Impact, SteadyOptions};
+use crate::steady::{steady_state, SteadyOptions};
 use crate::sweep::Direction;
 use crate::Model;
 use nalgebra::{DMatrix, DVector};
+use replay::{Halt, Replay, Step};
 
 mod locate;
+mod replay;
 
 /// Options of a shooting frequency response.
 #[derive(Debug, Clone, PartialEq)]
@@ -167,6 +166,8 @@ pub struct ShootingContinuation {
     notes: Vec<String>,
     /// Counters.
     pub stats: ShootFrfStats,
+    /// The integrations of the step in progress (bounded work per call).
+    replay: Replay,
 }
 
 /// Largest number of points on one branch (a guard against a loop).
@@ -224,8 +225,9 @@ impl ShootingContinuation {
             pieces: 0,
             notes: Vec::new(),
             stats: ShootFrfStats::default(),
+            replay: Replay::default(),
         };
-        let solved = me.evaluate(&y, me.spec.period, true)?;
+        let solved = me.unbounded(|me| me.evaluate(&y, me.spec.period, true))?;
         let tangent = me.tangent(&solved, &t0).ok_or(SolverError::Singular {
             what: "the continuation's tangent at the first orbit".into(),
         })?;
@@ -267,13 +269,41 @@ impl ShootingContinuation {
                 what: "no branch".into(),
             });
         };
-        let solved = self.evaluate(&c.y, c.period, true)?;
-        Ok(self.emit(&solved, c.period, c.piece, None))
+        self.unbounded(|me| {
+            let solved = me.evaluate(&c.y, c.period, true)?;
+            me.emit(&solved, c.period, c.piece, None)
+        })
+    }
+
+    /// Runs `f` with no work bound (it cannot pause).
+    fn unbounded<T>(&mut self, f: impl FnOnce(&mut Self) -> Step<T>) -> Result<T> {
+        self.replay.begin(u64::MAX);
+        let out = f(self);
+        self.replay.finish();
+        match out {
+            Ok(v) => Ok(v),
+            Err(Halt::Fail(e)) => Err(e),
+            Err(Halt::Pause) => Err(SolverError::Singular {
+                what: "an unbounded evaluation paused".into(),
+            }),
+        }
     }
 
     /// Computes at most `k` further points (located bifurcations count).
     pub fn advance(&mut self, k: usize) -> Result<Vec<ShootPoint>> {
+        self.advance_within(k, u64::MAX)
+    }
+
+    /// Computes at most `k` further points with at most about `work`
+    /// integrator steps of new integration (a step carrying the monodromy's
+    /// tangents counts one per vector, plus one): when the work runs out in
+    /// the middle of a branch step, the points finished so far are
+    /// returned and the next call takes the step up again where it paused
+    /// (`replay.rs`), so that slices of any size give the same points as
+    /// one call. [`Self::is_finished`] says when every branch has ended.
+    pub fn advance_within(&mut self, k: usize, work: u64) -> Result<Vec<ShootPoint>> {
         let mut out = Vec::new();
+        self.replay.begin(work);
         while out.len() < k {
             if self.cur.is_none() {
                 match self.pending.pop() {
@@ -281,7 +311,33 @@ impl ShootingContinuation {
                     None => break,
                 }
             }
-            self.step(&mut out)?;
+            let saved = (
+                self.cur.clone(),
+                self.pending.clone(),
+                self.pieces,
+                self.notes.len(),
+                self.stats,
+            );
+            let mut step_out = Vec::new();
+            match self.step(&mut step_out) {
+                Ok(()) => {
+                    self.replay.finish();
+                    out.extend(step_out);
+                }
+                Err(Halt::Pause) => {
+                    let (cur, pending, pieces, notes, stats) = saved;
+                    self.cur = cur;
+                    self.pending = pending;
+                    self.pieces = pieces;
+                    self.notes.truncate(notes);
+                    self.stats = stats;
+                    break;
+                }
+                Err(Halt::Fail(e)) => {
+                    self.replay.finish();
+                    return Err(e);
+                }
+            }
         }
         Ok(out)
     }
@@ -295,7 +351,7 @@ impl ShootingContinuation {
     }
 
     /// One step of the current branch.
-    fn step(&mut self, out: &mut Vec<ShootPoint>) -> Result<()> {
+    fn step(&mut self, out: &mut Vec<ShootPoint>) -> Step<()> {
         let Some(mut c) = self.cur.take() else {
             return Ok(());
         };
@@ -306,9 +362,9 @@ impl ShootingContinuation {
                     .zip(&c.tangent)
                     .map(|(y, t)| y + c.ds * t)
                     .collect();
-            match self.correct(&pred, &c.tangent, c.period) {
-                Ok(Some(s)) => break s,
-                _ => {
+            match self.correct(&pred, &c.tangent, c.period)? {
+                Some(s) => break s,
+                None => {
                     self.stats.rejected_steps += 1;
                     c.ds *= 0.5;
                     if c.ds < ds_min {
@@ -372,10 +428,11 @@ impl ShootingContinuation {
                     ));
                     return Ok(());
                 }
-                let old = self
-                    .evaluate(&y_pd, c.period, true)
-                    .ok()
-                    .and_then(|s| self.tangent(&s, &c.tangent));
+                let old = match self.evaluate(&y_pd, c.period, true) {
+                    Ok(s) => self.tangent(&s, &c.tangent),
+                    Err(Halt::Pause) => return Err(Halt::Pause),
+                    Err(Halt::Fail(_)) => None,
+                };
                 self.switch(&c, &y_pd, &mono, old.as_deref());
             }
         }
@@ -387,7 +444,7 @@ impl ShootingContinuation {
             ));
             return Ok(());
         }
-        out.push(self.emit(&solved, c.period, c.piece, label));
+        out.push(self.emit(&solved, c.period, c.piece, label)?);
         c.count += 1;
         if solved.iterations <= 3 {
             c.ds = (c.ds * 1.5).min(self.ds_max);
@@ -446,7 +503,7 @@ impl ShootingContinuation {
 
     /// `G`, the monodromy and `dG/dOmega` at `y` (the monodromy and the
     /// derivative only if `full`).
-    fn evaluate(&mut self, y: &[f64], period: u32, full: bool) -> Result<Solved> {
+    fn evaluate(&mut self, y: &[f64], period: u32, full: bool) -> Step<Solved> {
         let n = y.len() - 1;
         let omega = self.omega_of(y);
         let (g, mono) = self.map(&y[..n], omega, period, full)?;
@@ -475,57 +532,16 @@ impl ShootingContinuation {
     /// orbit's two halves split like the square root of the distance in
     /// Omega from a period doubling, so this is within about 1e-6 of the
     /// period doubling where the branch rejoins the one it left.
-    fn repeats_at_half(&mut self, y: &[f64], period: u32, rel: f64) -> Result<bool> {
+    fn repeats_at_half(&mut self, y: &[f64], period: u32, rel: f64) -> Step<bool> {
         let n = y.len() - 1;
         let omega = self.omega_of(y);
-        let Ok((g, _)) = self.map(&y[..n], omega, period / 2, false) else {
-            return Ok(false);
+        let g = match self.map(&y[..n], omega, period / 2, false) {
+            Ok((g, _)) => g,
+            Err(Halt::Pause) => return Err(Halt::Pause),
+            Err(Halt::Fail(_)) => return Ok(false),
         };
         let red = Reduced::new(&self.model, omega);
         Ok(red.mesh_norm_um(&g) <= rel * red.mesh_norm_um(&y[..n]))
-    }
-
-    /// `P^n(z) - z` at `omega`, with the monodromy if asked.
-    fn map(
-        &mut self,
-        z: &[f64],
-        omega: f64,
-        period: u32,
-        mono: bool,
-    ) -> Result<(Vec<f64>, Option<DMatrix<f64>>)> {
-        let red = Reduced::new(&self.model, omega);
-        let sys = &self.model.system;
-        let ode = MeshOde::new(sys, omega * sys.omega_ref_rad_s);
-        let o = &self.spec.shooting;
-        let tol = tolerances(
-            sys,
-            omega,
-            o.rtol,
-            o.atol_m,
-            2.0 * std::f64::consts::PI / (omega * sys.omega_ref_rad_s),
-            1e-14,
-        );
-        let budget = o.max_steps_per_period.saturating_mul(u64::from(period));
-        let mut run = MapRun::new(
-            &red,
-            &ode,
-            &tol,
-            z,
-            (0.0, 0.0),
-            period,
-            mono,
-            self.model.divergence_bound_m(),
-            budget,
-        );
-        let mut taken = 0;
-        let v = loop {
-            if let Some(v) = run.advance(&red, u64::MAX, &mut taken)? {
-                break v;
-            }
-        };
-        self.stats.integrator_steps += taken;
-        let g = v.z.iter().zip(z).map(|(p, z)| p - z).collect();
-        Ok((g, v.monodromy))
     }
 
     fn residual_tol(&self, z: &[f64], omega: f64) -> f64 {
@@ -534,7 +550,7 @@ impl ShootingContinuation {
     }
 
     /// Newton on `G(Y) = 0`, `t . (Y - pred) = 0`; `None` if it fails.
-    fn correct(&mut self, pred: &[f64], t: &[f64], period: u32) -> Result<Option<Solved>> {
+    fn correct(&mut self, pred: &[f64], t: &[f64], period: u32) -> Step<Option<Solved>> {
         let n = pred.len() - 1;
         let mut y = pred.to_vec();
         for it in 0..8 {
@@ -544,7 +560,8 @@ impl ShootingContinuation {
             }
             let (g, mono) = match self.map(&y[..n], omega, period, true) {
                 Ok(v) => v,
-                Err(_) => return Ok(None),
+                Err(Halt::Pause) => return Err(Halt::Pause),
+                Err(Halt::Fail(_)) => return Ok(None),
             };
             self.stats.newton_iterations += 1;
             let mono = mono.unwrap_or_else(|| DMatrix::zeros(n, n));
@@ -553,11 +570,13 @@ impl ShootingContinuation {
             let h = 1e-5 * omega;
             let (gp, _) = match self.map(&y[..n], omega + h, period, false) {
                 Ok(v) => v,
-                Err(_) => return Ok(None),
+                Err(Halt::Pause) => return Err(Halt::Pause),
+                Err(Halt::Fail(_)) => return Ok(None),
             };
             let (gm, _) = match self.map(&y[..n], omega - h, period, false) {
                 Ok(v) => v,
-                Err(_) => return Ok(None),
+                Err(Halt::Pause) => return Err(Halt::Pause),
+                Err(Halt::Fail(_)) => return Ok(None),
             };
             if converged {
                 return Ok(Some(Solved {
@@ -633,13 +652,13 @@ impl ShootingContinuation {
         period: u32,
         piece: u32,
         label: Option<Bifurcation>,
-    ) -> ShootPoint {
+    ) -> Step<ShootPoint> {
         let n = s.y.len() - 1;
         let omega = self.omega_of(&s.y);
-        let meshes = self.extremes(&s.y[..n], omega, period);
+        let meshes = self.extremes(&s.y[..n], omega, period)?;
         let m = Multipliers::of(&s.monodromy);
         self.stats.points += 1;
-        ShootPoint {
+        Ok(ShootPoint {
             point: BranchPoint {
                 omega,
                 meshes,
@@ -651,61 +670,7 @@ impl ShootingContinuation {
                 piece,
             },
             period,
-        }
-    }
-
-    fn extremes(&mut self, z: &[f64], omega: f64, period: u32) -> Vec<BranchMesh> {
-        let sys = &self.model.system;
-        let red = Reduced::new(&self.model, omega);
-        let mut ode = MeshOde::new(sys, omega * sys.omega_ref_rad_s);
-        let t_end = f64::from(period) * 2.0 * std::f64::consts::PI / (omega * sys.omega_ref_rad_s);
-        let o = &self.spec.shooting;
-        let tol: Tolerances = tolerances(
-            sys,
-            omega,
-            o.rtol,
-            o.atol_m,
-            t_end / f64::from(period),
-            1e-14,
-        );
-        let y0 = red.to_state(z, (0.0, 0.0));
-        let mut int = Dopri5::new(&mut ode, 0.0, &y0, t_end / 200.0, tol);
-        let nm = sys.meshes.len();
-        let mut lo = vec![(f64::INFINITY, f64::INFINITY); nm];
-        let mut hi = vec![(f64::NEG_INFINITY, f64::NEG_INFINITY); nm];
-        let mut buf = y0.clone();
-        let mut track = |ode: &MeshOde, t: f64, y: &[f64]| {
-            for j in 0..nm {
-                let mi = ode.mesh_instant(j, t, y);
-                lo[j] = (lo[j].0.min(mi.delta), lo[j].1.min(mi.rel));
-                hi[j] = (hi[j].0.max(mi.delta), hi[j].1.max(mi.rel));
-            }
-        };
-        track(&ode, 0.0, &y0);
-        while int.t() < t_end {
-            let Ok(info) = int.step(&mut ode, t_end) else {
-                break;
-            };
-            for k in 1..=8 {
-                let t = info.t0 + (info.t1 - info.t0) * f64::from(k) / 8.0;
-                int.dense(t, &mut buf);
-                track(&ode, t, &buf);
-            }
-        }
-        self.stats.integrator_steps += int.stats.steps;
-        sys.meshes
-            .iter()
-            .enumerate()
-            .map(|(j, m)| BranchMesh {
-                delta_max_m: hi[j].0,
-                delta_min_m: lo[j].0,
-                delta_amplitude_m: 0.5 * (hi[j].0 - lo[j].0),
-                harmonics_m: Vec::new(),
-                rel_min_m: lo[j].1,
-                rel_max_m: hi[j].1,
-                impact: Impact::classify(lo[j].1, hi[j].1, m.backlash_m),
-            })
-            .collect()
+        })
     }
 }
 

@@ -13,7 +13,10 @@
 //! integrator steps of the point in progress (the selected-Omega run, a
 //! bifurcation point, an overlay point, a Lyapunov point, a map cell; the
 //! run pauses and resumes without changing a bit), [`hbm::HBM_CHUNK`]
-//! branch points, or one shooting branch point ([`orbits`]). A newer job or a cancel waits at most one step.
+//! branch points, or [`SLICE_STEPS`] steps' work of a shooting branch
+//! step ([`orbits`]: a step carrying the monodromy's tangents counts one
+//! per vector; the branch step pauses and is taken up again, bit for bit).
+//! A newer job, a cancel or an export request waits at most one step.
 
 pub mod bif;
 pub mod chain;

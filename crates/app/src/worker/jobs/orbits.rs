@@ -1,9 +1,12 @@
 //! The periodic orbits' branches on the bifurcation diagram: shooting
 //! continuation in Omega (`solver::orbits`), period doublings followed,
-//! one branch point per step; each point carries every mesh's Poincaré
-//! samples, found by integrating the converged orbit over its period.
+//! [`SLICE_STEPS`] integrator steps of work per step (a branch step that
+//! needs more pauses and is taken up again by the next, so the job never
+//! holds its worker longer than any other job's slice); each finished
+//! point is posted at once, with every mesh's Poincaré samples, found by
+//! integrating the converged orbit over its period.
 
-use super::{excitation_at, failed, Job};
+use super::{excitation_at, failed, Job, SLICE_STEPS};
 use crate::protocol::{um, FromWorker, JobId, OrbitSample};
 use solver::model::Model;
 use solver::orbits::{ShootFrfSpec, ShootPoint, ShootingContinuation};
@@ -73,7 +76,7 @@ impl Job for OrbitsJob {
 
     fn step(&mut self) -> Vec<FromWorker> {
         let pts = if self.started {
-            self.cont.advance(1)
+            self.cont.advance_within(1, SLICE_STEPS)
         } else {
             self.started = true;
             self.cont.first_point().map(|p| vec![p])
@@ -82,6 +85,10 @@ impl Job for OrbitsJob {
             Ok(pts) => pts,
             Err(e) => return self.reply(Vec::new(), Some(e.to_string())),
         };
+        if pts.is_empty() && !self.cont.is_finished() {
+            // The branch step paused: nothing to post yet.
+            return Vec::new();
+        }
         let mut samples = Vec::with_capacity(pts.len());
         for p in &pts {
             match orbit_sample(&self.model, p) {

@@ -196,3 +196,74 @@ fn a_map_cell_pauses_for_a_new_omega_job_and_keeps_its_bits() {
     assert_eq!(want.len(), 4);
     assert_eq!(got, want);
 }
+
+/// The shooting branches' job on the default compound set (its branch
+/// steps are long: Newton with the monodromy of a 20-odd dimensional map,
+/// folds and period doublings located) works in slices like every other
+/// job: its first branch step pauses, a new Omega job then has every step
+/// until its result, an export of a finished sweep is answered at once,
+/// and the branch goes on with the point a one-shot continuation gives.
+#[test]
+fn a_shooting_branch_step_pauses_for_a_new_omega_job_and_keeps_its_bits() {
+    use solver::orbits::{ShootFrfSpec, ShootingContinuation};
+    let mut core = WorkerCore::new();
+    let p = ModelParams::default();
+    let (from, to, points) = (0.1, 2.0, 100);
+    let orbits = JobSpec::Orbits {
+        omega_from: from,
+        omega_to: to,
+        points,
+    };
+    core.handle(&run_msg(7, &p, orbits));
+    let is_data =
+        |m: &FromWorker| matches!(m, FromWorker::OrbitPoints { points, .. } if !points.is_empty());
+    // The first point (the start orbit), then a branch step that pauses.
+    assert!(core.step().iter().any(is_data));
+    assert!(
+        !core.step().iter().any(is_data),
+        "one slice computed a whole branch step"
+    );
+    let omega_job = JobSpec::Omega(OmegaSpec {
+        omega: 1.1,
+        mesh: None,
+        run: RunOptions {
+            transient_periods: 300,
+            record_periods: 40,
+        },
+        samples_per_period: 32,
+        max_order: 8.0,
+    });
+    core.handle(&run_msg(1, &p, omega_job));
+    let (msgs, steps) = steps_to_omega(&mut core);
+    let result = msgs
+        .iter()
+        .find_map(|m| match m {
+            FromWorker::Omega { id: 1, result } => Some(result),
+            _ => None,
+        })
+        .expect("the new Omega result");
+    assert_eq!(steps, result.steps.div_ceil(SLICE_STEPS) as usize);
+    // The branch goes on: its next points are the one-shot continuation's.
+    let mut got = Vec::new();
+    for _ in 0..10_000 {
+        got.extend(core.step().into_iter().flat_map(|m| match m {
+            FromWorker::OrbitPoints { points, .. } => points,
+            _ => Vec::new(),
+        }));
+        if !got.is_empty() {
+            break;
+        }
+    }
+    let m = model();
+    let mut c = ShootingContinuation::new(&m, ShootFrfSpec::new(from, to, points)).expect("start");
+    c.first_point().expect("first point");
+    let mut want = Vec::new();
+    while want.len() < got.len() {
+        want.extend(c.advance(1).expect("a branch step"));
+    }
+    assert!(!got.is_empty());
+    for (g, w) in got.iter().zip(&want) {
+        assert_eq!(g.omega.to_bits(), w.point.omega.to_bits());
+        assert_eq!(g.bifurcation, w.point.bifurcation.map(Into::into));
+    }
+}
