@@ -383,3 +383,45 @@ fn keys_that_move_the_modes_and_empty_ranges_are_refused() {
     let e = refused("backlash_um", (-5.0, 10.0), (0.4, 1.0));
     assert!(e.to_string().contains("backlash_um"), "{e}");
 }
+
+/// A contact curve that runs down to zero backlash, the key's own lower
+/// limit and the box's edge, leaves the box there: its last point lies on
+/// the edge and the end is `left-range`. (A step across the edge cannot be
+/// evaluated, backlash below 0 being refused, so before the step landed on
+/// the edge such a curve ended as a corrector failure a hair above it.)
+#[test]
+fn a_contact_curve_reaching_zero_backlash_leaves_the_box_there() {
+    let mut spec = BoundarySpec::new("backlash_um", (0.0, 200.0), (0.1, 2.0));
+    spec.harmonics = 5;
+    spec.points = 40;
+    let mut t = BoundaryTrace::new(&pair(&[]), spec).unwrap();
+    while !t.is_finished() {
+        t.advance(50).unwrap();
+    }
+    let at_zero: Vec<&Curve> = t
+        .curves()
+        .iter()
+        .filter(|c| {
+            matches!(
+                c.kind,
+                CurveKind::DriveFlanksPart | CurveKind::BackFlanksTouch
+            ) && c.points.iter().any(|p| p.value < 1.0)
+        })
+        .collect();
+    assert!(
+        !at_zero.is_empty(),
+        "{:?}",
+        t.curves().iter().map(|c| c.kind).collect::<Vec<_>>()
+    );
+    for c in at_zero {
+        let ends = [c.points[0].value, c.points[c.points.len() - 1].value];
+        let i = if ends[0] < ends[1] { 0 } else { 1 };
+        assert_eq!(ends[i], 0.0, "{:?} {:?}", c.kind, c.ends);
+        assert_eq!(
+            c.ends[i],
+            solver::boundaries::TraceEnd::LeftRange,
+            "{:?}",
+            c.kind
+        );
+    }
+}
