@@ -62,6 +62,17 @@ pub struct OmegaRange {
     pub omega_to: f64,
 }
 
+/// An Omega range and its number of points (200 by default: a
+/// bifurcation sweep, an instability scan).
+#[derive(Debug, Args)]
+pub struct OmegaPoints {
+    #[command(flatten)]
+    pub range: OmegaRange,
+    /// Number of Omega points.
+    #[arg(long, default_value_t = 200)]
+    pub points: u32,
+}
+
 /// The key varied against Omega and its range (the map's rows, the
 /// boundaries' second axis).
 #[derive(Debug, Args)]

@@ -103,6 +103,16 @@ impl Motion {
         }
     }
 
+    /// Every [`Motion::name`], in the order of the variants: what a file's
+    /// `motion` field may say.
+    pub const NAMES: [&'static str; 5] = [
+        "periodic-exact",
+        "periodic",
+        "period-above-maximum",
+        "still-settling",
+        "not-periodic",
+    ];
+
     /// A short name for output: `periodic-exact`, `periodic`,
     /// `period-above-maximum`, `still-settling`, `not-periodic`.
     pub fn name(&self) -> &'static str {
@@ -427,6 +437,7 @@ mod tests {
             let m: Motion = serde_json::from_str(json).unwrap();
             let v: serde_json::Value = serde_json::from_str(json).unwrap();
             assert_eq!(v["kind"], m.name(), "{json}");
+            assert!(Motion::NAMES.contains(&m.name()), "{json}");
             assert_eq!((m.period(), m.is_exact()), (period, exact), "{json}");
             let back: Motion = serde_json::from_value(serde_json::to_value(m).unwrap()).unwrap();
             assert_eq!(back, m, "{json}");
