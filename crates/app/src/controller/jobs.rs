@@ -489,16 +489,7 @@ impl Controller {
 
     /// The map's grid from the view options.
     pub fn map_grid(&self) -> MapGrid {
-        let v = &self.settings.view;
-        MapGrid {
-            key: v.map_key.clone(),
-            omega_from: v.omega_from,
-            omega_to: v.omega_to,
-            omega_points: v.map_omega_points,
-            value_from: v.map_from,
-            value_to: v.map_to,
-            value_points: v.map_value_points,
-        }
+        MapGrid::of(&self.settings.view)
     }
 
     /// Everything the map depends on, as text: its grid, periods and mesh,

@@ -30,6 +30,21 @@ pub struct MapGrid {
 }
 
 impl MapGrid {
+    /// The grid the view options ask for (the page's Omega range, the map's
+    /// key, range and points), as the page's map job and `gearshock figure
+    /// map` compute it.
+    pub fn of(v: &crate::settings::ViewOptions) -> Self {
+        MapGrid {
+            key: v.map_key.clone(),
+            omega_from: v.omega_from,
+            omega_to: v.omega_to,
+            omega_points: v.map_omega_points,
+            value_from: v.map_from,
+            value_to: v.map_to,
+            value_points: v.map_value_points,
+        }
+    }
+
     /// Omega of column `c` (as `solver::map::MapSpec::omega`).
     pub fn omega(&self, c: u32) -> f64 {
         self.omega_from

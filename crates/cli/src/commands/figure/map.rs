@@ -55,15 +55,7 @@ pub(crate) fn run(args: &FigureArgs) -> Result<Value, Failure> {
     let v = &settings.view;
     let params = &settings.params;
     let model = Model::new(params)?;
-    let grid = MapGrid {
-        key: v.map_key.clone(),
-        omega_from: v.omega_from,
-        omega_to: v.omega_to,
-        omega_points: v.map_omega_points,
-        value_from: v.map_from,
-        value_to: v.map_to,
-        value_points: v.map_value_points,
-    };
+    let grid = MapGrid::of(v);
     let mesh = settings.mesh_index(&model);
     let mut spec = MapSpec::new(
         (grid.omega_from, grid.omega_to, grid.omega_points),
