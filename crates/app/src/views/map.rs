@@ -300,15 +300,7 @@ mod tests {
     use super::*;
 
     fn grid() -> MapGrid {
-        MapGrid {
-            key: "backlash_um".into(),
-            omega_from: 0.1,
-            omega_to: 2.0,
-            omega_points: 20,
-            value_from: 0.0,
-            value_to: 150.0,
-            value_points: 16,
-        }
+        crate::views::test_support::backlash_grid(150.0, 16)
     }
 
     #[test]

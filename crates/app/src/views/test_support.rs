@@ -110,3 +110,17 @@ pub(crate) fn omega_result() -> OmegaResult {
         end_state: vec![],
     }
 }
+
+/// A map grid of backlash rows, 0 ..= `value_to` µm in `rows` rows, over
+/// Omega 0.1 ..= 2.0 in 20 columns (step 0.1).
+pub(crate) fn backlash_grid(value_to: f64, rows: u32) -> crate::views::map::MapGrid {
+    crate::views::map::MapGrid {
+        key: "backlash_um".into(),
+        omega_from: 0.1,
+        omega_to: 2.0,
+        omega_points: 20,
+        value_from: 0.0,
+        value_to,
+        value_points: rows,
+    }
+}

@@ -8,15 +8,7 @@ use crate::views::test_support::map_cell;
 /// Omega 0.1 ..= 2.0 in 20 columns (step 0.1), backlash 0 ..= 100 µm in 11
 /// rows (step 10).
 fn grid() -> MapGrid {
-    MapGrid {
-        key: "backlash_um".into(),
-        omega_from: 0.1,
-        omega_to: 2.0,
-        omega_points: 20,
-        value_from: 0.0,
-        value_to: 100.0,
-        value_points: 11,
-    }
+    crate::views::test_support::backlash_grid(100.0, 11)
 }
 
 /// A vertical curve at Omega 1.0 from `v0` to `v1`, its unchanged side
