@@ -280,19 +280,14 @@ fn items_from_inputs(merged: &Value, key: &str, shards: &[Value]) -> Result<(), 
 /// the cell did not fail.
 fn map_cells_well_formed(v: &Value) -> Result<(), String> {
     let record = v["spec"]["record_periods"].as_u64().unwrap_or(0);
-    const MOTIONS: [&str; 5] = [
-        "periodic-exact",
-        "periodic",
-        "period-above-maximum",
-        "still-settling",
-        "not-periodic",
-    ];
     for c in v["cells"].as_array().map_or(&[][..], Vec::as_slice) {
         let period_fine = c["period"].is_null()
             || c["period"]
                 .as_u64()
                 .is_some_and(|p| (1..=record).contains(&p));
-        let motion_fine = c["motion"].as_str().is_some_and(|m| MOTIONS.contains(&m));
+        let motion_fine = c["motion"]
+            .as_str()
+            .is_some_and(|m| solver::steady::Motion::NAMES.contains(&m));
         let regime_fine = c["error"].is_null() != c["impact"].is_null();
         if !(period_fine && motion_fine && regime_fine) {
             return Err(format!(

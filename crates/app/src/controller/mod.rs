@@ -143,8 +143,10 @@ impl Controller {
     /// benchmark's scaling figure, the page runs [`pool_size`]).
     pub fn with_workers(query: &str, now_ms: f64, workers: usize) -> (Self, Vec<Effect>) {
         let workers = workers.clamp(1, MAX_WORKERS);
+        let tour_issue = crate::tour::tour_issue(query);
         let (tour, query) = crate::tour::split_tour(query);
-        let decoded = link::decode(&query);
+        let mut decoded = link::decode(&query);
+        decoded.issues.extend(tour_issue);
         let pinned = decoded.pinned;
         let family = decoded.family.map(|spec| Family {
             spec,
@@ -330,11 +332,13 @@ impl Controller {
 
     /// Replaces the whole state by a link's (or preset's) query.
     pub fn load_query(&mut self, query: &str, now_ms: f64) -> Vec<Effect> {
+        let tour_issue = crate::tour::tour_issue(query);
         let (tour, query) = crate::tour::split_tour(query);
         self.tour = tour;
         let d = link::decode(&query);
         self.settings = d.settings;
         self.issues = d.issues;
+        self.issues.extend(tour_issue);
         self.preset_note = None;
         self.rebuild_model();
         self.main.hbm_previous = None;

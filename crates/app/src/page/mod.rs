@@ -2,7 +2,7 @@
 //! and its paint, as a plain type the native tests drive. The web layer
 //! (`web.rs`, `web/`) hands it events (a slider's input, a click's pixel, a
 //! key, a worker's message, an animation frame) and paints what it lists
-//! ([`Write`]s, the views [`Page::decide`] says to draw).
+//! ([`Write`]s, the views [`Page::draw_frame`] says to draw).
 //!
 //! Rules it keeps: input only queues work, applied once per animation
 //! frame ([`Page::apply_pending`]), so a fast drag costs one job restart
@@ -12,7 +12,9 @@
 
 mod act;
 pub mod anim;
+pub mod boot;
 pub mod dom;
+mod frame;
 pub mod gesture;
 mod paint;
 pub mod redraw;

@@ -19,7 +19,8 @@
 //! points per chunk.
 //!
 //! These are the serializable DTOs of the boundary; solver types stay inside
-//! the worker.
+//! the worker, but for the few that serialize as they are ([`Motion`],
+//! `Impact`).
 
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value};
@@ -30,12 +31,13 @@ pub type JobId = u64;
 
 mod boundaries;
 mod kinds;
-mod motion;
 mod orbits;
 pub use boundaries::{BoundaryCurve, BoundaryKind, BoundaryPoint};
 pub use kinds::{JobKind, KindSet, Target};
-pub use motion::MotionClass;
 pub use orbits::OrbitSample;
+/// The solver's verdict on a steady state, sent as it is (one definition:
+/// the page's words about the motion are all built from it in `crate::story`).
+pub use solver::steady::Motion;
 
 /// Transient and recorded mesh periods of each steady state.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -426,7 +428,7 @@ pub struct BifSample {
     pub period: Option<u32>,
     /// The classification of the point's steady state.
     #[serde(default)]
-    pub motion: MotionClass,
+    pub motion: Motion,
     /// Why the point failed.
     pub error: Option<String>,
 }
@@ -531,7 +533,7 @@ pub struct OmegaResult {
     /// The classification (exact orbit, periodic, still settling, not
     /// periodic): the one source of the page's words about the motion.
     #[serde(default)]
-    pub motion: MotionClass,
+    pub motion: Motion,
     /// Dynamic factor of the plotted mesh.
     pub dynamic_factor: Option<f64>,
     /// Mesh frequency (Hz).

@@ -3,9 +3,7 @@
 //! extremes built from a few numbers.
 
 use super::ViewContext;
-use crate::protocol::{
-    HbmMesh, HbmSample, MapSample, MeshExtremes, MotionClass, OmegaResult, Regime,
-};
+use crate::protocol::{HbmMesh, HbmSample, MapSample, MeshExtremes, Motion, OmegaResult, Regime};
 
 /// The view context of the tests: Omega 0.1 to 2, 0.5 selected, mesh s1a1,
 /// no natural frequencies.
@@ -87,9 +85,10 @@ pub(crate) fn omega_result() -> OmegaResult {
         backlash_um: 100.0,
         regime: Regime::SingleSided,
         period: Some(1),
-        motion: MotionClass::PeriodicExact {
+        motion: Motion::PeriodicExact {
             period: 1,
             max_multiplier_modulus: 0.9,
+            newton_iterations: 0,
         },
         dynamic_factor: Some(1.4),
         mesh_freq_hz: 4500.0,

@@ -14,7 +14,7 @@ use super::{
 };
 use crate::failure::{usage, Failure};
 use app::presets::{preset, Preset};
-use app::protocol::{AnimHistory, MotionClass, OmegaResult, Regime};
+use app::protocol::{AnimHistory, Motion, OmegaResult, Regime};
 use app::worker::jobs::omega::SAMPLES_PER_PERIOD;
 use serde_json::{json, Map, Value};
 use solver::keys::truncate;
@@ -216,10 +216,10 @@ pub fn orbit_from_json(
     // without it keeps what its period says.
     let motion = match o.get("motion") {
         None => match period {
-            Some(period) => MotionClass::Periodic { period },
-            None => MotionClass::NotPeriodic,
+            Some(period) => Motion::Periodic { period },
+            None => Motion::NotPeriodic,
         },
-        Some(v) => serde_json::from_value::<MotionClass>(v.clone())
+        Some(v) => serde_json::from_value::<Motion>(v.clone())
             .ok()
             .ok_or_else(|| {
                 bad(
