@@ -79,15 +79,16 @@ const GAP: f64 = 12.0;
 /// Where the tour's card goes (its left and top, in page pixels): beside
 /// the data it describes, never over it. `data` is the pointed plot's data
 /// area (left, top, right, bottom), `card` the card's size, `page_w` the
-/// page's width. To the right of the data if the card fits there, else to
-/// its left, else under it.
+/// page's width. To the left of the data if the card fits there (over the
+/// settings, beside a plot in the first column), else to its right, else
+/// under it.
 pub fn place_card(data: [f64; 4], card: (f64, f64), page_w: f64) -> (f64, f64) {
     let [l, t, r, b] = data;
     let (w, _) = card;
-    if page_w - r >= w + 2.0 * GAP {
-        (r + GAP, t)
-    } else if l >= w + 2.0 * GAP {
+    if l >= w + 2.0 * GAP {
         (l - GAP - w, t)
+    } else if page_w - r >= w + 2.0 * GAP {
+        (r + GAP, t)
     } else {
         let x = l.min(page_w - w - GAP / 2.0).max(GAP / 2.0);
         (x, b + GAP)
