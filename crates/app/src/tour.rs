@@ -27,21 +27,21 @@ pub const TOUR: [TourStep; 5] = [
     },
     TourStep {
         title: "Backlash and the frequency response",
-        text: "With 100 µm of backlash, each Ω (mesh frequency) gives the largest and smallest tooth deflection x (TE included). Below +b the teeth have separated. Where the curve is dashed no periodic motion is stable: the dots are what the gears actually do. Try the backlash slider.",
+        text: "The tour has moved the backlash from 100 to 150 µm: the grey ±b lines, where the teeth meet, moved with it, and the curve was computed again. For each Ω (mesh frequency) the curve gives the largest and smallest tooth deflection x (TE included); below +b the teeth have separated. Where the curve is dashed no periodic motion is stable: the dots are what the gears actually do. Now drag the backlash slider to 50 µm and watch both follow.",
         target: "view-fr",
-        set: &[("backlash_um", "100")],
+        set: &[("backlash_um", "150")],
     },
     TourStep {
         title: "When impact becomes double-sided",
-        text: "The regime map colours every frequency and backlash by what the teeth do: no impact, single-sided impact (the driving flanks part and strike again) or double-sided impact (the teeth cross the backlash and hit the back flanks). Click a cell to go there.",
+        text: "The tour has chosen backlash 20 µm and Ω 1.4. The regime map colours every frequency and backlash by what the teeth do: no impact, single-sided impact (the driving flanks part and strike again) or double-sided impact (the teeth cross the whole backlash and hit the back flanks). At 20 µm and Ω 1.4 the teeth of s1a1 hit both flanks: see the time history (view 7). Click another cell to go there.",
         target: "view-map",
-        set: &[],
+        set: &[("backlash_um", "20"), ("omega", "1.4")],
     },
     TourStep {
         title: "From periodic to chaotic motion",
-        text: "The bifurcation diagram samples x once per mesh period after the transient: one dot per Ω means the motion repeats every period, a cloud means it never repeats. Where the Lyapunov exponent under it is positive the motion is chaotic. The views below show the motion at Ω 1.2.",
+        text: "The tour has set the backlash back to 100 µm and selected Ω 1.2 (the red line). The bifurcation diagram samples x once per mesh period after the transient: one dot per Ω means the motion repeats every period, a cloud means it never repeats. At Ω 1.2 it is a cloud, and the Lyapunov exponent under it is positive: the motion is chaotic.",
         target: "view-bif",
-        set: &[("omega", "1.2")],
+        set: &[("backlash_um", "100"), ("omega", "1.2")],
     },
     TourStep {
         title: "Share what you found",
@@ -93,6 +93,28 @@ pub fn tour_issue(query: &str) -> Option<String> {
     })
 }
 
+/// The gap between the tour's card and the data it points at (CSS px).
+const GAP: f64 = 12.0;
+
+/// Where the tour's card goes (its left and top, in page pixels): beside
+/// the data it describes, never over it. `data` is the pointed plot's data
+/// area (left, top, right, bottom), `card` the card's size, `page_w` the
+/// page's width. To the left of the data if the card fits there (over the
+/// settings, beside a plot in the first column), else to its right, else
+/// under it.
+pub fn place_card(data: [f64; 4], card: (f64, f64), page_w: f64) -> (f64, f64) {
+    let [l, t, r, b] = data;
+    let (w, _) = card;
+    if l >= w + 2.0 * GAP {
+        (l - GAP - w, t)
+    } else if page_w - r >= w + 2.0 * GAP {
+        (r + GAP, t)
+    } else {
+        let x = l.min(page_w - w - GAP / 2.0).max(GAP / 2.0);
+        (x, b + GAP)
+    }
+}
+
 /// The step's counter: "Step 2 of 5".
 pub fn counter(step: usize) -> String {
     format!("Step {} of {}", step + 1, TOUR.len())
@@ -118,6 +140,29 @@ mod tests {
             assert!(issue.contains(&format!("1 to {}", TOUR.len())), "{issue}");
         }
         assert_eq!(counter(1), "Step 2 of 5");
+    }
+
+    fn overlaps(a: [f64; 4], b: [f64; 4]) -> bool {
+        a[0].max(b[0]) < a[2].min(b[2]) && a[1].max(b[1]) < a[3].min(b[3])
+    }
+
+    /// The card sits beside the data at a phone's, a laptop's and a wide
+    /// screen's widths, wherever the data lie across the page.
+    #[test]
+    fn the_card_never_covers_the_data() {
+        for page_w in [390.0_f64, 1366.0, 1920.0] {
+            for left in [8.0_f64, 120.0, 420.0, 900.0]
+                .into_iter()
+                .filter(|l| l + 200.0 < page_w)
+            {
+                let data = [left, 300.0, (left + 700.0).min(page_w - 8.0), 800.0];
+                let card = ((page_w - 16.0).min(352.0), 320.0);
+                let (x, y) = place_card(data, card, page_w);
+                let cb = [x, y, x + card.0, y + card.1];
+                assert!(!overlaps(cb, data), "{page_w} {left}: {cb:?} over {data:?}");
+                assert!(x >= 0.0 && x + card.0 <= page_w, "{page_w} {left}: {cb:?}");
+            }
+        }
     }
 
     /// Every step sets real keys to values they accept, and points at a

@@ -217,6 +217,10 @@ fn frame(page: &Shared, ts: f64) {
     } = &mut *p;
     let writes = core.draw_frame(ts, || now(window), |core, v| draw_view(core, doc, v));
     paint(&p, writes);
+    if p.core.ctl().tour().is_some() {
+        // A plot's size changes as its data arrive: the card follows it.
+        place_tour(&p, false);
+    }
     if p.core.next_frame() {
         let page2 = page.clone();
         let cb = Closure::once_into_js(move |ts: f64| frame(&page2, ts));
@@ -254,8 +258,65 @@ fn paint(p: &Shell, writes: Vec<Write>) {
                 check(js_sys::Reflect::set(&e, &JsValue::from_str("value"), &v));
             }
             Write::Options { options, .. } => panel::set_options(&p.doc, &e, &options),
-            Write::Scroll(_) => e.scroll_into_view(),
+            Write::Scroll(_) => {
+                e.scroll_into_view();
+                place_tour(p, true);
+            }
             Write::Url(_) => {}
+        }
+    }
+}
+
+/// The part of the page the tour's step points at, in viewport pixels
+/// (left, top, right, bottom): a view's whole canvas (its data, axes and
+/// key), or the element itself.
+fn tour_data_rect(p: &Shell, target: &str) -> Option<[f64; 4]> {
+    let view = target
+        .strip_prefix("view-")
+        .and_then(|k| crate::views::VIEWS.iter().find(|s| s.key == k));
+    let r = match view {
+        Some(spec) => canvas(&p.doc, spec.id)?.get_bounding_client_rect(),
+        None => p.doc.get_element_by_id(target)?.get_bounding_client_rect(),
+    };
+    Some([r.left(), r.top(), r.right(), r.bottom()])
+}
+
+/// Places the tour's card beside what its step points at, never over it
+/// ([`crate::tour::place_card`]); with `scroll` (a new step, its target
+/// just scrolled to the top) the page scrolls on until the card's bottom
+/// shows, as far as the target's top allows.
+fn place_tour(p: &Shell, scroll: bool) {
+    let Some(step) = p.core.ctl().tour() else {
+        return;
+    };
+    let (Some(card), Some(data)) = (
+        by_id::<web_sys::HtmlElement>(&p.doc, "tour"),
+        tour_data_rect(p, crate::tour::TOUR[step].target),
+    ) else {
+        return;
+    };
+    let (sx, sy) = (
+        p.window.scroll_x().unwrap_or(0.0),
+        p.window.scroll_y().unwrap_or(0.0),
+    );
+    let (page_w, view_h) = p.doc.document_element().map_or((0.0, 0.0), |e| {
+        (f64::from(e.client_width()), f64::from(e.client_height()))
+    });
+    let size = (
+        f64::from(card.offset_width()),
+        f64::from(card.offset_height()),
+    );
+    let in_page = [data[0] + sx, data[1] + sy, data[2] + sx, data[3] + sy];
+    let (x, y) = crate::tour::place_card(in_page, size, page_w);
+    let style = card.style();
+    check(style.set_property("left", &format!("{x:.0}px")));
+    check(style.set_property("top", &format!("{y:.0}px")));
+    if scroll {
+        let below = y - sy + size.1 + 8.0 - view_h;
+        let room = data[1] - 8.0;
+        let by = below.min(room);
+        if by > 0.0 {
+            p.window.scroll_by_with_x_and_y(0.0, by);
         }
     }
 }

@@ -394,7 +394,7 @@ impl Controller {
             store: &self.main.map,
             mesh_label: match &self.settings.view.mesh {
                 MeshSel::Named(n) => format!("mesh {n}"),
-                MeshSel::Worst => "most severe of all meshes".into(),
+                MeshSel::Worst => "worst mesh".into(),
             },
             selected: (self.settings.view.omega, value),
             boundaries,
@@ -453,7 +453,7 @@ impl Controller {
             selected_omega: v.omega,
             mesh_label: match &v.mesh {
                 MeshSel::Named(n) => n.clone(),
-                MeshSel::Worst => "worst (largest dynamic factor)".into(),
+                MeshSel::Worst => "worst mesh".into(),
             },
             natural: self
                 .model

@@ -390,7 +390,10 @@ fn the_tour_sets_each_steps_state_and_its_step_is_in_the_link() {
     assert!(!posts(&fx).is_empty(), "the new Ω starts its run");
     assert!(c.query().ends_with("&tour=4"), "{}", c.query());
     // A step whose state is already there restarts nothing.
-    assert!(c.tour_go(Some(1), 20.0).is_empty());
+    assert!(c.tour_go(Some(3), 15.0).is_empty());
+    // The backlash step moves the backlash itself.
+    assert!(!posts(&c.tour_go(Some(1), 20.0)).is_empty());
+    assert!(c.query().contains("backlash_um=150"), "{}", c.query());
     assert!(c.query().ends_with("&tour=2"));
     c.tour_go(None, 30.0);
     assert!(!c.query().contains("tour="));

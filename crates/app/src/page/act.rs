@@ -167,7 +167,7 @@ impl Page {
         let names = self.ctl.mesh_names();
         let mut options: Vec<(String, String)> =
             names.iter().map(|n| (n.clone(), n.clone())).collect();
-        options.push(("worst".into(), "worst (largest dynamic factor)".into()));
+        options.push(("worst".into(), "worst mesh at each Ω".into()));
         if options != self.schematic.1 {
             self.schematic.1 = options.clone();
             w.push(Write::Options {

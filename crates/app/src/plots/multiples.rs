@@ -308,24 +308,27 @@ pub fn phase_panel_title(title: &str, r: &OmegaResult) -> String {
 }
 
 /// The phase portraits (`poincare` false) or Poincaré sections of a
-/// family side by side, on shared axes.
+/// family side by side: each panel's x axis fits its own orbit and its ±b
+/// (a shared one squeezed each orbit into a sliver: Fig. 9's backlashes
+/// 50 to 200 µm), the velocity axis is shared; each panel's ±b lines are
+/// in its member's colour.
 pub fn draw_phase_panels<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     panels: &[Panel<OmegaResult>],
     poincare: bool,
     status: &str,
 ) -> Res<()> {
-    let (x, y) = phase_ranges(panels);
+    let (_, y) = phase_ranges(panels);
     let first = panels.iter().find_map(|p| p.data.as_ref().ok());
     let (what, key) = if poincare {
         (
             "Poincaré sections",
-            "Dots: the state once per mesh period after the transient; dashed: ±b",
+            "Dots: the state once per mesh period after the transient; dashed: ±b, in the panel's colour",
         )
     } else {
         (
             "Phase portraits",
-            "Line: the recorded orbit; red dots: its Poincaré points; dashed: ±b",
+            "Line: the recorded orbit; red dots: its Poincaré points; dashed: ±b, in the panel's colour",
         )
     };
     // Without backlash the dashed line is x = 0, not ±b.
@@ -334,13 +337,16 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
         .filter_map(|p| p.data.as_ref().ok())
         .all(|r| !crate::story::has_backlash(r.backlash_um));
     let key = if no_backlash {
-        key.replace("dashed: ±b", "dashed: x = 0 (no backlash)")
+        key.replace(
+            "dashed: ±b, in the panel's colour",
+            "dashed: x = 0 (no backlash)",
+        )
     } else {
         key.to_string()
     };
     let title = match first {
         Some(r) => format!(
-            "{what}, mesh {}, Ω = {:.4}, shared axes{status}",
+            "{what}, mesh {}, Ω = {:.4}, x axis per panel, velocity shared{status}",
             r.mesh_name, r.omega
         ),
         None => format!("{what}{status}"),
@@ -364,7 +370,7 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
     if let (false, Some((shown, recorded))) = (poincare, cut) {
         key = format!(
             "Line: the orbit's last {shown} of {recorded} recorded periods; red dots: the Poincaré points of all of them; dashed: {}",
-            if no_backlash { "x = 0 (no backlash)" } else { "±b" }
+            if no_backlash { "x = 0 (no backlash)" } else { "±b, in the panel's colour" }
         );
     }
     if panels.iter().any(|p| p.data.as_ref().is_ok_and(unsettled)) {
@@ -377,17 +383,15 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
             continue;
         };
         let t = phase_panel_title(&p.title, r);
+        let (x, _) = phase_ranges(std::slice::from_ref(p));
         let mut chart = panel_chart(area, &t, (x, y), ("x (µm)", "ẋ (m/s)"), k % cols == 0)?;
         let b = r.backlash_um;
-        // The contact lines where they fall in range (the axes fit the data).
-        for level in [b, -b].into_iter().filter(|l| (x.0..=x.1).contains(l)) {
-            dashed(
-                &mut chart,
-                vec![(level, y.0), (level, y.1)],
-                RGBColor(90, 90, 90),
-            )?;
-        }
         let color = family_color(k);
+        // The contact lines where they fall in range (the axes fit the
+        // data), in the member's colour.
+        for level in [b, -b].into_iter().filter(|l| (x.0..=x.1).contains(l)) {
+            dashed(&mut chart, vec![(level, y.0), (level, y.1)], color)?;
+        }
         if !poincare {
             let (from, _) = panel_orbit_tail(r, n);
             super::omega::draw_orbit(&mut chart, r, from, color)?;

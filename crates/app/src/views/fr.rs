@@ -545,7 +545,7 @@ pub fn fr_view(
     };
     let discrepancy = discrepancy(&points, &overlay_pts);
     let mesh_label = if mesh.is_none() {
-        "worst (largest peak-to-peak x)".to_string()
+        "worst mesh".to_string()
     } else {
         ctx.mesh_label.clone()
     };
