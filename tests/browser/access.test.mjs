@@ -8,7 +8,7 @@ import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
-import { start, open, status, waitStatus, ROOT } from './harness.mjs';
+import { start, open, status, waitStatus, recordOffers, ROOT } from './harness.mjs';
 
 const QUICK = 'bif_points=16&transient_periods=120&record_periods=40&map_omega_points=8&map_value_points=4&lyap_points=8';
 const allDone = (s) => ['fr', 'bif', 'map', 'lyap', 'omega_job'].every((k) => s[k].finished_ms);
@@ -111,14 +111,7 @@ test('every export button of every view gives its file', async () => {
   // PNG encoded asynchronously, a command-line JSON the worker answers
   // late), which is the browser's policy, not the page's: the first export
   // is also checked as a real download.
-  await page.evaluate(() => {
-    window.offers = [];
-    const click = HTMLAnchorElement.prototype.click;
-    HTMLAnchorElement.prototype.click = function () {
-      if (this.download) window.offers.push({ name: this.download, href: this.href });
-      return click.call(this);
-    };
-  });
+  await recordOffers(page);
   let n = 0;
   for (const bar of bars) {
     const labels = await page.$$eval(`#${bar} button`, (bs) => bs.map((b) => b.textContent));

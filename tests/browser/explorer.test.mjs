@@ -28,7 +28,7 @@ test('the page loads without console errors and draws every canvas', async () =>
   const s = await waitStatus(page, allDone, 90000, 'all jobs');
   assert.equal(s.workers_ready, 2);
   assert.deepEqual(s.issues, []);
-  // View 1 is the harmonic-balance branch, complete (not a partial one).
+  // ViewId::Fr is the harmonic-balance branch, complete (not a partial one).
   assert.equal(s.fr_method, 'harmonic balance, H = 5, exact');
   assert.equal(s.fr.error, null);
   assert.equal(s.fr_partial, null);

@@ -141,6 +141,22 @@ export async function canvasStats(page, id) {
   }, id);
 }
 
+/**
+ * Records each file the page offers as it offers it (the anchor with a
+ * download name it clicks) in `window.offers`, `{ name, href }` each, to be
+ * read back from its object URL.
+ */
+export async function recordOffers(page) {
+  await page.evaluate(() => {
+    window.offers = [];
+    const click = HTMLAnchorElement.prototype.click;
+    HTMLAnchorElement.prototype.click = function () {
+      if (this.download) window.offers.push({ name: this.download, href: this.href });
+      return click.call(this);
+    };
+  });
+}
+
 /** Saves a screenshot of the whole page or an element. */
 export async function shot(pageOrLocator, name) {
   const file = path.join(SHOTS, `${name}.png`);

@@ -36,3 +36,22 @@ test('a link over 64 KiB loads the page, which says the rest was ignored', async
   assert.deepEqual(errors, []);
   await page.close();
 });
+
+test('a key given twice and a bad tour step are named, as text', async () => {
+  const { page, errors } = await open(
+    h.browser,
+    h.url,
+    `${QUICK}&backlash_um=120&backlash_um=140&tour=%3Cscript%3Ealert(1)%3C%2Fscript%3E`,
+  );
+  await page.locator('#messages').waitFor({ state: 'visible' });
+  await page.waitForFunction(() => {
+    const t = document.querySelector('#messages')?.textContent ?? '';
+    return /`backlash_um` is given twice; its last value `140` counts, `120` was ignored/.test(t)
+      && /tour = .*script.* is not a step of the tour: allowed 1 to \d+/.test(t);
+  });
+  // The last value counts, and the step's text stayed text.
+  assert.equal(await page.inputValue('#num-backlash_um'), '140');
+  assert.equal(await page.locator('#messages script').count(), 0);
+  assert.deepEqual(errors, []);
+  await page.close();
+});

@@ -6,7 +6,7 @@
 // explains, with the method note and the full key behind "details".
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { start, open, status, waitStatus, waitText, shot } from './harness.mjs';
+import { start, open, status, waitStatus, waitText, shot, recordOffers } from './harness.mjs';
 
 let h;
 before(async () => {
@@ -105,14 +105,7 @@ test('on the default compound set the shooting branches are on and draw as they 
     240000,
     'the first shooting branch points drawn while the continuation runs',
   );
-  await page.evaluate(() => {
-    window.offers = [];
-    const click = HTMLAnchorElement.prototype.click;
-    HTMLAnchorElement.prototype.click = function () {
-      if (this.download) window.offers.push({ name: this.download, href: this.href });
-      return click.call(this);
-    };
-  });
+  await recordOffers(page);
   const exports = [['exports-phase', 'JSON'], ['exports-phase', 'CLI JSON'], ['exports-bif', 'CLI JSON']];
   for (const [bar, label] of exports) {
     await page.locator(`#${bar} button`, { hasText: new RegExp(`^${label}$`) }).click();

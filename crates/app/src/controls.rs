@@ -180,6 +180,7 @@ fn view_in(
                                 "te_um" => "TE amplitude (µm)",
                                 "fit" => "fit the data",
                                 "whole" => "show the whole clearance ±b",
+                                "on" if key == "boundaries" => "traced and drawn over the map",
                                 "on" => "shown: stable solid, unstable thin",
                                 "off" => "hidden",
                                 other => other,
@@ -324,6 +325,12 @@ pub fn controls() -> Vec<Control> {
         ),
         view("record_periods", "Recorded periods", (1.0, 400.0, 1.0)),
         view_in(Maps, "map_key", "Map: vertical axis", (0.0, 0.0, 0.0)),
+        view_in(
+            Maps,
+            "boundaries",
+            "Map: boundaries traced as curves",
+            (0.0, 0.0, 0.0),
+        ),
         view_in(Maps, "map_from", "Map: from", (0.0, 300.0, 1.0)),
         view_in(Maps, "map_to", "Map: to", (0.0, 300.0, 1.0)),
         view_in(

@@ -128,6 +128,28 @@ fn dot(c: DVec2, r: f64, color: String) -> Item {
     }
 }
 
+/// The colour key laid out (an [`Item::Key`]): per entry a dot of radius
+/// 6 and its label 16 px right of the dot's left edge, the next entry 18 px
+/// after the label; `width` is a label's measured width (px).
+pub fn key_items(
+    at: DVec2,
+    entries: &[(String, String)],
+    width: impl Fn(&str) -> f64,
+) -> Vec<Item> {
+    let mut x = at.x;
+    let mut items = Vec::new();
+    for (color, label) in entries {
+        items.push(dot(DVec2::new(x + 6.0, at.y - 4.0), 6.0, color.clone()));
+        items.push(Item::Text {
+            at: DVec2::new(x + 16.0, at.y),
+            text: label.clone(),
+            color: "#1d232b".into(),
+        });
+        x += 16.0 + width(label) + 18.0;
+    }
+    items
+}
+
 /// Fill and stroke colours of a body.
 fn body_paint(kind: BodyKind, name: &str) -> (&'static str, &'static str) {
     match (kind, name) {
@@ -309,6 +331,30 @@ pub fn anim_note(r: &OmegaResult, clock: &AnimClock) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_key_sets_each_label_after_the_previous_labels_width() {
+        let entries = vec![
+            ("red".to_string(), "ab".to_string()),
+            ("blue".into(), "cde".into()),
+        ];
+        // A label 10 px a letter wide.
+        let items = key_items(DVec2::new(10.0, 50.0), &entries, |t| 10.0 * t.len() as f64);
+        let texts: Vec<(f64, &str)> = items
+            .iter()
+            .filter_map(|i| match i {
+                Item::Text { at, text, .. } => Some((at.x, text.as_str())),
+                _ => None,
+            })
+            .collect();
+        // The second entry starts after dot, gap, 20 px of label and 18 px.
+        assert_eq!(texts, [(26.0, "ab"), (26.0 + 16.0 + 20.0 + 18.0, "cde")]);
+        let dots = items
+            .iter()
+            .filter(|i| matches!(i, Item::Shape { fill: Some(c), .. } if c == "blue"))
+            .count();
+        assert_eq!(dots, 1);
+    }
     use crate::protocol::{OmegaSpec, RunOptions};
     use crate::worker::jobs::omega::{omega_result, OmegaJob};
     use solver::model::Model;

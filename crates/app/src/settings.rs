@@ -227,7 +227,7 @@ pub const VIEW_KEYS: &[ViewKey] = &[
     ViewKey {
         name: "harmonics",
         field: Field::Count(|v| v.harmonics, |v, n| v.harmonics = n),
-        restarts: KindSet::of(&[K::HarmonicBalance]),
+        restarts: KindSet::of(&[K::HarmonicBalance, K::Boundaries]),
         unit: "-",
         ty: ViewType::Int {
             min: 1,
@@ -238,7 +238,7 @@ pub const VIEW_KEYS: &[ViewKey] = &[
     ViewKey {
         name: "map_key",
         field: Field::Word(|v| v.map_key.clone(), |v, t| v.map_key = t.to_string()),
-        restarts: KindSet::of(&[K::Map]),
+        restarts: KindSet::of(&[K::Map, K::Boundaries]),
         unit: "-",
         ty: ViewType::Choice(MAP_KEYS),
         description: "the parameter on the vertical axis of the impact-regime map: backlash b or TE amplitude",
@@ -246,7 +246,7 @@ pub const VIEW_KEYS: &[ViewKey] = &[
     ViewKey {
         name: "map_from",
         field: Field::Num(|v| v.map_from, |v, x| v.map_from = x),
-        restarts: KindSet::of(&[K::Map]),
+        restarts: KindSet::of(&[K::Map, K::Boundaries]),
         unit: "um",
         ty: ViewType::Float {
             min: 0.0,
@@ -257,7 +257,7 @@ pub const VIEW_KEYS: &[ViewKey] = &[
     ViewKey {
         name: "map_to",
         field: Field::Num(|v| v.map_to, |v, x| v.map_to = x),
-        restarts: KindSet::of(&[K::Map]),
+        restarts: KindSet::of(&[K::Map, K::Boundaries]),
         unit: "um",
         ty: ViewType::Float {
             min: 0.0,
@@ -351,6 +351,14 @@ pub const VIEW_KEYS: &[ViewKey] = &[
         description: "the branches of periodic motion found by shooting, drawn on the bifurcation diagram (stable solid, unstable thin)",
     },
     ViewKey {
+        name: "boundaries",
+        field: Field::Word(|v| if v.boundaries { "on" } else { "off" }.to_string(), |v, t| v.boundaries = t == "on"),
+        restarts: KindSet::of(&[K::Boundaries]),
+        unit: "-",
+        ty: ViewType::Choice(&["on", "off"]),
+        description: "the map's boundaries traced as curves by harmonic balance (the jump, period doubling, where flanks part or touch), drawn over the map",
+    },
+    ViewKey {
         name: "clearance",
         field: Field::Word(|v| if v.whole_clearance { "whole" } else { "fit" }.to_string(), |v, t| v.whole_clearance = t == "whole"),
         restarts: KindSet::NONE,
@@ -435,6 +443,8 @@ pub struct ViewOptions {
     pub whole_clearance: bool,
     /// The shooting branches on the bifurcation diagram.
     pub branches: bool,
+    /// The traced boundaries over the map.
+    pub boundaries: bool,
 }
 
 /// The selected Ω the page opens on: a periodic state (period 1, found
@@ -476,6 +486,7 @@ impl Default for ViewOptions {
             lyap_periods: 100,
             whole_clearance: false,
             branches: true,
+            boundaries: false,
         }
     }
 }
@@ -638,6 +649,7 @@ mod tests {
             ("lyap_periods", "200"),
             ("clearance", "whole"),
             ("branches", "off"),
+            ("boundaries", "on"),
         ] {
             v.set(k, t, &meshes).unwrap();
             assert_eq!(v.get(k).unwrap(), t, "{k}");

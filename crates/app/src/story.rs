@@ -1,12 +1,12 @@
 //! One story: every phrase the page says about a steady state, built from
-//! its one classification ([`MotionClass`]: the solver's verdict) and its
+//! its one classification ([`Motion`]: the solver's verdict) and its
 //! impact regime read against the mesh's backlash. The summary, the keys,
 //! the panel titles and the text alternatives all take their words from
 //! here, so that no sentence can say "repeats every mesh period" while
 //! another says "does not repeat", and no mesh without backlash is said to
 //! cross one.
 
-use crate::protocol::{MotionClass, Regime};
+use crate::protocol::{Motion, Regime};
 use solver::steady::MAX_PERIOD;
 
 /// A backlash (µm) below this counts as none: the mesh is a linear spring.
@@ -20,24 +20,24 @@ pub fn has_backlash(backlash_um: f64) -> bool {
 /// The motion's period in a few words, for titles, keys and labels:
 /// "period 1 (exact)", "period 2", "period 11 (still settling)", "repeats
 /// after 40 periods (above 16)", "not periodic".
-pub fn motion_tag(m: MotionClass) -> String {
+pub fn motion_tag(m: Motion) -> String {
     match m {
-        MotionClass::PeriodicExact { period, .. } => format!("period {period} (exact)"),
-        MotionClass::Periodic { period } => format!("period {period}"),
-        MotionClass::StillSettling { period } => format!("period {period} (still settling)"),
-        MotionClass::PeriodAboveMaximum { period } => {
+        Motion::PeriodicExact { period, .. } => format!("period {period} (exact)"),
+        Motion::Periodic { period } => format!("period {period}"),
+        Motion::StillSettling { period } => format!("period {period} (still settling)"),
+        Motion::PeriodAboveMaximum { period } => {
             format!("repeats after {period} periods (above {MAX_PERIOD})")
         }
-        MotionClass::NotPeriodic => "not periodic".into(),
+        Motion::NotPeriodic => "not periodic".into(),
     }
 }
 
 /// The motion's period for a small panel's title: [`motion_tag`] with the
 /// still-settling words shortened to a star (the key explains it).
-pub fn motion_tag_short(m: MotionClass) -> String {
+pub fn motion_tag_short(m: Motion) -> String {
     match m {
-        MotionClass::StillSettling { period } => format!("period {period}*"),
-        MotionClass::PeriodAboveMaximum { .. } => format!("period above {MAX_PERIOD}"),
+        Motion::StillSettling { period } => format!("period {period}*"),
+        Motion::PeriodAboveMaximum { .. } => format!("period above {MAX_PERIOD}"),
         m => motion_tag(m),
     }
 }
@@ -48,7 +48,7 @@ pub const STILL_SETTLING_KEY: &str =
 
 /// Whether the motion repeats, as the student summary says it, after
 /// `periods_run` transient periods.
-pub fn motion_sentence(m: MotionClass, periods_run: u32) -> String {
+pub fn motion_sentence(m: Motion, periods_run: u32) -> String {
     let every = |n: u32| {
         if n == 1 {
             "every mesh period".to_string()
@@ -57,22 +57,22 @@ pub fn motion_sentence(m: MotionClass, periods_run: u32) -> String {
         }
     };
     match m {
-        MotionClass::PeriodicExact { period, .. } => format!(
+        Motion::PeriodicExact { period, .. } => format!(
             "the motion repeats exactly {} (period {period}: the periodic orbit itself was found, and it is stable)",
             every(period)
         ),
-        MotionClass::Periodic { period } => format!(
+        Motion::Periodic { period } => format!(
             "the motion repeats {} within the recorded periods (period {period})",
             every(period)
         ),
-        MotionClass::StillSettling { period } => format!(
+        Motion::StillSettling { period } => format!(
             "the motion is still settling towards a repeat {} after {periods_run} transient periods, so more transient periods (in the settings) may show another period",
             every(period)
         ),
-        MotionClass::PeriodAboveMaximum { period } => format!(
+        Motion::PeriodAboveMaximum { period } => format!(
             "the motion repeats only after {period} mesh periods, longer than the longest period classified ({MAX_PERIOD})"
         ),
-        MotionClass::NotPeriodic => {
+        Motion::NotPeriodic => {
             "the motion does not repeat within the recorded periods (quasi-periodic or chaotic)"
                 .into()
         }

@@ -73,6 +73,26 @@ pub fn split_tour(query: &str) -> (Option<usize>, String) {
     (step, rest.join("&"))
 }
 
+/// What is wrong with a link's `tour=` value, if anything: named, with the
+/// steps the tour has (a bad step otherwise hid the tour without a word).
+pub fn tour_issue(query: &str) -> Option<String> {
+    let q = query.strip_prefix('?').unwrap_or(query);
+    let n = q
+        .split('&')
+        .filter_map(|p| p.strip_prefix("tour="))
+        .next_back()?;
+    let fine = n
+        .parse::<usize>()
+        .is_ok_and(|n| (1..=TOUR.len()).contains(&n));
+    (!fine).then(|| {
+        format!(
+            "tour = {} is not a step of the tour: allowed 1 to {}; the tour was not opened",
+            solver::keys::truncate(n, 40),
+            TOUR.len()
+        )
+    })
+}
+
 /// The gap between the tour's card and the data it points at (CSS px).
 const GAP: f64 = 12.0;
 
@@ -111,6 +131,14 @@ mod tests {
         assert_eq!(split_tour("omega=1&tour=9"), (None, "omega=1".into()));
         assert_eq!(split_tour("omega=1&tour=x"), (None, "omega=1".into()));
         assert_eq!(split_tour("omega=1"), (None, "omega=1".into()));
+        // A bad step is named, with the steps there are.
+        assert_eq!(tour_issue("tour=3&omega=1"), None);
+        assert_eq!(tour_issue("omega=1"), None);
+        for bad in ["999", "0", "%3Cscript%3E", "<script>", "x"] {
+            let issue = tour_issue(&format!("omega=1&tour={bad}")).unwrap_or_default();
+            assert!(issue.contains(bad), "{issue}");
+            assert!(issue.contains(&format!("1 to {}", TOUR.len())), "{issue}");
+        }
         assert_eq!(counter(1), "Step 2 of 5");
     }
 

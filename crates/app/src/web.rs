@@ -11,13 +11,11 @@
 //! Text from links and workers reaches the page only through
 //! `textContent` and attribute setters, never `innerHTML`. A DOM call whose
 //! failure leaves the page usable is passed to [`check`], which logs it.
-use crate::controller::{pool_size, Controller, Effect};
-use crate::page::redraw::Decision;
+use crate::controller::Effect;
+use crate::page::boot::{drawing_px, Browser, POINTER_EVENTS};
 use crate::page::{Page, Phase, PointerIn, Write};
-use crate::plots;
 use crate::views::ViewId;
-use plotters::coord::Shift;
-use plotters::prelude::{DrawingArea, IntoDrawingArea};
+use plotters::prelude::IntoDrawingArea;
 use std::cell::RefCell;
 use std::rc::Rc;
 use wasm_bindgen::prelude::*;
@@ -53,7 +51,6 @@ struct Shell {
 }
 
 type Shared = Rc<RefCell<Shell>>;
-type Area = DrawingArea<plots::Boxed<canvas::Canvas>, Shift>;
 
 fn now(window: &Window) -> f64 {
     window.performance().map_or(0.0, |p| p.now())
@@ -102,28 +99,18 @@ pub fn start_app() {
     let Some(doc) = window.document() else {
         return;
     };
-    let query = window.location().search().unwrap_or_default();
-    // A worker per logical core but one (the page's), within the pool's
-    // bounds; `window.gearshockWorkers` (set by the benchmark) overrides it.
-    let cores = window.navigator().hardware_concurrency();
-    let cores = (cores.is_finite() && cores >= 1.0).then_some(cores as u32);
-    let forced = js_sys::Reflect::get(&window, &JsValue::from_str("gearshockWorkers"))
-        .ok()
-        .and_then(|v| v.as_f64())
-        .filter(|n| n.is_finite() && *n >= 1.0)
-        .map(|n| n as usize);
-    let workers = forced.unwrap_or_else(|| pool_size(cores));
-    let (ctl, effects) = Controller::with_workers(&query, now(&window), workers);
-    let narrow = window
-        .inner_width()
-        .ok()
-        .and_then(|w| w.as_f64())
-        .is_some_and(|w| w < f64::from(plots::NARROW));
-    let mut core = Page::new(ctl, narrow);
-    if media(&window, "(prefers-reduced-motion: reduce)") {
-        core.prefer_still();
-    }
-    let tour = core.tour_writes(true);
+    let number = |v: JsValue| v.as_f64();
+    let browser = Browser {
+        query: window.location().search().unwrap_or_default(),
+        now_ms: now(&window),
+        cores: Some(window.navigator().hardware_concurrency()),
+        forced_workers: js_sys::Reflect::get(&window, &"gearshockWorkers".into())
+            .ok()
+            .and_then(number),
+        width: window.inner_width().ok().and_then(number),
+        reduced_motion: media(&window, "(prefers-reduced-motion: reduce)"),
+    };
+    let (core, effects) = Page::boot(&browser);
     let page = Rc::new(RefCell::new(Shell {
         core,
         window: window.clone(),
@@ -131,11 +118,10 @@ pub fn start_app() {
         workers: Vec::new(),
     }));
     panel::build(&page);
-    paint(&page.borrow(), page.borrow().core.fit_writes());
+    paint(&page.borrow(), page.borrow().core.first_writes());
     build_canvas_events(&page);
     start_workers(&page);
     run_effects(&page, effects);
-    paint(&page.borrow(), tour);
     expose_status(&page);
     anim::observe_anim_visibility(&page);
     anim::start_anim_loop(&page);
@@ -163,28 +149,22 @@ fn start_workers(page: &Shared) {
     let workers = page.borrow().core.ctl().workers();
     for w in 0..workers {
         let Ok(worker) = Worker::new("./worker_loader.js") else {
-            let msg = "could not start a Web Worker; the views cannot be computed";
-            page.borrow_mut().core.issue(msg.into());
+            page.borrow_mut().core.worker_missing();
             continue;
         };
         let p2 = page.clone();
         listen(&worker, "message", move |e: MessageEvent| {
             let text = e.data().as_string().unwrap_or_default();
             let fx = {
-                let mut p = p2.borrow_mut();
-                let t = now(&p.window);
-                let fx = p.core.worker_message(w, &text, t);
-                let took = now(&p.window) - t;
-                p.core.message_took(took);
-                fx
+                let p = &mut *p2.borrow_mut();
+                p.core.worker_said(w, &text, || now(&p.window))
             };
             run_effects(&p2, fx);
             request_frame(&p2);
         });
         let p2 = page.clone();
         listen(&worker, "error", move |_e: Event| {
-            let msg = format!("Web Worker {w} failed to load or crashed");
-            p2.borrow_mut().core.issue(msg);
+            p2.borrow_mut().core.worker_failed(w);
             request_frame(&p2);
         });
         page.borrow_mut().workers.push(worker);
@@ -232,26 +212,10 @@ fn frame(page: &Shared, ts: f64) {
     run_effects(page, effects);
     let mut p = page.borrow_mut();
     paint(&p, marks);
-    // The frame's drawing budget starts now, after the input (and a
-    // selected-Omega preview) was applied.
-    let t0 = now(&p.window);
-    let (d, order) = p.core.begin_frame(ts);
-    // The canvases first, the page's text after: plotters measures legend
-    // text in the page, which lays out the whole page again whenever text
-    // changed since the last measure.
-    let mut writes = Vec::new();
-    for &v in order {
-        let start = now(&p.window);
-        match p.core.decide(v, t0, start) {
-            Decision::Stop => break,
-            Decision::Skip => continue,
-            Decision::Draw => writes.extend(draw_view(&mut p, v)),
-        }
-        let end = now(&p.window);
-        p.core.drawn(v, (start, end), ts);
-    }
-    paint(&p, writes);
-    let writes = p.core.end_frame(&d);
+    let Shell {
+        core, doc, window, ..
+    } = &mut *p;
+    let writes = core.draw_frame(ts, || now(window), |core, v| draw_view(core, doc, v));
     paint(&p, writes);
     if p.core.ctl().tour().is_some() {
         // A plot's size changes as its data arrive: the card follows it.
@@ -363,11 +327,11 @@ fn canvas(doc: &Document, view: ViewId) -> Option<HtmlCanvasElement> {
 
 /// Draws one view on its canvas (the core draws, this fills the dots and
 /// the map's cells); returns its writes, to make after the frame's drawing.
-fn draw_view(p: &mut Shell, v: ViewId) -> Vec<Write> {
-    let Some(cv) = canvas(&p.doc, v) else {
+fn draw_view(core: &mut Page, doc: &Document, v: ViewId) -> Vec<Write> {
+    let Some(cv) = canvas(doc, v) else {
         return Vec::new();
     };
-    let (fr, (w, h)) = p.core.prepare(v);
+    let (fr, (w, h)) = core.prepare(v);
     if (cv.width(), cv.height()) != (w, h) {
         cv.set_width(w);
         cv.set_height(h);
@@ -375,11 +339,7 @@ fn draw_view(p: &mut Shell, v: ViewId) -> Vec<Write> {
     let Some(b) = canvas::Canvas::new(&cv) else {
         return Vec::new();
     };
-    let boxes = Rc::new(RefCell::new(Vec::new()));
-    let root: Area = plots::Boxed::new(b, boxes.clone()).into_drawing_area();
-    let (writes, overlay) = p.core.draw_view(v, &root, fr.as_ref());
-    drop(root);
-    p.core.set_text_boxes(v, (w, h), boxes.take());
+    let (writes, overlay) = core.draw_on(v, b, fr.as_ref());
     if let Some(ctx) = ctx2d(&cv) {
         anim::paint_items(&ctx, &overlay, (f64::from(w), f64::from(h)));
     }
@@ -388,12 +348,9 @@ fn draw_view(p: &mut Shell, v: ViewId) -> Vec<Write> {
 
 /// A mouse event's position in the canvas's drawing pixels.
 fn canvas_xy(cv: &HtmlCanvasElement, e: &MouseEvent) -> (f64, f64) {
-    let css_w = f64::from(cv.client_width().max(1));
-    let css_h = f64::from(cv.client_height().max(1));
-    (
-        f64::from(e.offset_x()) * f64::from(cv.width()) / css_w,
-        f64::from(e.offset_y()) * f64::from(cv.height()) / css_h,
-    )
+    let offset = (f64::from(e.offset_x()), f64::from(e.offset_y()));
+    let css = (f64::from(cv.client_width()), f64::from(cv.client_height()));
+    drawing_px(offset, css, (cv.width(), cv.height()))
 }
 
 /// The canvases' events: a click on the map picks a cell, on the time
@@ -421,12 +378,7 @@ fn build_canvas_events(page: &Shared) {
         let Some(cv) = canvas(&doc, view) else {
             continue;
         };
-        for (kind, phase) in [
-            ("pointerdown", Phase::Down),
-            ("pointermove", Phase::Move),
-            ("pointerup", Phase::Up),
-            ("pointercancel", Phase::Cancel),
-        ] {
+        for (kind, phase) in POINTER_EVENTS {
             let (p2, cv2) = (page.clone(), cv.clone());
             listen(&cv.clone().into(), kind, move |e: PointerEvent| {
                 if phase == Phase::Down {

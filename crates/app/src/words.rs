@@ -242,6 +242,25 @@ mod tests {
         );
     }
 
+    /// Every range reads as numbers, negative bounds included (a torque's
+    /// range read "NaN×10^0").
+    #[test]
+    fn every_range_is_numbers() {
+        assert_eq!(num(-1e6), "-1×10^6");
+        assert_eq!(num(2.5e-5), "2.5×10^-5");
+        for k in keys::KEYS
+            .iter()
+            .map(|k| k.name)
+            .chain(crate::settings::VIEW_KEYS.iter().map(|k| k.name))
+        {
+            let text = allowed(k);
+            assert!(
+                !text.contains("NaN") && !text.contains("inf"),
+                "{k}: {text}"
+            );
+        }
+    }
+
     /// Every key the page can set reads without key names or Rust ranges.
     #[test]
     fn settings_and_messages_read_as_sentences() {

@@ -215,11 +215,17 @@ fn every_export_is_the_same_whatever_the_pool_size() {
     // dealt unevenly over 3 workers and one each over 8: each chain must
     // continue from the same states, and the shards merge into the same
     // CLI JSON, as with 2 workers.
+    // Each setting replaced in place: a key given twice is named as an
+    // issue (its first value counts).
     let link = LINK
         .replace("bif_points=6", "bif_points=400")
-        .replace("fr_ti_points=4", "fr_ti_points=150");
-    assert!(link.contains("bif_points=400") && link.contains("fr_ti_points=150"));
-    let link = format!("{link}&lyap_points=150");
+        .replace("fr_ti_points=4", "fr_ti_points=150")
+        .replace("lyap_points=3", "lyap_points=150");
+    assert!(
+        link.contains("bif_points=400")
+            && link.contains("fr_ti_points=150")
+            && link.contains("lyap_points=150")
+    );
     assert_eq!(app::controller::chain_count(400), 8);
     assert_eq!(app::controller::chain_count(150), 3);
     let two = exports_of(&link, 2);

@@ -51,135 +51,91 @@ const CONVERGED: u32 = 5;
 const FOUR: &[&str] = &["s1a1", "s2b1", "a1b1", "rb1"];
 const S1A1: &[&str] = &["s1a1"];
 
+/// A frequency response of the four meshes (Figs. 2 and 3).
+const fn frf(
+    id: &'static str,
+    backlash_um: Stated,
+    te_um: Stated,
+    te_meshes: &'static str,
+    harmonics: u32,
+) -> Figure {
+    Figure {
+        id,
+        meshes: FOUR,
+        backlash_um,
+        te_um,
+        omega: None,
+        bifurcation: false,
+        te_meshes,
+        harmonics,
+    }
+}
+
+/// A figure of the sun-planet mesh s1a1 with the TE on the sun meshes: a
+/// bifurcation diagram (`omega` `None`) or the orbits at one Omega.
+const fn s1a1(id: &'static str, backlash_um: Stated, te_um: Stated, omega: Option<f64>) -> Figure {
+    Figure {
+        id,
+        meshes: S1A1,
+        backlash_um,
+        te_um,
+        omega,
+        bifurcation: omega.is_none(),
+        te_meshes: "s1a",
+        harmonics: CONVERGED,
+    }
+}
+
+/// Figs. 4-7: backlash 200 um, TE 0 / 20 / 30 um.
+const TE_PANELS: Stated = Stated::PerPanel(&[0.0, 20.0, 30.0]);
+/// Figs. 8-11: TE 20 um, backlash 50 / 100 / 200 um.
+const BACKLASH_PANELS: Stated = Stated::PerPanel(&[50.0, 100.0, 200.0]);
+
 const PAPER: &[Figure] = &[
-    // 3.1.1: b = 0, the TE sine amplitude "increased from 5 um to 30 um".
-    Figure {
-        id: "fig2",
-        meshes: FOUR,
-        backlash_um: Stated::Fixed(0.0),
-        te_um: Stated::Range(5.0, 30.0),
-        omega: None,
-        bifurcation: false,
-        te_meshes: "all",
-        harmonics: CONVERGED,
-    },
-    // Fig. 2 as the paper computed it, one harmonic; 3.1.1: b = 0, the TE sine amplitude "increased from 5 um to 30 um".
-    Figure {
-        id: "fig2h1",
-        meshes: FOUR,
-        backlash_um: Stated::Fixed(0.0),
-        te_um: Stated::Range(5.0, 30.0),
-        omega: None,
-        bifurcation: false,
-        te_meshes: "all",
-        harmonics: 1,
-    },
-    // 3.1.2: TE fundamental 60 um, backlash "increasing from 50 um to 200 um".
-    Figure {
-        id: "fig3",
-        meshes: FOUR,
-        backlash_um: Stated::Range(50.0, 200.0),
-        te_um: Stated::Fixed(60.0),
-        omega: None,
-        bifurcation: false,
-        te_meshes: "s1a",
-        harmonics: CONVERGED,
-    },
-    // Fig. 3 as the paper computed it, one harmonic; 3.1.2: TE fundamental 60 um, backlash "increasing from 50 um to 200 um".
-    Figure {
-        id: "fig3h1",
-        meshes: FOUR,
-        backlash_um: Stated::Range(50.0, 200.0),
-        te_um: Stated::Fixed(60.0),
-        omega: None,
-        bifurcation: false,
-        te_meshes: "s1a",
-        harmonics: 1,
-    },
-    // Fig. 4 caption: backlash 200 um, TE 0 / 20 / 30 um.
-    Figure {
-        id: "fig4",
-        meshes: S1A1,
-        backlash_um: Stated::Fixed(200.0),
-        te_um: Stated::PerPanel(&[0.0, 20.0, 30.0]),
-        omega: None,
-        bifurcation: true,
-        te_meshes: "s1a",
-        harmonics: CONVERGED,
-    },
-    // Figs. 5-7: one Omega each, b = 200 um, TE varied across panels.
-    Figure {
-        id: "fig5",
-        meshes: S1A1,
-        backlash_um: Stated::Fixed(200.0),
-        te_um: Stated::PerPanel(&[0.0, 20.0, 30.0]),
-        omega: Some(0.5),
-        bifurcation: false,
-        te_meshes: "s1a",
-        harmonics: CONVERGED,
-    },
-    Figure {
-        id: "fig6",
-        meshes: S1A1,
-        backlash_um: Stated::Fixed(200.0),
-        te_um: Stated::PerPanel(&[0.0, 20.0, 30.0]),
-        omega: Some(0.84),
-        bifurcation: false,
-        te_meshes: "s1a",
-        harmonics: CONVERGED,
-    },
-    Figure {
-        id: "fig7",
-        meshes: S1A1,
-        backlash_um: Stated::Fixed(200.0),
-        te_um: Stated::PerPanel(&[0.0, 20.0, 30.0]),
-        omega: Some(1.97),
-        bifurcation: false,
-        te_meshes: "s1a",
-        harmonics: CONVERGED,
-    },
-    // Fig. 8 caption: TE 20 um, backlash 50 / 100 / 200 um.
-    Figure {
-        id: "fig8",
-        meshes: S1A1,
-        backlash_um: Stated::PerPanel(&[50.0, 100.0, 200.0]),
-        te_um: Stated::Fixed(20.0),
-        omega: None,
-        bifurcation: true,
-        te_meshes: "s1a",
-        harmonics: CONVERGED,
-    },
-    // Figs. 9-11: "the backlash increases" (Fig. 8's values, MODEL.md).
-    Figure {
-        id: "fig9",
-        meshes: S1A1,
-        backlash_um: Stated::PerPanel(&[50.0, 100.0, 200.0]),
-        te_um: Stated::Fixed(20.0),
-        omega: Some(0.5),
-        bifurcation: false,
-        te_meshes: "s1a",
-        harmonics: CONVERGED,
-    },
-    Figure {
-        id: "fig10",
-        meshes: S1A1,
-        backlash_um: Stated::PerPanel(&[50.0, 100.0, 200.0]),
-        te_um: Stated::Fixed(20.0),
-        omega: Some(0.84),
-        bifurcation: false,
-        te_meshes: "s1a",
-        harmonics: CONVERGED,
-    },
-    Figure {
-        id: "fig11",
-        meshes: S1A1,
-        backlash_um: Stated::PerPanel(&[50.0, 100.0, 200.0]),
-        te_um: Stated::Fixed(20.0),
-        omega: Some(1.97),
-        bifurcation: false,
-        te_meshes: "s1a",
-        harmonics: CONVERGED,
-    },
+    // 3.1.1: b = 0, the TE sine amplitude "increased from 5 um to 30 um";
+    // fig2h1 as the paper computed it, one harmonic.
+    frf(
+        "fig2",
+        Stated::Fixed(0.0),
+        Stated::Range(5.0, 30.0),
+        "all",
+        CONVERGED,
+    ),
+    frf(
+        "fig2h1",
+        Stated::Fixed(0.0),
+        Stated::Range(5.0, 30.0),
+        "all",
+        1,
+    ),
+    // 3.1.2: TE fundamental 60 um, backlash "increasing from 50 um to 200
+    // um"; fig3h1 as the paper computed it, one harmonic.
+    frf(
+        "fig3",
+        Stated::Range(50.0, 200.0),
+        Stated::Fixed(60.0),
+        "s1a",
+        CONVERGED,
+    ),
+    frf(
+        "fig3h1",
+        Stated::Range(50.0, 200.0),
+        Stated::Fixed(60.0),
+        "s1a",
+        1,
+    ),
+    // Fig. 4 caption: backlash 200 um, TE 0 / 20 / 30 um; Figs. 5-7: one
+    // Omega each, b = 200 um, TE varied across panels.
+    s1a1("fig4", Stated::Fixed(200.0), TE_PANELS, None),
+    s1a1("fig5", Stated::Fixed(200.0), TE_PANELS, Some(0.5)),
+    s1a1("fig6", Stated::Fixed(200.0), TE_PANELS, Some(0.84)),
+    s1a1("fig7", Stated::Fixed(200.0), TE_PANELS, Some(1.97)),
+    // Fig. 8 caption: TE 20 um, backlash 50 / 100 / 200 um; Figs. 9-11:
+    // "the backlash increases" (Fig. 8's values, MODEL.md).
+    s1a1("fig8", BACKLASH_PANELS, Stated::Fixed(20.0), None),
+    s1a1("fig9", BACKLASH_PANELS, Stated::Fixed(20.0), Some(0.5)),
+    s1a1("fig10", BACKLASH_PANELS, Stated::Fixed(20.0), Some(0.84)),
+    s1a1("fig11", BACKLASH_PANELS, Stated::Fixed(20.0), Some(1.97)),
 ];
 
 /// The values a stated quantity takes across the preset's members.

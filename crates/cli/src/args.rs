@@ -62,6 +62,35 @@ pub struct OmegaRange {
     pub omega_to: f64,
 }
 
+/// An Omega range and its number of points (200 by default: a
+/// bifurcation sweep, an instability scan).
+#[derive(Debug, Args)]
+pub struct OmegaPoints {
+    #[command(flatten)]
+    pub range: OmegaRange,
+    /// Number of Omega points.
+    #[arg(long, default_value_t = 200)]
+    pub points: u32,
+}
+
+/// The key varied against Omega and its range (the map's rows, the
+/// boundaries' second axis).
+#[derive(Debug, Args)]
+pub struct KeyRange {
+    /// The key varied against Omega: any numeric key for a map (e.g.
+    /// backlash_um, te_um); for boundaries one that leaves the natural
+    /// modes unchanged (backlash_um, te_um, damping_ratio,
+    /// stiffness_variation, a torque, a per-mesh backlash or TE key).
+    #[arg(long, default_value = "backlash_um")]
+    pub key: String,
+    /// First value of the key.
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::flags::finite)]
+    pub value_from: f64,
+    /// Last value of the key.
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::flags::finite)]
+    pub value_to: f64,
+}
+
 /// Options of a steady-state run.
 #[derive(Debug, Args)]
 pub struct RunArgs {

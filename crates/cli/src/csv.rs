@@ -128,15 +128,7 @@ pub fn sweep(v: &Value) -> String {
         let omega = cell(&p["omega"]);
         let dir = cell(&p["direction"]);
         let period = cell(&p["period"]);
-        let rows: Vec<(String, &Value)> = if mesh_names.len() == 1 {
-            vec![(mesh_names[0].clone(), p)]
-        } else {
-            mesh_names
-                .iter()
-                .map(|n| (n.clone(), &p["meshes"][n]))
-                .collect()
-        };
-        for (name, m) in rows {
+        for (name, m) in mesh_rows(&mesh_names, p) {
             let d = m["poincare_delta_m"]
                 .as_array()
                 .cloned()
@@ -159,6 +151,15 @@ pub fn sweep(v: &Value) -> String {
     s
 }
 
+/// A point's rows, one per mesh: with one mesh the point itself carries its
+/// fields, with several each mesh's are under `meshes`.
+fn mesh_rows<'a>(mesh_names: &[String], p: &'a Value) -> Vec<(String, &'a Value)> {
+    match mesh_names {
+        [one] => vec![(one.clone(), p)],
+        names => names.iter().map(|n| (n.clone(), &p["meshes"][n])).collect(),
+    }
+}
+
 /// A frequency-response branch: one row per point and mesh, in continuation order.
 pub fn frf(v: &Value) -> String {
     let mut s = String::from(
@@ -172,15 +173,7 @@ pub fn frf(v: &Value) -> String {
         return s;
     };
     for (i, p) in points.iter().enumerate() {
-        let rows: Vec<(String, &Value)> = if mesh_names.len() == 1 {
-            vec![(mesh_names[0].clone(), p)]
-        } else {
-            mesh_names
-                .iter()
-                .map(|n| (n.clone(), &p["meshes"][n]))
-                .collect()
-        };
-        for (name, m) in rows {
+        for (name, m) in mesh_rows(&mesh_names, p) {
             s.push_str(&format!(
                 "{i},{},{name},{},{},{},{},{},{},{},{}\n",
                 cell(&p["omega"]),

@@ -56,6 +56,18 @@ fn figure_fig5_writes_three_phase_portraits_and_three_poincare_sections() {
         .unwrap();
         assert_eq!(data["view"]["omega"], 0.5);
         assert_eq!(data["view"]["backlash_um"], 200.0);
+        // The panel carries the pipeline's verdict on its orbit: the
+        // listing, the panel's data and its title say the same, and a
+        // member's phase portrait and Poincaré section agree.
+        assert_eq!(p["motion"], data["view"]["motion"], "{name}");
+        assert_eq!(p["exact"], data["view"]["exact"], "{name}");
+        assert_eq!(p["motion"], panels[i % 3]["motion"], "{name}");
+        let verdict = p["verdict"].as_str().unwrap();
+        assert!(svg.contains(&format!(": {verdict}")), "{name}: {verdict}");
+        match data["view"]["period"].as_u64() {
+            Some(n) => assert!(verdict.contains(&n.to_string()), "{verdict}"),
+            None => assert!(verdict.starts_with("not periodic"), "{verdict}"),
+        }
         let csv = std::fs::read_to_string(dir.join(format!("{name}.csv"))).expect("csv");
         // 8 recorded periods: 8 Poincaré samples, or 8 x 64 orbit samples.
         let rows = csv.lines().count() - 1;
@@ -148,5 +160,73 @@ fn figure_fig5_writes_three_phase_portraits_and_three_poincare_sections() {
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(err.contains(id) && err.contains(words), "{err}");
     }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn figure_map_draws_a_links_map_with_the_boundaries_the_boundaries_command_traces() {
+    let dir = test_support::cli::temp_dir("figure-map");
+    let out = dir.to_str().expect("path");
+    let link = "model=gear-pair&map_omega_points=10&map_value_points=4\
+                &map_transient_periods=100&map_record_periods=20&harmonics=5";
+    let v = json(&["figure", "map", "--out", out, "--link", link]);
+    let panel = &v["panels"][0];
+    let data: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("map.json")).unwrap()).unwrap();
+    assert_eq!(data["cells"].as_array().map(Vec::len), Some(40));
+    // The curves are those of `gearshock boundaries` over the same box with
+    // the page's trace options (5 levels, 50 points, the link's harmonics).
+    let b = json(&[
+        "boundaries",
+        "--model",
+        "gear-pair",
+        "--omega-from",
+        "0.1",
+        "--omega-to",
+        "2",
+        "--value-from",
+        "0",
+        "--value-to",
+        "200",
+        "--levels",
+        "5",
+        "--points",
+        "50",
+        "--harmonics",
+        "5",
+    ]);
+    let kinds = |curves: &Value| -> Vec<String> {
+        curves
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|c| c["kind"].as_str().unwrap().to_string())
+            .collect()
+    };
+    let curves = &data["boundaries"]["curves"];
+    assert_eq!(kinds(curves), kinds(&b["curves"]));
+    assert_eq!(panel["curves"].as_u64(), Some(kinds(curves).len() as u64));
+    assert!(kinds(curves).iter().any(|k| k == "fold"), "{curves}");
+    let first = &curves[0]["points"][0];
+    assert_eq!(first["omega"], b["curves"][0]["points"][0]["omega"]);
+    // The SVG names each kind drawn in plain words in its key.
+    let svg = std::fs::read_to_string(dir.join("map.svg")).unwrap();
+    assert!(svg.contains("the jump") && svg.contains("Impact-regime map"));
+    assert!(std::fs::read_to_string(dir.join("map.csv"))
+        .unwrap()
+        .starts_with("row,column,omega,backlash_um,"));
+    // The disagreeing cells are counted among those judged.
+    let judged = panel["judged"].as_u64().unwrap();
+    assert!(
+        panel["disagree"].as_u64().unwrap() <= judged && judged > 0,
+        "{panel}"
+    );
+    // Options of the paper's figures are refused, naming where the map's come from.
+    let o = gearshock(&["figure", "map", "--out", out, "--points", "20"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--points: the map takes its grid"));
+    let o = gearshock(&["figure", "fig5", "--out", out, "--link", link]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("only `figure map` takes a link"));
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -3,6 +3,9 @@
 //! below the size of the shards' text: a merge that held them all, even as
 //! bare text, could not fit, and a streaming one does. The merged output
 //! is still the in-memory merge's (`report::merge_shards`) byte for byte.
+//! Likewise `bifurcation` keeps its points' numbers (8 bytes each, a
+//! quarter of their text) and writes the document one point at a time: it
+//! runs under a heap limit of half its output.
 
 #![cfg(unix)]
 // Tests may panic: that is how they fail.
@@ -87,4 +90,33 @@ fn merge_holds_one_point_not_the_shards() {
         .collect();
     assert!(left.is_empty(), "temporary files left: {left:?}");
     let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
+fn bifurcation_holds_its_numbers_not_its_document() {
+    let args = words(
+        "bifurcation --model gear-pair --omega-from 0.5 --omega-to 1.5 --points 20 \
+         --record-periods 10000 --transient-periods 0",
+    );
+    let whole = ok(&args);
+    assert!(
+        whole.len() > 16 << 20,
+        "a large output: {} bytes",
+        whole.len()
+    );
+    let limit_kib = whole.len() / 2 / 1024;
+    let out = Command::new("sh")
+        .arg("-c")
+        .arg(format!("ulimit -d {limit_kib} && exec \"$0\" \"$@\""))
+        .arg(bin())
+        .args(&args)
+        .output()
+        .expect("run");
+    assert!(
+        out.status.success(),
+        "{} bytes under a {limit_kib} KiB heap: {}",
+        whole.len(),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(out.stdout == whole, "the same document under the limit");
 }

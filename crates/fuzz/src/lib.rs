@@ -12,16 +12,28 @@
 //!   accepts must round-trip through [`solver::keys::to_json`].
 //! - `shards`: the shard merger ([`report::merge_shards`],
 //!   [`report::merge_maps`]) on real shards of a tiny sweep and map
-//!   with forged fields (per-point contents too: an accepted merge's points
-//!   must have whole counters and Poincaré arrays of `record_periods`
-//!   entries), dropped, doubled or swapped shards and mutated
-//!   text. A merge it accepts must hold every grid point exactly once.
+//!   with forged fields (per-point and per-cell contents aimed at field by
+//!   field too: an accepted merge's points must have whole counters and
+//!   Poincaré arrays of `record_periods` entries, its cells a period, motion
+//!   and regime gearshock writes), dropped, doubled or swapped shards and
+//!   mutated text. A merge it accepts must hold every grid point exactly
+//!   once, each one of its inputs' items verbatim.
+//! - figure shards: forged shard sets of a real figure
+//!   ([`figure_shards_input`]: members, smuggled file text, forged data and
+//!   options) checked by [`check_figure_merge`]; the figure merge draws
+//!   its files in the CLI, so `crates/cli/tests/figure_shards_fuzz.rs`
+//!   runs this target on the `gearshock` binary.
 //!
 //! Inputs are reproducible from the seed and the input number. `cargo test
 //! -p fuzz` runs a short version; `gearshock-fuzz` (src/main.rs) the long one.
 
 use serde_json::{json, Map, Value};
 use std::panic::{catch_unwind, AssertUnwindSafe};
+
+mod shards;
+pub use shards::{
+    base_shards, check_figure_merge, check_shards, figure_shards_input, shards_input,
+};
 
 /// The targets, in run order.
 pub const TARGETS: &[&str] = &["link", "params", "shards"];
@@ -341,161 +353,6 @@ pub fn params_input(r: &mut Rng, keys: &[String]) -> String {
     }
 }
 
-/// Real shards of a tiny sweep (gear pair, 3 points up and down, 2
-/// chains) and of a tiny map (2 x 2 cells, 2 shards): the material the
-/// shard target mutates.
-pub fn base_shards() -> (Vec<Value>, Vec<Value>) {
-    use solver::map::{MapSpec, RegimeMap};
-    use solver::params::{ModelKind, ModelParams};
-    use solver::steady::Model;
-    use solver::sweep::{canonical_order, BifurcationSweep, Directions, SweepSpec};
-    let params = ModelParams::defaults(ModelKind::GearPair);
-    let Ok(model) = Model::new(&params) else {
-        return (Vec::new(), Vec::new());
-    };
-    let mut sweeps = Vec::new();
-    let mut maps = Vec::new();
-    for i in 0..2 {
-        let mut spec = SweepSpec::new(0.5, 0.7, 3);
-        spec.directions = Directions::Both;
-        spec.steady.transient_periods = 5;
-        spec.steady.record_periods = 2;
-        spec.chains = 2;
-        spec.shard = Some(i);
-        if let Ok(mut sweep) = BifurcationSweep::new(model.clone(), spec.clone()) {
-            let mut pts = Vec::new();
-            while !sweep.is_finished() {
-                pts.extend(sweep.advance(8));
-            }
-            canonical_order(&mut pts);
-            sweeps.push(report::sweep_json(&model, &params, &spec, &pts));
-        }
-        let mut mspec = MapSpec::new((0.5, 0.6, 2), "backlash_um", (50.0, 60.0, 2));
-        mspec.steady.transient_periods = 5;
-        mspec.steady.record_periods = 2;
-        mspec.shard = Some((i, 2));
-        if let Ok(mut map) = RegimeMap::new(&params, mspec.clone()) {
-            let mut cells = Vec::new();
-            while !map.is_finished() {
-                cells.extend(map.advance(8));
-            }
-            maps.push(report::map_json(&model, &params, &mspec, &cells));
-        }
-    }
-    (sweeps, maps)
-}
-
-/// Numbers that forged counts, indices and counters have used (issue 25:
-/// 1e300, 1e20, 1.5, "7" and null as step counts).
-fn forged_number(r: &mut Rng) -> Value {
-    match r.below(13) {
-        0 => json!(u64::MAX),
-        1 => json!(i64::MIN),
-        2 => json!(0),
-        3 => json!(1u64 << 53),
-        4 => json!(999.0),
-        5 => json!(-1),
-        6 => json!(r.below(8)),
-        7 => json!(1e300),
-        8 => json!(1e20),
-        9 => json!(1.5),
-        10 => json!("7"),
-        11 => Value::Null,
-        _ => json!(r.bits() >> r.below(64)),
-    }
-}
-
-/// Replaces, removes or forges one node of `v`, found by a random walk.
-fn mutate_value(r: &mut Rng, v: &mut Value) {
-    let descend = r.chance(75);
-    match v {
-        Value::Object(m) if descend && !m.is_empty() => {
-            let k = r.below(m.len());
-            let Some(key) = m.keys().nth(k).cloned() else {
-                return;
-            };
-            if r.chance(10) {
-                m.remove(&key);
-            } else if let Some(next) = m.get_mut(&key) {
-                mutate_value(r, next);
-            }
-        }
-        Value::Array(a) if descend && !a.is_empty() => {
-            let k = r.below(a.len());
-            match r.below(10) {
-                0 => {
-                    a.remove(k);
-                }
-                1 => {
-                    let dup = a[k].clone();
-                    a.push(dup);
-                }
-                _ => mutate_value(r, &mut a[k]),
-            }
-        }
-        _ => {
-            *v = match r.below(3) {
-                0 => forged_number(r),
-                1 => random_json(r, 2),
-                _ => Value::String(value_text(r)),
-            };
-        }
-    }
-}
-
-/// A forged set of shards.
-pub fn shards_input(r: &mut Rng, sweeps: &[Value], maps: &[Value]) -> Vec<Value> {
-    let mut shards: Vec<Value> = if r.chance(50) {
-        sweeps.to_vec()
-    } else {
-        maps.to_vec()
-    };
-    if r.chance(10) {
-        return shards;
-    }
-    for _ in 0..1 + r.below(3) {
-        match r.below(10) {
-            0 if !shards.is_empty() => {
-                let k = r.below(shards.len());
-                shards.remove(k);
-            }
-            1 if !shards.is_empty() => {
-                let k = r.below(shards.len());
-                let dup = shards[k].clone();
-                shards.push(dup);
-            }
-            2 => shards.reverse(),
-            3 if !shards.is_empty() => {
-                // The same forged count in every shard, so they still agree.
-                let key = *r.pick(
-                    &["chains", "shards", "points", "omega_points", "value_points"],
-                    &"chains",
-                );
-                let n = forged_number(r);
-                for s in &mut shards {
-                    if let Some(spec) = s.get_mut("spec").and_then(Value::as_object_mut) {
-                        spec.insert(key.into(), n.clone());
-                    }
-                }
-            }
-            4 if !shards.is_empty() => {
-                let k = r.below(shards.len());
-                let text = mutate_text(r, &shards[k].to_string());
-                match serde_json::from_str(&text) {
-                    Ok(v) => shards[k] = v,
-                    Err(_) => shards[k] = Value::String(text),
-                }
-            }
-            _ if !shards.is_empty() => {
-                let k = r.below(shards.len());
-                mutate_value(r, &mut shards[k]);
-            }
-            _ => {}
-        }
-    }
-    shards
-}
-
 /// Checks the link decoder on one input; `Err` says what broke.
 pub fn check_link(query: &str) -> Result<(), String> {
     use app::link::{decode, encode_ab};
@@ -531,76 +388,6 @@ pub fn check_params(text: &str) -> Result<(), String> {
     }
     // Building may refuse the set (geometry, torques), but must not panic.
     let _ = solver::steady::Model::new(&p);
-    Ok(())
-}
-
-/// Checks the shard merger on one input.
-pub fn check_shards(shards: &[Value]) -> Result<(), String> {
-    if let Ok(v) = report::merge_shards(shards) {
-        let spec = &v["spec"];
-        let dirs = if spec["direction"] == "both" { 2 } else { 1 };
-        let expected = spec["points"].as_u64().unwrap_or(0) * dirs;
-        let got = v["points"].as_array().map_or(0, Vec::len) as u64;
-        if got != expected {
-            return Err(format!(
-                "merged sweep has {got} points, its grid {expected}"
-            ));
-        }
-        sweep_points_well_formed(&v)?;
-    }
-    if let Ok(v) = report::merge_maps(shards) {
-        let spec = &v["spec"];
-        let expected =
-            spec["omega_points"].as_u64().unwrap_or(0) * spec["value_points"].as_u64().unwrap_or(0);
-        let got = v["cells"].as_array().map_or(0, Vec::len) as u64;
-        if got != expected {
-            return Err(format!("merged map has {got} cells, its grid {expected}"));
-        }
-    }
-    Ok(())
-}
-
-/// Every point of an accepted sweep is one gearshock writes: its work
-/// counters whole numbers up to 2^53, `settled` true or false, and each
-/// Poincaré array `record_periods` long (a forged point would otherwise be
-/// copied into the merged output).
-fn sweep_points_well_formed(v: &Value) -> Result<(), String> {
-    let record = v["spec"]["record_periods"].as_u64().unwrap_or(0) as usize;
-    for p in v["points"].as_array().map_or(&[][..], Vec::as_slice) {
-        if p.get("error").is_some() {
-            continue;
-        }
-        let stats = p["stats"].as_object().ok_or("a point without stats")?;
-        for (k, x) in stats {
-            let fine = if k == "settled" {
-                x.is_boolean()
-            } else {
-                x.as_u64().is_some_and(|n| n <= 1 << 53)
-            };
-            if !fine {
-                return Err(format!("accepted a point with stats.{k} = {x}"));
-            }
-        }
-        let meshes: Vec<&Value> = match p.get("meshes").and_then(Value::as_object) {
-            Some(m) => m.values().collect(),
-            None => vec![p],
-        };
-        for m in meshes {
-            for key in [
-                "poincare_x_m",
-                "poincare_x_velocity_m_s",
-                "poincare_delta_m",
-                "poincare_velocity_m_s",
-            ] {
-                let n = m[key].as_array().map(Vec::len);
-                if n != Some(record) {
-                    return Err(format!(
-                        "accepted a point whose {key} has {n:?} entries, not {record}"
-                    ));
-                }
-            }
-        }
-    }
     Ok(())
 }
 

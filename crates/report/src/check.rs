@@ -191,13 +191,7 @@ const STATS: [&str; 9] = [
 ];
 
 /// The names a point's `motion` may take (`solver::steady::Motion::name`).
-const MOTIONS: [&str; 5] = [
-    "periodic-exact",
-    "periodic",
-    "period-above-maximum",
-    "still-settling",
-    "not-periodic",
-];
+const MOTIONS: [&str; 5] = solver::steady::Motion::NAMES;
 
 /// One mesh's fields of a sweep point.
 fn point_mesh(o: &Map<String, Value>, shape: &SweepShape, at: &At) -> Result<()> {

@@ -327,7 +327,7 @@ impl RegimeMap {
                         .max_by_key(|&i| severity(i))
                         .unwrap_or(Impact::None),
                 };
-                let c = cell(impact, ss.motion.clone(), ss.lyapunov, None);
+                let c = cell(impact, ss.motion, ss.lyapunov, None);
                 self.cell_done(c, Some(ss.end_state))
             }
             Err(e) => self.cell_done(

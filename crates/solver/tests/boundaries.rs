@@ -7,11 +7,11 @@
 // Tests may panic: that is how they fail.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use solver::boundaries::{BoundarySpec, BoundaryTrace, Curve, CurveKind, Side};
+use solver::boundaries::{BoundarySpec, BoundaryTrace, Curve, CurveKind, CurvePoint, Side};
 use solver::hbm::{Bifurcation, FrfContinuation, FrfSpec};
 use solver::keys;
 use solver::params::ModelParams;
-use solver::steady::{steady_state, Impact, Model, SteadyOptions};
+use solver::steady::{steady_state, Impact, Model, SteadyOptions, SteadyState};
 use solver::SolverError;
 use std::sync::OnceLock;
 
@@ -227,51 +227,69 @@ fn each_cusp_has_two_folds_on_one_side_and_none_on_the_other() {
     }
 }
 
-/// The regime of mesh 0 by time integration at `(omega, te_um)`.
-fn regime(omega: f64, te_um: f64) -> Impact {
+/// The steady state by time integration at `(omega, te_um)` after
+/// `transient` periods, `record` recorded.
+fn integrated(omega: f64, te_um: f64, transient: u32, record: u32) -> SteadyState {
     let model = Model::new(&pair(&[&format!("te_um={te_um}")])).unwrap();
     let mut opts = SteadyOptions::new(omega);
-    opts.transient_periods = 400;
-    opts.record_periods = 20;
-    steady_state(&model, &opts, None).unwrap().meshes[0].impact
+    opts.transient_periods = transient;
+    opts.record_periods = record;
+    steady_state(&model, &opts, None).unwrap()
+}
+
+/// The regime of mesh 0 by time integration at `(omega, te_um)`.
+fn regime(omega: f64, te_um: f64) -> Impact {
+    integrated(omega, te_um, 400, 20).meshes[0].impact
+}
+
+/// The scales of the traced plane (Omega, TE um): steps and distances are
+/// measured in fractions of them.
+const PLANE: (f64, f64) = (0.9, 39.8);
+
+/// Whether a curve point is fit to check against time integration: inside
+/// the box, away from its edges, and away from every fold (where the
+/// periodic branch need not be what the gears do).
+fn checkable(folds: &[&Curve], p: &CurvePoint) -> bool {
+    let (om, pr) = PLANE;
+    let clear = folds.iter().all(|f| {
+        f.points
+            .iter()
+            .all(|q| ((q.omega - p.omega) / om).hypot((q.value - p.value) / pr) > 0.04)
+    });
+    clear && p.omega > 0.45 && p.omega < 1.25 && p.value > 1.0 && p.value < 38.0
+}
+
+/// The points 2 % of the plane either side of a curve point, along its
+/// normal: (the side it marks stable, the other).
+fn either_side(p: &CurvePoint) -> ((f64, f64), (f64, f64)) {
+    let (om, pr) = PLANE;
+    let at = |s: f64| {
+        (
+            p.omega + s * 0.02 * om * p.normal.0,
+            p.value + s * 0.02 * pr * p.normal.1,
+        )
+    };
+    (at(1.0), at(-1.0))
+}
+
+/// The curves of one kind in a trace.
+fn curves_of(t: &BoundaryTrace, kind: CurveKind) -> Vec<&Curve> {
+    t.curves().iter().filter(|c| c.kind == kind).collect()
 }
 
 #[test]
 fn contact_boundaries_agree_with_time_integration_a_small_step_either_side() {
     let t = te_trace();
-    let folds: Vec<&Curve> = t
-        .curves()
-        .iter()
-        .filter(|c| c.kind == CurveKind::Fold)
-        .collect();
-    let (om, pr) = (0.9, 39.8);
+    let folds = curves_of(t, CurveKind::Fold);
     let mut checked = 0;
-    for c in t
-        .curves()
-        .iter()
-        .filter(|c| c.kind == CurveKind::DriveFlanksPart)
-    {
+    for c in curves_of(t, CurveKind::DriveFlanksPart) {
         // A few points per curve, away from the box's edges and from every
         // fold (where the periodic branch need not be what the gears do).
         for p in c.points.iter().step_by(6) {
-            let clear = folds.iter().all(|f| {
-                f.points
-                    .iter()
-                    .all(|q| ((q.omega - p.omega) / om).hypot((q.value - p.value) / pr) > 0.04)
-            });
-            let inner = p.omega > 0.45 && p.omega < 1.25 && p.value > 1.0 && p.value < 38.0;
-            if !(clear && inner) {
+            if !checkable(&folds, p) {
                 continue;
             }
-            let step = 0.02;
-            let at = |s: f64| {
-                (
-                    p.omega + s * step * om * p.normal.0,
-                    p.value + s * step * pr * p.normal.1,
-                )
-            };
-            let (w1, v1) = at(1.0);
-            let (w2, v2) = at(-1.0);
+            let ((w1, v1), (w2, v2)) = either_side(p);
             assert_eq!(regime(w1, v1), Impact::None, "stable side of {p:?}");
             assert_ne!(regime(w2, v2), Impact::None, "other side of {p:?}");
             checked += 1;
@@ -282,11 +300,7 @@ fn contact_boundaries_agree_with_time_integration_a_small_step_either_side() {
 
 /// The period (in mesh periods) of the motion by time integration.
 fn period(omega: f64, te_um: f64) -> Option<u32> {
-    let model = Model::new(&pair(&[&format!("te_um={te_um}")])).unwrap();
-    let mut opts = SteadyOptions::new(omega);
-    opts.transient_periods = 600;
-    opts.record_periods = 32;
-    steady_state(&model, &opts, None).unwrap().period
+    integrated(omega, te_um, 600, 32).period
 }
 
 #[test]
@@ -295,25 +309,10 @@ fn period_doubling_curves_agree_with_time_integration_a_small_step_either_side()
     // inside the unit circle) and the branch is the only one: period 1 on
     // the stable side, 2 on the other.
     let t = te_trace();
-    let folds: Vec<&Curve> = t
-        .curves()
-        .iter()
-        .filter(|c| c.kind == CurveKind::Fold)
-        .collect();
-    let (om, pr) = (0.9, 39.8);
+    let folds = curves_of(t, CurveKind::Fold);
     let mut checked = 0;
-    for c in t
-        .curves()
-        .iter()
-        .filter(|c| c.kind == CurveKind::PeriodDoubling)
-    {
+    for c in curves_of(t, CurveKind::PeriodDoubling) {
         for p in c.points.iter().step_by(10) {
-            let clear = folds.iter().all(|f| {
-                f.points
-                    .iter()
-                    .all(|q| ((q.omega - p.omega) / om).hypot((q.value - p.value) / pr) > 0.04)
-            });
-            let inner = p.omega > 0.45 && p.omega < 1.25 && p.value > 1.0 && p.value < 38.0;
             // Inside a jump's hysteresis band (between two fold crossings
             // at this TE) time integration from rest may settle on the
             // other branch: the comparison holds where the branch is unique.
@@ -321,17 +320,10 @@ fn period_doubling_curves_agree_with_time_integration_a_small_step_either_side()
             let unique = band
                 .chunks(2)
                 .all(|w| w.len() < 2 || p.omega < w[0] - 0.02 || p.omega > w[1] + 0.02);
-            if !(clear && inner && unique && p.others_stable == Some(true)) {
+            if !(checkable(&folds, p) && unique && p.others_stable == Some(true)) {
                 continue;
             }
-            let at = |s: f64| {
-                (
-                    p.omega + s * 0.02 * om * p.normal.0,
-                    p.value + s * 0.02 * pr * p.normal.1,
-                )
-            };
-            let (w1, v1) = at(1.0);
-            let (w2, v2) = at(-1.0);
+            let ((w1, v1), (w2, v2)) = either_side(p);
             assert_eq!(period(w1, v1), Some(1), "stable side of {p:?}");
             assert_eq!(period(w2, v2), Some(2), "other side of {p:?}");
             checked += 1;
@@ -390,4 +382,46 @@ fn keys_that_move_the_modes_and_empty_ranges_are_refused() {
     // A value outside the key's own range names the key and its range.
     let e = refused("backlash_um", (-5.0, 10.0), (0.4, 1.0));
     assert!(e.to_string().contains("backlash_um"), "{e}");
+}
+
+/// A contact curve that runs down to zero backlash, the key's own lower
+/// limit and the box's edge, leaves the box there: its last point lies on
+/// the edge and the end is `left-range`. (A step across the edge cannot be
+/// evaluated, backlash below 0 being refused, so before the step landed on
+/// the edge such a curve ended as a corrector failure a hair above it.)
+#[test]
+fn a_contact_curve_reaching_zero_backlash_leaves_the_box_there() {
+    let mut spec = BoundarySpec::new("backlash_um", (0.0, 200.0), (0.1, 2.0));
+    spec.harmonics = 5;
+    spec.points = 40;
+    let mut t = BoundaryTrace::new(&pair(&[]), spec).unwrap();
+    while !t.is_finished() {
+        t.advance(50).unwrap();
+    }
+    let at_zero: Vec<&Curve> = t
+        .curves()
+        .iter()
+        .filter(|c| {
+            matches!(
+                c.kind,
+                CurveKind::DriveFlanksPart | CurveKind::BackFlanksTouch
+            ) && c.points.iter().any(|p| p.value < 1.0)
+        })
+        .collect();
+    assert!(
+        !at_zero.is_empty(),
+        "{:?}",
+        t.curves().iter().map(|c| c.kind).collect::<Vec<_>>()
+    );
+    for c in at_zero {
+        let ends = [c.points[0].value, c.points[c.points.len() - 1].value];
+        let i = if ends[0] < ends[1] { 0 } else { 1 };
+        assert_eq!(ends[i], 0.0, "{:?} {:?}", c.kind, c.ends);
+        assert_eq!(
+            c.ends[i],
+            solver::boundaries::TraceEnd::LeftRange,
+            "{:?}",
+            c.kind
+        );
+    }
 }

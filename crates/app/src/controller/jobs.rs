@@ -4,6 +4,7 @@
 //! to the workers.
 
 use super::*;
+use crate::views::boundaries::{BoundaryStore, BOUNDARY_LEVELS, BOUNDARY_POINTS};
 use crate::worker::jobs::omega::{selected_spec, OmegaJob, PREVIEW_RUN};
 
 /// A job's parameters as the worker messages carry them.
@@ -243,6 +244,7 @@ impl Controller {
         // Everything the map depends on (it restarts only if that changed).
         let map_signature = match kind {
             JobKind::Map => self.map_signature(&input.model, &input.params),
+            JobKind::Boundaries => self.boundaries_signature(&input.params),
             _ => String::new(),
         };
         // The units of the job's progress, and its shards: `None` for a
@@ -262,6 +264,18 @@ impl Controller {
             JobKind::Lyap => (v.lyap_points >= 2).then(|| chain_count(v.lyap_points)),
             // One continuation, on one worker.
             JobKind::Orbits => v.branches.then_some(1),
+            JobKind::Boundaries => {
+                let st = self.main.status(JobKind::Boundaries);
+                if v.boundaries
+                    && map_signature == self.main.boundaries.signature
+                    && st.error.is_none()
+                {
+                    // What the curves depend on did not change (a click
+                    // on the map sets the key they vary).
+                    return Vec::new();
+                }
+                v.boundaries.then_some(1)
+            }
         };
         let Some(chains) = shards else {
             return self.switch_off(target, kind);
@@ -274,6 +288,8 @@ impl Controller {
             JobKind::Map => self.map_grid().cells(),
             JobKind::Lyap => v.lyap_points as usize,
             JobKind::Orbits => crate::worker::jobs::orbits::MAX_ORBIT_POINTS,
+            // Per mille.
+            JobKind::Boundaries => 1000,
         };
         let id = self.next_job();
         let grid = self.map_grid();
@@ -302,6 +318,7 @@ impl Controller {
             JobKind::Map => c.map = MapStore::new(id, grid.clone(), map_signature),
             JobKind::Lyap => c.lyap = LyapStore::new(id, total, v.lyap_periods),
             JobKind::Orbits => c.orbits = OrbitStore::new(id),
+            JobKind::Boundaries => c.boundaries = BoundaryStore::new(id, map_signature),
         }
         if main {
             self.dirty.data(kind);
@@ -381,6 +398,16 @@ impl Controller {
                 omega_to: v.omega_to,
                 points: v.bif_points,
             },
+            JobKind::Boundaries => JobSpec::Boundaries {
+                key: grid.key.clone(),
+                omega_from: grid.omega_from,
+                omega_to: grid.omega_to,
+                value_from: grid.value_from,
+                value_to: grid.value_to,
+                levels: BOUNDARY_LEVELS,
+                points: BOUNDARY_POINTS,
+                harmonics: v.harmonics as usize,
+            },
         });
         if main && kind == JobKind::Omega {
             self.preview_omega(&input.model, id, now_ms);
@@ -400,6 +427,7 @@ impl Controller {
             JobKind::Overlay => c.overlay = FrStore::default(),
             JobKind::Lyap => c.lyap = LyapStore::default(),
             JobKind::Orbits => c.orbits = OrbitStore::default(),
+            JobKind::Boundaries => c.boundaries = BoundaryStore::default(),
             _ => {}
         }
         self.dirty.data(kind);
@@ -461,16 +489,7 @@ impl Controller {
 
     /// The map's grid from the view options.
     pub fn map_grid(&self) -> MapGrid {
-        let v = &self.settings.view;
-        MapGrid {
-            key: v.map_key.clone(),
-            omega_from: v.omega_from,
-            omega_to: v.omega_to,
-            omega_points: v.map_omega_points,
-            value_from: v.map_from,
-            value_to: v.map_to,
-            value_points: v.map_value_points,
-        }
+        MapGrid::of(&self.settings.view)
     }
 
     /// Everything the map depends on, as text: its grid, periods and mesh,
@@ -478,19 +497,42 @@ impl Controller {
     /// so a click on a cell, which sets that key, does not restart the map.
     pub(super) fn map_signature(&self, model: &Model, params: &Params) -> String {
         let v = &self.settings.view;
-        let mut p = self.settings.params.clone();
-        let neutral = keys::set(&mut p, &v.map_key, keys::Value::Num(0.0)).is_ok();
-        let params_text = if neutral {
-            serde_json::Value::Object(keys::to_json(&p)).to_string()
-        } else {
-            serde_json::Value::Object(params.clone()).to_string()
-        };
+        let params_text = self.params_but_map_key(params);
         format!(
             "{:?}|{}|{}|{:?}|{params_text}",
             self.map_grid(),
             v.map_transient_periods,
             v.map_record_periods,
             self.settings.mesh_index(model),
+        )
+    }
+
+    /// The parameters as JSON text with the map's key set to 0 (the map
+    /// and its boundaries vary it themselves).
+    fn params_but_map_key(&self, params: &Params) -> String {
+        let mut p = self.settings.params.clone();
+        let neutral = keys::set(&mut p, &self.settings.view.map_key, keys::Value::Num(0.0)).is_ok();
+        if neutral {
+            serde_json::Value::Object(keys::to_json(&p)).to_string()
+        } else {
+            serde_json::Value::Object(params.clone()).to_string()
+        }
+    }
+
+    /// Everything the map's boundaries depend on (they restart only if
+    /// that changed): the box, the harmonics and the parameters but the
+    /// map's key.
+    pub(super) fn boundaries_signature(&self, params: &Params) -> String {
+        let g = self.map_grid();
+        format!(
+            "{}|{}|{}|{}|{}|{}|{}",
+            g.key,
+            g.omega_from,
+            g.omega_to,
+            g.value_from,
+            g.value_to,
+            self.settings.view.harmonics,
+            self.params_but_map_key(params)
         )
     }
 }

@@ -148,7 +148,7 @@ fn the_small_multiples_share_their_axes_and_letter_their_panels() {
         }],
         worst_mesh: 0,
         period: Some(1),
-        motion: crate::protocol::MotionClass::Periodic { period: 1 },
+        motion: crate::protocol::Motion::Periodic { period: 1 },
         error: None,
     };
     let bif = |id, x| {

@@ -127,6 +127,8 @@ pub struct Controller {
     export: Option<PendingExport>,
     /// The "Start here" tour's step (0-based), if it is running.
     tour: Option<usize>,
+    /// What the boundary last clicked on the map marks, in a sentence.
+    picked_boundary: Option<String>,
 }
 
 impl Controller {
@@ -141,8 +143,10 @@ impl Controller {
     /// benchmark's scaling figure, the page runs [`pool_size`]).
     pub fn with_workers(query: &str, now_ms: f64, workers: usize) -> (Self, Vec<Effect>) {
         let workers = workers.clamp(1, MAX_WORKERS);
+        let tour_issue = crate::tour::tour_issue(query);
         let (tour, query) = crate::tour::split_tour(query);
-        let decoded = link::decode(&query);
+        let mut decoded = link::decode(&query);
+        decoded.issues.extend(tour_issue);
         let pinned = decoded.pinned;
         let family = decoded.family.map(|spec| Family {
             spec,
@@ -162,6 +166,7 @@ impl Controller {
             next_id: 0,
             export: None,
             tour,
+            picked_boundary: None,
         };
         c.rebuild_model();
         let mut fx = c.restart(KindSet::ALL, now_ms);
@@ -327,11 +332,13 @@ impl Controller {
 
     /// Replaces the whole state by a link's (or preset's) query.
     pub fn load_query(&mut self, query: &str, now_ms: f64) -> Vec<Effect> {
+        let tour_issue = crate::tour::tour_issue(query);
         let (tour, query) = crate::tour::split_tour(query);
         self.tour = tour;
         let d = link::decode(&query);
         self.settings = d.settings;
         self.issues = d.issues;
+        self.issues.extend(tour_issue);
         self.preset_note = None;
         self.rebuild_model();
         self.main.hbm_previous = None;
@@ -382,6 +389,7 @@ impl Controller {
             Some(keys::Value::Num(x)) if x.is_finite() => Some(x),
             _ => None,
         };
+        let (boundaries, disagree, _) = self.map_boundaries();
         MapView {
             store: &self.main.map,
             mesh_label: match &self.settings.view.mesh {
@@ -389,7 +397,28 @@ impl Controller {
                 MeshSel::Worst => "worst mesh".into(),
             },
             selected: (self.settings.view.omega, value),
+            boundaries,
+            cusps: self.main.boundaries.cusps.clone(),
+            disagree,
         }
+    }
+
+    /// The boundaries the map shows, and the cells that disagree with
+    /// them with how many cells were judged.
+    fn map_boundaries(&self) -> (Vec<&crate::protocol::BoundaryCurve>, Vec<(u32, u32)>, usize) {
+        let mesh = self
+            .model
+            .as_ref()
+            .ok()
+            .and_then(|m| self.settings.mesh_index(m));
+        let shown = self.main.boundaries.shown(mesh);
+        let (disagree, judged) = match &self.main.map.grid {
+            Some(g) if !shown.is_empty() => {
+                crate::views::boundaries::disagreements(g, &self.main.map, &shown)
+            }
+            _ => (Vec::new(), 0),
+        };
+        (shown, disagree, judged)
     }
 
     /// Loads a preset by id.
@@ -653,6 +682,7 @@ impl Controller {
         });
         if let Some(o) = out.as_object_mut() {
             o.insert("bif_branches".into(), bif_branches);
+            o.insert("map_boundaries".into(), self.boundaries_status());
         }
         out
     }
@@ -715,6 +745,7 @@ impl Controller {
     }
 }
 
+mod boundaries;
 mod export;
 mod text;
 pub use export::{ExportError, Format};

@@ -21,7 +21,7 @@ impl Controller {
             }
             JobKind::HarmonicBalance | JobKind::Overlay => labels::fr_label(&self.fr_view()),
             JobKind::Bif | JobKind::Orbits => labels::bif_label(&self.bif_view()),
-            JobKind::Map => labels::map_label(&self.main.map),
+            JobKind::Map | JobKind::Boundaries => labels::map_label(&self.main.map),
             JobKind::Lyap => labels::lyap_label(&self.main.lyap.curve()),
             JobKind::Omega => match (&self.main.omega, &self.main.status(JobKind::Omega).error) {
                 (_, Some(e)) => format!("{title}: not computed: {e}"),
@@ -105,7 +105,7 @@ impl Controller {
                 .as_ref()
                 .filter(|_| self.main.bif.samples.is_empty())
                 .map(not_computed),
-            JobKind::Map => (self.main.map.done == 0
+            JobKind::Map | JobKind::Boundaries => (self.main.map.done == 0
                 && (st.error.is_some() || self.main.map.grid.is_none()))
             .then(|| {
                 st.error

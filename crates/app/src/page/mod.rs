@@ -2,7 +2,7 @@
 //! and its paint, as a plain type the native tests drive. The web layer
 //! (`web.rs`, `web/`) hands it events (a slider's input, a click's pixel, a
 //! key, a worker's message, an animation frame) and paints what it lists
-//! ([`Write`]s, the views [`Page::decide`] says to draw).
+//! ([`Write`]s, the views [`Page::draw_frame`] says to draw).
 //!
 //! Rules it keeps: input only queues work, applied once per animation
 //! frame ([`Page::apply_pending`]), so a fast drag costs one job restart
@@ -12,7 +12,9 @@
 
 mod act;
 pub mod anim;
+pub mod boot;
 pub mod dom;
+mod frame;
 pub mod gesture;
 mod paint;
 pub mod redraw;
@@ -151,6 +153,8 @@ pub struct Page {
     gestures: (u32, &'static str),
     /// Whether the phone's "see the motion" jump is offered.
     see_orbit: bool,
+    /// What the map's last drawing put over its cells (the tests read it).
+    map_drawn: serde_json::Value,
     /// The gear set's animation.
     anim: anim::Anim,
     /// Whether an animation frame is requested for the views.
@@ -193,6 +197,7 @@ impl Page {
             gestures: (0, ""),
             toast_until: None,
             see_orbit: false,
+            map_drawn: serde_json::Value::Null,
             anim: anim::Anim::default(),
             frame_requested: false,
             family_input: (
@@ -273,9 +278,22 @@ impl Page {
 
     /// A click at pixel `(x, y)` of the map: that cell's value and Omega.
     pub fn map_click(&mut self, x: f64, y: f64, now_ms: f64) -> Vec<Effect> {
-        let Some(at) = self.frames[ViewId::Map.slot()].and_then(|f| f.point_at(x, y)) else {
+        let frame = self.frames[ViewId::Map.slot()];
+        let Some((f, at)) = frame.and_then(|f| f.point_at(x, y).map(|at| (f, at))) else {
             return Vec::new();
         };
+        // Near a traced boundary, the click picks the boundary's point.
+        let px = (
+            (f.bottom_right.x - f.top_left.x) / (f.x_range.1 - f.x_range.0),
+            (f.bottom_right.y - f.top_left.y) / (f.y_range.1 - f.y_range.0),
+        );
+        if let Some(r) = self.ctl.pick_map_boundary((at.x, at.y), px, now_ms) {
+            return r.unwrap_or_else(|e| {
+                self.issue(e);
+                Vec::new()
+            });
+        }
+        self.ctl.clear_picked_boundary();
         match self.ctl.pick_map_point(at.x, at.y, now_ms) {
             Ok(fx) => fx,
             Err(e) => {

@@ -37,6 +37,14 @@ impl Page {
         fr: Option<&FrView>,
     ) -> (Vec<Write>, Vec<Item>) {
         let (writes, d) = self.draw_view_data(view, root, fr);
+        if let (ViewId::Map, Some(o)) = (view, &d.map) {
+            // Every kind's line over its halo: half the lines are the curves'.
+            self.map_drawn = serde_json::json!({
+                "curve_paths": o.curves.iter().skip(o.curves.len() / 2).map(|l| l.paths.len()).sum::<usize>(),
+                "marks": o.marks.len(),
+                "cusps": o.cusps.len(),
+            });
+        }
         (writes, overlay(&d))
     }
 
@@ -237,5 +245,51 @@ pub(super) fn overlay(d: &Drawn) -> Vec<Item> {
     ];
     let lines = lines.into_iter().flatten().map(SubPath::Polyline).collect();
     items.push(shape(lines, None, Some("rgba(0,0,0,0.7)")));
+    // The traced boundaries over the cells, then the marks and the cusps.
+    for l in &o.curves {
+        let parts = l
+            .paths
+            .iter()
+            .map(|p| SubPath::Polyline(p.iter().map(|q| DVec2::new(q[0], q[1])).collect()))
+            .collect();
+        items.push(Item::Shape {
+            parts,
+            fill: None,
+            even_odd: false,
+            stroke: Some((rgb(l.color), l.width)),
+        });
+    }
+    if !o.marks.is_empty() {
+        let parts = o
+            .marks
+            .iter()
+            .map(|r| SubPath::Rect {
+                at: DVec2::new(r[0], r[1]),
+                size: DVec2::new(r[2], r[3]),
+            })
+            .collect();
+        items.push(Item::Shape {
+            parts,
+            fill: None,
+            even_odd: false,
+            stroke: Some((rgb(plots::boundaries::MARK), 2.0)),
+        });
+    }
+    if !o.cusps.is_empty() {
+        let parts = o
+            .cusps
+            .iter()
+            .map(|c| SubPath::Circle {
+                c: DVec2::new(c[0], c[1]),
+                r: 5.0,
+            })
+            .collect();
+        items.push(Item::Shape {
+            parts,
+            fill: Some("#fff".into()),
+            even_odd: false,
+            stroke: Some(("#000".into(), 2.0)),
+        });
+    }
     items
 }

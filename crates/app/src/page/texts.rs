@@ -169,10 +169,7 @@ impl Page {
                     Write::text("key-fr", key),
                 ];
             }
-            (ViewId::Map, _) => {
-                let main = self.ctl.main();
-                crate::views::map::map_note(&main.map, main.status(JobKind::Map).total)
-            }
+            (ViewId::Map, _) => self.ctl.map_note_text(),
             _ => return Vec::new(),
         };
         vec![Write::text(&format!("note-{}", view.key()), text)]
@@ -237,6 +234,7 @@ impl Page {
             let (n, last) = self.gestures;
             o.insert("gesture".into(), serde_json::json!({"n": n, "last": last}));
             o.insert("see_orbit".into(), serde_json::json!(self.see_orbit));
+            o.insert("map_drawn".into(), self.map_drawn.clone());
             let boxes: serde_json::Map<String, serde_json::Value> = VIEWS
                 .iter()
                 .zip(&self.text_boxes)

@@ -24,17 +24,20 @@ pub fn fr_height(v: &FrView, (w, h): (u32, u32)) -> u32 {
     h.max(FR_MIN_CHART + key)
 }
 
-/// The frequency response's y range: the data in the Ω range and the
-/// contact lines asked for (the key is under the chart, so the axes fit
-/// the data alone), the first mode's spike clipped and marked when it
-/// would flatten the rest ([`super::clip`]).
-fn fr_clipped(v: &FrView) -> super::clip::Clipped {
+/// The frequency response's y range: the data in the Ω range (the
+/// time-integration overlay too, `with_overlay`) and the contact lines
+/// asked for (the key is under the chart, so the axes fit the data alone),
+/// the first mode's spike clipped and marked when it would flatten the
+/// rest ([`super::clip`]). The single plot and each panel of several
+/// meshes share it.
+pub(super) fn fr_clipped(v: &FrView, with_overlay: bool) -> super::clip::Clipped {
     let in_range = |o: f64| o >= v.omega_from && o <= v.omega_to;
+    let overlay: &[_] = if with_overlay { &v.overlay } else { &[] };
     let points: Vec<(f64, f64, f64)> = v
         .branches
         .iter()
         .flat_map(|b| b.points.iter())
-        .chain(v.overlay.iter())
+        .chain(overlay.iter())
         .filter(|p| in_range(p.omega))
         .map(|p| (p.omega, p.max_um, p.min_um))
         .collect();
@@ -49,7 +52,7 @@ fn fr_clipped(v: &FrView) -> super::clip::Clipped {
 }
 
 fn fr_y_range(v: &FrView) -> (f64, f64) {
-    fr_clipped(v).range
+    fr_clipped(v, true).range
 }
 
 /// `ViewId::Fr`: the frequency response (harmonic-balance branch, stable solid,
@@ -62,7 +65,7 @@ pub fn draw_fr<DB: DrawingBackend>(
     root.fill(&WHITE).map_err(err)?;
     let x = (v.omega_from, v.omega_to);
     let in_range = |o: f64| o >= x.0 && o <= x.1;
-    let clipped = fr_clipped(v);
+    let clipped = fr_clipped(v, true);
     let y = clipped.range;
     let items = compact_key(fr_key(v, y));
     let plan = plan_key(root, &items, fr_lines(v, line_chars(root.dim_in_pixel().0)));

@@ -8,12 +8,13 @@
 //! shares the bifurcation diagram's Omega axis, margins and label widths, so
 //! its Omega ticks line up with the diagram above it.
 
+use super::boundaries::{curve_lines, draw_line_sample, mark_rects, OverlayLine, MARK, MARK_LABEL};
 use super::{
     chart_area, draw_key, err, frame_of, linear_chart, omega_decorations, omega_items,
     padded_range, plan_key, regime_color, small, Axes, DrawError, KeyIcon, KeyItems, PlotFrame,
     Res, GRID, OMEGA_AXIS,
 };
-use crate::protocol::Regime;
+use crate::protocol::{BoundaryKind, Regime};
 use crate::views::lyap::{lyap_kind, LyapKind, LyapStore, LYAP_ZERO_BAND};
 use crate::views::map::MapView;
 use crate::views::NaturalFreq;
@@ -22,7 +23,6 @@ use plotters::prelude::*;
 
 const PENDING: RGBColor = RGBColor(236, 238, 242);
 const FAILED: RGBColor = RGBColor(110, 110, 110);
-const CROSS: RGBColor = RGBColor(0, 0, 0);
 
 /// The map's cells, period marks and cursor in pixels, for the caller to
 /// fill in a batch (one path per colour: a 200 x 100 map is 20000 cells,
@@ -37,6 +37,12 @@ pub struct MapOverlay {
     pub dot_radius: f64,
     /// The cursor: the selected Omega's column and the key's value's row (pixels).
     pub cursor: (Option<f64>, Option<f64>),
+    /// The traced boundaries, halos first ([`super::boundaries`]).
+    pub curves: Vec<OverlayLine>,
+    /// The cusps' centres (pixels).
+    pub cusps: Vec<[f64; 2]>,
+    /// Outlines of the cells that disagree with the curves (pixels).
+    pub marks: Vec<[f64; 4]>,
 }
 
 /// Draws the map's axes and key; returns where its cells lie (to map
@@ -53,8 +59,10 @@ pub fn draw_map<DB: DrawingBackend>(
     let x = g.x_range();
     let y = g.y_range();
     let (w, h) = root.dim_in_pixel();
-    // The key sits under the x axis description.
-    let (plot_area, key_area) = root.split_vertically(h as i32 - 40);
+    // The key sits under the x axis description (two more lines for the
+    // boundaries).
+    let key_h = if v.boundaries.is_empty() { 40 } else { 76 };
+    let (plot_area, key_area) = root.split_vertically(h as i32 - key_h);
     let caption = format!("Impact-regime map, {}{status}", v.mesh_label);
     let axes = Axes {
         grid: false,
@@ -111,20 +119,43 @@ pub fn draw_map<DB: DrawingBackend>(
         val.filter(|val| *val >= y.0.min(y.1) && *val <= y.0.max(y.1))
             .map(|val| frame.to_px(x.0, val).y),
     );
-    // The key: every regime (so the colours read the same in every map),
-    // the period mark, pending and failed cells, the cursor.
-    let mut items: Vec<(RGBColor, String, bool)> = Regime::ALL
+    // The boundaries, their cusps and the cells that disagree with them.
+    overlay.curves = curve_lines(&frame, &v.boundaries);
+    overlay.cusps = v
+        .cusps
         .iter()
-        .map(|&r| (regime_color(r), r.label().to_string(), false))
+        .map(|&(om, val)| {
+            let q = frame.to_px(om, val);
+            [q.x, q.y]
+        })
         .collect();
-    items.push((CROSS, "• not period 1".into(), true));
-    items.push((PENDING, "not computed yet".into(), false));
+    overlay.marks = mark_rects(&frame, g, &v.disagree);
+    // The key: every regime (so the colours read the same in every map),
+    // the period mark, pending and failed cells; each kind of boundary
+    // shown and the disagreement mark.
+    let mut items: Vec<(Entry, String)> = Regime::ALL
+        .iter()
+        .map(|&r| (Entry::Swatch(regime_color(r)), r.label().to_string()))
+        .collect();
+    items.push((Entry::Text, "• not period 1".into()));
+    items.push((Entry::Swatch(PENDING), "not computed yet".into()));
     if v.store.counts().2 > 0 {
-        items.push((FAILED, "failed".into(), false));
+        items.push((Entry::Swatch(FAILED), "failed".into()));
+    }
+    for kind in BoundaryKind::ALL {
+        if v.boundaries.iter().any(|c| c.kind == kind) {
+            items.push((Entry::Line(kind), kind.label().into()));
+        }
+    }
+    if !v.cusps.is_empty() {
+        items.push((Entry::Text, "○ a cusp: the jump disappears".into()));
+    }
+    if !v.disagree.is_empty() {
+        items.push((Entry::Mark, MARK_LABEL.into()));
     }
     let font = small();
     let (mut kx, mut ky) = (12, 4);
-    for (color, text, is_text) in items {
+    for (entry, text) in items {
         let tw = key_area
             .estimate_text_size(&text, &font)
             .map_or(8 * text.len() as u32, |(w, _)| w) as i32;
@@ -132,12 +163,38 @@ pub fn draw_map<DB: DrawingBackend>(
             kx = 12;
             ky += 17;
         }
-        if is_text {
-            key_area
-                .draw(&Text::new(text, (kx, ky), font.clone()))
-                .map_err(err)?;
-            kx += tw + 16;
-        } else {
+        let color = match entry {
+            Entry::Text => {
+                key_area
+                    .draw(&Text::new(text, (kx, ky), font.clone()))
+                    .map_err(err)?;
+                kx += tw + 16;
+                continue;
+            }
+            Entry::Line(kind) => {
+                draw_line_sample(&key_area, (kx - 1, ky + 7), kind)?;
+                key_area
+                    .draw(&Text::new(text, (kx + 17, ky), font.clone()))
+                    .map_err(err)?;
+                kx += 17 + tw + 16;
+                continue;
+            }
+            Entry::Mark => {
+                key_area
+                    .draw(&Rectangle::new(
+                        [(kx, ky + 1), (kx + 12, ky + 12)],
+                        ShapeStyle::from(&MARK).stroke_width(2),
+                    ))
+                    .map_err(err)?;
+                key_area
+                    .draw(&Text::new(text, (kx + 17, ky), font.clone()))
+                    .map_err(err)?;
+                kx += 17 + tw + 16;
+                continue;
+            }
+            Entry::Swatch(color) => color,
+        };
+        {
             key_area
                 .draw(&Rectangle::new(
                     [(kx, ky + 1), (kx + 12, ky + 12)],
@@ -158,6 +215,99 @@ pub fn draw_map<DB: DrawingBackend>(
     }
     root.present().map_err(err)?;
     Ok((frame, overlay))
+}
+
+/// The map's cells, period dots and cursor lines drawn with plotters (the
+/// canvas fills them itself).
+pub fn draw_map_overlay<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    f: &PlotFrame,
+    o: &MapOverlay,
+) -> Res<()> {
+    for (c, rects) in &o.cells {
+        for r in rects {
+            let (x, y) = (r[0].round() as i32, r[1].round() as i32);
+            let (w, h) = (r[2].round() as i32, r[3].round() as i32);
+            root.draw(&Rectangle::new([(x, y), (x + w, y + h)], c.filled()))
+                .map_err(err)?;
+        }
+    }
+    for d in &o.dots {
+        let c = (d[0].round() as i32, d[1].round() as i32);
+        root.draw(&Circle::new(c, o.dot_radius.round() as i32, BLACK.filled()))
+            .map_err(err)?;
+    }
+    let line = BLACK.mix(0.7).stroke_width(1);
+    let (t, b) = (f.top_left, f.bottom_right);
+    let mut lines = Vec::new();
+    if let Some(x) = o.cursor.0 {
+        lines.push([
+            (x.round() as i32, t.y as i32),
+            (x.round() as i32, b.y as i32),
+        ]);
+    }
+    if let Some(y) = o.cursor.1 {
+        lines.push([
+            (t.x as i32, y.round() as i32),
+            (b.x as i32, y.round() as i32),
+        ]);
+    }
+    for l in lines {
+        root.draw(&PathElement::new(l.to_vec(), line))
+            .map_err(err)?;
+    }
+    // The traced boundaries, the cells that disagree with them, the cusps.
+    let px = |q: &[f64; 2]| (q[0].round() as i32, q[1].round() as i32);
+    for l in &o.curves {
+        let style = l.color.stroke_width(l.width.round() as u32);
+        for p in &l.paths {
+            root.draw(&PathElement::new(
+                p.iter().map(px).collect::<Vec<_>>(),
+                style,
+            ))
+            .map_err(err)?;
+        }
+    }
+    for r in &o.marks {
+        let (x, y) = (r[0].round() as i32, r[1].round() as i32);
+        let (w, h) = (r[2].round() as i32, r[3].round() as i32);
+        let style = MARK.stroke_width(2);
+        root.draw(&Rectangle::new([(x, y), (x + w, y + h)], style))
+            .map_err(err)?;
+    }
+    for c in &o.cusps {
+        root.draw(&Circle::new(px(c), 5, WHITE.filled()))
+            .map_err(err)?;
+        root.draw(&Circle::new(px(c), 5, BLACK.stroke_width(2)))
+            .map_err(err)?;
+    }
+    Ok(())
+}
+
+/// The map drawn as SVG text of `size` pixels, its cells, boundaries and
+/// marks inside the chart (the CLI's map figure).
+pub fn map_svg(v: &MapView, size: (u32, u32)) -> Res<String> {
+    let mut s = String::new();
+    let (frame, overlay) = {
+        let root = SVGBackend::with_string(&mut s, size).into_drawing_area();
+        let r = draw_map(&root, v, "")?;
+        root.present().map_err(err)?;
+        r
+    };
+    super::svg_with(&s, size, |root| draw_map_overlay(root, &frame, &overlay))
+}
+
+/// An entry of the map's key.
+#[derive(Debug, Clone, Copy)]
+enum Entry {
+    /// A filled square.
+    Swatch(RGBColor),
+    /// Text alone.
+    Text,
+    /// A boundary's line.
+    Line(BoundaryKind),
+    /// The disagreement outline.
+    Mark,
 }
 
 /// Colour of an exponent's reading.
@@ -272,50 +422,6 @@ mod tests {
     /// The Lyapunov canvas's height (pixels).
     const LYAP_HEIGHT: u32 = 300;
 
-    /// Draws a map's cells, dots and cursor with plotters (for backends
-    /// without a fast path, e.g. the SVG of the tests).
-    fn draw_map_overlay<DB: DrawingBackend>(
-        root: &DrawingArea<DB, Shift>,
-        frame: &PlotFrame,
-        o: &MapOverlay,
-    ) -> Res<()> {
-        for (color, rects) in &o.cells {
-            for r in rects {
-                root.draw(&Rectangle::new(
-                    [
-                        (r[0] as i32, r[1] as i32),
-                        ((r[0] + r[2]) as i32, (r[1] + r[3]) as i32),
-                    ],
-                    color.filled(),
-                ))
-                .map_err(err)?;
-            }
-        }
-        for d in &o.dots {
-            root.draw(&Circle::new(
-                (d[0] as i32, d[1] as i32),
-                o.dot_radius as i32,
-                CROSS.filled(),
-            ))
-            .map_err(err)?;
-        }
-        let (l, t, r, b) = (
-            frame.top_left.x as i32,
-            frame.top_left.y as i32,
-            frame.bottom_right.x as i32,
-            frame.bottom_right.y as i32,
-        );
-        if let Some(x) = o.cursor.0 {
-            root.draw(&PathElement::new(vec![(x as i32, t), (x as i32, b)], BLACK))
-                .map_err(err)?;
-        }
-        if let Some(y) = o.cursor.1 {
-            root.draw(&PathElement::new(vec![(l, y as i32), (r, y as i32)], BLACK))
-                .map_err(err)?;
-        }
-        root.present().map_err(err)
-    }
-
     #[test]
     fn the_map_and_the_lyapunov_curve_draw_with_labelled_axes() {
         let grid = MapGrid {
@@ -341,6 +447,9 @@ mod tests {
             store: &store,
             mesh_label: "mesh s1a1".into(),
             selected: (1.05, Some(30.0)),
+            boundaries: Vec::new(),
+            cusps: Vec::new(),
+            disagree: Vec::new(),
         };
         let mut s = String::new();
         let frame = {

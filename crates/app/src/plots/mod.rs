@@ -16,6 +16,7 @@
 //! key (in `key`); each view kind's plot in its own module.
 
 mod bif;
+pub mod boundaries;
 mod boxes;
 mod clip;
 pub mod decimate;

@@ -6,7 +6,7 @@
 //! every family member's curve in each.
 
 use super::bif::{failed_crosses, group_dots};
-use super::fr::{branch_items, draw_branch};
+use super::fr::{branch_items, draw_branch, fr_clipped};
 use super::*;
 use crate::protocol::OmegaResult;
 use crate::views::bif::BifView;
@@ -180,6 +180,18 @@ fn panel_chart<'a, DB: DrawingBackend>(
     Ok(chart)
 }
 
+/// A panel's data, or `None` once its frame and why there is none are
+/// drawn.
+fn panel_data<'a, DB: DrawingBackend, T>(
+    area: &DrawingArea<DB, Shift>,
+    p: &'a Panel<T>,
+) -> Res<Option<&'a T>> {
+    match &p.data {
+        Ok(v) => Ok(Some(v)),
+        Err(e) => panel_message(area, &p.title, e).map(|()| None),
+    }
+}
+
 /// A panel without data: its frame and why.
 fn panel_message<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
@@ -258,13 +270,9 @@ pub fn draw_bif_panels<DB: DrawingBackend>(
     let mut frames = Vec::new();
     let mut groups: Vec<PointGroup> = Vec::new();
     for (k, (area, p)) in areas.iter().zip(panels).enumerate() {
-        let v = match &p.data {
-            Ok(v) => v,
-            Err(e) => {
-                panel_message(area, &p.title, e)?;
-                frames.push(None);
-                continue;
-            }
+        let Some(v) = panel_data(area, p)? else {
+            frames.push(None);
+            continue;
         };
         let mut t = p.title.clone();
         if v.done < v.total {
@@ -346,7 +354,7 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
     // A motion still settling is starred in the panel's title (the title
     // has no room for the words) and said in the key.
     let unsettled =
-        |r: &OmegaResult| matches!(r.motion, crate::protocol::MotionClass::StillSettling { .. });
+        |r: &OmegaResult| matches!(r.motion, crate::protocol::Motion::StillSettling { .. });
     let mut key = key;
     // The orbits cut to the panels' budget, in words: "the last 250 of 1000
     // recorded periods" (the largest of the panels' cuts).
@@ -371,12 +379,8 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
     }
     let (areas, cols) = layout(root, &title, &key, panels.len())?;
     for (k, (area, p)) in areas.iter().zip(panels).enumerate() {
-        let r = match &p.data {
-            Ok(r) => r,
-            Err(e) => {
-                panel_message(area, &p.title, e)?;
-                continue;
-            }
+        let Some(r) = panel_data(area, p)? else {
+            continue;
         };
         let t = phase_panel_title(&p.title, r);
         let (x, _) = phase_ranges(std::slice::from_ref(p));
@@ -459,33 +463,14 @@ pub fn draw_fr_panels<DB: DrawingBackend>(
     let areas = middle.split_evenly((rows, cols));
     let mut frames = Vec::new();
     for (k, (area, p)) in areas.iter().zip(panels).enumerate() {
-        let v = match &p.data {
-            Ok(v) => v,
-            Err(e) => {
-                panel_message(area, &p.title, e)?;
-                frames.push(None);
-                continue;
-            }
+        let Some(v) = panel_data(area, p)? else {
+            frames.push(None);
+            continue;
         };
         let x = (v.omega_from, v.omega_to);
-        let in_range = |o: f64| o >= x.0 && o <= x.1;
-        let levels = contact_levels(&v.backlash_um, &v.pinned_backlash_um, v.whole_clearance);
         // A lightly damped first mode's spike would flatten the rest: the
         // axis fits the rest and the clipped peak is marked with its value.
-        let points: Vec<(f64, f64, f64)> = v
-            .branches
-            .iter()
-            .flat_map(|b| b.points.iter())
-            .filter(|p| in_range(p.omega))
-            .map(|p| (p.omega, p.max_um, p.min_um))
-            .collect();
-        let natural: Vec<f64> = v
-            .natural
-            .iter()
-            .map(|n| n.omega)
-            .filter(|&w| in_range(w))
-            .collect();
-        let clipped = super::clip::clipped_range(&points, &natural, &levels);
+        let clipped = fr_clipped(v, false);
         let y = clipped.range;
         let mut chart = panel_chart(
             area,

@@ -252,7 +252,7 @@ fn small_multiples_draw_every_panel_with_its_title() {
     let mut other = result();
     other.x_um.iter_mut().for_each(|x| *x -= 400.0);
     other.period = None;
-    other.motion = crate::protocol::MotionClass::NotPeriodic;
+    other.motion = crate::protocol::Motion::NotPeriodic;
     let panels = vec![
         Panel {
             title: "(a) TE 0 µm".into(),

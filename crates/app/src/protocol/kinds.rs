@@ -28,11 +28,14 @@ pub enum JobKind {
     /// The periodic orbits' branches by shooting, on the bifurcation
     /// diagram (`ViewId::Bif`).
     Orbits = 6,
+    /// The regime map's boundaries traced as curves in Omega and the
+    /// map's key (`solver::boundaries`), drawn over the map (`ViewId::Map`).
+    Boundaries = 7,
 }
 
 impl JobKind {
     /// Every kind, by slot.
-    pub const ALL: [JobKind; 7] = [
+    pub const ALL: [JobKind; 8] = [
         JobKind::Omega,
         JobKind::HarmonicBalance,
         JobKind::Overlay,
@@ -40,6 +43,7 @@ impl JobKind {
         JobKind::Map,
         JobKind::Lyap,
         JobKind::Orbits,
+        JobKind::Boundaries,
     ];
     /// How many kinds there are (the length of per-kind arrays).
     pub const COUNT: usize = Self::ALL.len();
@@ -57,7 +61,7 @@ impl JobKind {
 
 /// A set of job kinds: what a change restarts, or whose data changed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
-pub struct KindSet(u8);
+pub struct KindSet(u16);
 
 impl KindSet {
     /// No kind.

@@ -19,7 +19,8 @@
 //! points per chunk.
 //!
 //! These are the serializable DTOs of the boundary; solver types stay inside
-//! the worker.
+//! the worker, but for the few that serialize as they are ([`Motion`],
+//! `Impact`).
 
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value};
@@ -28,12 +29,15 @@ use solver::steady::Impact;
 /// Identifies one job; increases monotonically on the page.
 pub type JobId = u64;
 
+mod boundaries;
 mod kinds;
-mod motion;
 mod orbits;
+pub use boundaries::{BoundaryCurve, BoundaryKind, BoundaryPoint};
 pub use kinds::{JobKind, KindSet, Target};
-pub use motion::MotionClass;
 pub use orbits::OrbitSample;
+/// The solver's verdict on a steady state, sent as it is (one definition:
+/// the page's words about the motion are all built from it in `crate::story`).
+pub use solver::steady::Motion;
 
 /// Transient and recorded mesh periods of each steady state.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -172,6 +176,27 @@ pub enum JobSpec {
         /// Resolution (the largest step is range / points).
         points: u32,
     },
+    /// The regime map's boundaries (`solver::boundaries`): folds, period
+    /// doublings and contact changes of the harmonic-balance branch traced
+    /// as curves in Omega and `key` over the map's box.
+    Boundaries {
+        /// The map's key.
+        key: String,
+        /// Start of the Omega range.
+        omega_from: f64,
+        /// End of the Omega range.
+        omega_to: f64,
+        /// The key's lowest value.
+        value_from: f64,
+        /// Its highest value.
+        value_to: f64,
+        /// Values of the key whose one-parameter branches seed the curves.
+        levels: u32,
+        /// Resolution (a curve's step moves at most 1 / points of the box).
+        points: u32,
+        /// Harmonics H.
+        harmonics: usize,
+    },
 }
 
 impl JobSpec {
@@ -185,6 +210,7 @@ impl JobSpec {
             JobSpec::Map { .. } => JobKind::Map,
             JobSpec::Lyap { .. } => JobKind::Lyap,
             JobSpec::Orbits { .. } => JobKind::Orbits,
+            JobSpec::Boundaries { .. } => JobKind::Boundaries,
         }
     }
 }
@@ -402,7 +428,7 @@ pub struct BifSample {
     pub period: Option<u32>,
     /// The classification of the point's steady state.
     #[serde(default)]
-    pub motion: MotionClass,
+    pub motion: Motion,
     /// Why the point failed.
     pub error: Option<String>,
 }
@@ -507,7 +533,7 @@ pub struct OmegaResult {
     /// The classification (exact orbit, periodic, still settling, not
     /// periodic): the one source of the page's words about the motion.
     #[serde(default)]
-    pub motion: MotionClass,
+    pub motion: Motion,
     /// Dynamic factor of the plotted mesh.
     pub dynamic_factor: Option<f64>,
     /// Mesh frequency (Hz).
@@ -616,6 +642,22 @@ pub enum FromWorker {
         /// The failure that ended the continuation, if any: the points
         /// before it stay valid.
         error: Option<String>,
+    },
+    /// Boundary curves finished since the last message
+    /// (`JobSpec::Boundaries`), with every cusp found so far.
+    BoundaryCurves {
+        /// Job id.
+        id: JobId,
+        /// The new curves.
+        curves: Vec<BoundaryCurve>,
+        /// Every cusp so far: `(omega, value)`.
+        cusps: Vec<(f64, f64)>,
+        /// New plain sentences on what the trace could not do.
+        notes: Vec<String>,
+        /// Per mille done.
+        permille: usize,
+        /// Every curve is traced.
+        finished: bool,
     },
     /// New cells of a map job.
     MapCells {

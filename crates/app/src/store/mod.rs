@@ -11,6 +11,7 @@ pub mod status;
 
 use crate::protocol::{FromWorker, JobKind, OmegaResult};
 use crate::views::bif::BifStore;
+use crate::views::boundaries::BoundaryStore;
 use crate::views::fr::{FrStore, HbmStore};
 use crate::views::lyap::LyapStore;
 use crate::views::map::MapStore;
@@ -46,6 +47,8 @@ pub struct Computation {
     pub lyap: LyapStore,
     /// The shooting branches' points ([`JobKind::Orbits`]; id 0: off).
     pub orbits: OrbitStore,
+    /// The map's traced boundaries ([`JobKind::Boundaries`]; id 0: off).
+    pub boundaries: BoundaryStore,
     /// Each kind's job status, by [`JobKind::slot`].
     status: [JobStatus; JobKind::COUNT],
 }
@@ -205,6 +208,27 @@ impl Computation {
                     fed.issues.push(msg);
                 }
                 dirty.data(JobKind::Orbits);
+                fed.matched = true;
+            }
+            FromWorker::BoundaryCurves {
+                id,
+                curves,
+                cusps,
+                notes,
+                permille,
+                finished,
+            } if ours(*id, self.boundaries.id) => {
+                let b = &mut self.boundaries;
+                b.curves.extend(curves.iter().cloned());
+                b.cusps.clone_from(cusps);
+                b.notes.extend(notes.iter().cloned());
+                b.finished = *finished;
+                let st = self.status_mut(JobKind::Boundaries);
+                st.record(*permille, now_ms);
+                if *finished {
+                    st.finished_ms = Some(now_ms);
+                }
+                dirty.data(JobKind::Boundaries);
                 fed.matched = true;
             }
             FromWorker::Omega { id, result } if ours(*id, self.status(JobKind::Omega).id) => {

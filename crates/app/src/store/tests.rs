@@ -35,7 +35,7 @@ fn sweep_point(index: u32) -> BifSample {
         }],
         worst_mesh: 0,
         period: Some(1),
-        motion: crate::protocol::MotionClass::Periodic { period: 1 },
+        motion: crate::protocol::Motion::Periodic { period: 1 },
         error: None,
     }
 }

@@ -7,22 +7,24 @@ use crate::protocol::OmegaResult;
 use crate::views::test_support::omega_result;
 
 /// Every verdict the solver can give.
-fn verdicts() -> Vec<MotionClass> {
+fn verdicts() -> Vec<Motion> {
     vec![
-        MotionClass::PeriodicExact {
+        Motion::PeriodicExact {
             period: 1,
             max_multiplier_modulus: 0.97,
+            newton_iterations: 0,
         },
-        MotionClass::PeriodicExact {
+        Motion::PeriodicExact {
             period: 2,
             max_multiplier_modulus: 0.5,
+            newton_iterations: 0,
         },
-        MotionClass::Periodic { period: 1 },
-        MotionClass::Periodic { period: 3 },
-        MotionClass::StillSettling { period: 11 },
-        MotionClass::PeriodAboveMaximum { period: 40 },
-        MotionClass::Periodic { period: 12 },
-        MotionClass::NotPeriodic,
+        Motion::Periodic { period: 1 },
+        Motion::Periodic { period: 3 },
+        Motion::StillSettling { period: 11 },
+        Motion::PeriodAboveMaximum { period: 40 },
+        Motion::Periodic { period: 12 },
+        Motion::NotPeriodic,
     ]
 }
 
@@ -67,7 +69,7 @@ fn says_period(text: &str, n: u32) -> bool {
 /// The phrases a text may not contain, and one of which it must contain,
 /// for verdict `m`: derived from what each verdict means, not from the
 /// functions under test.
-fn allowed(m: MotionClass) -> (Vec<&'static str>, Vec<String>) {
+fn allowed(m: Motion) -> (Vec<&'static str>, Vec<String>) {
     let aperiodic = vec![
         "not periodic",
         "does not repeat",
@@ -75,7 +77,7 @@ fn allowed(m: MotionClass) -> (Vec<&'static str>, Vec<String>) {
         "chaotic",
     ];
     match m {
-        MotionClass::PeriodicExact { period, .. } => {
+        Motion::PeriodicExact { period, .. } => {
             let mut no = aperiodic;
             no.extend(["settling", "nearly"]);
             (
@@ -83,17 +85,17 @@ fn allowed(m: MotionClass) -> (Vec<&'static str>, Vec<String>) {
                 vec![format!("period {period} (exact)"), "exactly".into()],
             )
         }
-        MotionClass::Periodic { period } => {
+        Motion::Periodic { period } => {
             let mut no = aperiodic;
             no.extend(["exact", "settling"]);
             (no, vec![format!("period {period}")])
         }
-        MotionClass::StillSettling { .. } => {
+        Motion::StillSettling { .. } => {
             let mut no = aperiodic;
             no.extend(["exact", "repeats every"]);
             (no, vec!["settling".into(), "*".into()])
         }
-        MotionClass::PeriodAboveMaximum { .. } => {
+        Motion::PeriodAboveMaximum { .. } => {
             let mut no = aperiodic;
             no.extend(["exact", "repeats every"]);
             (
@@ -101,7 +103,7 @@ fn allowed(m: MotionClass) -> (Vec<&'static str>, Vec<String>) {
                 vec![format!("above {MAX_PERIOD}"), format!("({MAX_PERIOD})")],
             )
         }
-        MotionClass::NotPeriodic => (
+        Motion::NotPeriodic => (
             vec!["repeats every", "repeats exactly", "exact", "settling"],
             vec!["not periodic".into(), "does not repeat".into()],
         ),
@@ -129,11 +131,11 @@ fn no_sentence_contradicts_the_classification() {
                     for n in 1..=40 {
                         if says_period(&t, n) {
                             let own = match m {
-                                MotionClass::PeriodicExact { period, .. }
-                                | MotionClass::Periodic { period }
-                                | MotionClass::StillSettling { period }
-                                | MotionClass::PeriodAboveMaximum { period } => period,
-                                MotionClass::NotPeriodic => 0,
+                                Motion::PeriodicExact { period, .. }
+                                | Motion::Periodic { period }
+                                | Motion::StillSettling { period }
+                                | Motion::PeriodAboveMaximum { period } => period,
+                                Motion::NotPeriodic => 0,
                             };
                             assert_eq!(n, own, "another period: {case}");
                         }
@@ -214,7 +216,7 @@ fn the_fig2_preset_at_the_page_defaults_is_period_1_exact() {
     let r = omega_result(&job, None).expect("the steady state");
     assert_eq!(r.backlash_um, 0.0);
     assert!(
-        matches!(r.motion, MotionClass::PeriodicExact { period: 1, .. }),
+        matches!(r.motion, Motion::PeriodicExact { period: 1, .. }),
         "{:?}",
         r.motion
     );
@@ -262,7 +264,7 @@ fn the_page_opens_on_the_periodic_state_the_first_tour_step_explains() {
     };
     let r = omega_result(&job, None).expect("the steady state");
     assert!(
-        matches!(r.motion, MotionClass::PeriodicExact { period: 1, .. }),
+        matches!(r.motion, Motion::PeriodicExact { period: 1, .. }),
         "{:?}",
         r.motion
     );

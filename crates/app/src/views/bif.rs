@@ -2,7 +2,7 @@
 //! samples from both workers, the dots the plot draws, and the CSV export.
 
 use super::{csv_num, distinct, ViewContext};
-use crate::protocol::{BifSample, MotionClass, Regime};
+use crate::protocol::{BifSample, Motion, Regime};
 use serde::Serialize;
 
 /// One dot of the bifurcation diagram.
@@ -53,7 +53,7 @@ pub struct BifView {
     /// Every swept point's classification, `(omega, up, motion)`, in the
     /// sweep's order: the text alternative's words about the motion.
     #[serde(skip)]
-    pub motions: Vec<(f64, bool, MotionClass)>,
+    pub motions: Vec<(f64, bool, Motion)>,
     /// Swept points received.
     pub done: usize,
     /// Swept points in all.
@@ -174,7 +174,7 @@ mod tests {
             }],
             worst_mesh: 0,
             period: Some(2),
-            motion: crate::protocol::MotionClass::Periodic { period: 2 },
+            motion: crate::protocol::Motion::Periodic { period: 2 },
             error: None,
         });
         let v = st.view(None, &[100.0], &ctx());

@@ -180,7 +180,7 @@ pub fn bif_label(v: &BifView) -> String {
 /// Runs of one classification along the upward sweep, in the words of
 /// [`crate::story::motion_tag`]: "period 1 (exact) from Ω 0.1 to 0.9; not
 /// periodic at Ω 1".
-fn motion_runs(motions: &[(f64, bool, crate::protocol::MotionClass)]) -> String {
+fn motion_runs(motions: &[(f64, bool, crate::protocol::Motion)]) -> String {
     let mut up: Vec<(f64, String)> = motions
         .iter()
         .filter(|m| m.1)

@@ -7,7 +7,7 @@
 //! worker at once. A click on a cell is turned back into that cell's two
 //! values by [`MapGrid::cell_at`].
 
-use crate::protocol::{MapSample, Regime};
+use crate::protocol::{BoundaryCurve, MapSample, Regime};
 use serde::Serialize;
 
 /// The grid of a map: what the job computes and the plot shows.
@@ -30,6 +30,21 @@ pub struct MapGrid {
 }
 
 impl MapGrid {
+    /// The grid the view options ask for (the page's Omega range, the map's
+    /// key, range and points), as the page's map job and `gearshock figure
+    /// map` compute it.
+    pub fn of(v: &crate::settings::ViewOptions) -> Self {
+        MapGrid {
+            key: v.map_key.clone(),
+            omega_from: v.omega_from,
+            omega_to: v.omega_to,
+            omega_points: v.map_omega_points,
+            value_from: v.map_from,
+            value_to: v.map_to,
+            value_points: v.map_value_points,
+        }
+    }
+
     /// Omega of column `c` (as `solver::map::MapSpec::omega`).
     pub fn omega(&self, c: u32) -> f64 {
         self.omega_from
@@ -203,6 +218,12 @@ pub struct MapView<'a> {
     pub mesh_label: String,
     /// The page's selected Omega and the key's current value (the cursor).
     pub selected: (f64, Option<f64>),
+    /// The traced boundaries it shows (`views::boundaries`).
+    pub boundaries: Vec<&'a BoundaryCurve>,
+    /// The cusps: `(omega, value)`.
+    pub cusps: Vec<(f64, f64)>,
+    /// The cells `(row, column)` that disagree with the curves.
+    pub disagree: Vec<(u32, u32)>,
 }
 
 /// The map's cells as CSV, row by row (the format of `gearshock map --format csv`).
@@ -279,15 +300,7 @@ mod tests {
     use super::*;
 
     fn grid() -> MapGrid {
-        MapGrid {
-            key: "backlash_um".into(),
-            omega_from: 0.1,
-            omega_to: 2.0,
-            omega_points: 20,
-            value_from: 0.0,
-            value_to: 150.0,
-            value_points: 16,
-        }
+        crate::views::test_support::backlash_grid(150.0, 16)
     }
 
     #[test]

@@ -7,6 +7,7 @@
 //! export formats come from [`VIEWS`] and nowhere else.
 
 pub mod bif;
+pub mod boundaries;
 pub mod fr;
 pub mod labels;
 pub mod lyap;

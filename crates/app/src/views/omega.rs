@@ -3,7 +3,7 @@
 //! history's and spectrum's CSV and JSON exports.
 
 use super::{csv_num, NaturalFreq};
-use crate::protocol::{MotionClass, OmegaResult};
+use crate::protocol::{Motion, OmegaResult};
 use solver::model::Model;
 use solver::params::MeshKind;
 
@@ -29,7 +29,7 @@ pub fn summary_line(r: &OmegaResult, natural: &[NaturalFreq]) -> String {
         String::new()
     };
     let multiplier = match r.motion {
-        MotionClass::PeriodicExact {
+        Motion::PeriodicExact {
             max_multiplier_modulus,
             ..
         } => format!(", largest Floquet multiplier {max_multiplier_modulus:.3}"),
@@ -211,7 +211,7 @@ pub fn omega_json(r: &OmegaResult, which: OmegaView) -> serde_json::Value {
         "motion": r.motion.name(),
         "exact": r.motion.is_exact(),
         "max_multiplier_modulus": match r.motion {
-            MotionClass::PeriodicExact { max_multiplier_modulus, .. } => Some(max_multiplier_modulus),
+            Motion::PeriodicExact { max_multiplier_modulus, .. } => Some(max_multiplier_modulus),
             _ => None,
         },
         "dynamic_factor": r.dynamic_factor,

@@ -100,7 +100,7 @@ pub const VIEWS: [ViewSpec; 8] = [
         key: "map",
         title: "Impact-regime map",
         data: JobKind::Map,
-        shows: JobKind::Map.set(),
+        shows: KindSet::of(&[JobKind::Map, JobKind::Boundaries]),
         progressive: true,
     },
     ViewSpec {
@@ -232,7 +232,7 @@ impl ViewId {
             JobKind::Bif | JobKind::Lyap | JobKind::Orbits => {
                 format!("computing {done}/{total} points")
             }
-            JobKind::Map => format!("computing {done}/{total} cells"),
+            JobKind::Map | JobKind::Boundaries => format!("computing {done}/{total} cells"),
             JobKind::Omega => "computing…".into(),
         }
     }

@@ -3,9 +3,7 @@
 //! extremes built from a few numbers.
 
 use super::ViewContext;
-use crate::protocol::{
-    HbmMesh, HbmSample, MapSample, MeshExtremes, MotionClass, OmegaResult, Regime,
-};
+use crate::protocol::{HbmMesh, HbmSample, MapSample, MeshExtremes, Motion, OmegaResult, Regime};
 
 /// The view context of the tests: Omega 0.1 to 2, 0.5 selected, mesh s1a1,
 /// no natural frequencies.
@@ -87,9 +85,10 @@ pub(crate) fn omega_result() -> OmegaResult {
         backlash_um: 100.0,
         regime: Regime::SingleSided,
         period: Some(1),
-        motion: MotionClass::PeriodicExact {
+        motion: Motion::PeriodicExact {
             period: 1,
             max_multiplier_modulus: 0.9,
+            newton_iterations: 0,
         },
         dynamic_factor: Some(1.4),
         mesh_freq_hz: 4500.0,
@@ -109,5 +108,19 @@ pub(crate) fn omega_result() -> OmegaResult {
         cli_json: "{}".into(),
         preview: false,
         end_state: vec![],
+    }
+}
+
+/// A map grid of backlash rows, 0 ..= `value_to` µm in `rows` rows, over
+/// Omega 0.1 ..= 2.0 in 20 columns (step 0.1).
+pub(crate) fn backlash_grid(value_to: f64, rows: u32) -> crate::views::map::MapGrid {
+    crate::views::map::MapGrid {
+        key: "backlash_um".into(),
+        omega_from: 0.1,
+        omega_to: 2.0,
+        omega_points: 20,
+        value_from: 0.0,
+        value_to,
+        value_points: rows,
     }
 }

@@ -8,7 +8,7 @@
 use super::*;
 use crate::page::anim::ANIM_CANVASES;
 use crate::page::AnimDraw;
-use crate::scene::{Item, SubPath};
+use crate::scene::{key_items, Item, SubPath};
 use web_sys::{IntersectionObserver, IntersectionObserverEntry};
 
 /// Tells the core whether the animation's two canvases are on screen.
@@ -127,17 +127,8 @@ pub(super) fn paint_items(ctx: &CanvasRenderingContext2d, items: &[Item], size: 
                 check(ctx.fill_text(text, at.x, at.y));
             }
             Item::Key { at, entries } => {
-                let mut kx = at.x;
-                for (color, label) in entries {
-                    ctx.begin_path();
-                    check(ctx.arc(kx + 6.0, at.y - 4.0, 6.0, 0.0, std::f64::consts::TAU));
-                    ctx.set_fill_style_str(color);
-                    ctx.fill();
-                    ctx.set_fill_style_str("#1d232b");
-                    check(ctx.fill_text(label, kx + 16.0, at.y));
-                    let tw = ctx.measure_text(label).map_or(150.0, |m| m.width());
-                    kx += 16.0 + tw + 18.0;
-                }
+                let width = |t: &str| ctx.measure_text(t).map_or(150.0, |m| m.width());
+                paint_items(ctx, &key_items(*at, entries, width), size);
             }
         }
     }

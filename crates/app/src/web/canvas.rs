@@ -9,7 +9,6 @@ use plotters_backend::{
     BackendColor, BackendCoord, BackendStyle, BackendTextStyle, DrawingBackend, DrawingErrorKind,
 };
 use plotters_canvas::CanvasBackend;
-use wasm_bindgen::JsCast;
 use web_sys::{CanvasRenderingContext2d, HtmlCanvasElement, Path2d};
 
 type Error = DrawingErrorKind<<CanvasBackend as DrawingBackend>::ErrorType>;
@@ -26,12 +25,7 @@ pub(super) struct Canvas {
 impl Canvas {
     /// The backend of `canvas`, if it has a 2D context.
     pub(super) fn new(canvas: &HtmlCanvasElement) -> Option<Self> {
-        let ctx = canvas
-            .get_context("2d")
-            .ok()
-            .flatten()?
-            .dyn_into::<CanvasRenderingContext2d>()
-            .ok()?;
+        let ctx = super::ctx2d(canvas)?;
         let inner = CanvasBackend::with_canvas_object(canvas.clone())?;
         Some(Self { inner, ctx })
     }

@@ -4,6 +4,7 @@
 //! for an action: copy the link, offer a file, rasterize a PNG.
 
 use super::*;
+use crate::page::boot::Png;
 use crate::page::dom::{built, Action, Node, WIRING};
 use crate::page::EventIn;
 use web_sys::{Blob, BlobPropertyBag, HtmlAnchorElement, HtmlImageElement, Url};
@@ -97,18 +98,16 @@ fn copy_link(page: &Shared) {
         (p.window.clone(), p.doc.clone())
     };
     let href = window.location().href().unwrap_or_default();
-    // Shown next to the button (the status line is rewritten every frame).
-    let said = |text: &'static str| {
+    let said = |copied: bool| {
         let page = page.clone();
         Closure::<dyn FnMut(JsValue)>::new(move |_v: JsValue| {
             let mut p = page.borrow_mut();
             let t = now(&p.window);
-            let w = p.core.confirm(text, t, js_sys::Date::now());
+            let w = p.core.link_copied(copied, t, js_sys::Date::now());
             paint(&p, w);
         })
     };
-    let ok = said("Link copied to the clipboard.");
-    let fail = said("Could not copy; the link is in the address bar.");
+    let (ok, fail) = (said(true), said(false));
     // The promise settles into `ok` or `fail`, which say so; nothing else
     // waits for it. One pair per click, small: leaked rather than tracked.
     let clipboard = window.navigator().clipboard();
@@ -156,15 +155,10 @@ fn download_blob(doc: &Document, name: &str, blob: &Blob) {
 /// size, encoded with `toBlob`. A picture that cannot be made or loaded
 /// is said in the messages.
 fn png_2x(page: &Shared, v: ViewId) {
-    let (doc, svg, (w, h)) = {
-        let p = page.borrow();
-        let c = p.core.ctl();
-        (p.doc.clone(), c.plot_svg(v), c.canvas_size(v))
-    };
-    let name = format!("gearshock-{}.png", v.key());
-    let svg = match svg {
-        Ok(svg) => svg,
-        Err(e) => return failed(page, &e.to_string()),
+    let (doc, png) = (page.borrow().doc.clone(), page.borrow().core.png(v));
+    let Png { svg, name, size } = match png {
+        Ok(png) => png,
+        Err(e) => return failed(page, &e),
     };
     let Ok(img) = HtmlImageElement::new() else {
         return failed(page, "no image element");
@@ -178,10 +172,10 @@ fn png_2x(page: &Shared, v: ViewId) {
         else {
             return;
         };
-        cv.set_width(2 * w);
-        cv.set_height(2 * h);
+        cv.set_width(size.0);
+        cv.set_height(size.1);
         if let Some(ctx) = ctx2d(&cv) {
-            let (dw, dh) = (f64::from(2 * w), f64::from(2 * h));
+            let (dw, dh) = (f64::from(size.0), f64::from(size.1));
             check(ctx.draw_image_with_html_image_element_and_dw_and_dh(&img2, 0.0, 0.0, dw, dh));
         }
         let (doc, name, p3) = (doc.clone(), name.clone(), p2.clone());

@@ -69,17 +69,12 @@ pub fn start_worker() {
         let schedule = schedule.clone();
         Closure::<dyn FnMut(MessageEvent)>::new(move |_e: MessageEvent| {
             scheduled.set(false);
-            let start = js_sys::Date::now();
             // One step is one steady state.
-            loop {
-                let msgs = core.borrow_mut().step();
-                post(msgs);
-                if !core.borrow().has_work() || Slicer::over(js_sys::Date::now() - start) {
-                    break;
-                }
-            }
             let mut s = slicer.get();
-            let next = s.after(js_sys::Date::now() - start, core.borrow().has_work());
+            let next = s.slice(js_sys::Date::now, || {
+                post(core.borrow_mut().step());
+                core.borrow().has_work()
+            });
             slicer.set(s);
             match next {
                 Next::Idle => {}

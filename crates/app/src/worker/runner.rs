@@ -12,13 +12,18 @@ use solver::params::ModelParams;
 /// The kinds in the order a computation serves them after the
 /// harmonic-balance branch: the overlay and the bifurcation sweep take
 /// turns (so both diagrams fill in together and show their first points
-/// early), then the Lyapunov curve, the map, and last the shooting
-/// branches drawn over the sweep (the slower, secondary views must not
-/// delay the main diagrams, and the branches, which can take a minute on
-/// the compound set, must not delay any view: they are drawn as they
-/// come, over whatever the sweep has drawn).
+/// early), then the Lyapunov curve, the map, the shooting branches drawn
+/// over the sweep and last the boundaries drawn over the map (the slower,
+/// secondary views must not delay the main diagrams, and the branches and
+/// boundaries, which can take a minute or more on the compound set, must
+/// not delay any view: they are drawn as they come).
 const TAKING_TURNS: [JobKind; 2] = [JobKind::Overlay, JobKind::Bif];
-const WHEN_IDLE: [JobKind; 3] = [JobKind::Lyap, JobKind::Map, JobKind::Orbits];
+const WHEN_IDLE: [JobKind; 4] = [
+    JobKind::Lyap,
+    JobKind::Map,
+    JobKind::Orbits,
+    JobKind::Boundaries,
+];
 
 /// One computation's jobs.
 #[derive(Default)]

@@ -35,6 +35,18 @@ impl Slicer {
         elapsed_ms > SLICE_MS
     }
 
+    /// One slice: `step` (one step of work, its replies posted; whether
+    /// work is left) until no work is left or the slice is over by
+    /// `clock` (ms), then what to do next.
+    pub fn slice(&mut self, clock: impl Fn() -> f64, mut step: impl FnMut() -> bool) -> Next {
+        let start = clock();
+        let mut has_work = step();
+        while has_work && !Self::over(clock() - start) {
+            has_work = step();
+        }
+        self.after(clock() - start, has_work)
+    }
+
     /// After a slice of `elapsed_ms`, with work left or not.
     pub fn after(&mut self, elapsed_ms: f64, has_work: bool) -> Next {
         if !has_work {
@@ -66,5 +78,35 @@ mod tests {
         assert_eq!(s.after(10.0, false), Idle);
         // Idle resets the count.
         assert_eq!(s.after(90.0, true), Yield);
+    }
+
+    #[test]
+    fn a_slice_steps_until_its_time_is_over_or_the_work_is_done() {
+        use std::cell::Cell;
+        let now = Cell::new(0.0);
+        let (mut s, mut steps) = (Slicer::default(), 0);
+        // Steps of 10 ms with work enough: past SLICE_MS after three.
+        let next = s.slice(
+            || now.get(),
+            || {
+                steps += 1;
+                now.set(now.get() + 10.0);
+                true
+            },
+        );
+        assert_eq!(
+            (next, steps),
+            (Next::Yield, (SLICE_MS / 10.0).floor() as u32 + 1)
+        );
+        // The last step ends the work: idle at once.
+        let mut left = 2;
+        let next = s.slice(
+            || now.get(),
+            || {
+                left -= 1;
+                left > 0
+            },
+        );
+        assert_eq!((next, left), (Next::Idle, 0));
     }
 }

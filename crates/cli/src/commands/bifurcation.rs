@@ -1,7 +1,7 @@
 //! `gearshock bifurcation`: Poincaré samples over a sweep of Omega, in
 //! interleaved chains, optionally one shard of them.
 
-use crate::args::{meshes, parse_shard, stream_header, Format, OmegaRange, ParamArgs, RunArgs};
+use crate::args::{meshes, parse_shard, stream_header, Format, OmegaPoints, ParamArgs, RunArgs};
 use crate::budget::{check_work, StepCost, MAX_SAMPLES};
 use crate::csv;
 use crate::failure::{usage, Failure};
@@ -17,10 +17,7 @@ pub struct BifurcationArgs {
     #[command(flatten)]
     p: ParamArgs,
     #[command(flatten)]
-    range: OmegaRange,
-    /// Number of Omega points.
-    #[arg(long, default_value_t = 200)]
-    points: u32,
+    grid: OmegaPoints,
     /// Sweep direction: up, down or both (up then down).
     #[arg(long, default_value = "up")]
     direction: String,
@@ -40,7 +37,11 @@ pub struct BifurcationArgs {
 /// Checks the options and the budget, runs the sweep and prints it.
 pub fn run(a: &BifurcationArgs) -> Result<(), Failure> {
     let (params, model) = a.p.load()?;
-    let mut spec = SweepSpec::new(a.range.omega_from, a.range.omega_to, a.points);
+    let mut spec = SweepSpec::new(
+        a.grid.range.omega_from,
+        a.grid.range.omega_to,
+        a.grid.points,
+    );
     a.run.apply(&mut spec.steady);
     spec.directions = Directions::from_name(&a.direction).ok_or_else(|| {
         usage(format!(

@@ -5,7 +5,7 @@
 //! writes the curves traced up to there, marked incomplete, and exits
 //! with code 1.
 
-use crate::args::{OmegaRange, ParamArgs};
+use crate::args::{KeyRange, OmegaRange, ParamArgs};
 use crate::budget::MAX_BOUNDARY_WORK;
 use crate::csv;
 use crate::failure::{usage, Failure};
@@ -24,17 +24,8 @@ pub struct BoundariesArgs {
     p: ParamArgs,
     #[command(flatten)]
     range: OmegaRange,
-    /// The key varied with Omega: one that leaves the natural modes
-    /// unchanged (backlash_um, te_um, damping_ratio, stiffness_variation,
-    /// a torque, a per-mesh backlash or TE key).
-    #[arg(long, default_value = "backlash_um")]
-    key: String,
-    /// First value of the key.
-    #[arg(long, allow_hyphen_values = true, value_parser = crate::flags::finite)]
-    value_from: f64,
-    /// Last value of the key.
-    #[arg(long, allow_hyphen_values = true, value_parser = crate::flags::finite)]
-    value_to: f64,
+    #[command(flatten)]
+    rows: KeyRange,
     /// Values of the key (spread over its range) at which a frequency
     /// response seeds the curves (2 ..= 50).
     #[arg(long, default_value_t = 5)]
@@ -81,8 +72,8 @@ impl Sweep for Trace {
 pub fn run(a: &BoundariesArgs) -> Result<(), Failure> {
     let (params, model) = a.p.load()?;
     let mut spec = BoundarySpec::new(
-        &a.key,
-        (a.value_from + 0.0, a.value_to + 0.0),
+        &a.rows.key,
+        (a.rows.value_from + 0.0, a.rows.value_to + 0.0),
         (a.range.omega_from, a.range.omega_to),
     );
     spec.levels = a.levels;

@@ -11,6 +11,9 @@
 //! colour per value named in words, as the page's frequency response draws
 //! a family.
 //!
+//! `figure map` ([`map`]): the page's impact-regime map of a link with its
+//! boundaries traced over it.
+//!
 //! Sharding (the heavy figures, 4-11): `--shard i/n` computes the sweeps or
 //! orbits of members i, i + n, ... only and prints them as one JSON shard
 //! ([`shard`]); `gearshock merge --out DIR` checks them against the
@@ -20,6 +23,7 @@
 //! 3 are not sharded: each of their panels holds every member's branch.
 
 mod cost;
+mod map;
 pub mod shard;
 
 use crate::failure::{usage, Failure};
@@ -64,6 +68,11 @@ pub struct FigureArgs {
     /// with `gearshock merge --out DIR`.
     #[arg(long, value_name = "I/N")]
     pub(crate) shard: Option<String>,
+    /// `figure map` only: the page's link (or its query) whose map to
+    /// draw, e.g. `model=gear-pair&map_omega_points=30` (default: the
+    /// page's defaults).
+    #[arg(long, value_name = "QUERY")]
+    pub(crate) link: Option<String>,
 }
 
 /// The files of a figure's panels, in order: (file name, contents).
@@ -140,6 +149,15 @@ pub(crate) fn check_options(args: &FigureArgs) -> Result<(), Failure> {
 
 /// Runs the command; returns the list of panels and files written.
 pub fn run(args: &FigureArgs) -> Result<Value, Failure> {
+    if args.id == "map" {
+        return map::run(args);
+    }
+    if args.link.is_some() {
+        return Err(usage(format!(
+            "figure {} --link: only `figure map` takes a link",
+            solver::keys::truncate(&args.id, 30)
+        )));
+    }
     let Some(p) = preset(&args.id) else {
         let ids: Vec<&str> = app::presets::PRESETS
             .iter()
@@ -147,7 +165,7 @@ pub fn run(args: &FigureArgs) -> Result<Value, Failure> {
             .filter(|id| id.starts_with("fig"))
             .collect();
         return Err(usage(format!(
-            "figure {}: no such figure; allowed {}",
+            "figure {}: no such figure; allowed {}, map",
             solver::keys::truncate(&args.id, 30),
             ids.join(", ")
         )));
@@ -474,7 +492,10 @@ pub(crate) fn orbit_files(
     r: &OmegaResult,
     files: &mut Files,
 ) -> Result<Vec<Value>, Failure> {
-    let label = member_label(p, i);
+    // The title names the member and the motion, from the one
+    // classification the page's panel titles use (`app::story`).
+    let verdict = app::story::motion_tag(r.motion);
+    let label = format!("{}: {verdict}", member_label(p, i));
     let mut out = Vec::new();
     for (k, view) in [(i, OmegaView::Phase), (n + i, OmegaView::Poincare)] {
         let name = format!("{}{}", p.id, panel_letter(k));
@@ -500,6 +521,9 @@ pub(crate) fn orbit_files(
             "view": if matches!(view, OmegaView::Poincare) { "poincare" } else { "phase" },
             "query": m.query,
             "period": r.period,
+            "motion": r.motion.name(),
+            "exact": r.motion.is_exact(),
+            "verdict": verdict,
             "impact": r.regime.solver_name(),
             "files": [format!("{name}.svg"), format!("{name}.json"), format!("{name}.csv")],
         }));

@@ -1,7 +1,7 @@
 //! `gearshock instability`: the Floquet spectral radius of the fully
 //! engaged linear system over Omega, and its unstable bands.
 
-use crate::args::{omega_grid, stream_header, OmegaRange, ParamArgs};
+use crate::args::{omega_grid, stream_header, OmegaPoints, ParamArgs};
 use crate::csv;
 use crate::failure::Failure;
 use crate::output::{note, output};
@@ -15,18 +15,24 @@ pub struct InstabilityArgs {
     #[command(flatten)]
     p: ParamArgs,
     #[command(flatten)]
-    range: OmegaRange,
-    /// Number of Omega points.
-    #[arg(long, default_value_t = 200)]
-    points: u32,
+    grid: OmegaPoints,
 }
 
 /// Scans Omega, says the unstable bands on stderr and prints the points.
 pub fn run(a: &InstabilityArgs) -> Result<(), Failure> {
     let (params, model) = a.p.load()?;
-    let omegas = omega_grid(a.range.omega_from, a.range.omega_to, a.points, 100_000)?;
+    let omegas = omega_grid(
+        a.grid.range.omega_from,
+        a.grid.range.omega_to,
+        a.grid.points,
+        100_000,
+    )?;
     let engaged = Parametric::new(&model)?;
-    let spec = report::instability_spec_json(a.range.omega_from, a.range.omega_to, a.points);
+    let spec = report::instability_spec_json(
+        a.grid.range.omega_from,
+        a.grid.range.omega_to,
+        a.grid.points,
+    );
     let lines = Lines {
         header: stream_header(&model, &params, Some(spec.clone())),
         line: &report::instability_point_json,

@@ -1,7 +1,9 @@
 //! `gearshock map`: the impact-regime map over Omega (columns) and any
 //! numeric key (rows), optionally one shard of its rows.
 
-use crate::args::{mesh_index, parse_shard, stream_header, Format, OmegaRange, ParamArgs, RunArgs};
+use crate::args::{
+    mesh_index, parse_shard, stream_header, Format, KeyRange, OmegaRange, ParamArgs, RunArgs,
+};
 use crate::budget::{check_work, StepCost};
 use crate::csv;
 use crate::failure::Failure;
@@ -20,15 +22,8 @@ pub struct MapArgs {
     /// Number of Omega columns.
     #[arg(long, default_value_t = 100)]
     omega_points: u32,
-    /// The row parameter: any numeric key (e.g. backlash_um, te_um).
-    #[arg(long, default_value = "backlash_um")]
-    key: String,
-    /// First value of the row parameter.
-    #[arg(long, allow_hyphen_values = true, value_parser = crate::flags::finite)]
-    value_from: f64,
-    /// Last value of the row parameter.
-    #[arg(long, allow_hyphen_values = true, value_parser = crate::flags::finite)]
-    value_to: f64,
+    #[command(flatten)]
+    rows: KeyRange,
     /// Number of rows.
     #[arg(long, default_value_t = 40)]
     value_points: u32,
@@ -48,8 +43,12 @@ pub fn run(a: &MapArgs) -> Result<(), Failure> {
     // `+ 0.0` turns a typed -0 into 0, so the echoed spec reads 0.
     let mut spec = MapSpec::new(
         (a.range.omega_from, a.range.omega_to, a.omega_points),
-        &a.key,
-        (a.value_from + 0.0, a.value_to + 0.0, a.value_points),
+        &a.rows.key,
+        (
+            a.rows.value_from + 0.0,
+            a.rows.value_to + 0.0,
+            a.value_points,
+        ),
     );
     a.run.apply(&mut spec.steady);
     spec.mesh = match a.mesh.as_deref() {

@@ -1,7 +1,10 @@
 //! What the augmented systems share: one evaluation's result ([`Eval`])
 //! and the bordered matrix `[A b; c^T 0]` whose last unknown vanishes
-//! where `A` is singular (the fold's and the period doubling's test).
+//! where `A` is singular (the fold's and the period doubling's test), and
+//! the branch rows every system starts from: the residual, its Jacobian in
+//! `(X, Omega)`, its derivative in `p`, and how `X` moves along the branch.
 
+use super::family::Family;
 use crate::error::{Result, SolverError};
 use nalgebra::{DMatrix, DVector};
 
@@ -54,4 +57,72 @@ pub(crate) fn bordered_solve(
             what: format!("bordered matrix at Omega = {omega}"),
         })?;
     Ok((sol[n], sol.rows(0, n).into_owned()))
+}
+
+/// The largest absolute entry of `v` (0 when empty).
+pub(crate) fn inf_norm(v: &[f64]) -> f64 {
+    v.iter().fold(0.0, |m, x| m.max(x.abs()))
+}
+
+/// The branch's residual at `(x, omega, p)` and its Jacobian in
+/// `(X, Omega)` (`nx x (nx + 1)`).
+pub(crate) fn residual_at(
+    fam: &mut Family,
+    x: &[f64],
+    omega: f64,
+    p: f64,
+) -> Result<(Vec<f64>, DMatrix<f64>)> {
+    let nx = x.len();
+    let mut r = vec![0.0; nx];
+    let mut j = DMatrix::zeros(nx, nx + 1);
+    fam.evaluate(x, omega, p, &mut r, Some(&mut j))?;
+    Ok((r, j))
+}
+
+/// The residual's derivative in `p` at `(x, omega)`, by central differences
+/// between the family's neighbours of `p`.
+pub(crate) fn residual_p(fam: &mut Family, x: &[f64], omega: f64, p: f64) -> Result<Vec<f64>> {
+    let nx = x.len();
+    let (lo, hi) = fam.neighbours(p);
+    let (mut rp, mut rm) = (vec![0.0; nx], vec![0.0; nx]);
+    fam.evaluate(x, omega, hi, &mut rp, None)?;
+    fam.evaluate(x, omega, lo, &mut rm, None)?;
+    Ok((0..nx).map(|i| (rp[i] - rm[i]) / (hi - lo)).collect())
+}
+
+/// The residual and Jacobian of a system in `z = (X, Omega, p)` with one
+/// test row below the branch rows: the branch rows are filled (`r`, the
+/// `(X, Omega)` Jacobian `j`, the `p` column `r_p`), the test row is left
+/// at zero for the caller.
+pub(crate) fn branch_rows(
+    r: &[f64],
+    j: &DMatrix<f64>,
+    r_p: &[f64],
+) -> (DVector<f64>, DMatrix<f64>) {
+    let nx = r.len();
+    let mut res = DVector::zeros(nx + 1);
+    let mut jac = DMatrix::zeros(nx + 1, nx + 2);
+    for i in 0..nx {
+        res[i] = r[i];
+        for k in 0..=nx {
+            jac[(i, k)] = j[(i, k)];
+        }
+        jac[(i, nx + 1)] = r_p[i];
+    }
+    (res, jac)
+}
+
+/// How `X` moves along the branch per unit `Omega` and per unit `p`:
+/// `dX = -J^-1 (R_Omega dOmega + R_p dp)`, from the `(X, Omega)` Jacobian
+/// `j` and the `p` derivative `r_p`; zero where `J` is singular.
+pub(crate) fn branch_motion(j: &DMatrix<f64>, r_p: &[f64]) -> (DVector<f64>, DVector<f64>) {
+    let nx = j.nrows();
+    let lu = j.columns(0, nx).into_owned().lu();
+    match (
+        lu.solve(&j.column(nx).into_owned()),
+        lu.solve(&DVector::from_column_slice(r_p)),
+    ) {
+        (Some(a), Some(b)) => (-a, -b),
+        _ => (DVector::zeros(nx), DVector::zeros(nx)),
+    }
 }

@@ -10,7 +10,9 @@
 //! circle (`lambda > -1`), read from how `g` and `lambda + 1` move together
 //! along the branch.
 
-use super::bordered::{bordered_solve, Eval};
+use super::bordered::{
+    bordered_solve, branch_motion, branch_rows, inf_norm, residual_at, residual_p, Eval,
+};
 use super::family::Family;
 use crate::error::{Result, SolverError};
 use crate::hbm::stability::monodromy_matrices;
@@ -124,16 +126,10 @@ pub(crate) fn eval(
 ) -> Result<Eval> {
     let nx = z.len() - 2;
     let (x, omega, p) = (&z[..nx], z[nx], z[nx + 1]);
-    let mut r = vec![0.0; nx];
-    let mut j = DMatrix::zeros(nx, nx + 1);
-    fam.evaluate(x, omega, p, &mut r, Some(&mut j))?;
-    let (lo, hi) = fam.neighbours(p);
-    let (mut rp, mut rm) = (vec![0.0; nx], vec![0.0; nx]);
-    fam.evaluate(x, omega, hi, &mut rp, None)?;
-    fam.evaluate(x, omega, lo, &mut rm, None)?;
-    let r_p: Vec<f64> = (0..nx).map(|i| (rp[i] - rm[i]) / (hi - lo)).collect();
+    let (r, j) = residual_at(fam, x, omega, p)?;
+    let r_p = residual_p(fam, x, omega, p)?;
     let (g, v) = test(fam, z, block, b, c)?;
-    let scale = 1.0 + x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let scale = 1.0 + inf_norm(x);
     let mut grad = vec![0.0; nx + 2];
     let mut zz = z.to_vec();
     for (i, gi) in grad.iter_mut().enumerate() {
@@ -150,29 +146,14 @@ pub(crate) fn eval(
         zz[i] = keep;
         *gi = (gh - g) / h;
     }
-    let mut res = DVector::zeros(nx + 1);
-    let mut jac = DMatrix::zeros(nx + 1, nx + 2);
-    for i in 0..nx {
-        res[i] = r[i];
-        for k in 0..=nx {
-            jac[(i, k)] = j[(i, k)];
-        }
-        jac[(i, nx + 1)] = r_p[i];
-    }
+    let (mut res, mut jac) = branch_rows(&r, &j, &r_p);
     res[nx] = g;
     for (k, &gk) in grad.iter().enumerate() {
         jac[(nx, k)] = gk;
     }
     // g along the branch: dX = -J^-1 (R_Omega dOmega + R_p dp).
-    let lu = j.columns(0, nx).into_owned().lu();
     let g_x = DVector::from_column_slice(&grad[..nx]);
-    let (dx_om, dx_p) = match (
-        lu.solve(&j.column(nx).into_owned()),
-        lu.solve(&DVector::from_vec(r_p)),
-    ) {
-        (Some(a), Some(b)) => (-a, -b),
-        _ => (DVector::zeros(nx), DVector::zeros(nx)),
-    };
+    let (dx_om, dx_p) = branch_motion(&j, &r_p);
     let g_om = g_x.dot(&dx_om) + grad[nx];
     let g_p = g_x.dot(&dx_p) + grad[nx + 1];
     // Whether g grows with lambda + 1: a small step along the branch in Omega.

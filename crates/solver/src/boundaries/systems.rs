@@ -23,7 +23,9 @@
 //! `x(theta*) = s b` and `x'(theta*) = 0`, with `theta*` the one auxiliary
 //! unknown, all derivatives in closed form but the one in `p` (differenced).
 
-use super::bordered::{bordered, Eval};
+use super::bordered::{
+    bordered, branch_motion, branch_rows, inf_norm, residual_at, residual_p, Eval,
+};
 use super::family::Family;
 use super::CurveKind;
 use crate::error::{Result, SolverError};
@@ -132,10 +134,6 @@ impl System {
     }
 }
 
-fn inf_norm(v: &[f64]) -> f64 {
-    v.iter().fold(0.0, |m, x| m.max(x.abs()))
-}
-
 fn fold_eval(
     fam: &mut Family,
     z: &[f64],
@@ -146,9 +144,7 @@ fn fold_eval(
 ) -> Result<Eval> {
     let nx = z.len() - 2;
     let (x, omega, p) = (&z[..nx], z[nx], z[nx + 1]);
-    let mut r = vec![0.0; nx];
-    let mut j = DMatrix::zeros(nx, nx + 1);
-    fam.evaluate(x, omega, p, &mut r, Some(&mut j))?;
+    let (r, j) = residual_at(fam, x, omega, p)?;
     let a = bordered(&j, b, c);
     let singular = || SolverError::Singular {
         what: format!("bordered fold matrix at Omega = {omega}"),
@@ -184,15 +180,7 @@ fn fold_eval(
     let r_p: Vec<f64> = (0..nx).map(|i| (rp[i] - rm[i]) / h).collect();
     let jv_p = (jhi.columns(0, nx) - jlo.columns(0, nx)) * &v / h;
     let g_p = -w.dot(&jv_p);
-    let mut res = DVector::zeros(nx + 1);
-    let mut jac = DMatrix::zeros(nx + 1, nx + 2);
-    for i in 0..nx {
-        res[i] = r[i];
-        for k in 0..=nx {
-            jac[(i, k)] = j[(i, k)];
-        }
-        jac[(i, nx + 1)] = r_p[i];
-    }
+    let (mut res, mut jac) = branch_rows(&r, &j, &r_p);
     res[nx] = g;
     for k in 0..=nx {
         jac[(nx, k)] = -wdv[k];
@@ -270,9 +258,7 @@ fn contact_eval(fam: &mut Family, z: &[f64], channel: usize, kind: CurveKind) ->
     let nx = z.len() - 3;
     let (x, theta, omega, p) = (&z[..nx], z[nx], z[nx + 1], z[nx + 2]);
     let s = flank(kind);
-    let mut r = vec![0.0; nx];
-    let mut j = DMatrix::zeros(nx, nx + 1);
-    fam.evaluate(x, omega, p, &mut r, Some(&mut j))?;
+    let (r, j) = residual_at(fam, x, omega, p)?;
     let (coef, backlash) = rel_coef(fam, x, p, channel)?;
     let nc = coef.len();
     let [f, d1, d2] = basis(nc, theta);
@@ -287,10 +273,7 @@ fn contact_eval(fam: &mut Family, z: &[f64], channel: usize, kind: CurveKind) ->
     let h = hi - lo;
     let c1_p = (dot(&chi, &f) - s * bhi - dot(&clo, &f) + s * blo) / h;
     let c2_p = (dot(&chi, &d1) - dot(&clo, &d1)) / h;
-    let (mut rp, mut rm) = (vec![0.0; nx], vec![0.0; nx]);
-    fam.evaluate(x, omega, hi, &mut rp, None)?;
-    fam.evaluate(x, omega, lo, &mut rm, None)?;
-    let r_p: Vec<f64> = (0..nx).map(|i| (rp[i] - rm[i]) / h).collect();
+    let r_p = residual_p(fam, x, omega, p)?;
     let asm = fam.assembly(p)?;
     let m = asm.model.m;
     let d = asm.model.channels[channel].d.clone();
@@ -322,13 +305,7 @@ fn contact_eval(fam: &mut Family, z: &[f64], channel: usize, kind: CurveKind) ->
     jac[(nx + 1, nx + 2)] = c2_p;
     // The extremum's rate of change along the branch (theta* drops out:
     // x' = 0 there): dX = -J^-1 (R_Omega dOmega + R_p dp).
-    let jx = j.columns(0, nx).into_owned();
-    let lu = jx.lu();
-    let r_om = j.column(nx).into_owned();
-    let (dx_om, dx_p) = match (lu.solve(&r_om), lu.solve(&DVector::from_vec(r_p))) {
-        (Some(a), Some(b)) => (-a, -b),
-        _ => (DVector::zeros(nx), DVector::zeros(nx)),
-    };
+    let (dx_om, dx_p) = branch_motion(&j, &r_p);
     let g_om = c1_x.dot(&dx_om);
     let g_p = c1_x.dot(&dx_p) + c1_p;
     // The change has not happened where the extremum is inside the dead

@@ -204,6 +204,24 @@ impl Tracer {
             && p <= d + tol * (d - c)
     }
 
+    /// Where a step of `ds` along the tangent crosses an edge of `p`:
+    /// the arclength to it and the edge's value (a length of 0 or less: the
+    /// point is on the edge and the curve heads out).
+    fn edge_step(&self, ds: f64) -> Option<(f64, f64)> {
+        let n = self.z.len();
+        let (_, _, lo, hi) = self.bounds;
+        let (p, tp) = (self.z[n - 1], self.t[n - 1]);
+        let ahead = p + ds * tp;
+        let edge = if ahead < lo && tp < 0.0 {
+            lo
+        } else if ahead > hi && tp > 0.0 {
+            hi
+        } else {
+            return None;
+        };
+        Some(((edge - p) / tp, edge))
+    }
+
     /// Newton on the system bordered by `row . (z - pred) = 0`.
     fn correct(
         &mut self,
@@ -284,8 +302,24 @@ impl Tracer {
         }
         loop {
             let ds = self.ds;
-            let pred: Vec<f64> = (0..n).map(|i| self.z[i] + ds * self.t[i]).collect();
-            let row: Vec<f64> = (0..n).map(|i| self.metric[i] * self.t[i]).collect();
+            let mut pred: Vec<f64> = (0..n).map(|i| self.z[i] + ds * self.t[i]).collect();
+            let mut row: Vec<f64> = (0..n).map(|i| self.metric[i] * self.t[i]).collect();
+            // A step that would leave the box across an edge of `p` lands
+            // on the edge, `p` held there: where the edge is the key's own
+            // limit (backlash 0) a point beyond it cannot be evaluated, so
+            // the step would fail at every size and the curve end as a
+            // corrector failure a hair inside the box.
+            let edge = self.edge_step(ds);
+            match edge {
+                Some((s, _)) if s <= 0.0 => return Stepped::End(TraceEnd::LeftRange, None),
+                Some((s, e)) => {
+                    pred = (0..n).map(|i| self.z[i] + s * self.t[i]).collect();
+                    pred[n - 1] = e;
+                    row = vec![0.0; n];
+                    row[n - 1] = 1.0;
+                }
+                None => {}
+            }
             let outcome = self.correct(fam, &pred, &row).and_then(|(z, ev, it)| {
                 let t = self
                     .tangent(&ev, &row)
@@ -314,6 +348,9 @@ impl Tracer {
                     self.z = z;
                     self.t = t;
                     let point = self.traced(&ev);
+                    if edge.is_some() {
+                        return Stepped::End(TraceEnd::LeftRange, Some(point));
+                    }
                     if !self.inside(&self.z) {
                         let clipped = self.clip(point);
                         return Stepped::End(TraceEnd::LeftRange, Some(clipped));

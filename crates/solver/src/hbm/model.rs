@@ -87,8 +87,10 @@ impl Law {
         }
     }
 
-    /// The transmission error `e(theta)` (um); zero for non-mesh laws.
-    pub fn te(&self, theta: f64) -> f64 {
+    /// A mesh law's TE terms: its phase (rad) and `[mean, cos, sin]` (um) of
+    /// `e = mean + cos cos(theta + phase) + sin sin(theta + phase)`; `None`
+    /// for non-mesh laws.
+    pub fn te_terms(&self) -> Option<(f64, [f64; 3])> {
         match *self {
             Law::Mesh {
                 phase_rad,
@@ -96,12 +98,17 @@ impl Law {
                 te_cos_um,
                 te_sin_um,
                 ..
-            } => {
-                let (s, c) = crate::trig::phase_sin_cos(theta + phase_rad);
-                te_mean_um + te_cos_um * c + te_sin_um * s
-            }
-            Law::Cubic { .. } => 0.0,
+            } => Some((phase_rad, [te_mean_um, te_cos_um, te_sin_um])),
+            Law::Cubic { .. } => None,
         }
+    }
+
+    /// The transmission error `e(theta)` (um); zero for non-mesh laws.
+    pub fn te(&self, theta: f64) -> f64 {
+        self.te_terms().map_or(0.0, |(phase, [mean, cos, sin])| {
+            let (s, c) = crate::trig::phase_sin_cos(theta + phase);
+            mean + cos * c + sin * s
+        })
     }
 
     /// Backlash half-width (um); zero for non-mesh laws.

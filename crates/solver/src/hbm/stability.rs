@@ -255,6 +255,14 @@ fn deriv_fixed<const M: usize, const N2: usize>(
 /// Computes the Floquet multipliers of the orbit `x` at frequency `omega`.
 /// `None` if the eigenvalue iteration did not converge.
 pub fn floquet(asm: &Assembly, x: &[f64], omega: f64) -> Option<Floquet> {
+    let (coefs, cuts) = orbit_pieces(asm, x);
+    monodromy(asm, omega, &cuts, Some(&coefs), 8.0)
+}
+
+/// The orbit `x`'s channel coefficients (each channel's relative
+/// displacement in the Fourier basis) and the phases that cut one period
+/// into pieces of constant contact state (0, the switches, 2 pi).
+fn orbit_pieces(asm: &Assembly, x: &[f64]) -> (Vec<Vec<f64>>, Vec<f64>) {
     let model = &asm.model;
     let m = model.m;
     let h = asm.h;
@@ -271,7 +279,7 @@ pub fn floquet(asm: &Assembly, x: &[f64], omega: f64) -> Option<Floquet> {
     let mut cuts = vec![0.0];
     cuts.extend(switch_phases(asm, &coefs));
     cuts.push(2.0 * PI);
-    monodromy(asm, omega, &cuts, Some(&coefs), 8.0)
+    (coefs, cuts)
 }
 
 /// The Floquet multipliers of the linear time-periodic system with every
@@ -321,21 +329,7 @@ pub fn monodromy_matrices(
     x: &[f64],
     omega: f64,
 ) -> Option<(DMatrix<f64>, Option<DMatrix<f64>>)> {
-    let m = asm.model.m;
-    let nc = n_coef(asm.h);
-    let coefs: Vec<Vec<f64>> = asm
-        .model
-        .channels
-        .iter()
-        .map(|ch| {
-            (0..nc)
-                .map(|c| (0..m).map(|i| ch.d[i] * x[c * m + i]).sum())
-                .collect()
-        })
-        .collect();
-    let mut cuts = vec![0.0];
-    cuts.extend(switch_phases(asm, &coefs));
-    cuts.push(2.0 * PI);
+    let (coefs, cuts) = orbit_pieces(asm, x);
     let (main, planet) = integrate_blocks(asm, omega, &cuts, Some(&coefs), 8.0)?;
     let finite = |b: &LtpBlock| b.phi.iter().all(|v| v.is_finite());
     if !finite(&main) || planet.as_ref().is_some_and(|p| !finite(p)) {

@@ -19,6 +19,7 @@ use super::{poincare_point, settle_tol_um, Model, Phase, SteadyRun, MAX_PERIOD, 
 use crate::error::Result;
 use crate::ode::Dopri5;
 use crate::shooting::{ShootOptions, ShootOutcome, ShootRun};
+use serde::{Deserialize, Serialize};
 
 /// The transient periods after which a candidate period is looked for.
 pub const CHECKPOINTS: &[u32] = &[6, 12, 24, 48, 96, 192, 384, 768, 1536, 3072, 6144];
@@ -37,8 +38,11 @@ pub const PROBE_FROM_REST: u32 = 96;
 /// Newton iterations a steady run gives one shooting attempt.
 pub const PIPELINE_ITERATIONS: u32 = 8;
 
-/// How a steady state was classified.
-#[derive(Debug, Clone, PartialEq)]
+/// How a steady state was classified. It travels as JSON (the page's
+/// worker replies, the CLI's figure shards) tagged by its [`Motion::name`]
+/// in `kind`.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
 pub enum Motion {
     /// A periodic orbit found by shooting and stable: exact to the
     /// integrator's accuracy.
@@ -47,7 +51,8 @@ pub enum Motion {
         period: u32,
         /// The largest Floquet multiplier's modulus (below 1).
         max_multiplier_modulus: f64,
-        /// Newton iterations.
+        /// Newton iterations (0 where the form read did not say).
+        #[serde(default)]
         newton_iterations: u32,
     },
     /// The recorded Poincaré points repeat after `period` mesh periods
@@ -69,6 +74,7 @@ pub enum Motion {
         period: u32,
     },
     /// No repeat within the recorded window and nothing approaching one.
+    #[default]
     NotPeriodic,
 }
 
@@ -96,6 +102,16 @@ impl Motion {
             _ => None,
         }
     }
+
+    /// Every [`Motion::name`], in the order of the variants: what a file's
+    /// `motion` field may say.
+    pub const NAMES: [&'static str; 5] = [
+        "periodic-exact",
+        "periodic",
+        "period-above-maximum",
+        "still-settling",
+        "not-periodic",
+    ];
 
     /// A short name for output: `periodic-exact`, `periodic`,
     /// `period-above-maximum`, `still-settling`, `not-periodic`.
@@ -384,6 +400,47 @@ impl SteadyRun {
                 note.push_str(&what);
             }
             None => self.shooting_note = Some(what),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every verdict reads from its JSON form (tagged by its name in
+    /// `kind`) with its period and exactness, and writes back to the same
+    /// value; a form without the Newton count (an older shard) still reads.
+    #[test]
+    fn every_verdict_survives_json() {
+        let forms = [
+            (
+                r#"{"kind":"periodic-exact","period":2,"max_multiplier_modulus":0.5,"newton_iterations":3}"#,
+                Some(2),
+                true,
+            ),
+            (
+                r#"{"kind":"periodic-exact","period":1,"max_multiplier_modulus":0.9}"#,
+                Some(1),
+                true,
+            ),
+            (r#"{"kind":"periodic","period":3}"#, Some(3), false),
+            (
+                r#"{"kind":"period-above-maximum","period":40}"#,
+                None,
+                false,
+            ),
+            (r#"{"kind":"still-settling","period":11}"#, None, false),
+            (r#"{"kind":"not-periodic"}"#, None, false),
+        ];
+        for (json, period, exact) in forms {
+            let m: Motion = serde_json::from_str(json).unwrap();
+            let v: serde_json::Value = serde_json::from_str(json).unwrap();
+            assert_eq!(v["kind"], m.name(), "{json}");
+            assert!(Motion::NAMES.contains(&m.name()), "{json}");
+            assert_eq!((m.period(), m.is_exact()), (period, exact), "{json}");
+            let back: Motion = serde_json::from_value(serde_json::to_value(m).unwrap()).unwrap();
+            assert_eq!(back, m, "{json}");
         }
     }
 }

@@ -98,8 +98,24 @@ impl Controller {
                     json_text(serde_json::to_string(&v))?
                 }
             }
-            JobKind::Map if csv => crate::views::map::map_csv(&self.main.map),
-            JobKind::Map => crate::views::map::map_json(&self.main.map).to_string(),
+            JobKind::Map | JobKind::Boundaries if csv => crate::views::map::map_csv(&self.main.map),
+            JobKind::Map | JobKind::Boundaries => {
+                let mut j = crate::views::map::map_json(&self.main.map);
+                // The traced boundaries, when they are on.
+                if self.main.boundaries.id != 0 {
+                    let names = self.mesh_names();
+                    if let Some(o) = j.as_object_mut() {
+                        o.insert(
+                            "boundaries".into(),
+                            crate::views::boundaries::boundaries_json(
+                                &self.main.boundaries,
+                                &names,
+                            ),
+                        );
+                    }
+                }
+                j.to_string()
+            }
             JobKind::Lyap if csv => crate::views::lyap::lyap_csv(&self.main.lyap),
             JobKind::Lyap => crate::views::lyap::lyap_json(&self.main.lyap).to_string(),
             JobKind::Omega if self.family.is_some() => {

@@ -45,48 +45,6 @@ pub struct Drawn {
     pub map: Option<MapOverlay>,
 }
 
-/// The map's cells, period dots and cursor lines drawn with plotters (the
-/// canvas fills them itself).
-fn draw_map_cells<DB: DrawingBackend>(
-    root: &DrawingArea<DB, Shift>,
-    f: &PlotFrame,
-    o: &MapOverlay,
-) -> Result<(), DrawError> {
-    for (c, rects) in &o.cells {
-        for r in rects {
-            let (x, y) = (r[0].round() as i32, r[1].round() as i32);
-            let (w, h) = (r[2].round() as i32, r[3].round() as i32);
-            root.draw(&Rectangle::new([(x, y), (x + w, y + h)], c.filled()))
-                .map_err(plots::err)?;
-        }
-    }
-    for d in &o.dots {
-        let c = (d[0].round() as i32, d[1].round() as i32);
-        root.draw(&Circle::new(c, o.dot_radius.round() as i32, BLACK.filled()))
-            .map_err(plots::err)?;
-    }
-    let line = BLACK.mix(0.7).stroke_width(1);
-    let (t, b) = (f.top_left, f.bottom_right);
-    let mut lines = Vec::new();
-    if let Some(x) = o.cursor.0 {
-        lines.push([
-            (x.round() as i32, t.y as i32),
-            (x.round() as i32, b.y as i32),
-        ]);
-    }
-    if let Some(y) = o.cursor.1 {
-        lines.push([
-            (t.x as i32, y.round() as i32),
-            (b.x as i32, y.round() as i32),
-        ]);
-    }
-    for l in lines {
-        root.draw(&PathElement::new(l.to_vec(), line))
-            .map_err(plots::err)?;
-    }
-    Ok(())
-}
-
 impl Controller {
     /// A view's drawing size now: [`Self::base_canvas_size`], the frequency
     /// response taller where its key is long ([`plots::fr_height`]).
@@ -162,7 +120,7 @@ impl Controller {
                 let (frame, dots) = plots::draw_bif(root, &self.bif_view(), &natural, status)?;
                 (d.frame, d.dots) = (Some(frame), dots);
             }
-            JobKind::Map => {
+            JobKind::Map | JobKind::Boundaries => {
                 let (f, o) = maps::draw_map(root, &self.map_view(), status)?;
                 (d.frame, d.map) = (Some(f), Some(o));
             }
@@ -211,7 +169,9 @@ impl Controller {
         };
         // What the canvas fills itself goes inside the closed chart.
         Ok(match (d.frame, &d.map) {
-            (Some(f), Some(o)) => plots::svg_with(&s, size, |root| draw_map_cells(root, &f, o))?,
+            (Some(f), Some(o)) => {
+                plots::svg_with(&s, size, |root| maps::draw_map_overlay(root, &f, o))?
+            }
             _ if !d.dots.is_empty() => plots::svg_with_dots(&s, size, &d.dots)?,
             _ => s,
         })

@@ -234,7 +234,7 @@ fn bif_sample(sweep: &BifurcationSweep, p: &SweepPoint) -> BifSample {
             .collect(),
         worst_mesh: p.worst_mesh,
         period: p.period,
-        motion: (&p.motion).into(),
+        motion: p.motion,
         error: p.error.clone(),
     }
 }

@@ -13,12 +13,14 @@
 //! integrator steps of the point in progress (the selected-Omega run, a
 //! bifurcation point, an overlay point, a Lyapunov point, a map cell; the
 //! run pauses and resumes without changing a bit), [`hbm::HBM_CHUNK`]
-//! branch points, or [`SLICE_STEPS`] steps' work of a shooting branch
+//! branch points, [`SLICE_STEPS`] steps' work of a shooting branch
 //! step ([`orbits`]: a step carrying the monodromy's tangents counts one
-//! per vector; the branch step pauses and is taken up again, bit for bit).
+//! per vector; the branch step pauses and is taken up again, bit for bit),
+//! or [`boundaries::BOUNDARY_CHUNK`] boundary points.
 //! A newer job, a cancel or an export request waits at most one step.
 
 pub mod bif;
+pub mod boundaries;
 pub mod chain;
 pub mod hbm;
 pub mod lyap;
@@ -190,6 +192,26 @@ pub(crate) fn start(
             model,
             (omega_from, omega_to, points),
         )),
+        JobSpec::Boundaries {
+            key,
+            omega_from,
+            omega_to,
+            value_from,
+            value_to,
+            levels,
+            points,
+            harmonics,
+        } => {
+            let mut spec = solver::boundaries::BoundarySpec::new(
+                &key,
+                (value_from, value_to),
+                (omega_from, omega_to),
+            );
+            spec.levels = levels;
+            spec.points = points;
+            spec.harmonics = harmonics;
+            boxed(boundaries::BoundariesJob::start(id, &params, spec))
+        }
     }
 }
 

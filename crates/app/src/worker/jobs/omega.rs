@@ -229,7 +229,7 @@ fn omega_result_of(
         backlash_um: um(model.system.meshes[j].backlash_m),
         regime: m.impact.into(),
         period: ss.period,
-        motion: (&ss.motion).into(),
+        motion: ss.motion,
         dynamic_factor: m.dynamic_factor,
         mesh_freq_hz: ss.mesh_freq_hz,
         transient_periods_run: ss.stats.transient_periods_run,

@@ -14,7 +14,7 @@ use super::{
 };
 use crate::failure::{usage, Failure};
 use app::presets::{preset, Preset};
-use app::protocol::{AnimHistory, MotionClass, OmegaResult, Regime};
+use app::protocol::{AnimHistory, Motion, OmegaResult, Regime};
 use app::worker::jobs::omega::SAMPLES_PER_PERIOD;
 use serde_json::{json, Map, Value};
 use solver::keys::truncate;
@@ -135,18 +135,41 @@ pub fn orbit_from_json(
     exact("samples_per_period", json!(SAMPLES_PER_PERIOD))?;
     exact("record_periods", json!(run.record_periods))?;
     let record = run.record_periods as usize;
+    // No run keeps a deflection beyond the model's divergence bound (it
+    // stops there), nor a velocity beyond that bound swept at the fastest
+    // of its natural frequencies and the mesh frequency: ten and a hundred
+    // times those, generous for peaks between the checks, bound what a
+    // shard may hold (a forged 1e300 broke the plotting).
+    let bound_m = m.model.divergence_bound_m();
+    let omega_top = m
+        .model
+        .modes
+        .modes
+        .iter()
+        .map(|mode| mode.omega)
+        .filter(|w| w.is_finite())
+        .fold(m.settings.view.omega.max(1.0), f64::max);
+    let largest = |key: &str| {
+        if key.contains("xdot") {
+            100.0 * bound_m * omega_top * m.model.system.omega_ref_rad_s
+        } else {
+            10.0 * bound_m * 1e6
+        }
+    };
     let samples = |key: &str, len: usize| -> Result<Vec<f64>, String> {
-        let arr = o
-            .get(key)
-            .and_then(Value::as_array)
-            .filter(|a| a.len() == len && a.iter().all(|x| x.is_null() || x.as_f64().is_some()));
+        let limit = largest(key);
+        let arr = o.get(key).and_then(Value::as_array).filter(|a| {
+            a.len() == len
+                && a.iter()
+                    .all(|x| x.is_null() || x.as_f64().is_some_and(|x| x.abs() <= limit))
+        });
         let arr = arr.ok_or_else(|| {
             let what = match o.get(key) {
                 Some(Value::Array(a)) => format!("{} entries", a.len()),
                 got => got.map_or("missing".into(), |v| truncate(&v.to_string(), 40)),
             };
             format!(
-                "{at}: orbit.{key} ({what}) is out of range: allowed an array of exactly {len} numbers ({} recorded periods)",
+                "{at}: orbit.{key} ({what}) is out of range: allowed an array of exactly {len} numbers of at most {limit:.3e} ({} recorded periods)",
                 run.record_periods
             )
         })?;
@@ -193,10 +216,10 @@ pub fn orbit_from_json(
     // without it keeps what its period says.
     let motion = match o.get("motion") {
         None => match period {
-            Some(period) => MotionClass::Periodic { period },
-            None => MotionClass::NotPeriodic,
+            Some(period) => Motion::Periodic { period },
+            None => Motion::NotPeriodic,
         },
-        Some(v) => serde_json::from_value::<MotionClass>(v.clone())
+        Some(v) => serde_json::from_value::<Motion>(v.clone())
             .ok()
             .ok_or_else(|| {
                 bad(
@@ -293,6 +316,7 @@ fn options_of(id: &str, options: &Value, at: &str) -> Result<FigureArgs, Failure
         transient_periods: field("transient_periods")?,
         record_periods: field("record_periods")?,
         shard: None,
+        link: None,
     };
     check_options(&args).map_err(|e| bad(format!("figure_shard.options: {}", e.message)))?;
     Ok(args)

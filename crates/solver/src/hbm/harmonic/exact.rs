@@ -283,24 +283,12 @@ pub fn contact_switches(
 
 /// The TE of a mesh law as real coefficients `[mean, cos 1, sin 1]` in theta.
 pub fn te_real_coefficients(law: &Law) -> [f64; 3] {
-    match *law {
-        Law::Mesh {
-            phase_rad,
-            te_mean_um,
-            te_cos_um,
-            te_sin_um,
-            ..
-        } => {
+    law.te_terms()
+        .map_or([0.0; 3], |(phase, [mean, cos, sin])| {
             // c cos(t + p) + s sin(t + p) = (c cos p + s sin p) cos t + (s cos p - c sin p) sin t
-            let (sp, cp) = phase_rad.sin_cos();
-            [
-                te_mean_um,
-                te_cos_um * cp + te_sin_um * sp,
-                te_sin_um * cp - te_cos_um * sp,
-            ]
-        }
-        Law::Cubic { .. } => [0.0; 3],
-    }
+            let (sp, cp) = phase.sin_cos();
+            [mean, cos * cp + sin * sp, sin * cp - cos * sp]
+        })
 }
 
 /// A root of `g` in `[a, b]` where `g(a) = ga` and `g(b) = gb` differ in

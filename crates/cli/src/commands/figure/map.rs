@@ -1,0 +1,185 @@
+//! `gearshock figure map --out DIR [--link QUERY]`: the page's
+//! impact-regime map of a link (the page's defaults without one) with its
+//! boundaries traced as curves over it, drawn by the page's own plotting
+//! code: `map.svg`, the cells as `map.csv`, and `map.json` (the cells, the
+//! curves and cusps as `gearshock boundaries` names them, the cells that
+//! disagree with the curves). The map and the trace are the page's: the
+//! link's grid, mesh, periods and harmonics, 5 levels and 50 points.
+
+use super::{write_all, FigureArgs, Files};
+use crate::budget::{check_work, StepCost, MAX_BOUNDARY_WORK};
+use crate::failure::{usage, Failure};
+use crate::{output, progress};
+use app::protocol::{BoundaryCurve, MapSample};
+use app::views::boundaries::{
+    boundaries_json, disagreements, BoundaryStore, BOUNDARY_LEVELS, BOUNDARY_POINTS,
+};
+use app::views::map::{map_csv, map_json, MapGrid, MapStore, MapView};
+use serde_json::{json, Value};
+use solver::boundaries::{BoundarySpec, BoundaryTrace};
+use solver::map::{MapSpec, RegimeMap};
+use solver::steady::Model;
+
+/// Size of the SVG (the page's map canvas).
+const SIZE: (u32, u32) = (app::plots::WIDTH, 460);
+
+/// Runs the map figure.
+pub(crate) fn run(args: &FigureArgs) -> Result<Value, Failure> {
+    if args.shard.is_some() {
+        return Err(usage(
+            "figure map --shard: not sharded; shard `gearshock map` instead",
+        ));
+    }
+    for (flag, given) in [
+        ("--points", args.points.is_some()),
+        ("--transient-periods", args.transient_periods.is_some()),
+        ("--record-periods", args.record_periods.is_some()),
+    ] {
+        if given {
+            return Err(usage(format!(
+                "figure map {flag}: the map takes its grid and periods from --link (map_omega_points, map_transient_periods, ...)"
+            )));
+        }
+    }
+    let out = args
+        .out
+        .as_ref()
+        .ok_or_else(|| usage("figure map: --out DIR is required"))?;
+    let query = args.link.as_deref().unwrap_or("");
+    let query = query.split_once('?').map_or(query, |(_, q)| q);
+    let d = app::link::decode(query);
+    if let Some(issue) = d.issues.first() {
+        return Err(usage(format!("figure map --link: {issue}")));
+    }
+    let settings = d.settings;
+    let v = &settings.view;
+    let params = &settings.params;
+    let model = Model::new(params)?;
+    let grid = MapGrid::of(v);
+    let mesh = settings.mesh_index(&model);
+    let mut spec = MapSpec::new(
+        (grid.omega_from, grid.omega_to, grid.omega_points),
+        &grid.key,
+        (grid.value_from, grid.value_to, grid.value_points),
+    );
+    spec.steady.transient_periods = v.map_transient_periods;
+    spec.steady.record_periods = v.map_record_periods;
+    spec.mesh = mesh;
+    let cells = grid.cells() as u64;
+    let periods = u64::from(v.map_transient_periods) + u64::from(v.map_record_periods);
+    check_work(
+        cells * periods,
+        StepCost::of(&model).mean_per_period(grid.omega_from, grid.omega_to, grid.omega_points),
+        &format!("{cells} cells x (map_transient_periods + map_record_periods {periods})"),
+        "use a smaller map in --link (map_omega_points, map_value_points)",
+    )?;
+    let h = u64::from(v.harmonics);
+    let work = u64::from(BOUNDARY_LEVELS) * u64::from(BOUNDARY_POINTS) * (2 * h + 1).pow(3);
+    if work > MAX_BOUNDARY_WORK {
+        return Err(usage(format!(
+            "figure map --link harmonics={}: the boundary trace would take {work} of its budget {MAX_BOUNDARY_WORK}; use fewer harmonics",
+            v.harmonics
+        )));
+    }
+    output::check_dir("--out", out)?;
+
+    let mut map = RegimeMap::new(params, spec)?;
+    let mut bar = progress::Progress::new(
+        map.total() + 1000,
+        "cells and per mille of the boundaries",
+        false,
+    );
+    let mut store = MapStore::new(1, grid.clone(), String::new());
+    while !map.is_finished() {
+        let new: Vec<MapSample> = map.advance(1).into_iter().map(MapSample::from).collect();
+        store.add(new);
+        bar.update(store.done);
+    }
+    let mut bs = BoundarySpec::new(
+        &grid.key,
+        (grid.value_from, grid.value_to),
+        (grid.omega_from, grid.omega_to),
+    );
+    bs.levels = BOUNDARY_LEVELS;
+    bs.points = BOUNDARY_POINTS;
+    bs.harmonics = v.harmonics as usize;
+    let mut trace = BoundaryTrace::new(params, bs)?;
+    let mut failure = None;
+    while !trace.is_finished() {
+        if let Err(e) = trace.advance(8) {
+            failure = Some(e);
+            break;
+        }
+        bar.update(store.done + (1000.0 * trace.progress()) as usize);
+    }
+    bar.finish();
+    let boundaries = BoundaryStore {
+        id: 1,
+        curves: trace.curves().iter().map(BoundaryCurve::from).collect(),
+        cusps: trace.cusps().iter().map(|c| (c.omega, c.value)).collect(),
+        notes: trace.notes().to_vec(),
+        finished: failure.is_none(),
+        signature: String::new(),
+    };
+    let shown = boundaries.shown(mesh);
+    let (disagree, judged) = disagreements(&grid, &store, &shown);
+    let names: Vec<String> = model.system.meshes.iter().map(|m| m.name.clone()).collect();
+    let value = solver::keys::get(params, &grid.key).and_then(|x| match x {
+        solver::keys::Value::Num(x) => Some(x),
+        _ => None,
+    });
+    let view = MapView {
+        store: &store,
+        mesh_label: match mesh.and_then(|m| names.get(m)) {
+            Some(n) => format!("mesh {n}"),
+            None => "most severe of all meshes".into(),
+        },
+        selected: (v.omega, value),
+        boundaries: shown,
+        cusps: boundaries.cusps.clone(),
+        disagree: disagree.clone(),
+    };
+    let svg = app::plots::maps::map_svg(&view, SIZE).map_err(|e| Failure {
+        code: 1,
+        message: format!("cannot draw map.svg: {e}"),
+    })?;
+    let mut data = map_json(&store);
+    if let Some(o) = data.as_object_mut() {
+        o.insert("boundaries".into(), boundaries_json(&boundaries, &names));
+        o.insert(
+            "disagree".into(),
+            json!({
+                "judged": judged,
+                "cells": disagree.iter().map(|&(r, c)| json!({"row": r, "column": c})).collect::<Vec<_>>(),
+            }),
+        );
+    }
+    let files: Files = vec![
+        ("map.svg".into(), svg),
+        ("map.json".into(), format!("{data}\n")),
+        ("map.csv".into(), map_csv(&store)),
+    ];
+    write_all(out, &files)?;
+    if let Some(e) = failure {
+        return Err(Failure {
+            code: 1,
+            message: format!(
+                "figure map: the boundary trace failed ({e}); the {} curves traced before it are drawn",
+                boundaries.curves.len()
+            ),
+        });
+    }
+    Ok(json!({
+        "id": "map",
+        "title": "Impact-regime map with its traced boundaries",
+        "out": out.display().to_string(),
+        "panels": [{
+            "panel": "map",
+            "files": ["map.svg", "map.json", "map.csv"],
+            "curves": boundaries.curves.len(),
+            "cusps": boundaries.cusps.len(),
+            "judged": judged,
+            "disagree": disagree.len(),
+        }],
+    }))
+}

@@ -1,0 +1,94 @@
+// Browser test of issue 22 item 3: the regime map's boundaries, traced in
+// a worker and drawn over the map, each kind named in the key; a click on
+// a curve says what it is and selects its point; the cells that disagree
+// with the side of a curve they lie on are counted and outlined. The gear
+// pair traces its boundaries in seconds.
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { start, open, waitStatus, waitText, shot } from './harness.mjs';
+
+const QUERY = [
+  'model=gear-pair',
+  'boundaries=on',
+  'bif_points=8',
+  'transient_periods=120',
+  'record_periods=40',
+  'lyap_points=0',
+  'map_omega_points=30',
+  'map_value_points=12',
+  'map_transient_periods=200',
+  'map_record_periods=30',
+].join('&');
+
+let h;
+before(async () => {
+  h = await start();
+});
+after(async () => {
+  await h?.close();
+});
+
+/** Page coordinates of the data point (x, y) of a canvas whose frame is [l, t, r, b, x0, x1, y0, y1]. */
+async function pagePoint(page, canvasId, frame, x, y) {
+  const [l, t, r, b, x0, x1, y0, y1] = frame;
+  await page.locator(`#${canvasId}`).scrollIntoViewIfNeeded();
+  const box = await page.locator(`#${canvasId}`).boundingBox();
+  const width = await page.evaluate((id) => document.getElementById(id).width, canvasId);
+  const scale = box.width / width;
+  const px = l + ((x - x0) / (x1 - x0)) * (r - l);
+  const py = b - ((y - y0) / (y1 - y0)) * (b - t);
+  return [box.x + px * scale, box.y + py * scale];
+}
+
+test('the map draws its traced boundaries, a click on one says what it is and selects it, disagreeing cells are outlined', async () => {
+  const { page, errors } = await open(h.browser, h.url, QUERY);
+  // Curves arrive one by one; wait for the whole trace, the whole map and
+  // a drawing of both (the drawn marks are the disagreeing cells counted).
+  const s = await waitStatus(
+    page,
+    (x) =>
+      x.map_boundaries.finished &&
+      x.map.finished_ms &&
+      x.map_frame &&
+      x.map_drawn &&
+      x.map_drawn.curve_paths > 0 &&
+      x.map_drawn.marks === x.map_boundaries.disagree,
+    300000,
+    'the boundaries drawn over the finished map',
+  );
+  const b = s.map_boundaries;
+  console.log(`# boundaries: ${b.curves} curves (${JSON.stringify(b.kinds)}) traced in ${Math.round(b.job.finished_ms - b.job.started_ms)} ms; ${b.judged} cells judged, ${b.disagree} disagree`);
+  assert.ok(b.shown >= 2, JSON.stringify(b));
+  // The gear pair's jump and its contact changes over backlash.
+  assert.ok(b.kinds.fold >= 1, JSON.stringify(b.kinds));
+  assert.ok(b.kinds['drive-flanks-part'] >= 1 || b.kinds['back-flanks-touch'] >= 1, JSON.stringify(b.kinds));
+  assert.ok(b.judged > 0, 'cells near the curves are judged');
+  assert.ok(Number.isInteger(b.disagree) && b.disagree <= b.judged);
+  const note = await waitText(page, '#note-map', /Boundaries: \d+ curves traced\./);
+  if (b.disagree > 0) {
+    assert.match(note, /outlined in yellow lie on the wrong side of a curve: the periodic branch is not what the gears do here/);
+  }
+  await page.locator('#view-map').scrollIntoViewIfNeeded();
+  await shot(page.locator('#view-map'), '50-map-boundaries');
+  // A click on the longest curve's middle point picks it.
+  const p = b.sample;
+  const [x, y] = await pagePoint(page, 'canvas-map', s.map_frame, p.omega, p.value);
+  await page.mouse.click(x, y);
+  const s2 = await waitStatus(page, (x) => x.map_boundaries.picked, 30000, 'the picked boundary');
+  assert.match(s2.map_boundaries.picked, /^Here .*: Ω \d\.\d{3}, backlash \d+\.\d µm\.$/);
+  // Its point is selected: Omega within a pixel or two of the curve's, the backlash likewise.
+  const [l, , r, , x0, x1, y0, y1] = s.map_frame;
+  const [, t2, , b2] = s.map_frame;
+  const perPxOmega = (x1 - x0) / (r - l);
+  const perPxValue = (y1 - y0) / (b2 - t2);
+  const set = s2.query.match(/backlash_um=([\d.]+)/);
+  assert.ok(set, s2.query);
+  assert.ok(Math.abs(s2.omega - p.omega) <= 3 * perPxOmega, `${s2.omega} vs ${p.omega}`);
+  assert.ok(Math.abs(Number(set[1]) - p.value) <= 3 * perPxValue, `${set[1]} vs ${p.value}`);
+  await waitText(page, '#note-map', /Here .* µm\./);
+  // The curves depend on everything but the backlash: they are kept.
+  assert.equal(s2.map_boundaries.job.id, b.job.id);
+  await shot(page.locator('#view-map'), '51-map-boundary-picked');
+  assert.deepEqual(errors, []);
+  await page.close();
+});
