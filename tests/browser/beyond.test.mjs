@@ -3,7 +3,7 @@
 // the A/B comparison. Small grids keep the suite quick.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { start, open, status, waitStatus, waitText, canvasStats, shot, watchMainThread, stopWatch, watchReport } from './harness.mjs';
+import { start, open, status, waitStatus, waitText, canvasStats, shot, watchMainThread, stopWatch, watchReport, pagePoint } from './harness.mjs';
 
 const QUICK = 'bif_points=8&transient_periods=120&record_periods=40&fr_points=150';
 
@@ -14,18 +14,6 @@ before(async () => {
 after(async () => {
   await h?.close();
 });
-
-/** Page coordinates of the data point (x, y) of a canvas whose frame is [l, t, r, b, x0, x1, y0, y1]. */
-async function pagePoint(page, canvasId, frame, x, y) {
-  const [l, t, r, b, x0, x1, y0, y1] = frame;
-  await page.locator(`#${canvasId}`).scrollIntoViewIfNeeded();
-  const box = await page.locator(`#${canvasId}`).boundingBox();
-  const width = await page.evaluate((id) => document.getElementById(id).width, canvasId);
-  const scale = box.width / width;
-  const px = l + ((x - x0) / (x1 - x0)) * (r - l);
-  const py = b - ((y - y0) / (y1 - y0)) * (b - t);
-  return [box.x + px * scale, box.y + py * scale];
-}
 
 test('the impact-regime map fills in from both workers and a cell click sets backlash and Omega', async () => {
   const q = `${QUICK}&lyap_points=0&map_omega_points=10&map_value_points=5&map_from=40&map_to=200&map_transient_periods=150&map_record_periods=30`;

@@ -5,7 +5,7 @@
 // pair traces its boundaries in seconds.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { start, open, waitStatus, waitText, shot } from './harness.mjs';
+import { start, open, waitStatus, waitText, shot, pagePoint } from './harness.mjs';
 
 const QUERY = [
   'model=gear-pair',
@@ -27,18 +27,6 @@ before(async () => {
 after(async () => {
   await h?.close();
 });
-
-/** Page coordinates of the data point (x, y) of a canvas whose frame is [l, t, r, b, x0, x1, y0, y1]. */
-async function pagePoint(page, canvasId, frame, x, y) {
-  const [l, t, r, b, x0, x1, y0, y1] = frame;
-  await page.locator(`#${canvasId}`).scrollIntoViewIfNeeded();
-  const box = await page.locator(`#${canvasId}`).boundingBox();
-  const width = await page.evaluate((id) => document.getElementById(id).width, canvasId);
-  const scale = box.width / width;
-  const px = l + ((x - x0) / (x1 - x0)) * (r - l);
-  const py = b - ((y - y0) / (y1 - y0)) * (b - t);
-  return [box.x + px * scale, box.y + py * scale];
-}
 
 test('the map draws its traced boundaries, a click on one says what it is and selects it, disagreeing cells are outlined', async () => {
   const { page, errors } = await open(h.browser, h.url, QUERY);

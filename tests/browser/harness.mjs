@@ -247,3 +247,15 @@ export function watchReport(beat) {
   const tasks = beat.longs.map(([d, c]) => `${d} ms (${c} ms CPU)`).join(', ');
   return `main-thread tasks over 50 ms by the clock: ${beat.longs.length}${tasks ? `: ${tasks}` : ''}; the most CPU time in one task ${beat.longCpu} ms (limit ${TASK_LIMIT_MS} ms)`;
 }
+
+/** Page coordinates of the data point (x, y) of a canvas whose frame is [l, t, r, b, x0, x1, y0, y1]. */
+export async function pagePoint(page, canvasId, frame, x, y) {
+  const [l, t, r, b, x0, x1, y0, y1] = frame;
+  await page.locator(`#${canvasId}`).scrollIntoViewIfNeeded();
+  const box = await page.locator(`#${canvasId}`).boundingBox();
+  const width = await page.evaluate((id) => document.getElementById(id).width, canvasId);
+  const scale = box.width / width;
+  const px = l + ((x - x0) / (x1 - x0)) * (r - l);
+  const py = b - ((y - y0) / (y1 - y0)) * (b - t);
+  return [box.x + px * scale, box.y + py * scale];
+}
