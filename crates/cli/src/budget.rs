@@ -89,20 +89,20 @@ impl StepCost {
 }
 
 /// Checks `periods` mesh periods (the product `formula` of the options) at
-/// `steps_per_period` each against [`MAX_STEPS`]; `split` says how to split
-/// a larger run.
+/// `steps_per_period` each against [`MAX_STEPS`]; `fix` says what to
+/// change (fewer of what, or how to split the run). The refusal is one line of at most 200 characters.
 pub fn check_work(
     periods: u64,
     steps_per_period: f64,
     formula: &str,
-    split: &str,
+    fix: &str,
 ) -> Result<(), Failure> {
     let steps = periods as f64 * steps_per_period;
+    let per = steps_per_period.round();
     if steps > MAX_STEPS {
         return Err(usage(format!(
-            "{formula} = {periods} mesh periods of about {} integration steps = {steps:.1e} steps, \
-             more than the {MAX_STEPS:.0e} one command may take: use fewer points or periods, or {split}",
-            steps_per_period.round()
+            "{formula} = {steps:.1e} integration steps ({per:.0} a period) over the \
+             {MAX_STEPS:.0e} limit: {fix}"
         )));
     }
     Ok(())

@@ -74,17 +74,16 @@ pub fn run(a: &BifurcationArgs) -> Result<(), Failure> {
         total * (transient + record),
         StepCost::of(&model).mean_per_period(spec.omega_from, spec.omega_to, spec.points),
         &format!(
-            "{total} points (--points over --direction and --shard) x (--transient-periods {transient} + --record-periods {record})"
+            "{total} runs (--points) x (--transient-periods {transient} + --record-periods {record})"
         ),
-        "split the sweep with --shard i/n",
+        "fewer points or periods, or --shard i/n",
     )?;
     let samples = total * spec.meshes.len() as u64 * record;
     // Streamed points are not kept, so only the work is capped then.
     if samples > MAX_SAMPLES && a.p.format != Format::Jsonl {
         return Err(usage(format!(
-            "{total} points x {} meshes (--mesh) x --record-periods {record} = {samples} Poincaré samples \
-             is more than the {} one command may keep: use fewer points, meshes or recorded periods, \
-             stream them with --format jsonl, or split the sweep with --shard i/n",
+            "{total} points x {} meshes (--mesh) x --record-periods {record} = {samples} Poincaré samples, \
+             over the {} kept at most: fewer of them, --format jsonl, or --shard i/n",
             spec.meshes.len(),
             MAX_SAMPLES
         )));

@@ -45,7 +45,7 @@ pub fn run(a: &LyapunovArgs) -> Result<(), Failure> {
         &format!(
             "--points {points} x (--transient-periods {transient_periods} + 2 x --periods {periods})"
         ),
-        "split the Omega range over several runs",
+        "fewer points or periods, or split the Omega range",
     )?;
     let lines = Lines {
         header: stream_header(&model, &params, Some(report::lyapunov_spec_json(&opts))),

@@ -75,10 +75,8 @@ pub fn run(a: &MapArgs) -> Result<(), Failure> {
     check_work(
         total * (u64::from(transient) + u64::from(record)),
         cost.mean_per_period(spec.omega_from, spec.omega_to, spec.omega_points),
-        &format!(
-            "{total} cells (--omega-points x --value-points over --shard) x (--transient-periods {transient} + --record-periods {record})"
-        ),
-        "split the map with --shard i/n",
+        &format!("{total} cells x (--transient-periods {transient} + --record-periods {record})"),
+        "fewer --omega-points, --value-points or periods, or --shard i/n",
     )?;
     let lines = Lines {
         header: stream_header(&model, &params, Some(report::map_spec_json(&model, &spec))),

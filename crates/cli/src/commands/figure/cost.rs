@@ -63,8 +63,8 @@ pub(crate) fn check(
             if samples > MAX_SAMPLES {
                 return Err(usage(format!(
                     "figure {id}: {samples} Poincaré samples (points x directions x --record-periods over \
-                     {} panels), more than the {MAX_SAMPLES} one command may keep: use fewer --points or \
-                     --record-periods, or --shard i/n",
+                     {} panels), over the {MAX_SAMPLES} kept at most: fewer --points or --record-periods, \
+                     or --shard i/n",
                     members.len()
                 )));
             }
@@ -80,7 +80,7 @@ pub(crate) fn check(
                     "figure {id}: {} panels x points x (--transient-periods + --record-periods)",
                     members.len()
                 ),
-                "split the figure with --shard i/n",
+                "fewer points or periods, or --shard i/n",
             )
         }
     }

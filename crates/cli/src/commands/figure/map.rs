@@ -71,7 +71,7 @@ pub(crate) fn run(args: &FigureArgs) -> Result<Value, Failure> {
         cells * periods,
         StepCost::of(&model).mean_per_period(grid.omega_from, grid.omega_to, grid.omega_points),
         &format!("{cells} cells x (map_transient_periods + map_record_periods {periods})"),
-        "use a smaller map in --link (map_omega_points, map_value_points)",
+        "use a smaller map in --link",
     )?;
     let h = u64::from(v.harmonics);
     let work = u64::from(BOUNDARY_LEVELS) * u64::from(BOUNDARY_POINTS) * (2 * h + 1).pow(3);
