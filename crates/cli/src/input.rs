@@ -126,7 +126,7 @@ pub fn read_json(
 /// A JSON value whose objects hold each key once: a key given twice (which
 /// a plain reader would settle silently, the last one winning) is refused
 /// naming it.
-struct Unique(Value);
+pub(crate) struct Unique(pub(crate) Value);
 
 impl<'de> Deserialize<'de> for Unique {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {

@@ -1,9 +1,11 @@
 //! Shard files read as a stream: the fields of a file's top-level object
 //! are kept up to its list of items (a sweep's `points`, a map's `cells`),
 //! whose items are then handed over one at a time, so that `merge` never
-//! holds a whole shard, let alone all of them.
+//! holds a whole shard, let alone all of them. A key given twice in any
+//! object is refused, named, as in every JSON file gearshock reads.
 
 use crate::failure::Failure;
+use crate::input::Unique;
 use serde::de::{self, DeserializeSeed, IgnoredAny, MapAccess, SeqAccess, Visitor};
 use serde_json::{Map, Value};
 use std::fmt;
@@ -80,7 +82,14 @@ impl<'de> Visitor<'de> for Top<'_> {
         } = self;
         let mut head = Map::new();
         let mut listed = false;
+        let mut seen = std::collections::HashSet::new();
         while let Some(key) = m.next_key::<String>()? {
+            if !seen.insert(key.clone()) {
+                return Err(de::Error::custom(format!(
+                    "key \"{}\" is given twice",
+                    crate::flags::shown(&key, 40)
+                )));
+            }
             if listed {
                 m.next_value::<IgnoredAny>()?;
             } else if keys.contains(&key.as_str()) {
@@ -93,7 +102,7 @@ impl<'de> Visitor<'de> for Top<'_> {
                 })?;
                 listed = true;
             } else {
-                let v: Value = m.next_value()?;
+                let Unique(v) = m.next_value()?;
                 head.insert(key, v);
             }
         }
@@ -119,7 +128,7 @@ impl<'de> Visitor<'de> for Items<'_> {
         f.write_str("an array of points or cells")
     }
     fn visit_seq<A: SeqAccess<'de>>(self, mut s: A) -> Result<(), A::Error> {
-        while let Some(v) = s.next_element::<Value>()? {
+        while let Some(Unique(v)) = s.next_element()? {
             if let Err(f) = self.sink.item(v) {
                 return Err(stop(self.stopped, f));
             }

@@ -307,3 +307,25 @@ fn forged_map_shards_are_refused_naming_file_field_value_and_range() {
     all_refused(&d, &good, forgeries);
     let _ = std::fs::remove_dir_all(&d);
 }
+
+#[test]
+fn a_key_given_twice_in_a_streamed_shard_is_refused_naming_it() {
+    // serde_json would keep the last of the two silently; the shard reader
+    // streams points one at a time and still refuses, at the top level and
+    // inside a point.
+    let d = dir("twice");
+    let files = shards(&d, &words(TINY_SWEEP), 2);
+    let text = std::fs::read_to_string(&files[1]).expect("read");
+    let in_point = text.replacen("\"omega\":", "\"omega\":0.61,\"omega\":", 1);
+    assert_ne!(in_point, text, "the shard has an omega field to double");
+    let at_top = text.replacen('{', "{\"model\":\"ravigneaux\",", 1);
+    for (name, forged) in [("p.json", in_point), ("t.json", at_top)] {
+        let f = d.join(name);
+        std::fs::write(&f, forged).expect("write");
+        refused(
+            &["merge", &files[0], f.to_str().expect("path")],
+            &[name, "given twice"],
+        );
+    }
+    let _ = std::fs::remove_dir_all(&d);
+}
