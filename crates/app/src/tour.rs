@@ -115,6 +115,31 @@ pub fn place_card(data: [f64; 4], card: (f64, f64), page_w: f64) -> (f64, f64) {
     }
 }
 
+/// What the window says when the card is placed (CSS px).
+pub struct Geometry {
+    /// The pointed data's box in viewport pixels (left, top, right, bottom).
+    pub data: [f64; 4],
+    /// The page's scroll (x, y).
+    pub scroll: (f64, f64),
+    /// The page's width.
+    pub page_w: f64,
+    /// The viewport's height.
+    pub view_h: f64,
+    /// The card's size (width, height).
+    pub card: (f64, f64),
+}
+
+/// Where the card goes, in page pixels ([`place_card`]), and, for a new
+/// step (its target just scrolled to the top), how far the page scrolls on
+/// so that the card's bottom shows: never past the data's top.
+pub fn placement(g: &Geometry, new_step: bool) -> ((f64, f64), Option<f64>) {
+    let (sx, sy) = g.scroll;
+    let [l, t, r, b] = g.data;
+    let (x, y) = place_card([l + sx, t + sy, r + sx, b + sy], g.card, g.page_w);
+    let by = (y - sy + g.card.1 + 8.0 - g.view_h).min(t - 8.0);
+    ((x, y), (new_step && by > 0.0).then_some(by))
+}
+
 /// The step's counter: "Step 2 of 5".
 pub fn counter(step: usize) -> String {
     format!("Step {} of {}", step + 1, TOUR.len())
@@ -123,6 +148,31 @@ pub fn counter(step: usize) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_new_steps_card_under_its_data_is_scrolled_into_view_but_never_past_the_datas_top() {
+        // A phone: 390 px wide, the plot (data 20..370 x 100..400 in the
+        // viewport, scrolled by 1000) leaves no room beside it, so the card
+        // (300 x 200) goes under it, at page y 1412, whose bottom is 1612 -
+        // 1000 = 612 + 8 past a 500 px viewport: scroll on by 120, as the
+        // data's top (100 - 8 = 92) allows only 92.
+        let g = Geometry {
+            data: [20.0, 100.0, 370.0, 400.0],
+            scroll: (0.0, 1000.0),
+            page_w: 390.0,
+            view_h: 500.0,
+            card: (300.0, 200.0),
+        };
+        let ((x, y), by) = placement(&g, true);
+        assert_eq!(y, 1412.0);
+        assert!(x >= 0.0 && x + 300.0 <= 390.0);
+        assert_eq!(by, Some(92.0));
+        // Not a new step: the card follows its data without scrolling.
+        assert_eq!(placement(&g, false).1, None);
+        // A tall viewport: the card shows, no scroll.
+        let tall = Geometry { view_h: 900.0, ..g };
+        assert_eq!(placement(&tall, true).1, None);
+    }
 
     #[test]
     fn the_tour_step_rides_in_the_link_and_bad_steps_are_dropped() {

@@ -281,11 +281,9 @@ fn tour_data_rect(p: &Shell, target: &str) -> Option<[f64; 4]> {
     Some([r.left(), r.top(), r.right(), r.bottom()])
 }
 
-/// Places the tour's card beside what its step points at, never over it
-/// ([`crate::tour::place_card`]); with `scroll` (a new step, its target
-/// just scrolled to the top) the page scrolls on until the card's bottom
-/// shows, as far as the target's top allows.
-fn place_tour(p: &Shell, scroll: bool) {
+/// Places the tour's card beside what its step points at, never over it,
+/// and for a new step scrolls on until it shows ([`crate::tour::placement`]).
+fn place_tour(p: &Shell, new_step: bool) {
     let Some(step) = p.core.ctl().tour() else {
         return;
     };
@@ -295,29 +293,28 @@ fn place_tour(p: &Shell, scroll: bool) {
     ) else {
         return;
     };
-    let (sx, sy) = (
-        p.window.scroll_x().unwrap_or(0.0),
-        p.window.scroll_y().unwrap_or(0.0),
-    );
     let (page_w, view_h) = p.doc.document_element().map_or((0.0, 0.0), |e| {
         (f64::from(e.client_width()), f64::from(e.client_height()))
     });
-    let size = (
-        f64::from(card.offset_width()),
-        f64::from(card.offset_height()),
-    );
-    let in_page = [data[0] + sx, data[1] + sy, data[2] + sx, data[3] + sy];
-    let (x, y) = crate::tour::place_card(in_page, size, page_w);
+    let g = crate::tour::Geometry {
+        data,
+        scroll: (
+            p.window.scroll_x().unwrap_or(0.0),
+            p.window.scroll_y().unwrap_or(0.0),
+        ),
+        page_w,
+        view_h,
+        card: (
+            f64::from(card.offset_width()),
+            f64::from(card.offset_height()),
+        ),
+    };
+    let ((x, y), by) = crate::tour::placement(&g, new_step);
     let style = card.style();
     check(style.set_property("left", &format!("{x:.0}px")));
     check(style.set_property("top", &format!("{y:.0}px")));
-    if scroll {
-        let below = y - sy + size.1 + 8.0 - view_h;
-        let room = data[1] - 8.0;
-        let by = below.min(room);
-        if by > 0.0 {
-            p.window.scroll_by_with_x_and_y(0.0, by);
-        }
+    if let Some(by) = by {
+        p.window.scroll_by_with_x_and_y(0.0, by);
     }
 }
 
