@@ -121,9 +121,18 @@ test('no visible text uses key names or code syntax, in the controls, a comparis
   // Every group of controls open, then the comparison A/B.
   await page.evaluate(() => document.querySelectorAll('details').forEach((d) => { if (!d.classList.contains('howto')) d.open = true; }));
   await page.click('#pin-a');
+  await waitStatus(page, (x) => x.pinned, 60000, 'A pinned');
+  const fr0 = (await status(page)).fr.id;
   await page.fill('#num-backlash_um', '160');
   await page.press('#num-backlash_um', 'Enter');
-  const s = await waitStatus(page, (x) => x.pinned && x.fr.finished_ms && x.bif.finished_ms && x.omega_job.finished_ms, 120000, 'the comparison');
+  // B's own runs: the frequency response restarted after the change (the
+  // finished flags before it were A's).
+  const s = await waitStatus(
+    page,
+    (x) => x.pinned && x.query.includes('backlash_um=160') && x.fr.id > fr0 && x.fr.finished_ms && x.bif.finished_ms && x.omega_job.finished_ms,
+    120000,
+    'the comparison',
+  );
   assert.deepEqual(s.ab_labels, ['backlash 100 µm', 'backlash 160 µm']);
   const text = await visibleText(page);
   for (const k of KEY_NAMES) assert.ok(!text.includes(k), `visible text contains ${k}: …${text.slice(Math.max(0, text.indexOf(k) - 80), text.indexOf(k) + 40)}…`);
