@@ -473,39 +473,63 @@ mod tests {
         let law = test_law();
         let fine = Grid::new(1, 1 << 16);
         let tables = ChannelTables::new(&law, &fine);
-        for u in [
-            [110.0, 30.0, -20.0],
-            [60.0, 80.0, 50.0],
-            [0.0, 150.0, 0.0],
-            [300.0, 0.0, 0.0],
-            [105.0, 1e-3, 0.0],
-        ] {
+        for u in &ONE_HARMONIC_CASES[..5] {
+            let u = *u;
             let (mut fa, mut fd) = ([0.0; 3], [0.0; 3]);
             let (mut sa, mut sd) = ([Complex::new(0.0, 0.0); 3], [Complex::new(0.0, 0.0); 3]);
-            channel_aft(
-                &fine,
-                &law,
-                &tables,
-                &u,
-                &mut Scratch::default(),
-                &mut fa,
-                &mut sa,
-            );
+            aft_fresh(&fine, &law, &tables, &u, &mut fa, &mut sa);
             channel_df(&law, &u, &mut fd, &mut sd);
-            for c in 0..3 {
-                assert!(
-                    (fa[c] - fd[c]).abs() < 1e-6 * (1.0 + fa[c].abs()),
-                    "{u:?} force {c}: {} vs {}",
-                    fa[c],
-                    fd[c]
-                );
-                assert!(
-                    (sa[c] - sd[c]).norm() < 1e-4,
-                    "{u:?} slope {c}: {} vs {}",
-                    sa[c],
-                    sd[c]
-                );
-            }
+            assert_channels_close(&u, (&fa, &sa), (&fd, &sd), 1e-6, 1e-4);
+        }
+    }
+
+    /// One-harmonic coefficients (mean, cosine, sine in µm) against a 100 µm
+    /// backlash: both flanks, one flank, a pure oscillation, a pure offset,
+    /// a grazing case and a negative mean.
+    const ONE_HARMONIC_CASES: [[f64; 3]; 6] = [
+        [110.0, 30.0, -20.0],
+        [60.0, 80.0, 50.0],
+        [0.0, 150.0, 0.0],
+        [300.0, 0.0, 0.0],
+        [105.0, 1e-3, 0.0],
+        [-250.0, 10.0, 5.0],
+    ];
+
+    /// [`channel_aft`] with a fresh scratch.
+    fn aft_fresh(
+        grid: &Grid,
+        law: &Law,
+        tables: &ChannelTables,
+        u: &[f64],
+        force: &mut [f64],
+        slope: &mut [Complex<f64>],
+    ) {
+        channel_aft(grid, law, tables, u, &mut Scratch::default(), force, slope);
+    }
+
+    /// Asserts that two evaluations of a channel's three forces and slopes
+    /// agree: forces to `force_rel` of (1 + the first's size), slopes to
+    /// `slope_abs`.
+    fn assert_channels_close(
+        u: &[f64; 3],
+        (fa, sa): (&[f64; 3], &[Complex<f64>; 3]),
+        (fb, sb): (&[f64; 3], &[Complex<f64>; 3]),
+        force_rel: f64,
+        slope_abs: f64,
+    ) {
+        for c in 0..3 {
+            assert!(
+                (fa[c] - fb[c]).abs() < force_rel * (1.0 + fa[c].abs().max(fb[c].abs())),
+                "{u:?} force {c}: {} vs {}",
+                fa[c],
+                fb[c]
+            );
+            assert!(
+                (sa[c] - sb[c]).norm() < slope_abs,
+                "{u:?} slope {c}: {} vs {}",
+                sa[c],
+                sb[c]
+            );
         }
     }
 
@@ -525,14 +549,7 @@ mod tests {
     fn exact_integration_equals_the_describing_function_at_one_harmonic() {
         // Two independent closed forms of the same one-harmonic integrals.
         let law = test_law();
-        for u in [
-            [110.0, 30.0, -20.0],
-            [60.0, 80.0, 50.0],
-            [0.0, 150.0, 0.0],
-            [300.0, 0.0, 0.0],
-            [105.0, 1e-3, 0.0],
-            [-250.0, 10.0, 5.0],
-        ] {
+        for u in ONE_HARMONIC_CASES {
             let (mut fe, mut fd) = ([0.0; 3], [0.0; 3]);
             let (mut se, mut sd) = ([Complex::new(0.0, 0.0); 3], [Complex::new(0.0, 0.0); 3]);
             assert!(channel_exact(
@@ -545,20 +562,7 @@ mod tests {
                 &mut se
             ));
             channel_df(&law, &u, &mut fd, &mut sd);
-            for c in 0..3 {
-                assert!(
-                    (fe[c] - fd[c]).abs() < 1e-10 * (1.0 + fd[c].abs()),
-                    "{u:?} force {c}: {} vs {}",
-                    fe[c],
-                    fd[c]
-                );
-                assert!(
-                    (se[c] - sd[c]).norm() < 1e-10,
-                    "{u:?} slope {c}: {} vs {}",
-                    se[c],
-                    sd[c]
-                );
-            }
+            assert_channels_close(&u, (&fe, &se), (&fd, &sd), 1e-10, 1e-10);
         }
     }
 
@@ -581,15 +585,7 @@ mod tests {
                 vec![Complex::new(0.0, 0.0); 2 * h + 1],
                 vec![Complex::new(0.0, 0.0); 2 * h + 1],
             );
-            channel_aft(
-                &fine,
-                &law,
-                &tables,
-                &u,
-                &mut Scratch::default(),
-                &mut fa,
-                &mut sa,
-            );
+            aft_fresh(&fine, &law, &tables, &u, &mut fa, &mut sa);
             assert!(channel_exact(
                 h,
                 &SwitchTable::new(h),
