@@ -84,7 +84,7 @@ test('on a phone a swipe over a plot scrolls and never selects; a tap selects, a
     // On a phone the selection offers a jump to the motion, one tap away.
     assert.equal(s4.see_orbit, true);
     const jump = page.locator('#see-orbit');
-    await jump.waitFor({ state: 'visible', timeout: 10000 });
+    await jump.waitFor({ state: 'visible', timeout: 60000 });
     assert.match(await jump.textContent(), /See the motion at Ω = \d/);
     // A click, not a touch tap: the button acts on click, and the click a
     // tap makes is the browser's guess from the touch's duration, which a

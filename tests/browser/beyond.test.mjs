@@ -154,7 +154,7 @@ test('Pin as A draws B over A on both diagrams, and the link restores the compar
   await waitStatus(page, (s) => s.pinned && s.query.includes('&a='), 60000, 'the pinned state');
   // The status and the button are updated by different renders: wait for the
   // button itself rather than checking it the moment the status says pinned.
-  await page.locator('#clear-a').waitFor({ state: 'visible', timeout: 10000 });
+  await page.locator('#clear-a').waitFor({ state: 'visible', timeout: 60000 });
   // B: a larger backlash.
   await page.fill('#num-backlash_um', '160');
   await page.press('#num-backlash_um', 'Enter');
@@ -163,7 +163,7 @@ test('Pin as A draws B over A on both diagrams, and the link restores the compar
   await page.waitForFunction(
     () => /Comparing A \(backlash 100 µm\) with B \(backlash 160 µm\)/.test(document.querySelector('#ab-status')?.textContent ?? ''),
     null,
-    { timeout: 10000 },
+    { timeout: 60000 },
   );
   await shot(page.locator('#view-fr'), '15-ab-fr');
   await shot(page.locator('#view-bif'), '16-ab-bif');
@@ -180,7 +180,7 @@ test('Pin as A draws B over A on both diagrams, and the link restores the compar
   // Clear A ends it, and the link no longer carries A.
   await again.page.click('#clear-a');
   await again.page.waitForFunction(() => !location.search.includes('&a='));
-  await again.page.locator('#clear-a').waitFor({ state: 'hidden', timeout: 10000 });
+  await again.page.locator('#clear-a').waitFor({ state: 'hidden', timeout: 60000 });
   assert.deepEqual(again.errors, []);
   await again.page.close();
   assert.deepEqual(errors, []);

@@ -184,7 +184,7 @@ test('exports: CSV and JSON of the views, and the CLI formats of simulate and bi
   await waitStatus(page, allDone, 90000, 'all jobs');
   const grab = async (view, label) => {
     const [dl] = await Promise.all([
-      page.waitForEvent('download', { timeout: 30000 }),
+      page.waitForEvent('download', { timeout: 60000 }),
       page.locator(`#exports-${view} button`, { hasText: new RegExp(`^${label}$`) }).click(),
     ]);
     const file = await dl.path();
@@ -244,7 +244,7 @@ test('the bifurcation diagram completes progressively while the main thread stay
   const partial = await waitStatus(page, (s) => s.bif.done > 0 && !s.bif.finished_ms, 60000, 'first bifurcation points');
   assert.ok(partial.draws[1] >= 1);
   // A job this long shows its progress.
-  await page.locator('#progress-bif').waitFor({ state: 'visible', timeout: 5000 });
+  await page.locator('#progress-bif').waitFor({ state: 'visible', timeout: 60000 });
   assert.match(await page.textContent('#progress-bif'), /computing \d+\/80 points/);
   await shot(page.locator('#view-bif'), '06-bifurcation-partial');
   const s = await waitStatus(page, (s) => s.bif.finished_ms, 240000, 'the bifurcation sweep');
@@ -272,7 +272,7 @@ test('the frequency response is the harmonic-balance branch at the default setti
   assert.equal(s.fr_partial, null, `the branch failed: ${s.fr_partial}`);
   const ready = s.first_draw_ms[0];
   console.log(`# harmonic balance (default: 150 points, H = 5, stability): ${s.fr_branch_points} points in ${Math.round(s.fr.finished_ms - s.fr.started_ms)} ms from page start, first points after ${Math.round(s.fr.first_data_ms - s.fr.started_ms)} ms; first FR draw at ${Math.round(ready)} ms`);
-  await page.locator('#progress-fr').waitFor({ state: 'hidden', timeout: 5000 });
+  await page.locator('#progress-fr').waitFor({ state: 'hidden', timeout: 60000 });
   const st = await canvasStats(page, 'canvas-fr');
   assert.ok(st.ink > st.total * 0.03);
   await shot(page.locator('#view-fr'), '08-fr-harmonic-balance');

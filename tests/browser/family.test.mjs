@@ -32,7 +32,7 @@ test('a family typed on the page overlays one coloured curve per value on the fr
   assert.match(s.query, /&family=te_um%3A0%2C20%2C30$/);
   assert.match(s.query, /te_um=0/);
   await page.waitForFunction(() => /Showing TE 0 µm, TE 20 µm, TE 30 µm/.test(document.querySelector('#family-status')?.textContent ?? ''));
-  await page.locator('#family-clear').waitFor({ state: 'visible', timeout: 10000 });
+  await page.locator('#family-clear').waitFor({ state: 'visible', timeout: 60000 });
   await page.locator('#view-fr').scrollIntoViewIfNeeded();
   await shot(page.locator('#view-fr'), '30-family-fr');
   assert.ok((await canvasStats(page, 'canvas-fr')).ink > 5000);
@@ -131,7 +131,7 @@ test('the Fig. 2 preset link shows its four mesh panels at once, every TE curve 
   await page.waitForFunction(() => {
     const l = document.querySelector('#canvas-fr')?.getAttribute('aria-label') ?? '';
     return /4 meshes side by side/.test(l) && !/computing/.test(l);
-  }, null, { timeout: 30000 });
+  }, null, { timeout: 60000 });
   const label = await page.getAttribute('#canvas-fr', 'aria-label');
   for (const m of ['s1a1 (small sun – short planet a1)', 's2b1 (large sun – long planet b1)', 'a1b1 (short planet a1 – long planet b1)', 'rb1 (ring – long planet b1)']) {
     assert.ok(label.includes(m), `${m} in ${label}`);

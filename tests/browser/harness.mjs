@@ -87,6 +87,9 @@ export async function status(page) {
  * poll's interval: what is waited for is the state, never a time).
  */
 export async function waitStatus(page, pred, timeoutMs = 60000, what = 'condition') {
+  // The bound only ends a wait that failed: at least a minute, whatever a
+  // test asked, so a busy machine never fails a state that was coming.
+  timeoutMs = Math.max(timeoutMs, 60000);
   const t0 = Date.now();
   for (;;) {
     const s = await status(page);

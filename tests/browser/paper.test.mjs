@@ -39,7 +39,7 @@ test('every figure preset and its claims name x as the tooth deflection with the
     await page.waitForFunction((prev) => {
       const t = document.querySelector('#preset-note')?.textContent ?? '';
       return t !== '' && t !== prev;
-    }, before, { timeout: 30000 });
+    }, before, { timeout: 60000 });
     const note = await page.textContent('#preset-note');
     before = note;
     assert.ok(note.includes(X_WORDS), `${f.id}'s note: ${note}`);

@@ -94,9 +94,9 @@ test('at the Table 1 defaults the frequency response shows time-integration dots
   await page.waitForFunction(
     () => /Frequency response of s1a1: peak \d+ µm at Ω [\d.]+.*No stable periodic motion between Ω/.test(document.getElementById('canvas-fr').getAttribute('aria-label') ?? ''),
     null,
-    { timeout: 30000 },
+    { timeout: 60000 },
   );
-  await page.waitForFunction(() => /the dots are the actual response/.test(document.getElementById('note-fr').textContent) || /Hollow dots: the actual response/.test(document.getElementById('note-fr').textContent), null, { timeout: 10000 });
+  await page.waitForFunction(() => /the dots are the actual response/.test(document.getElementById('note-fr').textContent) || /Hollow dots: the actual response/.test(document.getElementById('note-fr').textContent), null, { timeout: 60000 });
   await shot(page.locator('#view-fr'), 'teach-01-fr-defaults-dots');
   await shot(page, 'teach-02-page-1366x768');
   await page.evaluate(() => window.scrollTo(0, 0));
@@ -106,7 +106,7 @@ test('at the Table 1 defaults the frequency response shows time-integration dots
   await assertPlainAttributes(page);
   // The student summary: two sentences, the dynamic factor explained; the figures behind a disclosure.
   await waitStatus(page, (x) => x.omega_job.finished_ms, 120000, 'the selected-Ω run');
-  await page.waitForFunction(() => /Dynamic factor [\d.]+: the largest tooth force is/.test(document.getElementById('summary').textContent), null, { timeout: 10000 });
+  await page.waitForFunction(() => /Dynamic factor [\d.]+: the largest tooth force is/.test(document.getElementById('summary').textContent), null, { timeout: 60000 });
   assert.equal(await page.locator('#summary-expert').isVisible(), false, 'the expert figures start folded');
   assert.deepEqual(errors, []);
   await page.close();
@@ -149,7 +149,7 @@ test('no visible text uses key names or code syntax, in the controls, a comparis
 test('every canvas is an image with a text alternative that follows the data', async () => {
   const { page, errors } = await open(h.browser, h.url, QUICK);
   await waitStatus(page, (x) => x.fr.finished_ms && x.bif.finished_ms && x.omega_job.finished_ms && x.map.finished_ms, 180000, 'all views');
-  await page.waitForFunction(() => !document.getElementById('canvas-map').getAttribute('aria-label').includes('waiting'), null, { timeout: 10000 });
+  await page.waitForFunction(() => !document.getElementById('canvas-map').getAttribute('aria-label').includes('waiting'), null, { timeout: 60000 });
   const before = await canvasLabels(page);
   assert.ok(before.length >= 9, `${before.length} canvases`);
   for (const c of before) {
@@ -165,7 +165,7 @@ test('every canvas is an image with a text alternative that follows the data', a
   await page.waitForFunction(
     ({ ids, old }) => ids.every((id) => document.getElementById(id).getAttribute('aria-label') !== old[id]),
     { ids: changed, old: Object.fromEntries(before.map((c) => [c.id, c.label])) },
-    { timeout: 20000 },
+    { timeout: 60000 },
   );
   // Export buttons say what they export, after their visible text (axe's label-content-name-mismatch).
   const names = await page.evaluate(() => [...document.querySelectorAll('.exports button')].map((b) => [b.textContent, b.getAttribute('aria-label')]));
@@ -211,11 +211,11 @@ test('Copy link confirms for about two seconds', async () => {
   });
   await page.click('#copy-link');
   const toast = page.locator('#copy-done');
-  await toast.waitFor({ state: 'visible', timeout: 5000 });
+  await toast.waitFor({ state: 'visible', timeout: 60000 });
   await shot(page.locator('header'), 'teach-06-copy-link');
   assert.match(await toast.textContent(), /Link copied/);
   // Then it goes, two seconds after it was shown (not within a second).
-  await toast.waitFor({ state: 'hidden', timeout: 10000 });
+  await toast.waitFor({ state: 'hidden', timeout: 60000 });
   const shownMs = await page.evaluate(() => window.__hiddenAfter);
   assert.ok(shownMs >= 1900, `the confirmation was shown for ${shownMs} ms`);
   assert.deepEqual(errors, []);
@@ -323,7 +323,7 @@ test('the gear set\'s canvas always holds a drawn frame: before the motion, out 
     const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
     for (let i = 0; i < d.length; i += 4) if (d[i] < 200) return true;
     return false;
-  }, null, { timeout: 30000 });
+  }, null, { timeout: 60000 });
   // ... then the gear set, though out of view.
   const s = await waitStatus(page, (x) => x.omega_job.finished_ms && x.anim?.frames >= 1, 120000, 'a frame of the gear set');
   assert.equal(await outOfView(), true);
