@@ -217,10 +217,6 @@ fn frame(page: &Shared, ts: f64) {
     } = &mut *p;
     let writes = core.draw_frame(ts, || now(window), |core, v| draw_view(core, doc, v));
     paint(&p, writes);
-    if p.core.ctl().tour().is_some() {
-        // A plot's size changes as its data arrive: the card follows it.
-        place_tour(&p, false);
-    }
     if p.core.next_frame() {
         let page2 = page.clone();
         let cb = Closure::once_into_js(move |ts: f64| frame(&page2, ts));
@@ -258,46 +254,30 @@ fn paint(p: &Shell, writes: Vec<Write>) {
                 check(js_sys::Reflect::set(&e, &JsValue::from_str("value"), &v));
             }
             Write::Options { options, .. } => panel::set_options(&p.doc, &e, &options),
-            Write::Scroll(_) => {
-                e.scroll_into_view();
-                place_tour(p, true);
-            }
+            Write::Scroll(_) => e.scroll_into_view(),
+            Write::PlaceCard {
+                beside, new_step, ..
+            } => place_card(p, &e, &beside, new_step),
             Write::Url(_) => {}
         }
     }
 }
 
-/// The part of the page the tour's step points at, in viewport pixels
-/// (left, top, right, bottom): a view's whole canvas (its data, axes and
-/// key), or the element itself.
-fn tour_data_rect(p: &Shell, target: &str) -> Option<[f64; 4]> {
-    let view = target
-        .strip_prefix("view-")
-        .and_then(|k| crate::views::VIEWS.iter().find(|s| s.key == k));
-    let r = match view {
-        Some(spec) => canvas(&p.doc, spec.id)?.get_bounding_client_rect(),
-        None => p.doc.get_element_by_id(target)?.get_bounding_client_rect(),
-    };
-    Some([r.left(), r.top(), r.right(), r.bottom()])
-}
-
-/// Places the tour's card beside what its step points at, never over it,
-/// and for a new step scrolls on until it shows ([`crate::tour::placement`]).
-fn place_tour(p: &Shell, new_step: bool) {
-    let Some(step) = p.core.ctl().tour() else {
-        return;
-    };
+/// Places `card` beside the element `beside` as [`crate::tour::placement`]
+/// says from the window's geometry, and scrolls on if it says so.
+fn place_card(p: &Shell, card: &Element, beside: &str, new_step: bool) {
     let (Some(card), Some(data)) = (
-        by_id::<web_sys::HtmlElement>(&p.doc, "tour"),
-        tour_data_rect(p, crate::tour::TOUR[step].target),
+        card.dyn_ref::<web_sys::HtmlElement>(),
+        p.doc.get_element_by_id(beside),
     ) else {
         return;
     };
+    let r = data.get_bounding_client_rect();
     let (page_w, view_h) = p.doc.document_element().map_or((0.0, 0.0), |e| {
         (f64::from(e.client_width()), f64::from(e.client_height()))
     });
     let g = crate::tour::Geometry {
-        data,
+        data: [r.left(), r.top(), r.right(), r.bottom()],
         scroll: (
             p.window.scroll_x().unwrap_or(0.0),
             p.window.scroll_y().unwrap_or(0.0),
@@ -383,14 +363,7 @@ fn build_canvas_events(page: &Shared) {
                     check(cv2.set_pointer_capture(e.pointer_id()));
                 }
                 let at = (f64::from(e.client_x()), f64::from(e.client_y()));
-                let x_px = canvas_xy(&cv2, &e).0;
-                let mouse = e.pointer_type() == "mouse";
-                let ev = PointerIn {
-                    phase,
-                    x_px,
-                    at,
-                    mouse,
-                };
+                let ev = PointerIn::new(phase, canvas_xy(&cv2, &e).0, at, &e.pointer_type());
                 if p2.borrow_mut().core.pointer(view, ev) {
                     request_frame(&p2);
                 }

@@ -30,6 +30,21 @@ pub struct Acted {
     pub frame: bool,
 }
 
+/// Why a view's PNG could not be made.
+#[derive(Debug, Clone, PartialEq)]
+pub enum PngFailure {
+    /// The view has no picture to make (the reason).
+    Picture(String),
+    /// The browser gave no image element.
+    NoImage,
+    /// The picture could not be stored as a file for the image to load.
+    NotStored,
+    /// The image did not load the picture.
+    NotLoaded,
+    /// The browser could not encode the canvas as a PNG.
+    NotEncoded,
+}
+
 impl Page {
     /// Does `action` at `now_ms` with the event `ev`. The copy to the
     /// clipboard and the PNG's rasterizing are the web layer's own (they
@@ -158,8 +173,15 @@ impl Page {
         })
     }
 
-    /// A PNG export could not be made (the browser's reason).
-    pub fn png_failed(&mut self, why: &str) {
+    /// A PNG export could not be made: said in the messages.
+    pub fn png_failed(&mut self, why: PngFailure) {
+        let why = match why {
+            PngFailure::Picture(e) => e,
+            PngFailure::NoImage => "no image element".into(),
+            PngFailure::NotStored => "the picture could not be stored".into(),
+            PngFailure::NotLoaded => "the picture did not load".into(),
+            PngFailure::NotEncoded => "the browser could not encode it".into(),
+        };
         self.ctl
             .issue(format!("The PNG image could not be made: {why}"));
     }
@@ -318,6 +340,7 @@ impl Page {
         ]);
         if scroll {
             w.push(Write::Scroll(s.target.into()));
+            w.extend(self.place_tour_card(true));
         }
         w
     }
@@ -331,5 +354,20 @@ impl Page {
             |k| self.ctl.setting_text(k),
             self.tour_copied,
         ))
+    }
+
+    /// The tour's card placed beside what its step points at (for a view,
+    /// its whole canvas: data, axes and key), if the tour is on.
+    pub fn place_tour_card(&self, new_step: bool) -> Option<Write> {
+        let target = TOUR[self.ctl.tour()?].target;
+        let beside = match target.strip_prefix("view-") {
+            Some(k) if crate::views::VIEWS.iter().any(|s| s.key == k) => format!("canvas-{k}"),
+            _ => target.to_string(),
+        };
+        Some(Write::PlaceCard {
+            id: "tour".into(),
+            beside,
+            new_step,
+        })
     }
 }

@@ -4,7 +4,7 @@
 //! layer reads these facts from the browser and passes them in as they
 //! are (absent or nonsense included); every decision on them is here.
 
-use super::{Page, Write};
+use super::{Page, PngFailure, Write};
 use crate::controller::{pool_size, Controller, Effect};
 use crate::plots;
 use crate::views::ViewId;
@@ -100,8 +100,11 @@ impl Page {
     }
 
     /// View `v`'s PNG, or why its picture cannot be made.
-    pub fn png(&self, v: ViewId) -> Result<Png, String> {
-        let svg = self.ctl.plot_svg(v).map_err(|e| e.to_string())?;
+    pub fn png(&self, v: ViewId) -> Result<Png, PngFailure> {
+        let svg = self
+            .ctl
+            .plot_svg(v)
+            .map_err(|e| PngFailure::Picture(e.to_string()))?;
         let (w, h) = self.ctl.canvas_size(v);
         let name = format!("gearshock-{}.png", v.key());
         Ok(Png {
@@ -206,6 +209,9 @@ mod tests {
         assert_eq!(png.name, "gearshock-bif.png");
         assert_eq!(png.size, (2 * plots::WIDTH, 2 * plots::HEIGHT));
         assert!(png.svg.starts_with("<svg"), "{}", &png.svg[..40]);
+        p.png_failed(PngFailure::NotLoaded);
+        let said = "The PNG image could not be made: the picture did not load";
+        assert!(p.ctl().issues.iter().any(|i| i.contains(said)));
         let ok = p.link_copied(true, 10.0, 1.0);
         assert!(ok.contains(&Write::text("copy-done", "Link copied to the clipboard.")));
         let no = p.link_copied(false, 20.0, 2.0);

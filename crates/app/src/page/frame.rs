@@ -20,7 +20,8 @@ impl Page {
     /// writes, then the frame's texts (messages, summaries, link): the
     /// canvases are drawn before any text is written, since plotters
     /// measures legend text in the page, which lays out the whole page
-    /// again whenever text changed since the last measure.
+    /// again whenever text changed since the last measure. Last, in a
+    /// tour, its card follows its plot, whose size changes as data arrive.
     pub fn draw_frame(
         &mut self,
         ts: f64,
@@ -40,6 +41,7 @@ impl Page {
             self.drawn(v, (start, clock()), ts);
         }
         writes.extend(self.end_frame(&d));
+        writes.extend(self.place_tour_card(false));
         writes
     }
 

@@ -26,6 +26,19 @@ pub struct PointerIn {
     pub mouse: bool,
 }
 
+impl PointerIn {
+    /// A pointer event as the browser gives it, `kind` its pointer type
+    /// (`mouse`, `touch` or `pen`).
+    pub fn new(phase: Phase, x_px: f64, at: (f64, f64), kind: &str) -> Self {
+        Self {
+            phase,
+            x_px,
+            at,
+            mouse: kind == "mouse",
+        }
+    }
+}
+
 /// A pointer event's kind.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Phase {

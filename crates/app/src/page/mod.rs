@@ -26,7 +26,7 @@ use crate::store::status::Dirty;
 use crate::views::{ViewId, DRAW_ORDER, VIEWS};
 use redraw::{Decision, FrameTurn, Redraw};
 
-pub use act::{Acted, EventIn};
+pub use act::{Acted, EventIn, PngFailure};
 pub use anim::AnimDraw;
 pub use dom::{Action, Node};
 pub use gesture::{Phase, PointerIn};
@@ -91,6 +91,17 @@ pub enum Write {
     },
     /// An element scrolled into view.
     Scroll(String),
+    /// A card (the tour's) placed beside an element, never over it, and
+    /// for a new step scrolled on until it shows
+    /// ([`crate::tour::placement`], from what the window says).
+    PlaceCard {
+        /// The card's id.
+        id: String,
+        /// The id of the element it goes beside.
+        beside: String,
+        /// A new step (its target just scrolled to): scroll on if needed.
+        new_step: bool,
+    },
     /// The page's address (the query, without `?`).
     Url(String),
 }
@@ -113,7 +124,8 @@ impl Write {
             | Write::Value { id, .. }
             | Write::Options { id, .. }
             | Write::Flag { id, .. }
-            | Write::Scroll(id) => Some(id),
+            | Write::Scroll(id)
+            | Write::PlaceCard { id, .. } => Some(id),
             Write::Url(_) => None,
         }
     }

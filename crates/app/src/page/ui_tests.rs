@@ -24,12 +24,7 @@ fn frame() -> PlotFrame {
 }
 
 fn touch(phase: Phase, x: f64, y: f64) -> PointerIn {
-    PointerIn {
-        phase,
-        x_px: x,
-        at: (x, y),
-        mouse: false,
-    }
+    PointerIn::new(phase, x, (x, y), "touch")
 }
 
 fn picked(p: &mut Page) -> f64 {
@@ -77,10 +72,7 @@ fn a_tap_selects_where_it_lifts_and_a_drag_along_the_axis_scrubs() {
     p.end_frame(&d);
     assert!(p.see_orbit);
     // A mouse selects at its press, as before.
-    let mouse = PointerIn {
-        mouse: true,
-        ..touch(Phase::Down, 500.0, 0.0)
-    };
+    let mouse = PointerIn::new(Phase::Down, 500.0, (500.0, 0.0), "mouse");
     assert!(p.pointer(ViewId::Fr, mouse));
     assert_eq!(picked(&mut p), 1.5);
 }
@@ -290,4 +282,52 @@ fn a_tour_steps_action_shows_done_once_the_student_does_it() {
     assert_eq!(p.tour_done(), Some(false));
     p.act(Action::CopyLink, &EventIn::default(), 11.0);
     assert_eq!(p.tour_done(), Some(true));
+}
+
+/// Each tour step's card goes beside a part of `index.html`: a view's
+/// canvas (not its section, whose text runs below the plot) and the
+/// element itself otherwise. A new step places it after scrolling to the
+/// target; every frame of the tour places it again, as its plot grows;
+/// with the tour over, nothing is placed.
+#[test]
+fn the_tour_card_goes_beside_each_steps_canvas_or_element_and_follows_it_each_frame() {
+    let html = include_str!("../../../../index.html");
+    let mut p = page("");
+    let mut out = p.act(Action::Tour(TourMove::Start), &EventIn::default(), 1.0);
+    for (i, s) in crate::tour::TOUR.iter().enumerate() {
+        let at = out
+            .writes
+            .iter()
+            .position(|w| w == &Write::Scroll(s.target.into()));
+        let Some(Write::PlaceCard {
+            id,
+            beside,
+            new_step: true,
+        }) = at.and_then(|at| out.writes.get(at + 1))
+        else {
+            panic!(
+                "step {i}: no card placed after the scroll: {:?}",
+                out.writes
+            );
+        };
+        assert_eq!(id, "tour");
+        assert!(html.contains(&format!("id=\"{beside}\"")), "{beside}");
+        assert!(html.contains(&format!("id=\"{id}\"")));
+        let canvas = s.target.starts_with("view-");
+        assert_eq!(beside.starts_with("canvas-"), canvas, "{beside}");
+        assert!(beside.ends_with(s.target.trim_start_matches("view-")));
+        let frame = p.draw_frame(16.0 * (i + 1) as f64, || 0.0, |_, _| Vec::new());
+        assert_eq!(
+            frame.last(),
+            Some(&Write::PlaceCard {
+                id: id.clone(),
+                beside: beside.clone(),
+                new_step: false
+            })
+        );
+        out = p.act(Action::Tour(TourMove::Next), &EventIn::default(), 2.0);
+    }
+    assert_eq!(p.ctl().tour(), None);
+    let frame = p.draw_frame(1000.0, || 0.0, |_, _| Vec::new());
+    assert!(!frame.iter().any(|w| matches!(w, Write::PlaceCard { .. })));
 }

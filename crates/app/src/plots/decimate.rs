@@ -96,8 +96,18 @@ pub fn tallest_per_column(lines: &[(f64, f64)], column: impl Fn(f64) -> i32) -> 
     out
 }
 
-/// The SVG path data of a polyline in pixels, "M1 2L3 4...", for the page
-/// to stroke in one call (a `Path2D`) rather than one call per point.
+/// The points from which the page strokes a polyline in one call: a
+/// shorter one (a grid line, a tick) costs fewer calls point by point.
+pub const LONG_PATH: usize = 32;
+
+/// A long polyline's SVG path data ([`svg_path`]), for the page to stroke
+/// in one call (a `Path2D`) rather than one call per point; none for one
+/// of fewer than [`LONG_PATH`] points.
+pub fn long_path(pts: &[Px]) -> Option<String> {
+    (pts.len() >= LONG_PATH).then(|| svg_path(pts))
+}
+
+/// The SVG path data of a polyline in pixels, "M1 2L3 4...".
 pub fn svg_path(pts: &[Px]) -> String {
     let mut d = String::with_capacity(pts.len() * 10);
     for (k, &(x, y)) in pts.iter().enumerate() {
@@ -227,5 +237,16 @@ mod tests {
         );
         let ext = svg_path(&[(i32::MIN, i32::MAX)]);
         assert_eq!(ext, format!("M{} {}", i32::MIN, i32::MAX));
+    }
+
+    /// A path of fewer than 32 points is left to plotters (none); from 32
+    /// on it is one path string, with a move then a line per later point.
+    #[test]
+    fn only_a_long_path_is_one_path_string() {
+        let pts: Vec<Px> = (0..40).map(|i| (i, 2 * i)).collect();
+        assert_eq!(long_path(&pts[..31]), None);
+        let d = long_path(&pts[..32]).expect("a long path");
+        assert_eq!((d.matches('M').count(), d.matches('L').count()), (1, 31));
+        assert!(d.ends_with("L31 62"));
     }
 }

@@ -19,6 +19,7 @@ mod bif;
 pub mod boundaries;
 mod boxes;
 mod clip;
+pub mod css;
 pub mod decimate;
 mod fr;
 mod key;

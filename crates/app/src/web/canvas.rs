@@ -5,6 +5,8 @@
 //! whole page per label: some 300 per page load, up to 36 ms each, all on
 //! the main thread.
 
+use crate::plots::css;
+use crate::plots::decimate::long_path;
 use plotters_backend::{
     BackendColor, BackendCoord, BackendStyle, BackendTextStyle, DrawingBackend, DrawingErrorKind,
 };
@@ -12,9 +14,6 @@ use plotters_canvas::CanvasBackend;
 use web_sys::{CanvasRenderingContext2d, HtmlCanvasElement, Path2d};
 
 type Error = DrawingErrorKind<<CanvasBackend as DrawingBackend>::ErrorType>;
-
-/// The points from which a path is stroked as one `Path2D`.
-const LONG_PATH: usize = 32;
 
 /// A canvas backend whose text sizes come from `measureText`.
 pub(super) struct Canvas {
@@ -71,29 +70,22 @@ impl DrawingBackend for Canvas {
 
     /// One `Path2D` from an SVG path string and one stroke: plotters-canvas
     /// makes a JavaScript call per point (`lineTo`), some hundreds of
-    /// thousands for a family's long chaotic orbits. Paths under
-    /// [`LONG_PATH`] points, and any the browser refuses as a path string,
-    /// go the plotters-canvas way.
+    /// thousands for a family's long chaotic orbits. Short paths
+    /// ([`long_path`]), and any the browser refuses as a path string, go
+    /// the plotters-canvas way.
     fn draw_path<S: BackendStyle, I: IntoIterator<Item = BackendCoord>>(
         &mut self,
         path: I,
         style: &S,
     ) -> Result<(), Error> {
-        let c = style.color();
-        if c.alpha == 0.0 {
+        if style.color().alpha == 0.0 {
             return Ok(());
         }
         let pts: Vec<BackendCoord> = path.into_iter().collect();
-        // A short path (a grid line, a tick) costs fewer calls as it is.
-        if pts.len() < LONG_PATH {
-            return self.inner.draw_path(pts, style);
-        }
-        let Ok(p2d) = Path2d::new_with_path_string(&crate::plots::decimate::svg_path(&pts)) else {
+        let Some(Ok(p2d)) = long_path(&pts).map(|d| Path2d::new_with_path_string(&d)) else {
             return self.inner.draw_path(pts, style);
         };
-        let (r, g, b) = c.rgb;
-        self.ctx
-            .set_stroke_style_str(&format!("rgba({r},{g},{b},{})", c.alpha));
+        self.ctx.set_stroke_style_str(&css::color(style.color()));
         self.ctx.set_line_width(f64::from(style.stroke_width()));
         self.ctx.stroke_with_path(&p2d);
         Ok(())
@@ -133,14 +125,8 @@ impl DrawingBackend for Canvas {
         text: &str,
         style: &S,
     ) -> Result<(u32, u32), Error> {
-        let font = format!(
-            "{} {}px {}",
-            style.style().as_str(),
-            style.size(),
-            style.family().as_str()
-        );
         let saved = self.ctx.font();
-        self.ctx.set_font(&font);
+        self.ctx.set_font(&css::font(style));
         let m = self.ctx.measure_text(text);
         self.ctx.set_font(&saved);
         let m = m.map_err(|e| {

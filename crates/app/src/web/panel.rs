@@ -6,7 +6,7 @@
 use super::*;
 use crate::page::boot::Png;
 use crate::page::dom::{built, Action, Node, WIRING};
-use crate::page::EventIn;
+use crate::page::{EventIn, PngFailure};
 use web_sys::{Blob, BlobPropertyBag, HtmlAnchorElement, HtmlImageElement, Url};
 
 /// Creates every built element and wires every listener.
@@ -158,10 +158,10 @@ fn png_2x(page: &Shared, v: ViewId) {
     let (doc, png) = (page.borrow().doc.clone(), page.borrow().core.png(v));
     let Png { svg, name, size } = match png {
         Ok(png) => png,
-        Err(e) => return failed(page, &e),
+        Err(e) => return failed(page, e),
     };
     let Ok(img) = HtmlImageElement::new() else {
-        return failed(page, "no image element");
+        return failed(page, PngFailure::NoImage);
     };
     let (img2, p2) = (img.clone(), page.clone());
     let onload = Closure::<dyn FnMut()>::new(move || {
@@ -181,14 +181,14 @@ fn png_2x(page: &Shared, v: ViewId) {
         let (doc, name, p3) = (doc.clone(), name.clone(), p2.clone());
         let done = Closure::once_into_js(move |blob: JsValue| match blob.dyn_into::<Blob>() {
             Ok(blob) => download_blob(&doc, &name, &blob),
-            Err(_) => failed(&p3, "the browser could not encode it"),
+            Err(_) => failed(&p3, PngFailure::NotEncoded),
         });
         if cv.to_blob(done.unchecked_ref()).is_err() {
-            failed(&p2, "the browser could not encode it");
+            failed(&p2, PngFailure::NotEncoded);
         }
     });
     let p2 = page.clone();
-    let onerror = Closure::<dyn FnMut()>::new(move || failed(&p2, "the picture did not load"));
+    let onerror = Closure::<dyn FnMut()>::new(move || failed(&p2, PngFailure::NotLoaded));
     img.set_onload(Some(onload.as_ref().unchecked_ref()));
     img.set_onerror(Some(onerror.as_ref().unchecked_ref()));
     // One pair per click, small: leaked rather than tracked.
@@ -196,11 +196,11 @@ fn png_2x(page: &Shared, v: ViewId) {
     onerror.forget();
     match blob(&svg, "image/svg+xml").and_then(|b| Url::create_object_url_with_blob(&b)) {
         Ok(url) => img.set_src(&url),
-        Err(_) => failed(page, "the picture could not be stored"),
+        Err(_) => failed(page, PngFailure::NotStored),
     }
 }
 
-fn failed(page: &Shared, why: &str) {
+fn failed(page: &Shared, why: PngFailure) {
     page.borrow_mut().core.png_failed(why);
     request_frame(page);
 }

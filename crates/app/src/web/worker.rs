@@ -1,7 +1,8 @@
 //! The Web Worker's shell: feeds the page's messages to the job runner
 //! ([`WorkerCore`]) and runs its steps in time slices ([`Slicer`] says when
-//! to yield and when to pause), yielding to the worker's event loop so
-//! that newer jobs and cancels arrive.
+//! to yield, when to pause and when a wake is already on its way),
+//! yielding to the worker's event loop so that newer jobs and cancels
+//! arrive.
 
 use super::check;
 use crate::worker::slicer::{Next, Slicer, SLICE_PAUSE_MS};
@@ -13,12 +14,12 @@ use wasm_bindgen::JsCast;
 use web_sys::{DedicatedWorkerGlobalScope, MessageChannel, MessageEvent};
 
 /// Runs a Web Worker: posts "ready", then serves jobs in bounded chunks,
-/// yielding to the event loop through a `MessageChannel` (which, unlike
-/// `setTimeout`, is not clamped) after a slice, through a timer for a pause.
+/// woken through a `MessageChannel` (which, unlike `setTimeout`, is not
+/// clamped) after a slice, through a timer for a pause.
 pub fn start_worker() {
     let scope: DedicatedWorkerGlobalScope = js_sys::global().unchecked_into();
     let core = Rc::new(RefCell::new(WorkerCore::new()));
-    let scheduled = Rc::new(Cell::new(false));
+    let slicer = Rc::new(Cell::new(Slicer::default()));
     let Ok(channel) = MessageChannel::new() else {
         return;
     };
@@ -33,54 +34,35 @@ pub fn start_worker() {
         }
     };
 
-    let schedule = {
-        let scheduled = scheduled.clone();
-        let port = port.clone();
-        move || {
-            if !scheduled.get() {
-                scheduled.set(true);
-                check(port.post_message(&JsValue::NULL));
-            }
-        }
-    };
-
     let resume = {
         let port = port.clone();
-        Closure::<dyn FnMut()>::new(move || {
-            check(port.post_message(&JsValue::NULL));
-        })
+        Closure::<dyn FnMut()>::new(move || check(port.post_message(&JsValue::NULL)))
     };
-    let pause = {
-        let scheduled = scheduled.clone();
+    // Arranges the wake the slicer asks for.
+    let wake = {
         let scope = scope.clone();
-        move || {
-            if !scheduled.get() {
-                scheduled.set(true);
+        Rc::new(move |next: Option<Next>| match next {
+            Some(Next::Yield) => check(port.post_message(&JsValue::NULL)),
+            Some(Next::Pause) => {
                 check(scope.set_timeout_with_callback_and_timeout_and_arguments_0(
                     resume.as_ref().unchecked_ref(),
                     SLICE_PAUSE_MS,
-                ));
+                ))
             }
-        }
+            Some(Next::Idle) | None => {}
+        })
     };
-    let slicer = Rc::new(Cell::new(Slicer::default()));
     let tick = {
-        let (core, scheduled, post) = (core.clone(), scheduled.clone(), post.clone());
-        let schedule = schedule.clone();
+        let (core, slicer, post, wake) = (core.clone(), slicer.clone(), post.clone(), wake.clone());
         Closure::<dyn FnMut(MessageEvent)>::new(move |_e: MessageEvent| {
-            scheduled.set(false);
             // One step is one steady state.
             let mut s = slicer.get();
-            let next = s.slice(js_sys::Date::now, || {
+            let next = s.woke(js_sys::Date::now, || {
                 post(core.borrow_mut().step());
                 core.borrow().has_work()
             });
             slicer.set(s);
-            match next {
-                Next::Idle => {}
-                Next::Yield => schedule(),
-                Next::Pause => pause(),
-            }
+            wake(next);
         })
     };
     channel
@@ -88,17 +70,15 @@ pub fn start_worker() {
         .set_onmessage(Some(tick.as_ref().unchecked_ref()));
     tick.forget();
 
-    let onmessage = {
-        let core = core.clone();
-        Closure::<dyn FnMut(MessageEvent)>::new(move |e: MessageEvent| {
-            let text = e.data().as_string().unwrap_or_default();
-            let replies = core.borrow_mut().handle(&text);
-            post(replies);
-            if core.borrow().has_work() {
-                schedule();
-            }
-        })
-    };
+    let onmessage = Closure::<dyn FnMut(MessageEvent)>::new(move |e: MessageEvent| {
+        let text = e.data().as_string().unwrap_or_default();
+        let replies = core.borrow_mut().handle(&text);
+        post(replies);
+        let mut s = slicer.get();
+        let next = s.after_message(core.borrow().has_work());
+        slicer.set(s);
+        wake(next);
+    });
     scope.set_onmessage(Some(onmessage.as_ref().unchecked_ref()));
     onmessage.forget();
     check(scope.post_message(&JsValue::from_str(&ready_message())));

@@ -3,7 +3,8 @@
 //! and cancels arrive, and after [`PAUSE_EVERY_MS`] of work it pauses
 //! [`SLICE_PAUSE_MS`] on a timer: on two cores, two busy workers otherwise
 //! leave the page's main thread too little CPU to draw within 100 ms.
-//! `web/worker.rs` keeps the clock and the event loop; this decides.
+//! `web/worker.rs` keeps the clock and the event loop; this decides, and
+//! keeps one wake at most on its way.
 
 /// A worker's time slice (ms) before it yields to its event loop.
 pub const SLICE_MS: f64 = 25.0;
@@ -23,10 +24,12 @@ pub enum Next {
     Pause,
 }
 
-/// The work done since the last pause.
+/// The work done since the last pause, and whether a wake (a channel
+/// message or a timer) is on its way.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Slicer {
     busy_ms: f64,
+    waking: bool,
 }
 
 impl Slicer {
@@ -45,6 +48,31 @@ impl Slicer {
             has_work = step();
         }
         self.after(clock() - start, has_work)
+    }
+
+    /// A page's message was handled (`has_work`: work is waiting): the wake
+    /// to arrange, if none is on its way ([`Slicer::wake`]).
+    pub fn after_message(&mut self, has_work: bool) -> Option<Next> {
+        self.wake(if has_work { Next::Yield } else { Next::Idle })
+    }
+
+    /// A wake arrived: one slice ([`Slicer::slice`]), then the next wake
+    /// to arrange.
+    pub fn woke(&mut self, clock: impl Fn() -> f64, step: impl FnMut() -> bool) -> Option<Next> {
+        self.waking = false;
+        let next = self.slice(clock, step);
+        self.wake(next)
+    }
+
+    /// The wake to arrange for `next` (a channel message to go on at once,
+    /// a timer for a pause), noted as on its way; none while one is on its
+    /// way already, or when no work is left.
+    fn wake(&mut self, next: Next) -> Option<Next> {
+        if next == Next::Idle || self.waking {
+            return None;
+        }
+        self.waking = true;
+        Some(next)
     }
 
     /// After a slice of `elapsed_ms`, with work left or not.
@@ -108,5 +136,29 @@ mod tests {
             },
         );
         assert_eq!((next, left), (Next::Idle, 0));
+    }
+
+    /// Messages arriving while a wake is on its way arrange none; the wake
+    /// arranges the next, a pause's timer after 100 ms of work; a slice
+    /// that ends the work arranges none, and the next message wakes again.
+    #[test]
+    fn one_wake_at_most_is_on_its_way() {
+        use std::cell::Cell;
+        let now = Cell::new(0.0);
+        let mut s = Slicer::default();
+        assert_eq!(s.after_message(false), None);
+        assert_eq!(s.after_message(true), Some(Next::Yield));
+        assert_eq!(s.after_message(true), None);
+        // Slices of 30 ms (three steps of 10 ms) with work left.
+        let mut step = || {
+            now.set(now.get() + 10.0);
+            true
+        };
+        let wakes: Vec<_> = (0..4).map(|_| s.woke(|| now.get(), &mut step)).collect();
+        use Next::*;
+        assert_eq!(wakes, [Some(Yield), Some(Yield), Some(Yield), Some(Pause)]);
+        assert_eq!(s.after_message(true), None);
+        assert_eq!(s.woke(|| now.get(), || false), None);
+        assert_eq!(s.after_message(true), Some(Yield));
     }
 }

@@ -16,33 +16,25 @@ use solver::params::ModelParams;
 use solver::steady::{steady_state, SteadyOptions};
 use solver::sweep::SweepSpec;
 
-/// Starts `job` (id 7) and steps it once: it must pause inside its first
-/// point (`is_data` sees no data). Then an Omega job arrives: every step
-/// goes to it until its result. Returns the first job's messages once the
-/// worker is idle.
-fn yields_to_a_new_omega_job(job: JobSpec, is_data: fn(&FromWorker) -> bool) -> Vec<FromWorker> {
-    let mut core = WorkerCore::new();
-    let p = ModelParams::default();
-    let mut out = core.handle(&run_msg(7, &p, job));
-    let first = core.step();
-    assert!(
-        !first.iter().any(is_data),
-        "one slice computed a whole point: make the point longer"
-    );
-    out.extend(first);
-    let run = RunOptions {
-        transient_periods: 300,
-        record_periods: 40,
-    };
+/// The run of every slice test's Omega job (and of the jobs it preempts).
+const RUN: RunOptions = RunOptions {
+    transient_periods: 300,
+    record_periods: 40,
+};
+
+/// Sends `core` a new Omega job (id 1) and steps it until its result:
+/// every step goes to it, as many as its own steps need slices. Returns
+/// the messages of those steps.
+fn new_omega_job_has_every_step(core: &mut WorkerCore, p: &ModelParams) -> Vec<FromWorker> {
     let omega_job = JobSpec::Omega(OmegaSpec {
         omega: 1.1,
         mesh: None,
-        run,
+        run: RUN,
         samples_per_period: 32,
         max_order: 8.0,
     });
-    core.handle(&run_msg(1, &p, omega_job));
-    let (msgs, steps) = steps_to_omega(&mut core);
+    core.handle(&run_msg(1, p, omega_job));
+    let (msgs, steps) = steps_to_omega(core);
     let result = msgs
         .iter()
         .find_map(|m| match m {
@@ -55,10 +47,31 @@ fn yields_to_a_new_omega_job(job: JobSpec, is_data: fn(&FromWorker) -> bool) -> 
         result.steps.div_ceil(SLICE_STEPS) as usize,
         "steps taken by the older job before the new run's result"
     );
-    assert!(!msgs.iter().any(is_data));
+    msgs
+}
+
+/// Starts `job` (id 7) and steps it once: it must pause inside its first
+/// point (`data` finds no data message). Then an Omega job arrives: every
+/// step goes to it until its result. Returns the first job's data (what
+/// `data` reads from its messages) once the worker is idle.
+fn yields_to_a_new_omega_job<T: Clone>(
+    job: JobSpec,
+    data: fn(&FromWorker) -> Option<&Vec<T>>,
+) -> Vec<T> {
+    let mut core = WorkerCore::new();
+    let p = ModelParams::default();
+    let mut out = core.handle(&run_msg(7, &p, job));
+    let first = core.step();
+    assert!(
+        !first.iter().any(|m| data(m).is_some()),
+        "one slice computed a whole point: make the point longer"
+    );
+    out.extend(first);
+    let msgs = new_omega_job_has_every_step(&mut core, &p);
+    assert!(!msgs.iter().any(|m| data(m).is_some()));
     out.extend(drain(&mut core));
     assert!(out.iter().any(|m| matches!(m, FromWorker::Done { id: 7 })));
-    out
+    out.iter().filter_map(data).flatten().cloned().collect()
 }
 
 fn model() -> Model {
@@ -68,7 +81,7 @@ fn model() -> Model {
 #[test]
 fn a_lyapunov_point_pauses_for_a_new_omega_job_and_keeps_its_bits() {
     let (from, to, points) = (0.8, 1.3, 3);
-    let out = yields_to_a_new_omega_job(
+    let got: Vec<LyapSample> = yields_to_a_new_omega_job(
         JobSpec::Lyap {
             omega_from: from,
             omega_to: to,
@@ -78,15 +91,11 @@ fn a_lyapunov_point_pauses_for_a_new_omega_job_and_keeps_its_bits() {
             transient_periods: 100,
             periods: 40,
         },
-        |m| matches!(m, FromWorker::LyapPoints { .. }),
+        |m| match m {
+            FromWorker::LyapPoints { points, .. } => Some(points),
+            _ => None,
+        },
     );
-    let got: Vec<LyapSample> = out
-        .into_iter()
-        .flat_map(|m| match m {
-            FromWorker::LyapPoints { points, .. } => points,
-            _ => Vec::new(),
-        })
-        .collect();
     // The same chain, one-shot: each point continued from the last.
     let m = model();
     let mut state: Option<Vec<f64>> = None;
@@ -106,36 +115,28 @@ fn a_lyapunov_point_pauses_for_a_new_omega_job_and_keeps_its_bits() {
 
 #[test]
 fn an_overlay_point_pauses_for_a_new_omega_job_and_keeps_its_bits() {
-    let run = RunOptions {
-        transient_periods: 300,
-        record_periods: 40,
-    };
-    let out = yields_to_a_new_omega_job(
+    let got = yields_to_a_new_omega_job(
         JobSpec::Overlay {
             omega_from: 0.5,
             omega_to: 0.9,
             points: 3,
             chains: 1,
             shard: 0,
-            run,
+            run: RUN,
         },
-        |m| matches!(m, FromWorker::OverlayPoints { .. }),
+        |m| match m {
+            FromWorker::OverlayPoints { points, .. } => Some(points),
+            _ => None,
+        },
     );
-    let got: Vec<_> = out
-        .into_iter()
-        .flat_map(|m| match m {
-            FromWorker::OverlayPoints { points, .. } => points,
-            _ => Vec::new(),
-        })
-        .collect();
     let m = model();
     let spec = SweepSpec::new(0.5, 0.9, 3);
     let mut state: Option<Vec<f64>> = None;
     assert_eq!(got.len(), 3);
     for (i, s) in got.iter().enumerate() {
         let mut o = SteadyOptions::new(spec.omega(i as u32));
-        o.transient_periods = run.transient_periods;
-        o.record_periods = run.record_periods;
+        o.transient_periods = RUN.transient_periods;
+        o.record_periods = RUN.record_periods;
         o.samples_per_period = 0;
         let ss = steady_state(&m, &o, state.as_deref()).expect("one-shot run");
         let want: Vec<MeshExtremes> = ss
@@ -156,11 +157,7 @@ fn an_overlay_point_pauses_for_a_new_omega_job_and_keeps_its_bits() {
 
 #[test]
 fn a_map_cell_pauses_for_a_new_omega_job_and_keeps_its_bits() {
-    let run = RunOptions {
-        transient_periods: 300,
-        record_periods: 40,
-    };
-    let out = yields_to_a_new_omega_job(
+    let got: Vec<MapSample> = yields_to_a_new_omega_job(
         JobSpec::Map {
             key: "backlash_um".into(),
             omega_from: 0.5,
@@ -172,20 +169,16 @@ fn a_map_cell_pauses_for_a_new_omega_job_and_keeps_its_bits() {
             mesh: None,
             shards: 1,
             shard: 0,
-            run,
+            run: RUN,
         },
-        |m| matches!(m, FromWorker::MapCells { .. }),
+        |m| match m {
+            FromWorker::MapCells { cells, .. } => Some(cells),
+            _ => None,
+        },
     );
-    let got: Vec<MapSample> = out
-        .into_iter()
-        .flat_map(|m| match m {
-            FromWorker::MapCells { cells, .. } => cells,
-            _ => Vec::new(),
-        })
-        .collect();
     let mut spec = MapSpec::new((0.5, 0.9, 2), "backlash_um", (50.0, 100.0, 2));
-    spec.steady.transient_periods = run.transient_periods;
-    spec.steady.record_periods = run.record_periods;
+    spec.steady.transient_periods = RUN.transient_periods;
+    spec.steady.record_periods = RUN.record_periods;
     spec.shard = Some((0, 1));
     let mut map = RegimeMap::new(&ModelParams::default(), spec).expect("map");
     let want: Vec<MapSample> = map
@@ -223,26 +216,7 @@ fn a_shooting_branch_step_pauses_for_a_new_omega_job_and_keeps_its_bits() {
         !core.step().iter().any(is_data),
         "one slice computed a whole branch step"
     );
-    let omega_job = JobSpec::Omega(OmegaSpec {
-        omega: 1.1,
-        mesh: None,
-        run: RunOptions {
-            transient_periods: 300,
-            record_periods: 40,
-        },
-        samples_per_period: 32,
-        max_order: 8.0,
-    });
-    core.handle(&run_msg(1, &p, omega_job));
-    let (msgs, steps) = steps_to_omega(&mut core);
-    let result = msgs
-        .iter()
-        .find_map(|m| match m {
-            FromWorker::Omega { id: 1, result } => Some(result),
-            _ => None,
-        })
-        .expect("the new Omega result");
-    assert_eq!(steps, result.steps.div_ceil(SLICE_STEPS) as usize);
+    new_omega_job_has_every_step(&mut core, &p);
     // The branch goes on: its next points are the one-shot continuation's.
     let mut got = Vec::new();
     for _ in 0..10_000 {
