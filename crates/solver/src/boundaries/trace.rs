@@ -132,7 +132,10 @@ impl Tracer {
         // At fixed p: the arclength row is the unit vector of p.
         let mut row = vec![0.0; n];
         row[n - 1] = 1.0;
-        let (z, ev, _) = tracer.correct(fam, &z0, &row)?;
+        // A start may lie far from the curve: its gradient is fresh at every
+        // iterate (a gradient kept from the guess lost 4 of the compound
+        // set's period-doubling starts).
+        let (z, ev, _) = tracer.correct(fam, &z0, &row, false)?;
         tracer.system.accept();
         system = tracer.system.clone();
         // The tangent: the null vector of the system's Jacobian.
@@ -222,18 +225,25 @@ impl Tracer {
         Some(((edge - p) / tp, edge))
     }
 
-    /// Newton on the system bordered by `row . (z - pred) = 0`.
+    /// Newton on the system bordered by `row . (z - pred) = 0`; with
+    /// `chord`, a period doubling's test gradient is computed at the
+    /// predictor only and kept through the iterations (a chord method on
+    /// that row), otherwise at every iterate.
     fn correct(
         &mut self,
         fam: &mut Family,
         pred: &[f64],
         row: &[f64],
+        chord: bool,
     ) -> Result<(Vec<f64>, Eval, usize)> {
         let n = pred.len();
         let mut z = pred.to_vec();
         let mut last_res = f64::NAN;
         self.system.fresh();
         for iteration in 1..=NEWTON_MAX {
+            if !chord {
+                self.system.fresh();
+            }
             let ev = self.system.eval(fam, &z)?;
             self.newton_iterations += 1;
             let mut a = DMatrix::zeros(n, n);
@@ -321,14 +331,16 @@ impl Tracer {
                 }
                 None => {}
             }
-            let outcome = self.correct(fam, &pred, &row).and_then(|(z, ev, it)| {
-                let t = self
-                    .tangent(&ev, &row)
-                    .ok_or_else(|| SolverError::Singular {
-                        what: "boundary tangent".into(),
-                    })?;
-                Ok((z, ev, it, t))
-            });
+            let outcome = self
+                .correct(fam, &pred, &row, true)
+                .and_then(|(z, ev, it)| {
+                    let t = self
+                        .tangent(&ev, &row)
+                        .ok_or_else(|| SolverError::Singular {
+                            what: "boundary tangent".into(),
+                        })?;
+                    Ok((z, ev, it, t))
+                });
             match outcome {
                 Ok((z, ev, iterations, t)) => {
                     let cos: f64 = (0..n).map(|i| self.metric[i] * t[i] * self.t[i]).sum();
