@@ -556,3 +556,36 @@ fn advance_returns_at_most_the_points_asked_for() {
     );
     assert_eq!(one_by_one, chunked);
 }
+
+#[test]
+fn sampled_stability_gives_every_point_the_flags_and_labels_of_the_monodromy_at_every_point() {
+    // The gear pair's band at H = 7 (two folds, an unstable middle branch)
+    // and the Duffing oscillator: the monodromy on every fourth point, with
+    // changes located by bisection, against the monodromy at every point.
+    let m = model(&["model=gear-pair"]);
+    let run = |stride| {
+        let mut spec = FrfSpec::new(0.4, 0.7, 50);
+        spec.harmonics = 7;
+        spec.stability_stride = stride;
+        let mut c = FrfContinuation::new(&m, spec).unwrap();
+        let pts = branch(&mut c);
+        (pts, c.stats.monodromies)
+    };
+    let (every, n_every) = run(1);
+    let (sampled, n_sampled) = run(4);
+    assert_eq!(n_every as usize, every.len());
+    assert!(n_sampled < n_every, "{n_sampled} vs {n_every}");
+    assert!(every.iter().any(|p| p.stable == Some(false)));
+    assert_eq!(every.len(), sampled.len());
+    for (a, b) in every.iter().zip(&sampled) {
+        assert_eq!(a.omega, b.omega);
+        assert_eq!(a.stable, b.stable, "Omega {}", a.omega);
+        assert_eq!(a.bifurcation, b.bifurcation, "Omega {}", a.omega);
+    }
+    assert!(FrfSpec {
+        stability_stride: 0,
+        ..FrfSpec::new(0.4, 0.7, 50)
+    }
+    .validate()
+    .is_err());
+}

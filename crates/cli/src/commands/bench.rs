@@ -6,7 +6,7 @@
 
 use serde_json::{json, Value};
 use solver::dynamics::MeshOde;
-use solver::hbm::{BranchPoint, FrfContinuation, FrfSpec, StepControl};
+use solver::hbm::{BranchPoint, FrfContinuation, FrfSpec, StepControl, DEFAULT_STABILITY_STRIDE};
 use solver::map::{MapSpec, RegimeMap};
 use solver::ode::Ode;
 use solver::params::ModelParams;
@@ -218,18 +218,30 @@ pub fn run(repeats: u32, quick: bool) -> Result<Value, SolverError> {
     // control before (on the corrector's iterations, 400 nominal points as
     // the CLI's default) and after (on the curve's geometry, 50 nominal
     // points), alternating in one run.
+    // Issue 22: the same branch with the monodromy on sampled points only
+    // (the default stride) against every point (stride 1), in the same run.
     let runs = if quick { 1 } else { repeats.min(5) };
     let mut before_s = Vec::new();
     let mut after_s = Vec::new();
+    let mut sampled_s = Vec::new();
+    let (mut after_cpu, mut sampled_cpu) = (Vec::new(), Vec::new());
     let mut before_points = 0;
     let mut after_points = 0;
     let mut before_branch = Vec::new();
     let mut after_branch = Vec::new();
+    let mut sampled_branch = Vec::new();
+    let (mut after_monodromies, mut sampled_monodromies) = (0, 0);
     for _ in 0..runs {
-        for (control, nominal) in [(StepControl::Iterations, 400), (StepControl::Geometry, 50)] {
+        for (control, nominal, stride) in [
+            (StepControl::Iterations, 400, 1),
+            (StepControl::Geometry, 50, 1),
+            (StepControl::Geometry, 50, DEFAULT_STABILITY_STRIDE),
+        ] {
             let mut spec = FrfSpec::new(0.1, 0.5, nominal);
             spec.harmonics = 7;
             spec.step_control = control;
+            spec.stability_stride = stride;
+            let cpu_start = thread_cpu_s();
             let start = Instant::now();
             let mut c = FrfContinuation::new(&model, spec)?;
             let mut pts = Vec::new();
@@ -237,17 +249,36 @@ pub fn run(repeats: u32, quick: bool) -> Result<Value, SolverError> {
                 pts.extend(c.advance(64)?);
             }
             let dt = start.elapsed().as_secs_f64();
+            let cpu = match (cpu_start, thread_cpu_s()) {
+                (Some(a), Some(b)) => Some(b - a),
+                _ => None,
+            };
             if control == StepControl::Iterations {
                 before_s.push(dt);
                 before_points = pts.len();
                 before_branch = pts;
-            } else {
+            } else if stride == 1 {
                 after_s.push(dt);
+                after_cpu.extend(cpu);
                 after_points = pts.len();
+                after_monodromies = c.stats.monodromies;
                 after_branch = pts;
+            } else {
+                sampled_s.push(dt);
+                sampled_cpu.extend(cpu);
+                sampled_monodromies = c.stats.monodromies;
+                sampled_branch = pts;
             }
         }
     }
+    let sampled_med = median(sampled_s);
+    // Points whose stability flag or label differs between the two routes.
+    let differing = after_branch
+        .iter()
+        .zip(&sampled_branch)
+        .filter(|(a, b)| a.stable != b.stable || a.bifurcation != b.bifurcation)
+        .count()
+        + after_branch.len().abs_diff(sampled_branch.len());
     let (before_med, after_med) = (median(before_s), median(after_s));
     let folds = |pts: &[BranchPoint]| -> Vec<f64> {
         pts.iter()
@@ -272,6 +303,19 @@ pub fn run(repeats: u32, quick: bool) -> Result<Value, SolverError> {
             "branch_points": after_points,
             "median_ms": after_med * 1e3,
             "folds": folds(&after_branch),
+        },
+        "sampled_stability": {
+            "stride": DEFAULT_STABILITY_STRIDE,
+            "branch_points": sampled_branch.len(),
+            "monodromies": sampled_monodromies,
+            "monodromies_every_point": after_monodromies,
+            "median_ms": sampled_med * 1e3,
+            "cpu_median_ms": (!sampled_cpu.is_empty()).then(|| median(sampled_cpu) * 1e3),
+            "cpu_median_ms_every_point": (!after_cpu.is_empty()).then(|| median(after_cpu) * 1e3),
+            "folds": folds(&sampled_branch),
+            "points_differing_from_every_point": differing,
+            "speedup_vs_every_point": after_med / sampled_med,
+            "speedup_vs_pyharm_quoted": 5.0 / sampled_med,
         },
         "speedup": before_med / after_med,
         "point_ratio": before_points as f64 / after_points.max(1) as f64,

@@ -20,7 +20,7 @@ pub mod stability;
 pub use assembly::{Assembly, Method};
 pub use continuation::{
     Bifurcation, BranchMesh, BranchPoint, FrfContinuation, FrfSpec, FrfStats, LeftOut,
-    LeftOutReason, PieceEnd, Restart, StepControl,
+    LeftOutReason, PieceEnd, Restart, StepControl, DEFAULT_STABILITY_STRIDE,
 };
 pub use model::{HbmModel, Reduction};
 pub use stability::Floquet;

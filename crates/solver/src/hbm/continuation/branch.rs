@@ -29,13 +29,21 @@ pub struct FrfSpec {
     pub method: Method,
     /// AFT grid size (default [`harmonic::Grid::default_size`]).
     pub grid: Option<usize>,
-    /// Compute Floquet stability at every point.
+    /// Compute Floquet stability (every point gets its flag).
     pub stability: bool,
+    /// Monodromy on every `stability_stride`-th point only (and the last
+    /// of a piece); between two with the same stability the points take
+    /// it, a change is located by bisection on the points between. 1: the
+    /// monodromy at every point.
+    pub stability_stride: u32,
     /// Use the cyclic-symmetry reduction when the planets allow it.
     pub symmetric: bool,
     /// How the continuation chooses its step.
     pub step_control: StepControl,
 }
+
+/// The default [`FrfSpec::stability_stride`].
+pub const DEFAULT_STABILITY_STRIDE: u32 = 4;
 
 /// The continuation's step-length control.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -62,6 +70,7 @@ impl FrfSpec {
             method: Method::Exact,
             grid: None,
             stability: true,
+            stability_stride: DEFAULT_STABILITY_STRIDE,
             symmetric: true,
             step_control: StepControl::Geometry,
         }
@@ -82,6 +91,13 @@ impl FrfSpec {
         }
         if self.points < 2 || self.points > 100_000 {
             return bad("points", self.points.to_string(), "2 ..= 100000");
+        }
+        if self.stability_stride == 0 || self.stability_stride > 64 {
+            return bad(
+                "stability-stride",
+                self.stability_stride.to_string(),
+                "1 ..= 64",
+            );
         }
         if self.harmonics == 0 || self.harmonics > 40 {
             return bad("harmonics", self.harmonics.to_string(), "1 ..= 40");
@@ -233,7 +249,10 @@ pub struct FrfStats {
     pub rejected_steps: u64,
     /// Residual and Jacobian evaluations.
     pub jacobians: u64,
+    /// Monodromy matrices computed (Floquet stability).
+    pub monodromies: u64,
 }
+
 /// A part of the Omega range left out of the branch, reported.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LeftOut {

@@ -81,13 +81,14 @@ use std::f64::consts::PI;
 
 pub mod branch;
 mod point;
+mod sampled;
 mod start;
 use start::newton_fixed;
 mod step;
 
 pub use branch::{
     Bifurcation, BranchMesh, BranchPoint, FrfSpec, FrfStats, LeftOut, LeftOutReason, PieceEnd,
-    Restart, StepControl,
+    Restart, StepControl, DEFAULT_STABILITY_STRIDE,
 };
 
 /// A continuation in progress; [`FrfContinuation::advance`] computes a bounded
@@ -106,6 +107,9 @@ pub struct FrfContinuation {
     prev_stable: Option<bool>,
     prev_multipliers: Vec<Complex<f64>>,
     since_fold: u32,
+    /// The points at the queue's end whose stability is not decided yet:
+    /// their distance (in points) from the last fold.
+    unresolved: Vec<u32>,
     max_points: u64,
     /// Work so far.
     pub stats: FrfStats,
@@ -235,6 +239,7 @@ impl FrfContinuation {
             prev_stable: None,
             prev_multipliers: Vec::new(),
             since_fold: u32::MAX,
+            unresolved: Vec::new(),
             stats: FrfStats::default(),
             x0,
             transform,
@@ -362,7 +367,7 @@ impl FrfContinuation {
                 return Err(e);
             }
         }
-        while self.queue.len() < k && !self.finished {
+        while self.queue.len() - self.unresolved.len() < k && !self.finished {
             let before = self.queue.len();
             let outcome = if !self.started {
                 self.start()
@@ -385,8 +390,12 @@ impl FrfContinuation {
                 }
             };
             self.stats.points += (self.queue.len() - before) as u64;
+            if self.stability_due() {
+                self.resolve_stability();
+            }
             if let Err(e) = outcome {
                 self.finished = true;
+                self.resolve_stability();
                 if self.queue.is_empty() {
                     return Err(e);
                 }
@@ -396,9 +405,12 @@ impl FrfContinuation {
                 break;
             }
         }
+        if self.finished {
+            self.resolve_stability();
+        }
         // At most `k` now; a located fold and the point after it can come
         // in one step, and the second then waits for the next call.
-        let n = self.queue.len().min(k);
+        let n = (self.queue.len() - self.unresolved.len()).min(k);
         Ok(self.queue.drain(..n).collect())
     }
 
@@ -466,6 +478,7 @@ impl FrfContinuation {
 
     /// Ends the current piece; restarts while the range is not covered.
     fn end_piece(&mut self, how: PieceEnd, stopped_at: f64) -> Result<()> {
+        self.resolve_stability();
         self.started = false;
         let tol = 1e-9 * (self.spec.omega_to - self.spec.omega_from);
         // A gap in which (or at whose edge) a restart already began, and

@@ -14,46 +14,22 @@ impl FrfContinuation {
         let omega = self.y[nx];
         let x = self.y[..nx].to_vec();
         let meshes = self.meshes_of(&x);
-        let (stable, multipliers) = if self.spec.stability {
-            match floquet(&self.asm, &x, omega) {
-                Some(f) => {
-                    let n_planet = f.planet_multipliers.len();
-                    let mut all: Vec<Complex<f64>> = f.multipliers.clone();
-                    all.extend(f.planet_multipliers.iter().copied());
-                    let _ = n_planet;
-                    (Some(f.spectral_radius() <= 1.0 + 1e-6), all)
-                }
-                None => (None, Vec::new()),
-            }
-        } else {
-            (None, Vec::new())
-        };
-        let mut bifurcation = fold;
+        let bifurcation = fold;
         if fold.is_some() {
             self.since_fold = 0;
         } else {
             self.since_fold = self.since_fold.saturating_add(1);
         }
-        if bifurcation.is_none() {
-            if let (Some(a), Some(b)) = (self.prev_stable, stable) {
-                if a != b {
-                    let kind = classify_crossing(&self.prev_multipliers, &multipliers);
-                    // A real multiplier through +1 next to a turn is the fold
-                    // itself (the monodromy of the truncated orbit and the
-                    // truncated balance place it a point apart).
-                    if !(kind == Bifurcation::BranchPoint && self.since_fold <= 5) {
-                        bifurcation = Some(kind);
-                    }
-                }
-            }
+        // Stability is decided once the next sampled point is known
+        // ([`FrfContinuation::resolve_stability`]).
+        if self.spec.stability {
+            self.unresolved.push(self.since_fold);
         }
-        self.prev_stable = stable;
-        self.prev_multipliers = multipliers.clone();
         BranchPoint {
             omega,
             meshes,
-            stable,
-            multipliers,
+            stable: None,
+            multipliers: Vec::new(),
             bifurcation,
             newton_iterations,
             coefficients: x,
