@@ -4,7 +4,7 @@
 // docs/browser-bench.md. Needs a release build in dist/:
 //
 //   scripts/setup.sh && source scripts/env.sh && trunk build --release --offline
-//   node tests/browser/bench.mjs [--repeats N] [--quick] [--map] [--pool-only] [--family-only]
+//   node tests/browser/bench.mjs [--repeats N] [--quick] [--map] [--pool-only] [--family-only] [--branches-only]
 import fs from 'node:fs';
 import path from 'node:path';
 import zlib from 'node:zlib';
@@ -22,6 +22,10 @@ const POOL_ONLY = args.includes('--pool-only');
 // --family-only measures only the main thread while a family of six draws
 // its 1000-period orbits (issue 15's case still over 100 ms).
 const FAMILY_ONLY = args.includes('--family-only');
+// --branches-only measures only the page at its defaults with the shooting
+// branches on the bifurcation diagram (the default) and off (issue 19).
+const BRANCHES_ONLY = args.includes('--branches-only');
+const ONLY = MAP_ONLY || POOL_ONLY || FAMILY_ONLY || BRANCHES_ONLY;
 
 const median = (xs) => {
   const s = [...xs].sort((a, b) => a - b);
@@ -49,7 +53,7 @@ const h = await start();
 try {
   // First paint from a cold load: navigation start to the first drawn frame
   // of the frequency-response axes, and to its first computed points.
-  if (!MAP_ONLY && !POOL_ONLY && !FAMILY_ONLY) {
+  if (!ONLY) {
     const paint = [];
     const firstFr = [];
     for (let i = 0; i < REPEATS; i++) {
@@ -110,7 +114,7 @@ try {
   // and 2 workers (window.gearshockWorkers): the pool's scaling on this
   // 2-core machine. The two pool sizes alternate, so that the shared
   // machine's load falls on both alike.
-  if (!MAP_ONLY && !FAMILY_ONLY) {
+  if (!ONLY || POOL_ONLY) {
     const points = QUICK ? 20 : 200;
     const reps = QUICK ? 1 : POOL_ONLY ? REPEATS : Math.min(REPEATS, 3);
     const total = { 1: [], 2: [] };
@@ -135,6 +139,43 @@ try {
     const ratio = median(total[1]) / median(total[2]);
     results.push({ what: 'bifurcation: speed-up of 2 workers over 1', median: ratio, unit: 'x', note: 'ratio of the medians', n: 1, ratio: true });
     console.error(`bifurcation speed-up 1 -> 2 workers: ${ratio.toFixed(2)}x`);
+  }
+
+  // The page at its defaults (the bifurcation diagram of 100 points up and
+  // down, the frequency response, the selected Omega, the map, the
+  // Lyapunov curve) with the shooting branches on (the default) and off,
+  // alternating: from navigation start until every job has ended and every
+  // view has drawn after the last of them (the status's job times and the
+  // views' last_draw_ms, both on the page's clock).
+  if (!ONLY || BRANCHES_ONLY) {
+    const jobsOf = (s) => [s.fr, s.fr_overlay, s.bif, s.omega_job, s.map, s.lyap, s.bif_branches?.job, s.map_boundaries?.job].filter(Boolean);
+    const settled = (j) => j.id === 0 || j.finished_ms || j.error;
+    const allDrawn = (s) => {
+      const jobs = jobsOf(s);
+      if (!jobs.every(settled) || !s.bif.finished_ms) return false;
+      const last = Math.max(...jobs.map((j) => j.finished_ms || 0));
+      return Math.max(...s.last_draw_ms) >= last && s.first_draw_ms.every((t) => t > 0);
+    };
+    const all = { on: [], off: [] };
+    const bif = { on: [], off: [] };
+    const orbits = [];
+    for (let i = 0; i < (QUICK ? 1 : REPEATS); i++) {
+      for (const branches of ['on', 'off']) {
+        const { page } = await open(h.browser, h.url, branches === 'on' ? '' : 'branches=off');
+        const s = await waitStatus(page, allDrawn, 900000, 'every view drawn');
+        const job = s.bif_branches.job;
+        if ((branches === 'on') !== (job.id !== 0)) throw new Error(`branches=${branches}, yet the shooting branches' job is ${JSON.stringify(job)}`);
+        all[branches].push(Math.max(...s.last_draw_ms));
+        bif[branches].push(s.bif.finished_ms - s.bif.started_ms);
+        if (branches === 'on') orbits.push(job.finished_ms - job.started_ms);
+        await page.close();
+      }
+    }
+    row('page defaults, shooting branches on (the default): every view drawn', all.on, 'ms', 'from navigation start; bifurcation 100 points up and down');
+    row('page defaults, shooting branches off: every view drawn', all.off, 'ms', 'from navigation start; link key branches=off');
+    row('page defaults: bifurcation sweep, branches on', bif.on, 'ms', 'from job start to its end');
+    row('page defaults: bifurcation sweep, branches off', bif.off, 'ms', 'from job start to its end');
+    row('page defaults: shooting branches job', orbits, 'ms', 'from job start to its end');
   }
 
   // A family of six at 1000 recorded periods, Fig. 6's Omega 0.84 (most

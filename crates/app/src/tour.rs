@@ -5,7 +5,7 @@
 //! changes a computation by itself.
 
 /// One step of the tour.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TourStep {
     /// The step's heading.
     pub title: &'static str,
@@ -15,6 +15,60 @@ pub struct TourStep {
     pub target: &'static str,
     /// The settings it makes (key, value), as the controls would.
     pub set: &'static [(&'static str, &'static str)],
+    /// The one thing the student does to end the step, said plainly.
+    pub action: &'static str,
+    /// When the action is done, read off the page's state ([`done`]).
+    pub goal: Goal,
+    /// What the card says once it is done (after "Done: ").
+    pub done: &'static str,
+}
+
+/// When a step's action is done: a fact about the page's state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Goal {
+    /// The setting `key` is another than `from`.
+    Changed {
+        /// The setting's key.
+        key: &'static str,
+        /// The value the step set.
+        from: &'static str,
+    },
+    /// The setting `key` is within `tol` of `to`.
+    Near {
+        /// The setting's key.
+        key: &'static str,
+        /// The value asked for.
+        to: f64,
+        /// How close counts (a slider's step).
+        tol: f64,
+    },
+    /// The setting `key` is below `to`.
+    Below {
+        /// The setting's key.
+        key: &'static str,
+        /// The bound.
+        to: f64,
+    },
+    /// Either setting moved from what the step set (a cell clicked).
+    Moved,
+    /// The link was copied.
+    LinkCopied,
+}
+
+/// Whether step `step`'s action is done: `get` reads a setting as the link
+/// writes it, `copied` says whether the link was copied during the step.
+pub fn done(step: &TourStep, get: impl Fn(&str) -> Option<String>, copied: bool) -> bool {
+    let num = |k: &str| get(k).and_then(|v| v.parse::<f64>().ok());
+    match step.goal {
+        Goal::Changed { key, from } => get(key).is_some_and(|v| v != from),
+        Goal::Near { key, to, tol } => num(key).is_some_and(|x| (x - to).abs() <= tol),
+        Goal::Below { key, to } => num(key).is_some_and(|x| x < to),
+        Goal::Moved => step.set.iter().any(|(k, v)| {
+            let (now, set) = (num(k), v.parse::<f64>().ok());
+            now.zip(set).is_some_and(|(a, b)| (a - b).abs() > 1e-9)
+        }),
+        Goal::LinkCopied => copied,
+    }
 }
 
 /// The tour, in order.
@@ -24,30 +78,45 @@ pub const TOUR: [TourStep; 5] = [
         text: "The small sun s1 drives three short planets, each meshing with a long planet, which meshes with the large sun s2 and the ring: twelve tooth meshes. The highlighted one, s1a1, is the mesh the plots show; the animation (view 8) shows all of them. The page opens at Ω 0.35, a calm motion: the teeth of s1a1 stay in contact and the motion repeats exactly every mesh period, one closed loop in the phase portrait (view 5) and one dot in the Poincaré section (view 6).",
         target: "schematic",
         set: &[("mesh", "s1a1"), ("omega", "0.35")],
+        action: "Now choose another mesh in “Mesh to plot” and see the highlight and the plots follow it.",
+        goal: Goal::Changed { key: "mesh", from: "s1a1" },
+        done: "the plots now show another mesh.",
     },
     TourStep {
         title: "Backlash and the frequency response",
-        text: "The tour has moved the backlash from 100 to 150 µm: the grey ±b lines, where the teeth meet, moved with it, and the curve was computed again. For each Ω (mesh frequency) the curve gives the largest and smallest tooth deflection x (TE included); below +b the teeth have separated. Where the curve is dashed no periodic motion is stable: the dots are what the gears actually do. Now drag the backlash slider to 50 µm and watch both follow.",
+        text: "The tour has moved the backlash from 100 to 150 µm: the grey ±b lines, where the teeth meet, moved with it, and the curve was computed again. For each Ω (mesh frequency) the curve gives the largest and smallest tooth deflection x (TE included); below +b the teeth have separated. Where the curve is dashed no periodic motion is stable: the dots are what the gears actually do.",
         target: "view-fr",
         set: &[("backlash_um", "150")],
+        action: "Now drag the backlash slider to 50 µm and watch the ±b lines and the curve follow.",
+        goal: Goal::Near { key: "backlash_um", to: 50.0, tol: 5.0 },
+        done: "the backlash is 50 µm.",
     },
     TourStep {
         title: "When impact becomes double-sided",
-        text: "The tour has chosen backlash 20 µm and Ω 1.4. The regime map colours every frequency and backlash by what the teeth do: no impact, single-sided impact (the driving flanks part and strike again) or double-sided impact (the teeth cross the whole backlash and hit the back flanks). At 20 µm and Ω 1.4 the teeth of s1a1 hit both flanks: see the time history (view 7). Click another cell to go there.",
+        text: "The tour has chosen backlash 20 µm and Ω 1.4. The regime map colours every frequency and backlash by what the teeth do: no impact, single-sided impact (the driving flanks part and strike again) or double-sided impact (the teeth cross the whole backlash and hit the back flanks). At 20 µm and Ω 1.4 the teeth of s1a1 hit both flanks: see the time history (view 7).",
         target: "view-map",
         set: &[("backlash_um", "20"), ("omega", "1.4")],
+        action: "Now click a cell of another colour on the map and see the time history change.",
+        goal: Goal::Moved,
+        done: "you moved to another cell of the map.",
     },
     TourStep {
         title: "From periodic to chaotic motion",
         text: "The tour has set the backlash back to 100 µm and selected Ω 1.2 (the red line). The bifurcation diagram samples x once per mesh period after the transient: one dot per Ω means the motion repeats every period, a cloud means it never repeats. At Ω 1.2 it is a cloud, and the Lyapunov exponent under it is positive: the motion is chaotic.",
         target: "view-bif",
         set: &[("backlash_um", "100"), ("omega", "1.2")],
+        action: "Now click the diagram at an Ω below 0.5, where one dot per Ω shows a motion that repeats.",
+        goal: Goal::Below { key: "omega", to: 0.5 },
+        done: "Ω is below 0.5, where the motion repeats.",
     },
     TourStep {
         title: "Share what you found",
         text: "Copy link makes a link that restores every setting, the selected Ω and this tour step. Every plot exports its data (CSV, JSON) and its picture (PNG, SVG).",
         target: "copy-link",
         set: &[],
+        action: "Now press Copy link.",
+        goal: Goal::LinkCopied,
+        done: "the link is copied; paste it anywhere to come back here.",
     },
 ];
 
@@ -237,6 +306,54 @@ mod tests {
                 assert!(ok, "{k}={v}");
             }
             assert!(!s.text.contains('_'), "{}", s.text);
+            assert!(s.action.starts_with("Now "), "{}", s.action);
         }
+    }
+
+    /// Each step's action is not done in the state the step sets, and is
+    /// done once the student has done what the action says.
+    #[test]
+    fn each_steps_action_is_done_only_once_the_student_did_it() {
+        // The state right after the step: its own settings.
+        for s in TOUR {
+            let set = |k: &str| {
+                s.set
+                    .iter()
+                    .find(|(key, _)| *key == k)
+                    .map(|(_, v)| v.to_string())
+            };
+            assert!(!done(&s, set, false), "{}", s.title);
+        }
+        let with = |pairs: &'static [(&'static str, &'static str)]| {
+            move |k: &str| {
+                pairs
+                    .iter()
+                    .find(|(key, _)| *key == k)
+                    .map(|(_, v)| v.to_string())
+            }
+        };
+        // Step 1: another mesh.
+        assert!(done(&TOUR[0], with(&[("mesh", "s2a1")]), false));
+        // Step 2: the slider at 50 µm (its 5 µm step either side), not at 100.
+        assert!(done(&TOUR[1], with(&[("backlash_um", "50")]), false));
+        assert!(done(&TOUR[1], with(&[("backlash_um", "55")]), false));
+        assert!(!done(&TOUR[1], with(&[("backlash_um", "100")]), false));
+        // Step 3: a click on the map moves Omega, the backlash or both.
+        assert!(done(
+            &TOUR[2],
+            with(&[("backlash_um", "20"), ("omega", "0.9")]),
+            false
+        ));
+        assert!(done(
+            &TOUR[2],
+            with(&[("backlash_um", "60"), ("omega", "1.4")]),
+            false
+        ));
+        // Step 4: Omega below 0.5.
+        assert!(done(&TOUR[3], with(&[("omega", "0.45")]), false));
+        assert!(!done(&TOUR[3], with(&[("omega", "0.5")]), false));
+        // Step 5: only the copy counts.
+        assert!(done(&TOUR[4], with(&[]), true));
+        assert!(!done(&TOUR[4], with(&[]), false));
     }
 }

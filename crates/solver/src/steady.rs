@@ -270,7 +270,7 @@ pub struct SteadyStats {
     pub integrator: IntegratorStats,
     /// Shooting attempts made during the transient.
     pub shooting_attempts: u32,
-    /// Integrator steps of those attempts (tangents included).
+    /// Integrator steps of those attempts, with the tangents or without.
     pub shooting_steps: u64,
     /// Integrator steps of the Lyapunov probe's neighbour trajectory.
     pub probe_steps: u64,

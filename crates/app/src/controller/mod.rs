@@ -204,11 +204,7 @@ impl Controller {
         let mut fx = Vec::new();
         if let Some(s) = step {
             for (k, v) in crate::tour::TOUR[s].set {
-                let current =
-                    self.settings.view.get(k).or_else(|| {
-                        keys::get(&self.settings.params, k).map(|x| link::value_text(&x))
-                    });
-                if current.as_deref() == Some(*v) {
+                if self.setting_text(k).as_deref() == Some(*v) {
                     continue;
                 }
                 match self.set_key(k, v, now_ms) {
@@ -219,6 +215,15 @@ impl Controller {
             }
         }
         fx
+    }
+
+    /// A setting's value as the link writes it (a view option or a
+    /// parameter), if `key` names one.
+    pub fn setting_text(&self, key: &str) -> Option<String> {
+        self.settings
+            .view
+            .get(key)
+            .or_else(|| keys::get(&self.settings.params, key).map(|x| link::value_text(&x)))
     }
 
     /// The mesh names of the current model.

@@ -85,6 +85,7 @@ impl Page {
                     TourMove::Skip => None,
                 };
                 let fx = ctl.tour_go(step, now_ms);
+                self.tour_copied = false;
                 out.writes.extend(self.tour_writes(true));
                 fx
             }
@@ -134,7 +135,13 @@ impl Page {
                 out.writes.push(Write::Scroll("view-phase".into()));
                 Vec::new()
             }
-            Action::CopyLink | Action::Png(_) => {
+            Action::CopyLink => {
+                self.tour_copied = true;
+                out.writes.extend(self.tour_writes(false));
+                out.frame = false;
+                Vec::new()
+            }
+            Action::Png(_) => {
                 out.frame = false;
                 Vec::new()
             }
@@ -276,6 +283,7 @@ impl Page {
         };
         let s = &TOUR[step];
         let last = step + 1 == TOUR.len();
+        let done = self.tour_done() == Some(true);
         w.extend([
             Write::Attr {
                 id: "tour".into(),
@@ -285,6 +293,22 @@ impl Page {
             Write::text("tour-count", counter(step)),
             Write::text("tour-title", s.title),
             Write::text("tour-text", s.text),
+            Write::text("tour-action", s.action),
+            Write::text("tour-done", format!("✓ Done: {}", s.done)),
+            Write::Hidden {
+                id: "tour-done".into(),
+                hidden: !done,
+            },
+            Write::Class {
+                id: "tour-next".into(),
+                class: "ready",
+                on: done,
+            },
+            Write::Attr {
+                id: "tour".into(),
+                name: "data-done",
+                value: done.to_string(),
+            },
             Write::text("tour-next", if last { "Finish" } else { "Next" }),
             Write::Flag {
                 id: "tour-back".into(),
@@ -296,5 +320,16 @@ impl Page {
             w.push(Write::Scroll(s.target.into()));
         }
         w
+    }
+
+    /// Whether the tour's current step's action is done ([`crate::tour::done`]),
+    /// if the tour is running.
+    pub fn tour_done(&self) -> Option<bool> {
+        let step = &TOUR[self.ctl.tour()?];
+        Some(crate::tour::done(
+            step,
+            |k| self.ctl.setting_text(k),
+            self.tour_copied,
+        ))
     }
 }

@@ -153,6 +153,8 @@ pub struct Page {
     gestures: (u32, &'static str),
     /// Whether the phone's "see the motion" jump is offered.
     see_orbit: bool,
+    /// Whether the link was copied during the tour's current step.
+    tour_copied: bool,
     /// What the map's last drawing put over its cells (the tests read it).
     map_drawn: serde_json::Value,
     /// The gear set's animation.
@@ -197,6 +199,7 @@ impl Page {
             gestures: (0, ""),
             toast_until: None,
             see_orbit: false,
+            tour_copied: false,
             map_drawn: serde_json::Value::Null,
             anim: anim::Anim::default(),
             frame_requested: false,

@@ -234,6 +234,10 @@ impl Page {
             let (n, last) = self.gestures;
             o.insert("gesture".into(), serde_json::json!({"n": n, "last": last}));
             o.insert("see_orbit".into(), serde_json::json!(self.see_orbit));
+            o.insert(
+                "tour".into(),
+                serde_json::json!({"step": self.ctl.tour(), "done": self.tour_done()}),
+            );
             o.insert("map_drawn".into(), self.map_drawn.clone());
             let boxes: serde_json::Map<String, serde_json::Value> = VIEWS
                 .iter()

@@ -248,3 +248,46 @@ fn every_views_svg_is_one_closed_picture() {
     // Its cursor lines are inside.
     assert!(map.contains("<polyline") || map.contains("<path"), "{map}");
 }
+
+#[test]
+fn a_tour_steps_action_shows_done_once_the_student_does_it() {
+    let mut p = page("");
+    p.act(Action::Tour(TourMove::Start), &EventIn::default(), 1.0);
+    p.act(Action::Tour(TourMove::Next), &EventIn::default(), 2.0);
+    p.apply_pending(3.0);
+    // Step 2 sets the backlash to 150 µm and asks for 50 µm: not done yet.
+    assert_eq!(p.tour_done(), Some(false));
+    let hidden = |w: &[Write], h: bool| {
+        w.contains(&Write::Hidden {
+            id: "tour-done".into(),
+            hidden: h,
+        })
+    };
+    assert!(hidden(&p.tour_writes(false), true));
+    let ev = EventIn {
+        value: "50".into(),
+        key: None,
+    };
+    p.act(Action::Slide("backlash_um"), &ev, 4.0);
+    p.apply_pending(5.0);
+    assert_eq!(p.tour_done(), Some(true));
+    let w = p.tour_writes(false);
+    assert!(hidden(&w, false));
+    assert!(w.contains(&Write::Class {
+        id: "tour-next".into(),
+        class: "ready",
+        on: true
+    }));
+    assert_eq!(p.status(6.0)["tour"]["done"], serde_json::json!(true));
+    // A new step starts not done; the last one is done by copying the link.
+    for t in 7..10 {
+        p.act(
+            Action::Tour(TourMove::Next),
+            &EventIn::default(),
+            f64::from(t),
+        );
+    }
+    assert_eq!(p.tour_done(), Some(false));
+    p.act(Action::CopyLink, &EventIn::default(), 11.0);
+    assert_eq!(p.tour_done(), Some(true));
+}

@@ -223,16 +223,18 @@ fn dashed<'a, DB: DrawingBackend + 'a>(
 }
 
 /// A panel over Ω: the ±b lines of `backlash_um` where they fall in the
-/// y range, and the selected Ω where it falls in the x range (dashed).
+/// y range, in the member's colour `color` (every view of one member says
+/// which), and the selected Ω where it falls in the x range (dashed).
 fn omega_guides<'a, DB: DrawingBackend + 'a>(
     chart: &mut Chart<'a, DB>,
     backlash_um: &[f64],
     selected: f64,
     (x, y): ((f64, f64), (f64, f64)),
+    color: RGBColor,
 ) -> Res<()> {
     for &b in backlash_um {
         for level in [b, -b].into_iter().filter(|l| (y.0..=y.1).contains(l)) {
-            dashed(chart, vec![(x.0, level), (x.1, level)], GUIDE)?;
+            dashed(chart, vec![(x.0, level), (x.1, level)], color)?;
         }
     }
     if (x.0..=x.1).contains(&selected) {
@@ -263,7 +265,7 @@ pub fn draw_bif_panels<DB: DrawingBackend>(
         .map(|r| r.label())
         .collect();
     let key = format!(
-        "Dots: Poincaré samples coloured by regime ({}); filled: upward sweep, open: downward. Dashed grey: ±b; dashed red: selected Ω.",
+        "Dots: Poincaré samples coloured by regime ({}); filled: upward sweep, open: downward. Dashed: ±b, in the panel's colour; dashed red: selected Ω.",
         if regimes.is_empty() { "none yet".to_string() } else { regimes.join(", ") }
     );
     let (areas, cols) = layout(root, &title, &key, panels.len())?;
@@ -285,7 +287,13 @@ pub fn draw_bif_panels<DB: DrawingBackend>(
             ("Ω", "Poincaré samples of x (µm)"),
             k % cols == 0,
         )?;
-        omega_guides(&mut chart, &v.backlash_um, v.selected_omega, (x, y))?;
+        omega_guides(
+            &mut chart,
+            &v.backlash_um,
+            v.selected_omega,
+            (x, y),
+            family_color(k),
+        )?;
         failed_crosses(&mut chart, &v.failed, y.0, 4)?;
         let frame = frame_of(&chart, x, y);
         group_dots(&mut groups, &v.points, &frame);
@@ -448,7 +456,7 @@ pub fn draw_fr_panels<DB: DrawingBackend>(
     items.extend([
         (
             KeyIcon::Line(GUIDE, true),
-            "±b (contact), where in range".into(),
+            "±b (contact) in the panel's colour, where in range".into(),
         ),
         (KeyIcon::Line(CURSOR, true), "selected Ω".into()),
     ]);
@@ -485,7 +493,13 @@ pub fn draw_fr_panels<DB: DrawingBackend>(
             .chain(&v.pinned_backlash_um)
             .copied()
             .collect();
-        omega_guides(&mut chart, &levels, v.selected_omega, (x, y))?;
+        omega_guides(
+            &mut chart,
+            &levels,
+            v.selected_omega,
+            (x, y),
+            family_color(k),
+        )?;
         for br in v.branches.iter() {
             draw_branch(&mut chart, br)?;
         }

@@ -696,3 +696,47 @@ fn the_drawn_key_is_short_and_the_full_key_complete() {
     let texts = |k: &KeyItems| k.iter().map(|i| i.1.clone()).collect::<Vec<_>>();
     assert_eq!(texts(&compact_key(short.clone())), texts(&short));
 }
+
+/// Every view of one member says which: the frequency response's small
+/// multiples draw each panel's ±b lines in the member's colour.
+#[test]
+fn fr_panels_draw_their_contact_lines_in_the_members_colour() {
+    use crate::views::multiples::Panel;
+    let fr = |b: f64| FrView {
+        method: FrSource::Hbm { harmonics: 5 }.label(),
+        source: FrSource::Hbm { harmonics: 5 },
+        mesh_label: "s1a1".into(),
+        backlash_um: vec![b],
+        pinned_backlash_um: vec![],
+        branches: vec![],
+        markers: vec![],
+        overlay: vec![],
+        overlay_source: None,
+        discrepancy: crate::views::fr::Discrepancy::default(),
+        natural: vec![],
+        omega_from: 0.1,
+        omega_to: 2.0,
+        selected_omega: 0.84,
+        branch_error: None,
+        failed: vec![],
+        done: 10,
+        progress: 1.0,
+        finished: true,
+        branch_notes: Vec::new(),
+        whole_clearance: true,
+    };
+    let panels: Vec<Panel<FrView>> = [50.0, 100.0, 200.0]
+        .iter()
+        .map(|&b| Panel {
+            title: format!("b {b} µm"),
+            data: Ok(fr(b)),
+        })
+        .collect();
+    let s = svg(|root| multiples::draw_fr_panels(root, &panels, "").map(|_| ()));
+    for m in 0..3 {
+        assert!(
+            s.contains(&hex(family_color(m))),
+            "member {m}'s ±b colour missing"
+        );
+    }
+}

@@ -443,6 +443,7 @@ fn pipeline_bench(
         let mut secs = Vec::new();
         let mut cpu = Vec::new();
         let mut verdicts = std::collections::BTreeMap::new();
+        let mut work = [0u64; 4];
         for _ in 0..repeats {
             let mut spec = SweepSpec::new(0.1, 2.0, points);
             spec.directions = solver::sweep::Directions::Both;
@@ -463,7 +464,12 @@ fn pipeline_bench(
                 cpu.push(b - a);
             }
             verdicts.clear();
+            work = [0u64; 4];
             for p in &pts {
+                work[0] += p.stats.integrator.steps;
+                work[1] += u64::from(p.stats.shooting_attempts);
+                work[2] += p.stats.shooting_steps;
+                work[3] += p.stats.probe_steps;
                 let key = match p.motion.period() {
                     Some(n) if p.motion.is_exact() => format!("period {n} (exact)"),
                     Some(n) => format!("period {n}"),
@@ -484,6 +490,10 @@ fn pipeline_bench(
                 "cpu_median_s": cpu_med,
                 "cpu_runs_s": cpu,
                 "verdicts": verdicts,
+                "steps": work[0],
+                "shooting_attempts": work[1],
+                "shooting_steps": work[2],
+                "probe_steps": work[3],
             }),
         );
     }

@@ -6,6 +6,11 @@
 //! piecewise between the contact switches, so its derivatives have no
 //! closed form here.
 //!
+//! The gradient costs `n + 2` monodromies, so one corrector differences
+//! it once, at its predictor, and keeps it ([`Frozen`]): the test row's
+//! Newton is a chord method (the branch rows stay exact), which converges
+//! within a step's distance as fast, at two monodromies an iteration.
+//!
 //! Stable side: the side where the critical multiplier is inside the unit
 //! circle (`lambda > -1`), read from how `g` and `lambda + 1` move together
 //! along the branch.
@@ -102,6 +107,14 @@ pub(crate) fn start(
     Ok((block, u.column(k).into_owned(), vt.row(k).transpose()))
 }
 
+/// What one corrector keeps of its first evaluation: the test function's
+/// gradient in `(X, Omega, p)` and whether `g` grows with `lambda + 1`.
+#[derive(Debug, Clone)]
+pub(crate) struct Frozen {
+    grad: Vec<f64>,
+    orient: f64,
+}
+
 /// `g` and the right null vector `v` at `(x, omega, p)`.
 fn test(
     fam: &mut Family,
@@ -115,14 +128,16 @@ fn test(
     bordered_solve(&a, b, c, z[nx])
 }
 
-/// The period-doubling system at `z = (X, Omega, p)`.
+/// The period-doubling system at `z = (X, Omega, p)`, with bordering
+/// `(b, c)`; `frozen` is the gradient kept from the corrector's first
+/// evaluation (computed and stored when `None`).
 pub(crate) fn eval(
     fam: &mut Family,
     z: &[f64],
     block: usize,
-    b: &DVector<f64>,
-    c: &DVector<f64>,
+    (b, c): (&DVector<f64>, &DVector<f64>),
     v_out: &mut DVector<f64>,
+    frozen: &mut Option<Frozen>,
 ) -> Result<Eval> {
     let nx = z.len() - 2;
     let (x, omega, p) = (&z[..nx], z[nx], z[nx + 1]);
@@ -130,22 +145,37 @@ pub(crate) fn eval(
     let r_p = residual_p(fam, x, omega, p)?;
     let (g, v) = test(fam, z, block, b, c)?;
     let scale = 1.0 + inf_norm(x);
-    let mut grad = vec![0.0; nx + 2];
-    let mut zz = z.to_vec();
-    for (i, gi) in grad.iter_mut().enumerate() {
-        let h = if i < nx {
-            1e-6 * scale
-        } else if i == nx {
-            1e-7 * (1.0 + omega.abs())
-        } else {
-            fam.dp
-        };
-        let keep = zz[i];
-        zz[i] = keep + h;
-        let (gh, _) = test(fam, &zz, block, b, c)?;
-        zz[i] = keep;
-        *gi = (gh - g) / h;
-    }
+    let (dx_om, dx_p) = branch_motion(&j, &r_p);
+    let kept = match frozen.take() {
+        Some(f) => f,
+        None => {
+            let mut grad = vec![0.0; nx + 2];
+            let mut zz = z.to_vec();
+            for (i, gi) in grad.iter_mut().enumerate() {
+                let h = if i < nx {
+                    1e-6 * scale
+                } else if i == nx {
+                    1e-7 * (1.0 + omega.abs())
+                } else {
+                    fam.dp
+                };
+                let keep = zz[i];
+                zz[i] = keep + h;
+                let (gh, _) = test(fam, &zz, block, b, c)?;
+                zz[i] = keep;
+                *gi = (gh - g) / h;
+            }
+            // Whether g grows with lambda + 1: a small step along the branch in Omega.
+            let g_om = DVector::from_column_slice(&grad[..nx]).dot(&dx_om) + grad[nx];
+            let step = 1e-4 * (1.0 + omega.abs());
+            let moved: Vec<f64> = (0..nx).map(|i| x[i] + step * dx_om[i]).collect();
+            let mu0 = critical(fam, x, omega, p, block)?;
+            let mu1 = critical(fam, &moved, omega + step, p, block)?;
+            let orient = if (mu1 - mu0) * g_om >= 0.0 { 1.0 } else { -1.0 };
+            Frozen { grad, orient }
+        }
+    };
+    let grad = &kept.grad;
     let (mut res, mut jac) = branch_rows(&r, &j, &r_p);
     res[nx] = g;
     for (k, &gk) in grad.iter().enumerate() {
@@ -153,15 +183,10 @@ pub(crate) fn eval(
     }
     // g along the branch: dX = -J^-1 (R_Omega dOmega + R_p dp).
     let g_x = DVector::from_column_slice(&grad[..nx]);
-    let (dx_om, dx_p) = branch_motion(&j, &r_p);
     let g_om = g_x.dot(&dx_om) + grad[nx];
     let g_p = g_x.dot(&dx_p) + grad[nx + 1];
-    // Whether g grows with lambda + 1: a small step along the branch in Omega.
-    let step = 1e-4 * (1.0 + omega.abs());
-    let moved: Vec<f64> = (0..nx).map(|i| x[i] + step * dx_om[i]).collect();
-    let mu0 = critical(fam, x, omega, p, block)?;
-    let mu1 = critical(fam, &moved, omega + step, p, block)?;
-    let orient = if (mu1 - mu0) * g_om >= 0.0 { 1.0 } else { -1.0 };
+    let orient = kept.orient;
+    *frozen = Some(kept);
     *v_out = v;
     Ok(Eval {
         res,

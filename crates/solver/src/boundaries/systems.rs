@@ -52,6 +52,9 @@ pub(crate) enum System {
         b: DVector<f64>,
         c: DVector<f64>,
         v: DVector<f64>,
+        /// The test function's differenced gradient and its orientation,
+        /// kept through one corrector (see [`super::doubling::Frozen`]).
+        frozen: Option<super::doubling::Frozen>,
     },
     /// A channel's extremum at `+-b`.
     Contact {
@@ -71,6 +74,7 @@ impl System {
             v: c.clone(),
             b,
             c,
+            frozen: None,
         })
     }
 
@@ -119,8 +123,19 @@ impl System {
                 *b = w.normalize();
                 *c = v.normalize();
             }
-            System::Doubling { c, v, .. } => *c = v.normalize(),
+            System::Doubling { c, v, frozen, .. } => {
+                *c = v.normalize();
+                *frozen = None;
+            }
             System::Contact { .. } => {}
+        }
+    }
+
+    /// Forgets what one corrector keeps (a new corrector starts from a new
+    /// predictor): the period doubling's frozen gradient.
+    pub(crate) fn fresh(&mut self) {
+        if let System::Doubling { frozen, .. } = self {
+            *frozen = None;
         }
     }
 
@@ -128,7 +143,13 @@ impl System {
     pub(crate) fn eval(&mut self, fam: &mut Family, z: &[f64]) -> Result<Eval> {
         match self {
             System::Fold { b, c, w, v } => fold_eval(fam, z, b, c, w, v),
-            System::Doubling { block, b, c, v } => super::doubling::eval(fam, z, *block, b, c, v),
+            System::Doubling {
+                block,
+                b,
+                c,
+                v,
+                frozen,
+            } => super::doubling::eval(fam, z, *block, (b, c), v, frozen),
             System::Contact { channel, kind } => contact_eval(fam, z, *channel, *kind),
         }
     }

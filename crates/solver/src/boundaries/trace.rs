@@ -232,6 +232,7 @@ impl Tracer {
         let n = pred.len();
         let mut z = pred.to_vec();
         let mut last_res = f64::NAN;
+        self.system.fresh();
         for iteration in 1..=NEWTON_MAX {
             let ev = self.system.eval(fam, &z)?;
             self.newton_iterations += 1;

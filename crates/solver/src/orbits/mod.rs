@@ -65,6 +65,8 @@ impl ShootFrfSpec {
         let mut shooting = ShootOptions::new(1);
         shooting.rtol = 1e-10;
         shooting.atol_m = 1e-13;
+        // The first orbit by plain Newton, as the branch's own corrector.
+        shooting.broyden = false;
         ShootFrfSpec {
             omega_from,
             omega_to,

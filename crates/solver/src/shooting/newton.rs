@@ -1,14 +1,30 @@
-//! Damped Newton on `P^n(z) - z = 0` with a backtracking line search.
+//! Damped Newton on `P^n(z) - z = 0` with a backtracking line search and
+//! Broyden updates of the Newton matrix.
 //!
-//! Each iterate evaluates `P^n` and its monodromy `Phi` together
-//! ([`super::variational`]); the Newton step solves `(Phi - I) dz = -F`.
-//! A trial point `z + alpha dz` is accepted when its residual meets the
-//! tolerance or has fallen by the Armijo factor `1 - 1e-4 alpha` in the
-//! 2-norm; otherwise `alpha` is halved (a trial whose integration fails,
-//! say by leaving the bounded range, counts as not accepted), down to
-//! 1/64, below which the attempt is given up. The monodromy of the
-//! accepted trial serves the next step, so an iteration with a full step
-//! costs one integration of `n` periods with the tangents.
+//! The first iterate evaluates `P^n` and its monodromy `Phi` together
+//! ([`super::variational`]); the Newton step solves `J dz = -F` with
+//! `J = Phi - I`. A trial point `z + alpha dz` is accepted when its
+//! residual meets the tolerance or has fallen by the Armijo factor
+//! `1 - 1e-4 alpha` in the 2-norm; otherwise `alpha` is halved (a trial
+//! whose integration fails, say by leaving the bounded range, counts as not
+//! accepted), down to 1/64.
+//!
+//! Trials integrate the orbit alone: after an accepted step `s` with the
+//! residual's change `y`, the Newton matrix takes Broyden's rank-one update
+//! `J += (y - J s) s^T / (s^T s)` instead of a new monodromy, so an
+//! iteration costs one plain integration of `n` periods instead of one with
+//! the `2m` tangent vectors alongside (about ten times the work). Where the
+//! line search fails or the matrix is singular with an updated `J`, the
+//! monodromy is integrated afresh at the current iterate and the step
+//! retried; with a fresh one the attempt is given up. Once the residual
+//! meets the tolerance, the monodromy is integrated at the converged orbit
+//! itself, so its Floquet multipliers (and the orbit's stability) are
+//! exact, not the update's estimate. [`ShootOptions::broyden`] off, every
+//! iterate integrates the tangents (plain Newton).
+//!
+//! The monodromy that only steers Newton may be integrated at looser
+//! tolerances ([`ShootOptions::jacobian_tol`]): the residual, and so the
+//! orbit, is always evaluated at the attempt's own.
 //!
 //! Convergence: the residual's size in mesh space (every mesh's deflection
 //! and rate over omega, µm) at most `tol_abs_um + tol_rel` times the
@@ -45,6 +61,13 @@ pub struct ShootOptions {
     pub tol_abs_um: f64,
     /// Step budget per mesh period of one evaluation.
     pub max_steps_per_period: u64,
+    /// Broyden updates of the Newton matrix between steps (see the module
+    /// doc); off, the monodromy is integrated at every iterate.
+    pub broyden: bool,
+    /// The integrator's relative tolerance and absolute one (m) for the
+    /// monodromy that only steers Newton (`None`: `rtol` and `atol_m`).
+    /// The converged orbit's monodromy always uses `rtol` and `atol_m`.
+    pub jacobian_tol: Option<(f64, f64)>,
 }
 
 /// Largest orbit period shooting accepts (the same as the period detection's).
@@ -64,6 +87,8 @@ impl ShootOptions {
             tol_rel: 1e-8,
             tol_abs_um: 1e-7,
             max_steps_per_period: 200_000,
+            broyden: true,
+            jacobian_tol: None,
         }
     }
 
@@ -92,6 +117,22 @@ impl ShootOptions {
                 format!("{}", self.atol_m),
                 "0 < atol <= 1e-8 m",
             );
+        }
+        if let Some((rtol, atol_m)) = self.jacobian_tol {
+            if !(rtol.is_finite() && (1e-13..=1e-3).contains(&rtol)) {
+                return SolverError::bad_option(
+                    "jacobian rtol",
+                    format!("{rtol}"),
+                    "1e-13 ..= 1e-3",
+                );
+            }
+            if !(atol_m.is_finite() && atol_m > 0.0 && atol_m <= 1e-6) {
+                return SolverError::bad_option(
+                    "jacobian atol",
+                    format!("{atol_m}"),
+                    "0 < atol <= 1e-6 m",
+                );
+            }
         }
         Ok(())
     }
@@ -163,11 +204,20 @@ pub enum ShootOutcome {
 /// Which evaluation is in progress.
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Stage {
-    /// At the current iterate.
+    /// The residual at the current iterate (with the monodromy where it
+    /// can share the integration).
     Base,
-    /// At `z + alpha dz`.
+    /// The monodromy at the current iterate, for the Newton matrix.
+    Jacobian,
+    /// The residual at `z + alpha dz`.
     Trial { alpha: f64 },
+    /// The monodromy at the converged orbit.
+    Final,
 }
+
+/// The residual's ratio over an accepted step above which the Newton
+/// matrix is integrated afresh rather than updated.
+const SLOW_STEP: f64 = 0.5;
 
 /// Smallest line-search factor tried.
 const ALPHA_MIN: f64 = 1.0 / 64.0;
@@ -180,12 +230,17 @@ pub struct ShootRun {
     red: Reduced,
     ode: MeshOde,
     tol: Tolerances,
+    /// The tolerances of [`Stage::Jacobian`].
+    jac_tol: Tolerances,
     bound_m: f64,
     rigid: (f64, f64),
     z: Vec<f64>,
-    /// Residual and monodromy at `z`, once evaluated.
+    /// Residual at `z`, once evaluated.
     f: Vec<f64>,
-    monodromy: DMatrix<f64>,
+    /// The Newton matrix `J` (`Phi - I`, or its Broyden update) and whether
+    /// it was integrated at `z` itself.
+    jac: DMatrix<f64>,
+    jac_fresh: bool,
     res_um: f64,
     dz: Vec<f64>,
     iterations: u32,
@@ -212,16 +267,24 @@ impl ShootRun {
         let ode = MeshOde::new(sys, red.omega_rad_s);
         let tol =
             crate::dynamics::tolerances(sys, omega, opts.rtol, opts.atol_m, red.period_s, 1e-14);
+        let jac_tol = match opts.jacobian_tol {
+            Some((rtol, atol_m)) => {
+                crate::dynamics::tolerances(sys, omega, rtol, atol_m, red.period_s, 1e-14)
+            }
+            None => tol.clone(),
+        };
         let (z, rigid) = red.from_state(start);
         Ok(ShootRun {
             opts: opts.clone(),
             omega,
             ode,
             tol,
+            jac_tol,
             bound_m: model.divergence_bound_m(),
             rigid,
             f: Vec::new(),
-            monodromy: DMatrix::zeros(0, 0),
+            jac: DMatrix::zeros(0, 0),
+            jac_fresh: false,
             res_um: f64::INFINITY,
             dz: Vec::new(),
             iterations: 0,
@@ -283,12 +346,20 @@ impl ShootRun {
         self.opts.tol_abs_um + self.opts.tol_rel * self.red.mesh_norm_um(z)
     }
 
+    /// Whether the base evaluation carries the tangents: when the Newton
+    /// matrix is integrated at the attempt's own tolerances anyway.
+    fn base_has_tangents(&self) -> bool {
+        self.opts.jacobian_tol.is_none()
+    }
+
     fn advance_inner(&mut self, max_steps: u64) -> Result<Option<ShootOutcome>> {
         let mut taken = 0u64;
         loop {
-            let alpha = match self.stage {
-                Stage::Base => 0.0,
-                Stage::Trial { alpha } => alpha,
+            let (alpha, tangents, tol) = match self.stage {
+                Stage::Base => (0.0, self.base_has_tangents(), &self.tol),
+                Stage::Jacobian => (0.0, true, &self.jac_tol),
+                Stage::Trial { alpha } => (alpha, !self.opts.broyden, &self.tol),
+                Stage::Final => (0.0, true, &self.tol),
             };
             let zt = self.point(alpha);
             if self.eval.is_none() {
@@ -299,11 +370,11 @@ impl ShootRun {
                 self.eval = Some(Box::new(MapRun::new(
                     &self.red,
                     &self.ode,
-                    &self.tol,
+                    tol,
                     &zt,
                     self.rigid,
                     self.opts.period,
-                    true,
+                    tangents,
                     self.bound_m,
                     budget,
                 )));
@@ -328,6 +399,23 @@ impl ShootRun {
                         self.opts.period
                     ))),
                 },
+                Stage::Jacobian => match value {
+                    Ok(v) => {
+                        self.set_monodromy(v.monodromy);
+                        self.newton_direction()
+                    }
+                    Err(e) => Some(self.fail(format!(
+                        "the monodromy of the period-{} map failed: {e}",
+                        self.opts.period
+                    ))),
+                },
+                Stage::Final => match value {
+                    Ok(v) => Some(self.converged(v.monodromy)),
+                    Err(e) => Some(self.fail(format!(
+                        "the monodromy at the converged period-{} orbit failed: {e}",
+                        self.opts.period
+                    ))),
+                },
                 Stage::Trial { alpha } => {
                     let accepted = match value {
                         Ok(v) => {
@@ -349,6 +437,11 @@ impl ShootRun {
                             self.stage = Stage::Trial { alpha: alpha * 0.5 };
                             None
                         }
+                        None if !self.jac_fresh => {
+                            // The updated matrix may be what misled the step.
+                            self.stage = Stage::Jacobian;
+                            None
+                        }
                         None => Some(self.fail(format!(
                             "the line search found no decrease of the residual ({:.3e} µm) along the Newton step",
                             self.res_um
@@ -365,28 +458,65 @@ impl ShootRun {
         }
     }
 
+    /// Takes the monodromy integrated at `z` as the Newton matrix.
+    fn set_monodromy(&mut self, monodromy: Option<DMatrix<f64>>) {
+        let m = self.red.dim();
+        let mono = monodromy.unwrap_or_else(|| DMatrix::zeros(m, m));
+        self.jac = mono - DMatrix::identity(m, m);
+        self.jac_fresh = true;
+    }
+
+    /// The converged orbit at `z`, with the monodromy integrated there.
+    fn converged(&self, monodromy: Option<DMatrix<f64>>) -> ShootOutcome {
+        let m = self.red.dim();
+        let monodromy = monodromy.unwrap_or_else(|| DMatrix::zeros(m, m));
+        ShootOutcome::Converged(Box::new(Orbit {
+            omega: self.omega,
+            period: self.opts.period,
+            z: self.z.clone(),
+            start_state: self.red.to_state(&self.z, self.rigid),
+            multipliers: Multipliers::of(&monodromy),
+            monodromy,
+            residual_um: self.res_um,
+            iterations: self.iterations,
+            steps: self.steps,
+        }))
+    }
+
     /// Takes `zt` with its map value as the new iterate: converged, or the
     /// next Newton direction (or a failure).
     fn accept(&mut self, zt: Vec<f64>, v: MapValue) -> Option<ShootOutcome> {
         let f: Vec<f64> = v.z.iter().zip(&zt).map(|(p, z)| p - z).collect();
+        let first = self.f.is_empty();
+        let n2 = |x: &[f64]| x.iter().map(|v| v * v).sum::<f64>().sqrt();
+        // A step that did not halve the residual: the updated matrix is
+        // not steering well, and the next one is integrated afresh.
+        let slow = !first && n2(&f) > SLOW_STEP * n2(&self.f);
+        if v.monodromy.is_some() {
+            self.set_monodromy(v.monodromy);
+        } else if !first {
+            // Broyden's update from the step just taken.
+            let s = DVector::from_iterator(zt.len(), zt.iter().zip(&self.z).map(|(a, b)| a - b));
+            let y = DVector::from_iterator(f.len(), f.iter().zip(&self.f).map(|(a, b)| a - b));
+            let ss = s.dot(&s);
+            if ss > 0.0 {
+                let r = y - &self.jac * &s;
+                self.jac += r * s.transpose() / ss;
+            }
+            self.jac_fresh = false;
+        }
         self.res_um = self.red.mesh_norm_um(&f);
         self.z = zt;
         self.f = f;
-        let m = self.red.dim();
-        self.monodromy = v.monodromy.unwrap_or_else(|| DMatrix::zeros(m, m));
         if self.res_um <= self.tolerance_um(&self.z) {
-            let start_state = self.red.to_state(&self.z, self.rigid);
-            return Some(ShootOutcome::Converged(Box::new(Orbit {
-                omega: self.omega,
-                period: self.opts.period,
-                z: self.z.clone(),
-                start_state,
-                multipliers: Multipliers::of(&self.monodromy),
-                monodromy: self.monodromy.clone(),
-                residual_um: self.res_um,
-                iterations: self.iterations,
-                steps: self.steps,
-            })));
+            if self.jac_fresh && self.opts.jacobian_tol.is_none() {
+                // The monodromy was integrated here, at the orbit's tolerances.
+                let m = self.red.dim();
+                let mono = &self.jac + DMatrix::identity(m, m);
+                return Some(self.converged(Some(mono)));
+            }
+            self.stage = Stage::Final;
+            return None;
         }
         if self.iterations >= self.opts.max_iterations {
             return Some(self.fail(format!(
@@ -394,12 +524,25 @@ impl ShootRun {
                 self.iterations, self.res_um
             )));
         }
-        let jac = &self.monodromy - DMatrix::identity(m, m);
+        if (first || slow) && !self.jac_fresh {
+            self.stage = Stage::Jacobian;
+            return None;
+        }
+        self.newton_direction()
+    }
+
+    /// The Newton step from `z` with the current matrix, or a refresh of a
+    /// singular updated matrix, or a failure on a singular fresh one.
+    fn newton_direction(&mut self) -> Option<ShootOutcome> {
         let rhs = -DVector::from_column_slice(&self.f);
-        match jac.lu().solve(&rhs) {
+        match self.jac.clone().lu().solve(&rhs) {
             Some(dz) if dz.iter().all(|x| x.is_finite()) => {
                 self.dz = dz.iter().copied().collect();
                 self.stage = Stage::Trial { alpha: 1.0 };
+                None
+            }
+            _ if !self.jac_fresh => {
+                self.stage = Stage::Jacobian;
                 None
             }
             _ => Some(

@@ -153,7 +153,10 @@ impl Motion {
 /// The shooting options of a steady run whose integrator uses `rtol` and
 /// `atol_m`: a hundred times tighter (at most 1e-9 and 1e-12 m), so that
 /// the orbit is exact at the run's own accuracy, and a residual tolerance
-/// a hundredth of the period test's (a tenth of the settle test's).
+/// a hundredth of the period test's (a tenth of the settle test's). The
+/// monodromy that only steers Newton is integrated at the run's own
+/// tolerances (about half the steps); the converged orbit's, which gives
+/// the Floquet multipliers, at the tight ones.
 pub fn pipeline_options(period: u32, rtol: f64, atol_m: f64, span_um: f64) -> ShootOptions {
     let mut o = ShootOptions::new(period);
     o.max_iterations = PIPELINE_ITERATIONS;
@@ -161,6 +164,7 @@ pub fn pipeline_options(period: u32, rtol: f64, atol_m: f64, span_um: f64) -> Sh
     o.atol_m = (atol_m * 1e-2).clamp(1e-16, 1e-12);
     o.tol_abs_um = 0.1 * settle_tol_um(span_um);
     o.tol_rel = 0.0;
+    o.jacobian_tol = Some((rtol.clamp(1e-13, 1e-3), atol_m.clamp(1e-16, 1e-6)));
     o
 }
 
