@@ -6,7 +6,7 @@
 
 use serde_json::{json, Value};
 use solver::dynamics::MeshOde;
-use solver::hbm::{BranchPoint, FrfContinuation, FrfSpec, StepControl, DEFAULT_STABILITY_STRIDE};
+use solver::hbm::{BranchPoint, FrfContinuation, FrfSpec, StepControl, SAMPLED_STABILITY_STRIDE};
 use solver::map::{MapSpec, RegimeMap};
 use solver::ode::Ode;
 use solver::params::ModelParams;
@@ -235,7 +235,7 @@ pub fn run(repeats: u32, quick: bool) -> Result<Value, SolverError> {
         for (control, nominal, stride) in [
             (StepControl::Iterations, 400, 1),
             (StepControl::Geometry, 50, 1),
-            (StepControl::Geometry, 50, DEFAULT_STABILITY_STRIDE),
+            (StepControl::Geometry, 50, SAMPLED_STABILITY_STRIDE),
         ] {
             let mut spec = FrfSpec::new(0.1, 0.5, nominal);
             spec.harmonics = 7;
@@ -305,7 +305,7 @@ pub fn run(repeats: u32, quick: bool) -> Result<Value, SolverError> {
             "folds": folds(&after_branch),
         },
         "sampled_stability": {
-            "stride": DEFAULT_STABILITY_STRIDE,
+            "stride": SAMPLED_STABILITY_STRIDE,
             "branch_points": sampled_branch.len(),
             "monodromies": sampled_monodromies,
             "monodromies_every_point": after_monodromies,

@@ -21,6 +21,7 @@ pub use assembly::{Assembly, Method};
 pub use continuation::{
     Bifurcation, BranchMesh, BranchPoint, FrfContinuation, FrfSpec, FrfStats, LeftOut,
     LeftOutReason, PieceEnd, Restart, StepControl, DEFAULT_STABILITY_STRIDE,
+    SAMPLED_STABILITY_STRIDE,
 };
 pub use model::{HbmModel, Reduction};
 pub use stability::Floquet;
