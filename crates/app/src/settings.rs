@@ -135,7 +135,7 @@ pub const VIEW_KEYS: &[ViewKey] = &[
         restarts: KindSet::of(&[K::Omega, K::Map]),
         unit: "-",
         ty: ViewType::Mesh,
-        description: "which mesh to plot, or the worst mesh at each Ω: the mesh with the largest dynamic factor (the peak mesh force over the static one); in the frequency response, the mesh with the largest peak-to-peak x",
+        description: "which mesh to plot, or the worst mesh at each Ω: the mesh with the largest dynamic factor (the peak mesh force over the static one); the frequency response instead plots the mesh with the largest peak-to-peak x and says so in its title",
     },
     ViewKey {
         name: "omega_from",

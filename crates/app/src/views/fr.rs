@@ -182,7 +182,7 @@ pub struct FrView {
     pub source: FrSource,
     /// [`FrSource::label`] of `source`.
     pub method: String,
-    /// The plotted mesh, e.g. `s1a1` or `worst mesh`.
+    /// The plotted mesh, e.g. `s1a1` or `with the largest peak-to-peak x`.
     pub mesh_label: String,
     /// Distinct backlash half-widths of the plotted meshes (um): the ±b lines.
     pub backlash_um: Vec<f64>,
@@ -545,7 +545,10 @@ pub fn fr_view(
     };
     let discrepancy = discrepancy(&points, &overlay_pts);
     let mesh_label = if mesh.is_none() {
-        "worst mesh".to_string()
+        // Not "worst mesh": that is the largest dynamic factor (one
+        // definition, `SteadyState::worst_mesh`); the harmonic balance's
+        // points rank the meshes by what this plot shows.
+        "with the largest peak-to-peak x".to_string()
     } else {
         ctx.mesh_label.clone()
     };
