@@ -197,14 +197,9 @@ fn a_family_overlays_one_colour_per_value_named_in_words() {
             })
             .collect()
     };
-    let source = FrSource::Hbm { harmonics: 5 };
-    let fr = FrView {
-        method: source.label(),
-        source,
-        mesh_label: "s1a1".into(),
-        backlash_um: vec![200.0],
-        pinned_backlash_um: vec![],
-        branches: [0.0, 20.0, 30.0]
+    let fr = fr_view(
+        200.0,
+        [0.0, 20.0, 30.0]
             .iter()
             .enumerate()
             .map(|(m, te)| FrBranch {
@@ -215,22 +210,7 @@ fn a_family_overlays_one_colour_per_value_named_in_words() {
                 member: Some(m),
             })
             .collect(),
-        markers: vec![],
-        overlay: vec![],
-        overlay_source: None,
-        discrepancy: crate::views::fr::Discrepancy::default(),
-        natural: vec![],
-        omega_from: 0.1,
-        omega_to: 2.0,
-        selected_omega: 0.84,
-        branch_error: None,
-        failed: vec![],
-        done: 10,
-        progress: 1.0,
-        finished: true,
-        branch_notes: Vec::new(),
-        whole_clearance: true,
-    };
+    );
     let s = svg(|root| draw_fr(root, &fr, "").map(|_| ()));
     for (m, text) in ["TE 0 µm", "TE 20 µm", "TE 30 µm"].iter().enumerate() {
         assert!(s.contains(text), "{text} missing from the legend: {s}");
@@ -702,13 +682,34 @@ fn the_drawn_key_is_short_and_the_full_key_complete() {
 #[test]
 fn fr_panels_draw_their_contact_lines_in_the_members_colour() {
     use crate::views::multiples::Panel;
-    let fr = |b: f64| FrView {
-        method: FrSource::Hbm { harmonics: 5 }.label(),
-        source: FrSource::Hbm { harmonics: 5 },
+    let fr = |b: f64| fr_view(b, vec![]);
+    let panels: Vec<Panel<FrView>> = [50.0, 100.0, 200.0]
+        .iter()
+        .map(|&b| Panel {
+            title: format!("b {b} µm"),
+            data: Ok(fr(b)),
+        })
+        .collect();
+    let s = svg(|root| multiples::draw_fr_panels(root, &panels, "").map(|_| ()));
+    for m in 0..3 {
+        assert!(
+            s.contains(&hex(family_color(m))),
+            "member {m}'s ±b colour missing"
+        );
+    }
+}
+
+/// A finished harmonic-balance frequency response of mesh s1a1 over
+/// Omega 0.1..2 with backlash `backlash_um` and these branches.
+fn fr_view(backlash_um: f64, branches: Vec<FrBranch>) -> FrView {
+    let source = FrSource::Hbm { harmonics: 5 };
+    FrView {
+        method: source.label(),
+        source,
         mesh_label: "s1a1".into(),
-        backlash_um: vec![b],
+        backlash_um: vec![backlash_um],
         pinned_backlash_um: vec![],
-        branches: vec![],
+        branches,
         markers: vec![],
         overlay: vec![],
         overlay_source: None,
@@ -724,19 +725,5 @@ fn fr_panels_draw_their_contact_lines_in_the_members_colour() {
         finished: true,
         branch_notes: Vec::new(),
         whole_clearance: true,
-    };
-    let panels: Vec<Panel<FrView>> = [50.0, 100.0, 200.0]
-        .iter()
-        .map(|&b| Panel {
-            title: format!("b {b} µm"),
-            data: Ok(fr(b)),
-        })
-        .collect();
-    let s = svg(|root| multiples::draw_fr_panels(root, &panels, "").map(|_| ()));
-    for m in 0..3 {
-        assert!(
-            s.contains(&hex(family_color(m))),
-            "member {m}'s ±b colour missing"
-        );
     }
 }
