@@ -83,21 +83,53 @@ export async function status(page) {
 }
 
 /**
- * Waits until `pred(status)` holds, reading the status every 50 ms (the
- * poll's interval: what is waited for is the state, never a time).
+ * Waits for the page's next change of state after `last` (a status read
+ * before): checked in the page at every animation frame, it resolves with
+ * the new status once the status differs from `last` apart from its clock
+ * (`now_ms`), which alone changes on a page at rest. `null` only if
+ * `timeoutMs` passed without a change (the bound of a failed wait).
+ */
+export async function nextStatus(page, last, timeoutMs) {
+  const key = (s) => {
+    const { now_ms: _, ...rest } = s;
+    return JSON.stringify(rest);
+  };
+  try {
+    const h = await page.waitForFunction(
+      (prev) => {
+        const { now_ms: _, ...rest } = JSON.parse(window.gearshockStatus());
+        const k = JSON.stringify(rest);
+        return k !== prev ? k : false;
+      },
+      key(last),
+      { polling: 'raf', timeout: Math.max(1, timeoutMs) },
+    );
+    return JSON.parse(await h.jsonValue());
+  } catch (e) {
+    if (e.name === 'TimeoutError') return null;
+    throw e;
+  }
+}
+
+/**
+ * Waits until `pred(status)` holds: the status is read again at each of
+ * the page's changes of state ([`nextStatus`]), so what is waited for is
+ * the state, never a time.
  */
 export async function waitStatus(page, pred, timeoutMs = 60000, what = 'condition') {
   // The bound only ends a wait that failed: at least a minute, whatever a
   // test asked, so a busy machine never fails a state that was coming.
   timeoutMs = Math.max(timeoutMs, 60000);
   const t0 = Date.now();
+  let s = await status(page);
   for (;;) {
-    const s = await status(page);
     if (pred(s)) return s;
-    if (Date.now() - t0 > timeoutMs) {
+    const left = timeoutMs - (Date.now() - t0);
+    const next = left > 0 ? await nextStatus(page, s, left) : null;
+    if (next === null) {
       throw new Error(`timed out after ${timeoutMs} ms waiting for ${what}; status: ${JSON.stringify(s).slice(0, 2000)}`);
     }
-    await page.waitForTimeout(50);
+    s = next;
   }
 }
 

@@ -8,7 +8,7 @@
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import path from 'node:path';
-import { start, open, status, SHOTS } from './harness.mjs';
+import { start, open, status, nextStatus, SHOTS } from './harness.mjs';
 
 const SIZES = [
   { name: 'phone-390x844', context: { viewport: { width: 390, height: 844 }, hasTouch: true, isMobile: true } },
@@ -53,15 +53,18 @@ function settled(s, views = VIEW_JOBS.map(([v]) => v)) {
  */
 async function watch(page, pred, what, seen) {
   const t0 = Date.now();
+  let s = await status(page);
   for (;;) {
-    const s = await status(page);
     for (const f of faults(s)) seen.add(f);
     if (pred(s)) return s;
-    if (Date.now() - t0 > 300000) {
+    const left = 300000 - (Date.now() - t0);
+    // The next status is read at the page's next change of state.
+    const next = left > 0 ? await nextStatus(page, s, left) : null;
+    if (next === null) {
       const open = VIEW_JOBS.filter(([v]) => !settled(s, [v])).map(([v]) => v);
       throw new Error(`timed out waiting for ${what}; not settled: ${open}`);
     }
-    await page.waitForTimeout(100);
+    s = next;
   }
 }
 
