@@ -305,34 +305,24 @@ impl MeshOde {
     pub fn tangent(&self, t: f64, y: &[f64], z: &[f64], dz: &mut [f64]) {
         let (n, p) = (self.n, self.padded);
         let q = &y[..n];
-        // The phase of a right-hand side evaluated just before at `t` (as
-        // the variational ODEs do), or computed afresh: the same bits.
-        let (s, c) = if t == self.phase_cache.0 {
-            (self.phase_cache.1, self.phase_cache.2)
-        } else {
-            phase_sin_cos(self.omega_rad_s * t)
-        };
-        // Index loops over slices of exactly n entries: no bounds checks,
-        // and the AXPYs vectorize.
+        let (s, c) = phase_sin_cos(self.omega_rad_s * t);
         for (zc, dc) in z.chunks_exact(2 * n).zip(dz.chunks_exact_mut(2 * n)) {
             let (dq, dv) = zc.split_at(n);
             let (ddq, ddv) = dc.split_at_mut(n);
             ddq.copy_from_slice(dv);
-            let ddv = &mut ddv[..n];
             ddv.fill(0.0);
             for (&col, a) in self
                 .support_cols
                 .iter()
                 .zip(self.accel_per_support.chunks_exact(p))
             {
-                let (qc, a) = (dq[col], &a[..n]);
-                for i in 0..n {
-                    ddv[i] -= qc * a[i];
+                let qc = dq[col];
+                for (d, &ai) in ddv.iter_mut().zip(a) {
+                    *d -= qc * ai;
                 }
             }
         }
         for (m, a) in self.meshes.iter().zip(self.accel_per_force.chunks_exact(p)) {
-            let a = &a[..n];
             let (k, e, _) = self.excitation(m, c, s);
             let x = m.dot(q) - e;
             let slope = if x > m.backlash || x < -m.backlash {
@@ -343,76 +333,9 @@ impl MeshOde {
             for (zc, dc) in z.chunks_exact(2 * n).zip(dz.chunks_exact_mut(2 * n)) {
                 let (dq, dv) = zc.split_at(n);
                 let f = slope * m.dot(dq) + m.damping * m.dot(dv);
-                let d = &mut dc[n..2 * n];
-                for i in 0..n {
-                    d[i] -= f * a[i];
+                for (d, &ai) in dc[n..].iter_mut().zip(a) {
+                    *d -= f * ai;
                 }
-            }
-        }
-    }
-
-    /// The right-hand side at `(t, y)` into `dy` and one tangent vector's
-    /// `z` into `dz`, in one pass over the supports and the meshes (the
-    /// phase, each mesh's excitation and contact test shared): the same
-    /// bits as [`Ode::rhs`] and [`MeshOde::tangent`] one after the other,
-    /// the Lyapunov probe's ODE at about the cost of one of them.
-    pub fn rhs_with_tangent(
-        &mut self,
-        t: f64,
-        y: &[f64],
-        z: &[f64],
-        dy: &mut [f64],
-        dz: &mut [f64],
-    ) {
-        let (n, p) = (self.n, self.padded);
-        if cfg!(target_arch = "wasm32") {
-            // The register-resident form of `rhs` there: its bits, then the
-            // tangent's.
-            self.rhs(t, y, dy);
-            self.tangent(t, y, z, dz);
-            return;
-        }
-        let (s, c) = if t == self.phase_cache.0 {
-            (self.phase_cache.1, self.phase_cache.2)
-        } else {
-            let (s, c) = phase_sin_cos(self.omega_rad_s * t);
-            self.phase_cache = (t, s, c);
-            (s, c)
-        };
-        let (q, v) = (&y[..n], &y[n..2 * n]);
-        let (zq, zv) = (&z[..n], &z[n..2 * n]);
-        let (dq, dv) = dy.split_at_mut(n);
-        let (dzq, dzv) = dz.split_at_mut(n);
-        let (dv, dzv) = (&mut dv[..n], &mut dzv[..n]);
-        dq.copy_from_slice(v);
-        dzq.copy_from_slice(zv);
-        dv.copy_from_slice(&self.accel_load[..n]);
-        dzv.fill(0.0);
-        for (&col, a) in self
-            .support_cols
-            .iter()
-            .zip(self.accel_per_support.chunks_exact(p))
-        {
-            let (qc, zc, a) = (q[col], zq[col], &a[..n]);
-            for i in 0..n {
-                dv[i] -= qc * a[i];
-                dzv[i] -= zc * a[i];
-            }
-        }
-        for (m, a) in self.meshes.iter().zip(self.accel_per_force.chunks_exact(p)) {
-            let a = &a[..n];
-            let (k, e, de) = self.excitation(m, c, s);
-            let x = m.dot(q) - e;
-            let force = k * dead_zone(x, m.backlash) + m.damping * (m.dot(v) - de);
-            let slope = if x > m.backlash || x < -m.backlash {
-                k
-            } else {
-                0.0
-            };
-            let fz = slope * m.dot(zq) + m.damping * m.dot(zv);
-            for i in 0..n {
-                dv[i] -= force * a[i];
-                dzv[i] -= fz * a[i];
             }
         }
     }
@@ -573,42 +496,5 @@ mod tests {
                 assert!(a.iter().all(|x| x.is_finite() && *x != 0.0));
             }
         }
-    }
-    /// The probe's fused right-hand side gives the bits of the state's
-    /// right-hand side and the tangent's, computed one after the other,
-    /// in contact and apart (states spread over the backlash).
-    #[test]
-    fn the_fused_tangent_is_the_two_calls_to_the_bit() {
-        let mut p = ModelParams::default();
-        keys::set_assignment(&mut p, "backlash_um=40").unwrap();
-        let m = Model::new(&p).unwrap();
-        let mut ode = MeshOde::new(&m.system, 1.3 * m.system.omega_ref_rad_s);
-        let n = ode.dof();
-        let lengths = m.system.dof_length_m();
-        let mut slopes = [0usize; 2];
-        for k in 0..50 {
-            let pert = |i: usize, a: f64| {
-                let scale = lengths[i % n] * if i < n { 1.0 } else { 3e4 };
-                a / scale * (0.7 * (i + 3 * k) as f64).sin()
-            };
-            let y: Vec<f64> = (m.static_state().iter().enumerate())
-                .map(|(i, y)| y + pert(i, 1e-4))
-                .collect();
-            let z: Vec<f64> = (0..2 * n).map(|i| pert(i + 5, 1e-6)).collect();
-            let t = 0.37e-3 * k as f64;
-            let (mut a, mut za) = (vec![0.0; 2 * n], vec![0.0; 2 * n]);
-            let (mut b, mut zb) = (vec![0.0; 2 * n], vec![0.0; 2 * n]);
-            ode.rhs(t, &y, &mut a);
-            ode.tangent(t, &y, &z, &mut za);
-            let mut fresh = ode.clone();
-            fresh.phase_cache = (f64::NAN, 0.0, 0.0);
-            fresh.rhs_with_tangent(t, &y, &z, &mut b, &mut zb);
-            assert_eq!((&a, &za), (&b, &zb), "state {k}");
-            for j in 0..ode.n_meshes() {
-                let mi = ode.mesh_instant(j, t, &y);
-                slopes[usize::from(mi.rel.abs() > ode.backlash(j))] += 1;
-            }
-        }
-        assert!(slopes[0] > 0 && slopes[1] > 0, "{slopes:?}");
     }
 }

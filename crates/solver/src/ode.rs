@@ -165,13 +165,7 @@ pub struct StepInfo {
 /// The DOPRI5 integrator's state.
 #[derive(Debug, Clone)]
 pub struct Dopri5 {
-    /// Components integrated: the state's, and any tail's after them.
     n: usize,
-    /// Components of the state proper: the error control, [`Dopri5::y`]
-    /// and [`Dopri5::dy`] see these only; the rest (a tail attached by
-    /// [`Dopri5::attach_tail`], such as a tangent vector) ride along with
-    /// the same steps.
-    n_main: usize,
     t: f64,
     y: Vec<f64>,
     h: f64,
@@ -214,7 +208,6 @@ impl Dopri5 {
         let zeros = || vec![0.0; n];
         let mut s = Dopri5 {
             n,
-            n_main: n,
             t: t0,
             y: y0.to_vec(),
             h: h0.min(tol.h_max),
@@ -267,59 +260,14 @@ impl Dopri5 {
         self.t
     }
 
-    /// Current state (without any tail).
+    /// Current state.
     pub fn y(&self) -> &[f64] {
-        &self.y[..self.n_main]
+        &self.y
     }
 
-    /// Derivative at the current state (first-same-as-last stage), without
-    /// any tail.
+    /// Derivative at the current state (first-same-as-last stage).
     pub fn dy(&self) -> &[f64] {
-        &self.k[0][..self.n_main]
-    }
-
-    /// The tail's current values (empty without one).
-    pub fn tail(&self) -> &[f64] {
-        &self.y[self.n_main..self.n]
-    }
-
-    /// Attaches (or replaces) a tail of components integrated with the
-    /// state's own steps but outside its error control, such as tangent
-    /// vectors: from now on `ode` (whose dimension is the state's plus
-    /// `tail.len()`, and whose first components are the state's own
-    /// right-hand side) is the one to step with. The state, the step-size
-    /// controller and the event functions' values are kept, so the state's
-    /// trajectory is the same, step for step, as without the tail; one
-    /// right-hand side evaluation refreshes the first stage.
-    pub fn attach_tail<O: Ode>(&mut self, ode: &mut O, tail: &[f64]) {
-        let n = self.n_main + tail.len();
-        debug_assert_eq!(ode.dim(), n);
-        self.y.truncate(self.n_main);
-        self.y.extend_from_slice(tail);
-        for v in self.k.iter_mut().chain(self.r.iter_mut()).chain([
-            &mut self.y1,
-            &mut self.ytmp,
-            &mut self.err,
-        ]) {
-            v.resize(n, 0.0);
-        }
-        self.n = n;
-        ode.rhs(self.t, &self.y, &mut self.k[0]);
-        self.stats.rhs_evaluations += 1;
-    }
-
-    /// Drops the tail: the state's own ODE is the one to step with again.
-    pub fn detach_tail(&mut self) {
-        let n = self.n_main;
-        for v in self.k.iter_mut().chain(self.r.iter_mut()).chain([
-            &mut self.y,
-            &mut self.y1,
-            &mut self.ytmp,
-            &mut self.err,
-        ]) {
-            v.truncate(n);
-        }
-        self.n = n;
+        &self.k[0]
     }
 
     /// The step size the controller proposes next.
@@ -382,10 +330,6 @@ impl Dopri5 {
         ode.rhs(t + h, y1, k7);
         let k7 = &k7[..n];
         self.stats.rhs_evaluations += 6;
-        // The error control sees the state only, not a tail.
-        let n = self.n_main;
-        let (y, y1) = (&y[..n], &self.y1[..n]);
-        let (k1, k3, k4, k5, k6, k7) = (&k1[..n], &k3[..n], &k4[..n], &k5[..n], &k6[..n], &k7[..n]);
         let atol = &self.tol.atol[..n];
         let err = &mut self.err[..n];
         let mut sum = 0.0;
@@ -763,4 +707,54 @@ fn hermite_dip(g0: f64, g1: f64, d0: f64, d1: f64) -> Option<f64> {
 }
 
 #[cfg(test)]
-mod tests;
+mod tests {
+    use super::*;
+
+    /// Harmonic oscillator y'' = -y, exact solution (cos t, -sin t).
+    struct Harmonic;
+    impl Ode for Harmonic {
+        fn dim(&self) -> usize {
+            2
+        }
+        fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) {
+            dy[0] = y[1];
+            dy[1] = -y[0];
+        }
+    }
+
+    fn tol(rtol: f64) -> Tolerances {
+        Tolerances {
+            rtol,
+            atol: vec![rtol; 2],
+            h_min: 1e-14,
+            h_max: 1.0,
+        }
+    }
+
+    #[test]
+    fn dense_output_is_accurate_inside_steps() {
+        let mut ode = Harmonic;
+        let mut int = Dopri5::new(&mut ode, 0.0, &[1.0, 0.0], 0.1, tol(1e-10));
+        let mut y = [0.0; 2];
+        let mut worst: f64 = 0.0;
+        while int.t() < 10.0 {
+            let info = int.step(&mut ode, 10.0).expect("step");
+            for k in 1..10 {
+                let t = info.t0 + (info.t1 - info.t0) * f64::from(k) / 10.0;
+                int.dense(t, &mut y);
+                worst = worst
+                    .max((y[0] - t.cos()).abs())
+                    .max((y[1] + t.sin()).abs());
+            }
+        }
+        assert!(worst < 1e-8, "dense output error {worst}");
+    }
+
+    #[test]
+    fn hermite_dip_finds_a_dip_below_zero() {
+        // g = (t - 0.5)^2 - 0.01 on [0, 1]: g0 = g1 = 0.24, slopes -1 and +1.
+        let theta = hermite_dip(0.24, 0.24, -1.0, 1.0).expect("dip");
+        assert!((theta - 0.5).abs() < 1e-12);
+        assert!(hermite_dip(0.24, 0.24, -0.1, 0.1).is_none());
+    }
+}

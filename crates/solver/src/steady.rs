@@ -43,8 +43,8 @@ mod spectrum;
 mod tests;
 mod verdict;
 
-pub use probe::{decide, LyapunovEvidence, DECIDE_AT, LAMBDA_MIN};
-use probe::{Probe, WithTangent};
+use probe::Probe;
+pub use probe::{decide, LyapunovEvidence, DECIDE_AT, LAMBDA_MIN, PROBE_SEPARATION_UM};
 use record::Recorder;
 pub use settle::detect_period;
 use settle::{has_settled, SpanTracker, SETTLE_DISTANCES};
@@ -272,8 +272,7 @@ pub struct SteadyStats {
     pub shooting_attempts: u32,
     /// Integrator steps of those attempts, with the tangents or without.
     pub shooting_steps: u64,
-    /// The run's own steps taken with the Lyapunov probe's tangent
-    /// alongside (a part of `integrator`'s, not more of them).
+    /// Integrator steps of the Lyapunov probe's neighbour trajectory.
     pub probe_steps: u64,
 }
 
@@ -430,7 +429,7 @@ pub struct SteadyRun {
     /// from the static equilibrium, whose transient from rest can look
     /// chaotic for dozens of periods (`verdict::PROBE_FROM_REST`).
     probe_from: u32,
-    /// Its finished probe's evidence, and the steps taken with a tangent.
+    /// Its finished probe's evidence, and the neighbour's steps.
     lyapunov: Option<LyapunovEvidence>,
     probe_steps: u64,
 }
@@ -485,7 +484,10 @@ impl SteadyRun {
 
     /// Integrator steps taken so far (shooting's included).
     pub fn steps(&self) -> u64 {
-        self.int.stats.steps + self.shooting_steps
+        self.int.stats.steps
+            + self.shooting_steps
+            + self.probe_steps
+            + self.probe.as_ref().map_or(0, |p| p.steps())
     }
 
     /// Whether the run has returned its result or failed.
@@ -606,18 +608,24 @@ impl SteadyRun {
                         if steps >= max_steps {
                             return Ok(None);
                         }
-                        let stepped = if self.probe.is_some() {
-                            // The probe's tangent rides on the same steps.
-                            self.int
-                                .step(&mut WithTangent { ode: &mut self.ode }, t_end)
-                        } else {
-                            self.int.step(&mut self.ode, t_end)
-                        };
-                        let info =
-                            stepped.map_err(|e| model.explain_failure(&self.ode, &self.int, e))?;
+                        let info = self
+                            .int
+                            .step(&mut self.ode, t_end)
+                            .map_err(|e| model.explain_failure(&self.ode, &self.int, e))?;
                         steps += 1;
                         guard(&self.int, self.budget)?;
                         rec.on_step(&self.ode, &self.int, info);
+                    }
+                    if let Some(pr) = &mut self.probe {
+                        loop {
+                            if steps >= max_steps {
+                                return Ok(None);
+                            }
+                            if !pr.step_towards(model, t_end)? {
+                                break;
+                            }
+                            steps += 1;
+                        }
                     }
                     model.check_bounded(&self.ode, self.int.t(), self.int.y(), self.bound_m)?;
                     rec.on_period(&self.ode, self.int.t(), self.int.y(), self.omega_rad_s);

@@ -47,10 +47,9 @@ fn a_sliced_run_is_bit_identical_to_the_one_shot_run() {
             let (ss, pauses) = sliced(&m, &opts, None, slice);
             assert_eq!(ss, whole, "Omega {omega}, slices of {slice} steps");
             // Every slice but the last took the full `slice` steps (the
-            // run's own, with the Lyapunov probe's tangent or without, and
-            // shooting's).
+            // run's own, shooting's and the Lyapunov probe's).
             let st = whole.stats;
-            let steps = st.integrator.steps + st.shooting_steps;
+            let steps = st.integrator.steps + st.shooting_steps + st.probe_steps;
             assert_eq!(pauses, steps.div_ceil(slice) - 1, "Omega {omega}");
         }
         // Continued from another run's end state, as the sweeps do.

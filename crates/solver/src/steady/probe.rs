@@ -1,38 +1,39 @@
 //! Evidence for motion that is not periodic, measured alongside the run:
-//! the largest Lyapunov exponent of the Poincaré map, by Benettin's scheme
-//! on a tangent vector that the run's own integrator carries beside the
-//! state (the variational equations of [`crate::shooting`]'s monodromy,
-//! one column), renormalized after every period in [`crate::lyapunov`]'s
-//! mesh-space metric.
+//! the largest Lyapunov exponent of the Poincaré map by Benettin's
+//! two-trajectory scheme (as [`crate::lyapunov`], whose neighbour and
+//! mesh-space metric it shares), a neighbour integrated beside the run's own
+//! trajectory and pulled back to `d0` after every period.
 //!
 //! When the steady run finds no periodic orbit by shooting at a checkpoint,
 //! it starts recording at once with this probe beside it. After each
 //! measured period the probe decides, at [`DECIDE_AT`] periods: the motion
 //! is chaotic when the exponent (the mean of the per-period logarithms after
-//! the first [`SKIP`], which turn the tangent into the leading direction)
-//! is at least [`LAMBDA_MIN`] per period and positive at 95 % one-sided
-//! confidence (Student's t over the four quarters' means of the
+//! the first [`SKIP`], which turn the separation into the leading
+//! direction) is at least [`LAMBDA_MIN`] per period and positive at 95 %
+//! one-sided confidence (Student's t over the four quarters' means of the
 //! measurement, which are nearly independent where the motion mixes in a
 //! few periods, as chaos does). It is not chaos (and the run goes back to
 //! its transient, looking for a candidate period at once) when the
-//! exponent is negative or below `LAMBDA_MIN` at the same confidence, or
-//! when the last decision point passes without a verdict.
+//! exponent is negative or below `LAMBDA_MIN` at the same confidence, or when the last
+//! decision point passes without a verdict.
 //!
-//! The tangent is the limit of a neighbour trajectory as its separation
-//! goes to zero: the mesh force is continuous in the deflection, so the
-//! variational equations hold across the contact switches with no jump
-//! (the argument of [`crate::shooting`]), and the switches are events of
-//! the state, so each step sees one slope. It rides on the state's steps
-//! outside their error control ([`Dopri5::attach_tail`]): the state's
-//! trajectory is the same as without the probe, and the tangent costs one
-//! Jacobian product per stage instead of a second trajectory with its own
-//! steps (about a quarter of the chaotic states' integration before).
+//! The separation `d0` is 0.01 µm: a hundred times the integrator's
+//! absolute tolerance on a deflection (0.1 nm), so that its error is a
+//! small part of each logarithm, and far below the backlash and the
+//! transmission error, so that the separation grows as a tangent vector
+//! does over one period.
 
 use crate::dynamics::MeshOde;
 use crate::error::{Result, SolverError};
-use crate::ode::{Dopri5, Ode};
-use crate::separation::{neighbour, Rigid};
+use crate::ode::{Dopri5, Tolerances};
+use crate::separation::{dist2, mesh_point, neighbour, Rigid};
 use crate::Model;
+
+/// Separation of the neighbour in mesh space (µm).
+pub const PROBE_SEPARATION_UM: f64 = 0.1;
+
+/// How much looser the neighbour's tolerances are than the run's.
+pub const NEIGHBOUR_LOOSER: f64 = 10.0;
 
 /// First measured periods left out of the mean.
 pub const SKIP: usize = 2;
@@ -72,115 +73,93 @@ impl LyapunovEvidence {
     }
 }
 
-/// The mesh ODE with one tangent vector after the state: the ODE a run
-/// steps with while its probe is on.
-pub(super) struct WithTangent<'a> {
-    pub(super) ode: &'a mut MeshOde,
-}
-
-impl Ode for WithTangent<'_> {
-    fn dim(&self) -> usize {
-        4 * self.ode.dof()
-    }
-
-    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
-        let n2 = 2 * self.ode.dof();
-        let (ys, zs) = y.split_at(n2);
-        let (dys, dzs) = dy.split_at_mut(n2);
-        self.ode.rhs_with_tangent(t, ys, zs, dys, dzs);
-    }
-
-    fn n_events(&self) -> usize {
-        self.ode.n_events()
-    }
-
-    fn events(&mut self, t: f64, y: &[f64], dy: &[f64], g: &mut [f64], dg: &mut [f64]) {
-        let n2 = 2 * self.ode.dof();
-        self.ode.events(t, &y[..n2], &dy[..n2], g, dg);
-    }
-
-    fn event(&mut self, i: usize, t: f64, y: &[f64]) -> f64 {
-        self.ode.event(i, t, y)
-    }
-
-    fn event_dim(&self) -> usize {
-        self.ode.event_dim()
-    }
-
-    fn event_components(&self, i: usize) -> Option<&[usize]> {
-        self.ode.event_components(i)
-    }
-}
-
-/// The tangent's size in the mesh-space metric of [`crate::lyapunov`]
-/// (each mesh's deflection in µm and its rate over Omega in µm), linear
-/// in the tangent because the deflections are.
-fn mesh_norm_um(ode: &MeshOde, z: &[f64]) -> f64 {
-    let (dq, dv) = z.split_at(ode.dof());
-    let w = ode.omega_rad_s();
-    (0..ode.n_meshes())
-        .map(|j| {
-            let a = ode.deflection(j, dq) * 1e6;
-            let b = ode.deflection(j, dv) / w * 1e6;
-            a * a + b * b
-        })
-        .sum::<f64>()
-        .sqrt()
-}
-
-/// The probe's tangent bookkeeping and the logarithms so far.
+/// The neighbour trajectory and the logarithms so far.
 #[derive(Debug, Clone)]
 pub(super) struct Probe {
+    ode: MeshOde,
+    int: Dopri5,
+    tol: Tolerances,
     rigid: Option<Rigid>,
     logs: Vec<f64>,
-    /// Integrator steps taken with the tangent attached.
-    steps_from: u64,
+    pa: Vec<f64>,
+    pb: Vec<f64>,
 }
 
 impl Probe {
-    /// Attaches a tangent of unit mesh-space size (1 µm) to the run's
-    /// integrator `int` (stepping `main`) at its current state.
-    pub(super) fn start(model: &Model, main: &mut MeshOde, int: &mut Dopri5) -> Result<Self> {
+    /// A neighbour of the state `y` at time `t` of the run.
+    pub(super) fn new(
+        model: &Model,
+        main: &MeshOde,
+        t: f64,
+        y: &[f64],
+        tol: &Tolerances,
+    ) -> Result<Self> {
         let rigid = Rigid::of(model);
-        let (t, y) = (int.t(), int.y());
-        let d0 = 1.0;
-        let y1 = neighbour(model, main, t, y, d0, rigid.as_ref())?;
-        let z: Vec<f64> = y1.iter().zip(y).map(|(b, a)| (b - a) / d0).collect();
-        int.attach_tail(&mut WithTangent { ode: main }, &z);
+        let y1 = neighbour(model, main, t, y, PROBE_SEPARATION_UM, rigid.as_ref())?;
+        let mut ode = main.clone();
+        let period = 2.0 * std::f64::consts::PI / main.omega_rad_s();
+        let mut tol = tol.clone();
+        tol.rtol *= NEIGHBOUR_LOOSER;
+        for a in &mut tol.atol {
+            *a *= NEIGHBOUR_LOOSER;
+        }
+        let int = Dopri5::new(&mut ode, t, &y1, period / 200.0, tol.clone());
         Ok(Probe {
+            ode,
+            int,
+            tol,
             rigid,
             logs: Vec::new(),
-            steps_from: int.stats.steps,
+            pa: Vec::new(),
+            pb: Vec::new(),
         })
     }
 
-    /// Integrator steps taken with the tangent attached so far.
-    pub(super) fn steps(&self, int: &Dopri5) -> u64 {
-        int.stats.steps - self.steps_from
+    /// Integrator steps of the neighbour so far.
+    pub(super) fn steps(&self) -> u64 {
+        self.int.stats.steps
     }
 
-    /// Measures the tangent's growth over the period that ends now,
-    /// renormalizes it (without its rigid-body part) and decides:
-    /// `Some(evidence)` once decided.
+    /// Takes one step of the neighbour towards `t_end`; `false` once there.
+    pub(super) fn step_towards(&mut self, model: &Model, t_end: f64) -> Result<bool> {
+        if self.int.t() >= t_end {
+            return Ok(false);
+        }
+        self.int
+            .step(&mut self.ode, t_end)
+            .map_err(|e| model.explain_failure(&self.ode, &self.int, e))?;
+        Ok(true)
+    }
+
+    /// Measures the separation from the run's state `y` at the period's end
+    /// `t` (where the neighbour is too), pulls the neighbour back and
+    /// decides: `Some(evidence)` once decided.
     pub(super) fn measure(
         &mut self,
-        main: &mut MeshOde,
-        int: &mut Dopri5,
+        main: &MeshOde,
+        t: f64,
+        y: &[f64],
     ) -> Result<Option<LyapunovEvidence>> {
-        let d = mesh_norm_um(main, int.tail());
+        let w = main.omega_rad_s();
+        mesh_point(main, t, y, w, &mut self.pa);
+        mesh_point(&self.ode, t, self.int.y(), w, &mut self.pb);
+        let d = dist2(&self.pa, &self.pb);
         if !(d.is_finite() && d > 0.0) {
-            return Err(SolverError::NonFinite { t_s: int.t() });
+            return Err(SolverError::NonFinite { t_s: t });
         }
-        self.logs.push(d.ln());
-        let mut z: Vec<f64> = int.tail().iter().map(|v| v / d).collect();
-        Rigid::project_out(self.rigid.as_ref(), &mut z);
-        int.attach_tail(&mut WithTangent { ode: main }, &z);
+        self.logs.push((d / PROBE_SEPARATION_UM).ln());
+        let yb = self.int.y();
+        let mut dy: Vec<f64> = y
+            .iter()
+            .zip(yb)
+            .map(|(a, b)| (b - a) * PROBE_SEPARATION_UM / d)
+            .collect();
+        Rigid::project_out(self.rigid.as_ref(), &mut dy);
+        let yb: Vec<f64> = y.iter().zip(&dy).map(|(a, b)| a + b).collect();
+        let (h, stats) = (self.int.h(), self.int.stats);
+        self.int = Dopri5::new(&mut self.ode, t, &yb, h, self.tol.clone());
+        self.int.stats = stats;
         Ok(decide(&self.logs))
-    }
-
-    /// Detaches the tangent: the run steps its own ODE again.
-    pub(super) fn stop(int: &mut Dopri5) {
-        int.detach_tail();
     }
 }
 

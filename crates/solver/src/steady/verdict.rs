@@ -328,7 +328,7 @@ impl SteadyRun {
     /// period `periods_run`) with the Lyapunov probe beside it.
     pub(super) fn start_probe(&mut self, model: &Model) -> Result<()> {
         self.probes += 1;
-        let probe = Probe::start(model, &mut self.ode, &mut self.int)?;
+        let probe = Probe::new(model, &self.ode, self.int.t(), self.int.y(), &self.tol)?;
         self.probe = Some(Box::new(probe));
         self.start_recording(model);
         Ok(())
@@ -355,8 +355,8 @@ impl SteadyRun {
         let Some(pr) = self.probe.as_mut() else {
             return Ok(false);
         };
-        let ev = pr.measure(&mut self.ode, &mut self.int)?;
         let (t, y) = (self.int.t(), self.int.y());
+        let ev = pr.measure(&self.ode, t, y)?;
         // The recorded points feed the transient's tests too, should the
         // run go back to it.
         let point = poincare_point(&self.ode, t, y, self.omega_rad_s);
@@ -373,8 +373,7 @@ impl SteadyRun {
         if ev.is_none() && r < target {
             return Ok(false);
         }
-        self.probe_steps += pr.steps(&self.int);
-        Probe::stop(&mut self.int);
+        self.probe_steps += pr.steps();
         self.probe = None;
         if let Some(ev) = ev {
             self.lyapunov = Some(ev);
