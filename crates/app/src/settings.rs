@@ -132,7 +132,7 @@ pub const VIEW_KEYS: &[ViewKey] = &[
     ViewKey {
         name: "mesh",
         field: Field::Word(|v| v.mesh.text().to_string(), |v, t| v.mesh = if t == "worst" { MeshSel::Worst } else { MeshSel::Named(t.to_string()) }),
-        restarts: KindSet::of(&[K::Omega, K::Map]),
+        restarts: KindSet::of(&[K::Omega, K::Map, K::Boundaries]),
         unit: "-",
         ty: ViewType::Mesh,
         description: "which mesh to plot, or the worst mesh at each Ω: the mesh with the largest dynamic factor (the peak mesh force over the static one); the frequency response instead plots the mesh with the largest peak-to-peak x and says so in its title",

@@ -55,6 +55,7 @@ pub fn boundaries_json(
             "points": s.points,
             "harmonics": s.harmonics,
             "method": s.method.name(),
+            "contact_mesh": s.contact_mesh.and_then(|j| model.system.meshes.get(j)).map(|m| m.name.clone()),
         },
         "complete": error.is_none(),
         "error": error.map(|e| e.to_string()),

@@ -425,3 +425,42 @@ fn a_contact_curve_reaching_zero_backlash_leaves_the_box_there() {
         );
     }
 }
+
+/// The compound set's trace restricted to one mesh's contact boundaries
+/// is the whole trace less the other meshes' contact curves, curve for
+/// curve: the folds and period doublings are the set's and stay; the
+/// restriction only skips starts, it changes no curve that is traced.
+#[test]
+fn contact_boundaries_of_one_mesh_are_the_whole_traces_for_that_mesh() {
+    let base = ModelParams::default();
+    let trace = |only: Option<usize>| {
+        let mut spec = BoundarySpec::new("backlash_um", (0.0, 200.0), (0.6, 1.6));
+        spec.harmonics = 3;
+        spec.points = 20;
+        spec.levels = 2;
+        spec.contact_mesh = only;
+        let mut t = BoundaryTrace::new(&base, spec).unwrap();
+        while !t.is_finished() {
+            t.advance(50).unwrap();
+        }
+        t.curves().to_vec()
+    };
+    let all = trace(None);
+    let meshes: Vec<usize> = all.iter().filter_map(|c| c.mesh).collect();
+    let mesh = meshes[0];
+    assert!(
+        meshes.iter().any(|&m| m != mesh),
+        "the whole trace has other meshes' contact curves: {:?}",
+        all.iter().map(|c| (c.kind, c.mesh)).collect::<Vec<_>>()
+    );
+    let one = trace(Some(mesh));
+    let kept: Vec<Curve> = all
+        .into_iter()
+        .filter(|c| c.mesh.is_none() || c.mesh == Some(mesh))
+        .collect();
+    assert!(
+        kept.iter().any(|c| c.mesh.is_none()),
+        "folds or doublings stay"
+    );
+    assert_eq!(one, kept);
+}

@@ -407,6 +407,7 @@ impl Controller {
                 levels: BOUNDARY_LEVELS,
                 points: BOUNDARY_POINTS,
                 harmonics: v.harmonics as usize,
+                contact_mesh: mesh,
             },
         });
         if main && kind == JobKind::Omega {
@@ -525,14 +526,23 @@ impl Controller {
     pub(super) fn boundaries_signature(&self, params: &Params) -> String {
         let g = self.map_grid();
         format!(
-            "{}|{}|{}|{}|{}|{}|{}",
+            "{}|{}|{}|{}|{}|{}|{:?}|{}",
             g.key,
             g.omega_from,
             g.omega_to,
             g.value_from,
             g.value_to,
             self.settings.view.harmonics,
+            self.shown_mesh(),
             self.params_but_map_key(params)
         )
+    }
+
+    /// The mesh the map shows (`None`: the worst at each cell).
+    pub(super) fn shown_mesh(&self) -> Option<usize> {
+        self.model
+            .as_ref()
+            .ok()
+            .and_then(|m| self.settings.mesh_index(m))
     }
 }

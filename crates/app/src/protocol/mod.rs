@@ -176,9 +176,7 @@ pub enum JobSpec {
         /// Resolution (the largest step is range / points).
         points: u32,
     },
-    /// The regime map's boundaries (`solver::boundaries`): folds, period
-    /// doublings and contact changes of the harmonic-balance branch traced
-    /// as curves in Omega and `key` over the map's box.
+    /// The map's boundaries as curves in Omega and `key` (`solver::boundaries`).
     Boundaries {
         /// The map's key.
         key: String,
@@ -196,6 +194,9 @@ pub enum JobSpec {
         points: u32,
         /// Harmonics H.
         harmonics: usize,
+        /// The map's mesh, whose contact boundaries are traced (`None`: all).
+        #[serde(default)]
+        contact_mesh: Option<usize>,
     },
 }
 

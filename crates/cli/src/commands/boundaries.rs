@@ -40,6 +40,11 @@ pub struct BoundariesArgs {
     /// exact (closed-form integration between the contact switches) or aft.
     #[arg(long, default_value = "exact")]
     method: String,
+    /// Trace the contact boundaries of this mesh only (with its copies at
+    /// the other planets), e.g. s1a1; by default every mesh's. Folds and
+    /// period doublings are always traced.
+    #[arg(long)]
+    mesh: Option<String>,
 }
 
 /// The trace as a sweep of per mille of its work (levels, then curves); a
@@ -79,6 +84,9 @@ pub fn run(a: &BoundariesArgs) -> Result<(), Failure> {
     spec.levels = a.levels;
     spec.points = a.points;
     spec.harmonics = a.harmonics;
+    if a.mesh.is_some() {
+        spec.contact_mesh = Some(crate::args::mesh_index(&model, a.mesh.as_deref())?);
+    }
     spec.method = match Method::from_name(&a.method) {
         Some(m @ (Method::Exact | Method::Aft)) => m,
         _ => {

@@ -215,6 +215,12 @@ pub struct BoundarySpec {
     pub method: Method,
     /// Use the cyclic-symmetry reduction when the planets allow it.
     pub symmetric: bool,
+    /// Only the contact boundaries of this mesh (with its copies at the
+    /// other planets, which the symmetric reduction makes one): the curves
+    /// a map of that mesh's regime needs. `None`: every mesh's. Folds and
+    /// period doublings belong to the whole set and are always traced. An
+    /// index past the model's meshes traces no contact boundary.
+    pub contact_mesh: Option<usize>,
 }
 
 impl BoundarySpec {
@@ -231,6 +237,7 @@ impl BoundarySpec {
             harmonics: 7,
             method: Method::Exact,
             symmetric: true,
+            contact_mesh: None,
         }
     }
 
@@ -473,7 +480,7 @@ impl BoundaryTrace {
                 self.spec.key
             ));
         }
-        let found = starts::find(&mut self.fam, &points, p);
+        let found = starts::find(&mut self.fam, &points, p, self.spec.contact_mesh);
         self.starts.extend(found);
         self.level += 1;
         if self.level >= self.spec.levels {

@@ -27,7 +27,12 @@ pub(crate) struct Start {
 const PHASE_SAMPLES: usize = 512;
 
 /// The starts on one level's branch `points` (at `p`).
-pub(crate) fn find(fam: &mut Family, points: &[BranchPoint], p: f64) -> Vec<Start> {
+pub(crate) fn find(
+    fam: &mut Family,
+    points: &[BranchPoint],
+    p: f64,
+    contact_mesh: Option<usize>,
+) -> Vec<Start> {
     let mut out = Vec::new();
     for q in points {
         if q.bifurcation == Some(Bifurcation::PeriodDoubling) {
@@ -61,6 +66,9 @@ pub(crate) fn find(fam: &mut Family, points: &[BranchPoint], p: f64) -> Vec<Star
         let Some(&mesh) = ch.meshes.first() else {
             continue;
         };
+        if contact_mesh.is_some_and(|j| !ch.meshes.contains(&j)) {
+            continue;
+        }
         let b = ch.law.backlash_um();
         let te = te_real_coefficients(&ch.law);
         for kind in [

@@ -201,6 +201,7 @@ pub(crate) fn start(
             levels,
             points,
             harmonics,
+            contact_mesh,
         } => {
             let mut spec = solver::boundaries::BoundarySpec::new(
                 &key,
@@ -210,6 +211,7 @@ pub(crate) fn start(
             spec.levels = levels;
             spec.points = points;
             spec.harmonics = harmonics;
+            spec.contact_mesh = contact_mesh;
             boxed(boundaries::BoundariesJob::start(id, &params, spec))
         }
     }
