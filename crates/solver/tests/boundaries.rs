@@ -447,7 +447,7 @@ fn contact_boundaries_of_one_mesh_are_the_whole_traces_for_that_mesh() {
     };
     let all = trace(None);
     let meshes: Vec<usize> = all.iter().filter_map(|c| c.mesh).collect();
-    let mesh = meshes[0];
+    let &mesh = meshes.first().expect("the whole trace has contact curves");
     assert!(
         meshes.iter().any(|&m| m != mesh),
         "the whole trace has other meshes' contact curves: {:?}",

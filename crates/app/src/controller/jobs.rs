@@ -244,7 +244,7 @@ impl Controller {
         // Everything the map depends on (it restarts only if that changed).
         let map_signature = match kind {
             JobKind::Map => self.map_signature(&input.model, &input.params),
-            JobKind::Boundaries => self.boundaries_signature(&input.params),
+            JobKind::Boundaries => self.boundaries_signature(&input.model, &input.params),
             _ => String::new(),
         };
         // The units of the job's progress, and its shards: `None` for a
@@ -523,7 +523,7 @@ impl Controller {
     /// Everything the map's boundaries depend on (they restart only if
     /// that changed): the box, the harmonics and the parameters but the
     /// map's key.
-    pub(super) fn boundaries_signature(&self, params: &Params) -> String {
+    pub(super) fn boundaries_signature(&self, model: &Model, params: &Params) -> String {
         let g = self.map_grid();
         format!(
             "{}|{}|{}|{}|{}|{}|{:?}|{}",
@@ -533,16 +533,9 @@ impl Controller {
             g.value_from,
             g.value_to,
             self.settings.view.harmonics,
-            self.shown_mesh(),
+            // The map's mesh: the job traces its contact boundaries only.
+            self.settings.mesh_index(model),
             self.params_but_map_key(params)
         )
-    }
-
-    /// The mesh the map shows (`None`: the worst at each cell).
-    pub(super) fn shown_mesh(&self) -> Option<usize> {
-        self.model
-            .as_ref()
-            .ok()
-            .and_then(|m| self.settings.mesh_index(m))
     }
 }

@@ -411,7 +411,12 @@ impl Controller {
     /// The boundaries the map shows, and the cells that disagree with
     /// them with how many cells were judged.
     fn map_boundaries(&self) -> (Vec<&crate::protocol::BoundaryCurve>, Vec<(u32, u32)>, usize) {
-        let shown = self.main.boundaries.shown(self.shown_mesh());
+        let mesh = self
+            .model
+            .as_ref()
+            .ok()
+            .and_then(|m| self.settings.mesh_index(m));
+        let shown = self.main.boundaries.shown(mesh);
         let (disagree, judged) = match &self.main.map.grid {
             Some(g) if !shown.is_empty() => {
                 crate::views::boundaries::disagreements(g, &self.main.map, &shown)

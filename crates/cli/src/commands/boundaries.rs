@@ -84,8 +84,8 @@ pub fn run(a: &BoundariesArgs) -> Result<(), Failure> {
     spec.levels = a.levels;
     spec.points = a.points;
     spec.harmonics = a.harmonics;
-    if a.mesh.is_some() {
-        spec.contact_mesh = Some(crate::args::mesh_index(&model, a.mesh.as_deref())?);
+    if let Some(name) = a.mesh.as_deref() {
+        spec.contact_mesh = Some(crate::args::mesh_index(&model, Some(name))?);
     }
     spec.method = match Method::from_name(&a.method) {
         Some(m @ (Method::Exact | Method::Aft)) => m,
