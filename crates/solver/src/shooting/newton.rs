@@ -18,9 +18,8 @@
 //! monodromy is integrated afresh at the current iterate and the step
 //! retried; with a fresh one the attempt is given up. Once the residual
 //! meets the tolerance, the monodromy is integrated at the converged orbit
-//! itself (at the tolerances [`ShootOptions::floquet_tol`]), so its Floquet
-//! multipliers (and the orbit's stability) are exact, not the update's
-//! estimate. [`ShootOptions::broyden`] off, every
+//! itself, so its Floquet multipliers (and the orbit's stability) are
+//! exact, not the update's estimate. [`ShootOptions::broyden`] off, every
 //! iterate integrates the tangents (plain Newton).
 //!
 //! The monodromy that only steers Newton may be integrated at looser
@@ -67,12 +66,8 @@ pub struct ShootOptions {
     pub broyden: bool,
     /// The integrator's relative tolerance and absolute one (m) for the
     /// monodromy that only steers Newton (`None`: `rtol` and `atol_m`).
-    /// The converged orbit's monodromy uses [`ShootOptions::floquet_tol`].
+    /// The converged orbit's monodromy always uses `rtol` and `atol_m`.
     pub jacobian_tol: Option<(f64, f64)>,
-    /// The integrator's relative tolerance and absolute one (m) for the
-    /// monodromy at the converged orbit, whose multipliers give its
-    /// stability (`None`: `rtol` and `atol_m`).
-    pub floquet_tol: Option<(f64, f64)>,
 }
 
 /// Largest orbit period shooting accepts (the same as the period detection's).
@@ -94,7 +89,6 @@ impl ShootOptions {
             max_steps_per_period: 200_000,
             broyden: true,
             jacobian_tol: None,
-            floquet_tol: None,
         }
     }
 
@@ -124,23 +118,17 @@ impl ShootOptions {
                 "0 < atol <= 1e-8 m",
             );
         }
-        for (what, tol) in [
-            ("jacobian", self.jacobian_tol),
-            ("floquet", self.floquet_tol),
-        ] {
-            let Some((rtol, atol_m)) = tol else {
-                continue;
-            };
+        if let Some((rtol, atol_m)) = self.jacobian_tol {
             if !(rtol.is_finite() && (1e-13..=1e-3).contains(&rtol)) {
                 return SolverError::bad_option(
-                    &format!("{what} rtol"),
+                    "jacobian rtol",
                     format!("{rtol}"),
                     "1e-13 ..= 1e-3",
                 );
             }
             if !(atol_m.is_finite() && atol_m > 0.0 && atol_m <= 1e-6) {
                 return SolverError::bad_option(
-                    &format!("{what} atol"),
+                    "jacobian atol",
                     format!("{atol_m}"),
                     "0 < atol <= 1e-6 m",
                 );
@@ -244,8 +232,6 @@ pub struct ShootRun {
     tol: Tolerances,
     /// The tolerances of [`Stage::Jacobian`].
     jac_tol: Tolerances,
-    /// The tolerances of [`Stage::Final`].
-    final_tol: Tolerances,
     bound_m: f64,
     rigid: (f64, f64),
     z: Vec<f64>,
@@ -281,13 +267,12 @@ impl ShootRun {
         let ode = MeshOde::new(sys, red.omega_rad_s);
         let tol =
             crate::dynamics::tolerances(sys, omega, opts.rtol, opts.atol_m, red.period_s, 1e-14);
-        let tol_or = |t: Option<(f64, f64)>| match t {
+        let jac_tol = match opts.jacobian_tol {
             Some((rtol, atol_m)) => {
                 crate::dynamics::tolerances(sys, omega, rtol, atol_m, red.period_s, 1e-14)
             }
             None => tol.clone(),
         };
-        let (jac_tol, final_tol) = (tol_or(opts.jacobian_tol), tol_or(opts.floquet_tol));
         let (z, rigid) = red.from_state(start);
         Ok(ShootRun {
             opts: opts.clone(),
@@ -295,7 +280,6 @@ impl ShootRun {
             ode,
             tol,
             jac_tol,
-            final_tol,
             bound_m: model.divergence_bound_m(),
             rigid,
             f: Vec::new(),
@@ -375,7 +359,7 @@ impl ShootRun {
                 Stage::Base => (0.0, self.base_has_tangents(), &self.tol),
                 Stage::Jacobian => (0.0, true, &self.jac_tol),
                 Stage::Trial { alpha } => (alpha, !self.opts.broyden, &self.tol),
-                Stage::Final => (0.0, true, &self.final_tol),
+                Stage::Final => (0.0, true, &self.tol),
             };
             let zt = self.point(alpha);
             if self.eval.is_none() {
@@ -525,8 +509,8 @@ impl ShootRun {
         self.z = zt;
         self.f = f;
         if self.res_um <= self.tolerance_um(&self.z) {
-            if self.jac_fresh && self.opts.jacobian_tol == self.opts.floquet_tol {
-                // The monodromy was integrated here, at the final one's tolerances.
+            if self.jac_fresh && self.opts.jacobian_tol.is_none() {
+                // The monodromy was integrated here, at the orbit's tolerances.
                 let m = self.red.dim();
                 let mono = &self.jac + DMatrix::identity(m, m);
                 return Some(self.converged(Some(mono)));
