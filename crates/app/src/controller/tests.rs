@@ -705,3 +705,22 @@ fn views_without_data_say_why() {
 }
 
 mod pool;
+
+/// The two long jobs, the shooting branches and the map's boundaries, run
+/// on different workers of a pool of two, so neither waits for the other.
+#[test]
+fn the_boundaries_and_the_shooting_branches_run_side_by_side() {
+    let (mut c, _) = Controller::new("boundaries=on", 0.0);
+    assert!(c.issues.is_empty(), "{:?}", c.issues);
+    let p = ready(&mut c);
+    let workers = |kind: JobKind| -> Vec<usize> {
+        p.iter()
+            .filter_map(|(w, m)| match m {
+                ToWorker::Run { job, .. } if job.kind() == kind => Some(*w),
+                _ => None,
+            })
+            .collect()
+    };
+    assert_eq!(workers(JobKind::Orbits), vec![0]);
+    assert_eq!(workers(JobKind::Boundaries), vec![1]);
+}
