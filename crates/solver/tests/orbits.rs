@@ -207,3 +207,30 @@ fn a_sliced_continuation_gives_the_same_points() {
     assert_eq!(sliced, whole);
     assert!(empty > 2 * whole.len(), "{empty} empty calls of {calls}");
 }
+
+/// A failed evaluation of the map (here a predictor far out of range, at
+/// Omega 17.4, on the compound set's default branch at 8 nominal points)
+/// is replayed as the same failure: before, it was integrated anew in
+/// every slice and the evaluation after it never got past its first
+/// slice, so the page's branches hung at 36 points. The first 40 points,
+/// sliced as the page's worker slices them, equal the one-shot run's.
+#[test]
+fn a_sliced_continuation_gets_past_a_failed_evaluation() {
+    let m = Model::new(&ModelParams::default()).unwrap();
+    let spec = || ShootFrfSpec::new(0.1, 2.0, 8);
+    let mut c = ShootingContinuation::new(&m, spec()).unwrap();
+    let mut whole = vec![c.first_point().unwrap()];
+    while !c.is_finished() && whole.len() < 40 {
+        whole.extend(c.advance(1).unwrap());
+    }
+    assert!(whole.len() >= 40, "{} points", whole.len());
+    let mut c = ShootingContinuation::new(&m, spec()).unwrap();
+    let mut sliced = vec![c.first_point().unwrap()];
+    let mut calls = 0;
+    while !c.is_finished() && sliced.len() < 40 {
+        sliced.extend(c.advance_within(1, 3000).unwrap());
+        calls += 1;
+        assert!(calls < 20_000, "no progress after {} points", sliced.len());
+    }
+    assert_eq!(sliced[..40], whole[..40]);
+}

@@ -7,7 +7,7 @@
 //! so when the budget runs out in the middle of a step the step is
 //! abandoned ([`Halt::Pause`]), the branch's state restored, and the next
 //! call runs the step again from its start: the integrations already done
-//! are replayed from their recorded results (in call order, checked against
+//! are replayed from their recorded results, failures included (in call order, checked against
 //! their inputs bit for bit), the one in progress resumes where it paused.
 //! A sliced run therefore computes the same points, to the bit, as a
 //! one-shot run (`a_sliced_continuation_gives_the_same_points`), and a call
@@ -71,6 +71,14 @@ impl Key {
 enum Value {
     Map(Vec<f64>, Option<DMatrix<f64>>),
     Extremes(Vec<BranchMesh>),
+    /// An evaluation of `P^n` that failed (a wild predictor far out of
+    /// range, a blow-up): replayed as the same failure, so the step takes
+    /// the same path again. Unrecorded, it was integrated anew in every
+    /// pass, and the one after it, which the step asks next, never got
+    /// past its first slice: the compound set's default branches hung
+    /// at 36 points in the page (an evaluation at Omega 17.4 failing
+    /// before one at 0.217 that needed more than a slice).
+    Failed(SolverError),
 }
 
 /// The integrations of the step in progress.
@@ -150,6 +158,7 @@ impl ShootingContinuation {
             self.stats.integrator_steps += taken;
             return match v {
                 Value::Map(g, m) => Ok((g, m)),
+                Value::Failed(e) => Err(Halt::Fail(e)),
                 Value::Extremes(_) => Err(Halt::Fail(SolverError::Singular {
                     what: "a replayed evaluation".into(),
                 })),
@@ -195,7 +204,15 @@ impl ShootingContinuation {
             .replay
             .budget
             .saturating_sub((taken - before).saturating_mul(cost));
-        match out? {
+        let out = match out {
+            Ok(out) => out,
+            Err(e) => {
+                self.replay.record(key, Value::Failed(e.clone()), taken);
+                self.stats.integrator_steps += taken;
+                return Err(Halt::Fail(e));
+            }
+        };
+        match out {
             Some(v) => {
                 let g: Vec<f64> = v.z.iter().zip(z).map(|(p, z)| p - z).collect();
                 self.replay
@@ -218,7 +235,7 @@ impl ShootingContinuation {
             self.stats.integrator_steps += taken;
             return match v {
                 Value::Extremes(m) => Ok(m),
-                Value::Map(..) => Err(Halt::Fail(SolverError::Singular {
+                Value::Map(..) | Value::Failed(_) => Err(Halt::Fail(SolverError::Singular {
                     what: "a replayed evaluation".into(),
                 })),
             };
