@@ -21,7 +21,6 @@ const CACHE: usize = 6;
 pub(crate) struct Family {
     base: ModelParams,
     key: String,
-    h: usize,
     method: Method,
     symmetric: bool,
     /// Allowed range of the key.
@@ -30,6 +29,8 @@ pub(crate) struct Family {
     /// Relative step of the differences in `p` (of the traced range).
     pub(crate) dp: f64,
     cache: Vec<(u64, Assembly)>,
+    /// The grid every assembly of the family shares (built once).
+    grid: Grid,
 }
 
 impl Family {
@@ -60,13 +61,13 @@ impl Family {
         Ok(Family {
             base: base.clone(),
             key: key.into(),
-            h,
             method,
             symmetric,
             key_min,
             key_max,
             dp: 1e-6 * p_scale.abs().max(1e-3),
             cache: Vec::new(),
+            grid: Grid::new(Assembly::harmonics(h, method), Grid::default_size(h)),
         })
     }
 
@@ -95,12 +96,11 @@ impl Family {
             Some(i) => i,
             None => {
                 let hbm = self.hbm_at(p)?;
-                let grid = Grid::default_size(self.h);
                 if self.cache.len() >= CACHE {
                     self.cache.remove(0);
                 }
-                self.cache
-                    .push((bits, Assembly::new(hbm, self.h, self.method, grid)));
+                let asm = Assembly::with_grid(hbm, self.method, self.grid.clone());
+                self.cache.push((bits, asm));
                 self.cache.len() - 1
             }
         };
