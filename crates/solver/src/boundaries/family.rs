@@ -99,7 +99,8 @@ impl Family {
                 if self.cache.len() >= CACHE {
                     self.cache.remove(0);
                 }
-                let asm = Assembly::with_grid(hbm, self.method, self.grid.clone());
+                let donor = self.cache.last().map(|(_, a)| a);
+                let asm = Assembly::with_grid_from(hbm, self.method, self.grid.clone(), donor);
                 self.cache.push((bits, asm));
                 self.cache.len() - 1
             }

@@ -97,11 +97,38 @@ impl Assembly {
     /// quarter of a boundary trace's time when every new value of the
     /// parameter built its own.
     pub fn with_grid(model: HbmModel, method: Method, grid: Grid) -> Self {
+        Self::with_grid_from(model, method, grid, None)
+    }
+
+    /// The same, taking a channel's stiffness and TE tables from `donor`
+    /// (an assembly on the same grid) where that channel's law differs
+    /// from the donor's at most in its backlash, which the tables do not
+    /// hold. Along the backlash every table is the donor's; building them
+    /// (a cosine and a TE series per grid point and channel) took a
+    /// quarter of a boundary trace's time once the grid was shared.
+    pub fn with_grid_from(
+        model: HbmModel,
+        method: Method,
+        grid: Grid,
+        donor: Option<&Assembly>,
+    ) -> Self {
         let h = grid.h;
+        let donor = donor.filter(|d| d.grid == grid);
         let tables = model
             .channels
             .iter()
-            .map(|c| ChannelTables::new(&c.law, &grid))
+            .enumerate()
+            .map(|(i, c)| {
+                let shared = donor.and_then(|d| {
+                    let same = d
+                        .model
+                        .channels
+                        .get(i)
+                        .is_some_and(|dc| dc.law.same_tables(&c.law));
+                    same.then(|| d.tables.get(i).cloned()).flatten()
+                });
+                shared.unwrap_or_else(|| ChannelTables::new(&c.law, &grid))
+            })
             .collect();
         let (te_rate_cos, te_rate_sin) = model.te_rate_forcing();
         let nc = n_coef(h);
@@ -260,5 +287,52 @@ impl Assembly {
             }
         }
         let _ = nx;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::keys::{self, Value};
+    use crate::params::ModelParams;
+    use crate::Model;
+
+    fn hbm(backlash_um: f64, te_um: f64) -> HbmModel {
+        let mut p = ModelParams::default();
+        keys::set(&mut p, "backlash_um", Value::Num(backlash_um)).unwrap();
+        keys::set(&mut p, "te_um", Value::Num(te_um)).unwrap();
+        HbmModel::from_system(&Model::new(&p).unwrap().system, true).unwrap()
+    }
+
+    fn residual_and_jacobian(a: &mut Assembly) -> (Vec<f64>, DMatrix<f64>) {
+        let nx = a.n_x();
+        let x: Vec<f64> = (0..nx).map(|i| 20.0 * (0.37 * i as f64).sin()).collect();
+        let mut r = vec![0.0; nx];
+        let mut j = DMatrix::zeros(nx, nx + 1);
+        a.evaluate(&x, 0.7, &mut r, Some(&mut j));
+        (r, j)
+    }
+
+    /// An assembly that takes its tables from a donor (another backlash:
+    /// shared; another TE: built anew) evaluates to the same bits as one
+    /// built alone.
+    #[test]
+    fn tables_from_a_donor_give_the_same_bits() {
+        let h = 3;
+        let grid = || Grid::new(h, Grid::default_size(h));
+        let donor = Assembly::with_grid(hbm(50.0, 10.0), Method::Aft, grid());
+        for (b, te) in [(100.0, 10.0), (100.0, 20.0)] {
+            let mut alone = Assembly::new(hbm(b, te), h, Method::Aft, Grid::default_size(h));
+            let mut shared =
+                Assembly::with_grid_from(hbm(b, te), Method::Aft, grid(), Some(&donor));
+            assert_eq!(shared.tables, alone.tables, "backlash {b}, TE {te}");
+            assert_eq!(
+                residual_and_jacobian(&mut shared),
+                residual_and_jacobian(&mut alone)
+            );
+        }
+        // The TE differs: the tables differ from the donor's.
+        let other = Assembly::with_grid_from(hbm(100.0, 20.0), Method::Aft, grid(), Some(&donor));
+        assert_ne!(other.tables, donor.tables);
     }
 }

@@ -111,6 +111,31 @@ impl Law {
         })
     }
 
+    /// Whether `other` has the same stiffness and TE (so the same tables
+    /// on a grid): equal but for the backlash.
+    pub fn same_tables(&self, other: &Law) -> bool {
+        match (self, other) {
+            (Law::Mesh { .. }, Law::Mesh { .. }) => {
+                let strip = |l: &Law| match *l {
+                    Law::Mesh {
+                        k,
+                        variation,
+                        phase_rad,
+                        te_mean_um,
+                        te_cos_um,
+                        te_sin_um,
+                        ..
+                    } => [k, variation, phase_rad, te_mean_um, te_cos_um, te_sin_um]
+                        .map(f64::to_bits),
+                    Law::Cubic { .. } => [0; 6],
+                };
+                strip(self) == strip(other)
+            }
+            (Law::Cubic { .. }, Law::Cubic { .. }) => true,
+            _ => false,
+        }
+    }
+
     /// Backlash half-width (um); zero for non-mesh laws.
     pub fn backlash_um(&self) -> f64 {
         match *self {
