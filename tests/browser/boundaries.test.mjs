@@ -30,6 +30,29 @@ after(async () => {
 });
 
 /**
+ * Waits for the whole trace, the whole map and a drawing of both (curves
+ * arrive one by one; the drawn marks are the disagreeing cells counted)
+ * and logs what was traced under `label`; returns that status.
+ */
+async function boundariesDrawn(page, timeoutMs, label) {
+  const s = await waitStatus(
+    page,
+    (x) =>
+      x.map_boundaries.finished &&
+      x.map.finished_ms &&
+      x.map_frame &&
+      x.map_drawn &&
+      x.map_drawn.curve_paths > 0 &&
+      x.map_drawn.marks === x.map_boundaries.disagree,
+    timeoutMs,
+    `the boundaries drawn over the finished map (${label})`,
+  );
+  const b = s.map_boundaries;
+  console.log(`# ${label}: ${b.curves} curves (${JSON.stringify(b.kinds)}) traced in ${Math.round(b.job.finished_ms - b.job.started_ms)} ms; ${b.judged} cells judged, ${b.disagree} disagree`);
+  return s;
+}
+
+/**
  * Clicks the middle point of the longest curve of the finished status `s`
  * and checks what the page says and selects: the sentence, Omega and the
  * key's value within a few pixels of the curve's point, and the curves
@@ -63,22 +86,8 @@ async function clickACurve(page, s, before, after) {
 
 test('the map draws its traced boundaries, a click on one says what it is and selects it, disagreeing cells are outlined', async () => {
   const { page, errors } = await open(h.browser, h.url, QUERY);
-  // Curves arrive one by one; wait for the whole trace, the whole map and
-  // a drawing of both (the drawn marks are the disagreeing cells counted).
-  const s = await waitStatus(
-    page,
-    (x) =>
-      x.map_boundaries.finished &&
-      x.map.finished_ms &&
-      x.map_frame &&
-      x.map_drawn &&
-      x.map_drawn.curve_paths > 0 &&
-      x.map_drawn.marks === x.map_boundaries.disagree,
-    300000,
-    'the boundaries drawn over the finished map',
-  );
+  const s = await boundariesDrawn(page, 300000, 'boundaries');
   const b = s.map_boundaries;
-  console.log(`# boundaries: ${b.curves} curves (${JSON.stringify(b.kinds)}) traced in ${Math.round(b.job.finished_ms - b.job.started_ms)} ms; ${b.judged} cells judged, ${b.disagree} disagree`);
   assert.ok(b.shown >= 2, JSON.stringify(b));
   // The gear pair's jump and its contact changes over backlash.
   assert.ok(b.kinds.fold >= 1, JSON.stringify(b.kinds));
@@ -101,20 +110,8 @@ test('the map draws its traced boundaries, a click on one says what it is and se
 // no Lyapunov curve keep the rest short.
 test('the default map draws its traced boundaries and a click on one selects it', async () => {
   const { page, errors } = await open(h.browser, h.url, 'boundaries=on&bif_points=8&lyap_points=0');
-  const s = await waitStatus(
-    page,
-    (x) =>
-      x.map_boundaries.finished &&
-      x.map.finished_ms &&
-      x.map_frame &&
-      x.map_drawn &&
-      x.map_drawn.curve_paths > 0 &&
-      x.map_drawn.marks === x.map_boundaries.disagree,
-    900000,
-    'the boundaries drawn over the finished default map',
-  );
+  const s = await boundariesDrawn(page, 900000, 'default map');
   const b = s.map_boundaries;
-  console.log(`# default map: ${b.curves} curves (${JSON.stringify(b.kinds)}) traced in ${Math.round(b.job.finished_ms - b.job.started_ms)} ms; ${b.judged} cells judged, ${b.disagree} disagree`);
   assert.equal(b.job.error, null);
   assert.ok(b.shown >= 2, JSON.stringify(b));
   // Mesh s1a1's contact changes over backlash are among them.

@@ -112,28 +112,24 @@ impl Law {
     }
 
     /// Whether `other` has the same stiffness and TE (so the same tables
-    /// on a grid): equal but for the backlash.
+    /// on a grid), bit for bit: equal but for the backlash.
     pub fn same_tables(&self, other: &Law) -> bool {
-        match (self, other) {
-            (Law::Mesh { .. }, Law::Mesh { .. }) => {
-                let strip = |l: &Law| match *l {
-                    Law::Mesh {
-                        k,
-                        variation,
-                        phase_rad,
-                        te_mean_um,
-                        te_cos_um,
-                        te_sin_um,
-                        ..
-                    } => [k, variation, phase_rad, te_mean_um, te_cos_um, te_sin_um]
-                        .map(f64::to_bits),
-                    Law::Cubic { .. } => [0; 6],
-                };
-                strip(self) == strip(other)
+        let tables = |l: &Law| match *l {
+            Law::Mesh {
+                k,
+                variation,
+                phase_rad,
+                te_mean_um,
+                te_cos_um,
+                te_sin_um,
+                ..
+            } => {
+                Some([k, variation, phase_rad, te_mean_um, te_cos_um, te_sin_um].map(f64::to_bits))
             }
-            (Law::Cubic { .. }, Law::Cubic { .. }) => true,
-            _ => false,
-        }
+            // A cubic law has no tables.
+            Law::Cubic { .. } => None,
+        };
+        tables(self) == tables(other)
     }
 
     /// Backlash half-width (um); zero for non-mesh laws.

@@ -7,8 +7,9 @@
 //! so when the budget runs out in the middle of a step the step is
 //! abandoned ([`Halt::Pause`]), the branch's state restored, and the next
 //! call runs the step again from its start: the integrations already done
-//! are replayed from their recorded results, failures included (in call order, checked against
-//! their inputs bit for bit), the one in progress resumes where it paused.
+//! are replayed from their recorded results, failures included (in call
+//! order, checked against their inputs bit for bit), the one in progress
+//! resumes where it paused.
 //! A sliced run therefore computes the same points, to the bit, as a
 //! one-shot run (`a_sliced_continuation_gives_the_same_points`), and a call
 //! does at most its budget of new integration work plus the replay's
