@@ -53,7 +53,7 @@ pub(crate) enum System {
         c: DVector<f64>,
         v: DVector<f64>,
         /// The test function's differenced gradient and its orientation,
-        /// kept through one corrector (see [`super::doubling::Frozen`]).
+        /// kept through a few steps (see [`super::doubling::Frozen`]).
         frozen: Option<super::doubling::Frozen>,
     },
     /// A channel's extremum at `+-b`.
@@ -64,6 +64,9 @@ pub(crate) enum System {
         kind: CurveKind,
     },
 }
+
+/// Iterations beyond which a corrector's kept gradient is not kept further.
+const SLOW_CORRECTOR: usize = 4;
 
 impl System {
     /// The period-doubling system at `(x, omega, p)`.
@@ -116,8 +119,9 @@ impl System {
         }
     }
 
-    /// Takes the last evaluation's null vectors as the next bordering.
-    pub(crate) fn accept(&mut self) {
+    /// Takes the last evaluation's null vectors as the next bordering, after
+    /// a corrector that converged in `iterations`.
+    pub(crate) fn accept(&mut self, iterations: usize) {
         match self {
             System::Fold { b, c, w, v } => {
                 *b = w.normalize();
@@ -125,15 +129,33 @@ impl System {
             }
             System::Doubling { c, v, frozen, .. } => {
                 *c = v.normalize();
-                *frozen = None;
+                // A slow corrector's gradient has drifted too far to keep.
+                let keep = frozen.take().and_then(|mut f| {
+                    f.steps += 1;
+                    (f.keep
+                        && f.steps < super::doubling::GRADIENT_STEPS
+                        && iterations <= SLOW_CORRECTOR)
+                        .then_some(f)
+                });
+                *frozen = keep;
             }
             System::Contact { .. } => {}
         }
     }
 
-    /// Forgets what one corrector keeps (a new corrector starts from a new
-    /// predictor): the period doubling's frozen gradient.
-    pub(crate) fn fresh(&mut self) {
+    /// Before a retry of a step that turned too far: a gradient that may not
+    /// outlive its corrector is differenced afresh at the new predictor.
+    pub(crate) fn retry(&mut self) {
+        if let System::Doubling { frozen, .. } = self {
+            if frozen.as_ref().is_some_and(|f| !f.keep) {
+                *frozen = None;
+            }
+        }
+    }
+
+    /// Forgets what the correctors keep (the period doubling's differenced
+    /// gradient): the next evaluation differences it afresh.
+    pub(crate) fn forget(&mut self) {
         if let System::Doubling { frozen, .. } = self {
             *frozen = None;
         }

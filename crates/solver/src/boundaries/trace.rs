@@ -136,7 +136,8 @@ impl Tracer {
         // iterate (a gradient kept from the guess lost 4 of the compound
         // set's period-doubling starts).
         let (z, ev, _) = tracer.correct(fam, &z0, &row, false)?;
-        tracer.system.accept();
+        // Its last gradient, differenced at the start's last iterate, goes on.
+        tracer.system.accept(1);
         system = tracer.system.clone();
         // The tangent: the null vector of the system's Jacobian.
         let mut sq = DMatrix::zeros(n, n);
@@ -226,9 +227,10 @@ impl Tracer {
     }
 
     /// Newton on the system bordered by `row . (z - pred) = 0`; with
-    /// `chord`, a period doubling's test gradient is computed at the
-    /// predictor only and kept through the iterations (a chord method on
-    /// that row), otherwise at every iterate.
+    /// `chord`, a period doubling's test gradient is the one kept from an
+    /// earlier corrector or differenced at the predictor, and kept through
+    /// the iterations (a chord method on that row), otherwise it is
+    /// differenced at every iterate.
     fn correct(
         &mut self,
         fam: &mut Family,
@@ -239,10 +241,9 @@ impl Tracer {
         let n = pred.len();
         let mut z = pred.to_vec();
         let mut last_res = f64::NAN;
-        self.system.fresh();
         for iteration in 1..=NEWTON_MAX {
             if !chord {
-                self.system.fresh();
+                self.system.forget();
             }
             let ev = self.system.eval(fam, &z)?;
             self.newton_iterations += 1;
@@ -346,6 +347,7 @@ impl Tracer {
                     let cos: f64 = (0..n).map(|i| self.metric[i] * t[i] * self.t[i]).sum();
                     let alpha = cos.clamp(-1.0, 1.0).acos();
                     if alpha > ALPHA_MAX && ds > ds_min {
+                        self.system.retry();
                         self.ds = (ds * 0.5).max(ds_min);
                         continue;
                     }
@@ -357,7 +359,7 @@ impl Tracer {
                         ds
                     };
                     self.steps += 1;
-                    self.system.accept();
+                    self.system.accept(iterations);
                     self.z = z;
                     self.t = t;
                     let point = self.traced(&ev);
@@ -381,6 +383,8 @@ impl Tracer {
                     return Stepped::Point(point);
                 }
                 Err(_) if ds > ds_min => {
+                    // A kept gradient may be what failed: the retry differences it afresh.
+                    self.system.forget();
                     self.ds = (ds * 0.5).max(ds_min);
                 }
                 Err(_) => return Stepped::End(TraceEnd::Failed, None),
