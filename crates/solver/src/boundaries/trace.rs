@@ -8,7 +8,7 @@
 //!
 //! The metric measures Omega and `p` in units of their ranges, the orbit's
 //! coefficients in units of three times their RMS at the start (at least
-//! 1 um) and the auxiliary phase in units of a period, so that a step of
+//! 1 um; the mean's in ten times that) and the auxiliary phase in units of a period, so that a step of
 //! `ds` moves the curve by at most `ds` of the box in the plane.
 
 use super::bordered::Eval;
@@ -26,6 +26,15 @@ const STEP_TOL: f64 = 1e-10;
 const D_NOM: f64 = 1e-3;
 /// Nominal turn of the tangent per step (radians).
 const ALPHA_NOM: f64 = 0.1;
+/// The weight of the mean's coefficients in the metric, relative to the
+/// vibration's (see [`Tracer::start`]).
+const MEAN_WEIGHT: f64 = 1e-2;
+/// Steps in a row below a thousandth of the largest after which a curve
+/// ends as failed: it has moved by less than a twentieth of its largest
+/// step, where its corrector converges only at the smallest steps (near
+/// Ω 0.939 on the page's compound box, a period-doubling curve took 8 to
+/// 11 iterations at 1e-5 and failed at twice that, 500 times over).
+pub(crate) const CRAWL_STEPS: u32 = 50;
 
 /// The box the curve is traced in: `(omega_lo, omega_hi, p_lo, p_hi)`.
 pub(crate) type Bounds = (f64, f64, f64, f64);
@@ -50,7 +59,8 @@ pub enum TraceEnd {
     LeftRange,
     /// It came back to its start.
     Closed,
-    /// The corrector failed at the smallest step.
+    /// The corrector failed at the smallest step, or could only crawl:
+    /// [`CRAWL_STEPS`] steps in a row below a thousandth of the largest.
     Failed,
     /// It used its point budget.
     Budget,
@@ -81,6 +91,8 @@ pub(crate) struct Tracer {
     ds_max: f64,
     steps: usize,
     max_steps: usize,
+    /// Accepted steps in a row below a thousandth of `ds_max`.
+    crawl: u32,
     last: Option<Traced>,
     /// Newton iterations so far.
     pub(crate) newton_iterations: u64,
@@ -113,10 +125,15 @@ impl Tracer {
         // The mean's coefficients follow the static deflection, which moves
         // one for one with the backlash (and with the torque): measured
         // like the vibration, a curve at constant Omega in backlash was
-        // some 60 times longer than its span in the box, and ran out of
-        // points at a tenth of a micrometre a step. They are left out.
+        // some 60 times longer than its span in the box and ran out of
+        // points at a tenth of a micrometre a step. They are measured in
+        // ten times the vibration's unit. Not left out: where a curve
+        // turns a corner (a period doubling at constant Omega meeting one
+        // with contact, on the gear pair near Omega 1.831, backlash 7
+        // um), the mean moving along both sides is what lets the
+        // corrector cross to the other side.
         for w in metric.iter_mut().take(m.min(nx)) {
-            *w = 0.0;
+            *w *= MEAN_WEIGHT;
         }
         for w in metric.iter_mut().skip(nx).take(n_aux) {
             *w = 1.0 / (4.0 * PI * PI);
@@ -138,6 +155,7 @@ impl Tracer {
             // Twelve times across the box at the largest step: more is a
             // curve wound up where its conditions degenerate.
             max_steps: (12.0 / ds_max) as usize + 100,
+            crawl: 0,
             last: None,
             newton_iterations: 0,
         };
@@ -181,6 +199,7 @@ impl Tracer {
         r.t = self.t0_reversed();
         r.ds = 0.25 * self.ds_max;
         r.steps = 0;
+        r.crawl = 0;
         r.last = Some(first.clone());
         r.newton_iterations = 0;
         r
@@ -379,6 +398,14 @@ impl Tracer {
                         continue;
                     }
                     self.ds = (ds / f).clamp(ds_min, self.ds_max);
+                    if ds < 1e-3 * self.ds_max {
+                        self.crawl += 1;
+                        if self.crawl >= CRAWL_STEPS {
+                            return Stepped::End(TraceEnd::Failed, None);
+                        }
+                    } else {
+                        self.crawl = 0;
+                    }
                     self.steps += 1;
                     self.system.accept(iterations);
                     self.z = z;
