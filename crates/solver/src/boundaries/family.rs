@@ -10,6 +10,7 @@ use crate::hbm::{Assembly, HbmModel, Method};
 use crate::keys::{self, KeyType, Value};
 use crate::model::Model;
 use crate::params::ModelParams;
+use crate::system::MeshSystem;
 use nalgebra::DMatrix;
 
 /// Assemblies kept for recent values of `p` (the point and its two
@@ -84,9 +85,11 @@ impl Family {
     }
 
     /// The harmonic-balance problem at `p` (as the one-parameter
-    /// continuation builds it).
+    /// continuation builds it, from the model's system: its modes and
+    /// static equilibrium, which the harmonic balance does not read, are
+    /// not computed).
     pub(crate) fn hbm_at(&self, p: f64) -> Result<HbmModel> {
-        HbmModel::from_system(&self.model_at(p)?.system, self.symmetric)
+        HbmModel::from_system(&MeshSystem::build(&self.params_at(p)?)?, self.symmetric)
     }
 
     /// The evaluator at `p`, built once per value.
