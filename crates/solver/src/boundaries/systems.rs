@@ -143,8 +143,9 @@ impl System {
         }
     }
 
-    /// Before a retry of a step that turned too far: a gradient that may not
-    /// outlive its corrector is differenced afresh at the new predictor.
+    /// Before a retry of a step that overshot (it turned or moved too far):
+    /// a gradient that may not outlive its corrector is differenced afresh
+    /// at the new predictor.
     pub(crate) fn retry(&mut self) {
         if let System::Doubling { frozen, .. } = self {
             if frozen.as_ref().is_some_and(|f| !f.keep) {

@@ -8,8 +8,9 @@
 //!
 //! The metric measures Omega and `p` in units of their ranges, the orbit's
 //! coefficients in units of three times their RMS at the start (at least
-//! 1 um; the mean's in ten times that) and the auxiliary phase in units of a period, so that a step of
-//! `ds` moves the curve by at most `ds` of the box in the plane.
+//! 1 um; the mean's in ten times that) and the auxiliary phase in units of
+//! a period, so that a step of `ds` moves the curve by at most `ds` of the
+//! box in the plane.
 
 use super::bordered::Eval;
 use super::family::Family;
