@@ -17,14 +17,16 @@ pub(crate) struct Eval {
     pub(crate) jac: DMatrix<f64>,
     /// A vector in `(Omega, p)` pointing to the side where the change the
     /// curve marks has not happened (the branch still exists, the contact
-    /// has not begun).
+    /// has not begun); zero in a corrector's iterates (see
+    /// [`super::systems::System::eval`]).
     pub(crate) side: (f64, f64),
     /// The cusp test (folds only; zero otherwise).
     pub(crate) cusp: f64,
     /// Scale of the orbit (largest coefficient, um).
     pub(crate) scale: f64,
     /// Period doublings only: whether every other Floquet multiplier is
-    /// inside the unit circle (the doubling happens on a stable orbit).
+    /// inside the unit circle (the doubling happens on a stable orbit);
+    /// `None` in a corrector's iterates.
     pub(crate) others_stable: Option<bool>,
 }
 

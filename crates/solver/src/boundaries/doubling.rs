@@ -165,8 +165,10 @@ fn test(
 }
 
 /// The period-doubling system at `z = (X, Omega, p)`, with bordering
-/// `(b, c)`; `frozen` is the gradient kept from the corrector's first
-/// evaluation (computed and stored when `None`).
+/// `(b, c)`; `frozen` is the gradient kept from an earlier evaluation
+/// (computed and stored when `None`). Without `full` (a corrector's
+/// iterate), the side and the other multipliers' stability, which only an
+/// accepted point reports, are not computed.
 pub(crate) fn eval(
     fam: &mut Family,
     z: &[f64],
@@ -174,6 +176,7 @@ pub(crate) fn eval(
     (b, c): (&DVector<f64>, &DVector<f64>),
     v_out: &mut DVector<f64>,
     frozen: &mut Option<Frozen>,
+    full: bool,
 ) -> Result<Eval> {
     let nx = z.len() - 2;
     let (x, omega, p) = (&z[..nx], z[nx], z[nx + 1]);
@@ -185,7 +188,11 @@ pub(crate) fn eval(
     let a = shifted_of(&mono, block, omega)?;
     let (g, v) = bordered_solve(&a, b, c, omega)?;
     let scale = 1.0 + inf_norm(x);
-    let (dx_om, dx_p) = branch_motion(&j, &r_p);
+    let (dx_om, dx_p) = if full || frozen.is_none() {
+        branch_motion(&j, &r_p)
+    } else {
+        (DVector::zeros(nx), DVector::zeros(nx))
+    };
     let kept = match frozen.take() {
         Some(f) => f,
         None => {
@@ -227,18 +234,26 @@ pub(crate) fn eval(
         jac[(nx, k)] = gk;
     }
     // g along the branch: dX = -J^-1 (R_Omega dOmega + R_p dp).
-    let g_x = DVector::from_column_slice(&grad[..nx]);
-    let g_om = g_x.dot(&dx_om) + grad[nx];
-    let g_p = g_x.dot(&dx_p) + grad[nx + 1];
-    let orient = kept.orient;
+    let side = if full {
+        let g_x = DVector::from_column_slice(&grad[..nx]);
+        let g_om = g_x.dot(&dx_om) + grad[nx];
+        let g_p = g_x.dot(&dx_p) + grad[nx + 1];
+        (kept.orient * g_om, kept.orient * g_p)
+    } else {
+        (0.0, 0.0)
+    };
     *frozen = Some(kept);
     *v_out = v;
     Ok(Eval {
         res,
         jac,
-        side: (orient * g_om, orient * g_p),
+        side,
         cusp: 0.0,
         scale,
-        others_stable: others_stable(&mono, block),
+        others_stable: if full {
+            others_stable(&mono, block)
+        } else {
+            None
+        },
     })
 }

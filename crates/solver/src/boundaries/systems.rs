@@ -162,8 +162,10 @@ impl System {
         }
     }
 
-    /// Evaluates the system at `z`.
-    pub(crate) fn eval(&mut self, fam: &mut Family, z: &[f64]) -> Result<Eval> {
+    /// Evaluates the system at `z`; with `full`, also what only an
+    /// accepted point reports ([`Eval::side`], [`Eval::others_stable`]),
+    /// which costs a factorization of the branch's Jacobian.
+    pub(crate) fn eval(&mut self, fam: &mut Family, z: &[f64], full: bool) -> Result<Eval> {
         match self {
             System::Fold { b, c, w, v } => fold_eval(fam, z, b, c, w, v),
             System::Doubling {
@@ -172,8 +174,8 @@ impl System {
                 c,
                 v,
                 frozen,
-            } => super::doubling::eval(fam, z, *block, (b, c), v, frozen),
-            System::Contact { channel, kind } => contact_eval(fam, z, *channel, *kind),
+            } => super::doubling::eval(fam, z, *block, (b, c), v, frozen, full),
+            System::Contact { channel, kind } => contact_eval(fam, z, *channel, *kind, full),
         }
     }
 }
@@ -298,7 +300,13 @@ pub(crate) fn flank(kind: CurveKind) -> f64 {
     }
 }
 
-fn contact_eval(fam: &mut Family, z: &[f64], channel: usize, kind: CurveKind) -> Result<Eval> {
+fn contact_eval(
+    fam: &mut Family,
+    z: &[f64],
+    channel: usize,
+    kind: CurveKind,
+    full: bool,
+) -> Result<Eval> {
     let nx = z.len() - 3;
     let (x, theta, omega, p) = (&z[..nx], z[nx], z[nx + 1], z[nx + 2]);
     let s = flank(kind);
@@ -349,9 +357,12 @@ fn contact_eval(fam: &mut Family, z: &[f64], channel: usize, kind: CurveKind) ->
     jac[(nx + 1, nx + 2)] = c2_p;
     // The extremum's rate of change along the branch (theta* drops out:
     // x' = 0 there): dX = -J^-1 (R_Omega dOmega + R_p dp).
-    let (dx_om, dx_p) = branch_motion(&j, &r_p);
-    let g_om = c1_x.dot(&dx_om);
-    let g_p = c1_x.dot(&dx_p) + c1_p;
+    let (g_om, g_p) = if full {
+        let (dx_om, dx_p) = branch_motion(&j, &r_p);
+        (c1_x.dot(&dx_om), c1_x.dot(&dx_p) + c1_p)
+    } else {
+        (0.0, 0.0)
+    };
     // The change has not happened where the extremum is inside the dead
     // zone's side it leaves: a minimum above +b (drive flanks still in
     // contact), a minimum above -b (back flanks apart), a maximum below +b.

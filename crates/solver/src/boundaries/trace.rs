@@ -277,7 +277,7 @@ impl Tracer {
             if !chord {
                 self.system.forget();
             }
-            let ev = self.system.eval(fam, &z)?;
+            let ev = self.system.eval(fam, &z, false)?;
             self.newton_iterations += 1;
             let mut a = DMatrix::zeros(n, n);
             a.view_mut((0, 0), (n - 1, n)).copy_from(&ev.jac);
@@ -301,7 +301,7 @@ impl Tracer {
                 break;
             }
             if step <= STEP_TOL {
-                let ev = self.system.eval(fam, &z)?;
+                let ev = self.system.eval(fam, &z, true)?;
                 if ev.res.amax() <= 1e-6 * ev.scale {
                     return Ok((z, ev, iteration));
                 }
