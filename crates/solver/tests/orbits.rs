@@ -224,6 +224,9 @@ fn a_sliced_continuation_gets_past_a_failed_evaluation() {
         whole.extend(c.advance(1).unwrap());
     }
     assert!(whole.len() >= 40, "{} points", whole.len());
+    // The path does meet a failure, so the replay of one is what is tested.
+    let failed = c.stats.failed_evaluations;
+    assert!(failed >= 1, "{:?}", c.stats);
     let mut c = ShootingContinuation::new(&m, spec()).unwrap();
     let mut sliced = vec![c.first_point().unwrap()];
     let mut calls = 0;
@@ -233,4 +236,5 @@ fn a_sliced_continuation_gets_past_a_failed_evaluation() {
         assert!(calls < 20_000, "no progress after {} points", sliced.len());
     }
     assert_eq!(sliced[..40], whole[..40]);
+    assert_eq!(c.stats.failed_evaluations, failed, "{:?}", c.stats);
 }

@@ -106,18 +106,20 @@ pub(crate) fn start(
     omega: f64,
     p: f64,
 ) -> Result<(usize, DVector<f64>, DVector<f64>)> {
-    let mut best: Option<(f64, usize)> = None;
+    // One monodromy gives both blocks.
+    let mono = monodromies(fam, x, omega, p)?;
+    let mut best: Option<(f64, usize, DMatrix<f64>)> = None;
     for block in 0..2 {
-        if let Ok(mu) = critical(fam, x, omega, p, block) {
-            if best.is_none_or(|(b, _)| mu.abs() < b) {
-                best = Some((mu.abs(), block));
+        if let Ok(a) = shifted_of(&mono, block, omega) {
+            let mu = critical_of(&a);
+            if best.as_ref().is_none_or(|(b, _, _)| mu.abs() < *b) {
+                best = Some((mu.abs(), block, a));
             }
         }
     }
-    let (_, block) = best.ok_or_else(|| SolverError::Singular {
+    let (_, block, a) = best.ok_or_else(|| SolverError::Singular {
         what: format!("monodromy at Omega = {omega}"),
     })?;
-    let a = shifted(fam, x, omega, p, block)?;
     let n = a.nrows();
     let svd = a.svd(true, true);
     let (Some(u), Some(vt)) = (svd.u, svd.v_t) else {
@@ -147,8 +149,14 @@ pub(crate) struct Frozen {
     orient: f64,
     /// Accepted steps since it was differenced.
     pub(crate) steps: u32,
-    /// Whether it may outlive its corrector ([`KEEP_FROM`]).
-    pub(crate) keep: bool,
+}
+
+impl Frozen {
+    /// Whether it may outlive its corrector: it cost at least
+    /// [`KEEP_FROM`] monodromies, one per entry.
+    pub(crate) fn keep(&self) -> bool {
+        self.grad.len() >= KEEP_FROM
+    }
 }
 
 /// `g` and the right null vector `v` at `(x, omega, p)`.
@@ -223,7 +231,6 @@ pub(crate) fn eval(
                 grad,
                 orient,
                 steps: 0,
-                keep: nx + 2 >= KEEP_FROM,
             }
         }
     };

@@ -132,7 +132,7 @@ impl System {
                 // A slow corrector's gradient has drifted too far to keep.
                 let keep = frozen.take().and_then(|mut f| {
                     f.steps += 1;
-                    (f.keep
+                    (f.keep()
                         && f.steps < super::doubling::GRADIENT_STEPS
                         && iterations <= SLOW_CORRECTOR)
                         .then_some(f)
@@ -148,7 +148,7 @@ impl System {
     /// at the new predictor.
     pub(crate) fn retry(&mut self) {
         if let System::Doubling { frozen, .. } = self {
-            if frozen.as_ref().is_some_and(|f| !f.keep) {
+            if frozen.as_ref().is_some_and(|f| !f.keep()) {
                 *frozen = None;
             }
         }

@@ -122,6 +122,10 @@ pub struct ShootFrfStats {
     pub rejected_steps: u64,
     /// Integrator steps over every evaluation.
     pub integrator_steps: u64,
+    /// Evaluations of the map that failed (a predictor far out of range,
+    /// a blow-up), counted as the one-shot run counts them however a run
+    /// is sliced.
+    pub failed_evaluations: u64,
 }
 
 /// A branch being followed.

@@ -159,7 +159,12 @@ impl ShootingContinuation {
             self.stats.integrator_steps += taken;
             return match v {
                 Value::Map(g, m) => Ok((g, m)),
-                Value::Failed(e) => Err(Halt::Fail(e)),
+                Value::Failed(e) => {
+                    // Counted again as its steps are: a paused step's
+                    // counters went back with its state.
+                    self.stats.failed_evaluations += 1;
+                    Err(Halt::Fail(e))
+                }
                 Value::Extremes(_) => Err(Halt::Fail(SolverError::Singular {
                     what: "a replayed evaluation".into(),
                 })),
@@ -210,6 +215,7 @@ impl ShootingContinuation {
             Err(e) => {
                 self.replay.record(key, Value::Failed(e.clone()), taken);
                 self.stats.integrator_steps += taken;
+                self.stats.failed_evaluations += 1;
                 return Err(Halt::Fail(e));
             }
         };
