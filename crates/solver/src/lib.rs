@@ -8,6 +8,7 @@
 //! repository's `ARCHITECTURE.md` for the map. Results as JSON and the
 //! merge of sharded runs live outside it, in the `report` crate.
 //!
+//! - [`dense`]: the LU factorization of the correctors' dense systems.
 //! - [`params`] and [`keys`]: the parameter sets and their flat user-facing keys.
 //! - [`system`]: the compiled model (mass matrix, mesh vectors, loads).
 //! - [`modal`]: statics, natural modes, the linear receptance.
@@ -30,6 +31,7 @@
 
 pub mod bifurcation;
 pub mod boundaries;
+pub mod dense;
 pub mod dynamics;
 pub mod error;
 pub mod fastmath;

@@ -32,6 +32,10 @@ pub struct BenchArgs {
     /// periods of plain integration.
     #[arg(long)]
     classification: bool,
+    /// Only the harmonic balance's figure of issues 14 and 22 (H = 7, Omega
+    /// 0.1 to 0.5, with stability; against pyHarm's quoted time).
+    #[arg(long)]
+    hbm_only: bool,
 }
 
 /// Checks the options, runs every benchmark and prints the figures.
@@ -47,6 +51,12 @@ pub fn run_command(a: &BenchArgs) -> Result<(), crate::failure::Failure> {
         let long = if a.quick { 600 } else { 20_000 };
         let v = classification_check(&model, long).map_err(crate::failure::Failure::from)?;
         return crate::output::emit(&json!({ "classification": v }));
+    }
+    if a.hbm_only {
+        let model = Model::new(&ModelParams::default()).map_err(crate::failure::Failure::from)?;
+        let v = hbm_issue14_bench(&model, if a.quick { 1 } else { a.repeats })
+            .map_err(crate::failure::Failure::from)?;
+        return crate::output::emit(&json!({ "hbm_issue14": v }));
     }
     if a.pipeline_only {
         let model = Model::new(&ModelParams::default()).map_err(crate::failure::Failure::from)?;
@@ -214,114 +224,7 @@ pub fn run(repeats: u32, quick: bool) -> Result<Value, SolverError> {
         );
     }
 
-    // Issue 14: H = 7 over Omega 0.1 ..= 0.5 with stability, the step
-    // control before (on the corrector's iterations, 400 nominal points as
-    // the CLI's default) and after (on the curve's geometry, 50 nominal
-    // points), alternating in one run.
-    // Issue 22: the same branch with the monodromy on sampled points only
-    // (the default stride) against every point (stride 1), in the same run.
-    let runs = if quick { 1 } else { repeats.min(5) };
-    let mut before_s = Vec::new();
-    let mut after_s = Vec::new();
-    let mut sampled_s = Vec::new();
-    let (mut after_cpu, mut sampled_cpu) = (Vec::new(), Vec::new());
-    let mut before_points = 0;
-    let mut after_points = 0;
-    let mut before_branch = Vec::new();
-    let mut after_branch = Vec::new();
-    let mut sampled_branch = Vec::new();
-    let (mut after_monodromies, mut sampled_monodromies) = (0, 0);
-    for _ in 0..runs {
-        for (control, nominal, stride) in [
-            (StepControl::Iterations, 400, 1),
-            (StepControl::Geometry, 50, 1),
-            (StepControl::Geometry, 50, SAMPLED_STABILITY_STRIDE),
-        ] {
-            let mut spec = FrfSpec::new(0.1, 0.5, nominal);
-            spec.harmonics = 7;
-            spec.step_control = control;
-            spec.stability_stride = stride;
-            let cpu_start = thread_cpu_s();
-            let start = Instant::now();
-            let mut c = FrfContinuation::new(&model, spec)?;
-            let mut pts = Vec::new();
-            while !c.is_finished() {
-                pts.extend(c.advance(64)?);
-            }
-            let dt = start.elapsed().as_secs_f64();
-            let cpu = match (cpu_start, thread_cpu_s()) {
-                (Some(a), Some(b)) => Some(b - a),
-                _ => None,
-            };
-            if control == StepControl::Iterations {
-                before_s.push(dt);
-                before_points = pts.len();
-                before_branch = pts;
-            } else if stride == 1 {
-                after_s.push(dt);
-                after_cpu.extend(cpu);
-                after_points = pts.len();
-                after_monodromies = c.stats.monodromies;
-                after_branch = pts;
-            } else {
-                sampled_s.push(dt);
-                sampled_cpu.extend(cpu);
-                sampled_monodromies = c.stats.monodromies;
-                sampled_branch = pts;
-            }
-        }
-    }
-    let sampled_med = median(sampled_s);
-    // Points whose stability flag or label differs between the two routes.
-    let differing = after_branch
-        .iter()
-        .zip(&sampled_branch)
-        .filter(|(a, b)| a.stable != b.stable || a.bifurcation != b.bifurcation)
-        .count()
-        + after_branch.len().abs_diff(sampled_branch.len());
-    let (before_med, after_med) = (median(before_s), median(after_s));
-    let folds = |pts: &[BranchPoint]| -> Vec<f64> {
-        pts.iter()
-            .filter(|p| p.bifurcation == Some(solver::hbm::Bifurcation::Fold))
-            .map(|p| p.omega)
-            .collect()
-    };
-    let issue14 = json!({
-        "harmonics": 7,
-        "omega_from": 0.1,
-        "omega_to": 0.5,
-        "before": {
-            "step_control": "iterations",
-            "nominal_points": 400,
-            "branch_points": before_points,
-            "median_ms": before_med * 1e3,
-            "folds": folds(&before_branch),
-        },
-        "after": {
-            "step_control": "geometry",
-            "nominal_points": 50,
-            "branch_points": after_points,
-            "median_ms": after_med * 1e3,
-            "folds": folds(&after_branch),
-        },
-        "sampled_stability": {
-            "stride": SAMPLED_STABILITY_STRIDE,
-            "branch_points": sampled_branch.len(),
-            "monodromies": sampled_monodromies,
-            "monodromies_every_point": after_monodromies,
-            "median_ms": sampled_med * 1e3,
-            "cpu_median_ms": (!sampled_cpu.is_empty()).then(|| median(sampled_cpu) * 1e3),
-            "cpu_median_ms_every_point": (!after_cpu.is_empty()).then(|| median(after_cpu) * 1e3),
-            "folds": folds(&sampled_branch),
-            "points_differing_from_every_point": differing,
-            "speedup_vs_every_point": after_med / sampled_med,
-            "speedup_vs_pyharm_quoted": 5.0 / sampled_med,
-        },
-        "speedup": before_med / after_med,
-        "point_ratio": before_points as f64 / after_points.max(1) as f64,
-        "pyharm_quoted_s": 5.0,
-        "speedup_vs_pyharm_quoted": 5.0 / after_med,
-    });
+    let issue14 = hbm_issue14_bench(&model, if quick { 1 } else { repeats.min(5) })?;
 
     // The sliders' grid (issue 14): backlash x TE x damping ratio over
     // Omega 0.1 ..= 2 at H = 5, 150 nominal points (the page's), once.
@@ -418,6 +321,119 @@ pub fn run(repeats: u32, quick: bool) -> Result<Value, SolverError> {
             "points_per_s": f64::from(points) / sweep_median,
             "points_settled_early": settled_points,
         },
+    }))
+}
+
+/// Issue 14's and 22's harmonic-balance figure: H = 7 over Omega 0.1 ..= 0.5
+/// with stability, the step control before and after issue 14 and the
+/// sampled stability, alternating in one run (`runs` rounds), medians.
+fn hbm_issue14_bench(model: &Model, runs: u32) -> Result<Value, SolverError> {
+    // Issue 14: H = 7 over Omega 0.1 ..= 0.5 with stability, the step
+    // control before (on the corrector's iterations, 400 nominal points as
+    // the CLI's default) and after (on the curve's geometry, 50 nominal
+    // points), alternating in one run.
+    // Issue 22: the same branch with the monodromy on sampled points only
+    // (the default stride) against every point (stride 1), in the same run.
+    let mut before_s = Vec::new();
+    let mut after_s = Vec::new();
+    let mut sampled_s = Vec::new();
+    let (mut after_cpu, mut sampled_cpu) = (Vec::new(), Vec::new());
+    let mut before_points = 0;
+    let mut after_points = 0;
+    let mut before_branch = Vec::new();
+    let mut after_branch = Vec::new();
+    let mut sampled_branch = Vec::new();
+    let (mut after_monodromies, mut sampled_monodromies) = (0, 0);
+    for _ in 0..runs {
+        for (control, nominal, stride) in [
+            (StepControl::Iterations, 400, 1),
+            (StepControl::Geometry, 50, 1),
+            (StepControl::Geometry, 50, SAMPLED_STABILITY_STRIDE),
+        ] {
+            let mut spec = FrfSpec::new(0.1, 0.5, nominal);
+            spec.harmonics = 7;
+            spec.step_control = control;
+            spec.stability_stride = stride;
+            let cpu_start = thread_cpu_s();
+            let start = Instant::now();
+            let mut c = FrfContinuation::new(model, spec)?;
+            let mut pts = Vec::new();
+            while !c.is_finished() {
+                pts.extend(c.advance(64)?);
+            }
+            let dt = start.elapsed().as_secs_f64();
+            let cpu = match (cpu_start, thread_cpu_s()) {
+                (Some(a), Some(b)) => Some(b - a),
+                _ => None,
+            };
+            if control == StepControl::Iterations {
+                before_s.push(dt);
+                before_points = pts.len();
+                before_branch = pts;
+            } else if stride == 1 {
+                after_s.push(dt);
+                after_cpu.extend(cpu);
+                after_points = pts.len();
+                after_monodromies = c.stats.monodromies;
+                after_branch = pts;
+            } else {
+                sampled_s.push(dt);
+                sampled_cpu.extend(cpu);
+                sampled_monodromies = c.stats.monodromies;
+                sampled_branch = pts;
+            }
+        }
+    }
+    let sampled_med = median(sampled_s);
+    // Points whose stability flag or label differs between the two routes.
+    let differing = after_branch
+        .iter()
+        .zip(&sampled_branch)
+        .filter(|(a, b)| a.stable != b.stable || a.bifurcation != b.bifurcation)
+        .count()
+        + after_branch.len().abs_diff(sampled_branch.len());
+    let (before_med, after_med) = (median(before_s), median(after_s));
+    let folds = |pts: &[BranchPoint]| -> Vec<f64> {
+        pts.iter()
+            .filter(|p| p.bifurcation == Some(solver::hbm::Bifurcation::Fold))
+            .map(|p| p.omega)
+            .collect()
+    };
+    Ok(json!({
+        "harmonics": 7,
+        "omega_from": 0.1,
+        "omega_to": 0.5,
+        "before": {
+            "step_control": "iterations",
+            "nominal_points": 400,
+            "branch_points": before_points,
+            "median_ms": before_med * 1e3,
+            "folds": folds(&before_branch),
+        },
+        "after": {
+            "step_control": "geometry",
+            "nominal_points": 50,
+            "branch_points": after_points,
+            "median_ms": after_med * 1e3,
+            "folds": folds(&after_branch),
+        },
+        "sampled_stability": {
+            "stride": SAMPLED_STABILITY_STRIDE,
+            "branch_points": sampled_branch.len(),
+            "monodromies": sampled_monodromies,
+            "monodromies_every_point": after_monodromies,
+            "median_ms": sampled_med * 1e3,
+            "cpu_median_ms": (!sampled_cpu.is_empty()).then(|| median(sampled_cpu) * 1e3),
+            "cpu_median_ms_every_point": (!after_cpu.is_empty()).then(|| median(after_cpu) * 1e3),
+            "folds": folds(&sampled_branch),
+            "points_differing_from_every_point": differing,
+            "speedup_vs_every_point": after_med / sampled_med,
+            "speedup_vs_pyharm_quoted": 5.0 / sampled_med,
+        },
+        "speedup": before_med / after_med,
+        "point_ratio": before_points as f64 / after_points.max(1) as f64,
+        "pyharm_quoted_s": 5.0,
+        "speedup_vs_pyharm_quoted": 5.0 / after_med,
     }))
 }
 

@@ -52,8 +52,7 @@ pub(crate) fn bordered_solve(
     let n = a.nrows();
     let mut e = DVector::zeros(n + 1);
     e[n] = 1.0;
-    let sol = bordered(a, b, c)
-        .lu()
+    let sol = crate::dense::Lu::new(bordered(a, b, c))
         .solve(&e)
         .ok_or_else(|| SolverError::Singular {
             what: format!("bordered matrix at Omega = {omega}"),
@@ -119,7 +118,7 @@ pub(crate) fn branch_rows(
 /// `j` and the `p` derivative `r_p`; zero where `J` is singular.
 pub(crate) fn branch_motion(j: &DMatrix<f64>, r_p: &[f64]) -> (DVector<f64>, DVector<f64>) {
     let nx = j.nrows();
-    let lu = j.columns(0, nx).into_owned().lu();
+    let lu = crate::dense::Lu::new(j.columns(0, nx).into_owned());
     match (
         lu.solve(&j.column(nx).into_owned()),
         lu.solve(&DVector::from_column_slice(r_p)),

@@ -27,6 +27,7 @@ use super::bordered::{
     bordered_solve, branch_motion, branch_rows, inf_norm, residual_at, residual_p, Eval,
 };
 use super::family::Family;
+use crate::dense::eigenvalues;
 use crate::error::{Result, SolverError};
 use crate::hbm::stability::monodromy_matrices;
 use nalgebra::{DMatrix, DVector};
@@ -43,12 +44,13 @@ fn monodromies(fam: &mut Family, x: &[f64], omega: f64, p: f64) -> Result<Monodr
 }
 
 /// Whether every multiplier but the one closest to -1 (of `block`) is
-/// inside the unit circle; `None` if there is no such block.
+/// inside the unit circle; `None` if there is no such block or the
+/// eigenvalues did not converge.
 fn others_stable((main, planet): &Monodromies, block: usize) -> Option<bool> {
     let mut all: Vec<(usize, nalgebra::Complex<f64>)> =
-        main.complex_eigenvalues().iter().map(|&z| (0, z)).collect();
+        eigenvalues(main)?.into_iter().map(|z| (0, z)).collect();
     if let Some(pl) = planet {
-        all.extend(pl.complex_eigenvalues().iter().map(|&z| (1, z)));
+        all.extend(eigenvalues(pl)?.into_iter().map(|z| (1, z)));
     }
     let critical = all
         .iter()
@@ -85,9 +87,10 @@ fn shifted(fam: &mut Family, x: &[f64], omega: f64, p: f64, block: usize) -> Res
 
 /// The real part of the eigenvalue of `M + I` nearest zero: the real
 /// multiplier closest to -1, plus one.
+/// NaN if the eigenvalues do not converge (the corrector then fails).
 fn critical_of(shifted: &DMatrix<f64>) -> f64 {
-    shifted
-        .complex_eigenvalues()
+    eigenvalues(shifted)
+        .unwrap_or_default()
         .iter()
         .min_by(|u, v| u.norm().total_cmp(&v.norm()))
         .map_or(f64::NAN, |z| z.re)

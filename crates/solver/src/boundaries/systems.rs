@@ -197,8 +197,12 @@ fn fold_eval(
     };
     let mut e = DVector::zeros(nx + 1);
     e[nx] = 1.0;
-    let sol = a.clone().lu().solve(&e).ok_or_else(singular)?;
-    let solt = a.transpose().lu().solve(&e).ok_or_else(singular)?;
+    let sol = crate::dense::Lu::new(a.clone())
+        .solve(&e)
+        .ok_or_else(singular)?;
+    let solt = crate::dense::Lu::new(a.transpose())
+        .solve(&e)
+        .ok_or_else(singular)?;
     let v = sol.rows(0, nx).into_owned();
     let w = solt.rows(0, nx).into_owned();
     let g = sol[nx];

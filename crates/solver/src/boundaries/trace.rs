@@ -288,9 +288,11 @@ impl Tracer {
                 g[n - 1] += row[i] * (z[i] - pred[i]);
             }
             last_res = ev.res.amax();
-            let dz = a.lu().solve(&g).ok_or_else(|| SolverError::Singular {
-                what: format!("boundary corrector at Omega = {}", z[n - 2]),
-            })?;
+            let dz = crate::dense::Lu::new(a)
+                .solve(&g)
+                .ok_or_else(|| SolverError::Singular {
+                    what: format!("boundary corrector at Omega = {}", z[n - 2]),
+                })?;
             let step = (0..n)
                 .map(|i| dz[i].abs() * self.metric[i].sqrt())
                 .fold(0.0, f64::max);
@@ -327,7 +329,7 @@ impl Tracer {
         }
         let mut e = DVector::zeros(n);
         e[n - 1] = 1.0;
-        let t = a.lu().solve(&e)?;
+        let t = crate::dense::Lu::new(a).solve(&e)?;
         let mut t: Vec<f64> = t.iter().copied().collect();
         self.normalize(&mut t);
         let dot: f64 = (0..n).map(|i| self.metric[i] * t[i] * self.t[i]).sum();

@@ -162,7 +162,7 @@ impl Assembly {
 
     /// Evaluates `r = R(x, omega)`; with `jac`, also `dR/dX` into its first
     /// `n_x` columns and `dR/dOmega` into column `n_x` (the matrix must be at
-    /// least `n_x x (n_x + 1)`).
+    /// least `n_x x (n_x + 1)`; every other entry is set to zero).
     pub fn evaluate(
         &mut self,
         x: &[f64],

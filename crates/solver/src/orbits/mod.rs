@@ -609,7 +609,7 @@ impl ShootingContinuation {
                 a[(n, col)] = t[col];
             }
             rhs[n] = -(0..=n).map(|i| t[i] * (y[i] - pred[i])).sum::<f64>();
-            let Some(dy) = a.lu().solve(&rhs) else {
+            let Some(dy) = crate::dense::Lu::new(a).solve(&rhs) else {
                 return Ok(None);
             };
             if dy.iter().any(|v| !v.is_finite()) {
@@ -637,7 +637,7 @@ impl ShootingContinuation {
         }
         let mut rhs = DVector::zeros(n + 1);
         rhs[n] = 1.0;
-        let t = a.lu().solve(&rhs)?;
+        let t = crate::dense::Lu::new(a).solve(&rhs)?;
         let norm = t.norm();
         if !(norm.is_finite() && norm > 0.0) {
             return None;

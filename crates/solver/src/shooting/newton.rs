@@ -535,7 +535,7 @@ impl ShootRun {
     /// singular updated matrix, or a failure on a singular fresh one.
     fn newton_direction(&mut self) -> Option<ShootOutcome> {
         let rhs = -DVector::from_column_slice(&self.f);
-        match self.jac.clone().lu().solve(&rhs) {
+        match crate::dense::Lu::new(self.jac.clone()).solve(&rhs) {
             Some(dz) if dz.iter().all(|x| x.is_finite()) => {
                 self.dz = dz.iter().copied().collect();
                 self.stage = Stage::Trial { alpha: 1.0 };

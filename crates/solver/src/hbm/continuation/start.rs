@@ -67,7 +67,7 @@ impl FrfContinuation {
         // First tangent: [R_X R_Omega] t = 0 with t_Omega = +-1.
         self.asm
             .evaluate(&self.y[..nx], omega, &mut r, Some(&mut jac));
-        let lu = jac.columns(0, nx).into_owned().lu();
+        let lu = crate::dense::Lu::new(jac.columns(0, nx).into_owned());
         let rhs = DVector::from_iterator(nx, (0..nx).map(|i| -jac[(i, nx)]));
         let tx = lu.solve(&rhs).ok_or_else(|| SolverError::Singular {
             what: format!("harmonic-balance Jacobian at Omega = {omega}"),
@@ -174,7 +174,7 @@ pub(super) fn newton_fixed(
         if !res.is_finite() {
             return Err(not_converged(res, iterations));
         }
-        let lu = jac.columns(0, nx).into_owned().lu();
+        let lu = crate::dense::Lu::new(jac.columns(0, nx).into_owned());
         let dx = lu
             .solve(&DVector::from_column_slice(&r))
             .ok_or_else(|| not_converged(res, iterations))?;

@@ -235,15 +235,17 @@ impl FrfContinuation {
         let n = nx + 1;
         let mut y = pred.to_vec();
         let mut r = vec![0.0; nx];
+        // The bordered Jacobian: the residual's rows from `evaluate`, the
+        // arclength row below them. A factorization takes it over, and the
+        // one it replaces gives its storage back for the next.
         let mut jac = DMatrix::zeros(n, n);
-        let mut jx = DMatrix::zeros(nx, n);
         let weighted_t: Vec<f64> = (0..n).map(|i| self.metric(i) * self.tangent[i]).collect();
         let mut res_prev = f64::INFINITY;
         // The last factorization and the size of the step it produced: once
         // a step is below `CHORD_STEP`, the Jacobian moves by less than that
         // and the factorization is kept (a chord step, whose error is the
         // product of the two small steps), and it also gives the tangent.
-        let mut lu: Option<nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>> = None;
+        let mut lu: Option<crate::dense::Lu> = None;
         let mut step_prev = f64::INFINITY;
         for iteration in 1..=NEWTON_MAX {
             // AFT's residual has small kinks where a contact switch crosses
@@ -252,7 +254,7 @@ impl FrfContinuation {
             if chord {
                 self.asm.evaluate(&y[..nx], y[nx], &mut r, None);
             } else {
-                self.asm.evaluate(&y[..nx], y[nx], &mut r, Some(&mut jx));
+                self.asm.evaluate(&y[..nx], y[nx], &mut r, Some(&mut jac));
             }
             self.stats.jacobians += 1;
             self.stats.newton_iterations += 1;
@@ -274,11 +276,14 @@ impl FrfContinuation {
                 iteration > 2 && res <= RESIDUAL_FLOOR * scale_now && res > 0.1 * res_prev;
             res_prev = res;
             if !chord {
-                jac.rows_mut(0, nx).copy_from(&jx);
                 for i in 0..n {
                     jac[(nx, i)] = weighted_t[i];
                 }
-                lu = Some(jac.clone().lu());
+                let spare = match lu.take() {
+                    Some(old) => old.into_matrix(),
+                    None => DMatrix::zeros(n, n),
+                };
+                lu = Some(crate::dense::Lu::new(std::mem::replace(&mut jac, spare)));
             }
             let Some(factors) = lu.as_ref() else { break };
             let mut step = 0.0;

@@ -190,13 +190,16 @@ impl SwitchTable {
         SwitchTable { h, samples, basis }
     }
 
-    /// The samples of the function with coefficients `coef` into `out`.
-    fn sample(&self, coef: &[f64], out: &mut [f64]) {
+    /// The samples of the functions with coefficients `a` and `b` into
+    /// `out_a` and `out_b`, in one pass over the table.
+    fn sample_pair(&self, a: &[f64], b: &[f64], out_a: &mut [f64], out_b: &mut [f64]) {
         let n = self.samples;
-        out.fill(0.0);
-        for (row, &a) in self.basis.chunks_exact(n).zip(coef) {
-            for (o, &b) in out.iter_mut().zip(row) {
-                *o += b * a;
+        out_a.fill(0.0);
+        out_b.fill(0.0);
+        for ((row, &ca), &cb) in self.basis.chunks_exact(n).zip(a).zip(b) {
+            for ((oa, ob), &v) in out_a.iter_mut().zip(out_b.iter_mut()).zip(row) {
+                *oa += v * ca;
+                *ob += v * cb;
             }
         }
     }
@@ -222,6 +225,15 @@ pub fn contact_switches(
     let h = table.h;
     let nc = n_coef(h);
     let samples = table.samples;
+    // `|x(theta) - x_0|` is at most the sum of the harmonics' amplitudes:
+    // if that band around the mean stays clear of `b` and `-b`, `x` crosses
+    // neither (the band lies wholly in contact, or wholly in the gap), and
+    // the sampling below would find no sign change.
+    let amplitude: f64 = (1..=h).map(|k| x[2 * k - 1].hypot(x[2 * k])).sum();
+    let clear = |side: f64| (x[0] - side).abs() > amplitude;
+    if clear(b) && clear(-b) {
+        return;
+    }
     dx.clear();
     dx.push(0.0);
     for k in 1..=h {
@@ -232,8 +244,7 @@ pub fn contact_switches(
     dx.resize(nc + 2 * samples, 0.0);
     let (dcoef, rest) = dx.split_at_mut(nc);
     let (xs, ds) = rest.split_at_mut(samples);
-    table.sample(x, xs);
-    table.sample(dcoef, ds);
+    table.sample_pair(x, dcoef, xs, ds);
     let dcoef = &*dcoef;
     let eval = |t: f64| eval_coef(x, h, t);
     let slope_at = |t: f64| eval_coef(dcoef, h, t);
