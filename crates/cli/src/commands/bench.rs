@@ -434,7 +434,52 @@ fn hbm_issue14_bench(model: &Model, runs: u32) -> Result<Value, SolverError> {
         "point_ratio": before_points as f64 / after_points.max(1) as f64,
         "pyharm_quoted_s": 5.0,
         "speedup_vs_pyharm_quoted": 5.0 / after_med,
+        "lu": lu_bench(runs),
     }))
+}
+
+/// The solver's LU (`solver::dense::Lu`) against nalgebra's on the H = 7
+/// branch's bordered Jacobian size (76 x 76): 2 000 factorizations and
+/// solves each, alternating, `runs` rounds, medians. The two give the
+/// same bits (a unit test checks it); this is their speed.
+fn lu_bench(runs: u32) -> Value {
+    const N: usize = 76;
+    const COUNT: u32 = 2000;
+    // A deterministic pseudo-random fill (a linear congruential
+    // generator), which pivots at nearly every step as the Jacobian does.
+    let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
+    let a = nalgebra::DMatrix::from_fn(N, N, |_, _| {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    });
+    let b = nalgebra::DVector::from_element(N, 1.0);
+    let (mut ours, mut theirs) = (Vec::new(), Vec::new());
+    let mut sink = 0.0;
+    for _ in 0..runs.max(1) {
+        let start = Instant::now();
+        for _ in 0..COUNT {
+            sink += solver::dense::Lu::new(a.clone())
+                .solve(&b)
+                .map_or(0.0, |x| x[0]);
+        }
+        ours.push(start.elapsed().as_secs_f64());
+        let start = Instant::now();
+        for _ in 0..COUNT {
+            sink += a.clone().lu().solve(&b).map_or(0.0, |x| x[0]);
+        }
+        theirs.push(start.elapsed().as_secs_f64());
+    }
+    std::hint::black_box(sink);
+    let (ours, theirs) = (median(ours), median(theirs));
+    json!({
+        "order": N,
+        "factorizations": COUNT,
+        "solver_ms": ours * 1e3,
+        "nalgebra_ms": theirs * 1e3,
+        "speedup": theirs / ours,
+    })
 }
 
 /// The before/after figures of issue 19 (see `run`): medians over
