@@ -23,10 +23,21 @@ use nalgebra::{Complex, DMatrix, DVector};
 /// whose iteration stagnates above machine epsilon it never returns (a
 /// boundary trace's period-doubling test met one and hung the page's map).
 pub fn eigenvalues(a: &DMatrix<f64>) -> Option<Vec<Complex<f64>>> {
+    eigenvalues_with(a, f64::EPSILON, SCHUR_ITERATIONS)
+}
+
+/// [`eigenvalues`] with the Schur form's tolerance `eps` and at most
+/// `max_sweeps` QR sweeps (the Floquet multipliers' 1e-14). Every
+/// eigenvalue in the solver comes from here.
+pub fn eigenvalues_with(
+    a: &DMatrix<f64>,
+    eps: f64,
+    max_sweeps: usize,
+) -> Option<Vec<Complex<f64>>> {
     if a.iter().any(|v| !v.is_finite()) {
         return None;
     }
-    let schur = nalgebra::linalg::Schur::try_new(a.clone(), f64::EPSILON, SCHUR_ITERATIONS)?;
+    let schur = nalgebra::linalg::Schur::try_new(a.clone(), eps, max_sweeps)?;
     let values: Vec<Complex<f64>> = schur.complex_eigenvalues().iter().copied().collect();
     values
         .iter()

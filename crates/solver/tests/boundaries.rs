@@ -32,12 +32,17 @@ fn te_trace() -> &'static BoundaryTrace {
         let mut spec = BoundarySpec::new("te_um", (0.2, 40.0), (0.4, 1.3));
         spec.levels = 5;
         spec.points = 80;
-        let mut t = BoundaryTrace::new(&pair(&[]), spec).unwrap();
-        while !t.is_finished() {
-            t.advance(50).unwrap();
-        }
-        t
+        traced(&pair(&[]), spec)
     })
+}
+
+/// The whole trace of `spec` on `params`.
+fn traced(params: &ModelParams, spec: BoundarySpec) -> BoundaryTrace {
+    let mut t = BoundaryTrace::new(params, spec).unwrap();
+    while !t.is_finished() {
+        t.advance(50).unwrap();
+    }
+    t
 }
 
 /// The folds of a one-parameter continuation (H = 7, exact) at `te_um`.
@@ -169,10 +174,7 @@ fn fold_curves_in_torque_and_damping_pass_through_the_one_parameter_folds() {
         let mut spec = BoundarySpec::new(key, range, (0.4, 1.3));
         spec.levels = 5;
         spec.points = 80;
-        let mut t = BoundaryTrace::new(&pair(&[]), spec).unwrap();
-        while !t.is_finished() {
-            t.advance(50).unwrap();
-        }
+        let t = traced(&pair(&[]), spec);
         for level in levels {
             let one = folds_with(&format!("{key}={level}"), (0.4, 1.3));
             let two = crossings(t.curves(), CurveKind::Fold, level);
@@ -384,11 +386,6 @@ fn keys_that_move_the_modes_and_empty_ranges_are_refused() {
     assert!(e.to_string().contains("backlash_um"), "{e}");
 }
 
-/// A contact curve that runs down to zero backlash, the key's own lower
-/// limit and the box's edge, leaves the box there: its last point lies on
-/// the edge and the end is `left-range`. (A step across the edge cannot be
-/// evaluated, backlash below 0 being refused, so before the step landed on
-/// the edge such a curve ended as a corrector failure a hair above it.)
 /// The gear pair's (Omega, backlash) trace: backlash 0-200 um, Omega
 /// 0.1-2, H = 5, 40 points.
 fn backlash_trace() -> &'static BoundaryTrace {
@@ -397,11 +394,7 @@ fn backlash_trace() -> &'static BoundaryTrace {
         let mut spec = BoundarySpec::new("backlash_um", (0.0, 200.0), (0.1, 2.0));
         spec.harmonics = 5;
         spec.points = 40;
-        let mut t = BoundaryTrace::new(&pair(&[]), spec).unwrap();
-        while !t.is_finished() {
-            t.advance(50).unwrap();
-        }
-        t
+        traced(&pair(&[]), spec)
     })
 }
 
@@ -451,6 +444,11 @@ fn vertical_curves_take_few_points_and_the_doubling_turns_its_corner() {
     );
 }
 
+/// A contact curve that runs down to zero backlash, the key's own lower
+/// limit and the box's edge, leaves the box there: its last point lies on
+/// the edge and the end is `left-range`. (A step across the edge cannot be
+/// evaluated, backlash below 0 being refused, so before the step landed on
+/// the edge such a curve ended as a corrector failure a hair above it.)
 #[test]
 fn a_contact_curve_reaching_zero_backlash_leaves_the_box_there() {
     let t = backlash_trace();
@@ -495,11 +493,7 @@ fn contact_boundaries_of_one_mesh_are_the_whole_traces_for_that_mesh() {
         spec.points = 20;
         spec.levels = 2;
         spec.contact_mesh = only;
-        let mut t = BoundaryTrace::new(&base, spec).unwrap();
-        while !t.is_finished() {
-            t.advance(50).unwrap();
-        }
-        t.curves().to_vec()
+        traced(&base, spec).curves().to_vec()
     };
     let all = trace(None);
     let meshes: Vec<usize> = all.iter().filter_map(|c| c.mesh).collect();

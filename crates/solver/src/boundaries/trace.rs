@@ -16,17 +16,13 @@ use super::bordered::Eval;
 use super::family::Family;
 use super::systems::System;
 use crate::error::{Result, SolverError};
+use crate::hbm::continuation::overshoot;
 use nalgebra::{DMatrix, DVector};
 use std::f64::consts::PI;
 
 const NEWTON_MAX: usize = 12;
 /// Converged when the scaled Newton step is below this.
 const STEP_TOL: f64 = 1e-10;
-/// Nominal distance from the predictor to the corrected point, in the
-/// metric (see [`Tracer::step`]).
-const D_NOM: f64 = 1e-3;
-/// Nominal turn of the tangent per step (radians).
-const ALPHA_NOM: f64 = 0.1;
 /// The weight of the mean's coefficients in the metric, relative to the
 /// vibration's (see [`Tracer::start`]).
 const MEAN_WEIGHT: f64 = 1e-2;
@@ -343,8 +339,9 @@ impl Tracer {
     ///
     /// The step length follows the curve's geometry: the distance from the
     /// predictor to the corrected point (`d`, in the metric) and the turn
-    /// of the tangent (`alpha`) give the factor `f = max(sqrt(d / D_NOM),
-    /// alpha / ALPHA_NOM)` by which the step overshot its nominal size;
+    /// of the tangent (`alpha`) give the factor `f` by which the step
+    /// overshot its nominal size, as on the harmonic balance's branch
+    /// ([`overshoot`]);
     /// `f > 2` retries with `ds / f`, otherwise the next step is `ds / f`,
     /// growing by at most 2, up to `ds_max`. A failed corrector halves the
     /// step. The corrector's iterations do not steer it: near the test
@@ -394,7 +391,7 @@ impl Tracer {
                         .map(|i| self.metric[i] * (z[i] - pred[i]).powi(2))
                         .sum::<f64>()
                         .sqrt();
-                    let f = (dist / D_NOM).sqrt().max(alpha / ALPHA_NOM).max(0.5);
+                    let f = overshoot(dist, alpha);
                     if f > 2.0 && ds > ds_min {
                         self.system.retry();
                         self.ds = (ds / f.min(4.0)).max(ds_min);

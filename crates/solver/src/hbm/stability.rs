@@ -23,7 +23,7 @@ use super::harmonic::{contact_switches, n_coef, te_real_coefficients};
 pub(crate) use super::harmonic::eval_coef;
 use super::model::Law;
 use nalgebra::Complex;
-use nalgebra::{linalg::Schur, DMatrix};
+use nalgebra::DMatrix;
 use std::f64::consts::PI;
 
 /// Floquet multipliers of an orbit.
@@ -176,12 +176,8 @@ impl LtpBlock {
 
     fn multipliers(&self) -> Option<Vec<Complex<f64>>> {
         let n2 = 2 * self.m;
-        if self.phi.iter().any(|v| !v.is_finite()) {
-            return None;
-        }
         let mat = DMatrix::from_row_slice(n2, n2, &self.phi);
-        Schur::try_new(mat, 1e-14, 100_000)
-            .map(|s| s.complex_eigenvalues().iter().copied().collect())
+        crate::dense::eigenvalues_with(&mat, 1e-14, 100_000)
     }
 }
 

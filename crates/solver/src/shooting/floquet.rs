@@ -23,14 +23,7 @@ pub struct Multipliers {
 impl Multipliers {
     /// The eigenvalues of `monodromy`, or `None` if the Schur form fails.
     pub fn of(monodromy: &DMatrix<f64>) -> Option<Self> {
-        let schur = nalgebra::linalg::Schur::try_new(monodromy.clone(), 1e-14, 10_000)?;
-        let mut values: Vec<Complex<f64>> = schur.complex_eigenvalues().iter().copied().collect();
-        if values
-            .iter()
-            .any(|v| !(v.re.is_finite() && v.im.is_finite()))
-        {
-            return None;
-        }
+        let mut values = crate::dense::eigenvalues_with(monodromy, 1e-14, 10_000)?;
         values.sort_by(|a, b| b.norm().total_cmp(&a.norm()));
         Some(Multipliers { values })
     }

@@ -153,6 +153,17 @@ const NEWTON_MAX: usize = 12;
 const D_NOM: f64 = 1e-3;
 /// Nominal turn of the tangent per step (radians).
 const ALPHA_NOM: f64 = 0.1;
+
+/// The factor by which a continuation step overshot its nominal size,
+/// from the distance `dist` between the predictor and the corrected point
+/// (in the arclength metric) and the tangent's turn `alpha` (radians):
+/// `max(sqrt(dist / D_NOM), alpha / ALPHA_NOM)`, at least 0.5 (the
+/// distance grows as the square of the step, the turn linearly). Above 2
+/// the step is retried at `ds / f`; otherwise the next is `ds / f`. The
+/// harmonic balance's branch and the boundary trace step by it alike.
+pub(crate) fn overshoot(dist: f64, alpha: f64) -> f64 {
+    (dist / D_NOM).sqrt().max(alpha / ALPHA_NOM).max(0.5)
+}
 /// Largest step in the arclength metric.
 const DS_CAP: f64 = 0.25;
 /// Regula falsi steps locating a fold, and their tolerance on Omega.

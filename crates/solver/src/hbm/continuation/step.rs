@@ -46,9 +46,8 @@ impl FrfContinuation {
     /// The step length follows the curve's geometry: after a converged
     /// corrector, the distance from the predictor to the solution (`d`, in
     /// the arclength metric) and the angle between the old and new tangents
-    /// (`alpha`) give the factor `f = max(sqrt(d / D_NOM), alpha / ALPHA_NOM)`
-    /// by which the step overshot its nominal size (the distance grows as the
-    /// square of the step, the angle linearly). `f > 2` rejects the step
+    /// (`alpha`) give the factor `f` ([`overshoot`]) by which the step
+    /// overshot its nominal size. `f > 2` rejects the step
     /// and retries with `ds / f`; otherwise the next step is `ds / f`,
     /// growing by at most 2. The step is also capped so that Omega moves by
     /// at most `range / points`.
@@ -106,7 +105,7 @@ impl FrfContinuation {
                         .sqrt();
                     let geometry = self.spec.step_control == StepControl::Geometry;
                     if geometry {
-                        let f = (dist / D_NOM).sqrt().max(alpha / ALPHA_NOM).max(0.5);
+                        let f = overshoot(dist, alpha);
                         if f > 2.0 && ds > ds_min {
                             self.stats.rejected_steps += 1;
                             self.ds = (ds / f.min(4.0)).max(ds_min);
