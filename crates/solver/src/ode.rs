@@ -51,6 +51,12 @@ pub trait Ode {
     fn event_components(&self, _i: usize) -> Option<&[usize]> {
         None
     }
+    /// How many leading components the dense output covers (at least
+    /// [`Ode::event_dim`]): an extended system whose extra components are
+    /// never interpolated (the variational equations' tangents) skips them.
+    fn dense_dim(&self) -> usize {
+        self.dim()
+    }
 }
 
 /// Work counters of an integration.
@@ -166,6 +172,8 @@ pub struct StepInfo {
 #[derive(Debug, Clone)]
 pub struct Dopri5 {
     n: usize,
+    /// The dense output's components ([`Ode::dense_dim`]).
+    dense_n: usize,
     t: f64,
     y: Vec<f64>,
     h: f64,
@@ -204,10 +212,12 @@ impl Dopri5 {
     /// Starts an integration at `(t0, y0)` with initial step `h0`.
     pub fn new<O: Ode>(ode: &mut O, t0: f64, y0: &[f64], h0: f64, tol: Tolerances) -> Self {
         let n = ode.dim();
+        let dense_n = ode.dense_dim().max(ode.event_dim()).min(n);
         let ne = ode.n_events();
         let zeros = || vec![0.0; n];
         let mut s = Dopri5 {
             n,
+            dense_n,
             t: t0,
             y: y0.to_vec(),
             h: h0.min(tol.h_max),
@@ -276,14 +286,29 @@ impl Dopri5 {
     }
 
     /// Evaluates the dense output of the last accepted step at time `t`
-    /// (which should lie inside that step) into `out`.
+    /// (which should lie inside that step) into `out`: its first
+    /// [`Ode::dense_dim`] components at most.
     pub fn dense(&self, t: f64, out: &mut [f64]) {
         let theta = if self.dense_h > 0.0 {
             (t - self.dense_t0) / self.dense_h
         } else {
             0.0
         };
-        dense_eval(&self.r, theta, out);
+        let m = out.len().min(self.dense_n);
+        dense_eval(&self.r, theta, &mut out[..m]);
+    }
+
+    /// The dense output of the last accepted step at time `t` for the
+    /// components `cols` only, each into its own place in `out` (the same
+    /// bits there as [`Dopri5::dense`]; the other places are left as they
+    /// are).
+    pub fn dense_components(&self, t: f64, cols: &[usize], out: &mut [f64]) {
+        let theta = if self.dense_h > 0.0 {
+            (t - self.dense_t0) / self.dense_h
+        } else {
+            0.0
+        };
+        dense_eval_at(&self.r, theta, cols, out);
     }
 
     /// One trial step of size `h` from the current state: fills `y1`, `k[1..7]`
@@ -345,7 +370,7 @@ impl Dopri5 {
 
     /// Fills the dense-output coefficients for the trial step of size `h`.
     fn build_dense(&mut self, h: f64) {
-        let n = self.n;
+        let n = self.dense_n;
         let [k1, _k2, k3, k4, k5, k6, k7] = &self.k;
         let (k1, k3, k4, k5, k6, k7) = (&k1[..n], &k3[..n], &k4[..n], &k5[..n], &k6[..n], &k7[..n]);
         let (y, y1) = (&self.y[..n], &self.y1[..n]);

@@ -71,6 +71,11 @@ impl Ode for VarOde {
     fn event_components(&self, i: usize) -> Option<&[usize]> {
         self.ode.event_components(i)
     }
+
+    /// The orbit alone: the tangents are read at the steps' ends only.
+    fn dense_dim(&self) -> usize {
+        self.n2
+    }
 }
 
 /// One evaluation of `P^n` in progress: an integration from `t = 0` to

@@ -164,7 +164,7 @@ impl Recorder {
                 if r0 * r1 < 0.0 {
                     if let Some(theta) = hermite_extremum(v0, v1, r0 * h, r1 * h) {
                         let t = info.t0 + theta * h;
-                        int.dense(t, &mut ybuf);
+                        int.dense_components(t, ode.mesh_components(j), &mut ybuf);
                         let mi = ode.mesh_instant(j, t, &ybuf);
                         let v = if rel { mi.rel } else { mi.delta };
                         let (lo, hi) = if rel {
