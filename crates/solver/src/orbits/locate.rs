@@ -13,7 +13,7 @@ impl ShootingContinuation {
     /// The point at arclength `s` from the cursor along its tangent, solved.
     pub(super) fn at(&mut self, c: &Cursor, s: f64) -> Step<Option<Solved>> {
         let pred: Vec<f64> = c.y.iter().zip(&c.tangent).map(|(y, t)| y + s * t).collect();
-        self.correct(&pred, &c.tangent, c.period)
+        self.correct(&pred, &c.tangent, c.period, c.jac.as_ref())
     }
 
     /// Locates a fold between the cursor and `end` (Illinois on the

@@ -36,8 +36,11 @@ use crate::Model;
 use nalgebra::{DMatrix, DVector};
 use replay::{Halt, Replay, Step};
 
+mod chord;
 mod locate;
 mod replay;
+
+use chord::Jacobian;
 
 /// Options of a shooting frequency response.
 #[derive(Debug, Clone, PartialEq)]
@@ -146,6 +149,9 @@ struct Cursor {
     /// its orbit repeats after half its period (it has joined the branch it
     /// came from).
     doubles_again: bool,
+    /// The Jacobian at `y`, the chord corrector's first matrix (`None` at a
+    /// switched branch's start: full Newton there).
+    jac: Option<Jacobian>,
 }
 
 /// A point solved on the branch: `Y`, residual size, monodromy, `dG/dOmega`.
@@ -249,6 +255,7 @@ impl ShootingContinuation {
             stable: m.as_ref().is_some_and(Multipliers::is_stable),
             count: 0,
             doubles_again: false,
+            jac: Some(Jacobian::of(&solved)),
         });
         Ok(me)
     }
@@ -368,7 +375,7 @@ impl ShootingContinuation {
                     .zip(&c.tangent)
                     .map(|(y, t)| y + c.ds * t)
                     .collect();
-            match self.correct(&pred, &c.tangent, c.period)? {
+            match self.correct(&pred, &c.tangent, c.period, c.jac.as_ref())? {
                 Some(s) => break s,
                 None => {
                     self.stats.rejected_steps += 1;
@@ -455,6 +462,7 @@ impl ShootingContinuation {
         if solved.iterations <= 3 {
             c.ds = (c.ds * 1.5).min(self.ds_max);
         }
+        c.jac = Some(Jacobian::of(&solved));
         c.y = solved.y;
         c.tangent = tangent;
         c.pd_count = pd;
@@ -504,6 +512,7 @@ impl ShootingContinuation {
             stable: false,
             count: 0,
             doubles_again: true,
+            jac: None,
         });
     }
 
@@ -555,8 +564,21 @@ impl ShootingContinuation {
         self.spec.shooting.tol_abs_um + self.spec.shooting.tol_rel * red.mesh_norm_um(z)
     }
 
-    /// Newton on `G(Y) = 0`, `t . (Y - pred) = 0`; `None` if it fails.
-    fn correct(&mut self, pred: &[f64], t: &[f64], period: u32) -> Step<Option<Solved>> {
+    /// Newton on `G(Y) = 0`, `t . (Y - pred) = 0`; `None` if it fails. With
+    /// `jac` (the last solved point's), the chord corrector first
+    /// (`chord.rs`); full Newton where it gives up or without one.
+    fn correct(
+        &mut self,
+        pred: &[f64],
+        t: &[f64],
+        period: u32,
+        jac: Option<&Jacobian>,
+    ) -> Step<Option<Solved>> {
+        if let Some(jac) = jac {
+            if let Some(solved) = self.correct_chord(pred, t, period, jac)? {
+                return Ok(Some(solved));
+            }
+        }
         let n = pred.len() - 1;
         let mut y = pred.to_vec();
         for it in 0..8 {
