@@ -239,3 +239,54 @@ fn a_sliced_continuation_gets_past_a_failed_evaluation() {
     assert_eq!(sliced[..40], whole[..40]);
     assert_eq!(c.stats.failed_evaluations, failed, "{:?}", c.stats);
 }
+
+/// On the compound set's default branch, at the command line's default
+/// resolution (400 nominal points) the branch passes the resonances' first four folds
+/// the harmonic balance finds, in its order, each within 2e-3 in Omega (H
+/// = 7 against the exact orbits): the corrector's path once retraced
+/// itself at the third (Omega 0.2167) and went back to the start. At the
+/// page's resolution (100) its first 300 points (the page's cap) reach
+/// past Omega 0.5.
+#[test]
+fn the_compound_sets_branch_follows_the_harmonic_balances_folds() {
+    let m = Model::new(&ModelParams::default()).unwrap();
+    let mut spec = FrfSpec::new(0.1, 0.6, 200);
+    spec.harmonics = 7;
+    let mut hbm = FrfContinuation::new(&m, spec).unwrap();
+    let mut hbm_folds = Vec::new();
+    while !hbm.is_finished() && hbm_folds.len() < 4 {
+        for p in hbm.advance(32).unwrap() {
+            if p.bifurcation == Some(Bifurcation::Fold) {
+                hbm_folds.push(p.omega);
+            }
+        }
+    }
+    hbm_folds.truncate(4);
+    assert_eq!(hbm_folds.len(), 4, "{hbm_folds:?}");
+    let fold = |p: &ShootPoint| p.period == 1 && p.point.bifurcation == Some(Bifurcation::Fold);
+    // The points up to the first `folds` folds, at most `cap` of them.
+    let first = |points: u32, folds: usize, cap: usize| {
+        let mut c = ShootingContinuation::new(&m, ShootFrfSpec::new(0.1, 2.0, points)).unwrap();
+        let mut pts = vec![c.first_point().unwrap()];
+        while !c.is_finished() && pts.len() < cap && pts.iter().filter(|p| fold(p)).count() < folds
+        {
+            pts.extend(c.advance(1).unwrap());
+        }
+        pts
+    };
+    let folds: Vec<f64> = first(400, 4, 5_000)
+        .iter()
+        .filter(|p| fold(p))
+        .map(|p| p.point.omega)
+        .take(4)
+        .collect();
+    assert_eq!(folds.len(), 4, "{folds:?} vs {hbm_folds:?}");
+    for (f, h) in folds.iter().zip(&hbm_folds) {
+        assert!((f - h).abs() <= 2e-3, "{folds:?} vs {hbm_folds:?}");
+    }
+    let reach = first(100, usize::MAX, 300)
+        .iter()
+        .map(|p| p.point.omega)
+        .fold(0.0, f64::max);
+    assert!(reach > 0.5, "the first 300 points end at Omega {reach}");
+}

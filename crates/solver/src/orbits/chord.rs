@@ -9,7 +9,10 @@
 //! the bifurcation tests) and its tangent are the point's own. A chord that
 //! does not halve the residual in a step gives up, and the caller corrects
 //! from the same prediction by full Newton (the monodromy at every iterate),
-//! as before the chord.
+//! as before the chord. The chord converges linearly where Newton does
+//! quadratically, so the step-size rule counts two of its iterations as
+//! one of Newton's (`CHORD_EASY`): otherwise the steps stop growing and the
+//! page's 300 points end at Omega 0.22 instead of 0.53 on the default set.
 
 use super::replay::{Halt, Step};
 use super::{ShootingContinuation, Solved};
@@ -18,6 +21,9 @@ use nalgebra::{DMatrix, DVector};
 
 /// Chord iterations before giving up.
 const CHORD_ITERATIONS: usize = 8;
+
+/// Chord iterations after which the step still grows (full Newton: 3).
+pub(super) const CHORD_EASY: usize = 6;
 
 /// The residual's ratio over a step above which the chord gives up.
 const SLOW: f64 = 0.5;
@@ -102,6 +108,7 @@ impl ShootingContinuation {
                 return match self.evaluate(&y, period, true) {
                     Ok(mut solved) => {
                         solved.iterations = it;
+                        solved.chord = true;
                         Ok(Some(solved))
                     }
                     Err(Halt::Pause) => Err(Halt::Pause),

@@ -161,6 +161,8 @@ struct Solved {
     monodromy: DMatrix<f64>,
     g_omega: Vec<f64>,
     iterations: usize,
+    /// Whether the chord corrector found it (`chord.rs`).
+    chord: bool,
 }
 
 /// The shooting continuation: bounded work per [`ShootingContinuation::advance`].
@@ -459,7 +461,8 @@ impl ShootingContinuation {
         }
         out.push(self.emit(&solved, c.period, c.piece, label)?);
         c.count += 1;
-        if solved.iterations <= 3 {
+        let easy = if solved.chord { chord::CHORD_EASY } else { 3 };
+        if solved.iterations <= easy {
             c.ds = (c.ds * 1.5).min(self.ds_max);
         }
         c.jac = Some(Jacobian::of(&solved));
@@ -539,6 +542,7 @@ impl ShootingContinuation {
             monodromy: mono.unwrap_or_else(|| DMatrix::zeros(n, n)),
             g_omega,
             iterations: 0,
+            chord: false,
         })
     }
 
@@ -616,6 +620,7 @@ impl ShootingContinuation {
                         .map(|(a, b)| (a - b) / (2.0 * h))
                         .collect(),
                     iterations: it,
+                    chord: false,
                 }));
             }
             let mut a = DMatrix::zeros(n + 1, n + 1);
