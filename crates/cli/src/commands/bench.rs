@@ -36,6 +36,11 @@ pub struct BenchArgs {
     /// 0.1 to 0.5, with stability; against pyHarm's quoted time).
     #[arg(long)]
     hbm_only: bool,
+    /// Only the shooting branches' figure: the page's branch job natively
+    /// (the compound set's first 300 points at 100 nominal points) and the
+    /// gear pair's whole branch.
+    #[arg(long)]
+    branches_only: bool,
 }
 
 /// Checks the options, runs every benchmark and prints the figures.
@@ -57,6 +62,11 @@ pub fn run_command(a: &BenchArgs) -> Result<(), crate::failure::Failure> {
         let v = hbm_issue14_bench(&model, if a.quick { 1 } else { a.repeats })
             .map_err(crate::failure::Failure::from)?;
         return crate::output::emit(&json!({ "hbm_issue14": v }));
+    }
+    if a.branches_only {
+        let v = branches_bench(if a.quick { 1 } else { a.repeats }, a.quick)
+            .map_err(crate::failure::Failure::from)?;
+        return crate::output::emit(&json!({ "shooting_branches": v }));
     }
     if a.pipeline_only {
         let model = Model::new(&ModelParams::default()).map_err(crate::failure::Failure::from)?;
@@ -623,4 +633,55 @@ fn classification_check(model: &Model, long: u32) -> Result<Value, SolverError> 
         "of": CHECK_OMEGAS.len(),
         "rows": rows,
     }))
+}
+
+/// The shooting branches' figure: medians over `repeats` of the page's
+/// branch job natively (the default compound set over Omega 0.1 to 2 at
+/// 100 nominal points, up to the page's cap of 300 points) and of the gear
+/// pair's whole branch (Omega 0.3 to 1.5, 400 nominal points, the period-2
+/// branches included), with each run's points, corrector iterations,
+/// integrator steps and the Omega reached.
+fn branches_bench(repeats: u32, quick: bool) -> Result<Value, SolverError> {
+    use solver::orbits::{ShootFrfSpec, ShootingContinuation};
+    let compound = Model::new(&ModelParams::default())?;
+    let mut p = ModelParams::default();
+    solver::keys::set_assignment(&mut p, "model=gear-pair")?;
+    let pair = Model::new(&p)?;
+    let cases: [(&str, &Model, f64, f64, u32, usize); 2] = [
+        (
+            "compound_page_300_points",
+            &compound,
+            0.1,
+            2.0,
+            100,
+            if quick { 20 } else { 300 },
+        ),
+        ("gear_pair_whole_branch", &pair, 0.3, 1.5, 400, usize::MAX),
+    ];
+    let mut out = serde_json::Map::new();
+    for (name, model, from, to, points, cap) in cases {
+        let mut secs = Vec::new();
+        let mut last = json!(null);
+        for _ in 0..repeats {
+            let start = Instant::now();
+            let mut c = ShootingContinuation::new(model, ShootFrfSpec::new(from, to, points))?;
+            let mut pts = vec![c.first_point()?];
+            while !c.is_finished() && pts.len() < cap {
+                pts.extend(c.advance(1)?);
+            }
+            secs.push(start.elapsed().as_secs_f64());
+            let reach = pts.iter().map(|p| p.point.omega).fold(f64::NAN, f64::max);
+            last = json!({
+                "points": pts.len(),
+                "newton_iterations": c.stats.newton_iterations,
+                "integrator_steps": c.stats.integrator_steps,
+                "omega_reached": reach,
+            });
+        }
+        out.insert(
+            name.into(),
+            json!({ "median_s": median(secs.clone()), "runs_s": secs, "last_run": last }),
+        );
+    }
+    Ok(Value::Object(out))
 }
