@@ -534,13 +534,23 @@ mod tests {
     /// (the native build's) compute the same bits, for the compound set (10
     /// coordinates, padded to 12) and the gear pair, at states in and out of
     /// contact.
+    /// The compound set and the gear pair, each with its ODE at Omega 1.3.
+    fn both_models() -> Vec<(&'static str, Model, MeshOde)> {
+        ["ravigneaux", "gear-pair"]
+            .into_iter()
+            .map(|model| {
+                let mut p = ModelParams::default();
+                keys::set_assignment(&mut p, &format!("model={model}")).unwrap();
+                let m = Model::new(&p).unwrap();
+                let ode = MeshOde::new(&m.system, 1.3 * m.system.omega_ref_rad_s);
+                (model, m, ode)
+            })
+            .collect()
+    }
+
     #[test]
     fn both_forms_of_the_accelerations_agree_to_the_bit() {
-        for model in ["ravigneaux", "gear-pair"] {
-            let mut p = ModelParams::default();
-            keys::set_assignment(&mut p, &format!("model={model}")).unwrap();
-            let m = Model::new(&p).unwrap();
-            let ode = MeshOde::new(&m.system, 1.3 * m.system.omega_ref_rad_s);
+        for (model, m, ode) in both_models() {
             let n = ode.dof();
             let lengths = m.system.dof_length_m();
             for k in 0..50 {
@@ -574,11 +584,7 @@ mod tests {
     /// slope in and out of contact.
     #[test]
     fn both_forms_of_the_tangent_agree_to_the_bit() {
-        for model in ["ravigneaux", "gear-pair"] {
-            let mut p = ModelParams::default();
-            keys::set_assignment(&mut p, &format!("model={model}")).unwrap();
-            let m = Model::new(&p).unwrap();
-            let ode = MeshOde::new(&m.system, 1.3 * m.system.omega_ref_rad_s);
+        for (model, _, ode) in both_models() {
             let n = ode.dof();
             let cols = 2 * n - 2;
             for k in 0..20 {

@@ -62,16 +62,7 @@ impl ShootingContinuation {
         if jac.monodromy.shape() != (n, n) || jac.g_omega.len() != n {
             return Ok(None);
         }
-        let mut a = DMatrix::zeros(n + 1, n + 1);
-        for r in 0..n {
-            for col in 0..n {
-                a[(r, col)] = jac.monodromy[(r, col)] - if r == col { 1.0 } else { 0.0 };
-            }
-            a[(r, n)] = jac.g_omega[r] / self.weight;
-        }
-        for col in 0..=n {
-            a[(n, col)] = t[col];
-        }
+        let mut a = self.bordered(&jac.monodromy, &jac.g_omega, t);
         let mut y = pred.to_vec();
         // The last residual and the step taken from it.
         let mut last: Option<(Vec<f64>, Vec<f64>)> = None;

@@ -623,17 +623,15 @@ impl ShootingContinuation {
                     chord: false,
                 }));
             }
-            let mut a = DMatrix::zeros(n + 1, n + 1);
+            let g_omega: Vec<f64> = gp
+                .iter()
+                .zip(&gm)
+                .map(|(p, m)| (p - m) / (2.0 * h))
+                .collect();
+            let a = self.bordered(&mono, &g_omega, t);
             let mut rhs = DVector::zeros(n + 1);
             for r in 0..n {
-                for col in 0..n {
-                    a[(r, col)] = mono[(r, col)] - if r == col { 1.0 } else { 0.0 };
-                }
-                a[(r, n)] = (gp[r] - gm[r]) / (2.0 * h) / self.weight;
                 rhs[r] = -g[r];
-            }
-            for col in 0..=n {
-                a[(n, col)] = t[col];
             }
             rhs[n] = -(0..=n).map(|i| t[i] * (y[i] - pred[i])).sum::<f64>();
             let Some(dy) = crate::dense::Lu::new(a).solve(&rhs) else {
@@ -649,19 +647,28 @@ impl ShootingContinuation {
         Ok(None)
     }
 
-    /// The unit tangent at a solved point, oriented as `prev`.
-    fn tangent(&self, s: &Solved, prev: &[f64]) -> Option<Vec<f64>> {
-        let n = s.y.len() - 1;
+    /// The bordered matrix `[[Phi - I, dG/dOmega / W], [row]]` of the
+    /// branch's Newton steps and tangents (`n + 1` square for a monodromy
+    /// of size `n`; a missing derivative entry counts 0).
+    fn bordered(&self, monodromy: &DMatrix<f64>, g_omega: &[f64], row: &[f64]) -> DMatrix<f64> {
+        let n = monodromy.nrows();
         let mut a = DMatrix::zeros(n + 1, n + 1);
         for r in 0..n {
             for col in 0..n {
-                a[(r, col)] = s.monodromy[(r, col)] - if r == col { 1.0 } else { 0.0 };
+                a[(r, col)] = monodromy[(r, col)] - if r == col { 1.0 } else { 0.0 };
             }
-            a[(r, n)] = s.g_omega.get(r).copied().unwrap_or(0.0) / self.weight;
+            a[(r, n)] = g_omega.get(r).copied().unwrap_or(0.0) / self.weight;
         }
         for col in 0..=n {
-            a[(n, col)] = prev[col];
+            a[(n, col)] = row.get(col).copied().unwrap_or(0.0);
         }
+        a
+    }
+
+    /// The unit tangent at a solved point, oriented as `prev`.
+    fn tangent(&self, s: &Solved, prev: &[f64]) -> Option<Vec<f64>> {
+        let n = s.y.len() - 1;
+        let a = self.bordered(&s.monodromy, &s.g_omega, prev);
         let mut rhs = DVector::zeros(n + 1);
         rhs[n] = 1.0;
         let t = crate::dense::Lu::new(a).solve(&rhs)?;
