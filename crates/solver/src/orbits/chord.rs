@@ -77,6 +77,18 @@ impl ShootingContinuation {
                 Err(Halt::Fail(_)) => return Ok(None),
             };
             self.stats.newton_iterations += 1;
+            let red = Reduced::new(&self.model, omega);
+            if red.mesh_norm_um(&g) <= self.residual_tol(&y[..n], omega) {
+                return match self.evaluate(&y, period, true) {
+                    Ok(mut solved) => {
+                        solved.iterations = it;
+                        solved.chord = true;
+                        Ok(Some(solved))
+                    }
+                    Err(Halt::Pause) => Err(Halt::Pause),
+                    Err(Halt::Fail(_)) => Ok(None),
+                };
+            }
             if let Some((g_prev, s)) = last.take() {
                 if norm2(&g) > SLOW * norm2(&g_prev) {
                     return Ok(None);
@@ -93,18 +105,6 @@ impl ShootingContinuation {
                         }
                     }
                 }
-            }
-            let red = Reduced::new(&self.model, omega);
-            if red.mesh_norm_um(&g) <= self.residual_tol(&y[..n], omega) {
-                return match self.evaluate(&y, period, true) {
-                    Ok(mut solved) => {
-                        solved.iterations = it;
-                        solved.chord = true;
-                        Ok(Some(solved))
-                    }
-                    Err(Halt::Pause) => Err(Halt::Pause),
-                    Err(Halt::Fail(_)) => Ok(None),
-                };
             }
             let mut rhs = DVector::zeros(n + 1);
             for r in 0..n {
