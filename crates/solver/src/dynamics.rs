@@ -530,10 +530,6 @@ mod tests {
     use crate::params::ModelParams;
     use crate::steady::Model;
 
-    /// The fixed-size accumulator (the wasm build's form) and the AXPY form
-    /// (the native build's) compute the same bits, for the compound set (10
-    /// coordinates, padded to 12) and the gear pair, at states in and out of
-    /// contact.
     /// The compound set and the gear pair, each with its ODE at Omega 1.3.
     fn both_models() -> Vec<(&'static str, Model, MeshOde)> {
         ["ravigneaux", "gear-pair"]
@@ -548,6 +544,10 @@ mod tests {
             .collect()
     }
 
+    /// The fixed-size accumulator (the wasm build's form) and the AXPY form
+    /// (the native build's) compute the same bits, for the compound set (10
+    /// coordinates, padded to 12) and the gear pair, at states in and out of
+    /// contact.
     #[test]
     fn both_forms_of_the_accelerations_agree_to_the_bit() {
         for (model, m, ode) in both_models() {

@@ -8,7 +8,8 @@
 //! repository's `ARCHITECTURE.md` for the map. Results as JSON and the
 //! merge of sharded runs live outside it, in the `report` crate.
 //!
-//! - [`dense`]: the LU factorization of the correctors' dense systems.
+//! - [`dense`]: the LU factorization of the correctors' dense systems, and
+//!   eigenvalues by a bounded iteration.
 //! - [`params`] and [`keys`]: the parameter sets and their flat user-facing keys.
 //! - [`system`]: the compiled model (mass matrix, mesh vectors, loads).
 //! - [`modal`]: statics, natural modes, the linear receptance.

@@ -289,13 +289,17 @@ impl Dopri5 {
     /// (which should lie inside that step) into `out`: its first
     /// [`Ode::dense_dim`] components at most.
     pub fn dense(&self, t: f64, out: &mut [f64]) {
-        let theta = if self.dense_h > 0.0 {
+        let m = out.len().min(self.dense_n);
+        dense_eval(&self.r, self.dense_theta(t), &mut out[..m]);
+    }
+
+    /// Time `t` as a fraction of the last accepted step.
+    fn dense_theta(&self, t: f64) -> f64 {
+        if self.dense_h > 0.0 {
             (t - self.dense_t0) / self.dense_h
         } else {
             0.0
-        };
-        let m = out.len().min(self.dense_n);
-        dense_eval(&self.r, theta, &mut out[..m]);
+        }
     }
 
     /// The dense output of the last accepted step at time `t` for the
@@ -303,12 +307,7 @@ impl Dopri5 {
     /// bits there as [`Dopri5::dense`]; the other places are left as they
     /// are).
     pub fn dense_components(&self, t: f64, cols: &[usize], out: &mut [f64]) {
-        let theta = if self.dense_h > 0.0 {
-            (t - self.dense_t0) / self.dense_h
-        } else {
-            0.0
-        };
-        dense_eval_at(&self.r, theta, cols, out);
+        dense_eval_at(&self.r, self.dense_theta(t), cols, out);
     }
 
     /// One trial step of size `h` from the current state: fills `y1`, `k[1..7]`

@@ -15,9 +15,9 @@
 //! page's 300 points end at Omega 0.22 instead of 0.53 on the default set.
 
 use super::replay::{Halt, Step};
-use super::{ShootingContinuation, Solved};
+use super::{newton_rhs, ShootingContinuation, Solved};
 use crate::shooting::Reduced;
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DMatrix;
 
 /// Chord iterations before giving up.
 const CHORD_ITERATIONS: usize = 8;
@@ -79,8 +79,8 @@ impl ShootingContinuation {
             self.stats.newton_iterations += 1;
             let red = Reduced::new(&self.model, omega);
             if red.mesh_norm_um(&g) <= self.residual_tol(&y[..n], omega) {
-                return match self.evaluate(&y, period, true) {
-                    Ok(mut solved) => {
+                return match self.evaluate(&y, period) {
+                    Ok((_, mut solved)) => {
                         solved.iterations = it;
                         solved.chord = true;
                         Ok(Some(solved))
@@ -106,12 +106,8 @@ impl ShootingContinuation {
                     }
                 }
             }
-            let mut rhs = DVector::zeros(n + 1);
-            for r in 0..n {
-                rhs[r] = -g[r];
-            }
-            rhs[n] = -(0..=n).map(|i| t[i] * (y[i] - pred[i])).sum::<f64>();
-            let Some(dy) = crate::dense::Lu::new(a.clone()).solve(&rhs) else {
+            let Some(dy) = crate::dense::Lu::new(a.clone()).solve(&newton_rhs(&g, t, &y, pred))
+            else {
                 return Ok(None);
             };
             if dy.iter().any(|v| !v.is_finite()) {

@@ -81,7 +81,7 @@ impl ShootingContinuation {
                     .min_by(|x, y| x.abs().total_cmp(&y.abs()))
             })
         };
-        let start = self.evaluate(&c.y, c.period, true)?;
+        let (_, start) = self.evaluate(&c.y, c.period)?;
         let (Some(fa0), Some(fb0)) = (f(&start), f(end)) else {
             return Ok(None);
         };

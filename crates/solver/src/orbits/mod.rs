@@ -184,6 +184,19 @@ pub struct ShootingContinuation {
     replay: Replay,
 }
 
+/// The right-hand side of a branch corrector's step at `y`: minus the
+/// residual `g`, and minus the distance of `y` from the hyperplane through
+/// `pred` normal to `t`.
+fn newton_rhs(g: &[f64], t: &[f64], y: &[f64], pred: &[f64]) -> DVector<f64> {
+    let n = g.len();
+    let mut rhs = DVector::zeros(n + 1);
+    for r in 0..n {
+        rhs[r] = -g[r];
+    }
+    rhs[n] = -(0..=n).map(|i| t[i] * (y[i] - pred[i])).sum::<f64>();
+    rhs
+}
+
 /// Largest number of points on one branch (a guard against a loop).
 const MAX_BRANCH_POINTS: u32 = 5_000;
 
@@ -241,7 +254,7 @@ impl ShootingContinuation {
             stats: ShootFrfStats::default(),
             replay: Replay::default(),
         };
-        let solved = me.unbounded(|me| me.evaluate(&y, me.spec.period, true))?;
+        let (_, solved) = me.unbounded(|me| me.evaluate(&y, me.spec.period))?;
         let tangent = me.tangent(&solved, &t0).ok_or(SolverError::Singular {
             what: "the continuation's tangent at the first orbit".into(),
         })?;
@@ -285,7 +298,7 @@ impl ShootingContinuation {
             });
         };
         self.unbounded(|me| {
-            let solved = me.evaluate(&c.y, c.period, true)?;
+            let (_, solved) = me.evaluate(&c.y, c.period)?;
             me.emit(&solved, c.period, c.piece, None)
         })
     }
@@ -443,8 +456,8 @@ impl ShootingContinuation {
                     ));
                     return Ok(());
                 }
-                let old = match self.evaluate(&y_pd, c.period, true) {
-                    Ok(s) => self.tangent(&s, &c.tangent),
+                let old = match self.evaluate(&y_pd, c.period) {
+                    Ok((_, s)) => self.tangent(&s, &c.tangent),
                     Err(Halt::Pause) => return Err(Halt::Pause),
                     Err(Halt::Fail(_)) => None,
                 };
@@ -519,31 +532,28 @@ impl ShootingContinuation {
         });
     }
 
-    /// `G`, the monodromy and `dG/dOmega` at `y` (the monodromy and the
-    /// derivative only if `full`).
-    fn evaluate(&mut self, y: &[f64], period: u32, full: bool) -> Step<Solved> {
+    /// The residual `G` at `y`, and the point with its monodromy and
+    /// `dG/dOmega` (central differences).
+    fn evaluate(&mut self, y: &[f64], period: u32) -> Step<(Vec<f64>, Solved)> {
         let n = y.len() - 1;
         let omega = self.omega_of(y);
-        let (g, mono) = self.map(&y[..n], omega, period, full)?;
-        let g_omega = if full {
-            let h = 1e-5 * omega;
-            let (gp, _) = self.map(&y[..n], omega + h, period, false)?;
-            let (gm, _) = self.map(&y[..n], omega - h, period, false)?;
-            gp.iter()
-                .zip(&gm)
-                .map(|(a, b)| (a - b) / (2.0 * h))
-                .collect()
-        } else {
-            Vec::new()
-        };
-        let _ = g; // The caller has checked the residual.
-        Ok(Solved {
+        let (g, mono) = self.map(&y[..n], omega, period, true)?;
+        let h = 1e-5 * omega;
+        let (gp, _) = self.map(&y[..n], omega + h, period, false)?;
+        let (gm, _) = self.map(&y[..n], omega - h, period, false)?;
+        let g_omega = gp
+            .iter()
+            .zip(&gm)
+            .map(|(a, b)| (a - b) / (2.0 * h))
+            .collect();
+        let solved = Solved {
             y: y.to_vec(),
             monodromy: mono.unwrap_or_else(|| DMatrix::zeros(n, n)),
             g_omega,
             iterations: 0,
             chord: false,
-        })
+        };
+        Ok((g, solved))
     }
 
     /// Whether the period-`period` orbit at `y` repeats after half its
@@ -590,51 +600,21 @@ impl ShootingContinuation {
             if !(0.01..=20.0).contains(&omega) {
                 return Ok(None);
             }
-            let (g, mono) = match self.map(&y[..n], omega, period, true) {
+            let (g, solved) = match self.evaluate(&y, period) {
                 Ok(v) => v,
                 Err(Halt::Pause) => return Err(Halt::Pause),
                 Err(Halt::Fail(_)) => return Ok(None),
             };
             self.stats.newton_iterations += 1;
-            let mono = mono.unwrap_or_else(|| DMatrix::zeros(n, n));
             let red = Reduced::new(&self.model, omega);
-            let converged = red.mesh_norm_um(&g) <= self.residual_tol(&y[..n], omega);
-            let h = 1e-5 * omega;
-            let (gp, _) = match self.map(&y[..n], omega + h, period, false) {
-                Ok(v) => v,
-                Err(Halt::Pause) => return Err(Halt::Pause),
-                Err(Halt::Fail(_)) => return Ok(None),
-            };
-            let (gm, _) = match self.map(&y[..n], omega - h, period, false) {
-                Ok(v) => v,
-                Err(Halt::Pause) => return Err(Halt::Pause),
-                Err(Halt::Fail(_)) => return Ok(None),
-            };
-            if converged {
+            if red.mesh_norm_um(&g) <= self.residual_tol(&y[..n], omega) {
                 return Ok(Some(Solved {
-                    y,
-                    monodromy: mono,
-                    g_omega: gp
-                        .iter()
-                        .zip(&gm)
-                        .map(|(a, b)| (a - b) / (2.0 * h))
-                        .collect(),
                     iterations: it,
-                    chord: false,
+                    ..solved
                 }));
             }
-            let g_omega: Vec<f64> = gp
-                .iter()
-                .zip(&gm)
-                .map(|(p, m)| (p - m) / (2.0 * h))
-                .collect();
-            let a = self.bordered(&mono, &g_omega, t);
-            let mut rhs = DVector::zeros(n + 1);
-            for r in 0..n {
-                rhs[r] = -g[r];
-            }
-            rhs[n] = -(0..=n).map(|i| t[i] * (y[i] - pred[i])).sum::<f64>();
-            let Some(dy) = crate::dense::Lu::new(a).solve(&rhs) else {
+            let a = self.bordered(&solved.monodromy, &solved.g_omega, t);
+            let Some(dy) = crate::dense::Lu::new(a).solve(&newton_rhs(&g, t, &y, pred)) else {
                 return Ok(None);
             };
             if dy.iter().any(|v| !v.is_finite()) {
