@@ -49,6 +49,7 @@ use record::Recorder;
 pub use settle::detect_period;
 use settle::{has_settled, SpanTracker, SETTLE_DISTANCES};
 pub use spectrum::{spectrum, Spectrum};
+use verdict::window_verdict;
 pub use verdict::{
     candidate_period, classify_recorded, loose_tol_um, pipeline_options, Motion, CHECKPOINTS,
     MAX_PROBES, PIPELINE_ITERATIONS, PROBE_FROM_REST,
@@ -386,6 +387,9 @@ enum Phase {
         period: u32,
         settled: bool,
     },
+    /// A recorded window kept while shooting tried to confirm it (see
+    /// `SteadyRun::confirm_window`), to be reported as it is.
+    Finish { t_rec: f64, rec: Box<Recorder> },
     /// Finished or failed: nothing left to do.
     Done,
 }
@@ -432,6 +436,12 @@ pub struct SteadyRun {
     /// Its finished probe's evidence, and the neighbour's steps.
     lyapunov: Option<LyapunovEvidence>,
     probe_steps: u64,
+    /// A recorded window whose verdict shooting is trying to confirm:
+    /// its start, its recorder and its periods (now counted in
+    /// `periods_run`).
+    window: Option<(f64, Box<Recorder>, u32)>,
+    /// Whether a window has been shot from (once per run).
+    window_tried: bool,
 }
 
 impl SteadyRun {
@@ -479,6 +489,8 @@ impl SteadyRun {
             probe_from: if start.is_some() { 0 } else { PROBE_FROM_REST },
             lyapunov: None,
             probe_steps: 0,
+            window: None,
+            window_tried: false,
         })
     }
 
@@ -514,6 +526,14 @@ impl SteadyRun {
         loop {
             match &mut self.phase {
                 Phase::Done => return Ok(None),
+                Phase::Finish { .. } => {
+                    let Phase::Finish { t_rec, rec } =
+                        std::mem::replace(&mut self.phase, Phase::Done)
+                    else {
+                        return Ok(None);
+                    };
+                    return Ok(Some(self.finish(model, t_rec, *rec)));
+                }
                 Phase::Transient { p } if *p > self.opts.transient_periods => {
                     self.start_recording(model);
                 }
@@ -649,6 +669,9 @@ impl SteadyRun {
                         let mut rec = *rec;
                         if let Some(n) = self.exact.as_ref().and_then(Motion::period) {
                             rec.repeat_poincare(n as usize, self.opts.record_periods as usize);
+                        } else if let Some(n) = self.period_to_confirm(&rec) {
+                            self.confirm_window(model, t_rec, rec, n, target)?;
+                            continue;
                         }
                         return Ok(Some(self.finish(model, t_rec, rec)));
                     }
@@ -677,13 +700,8 @@ impl SteadyRun {
 
     fn finish(&self, model: &Model, t_rec: f64, rec: Recorder) -> SteadyState {
         let end_state = self.int.y().to_vec();
-        let (meshes, histories, times, pc_points) = rec.finish(model);
-        let span_um = meshes
-            .iter()
-            .map(|m| (m.delta_max_m - m.delta_min_m) * 1e6)
-            .fold(0.0, f64::max);
-        let period_tol = 10.0 * settle_tol_um(span_um);
-        let period_detected = detect_period(&pc_points, period_tol);
+        let (period_detected, recorded) = window_verdict(&rec);
+        let (meshes, histories, times, _) = rec.finish(model);
         let motion = match &self.exact {
             // The recorded points may show a shorter period that divides
             // the one shot for (the orbit repeats sooner).
@@ -698,7 +716,7 @@ impl SteadyRun {
                 max_multiplier_modulus: *max_multiplier_modulus,
                 newton_iterations: *newton_iterations,
             },
-            _ => classify_recorded(&pc_points, period_detected, period_tol),
+            _ => recorded,
         };
         SteadyState {
             omega: self.opts.omega,

@@ -8,7 +8,7 @@
 
 use solver::keys;
 use solver::lyapunov::{largest_exponent, LyapunovOptions};
-use solver::params::ModelParams;
+use solver::params::{ModelKind, ModelParams};
 use solver::steady::{
     classify_recorded, settle_tol_um, steady_state, Model, Motion, SteadyOptions, MAX_PERIOD,
 };
@@ -105,6 +105,67 @@ fn a_chaotic_case_stays_not_periodic_with_a_positive_exponent() {
     // the probe's over as few as 16 periods: within a factor of two.
     let ratio = ev.per_period / l.per_period;
     assert!((0.5..=2.0).contains(&ratio), "{ev:?} vs {}", l.per_period);
+}
+
+/// A recorded window that is still settling is confirmed by shooting from
+/// its end. The gear pair at Omega 0.84 with a transient budget of 4
+/// periods (below the first checkpoint, so no attempt is made during the
+/// transient): integration alone says "still settling towards period 2",
+/// and a run of 3 000 periods settles on period 2. The pipeline shoots for
+/// period 2 from the window's end and finds that orbit: stable, exact, its
+/// Poincaré points those of the long run to the period test's tolerance.
+#[test]
+fn a_window_still_settling_is_confirmed_by_shooting_from_its_end() {
+    let m = Model::new(&ModelParams::defaults(ModelKind::GearPair)).unwrap();
+    let mut o = SteadyOptions::new(0.84);
+    o.transient_periods = 4;
+    let mut plain = o.clone();
+    plain.shooting = false;
+    let settling = steady_state(&m, &plain, None).unwrap();
+    assert_eq!(
+        settling.motion,
+        Motion::StillSettling { period: 2 },
+        "{}",
+        settling.verdict()
+    );
+    let ss = steady_state(&m, &o, None).unwrap();
+    match ss.motion {
+        Motion::PeriodicExact {
+            period,
+            max_multiplier_modulus,
+            ..
+        } => {
+            assert_eq!(period, 2);
+            assert!(max_multiplier_modulus < 1.0);
+        }
+        other => panic!("{other:?}: {}", ss.verdict()),
+    }
+    assert_eq!(ss.stats.shooting_attempts, 1);
+    // The window's 100 periods now count as transient.
+    assert_eq!(ss.stats.transient_periods_run, 104);
+    let mut long = plain.clone();
+    long.transient_periods = 3000;
+    let reference = steady_state(&m, &long, None).unwrap();
+    assert_eq!(reference.motion, Motion::Periodic { period: 2 });
+    let (a, b) = (&ss.meshes[0], &reference.meshes[0]);
+    let span_um = (b.delta_max_m - b.delta_min_m) * 1e6;
+    let tol_m = 10.0 * settle_tol_um(span_um) * 1e-6;
+    // The two points of each orbit, in either order (the runs may end on
+    // different phases of the period-2 cycle).
+    let pts = |s: &solver::steady::MeshSteady| {
+        [0, 1].map(|k| (s.poincare_delta_m[k], s.poincare_velocity_m_s[k]))
+    };
+    let (pa, pb) = (pts(a), pts(b));
+    let close = |p: (f64, f64), q: (f64, f64)| {
+        (p.0 - q.0).abs() <= tol_m && (p.1 - q.1).abs() <= tol_m * ss.omega_rad_s
+    };
+    let same = (close(pa[0], pb[0]) && close(pa[1], pb[1]))
+        || (close(pa[0], pb[1]) && close(pa[1], pb[0]));
+    assert!(same, "{pa:?} vs {pb:?} (tolerance {tol_m:e} m)");
+    assert!(
+        (pa[0].0 - pa[1].0).abs() > 100.0 * tol_m,
+        "a true period 2: {pa:?}"
+    );
 }
 
 /// Synthetic Poincaré points: a repeat after more than the largest period

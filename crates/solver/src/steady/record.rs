@@ -228,6 +228,11 @@ impl Recorder {
         }
     }
 
+    /// The Poincaré points in mesh space (µm) recorded so far, oldest first.
+    pub(super) fn points(&self) -> &[Vec<f64>] {
+        &self.pc_points
+    }
+
     /// The largest range of a mesh deflection so far (µm).
     pub(super) fn span_um(&self) -> f64 {
         self.d_min

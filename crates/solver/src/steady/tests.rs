@@ -41,3 +41,49 @@ fn a_failed_shooting_attempt_falls_back_to_integration_and_says_so() {
     assert!(ev.chaotic && ev.per_period > LAMBDA_MIN, "{ev:?}");
     assert!(ss.verdict().contains("chaotic"), "{}", ss.verdict());
 }
+
+/// A failed attempt to confirm a recorded window (the gear pair at Omega
+/// 0.84 after a 4-period transient, whose window is still settling towards
+/// period 2): the window is reported as it was recorded, its verdict and
+/// its transient count unchanged, and the note says what shooting did.
+#[test]
+fn a_failed_confirmation_reports_the_window_as_recorded() {
+    let model =
+        Model::new(&ModelParams::defaults(crate::params::ModelKind::GearPair)).expect("gear pair");
+    let mut opts = SteadyOptions::new(0.84);
+    opts.transient_periods = 4;
+    let mut run = SteadyRun::new(&model, &opts, None).expect("valid options");
+    while run.window.is_none() {
+        assert!(
+            run.advance(&model, 1).expect("the run succeeds").is_none(),
+            "the run ended before shooting from its window"
+        );
+    }
+    assert!(matches!(run.phase, Phase::Shoot { period: 2, .. }));
+    assert_eq!(run.periods_run, 104);
+    let failed = ShootOutcome::Failed(ShootFailure {
+        period: 2,
+        iterations: PIPELINE_ITERATIONS,
+        residual_um: 0.5,
+        reason: "Newton did not converge in 8 iterations".into(),
+        steps: 0,
+    });
+    run.after_shooting(&model, failed, 2, false)
+        .expect("the window is kept");
+    assert!(matches!(run.phase, Phase::Finish { .. }));
+    let ss = run
+        .advance(&model, 1)
+        .expect("the run succeeds")
+        .expect("the window is the result at once");
+    assert_eq!(ss.motion, Motion::StillSettling { period: 2 });
+    assert_eq!(ss.stats.transient_periods_run, 4);
+    assert_eq!(ss.meshes[0].poincare_delta_m.len(), 100);
+    let note = ss.shooting_note.clone().expect("a note");
+    assert!(
+        note.contains("after 104 periods for a period-2 orbit did not converge"),
+        "{note}"
+    );
+    assert!(ss
+        .verdict()
+        .starts_with("still settling towards period 2 after 4 transient periods"));
+}

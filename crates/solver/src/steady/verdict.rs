@@ -15,7 +15,11 @@
 //! said in the verdict's note, never shown as an orbit.
 
 use super::probe::Probe;
-use super::{poincare_point, settle_tol_um, Model, Phase, SteadyRun, MAX_PERIOD, SETTLE_DISTANCES};
+use super::record::Recorder;
+use super::{
+    detect_period, poincare_point, settle_tol_um, Model, Phase, SteadyRun, MAX_PERIOD,
+    SETTLE_DISTANCES,
+};
 use crate::error::Result;
 use crate::ode::Dopri5;
 use crate::shooting::{ShootOptions, ShootOutcome, ShootRun};
@@ -231,7 +235,50 @@ pub fn classify_recorded(points: &[Vec<f64>], detected: Option<u32>, tol: f64) -
     }
 }
 
+/// A recorded window's own verdict, without shooting: the period detected
+/// in its Poincaré points (within ten times the settle tolerance of its
+/// deflections' range) and the classification that follows.
+pub(super) fn window_verdict(rec: &Recorder) -> (Option<u32>, Motion) {
+    let points = rec.points();
+    let tol = 10.0 * settle_tol_um(rec.span_um());
+    let detected = detect_period(points, tol);
+    (detected, classify_recorded(points, detected, tol))
+}
+
 impl SteadyRun {
+    /// The period worth confirming by shooting at the end of a recorded
+    /// window without an exact orbit: the one its points repeat with or
+    /// still approach (once per run, and only with shooting on).
+    pub(super) fn period_to_confirm(&self, rec: &Recorder) -> Option<u32> {
+        if !self.opts.shooting || self.window_tried {
+            return None;
+        }
+        match window_verdict(rec).1 {
+            Motion::StillSettling { period } | Motion::Periodic { period } => Some(period),
+            _ => None,
+        }
+    }
+
+    /// Keeps the recorded window (started at `t_rec`, `periods` long) and
+    /// shoots for a period-`n` orbit from its end state. A stable orbit
+    /// found there is the steady state, recorded afresh from its exact
+    /// start (the window's periods then count as transient); anything else
+    /// reports the window as it was, with the attempt in the note.
+    pub(super) fn confirm_window(
+        &mut self,
+        model: &Model,
+        t_rec: f64,
+        rec: Recorder,
+        n: u32,
+        periods: u32,
+    ) -> Result<()> {
+        self.window_tried = true;
+        self.periods_run += periods;
+        let span_um = rec.span_um();
+        self.window = Some((t_rec, Box::new(rec), periods));
+        self.start_shooting(model, n, span_um, false)
+    }
+
     /// Starts a shooting attempt for a period-`n` orbit from the current
     /// state (the end of transient period `periods_run`).
     pub(super) fn start_shooting(
@@ -281,6 +328,7 @@ impl SteadyRun {
                     newton_iterations: orbit.iterations,
                 });
                 self.settled = true;
+                self.window = None;
                 self.start_recording(model);
                 return Ok(());
             }
@@ -312,7 +360,10 @@ impl SteadyRun {
                 ));
             }
         }
-        if settled {
+        if let Some((t_rec, rec, periods)) = self.window.take() {
+            self.periods_run -= periods;
+            self.phase = Phase::Finish { t_rec, rec };
+        } else if settled {
             self.start_recording(model);
         } else if self.probes < MAX_PROBES && self.periods_run >= self.probe_from {
             self.start_probe(model)?;
