@@ -168,6 +168,41 @@ fn a_window_still_settling_is_confirmed_by_shooting_from_its_end() {
     );
 }
 
+/// A window without structure but without chaos either gets the
+/// checkpoints' loose candidate. Fig. 2's linear case with a transient
+/// budget of 4 periods (below the first checkpoint): its first mode,
+/// damping ratio 0.0024, still rings after the 100 recorded periods, so
+/// integration alone calls the window not periodic; the candidate read
+/// from its last points with the loose tolerance is period 1, and shooting
+/// from the window's end finds the orbit the page's defaults find (the
+/// system is linear: one periodic response).
+#[test]
+fn a_window_below_the_first_checkpoint_still_gets_its_candidate() {
+    let m = model(&["backlash_um=0", "te_meshes=all", "te_um=5"]);
+    let mut o = SteadyOptions::new(0.84);
+    o.transient_periods = 4;
+    let mut plain = o.clone();
+    plain.shooting = false;
+    let window = steady_state(&m, &plain, None).unwrap();
+    assert_eq!(window.motion, Motion::NotPeriodic, "{}", window.verdict());
+    let ss = steady_state(&m, &o, None).unwrap();
+    assert!(
+        matches!(ss.motion, Motion::PeriodicExact { period: 1, .. }),
+        "{}",
+        ss.verdict()
+    );
+    assert_eq!(ss.stats.transient_periods_run, 104);
+    let reference = steady_state(&m, &SteadyOptions::new(0.84), None).unwrap();
+    assert!(reference.motion.is_exact(), "{}", reference.verdict());
+    for (a, b) in ss.meshes.iter().zip(&reference.meshes) {
+        let span = b.delta_max_m - b.delta_min_m;
+        let tol_m = settle_tol_um(span * 1e6) * 1e-6;
+        assert!((a.delta_max_m - b.delta_max_m).abs() <= tol_m);
+        assert!((a.delta_min_m - b.delta_min_m).abs() <= tol_m);
+        assert!((a.poincare_delta_m[0] - b.poincare_delta_m[0]).abs() <= tol_m);
+    }
+}
+
 /// Synthetic Poincaré points: a repeat after more than the largest period
 /// is reported as such; points approaching a fixed point geometrically are
 /// still settling; a spread without structure is not periodic.

@@ -255,6 +255,14 @@ impl SteadyRun {
         }
         match window_verdict(rec).1 {
             Motion::StillSettling { period } | Motion::Periodic { period } => Some(period),
+            // Without chaotic evidence, a candidate read with the loose
+            // tolerance from the window's last points, as at a checkpoint
+            // (a budget below the first checkpoint has none).
+            Motion::NotPeriodic if !self.lyapunov.is_some_and(|ev| ev.chaotic) => {
+                let points = rec.points();
+                let recent = &points[points.len().saturating_sub(2 * MAX_PERIOD + 1)..];
+                candidate_period(recent, loose_tol_um(rec.span_um()))
+            }
             _ => None,
         }
     }
