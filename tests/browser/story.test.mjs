@@ -129,3 +129,22 @@ test('on the default compound set the shooting branches are on and draw as they 
   assert.deepEqual(errors, []);
   await page.close();
 });
+
+test('a selected state whose recorded window still settles is confirmed by shooting from the window\'s end', async () => {
+  // The gear pair at Omega 0.84 with a 4-period transient budget, below
+  // the first checkpoint: integration alone says "still settling towards
+  // period 2" (crates/solver/tests/pipeline.rs); the page's run shoots
+  // from the end of its recorded window and shows the exact orbit.
+  const { page, errors } = await open(
+    h.browser,
+    h.url,
+    'model=gear-pair&omega=0.84&transient_periods=4&bif_points=6&lyap_points=0&map_omega_points=2&map_value_points=1',
+  );
+  const s = await waitStatus(page, omegaDone, 120000, 'the selected steady state');
+  assert.equal(s.omega, 0.84);
+  assert.equal(s.omega_result.motion, 'period 2 (exact)');
+  const label = await waitText(page, '#canvas-phase', /period 2 \(exact\)/, { attr: 'aria-label' });
+  assert.doesNotMatch(label, /still settling|not periodic/);
+  assert.deepEqual(errors, []);
+  await page.close();
+});
