@@ -670,7 +670,7 @@ impl SteadyRun {
                         if let Some(n) = self.exact.as_ref().and_then(Motion::period) {
                             rec.repeat_poincare(n as usize, self.opts.record_periods as usize);
                         } else if let Some(n) = self.period_to_confirm(&rec) {
-                            self.confirm_window(model, t_rec, rec, n, target)?;
+                            self.confirm_window(model, t_rec, rec, n, target);
                             continue;
                         }
                         return Ok(Some(self.finish(model, t_rec, rec)));

@@ -12,7 +12,11 @@
 //! period. Anything else (no candidate, Newton failing, an unstable orbit)
 //! lets the integration go on, up to the transient budget; the recorded
 //! window then decides ([`classify_recorded`]), and a failed attempt is
-//! said in the verdict's note, never shown as an orbit.
+//! said in the verdict's note, never shown as an orbit. A window that
+//! repeats or still approaches a period (or, without chaotic evidence,
+//! shows a candidate at the loose tolerance) is shot from once more, from
+//! its end state (`SteadyRun::confirm_window`): a stable orbit found there
+//! is the steady state; otherwise the window is reported as recorded.
 
 use super::probe::Probe;
 use super::record::Recorder;
@@ -279,12 +283,21 @@ impl SteadyRun {
         rec: Recorder,
         n: u32,
         periods: u32,
-    ) -> Result<()> {
+    ) {
         self.window_tried = true;
         self.periods_run += periods;
         let span_um = rec.span_um();
         self.window = Some((t_rec, Box::new(rec), periods));
-        self.start_shooting(model, n, span_um, false)
+        if let Err(e) = self.start_shooting(model, n, span_um, false) {
+            // An attempt that cannot start leaves the window as recorded.
+            if let Some((t_rec, rec, periods)) = self.window.take() {
+                self.periods_run -= periods;
+                self.phase = Phase::Finish { t_rec, rec };
+            }
+            self.note_attempt(format!(
+                "shooting from the recorded window for a period-{n} orbit could not start ({e})"
+            ));
+        }
     }
 
     /// Starts a shooting attempt for a period-`n` orbit from the current
