@@ -440,8 +440,6 @@ pub struct SteadyRun {
     /// its start, its recorder and its periods (now counted in
     /// `periods_run`).
     window: Option<(f64, Box<Recorder>, u32)>,
-    /// Whether a window has been shot from (once per run).
-    window_tried: bool,
 }
 
 impl SteadyRun {
@@ -490,7 +488,6 @@ impl SteadyRun {
             lyapunov: None,
             probe_steps: 0,
             window: None,
-            window_tried: false,
         })
     }
 
@@ -701,7 +698,7 @@ impl SteadyRun {
     fn finish(&self, model: &Model, t_rec: f64, rec: Recorder) -> SteadyState {
         let end_state = self.int.y().to_vec();
         let (period_detected, recorded) = window_verdict(&rec);
-        let (meshes, histories, times, _) = rec.finish(model);
+        let (meshes, histories, times) = rec.finish(model);
         let motion = match &self.exact {
             // The recorded points may show a shorter period that divides
             // the one shot for (the orbit repeats sooner).

@@ -243,10 +243,7 @@ impl Recorder {
             * 1e6
     }
 
-    pub(super) fn finish(
-        self,
-        model: &Model,
-    ) -> (Vec<MeshSteady>, Vec<MeshHistory>, Vec<f64>, Vec<Vec<f64>>) {
+    pub(super) fn finish(self, model: &Model) -> (Vec<MeshSteady>, Vec<MeshHistory>, Vec<f64>) {
         let ns = self.n_samples as f64;
         let meshes = (0..self.n_mesh)
             .map(|j| {
@@ -281,7 +278,7 @@ impl Recorder {
                 }
             })
             .collect();
-        (meshes, self.histories, self.times, self.pc_points)
+        (meshes, self.histories, self.times)
     }
 }
 

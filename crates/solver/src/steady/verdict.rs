@@ -252,9 +252,10 @@ pub(super) fn window_verdict(rec: &Recorder) -> (Option<u32>, Motion) {
 impl SteadyRun {
     /// The period worth confirming by shooting at the end of a recorded
     /// window without an exact orbit: the one its points repeat with or
-    /// still approach (once per run, and only with shooting on).
+    /// still approach (only with shooting on). Once per run: after the
+    /// attempt the run either has its exact orbit or reports this window.
     pub(super) fn period_to_confirm(&self, rec: &Recorder) -> Option<u32> {
-        if !self.opts.shooting || self.window_tried {
+        if !self.opts.shooting {
             return None;
         }
         match window_verdict(rec).1 {
@@ -263,9 +264,7 @@ impl SteadyRun {
             // tolerance from the window's last points, as at a checkpoint
             // (a budget below the first checkpoint has none).
             Motion::NotPeriodic if !self.lyapunov.is_some_and(|ev| ev.chaotic) => {
-                let points = rec.points();
-                let recent = &points[points.len().saturating_sub(2 * MAX_PERIOD + 1)..];
-                candidate_period(recent, loose_tol_um(rec.span_um()))
+                candidate_period(rec.points(), loose_tol_um(rec.span_um()))
             }
             _ => None,
         }
@@ -284,20 +283,27 @@ impl SteadyRun {
         n: u32,
         periods: u32,
     ) {
-        self.window_tried = true;
         self.periods_run += periods;
         let span_um = rec.span_um();
         self.window = Some((t_rec, Box::new(rec), periods));
         if let Err(e) = self.start_shooting(model, n, span_um, false) {
-            // An attempt that cannot start leaves the window as recorded.
-            if let Some((t_rec, rec, periods)) = self.window.take() {
-                self.periods_run -= periods;
-                self.phase = Phase::Finish { t_rec, rec };
-            }
+            self.report_kept_window();
             self.note_attempt(format!(
                 "shooting from the recorded window for a period-{n} orbit could not start ({e})"
             ));
         }
+    }
+
+    /// Hands the window kept by [`SteadyRun::confirm_window`], if any, to
+    /// the `Finish` phase as it was recorded (its periods no longer
+    /// counted as transient): `false` if no window was kept.
+    fn report_kept_window(&mut self) -> bool {
+        let Some((t_rec, rec, periods)) = self.window.take() else {
+            return false;
+        };
+        self.periods_run -= periods;
+        self.phase = Phase::Finish { t_rec, rec };
+        true
     }
 
     /// Starts a shooting attempt for a period-`n` orbit from the current
@@ -381,10 +387,11 @@ impl SteadyRun {
                 ));
             }
         }
-        if let Some((t_rec, rec, periods)) = self.window.take() {
-            self.periods_run -= periods;
-            self.phase = Phase::Finish { t_rec, rec };
-        } else if settled {
+        if self.report_kept_window() {
+            // The window's own verdict stands.
+            return Ok(());
+        }
+        if settled {
             self.start_recording(model);
         } else if self.probes < MAX_PROBES && self.periods_run >= self.probe_from {
             self.start_probe(model)?;
