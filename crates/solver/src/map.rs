@@ -152,6 +152,9 @@ pub struct RegimeMap {
     next_column: u32,
     model: Option<Model>,
     state: Option<Vec<f64>>,
+    /// Whether the cell that ended in `state` found chaos (the next cell
+    /// starts on it: [`SteadyRun::start_on_chaos`]).
+    state_chaos: bool,
     /// The cell in progress of [`Self::advance_steps`].
     pending: Option<SteadyRun>,
     done: usize,
@@ -208,6 +211,7 @@ impl RegimeMap {
             next_column: 0,
             model: None,
             state: None,
+            state_chaos: false,
             pending: None,
             done: 0,
         })
@@ -304,7 +308,15 @@ impl RegimeMap {
                 opts.omega = omega;
                 opts.samples_per_period = 0;
                 opts.history_meshes.clear();
-                match SteadyRun::new(model, &opts, self.state.as_deref()) {
+                let on_chaos = self.state.is_some() && self.state_chaos;
+                let run =
+                    SteadyRun::new(model, &opts, self.state.as_deref()).and_then(|mut run| {
+                        if on_chaos {
+                            run.start_on_chaos(model)?;
+                        }
+                        Ok(run)
+                    });
+                match run {
                     Ok(run) => self.pending.insert(run),
                     Err(e) => {
                         return vec![self.cell_done(
@@ -328,6 +340,7 @@ impl RegimeMap {
                         .unwrap_or(Impact::None),
                 };
                 let c = cell(impact, ss.motion, ss.lyapunov, None);
+                self.state_chaos = ss.found_chaos();
                 self.cell_done(c, Some(ss.end_state))
             }
             Err(e) => self.cell_done(

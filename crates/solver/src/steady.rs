@@ -329,6 +329,13 @@ impl SteadyState {
         }
     }
 
+    /// Whether the run found chaos: not periodic, with a positive largest
+    /// Lyapunov exponent by the probe's test. A run continued from its
+    /// end state may start there ([`SteadyRun::start_on_chaos`]).
+    pub fn found_chaos(&self) -> bool {
+        matches!(self.motion, Motion::NotPeriodic) && self.lyapunov.is_some_and(|e| e.chaotic)
+    }
+
     /// The mesh with the largest dynamic factor (the first on a tie, mesh 0
     /// when none has one): the "worst" mesh of sweeps and views.
     pub fn worst_mesh(&self) -> usize {
@@ -489,6 +496,24 @@ impl SteadyRun {
             probe_steps: 0,
             window: None,
         })
+    }
+
+    /// Declares the start state the end of a run that found chaos (the
+    /// previous point of a sweep or of a map's row, a small step away in
+    /// Omega): the Lyapunov probe and the recording start at once, before
+    /// the first transient period. The state lies on or next to a chaotic
+    /// attractor, so the first checkpoint's transient would only delay the
+    /// probe, which must run anyway. Should the motion here not be chaotic,
+    /// the probe says so and the run goes back to its transient and its
+    /// candidate period as after any probe (the probed periods then count
+    /// as transient). Nothing changes without shooting, with a transient
+    /// budget of 0, or once the run has begun.
+    pub fn start_on_chaos(&mut self, model: &Model) -> Result<()> {
+        let fresh = matches!(self.phase, Phase::Transient { p: 1 }) && self.int.stats.steps == 0;
+        if self.opts.shooting && self.opts.transient_periods > 0 && fresh {
+            self.start_probe(model)?;
+        }
+        Ok(())
     }
 
     /// Integrator steps taken so far (shooting's included).

@@ -274,6 +274,9 @@ pub struct BifurcationSweep {
     tasks: Vec<Task>,
     next: usize,
     chain_state: Vec<Option<Vec<f64>>>,
+    /// Whether each chain's last point found chaos (its next run starts
+    /// on it: [`SteadyRun::start_on_chaos`]).
+    chain_chaos: Vec<bool>,
     /// The point in progress of [`Self::advance_steps`] and its run.
     pending: Option<(Task, SteadyRun)>,
 }
@@ -321,6 +324,7 @@ impl BifurcationSweep {
             tasks,
             next: 0,
             chain_state: vec![None; n_chains],
+            chain_chaos: vec![false; n_chains],
             pending: None,
         })
     }
@@ -371,7 +375,14 @@ impl BifurcationSweep {
             let mut opts = self.spec.steady.clone();
             opts.omega = self.spec.omega(task.index);
             let start = self.chain_state[task.chain as usize].take();
-            match SteadyRun::new(&self.model, &opts, start.as_deref()) {
+            let on_chaos = start.is_some() && self.chain_chaos[task.chain as usize];
+            let run = SteadyRun::new(&self.model, &opts, start.as_deref()).and_then(|mut run| {
+                if on_chaos {
+                    run.start_on_chaos(&self.model)?;
+                }
+                Ok(run)
+            });
+            match run {
                 Ok(run) => self.pending = Some((task, run)),
                 Err(e) => {
                     self.next += 1;
@@ -398,6 +409,7 @@ impl BifurcationSweep {
         match result {
             Ok(ss) => {
                 self.chain_state[task.chain as usize] = Some(ss.end_state.clone());
+                self.chain_chaos[task.chain as usize] = ss.found_chaos();
                 let worst_mesh = ss.worst_mesh();
                 let impact_worst = ss
                     .meshes

@@ -10,7 +10,8 @@ use solver::keys;
 use solver::lyapunov::{largest_exponent, LyapunovOptions};
 use solver::params::{ModelKind, ModelParams};
 use solver::steady::{
-    classify_recorded, settle_tol_um, steady_state, Model, Motion, SteadyOptions, MAX_PERIOD,
+    classify_recorded, settle_tol_um, steady_state, Model, Motion, SteadyOptions, SteadyRun,
+    SteadyState, MAX_PERIOD,
 };
 
 fn model(sets: &[&str]) -> Model {
@@ -194,6 +195,73 @@ fn a_window_below_the_first_checkpoint_still_gets_its_candidate() {
     assert_eq!(ss.stats.transient_periods_run, 104);
     let reference = steady_state(&m, &SteadyOptions::new(0.84), None).unwrap();
     assert!(reference.motion.is_exact(), "{}", reference.verdict());
+    for (a, b) in ss.meshes.iter().zip(&reference.meshes) {
+        let span = b.delta_max_m - b.delta_min_m;
+        let tol_m = settle_tol_um(span * 1e6) * 1e-6;
+        assert!((a.delta_max_m - b.delta_max_m).abs() <= tol_m);
+        assert!((a.delta_min_m - b.delta_min_m).abs() <= tol_m);
+        assert!((a.poincare_delta_m[0] - b.poincare_delta_m[0]).abs() <= tol_m);
+    }
+}
+
+/// Runs `m` at `o` from `start`, told that `start` ended a run that found
+/// chaos.
+fn run_on_chaos(m: &Model, o: &SteadyOptions, start: &[f64]) -> SteadyState {
+    let mut run = SteadyRun::new(m, o, Some(start)).unwrap();
+    run.start_on_chaos(m).unwrap();
+    loop {
+        if let Some(ss) = run.advance(m, u64::MAX).unwrap() {
+            break ss;
+        }
+    }
+}
+
+/// A run continued from chaos (the default set's chaotic Omega 0.84, then
+/// one sweep step up to 0.8495) probes and records at once: no transient
+/// period, the same verdict as the run that waits for its first checkpoint,
+/// and an exponent that an independent 200-period Benettin computation
+/// from its end state confirms to within a factor of two.
+#[test]
+fn a_run_continued_from_chaos_probes_and_records_at_once() {
+    let m = model(&[]);
+    let first = steady_state(&m, &SteadyOptions::new(0.84), None).unwrap();
+    assert!(first.found_chaos(), "{}", first.verdict());
+    let o = SteadyOptions::new(0.8495);
+    let ss = run_on_chaos(&m, &o, &first.end_state);
+    assert!(ss.found_chaos(), "{}", ss.verdict());
+    assert_eq!(ss.stats.transient_periods_run, 0);
+    assert_eq!(ss.meshes[0].poincare_delta_m.len(), 100);
+    let waited = steady_state(&m, &o, Some(&first.end_state)).unwrap();
+    assert!(waited.found_chaos(), "{}", waited.verdict());
+    assert!(waited.stats.transient_periods_run >= 6);
+    let mut lo = LyapunovOptions::new(0.8495);
+    lo.transient_periods = 0;
+    let l = largest_exponent(&m, &lo, Some(&ss.end_state)).unwrap();
+    let ev = ss.lyapunov.unwrap();
+    let ratio = ev.per_period / l.per_period;
+    assert!((0.5..=2.0).contains(&ratio), "{ev:?} vs {}", l.per_period);
+}
+
+/// Being told "chaos" wrongly changes no verdict. Fig. 2's linear case
+/// continued from its own period-1 orbit: the probe measures a negative
+/// exponent, the run goes back to its transient, and shooting finds the
+/// same orbit as the run told nothing (linear: one periodic response), the
+/// probed periods counted as transient.
+#[test]
+fn a_run_wrongly_told_chaos_still_finds_its_orbit() {
+    let m = model(&["backlash_um=0", "te_meshes=all", "te_um=5"]);
+    let o = SteadyOptions::new(0.84);
+    let reference = steady_state(&m, &o, None).unwrap();
+    assert!(reference.motion.is_exact(), "{}", reference.verdict());
+    let ss = run_on_chaos(&m, &o, &reference.end_state);
+    assert!(
+        matches!(ss.motion, Motion::PeriodicExact { period: 1, .. }),
+        "{}",
+        ss.verdict()
+    );
+    let ev = ss.lyapunov.expect("the probe's evidence");
+    assert!(!ev.chaotic && ev.per_period < 0.0, "{ev:?}");
+    assert!(ss.stats.transient_periods_run >= 16);
     for (a, b) in ss.meshes.iter().zip(&reference.meshes) {
         let span = b.delta_max_m - b.delta_min_m;
         let tol_m = settle_tol_um(span * 1e6) * 1e-6;
