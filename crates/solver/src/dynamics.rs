@@ -329,7 +329,8 @@ impl MeshOde {
     /// forms give the same bits (unit test below).
     pub fn tangent(&mut self, t: f64, y: &[f64], z: &[f64], dz: &mut [f64]) {
         let q = &y[..self.n];
-        let (s, c) = phase_sin_cos(self.omega_rad_s * t);
+        // The right-hand side has just taken the same instant's phase.
+        let (s, c) = self.phase_at(t);
         let mut slopes = std::mem::take(&mut self.slopes);
         slopes.clear();
         slopes.extend(self.meshes.iter().map(|m| {
@@ -411,6 +412,19 @@ impl MeshOde {
         }
     }
 
+    /// `(sin, cos)` of the mesh phase at `t`, remembered for the last `t`
+    /// asked (the same bits as computing it afresh).
+    #[inline]
+    fn phase_at(&mut self, t: f64) -> (f64, f64) {
+        if t == self.phase_cache.0 {
+            (self.phase_cache.1, self.phase_cache.2)
+        } else {
+            let (s, c) = phase_sin_cos(self.omega_rad_s * t);
+            self.phase_cache = (t, s, c);
+            (s, c)
+        }
+    }
+
     /// Number of meshes.
     pub fn n_meshes(&self) -> usize {
         self.meshes.len()
@@ -430,13 +444,7 @@ impl Ode for MeshOde {
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
         let n = self.n;
         let (q, v) = y.split_at(n);
-        let (s, c) = if t == self.phase_cache.0 {
-            (self.phase_cache.1, self.phase_cache.2)
-        } else {
-            let (s, c) = phase_sin_cos(self.omega_rad_s * t);
-            self.phase_cache = (t, s, c);
-            (s, c)
-        };
+        let (s, c) = self.phase_at(t);
         let (dq, dv) = dy.split_at_mut(n);
         dq.copy_from_slice(v);
         // The register-resident accumulator pays in WebAssembly (the 100 x 4
