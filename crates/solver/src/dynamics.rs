@@ -207,7 +207,7 @@ impl MeshOde {
 
     /// The state of mesh `j` at `(t, y)`.
     pub fn mesh_instant(&self, j: usize, t: f64, y: &[f64]) -> MeshInstant {
-        let (s, c) = phase_sin_cos(self.omega_rad_s * t);
+        let (s, c) = self.phase_seen(t);
         self.instant_at_phase(j, c, s, y)
     }
 
@@ -237,7 +237,7 @@ impl MeshOde {
 
     /// All meshes' states at `(t, y)`, into `out`.
     pub fn mesh_instants(&self, t: f64, y: &[f64], out: &mut Vec<MeshInstant>) {
-        let (s, c) = phase_sin_cos(self.omega_rad_s * t);
+        let (s, c) = self.phase_seen(t);
         out.clear();
         out.extend((0..self.meshes.len()).map(|j| self.instant_at_phase(j, c, s, y)));
     }
@@ -425,6 +425,18 @@ impl MeshOde {
         }
     }
 
+    /// [`Self::phase_at`] without remembering: the remembered phase if `t`
+    /// is its instant (a step's end, where the integrator's last stage was
+    /// evaluated), else computed afresh; the same bits either way.
+    #[inline]
+    fn phase_seen(&self, t: f64) -> (f64, f64) {
+        if t == self.phase_cache.0 {
+            (self.phase_cache.1, self.phase_cache.2)
+        } else {
+            phase_sin_cos(self.omega_rad_s * t)
+        }
+    }
+
     /// Number of meshes.
     pub fn n_meshes(&self) -> usize {
         self.meshes.len()
@@ -470,7 +482,7 @@ impl Ode for MeshOde {
 
     fn events(&mut self, t: f64, y: &[f64], _dy: &[f64], g: &mut [f64], dg: &mut [f64]) {
         let (q, v) = y.split_at(self.n);
-        let (s, c) = phase_sin_cos(self.omega_rad_s * t);
+        let (s, c) = self.phase_at(t);
         let mut idx = 0;
         while idx < self.events.len() {
             let j = self.events[idx].0;
