@@ -22,6 +22,18 @@ fn model(sets: &[&str]) -> Model {
     Model::new(&p).unwrap()
 }
 
+/// `ss` and `reference` record the same periodic orbit: every mesh's
+/// extremes and first Poincaré point within the run's settle tolerance.
+fn assert_same_orbit(ss: &SteadyState, reference: &SteadyState) {
+    for (a, b) in ss.meshes.iter().zip(&reference.meshes) {
+        let span = b.delta_max_m - b.delta_min_m;
+        let tol_m = settle_tol_um(span * 1e6) * 1e-6;
+        assert!((a.delta_max_m - b.delta_max_m).abs() <= tol_m);
+        assert!((a.delta_min_m - b.delta_min_m).abs() <= tol_m);
+        assert!((a.poincare_delta_m[0] - b.poincare_delta_m[0]).abs() <= tol_m);
+    }
+}
+
 /// Fig. 2's settings at the page's defaults (300 + 100 periods): the system
 /// is linear, so its response is period 1, and the pipeline says so exactly
 /// (integration alone needs about 5000 periods, the first mode's damping
@@ -195,13 +207,7 @@ fn a_window_below_the_first_checkpoint_still_gets_its_candidate() {
     assert_eq!(ss.stats.transient_periods_run, 104);
     let reference = steady_state(&m, &SteadyOptions::new(0.84), None).unwrap();
     assert!(reference.motion.is_exact(), "{}", reference.verdict());
-    for (a, b) in ss.meshes.iter().zip(&reference.meshes) {
-        let span = b.delta_max_m - b.delta_min_m;
-        let tol_m = settle_tol_um(span * 1e6) * 1e-6;
-        assert!((a.delta_max_m - b.delta_max_m).abs() <= tol_m);
-        assert!((a.delta_min_m - b.delta_min_m).abs() <= tol_m);
-        assert!((a.poincare_delta_m[0] - b.poincare_delta_m[0]).abs() <= tol_m);
-    }
+    assert_same_orbit(&ss, &reference);
 }
 
 /// Runs `m` at `o` from `start`, told that `start` ended a run that found
@@ -262,13 +268,7 @@ fn a_run_wrongly_told_chaos_still_finds_its_orbit() {
     let ev = ss.lyapunov.expect("the probe's evidence");
     assert!(!ev.chaotic && ev.per_period < 0.0, "{ev:?}");
     assert!(ss.stats.transient_periods_run >= 16);
-    for (a, b) in ss.meshes.iter().zip(&reference.meshes) {
-        let span = b.delta_max_m - b.delta_min_m;
-        let tol_m = settle_tol_um(span * 1e6) * 1e-6;
-        assert!((a.delta_max_m - b.delta_max_m).abs() <= tol_m);
-        assert!((a.delta_min_m - b.delta_min_m).abs() <= tol_m);
-        assert!((a.poincare_delta_m[0] - b.poincare_delta_m[0]).abs() <= tol_m);
-    }
+    assert_same_orbit(&ss, &reference);
 }
 
 /// Synthetic Poincaré points: a repeat after more than the largest period
