@@ -416,13 +416,9 @@ impl MeshOde {
     /// asked (the same bits as computing it afresh).
     #[inline]
     fn phase_at(&mut self, t: f64) -> (f64, f64) {
-        if t == self.phase_cache.0 {
-            (self.phase_cache.1, self.phase_cache.2)
-        } else {
-            let (s, c) = phase_sin_cos(self.omega_rad_s * t);
-            self.phase_cache = (t, s, c);
-            (s, c)
-        }
+        let (s, c) = self.phase_seen(t);
+        self.phase_cache = (t, s, c);
+        (s, c)
     }
 
     /// [`Self::phase_at`] without remembering: the remembered phase if `t`

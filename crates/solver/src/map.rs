@@ -151,10 +151,9 @@ pub struct RegimeMap {
     next_row: usize,
     next_column: u32,
     model: Option<Model>,
-    state: Option<Vec<f64>>,
-    /// Whether the cell that ended in `state` found chaos (the next cell
-    /// starts on it: [`SteadyRun::start_on_chaos`]).
-    state_chaos: bool,
+    /// The last cell's end state, and whether its run found chaos (the
+    /// next cell continues from both: [`SteadyRun::continued`]).
+    state: Option<(Vec<f64>, bool)>,
     /// The cell in progress of [`Self::advance_steps`].
     pending: Option<SteadyRun>,
     done: usize,
@@ -211,7 +210,6 @@ impl RegimeMap {
             next_column: 0,
             model: None,
             state: None,
-            state_chaos: false,
             pending: None,
             done: 0,
         })
@@ -308,15 +306,8 @@ impl RegimeMap {
                 opts.omega = omega;
                 opts.samples_per_period = 0;
                 opts.history_meshes.clear();
-                let on_chaos = self.state.is_some() && self.state_chaos;
-                let run =
-                    SteadyRun::new(model, &opts, self.state.as_deref()).and_then(|mut run| {
-                        if on_chaos {
-                            run.start_on_chaos(model)?;
-                        }
-                        Ok(run)
-                    });
-                match run {
+                let from = self.state.as_ref().map(|(y, chaos)| (y.as_slice(), *chaos));
+                match SteadyRun::continued(model, &opts, from) {
                     Ok(run) => self.pending.insert(run),
                     Err(e) => {
                         return vec![self.cell_done(
@@ -340,8 +331,8 @@ impl RegimeMap {
                         .unwrap_or(Impact::None),
                 };
                 let c = cell(impact, ss.motion, ss.lyapunov, None);
-                self.state_chaos = ss.found_chaos();
-                self.cell_done(c, Some(ss.end_state))
+                let chaos = ss.found_chaos();
+                self.cell_done(c, Some((ss.end_state, chaos)))
             }
             Err(e) => self.cell_done(
                 cell(Impact::None, Motion::NotPeriodic, None, Some(e.to_string())),
@@ -353,7 +344,7 @@ impl RegimeMap {
 
     /// Records cell `c` as done; the row goes on from `end` (the static
     /// equilibrium after a failure).
-    fn cell_done(&mut self, c: MapCell, end: Option<Vec<f64>>) -> MapCell {
+    fn cell_done(&mut self, c: MapCell, end: Option<(Vec<f64>, bool)>) -> MapCell {
         self.pending = None;
         self.state = end;
         self.done += 1;

@@ -331,7 +331,7 @@ impl SteadyState {
 
     /// Whether the run found chaos: not periodic, with a positive largest
     /// Lyapunov exponent by the probe's test. A run continued from its
-    /// end state may start there ([`SteadyRun::start_on_chaos`]).
+    /// end state starts its probe at once ([`SteadyRun::continued`]).
     pub fn found_chaos(&self) -> bool {
         matches!(self.motion, Motion::NotPeriodic) && self.lyapunov.is_some_and(|e| e.chaotic)
     }
@@ -498,22 +498,29 @@ impl SteadyRun {
         })
     }
 
-    /// Declares the start state the end of a run that found chaos (the
+    /// A run continued from `from`: the end state of a previous run (the
     /// previous point of a sweep or of a map's row, a small step away in
-    /// Omega): the Lyapunov probe and the recording start at once, before
-    /// the first transient period. The state lies on or next to a chaotic
-    /// attractor, so the first checkpoint's transient would only delay the
-    /// probe, which must run anyway. Should the motion here not be chaotic,
-    /// the probe says so and the run goes back to its transient and its
-    /// candidate period as after any probe (the probed periods then count
-    /// as transient). Nothing changes without shooting, with a transient
-    /// budget of 0, or once the run has begun.
-    pub fn start_on_chaos(&mut self, model: &Model) -> Result<()> {
-        let fresh = matches!(self.phase, Phase::Transient { p: 1 }) && self.int.stats.steps == 0;
-        if self.opts.shooting && self.opts.transient_periods > 0 && fresh {
-            self.start_probe(model)?;
+    /// Omega) and whether that run found chaos
+    /// ([`SteadyState::found_chaos`]); `None` starts from the static
+    /// equilibrium, as [`SteadyRun::new`]. After chaos the Lyapunov probe
+    /// and the recording start at once, before the first transient period:
+    /// the state lies on or next to a chaotic attractor, so the first
+    /// checkpoint's transient would only delay the probe, which must run
+    /// anyway. Should the motion here not be chaotic, the probe says so and
+    /// the run goes back to its transient and its candidate period as after
+    /// any probe (the probed periods then count as transient). Without
+    /// shooting, or with a transient budget of 0, the hint changes nothing.
+    pub fn continued(
+        model: &Model,
+        opts: &SteadyOptions,
+        from: Option<(&[f64], bool)>,
+    ) -> Result<Self> {
+        let mut run = SteadyRun::new(model, opts, from.map(|(y, _)| y))?;
+        let after_chaos = from.is_some_and(|(_, chaos)| chaos);
+        if after_chaos && opts.shooting && opts.transient_periods > 0 {
+            run.start_probe(model)?;
         }
-        Ok(())
+        Ok(run)
     }
 
     /// Integrator steps taken so far (shooting's included).

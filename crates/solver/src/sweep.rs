@@ -273,10 +273,9 @@ pub struct BifurcationSweep {
     spec: SweepSpec,
     tasks: Vec<Task>,
     next: usize,
-    chain_state: Vec<Option<Vec<f64>>>,
-    /// Whether each chain's last point found chaos (its next run starts
-    /// on it: [`SteadyRun::start_on_chaos`]).
-    chain_chaos: Vec<bool>,
+    /// Each chain's last end state, and whether its run found chaos (the
+    /// next point continues from both: [`SteadyRun::continued`]).
+    chain_state: Vec<Option<(Vec<f64>, bool)>>,
     /// The point in progress of [`Self::advance_steps`] and its run.
     pending: Option<(Task, SteadyRun)>,
 }
@@ -324,7 +323,6 @@ impl BifurcationSweep {
             tasks,
             next: 0,
             chain_state: vec![None; n_chains],
-            chain_chaos: vec![false; n_chains],
             pending: None,
         })
     }
@@ -375,14 +373,8 @@ impl BifurcationSweep {
             let mut opts = self.spec.steady.clone();
             opts.omega = self.spec.omega(task.index);
             let start = self.chain_state[task.chain as usize].take();
-            let on_chaos = start.is_some() && self.chain_chaos[task.chain as usize];
-            let run = SteadyRun::new(&self.model, &opts, start.as_deref()).and_then(|mut run| {
-                if on_chaos {
-                    run.start_on_chaos(&self.model)?;
-                }
-                Ok(run)
-            });
-            match run {
+            let from = start.as_ref().map(|(y, chaos)| (y.as_slice(), *chaos));
+            match SteadyRun::continued(&self.model, &opts, from) {
                 Ok(run) => self.pending = Some((task, run)),
                 Err(e) => {
                     self.next += 1;
@@ -408,8 +400,8 @@ impl BifurcationSweep {
         let omega = self.spec.omega(task.index);
         match result {
             Ok(ss) => {
-                self.chain_state[task.chain as usize] = Some(ss.end_state.clone());
-                self.chain_chaos[task.chain as usize] = ss.found_chaos();
+                self.chain_state[task.chain as usize] =
+                    Some((ss.end_state.clone(), ss.found_chaos()));
                 let worst_mesh = ss.worst_mesh();
                 let impact_worst = ss
                     .meshes

@@ -213,8 +213,7 @@ fn a_window_below_the_first_checkpoint_still_gets_its_candidate() {
 /// Runs `m` at `o` from `start`, told that `start` ended a run that found
 /// chaos.
 fn run_on_chaos(m: &Model, o: &SteadyOptions, start: &[f64]) -> SteadyState {
-    let mut run = SteadyRun::new(m, o, Some(start)).unwrap();
-    run.start_on_chaos(m).unwrap();
+    let mut run = SteadyRun::continued(m, o, Some((start, true))).unwrap();
     loop {
         if let Some(ss) = run.advance(m, u64::MAX).unwrap() {
             break ss;
