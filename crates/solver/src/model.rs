@@ -40,6 +40,13 @@ impl Model {
         y
     }
 
+    /// Whether the model is linear: no mesh has backlash, so every mesh
+    /// force is linear in the deflection (the teeth never part, there is
+    /// no gap to cross) and the motion cannot be chaotic.
+    pub fn is_linear(&self) -> bool {
+        self.system.meshes.iter().all(|m| m.backlash_m == 0.0)
+    }
+
     /// The largest mesh deflection (m) a bounded response is taken to reach:
     /// [`DIVERGENCE_FACTOR`] times the model's own scale (the largest of any
     /// mesh's static deflection plus backlash plus TE, at least 1 um), raised

@@ -35,6 +35,7 @@ use crate::ode::{Dopri5, IntegratorStats, Tolerances};
 use crate::shooting::ShootRun;
 use std::f64::consts::PI;
 
+mod options;
 mod probe;
 mod record;
 mod settle;
@@ -43,6 +44,7 @@ mod spectrum;
 mod tests;
 mod verdict;
 
+pub use options::{SteadyOptions, DEFAULT_ATOL_M, DEFAULT_RTOL};
 use probe::Probe;
 pub use probe::{decide, LyapunovEvidence, DECIDE_AT, LAMBDA_MIN, PROBE_SEPARATION_UM};
 use record::Recorder;
@@ -106,98 +108,6 @@ impl Impact {
         } else {
             Impact::NoContact
         }
-    }
-}
-
-/// Options of a steady-state run.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SteadyOptions {
-    /// Dimensionless mesh frequency Omega = omega / omega_ref.
-    pub omega: f64,
-    /// Maximum transient periods.
-    pub transient_periods: u32,
-    /// Recorded periods.
-    pub record_periods: u32,
-    /// End the transient once the Poincaré samples have settled.
-    pub early_settle: bool,
-    /// Uniform samples per period for RMS, history and spectrum (0 = none).
-    pub samples_per_period: u32,
-    /// Meshes whose time history (and spectrum) is kept.
-    pub history_meshes: Vec<usize>,
-    /// Relative tolerance of the integrator.
-    pub rtol: f64,
-    /// Absolute tolerance, as a mesh deflection (m).
-    pub atol_m: f64,
-    /// Step budget per mesh period (a blow-up guard).
-    pub max_steps_per_period: u64,
-    /// Find a periodic steady state by shooting during the transient
-    /// (`crate::shooting::pipeline`); off, the run only integrates.
-    pub shooting: bool,
-}
-
-/// Default relative tolerance of the integrator.
-pub const DEFAULT_RTOL: f64 = 1e-7;
-
-/// Default absolute tolerance, as a mesh deflection (m): 0.1 nm, a
-/// millionth of the default backlash. Periodic orbits then agree with a
-/// 1e-12 m run to a few 1e-11 m (a 1e-6 part of their peak-to-peak), an
-/// order below the settle and period tests' tolerance, at 1.3 to 1.6 times
-/// fewer steps than 1e-11 m.
-pub const DEFAULT_ATOL_M: f64 = 1e-10;
-
-impl SteadyOptions {
-    /// Defaults at `omega`: 300 + 100 periods, early settle, 64 samples per period.
-    pub fn new(omega: f64) -> Self {
-        SteadyOptions {
-            omega,
-            transient_periods: 300,
-            record_periods: 100,
-            early_settle: true,
-            samples_per_period: 64,
-            history_meshes: Vec::new(),
-            rtol: DEFAULT_RTOL,
-            atol_m: DEFAULT_ATOL_M,
-            max_steps_per_period: 200_000,
-            shooting: true,
-        }
-    }
-
-    /// Checks the options' ranges.
-    pub fn validate(&self) -> Result<()> {
-        let bad = |option: &str, value: String, allowed: &str| {
-            SolverError::bad_option(option, value, allowed)
-        };
-        if !(self.omega.is_finite() && self.omega >= 0.01 && self.omega <= 20.0) {
-            return bad("omega", format!("{}", self.omega), "0.01 ..= 20");
-        }
-        if self.transient_periods > 1_000_000 {
-            return bad(
-                "transient-periods",
-                self.transient_periods.to_string(),
-                "0 ..= 1000000",
-            );
-        }
-        if self.record_periods == 0 || self.record_periods > 100_000 {
-            return bad(
-                "record-periods",
-                self.record_periods.to_string(),
-                "1 ..= 100000",
-            );
-        }
-        if self.samples_per_period > 4096 {
-            return bad(
-                "samples-per-period",
-                self.samples_per_period.to_string(),
-                "0 ..= 4096",
-            );
-        }
-        if !(self.rtol.is_finite() && self.rtol >= 1e-13 && self.rtol <= 1e-3) {
-            return bad("rtol", format!("{}", self.rtol), "1e-13 ..= 1e-3");
-        }
-        if !(self.atol_m.is_finite() && self.atol_m > 0.0 && self.atol_m <= 1e-6) {
-            return bad("atol", format!("{}", self.atol_m), "0 < atol <= 1e-6 m");
-        }
-        Ok(())
     }
 }
 
@@ -443,6 +353,10 @@ pub struct SteadyRun {
     /// Its finished probe's evidence, and the neighbour's steps.
     lyapunov: Option<LyapunovEvidence>,
     probe_steps: u64,
+    /// Whether the model is linear (no backlash on any mesh): its steady
+    /// state is the period-1 orbit shooting finds in one Newton step, or
+    /// parametric growth; never chaos, so it is never probed for it.
+    linear: bool,
     /// A recorded window whose verdict shooting is trying to confirm:
     /// its start, its recorder and its periods (now counted in
     /// `periods_run`).
@@ -494,6 +408,7 @@ impl SteadyRun {
             probe_from: if start.is_some() { 0 } else { PROBE_FROM_REST },
             lyapunov: None,
             probe_steps: 0,
+            linear: model.is_linear(),
             window: None,
         })
     }
@@ -517,7 +432,7 @@ impl SteadyRun {
     ) -> Result<Self> {
         let mut run = SteadyRun::new(model, opts, from.map(|(y, _)| y))?;
         let after_chaos = from.is_some_and(|(_, chaos)| chaos);
-        if after_chaos && opts.shooting && opts.transient_periods > 0 {
+        if after_chaos && opts.shooting && opts.transient_periods > 0 && !run.linear {
             run.start_probe(model)?;
         }
         Ok(run)
@@ -605,7 +520,11 @@ impl SteadyRun {
                         let tol = settle_tol_um(span_um);
                         if p_now >= 5 && has_settled(hist, tol, self.rho_modal) {
                             self.settled = true;
-                            let candidate = candidate_period(&self.pipe_hist, 10.0 * tol);
+                            let candidate = if self.linear {
+                                Some(1)
+                            } else {
+                                candidate_period(&self.pipe_hist, 10.0 * tol)
+                            };
                             match candidate {
                                 Some(n) if self.opts.shooting => {
                                     self.start_shooting(model, n, span_um, true)?;
@@ -616,12 +535,12 @@ impl SteadyRun {
                         }
                     }
                     if self.opts.shooting && CHECKPOINTS.contains(&p_now) {
-                        if let Some(n) = candidate_period(&self.pipe_hist, loose_tol_um(span_um)) {
+                        if let Some(n) = self.checkpoint_candidate(span_um) {
                             self.span.reset_keep_last();
                             self.start_shooting(model, n, span_um, false)?;
                             continue;
                         }
-                        if self.probes < MAX_PROBES && p_now >= self.probe_from {
+                        if self.may_probe() {
                             self.span.reset_keep_last();
                             self.start_probe(model)?;
                             continue;

@@ -10,8 +10,8 @@ use solver::keys;
 use solver::lyapunov::{largest_exponent, LyapunovOptions};
 use solver::params::{ModelKind, ModelParams};
 use solver::steady::{
-    classify_recorded, settle_tol_um, steady_state, Model, Motion, SteadyOptions, SteadyRun,
-    SteadyState, MAX_PERIOD,
+    classify_recorded, decide, settle_tol_um, steady_state, Model, Motion, SteadyOptions,
+    SteadyRun, SteadyState, DECIDE_AT, MAX_PERIOD,
 };
 
 fn model(sets: &[&str]) -> Model {
@@ -247,15 +247,16 @@ fn a_run_continued_from_chaos_probes_and_records_at_once() {
     assert!((0.5..=2.0).contains(&ratio), "{ev:?} vs {}", l.per_period);
 }
 
-/// Being told "chaos" wrongly changes no verdict. Fig. 2's linear case
-/// continued from its own period-1 orbit: the probe measures a negative
-/// exponent, the run goes back to its transient, and shooting finds the
-/// same orbit as the run told nothing (linear: one periodic response), the
-/// probed periods counted as transient.
+/// Being told "chaos" wrongly changes no verdict. The default set at
+/// Omega 0.35 (a stable period-1 orbit, every mesh in contact) continued
+/// from its own orbit: the probe measures a negative exponent, the run goes
+/// back to its transient, and shooting finds the same orbit as the run told
+/// nothing, the probed periods counted as transient. A linear model is
+/// never probed at all: the hint changes nothing there.
 #[test]
 fn a_run_wrongly_told_chaos_still_finds_its_orbit() {
-    let m = model(&["backlash_um=0", "te_meshes=all", "te_um=5"]);
-    let o = SteadyOptions::new(0.84);
+    let m = model(&[]);
+    let o = SteadyOptions::new(0.35);
     let reference = steady_state(&m, &o, None).unwrap();
     assert!(reference.motion.is_exact(), "{}", reference.verdict());
     let ss = run_on_chaos(&m, &o, &reference.end_state);
@@ -267,6 +268,14 @@ fn a_run_wrongly_told_chaos_still_finds_its_orbit() {
     let ev = ss.lyapunov.expect("the probe's evidence");
     assert!(!ev.chaotic && ev.per_period < 0.0, "{ev:?}");
     assert!(ss.stats.transient_periods_run >= 16);
+    assert_same_orbit(&ss, &reference);
+
+    let linear = model(&["backlash_um=0", "te_meshes=all", "te_um=5"]);
+    let o = SteadyOptions::new(0.84);
+    let reference = steady_state(&linear, &o, None).unwrap();
+    let ss = run_on_chaos(&linear, &o, &reference.end_state);
+    assert!(ss.lyapunov.is_none() && ss.stats.probe_steps == 0);
+    assert!(ss.motion.is_exact(), "{}", ss.verdict());
     assert_same_orbit(&ss, &reference);
 }
 
@@ -305,4 +314,106 @@ fn the_recorded_window_is_classified_by_its_structure() {
         classify_recorded(&chaos, Some(3), 1e-6),
         Motion::Periodic { period: 3 }
     );
+}
+
+/// A linear system (no backlash) is never called chaotic, undamped or
+/// lightly damped, on either model, from rest or continued along a sweep:
+/// its steady state is the period-1 orbit (exact, multipliers on or inside
+/// the unit circle). A 16-period probe had read the bounded but uneven
+/// separation of an undamped linear map as chaos (exponent 0.18 on the
+/// gear pair at Omega 0.3, 0.88 on the compound set).
+#[test]
+fn a_linear_system_is_never_chaotic() {
+    let cases: [(&[&str], &[f64]); 4] = [
+        (
+            &["model=gear-pair", "backlash_um=0", "damping_ratio=0"],
+            &[0.3, 0.5, 0.84, 1.3],
+        ),
+        (&["backlash_um=0", "damping_ratio=0"], &[0.3, 0.5, 0.84]),
+        (
+            &["model=gear-pair", "backlash_um=0", "damping_ratio=0.01"],
+            &[0.3, 1.3],
+        ),
+        (
+            &[
+                "planets=6",
+                "phasing=sequential",
+                "backlash_um=0",
+                "damping_ratio=0.01",
+            ],
+            &[0.2, 0.2783],
+        ),
+    ];
+    for (sets, omegas) in cases {
+        let m = model(sets);
+        assert!(m.is_linear());
+        let mut start: Option<Vec<f64>> = None;
+        for &omega in omegas {
+            let previous = start.take();
+            for from in [None, previous.as_deref()] {
+                let ss = steady_state(&m, &SteadyOptions::new(omega), from).unwrap();
+                assert!(
+                    ss.lyapunov.is_none_or(|ev| !ev.chaotic),
+                    "{sets:?} at Omega {omega}: {:?}",
+                    ss.lyapunov
+                );
+                match ss.motion {
+                    Motion::PeriodicExact {
+                        period,
+                        max_multiplier_modulus,
+                        ..
+                    } => {
+                        assert_eq!(period, 1, "{sets:?} at Omega {omega}");
+                        assert!(max_multiplier_modulus <= 1.0 + 1e-6);
+                    }
+                    other => panic!("{sets:?} at Omega {omega}: {other:?}"),
+                }
+                start = Some(ss.end_state.clone());
+            }
+        }
+    }
+}
+
+/// A known chaotic gear-pair case (Omega 1.3, the defaults) is still
+/// called chaotic, on the run's own evidence.
+#[test]
+fn the_gear_pairs_chaos_is_still_chaos() {
+    let m = model(&["model=gear-pair"]);
+    let ss = steady_state(&m, &SteadyOptions::new(1.3), None).unwrap();
+    assert_eq!(ss.motion, Motion::NotPeriodic);
+    let ev = ss.lyapunov.expect("the probe's evidence");
+    assert!(ev.chaotic && ev.per_period > 0.2, "{ev:?}");
+}
+
+/// The probe's decision on synthetic logarithms: separation growing like a
+/// power of time (`d ~ k^p`, logarithms `p ln(k / (k - 1))`) is never
+/// chaos, however steep; a steady exponential rate with noise is, within
+/// its first decision points.
+#[test]
+fn the_probe_tells_exponential_from_power_law_growth() {
+    for p in [1.0, 3.0, 10.0] {
+        let logs: Vec<f64> = (1..=64)
+            .map(|k| p * (f64::from(k + 1) / f64::from(k)).ln())
+            .collect();
+        for &n in DECIDE_AT {
+            if let Some(ev) = decide(&logs[..n]) {
+                assert!(!ev.chaotic, "power {p} at {n} periods: {ev:?}");
+            }
+        }
+    }
+    // A steady rate of 0.3 per period with noise of 0.5 (a fixed,
+    // deterministic sequence standing in for the chaotic logarithms).
+    let mut x = 0.3f64;
+    let logs: Vec<f64> = (0..64)
+        .map(|_| {
+            x = 4.0 * x * (1.0 - x);
+            0.3 + (x - 0.5) * 1.0
+        })
+        .collect();
+    let first = DECIDE_AT
+        .iter()
+        .find_map(|&n| decide(&logs[..n]))
+        .expect("a decision");
+    assert!(first.chaotic, "{first:?}");
+    assert!(first.periods <= 32, "{first:?}");
 }

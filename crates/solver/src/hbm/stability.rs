@@ -8,7 +8,8 @@
 //! crossings (located on the orbit's trigonometric polynomial by bisection),
 //! so that each piece has a fixed contact state and a smooth coefficient,
 //! and each piece is integrated by the classical Runge–Kutta method with at
-//! least 8 steps per period of the fastest mode. The multipliers are the
+//! least [`ORBIT_STEPS_PER_FASTEST`] steps per period of the fastest mode
+//! (the engaged system's scan: [`ENGAGED_STEPS_PER_FASTEST`]). The multipliers are the
 //! eigenvalues of the monodromy matrix (a real Schur decomposition).
 //!
 //! Under the symmetric reduction the planet block (central members at rest,
@@ -25,6 +26,20 @@ use super::model::Law;
 use nalgebra::Complex;
 use nalgebra::DMatrix;
 use std::f64::consts::PI;
+
+/// RK4 steps per period of the fastest mode (or of the mesh, if it is
+/// faster) for an orbit's multipliers. RK4's global error falls as the
+/// fourth power of the step: at 8 the largest multiplier of Fig. 2's linear
+/// set at Omega 1.875 was 3.7e-4 off the shooting monodromy's (at rtol
+/// 1e-13), at 16 it is 2.2e-5, within the 1e-4 at which the branch's
+/// stability is compared with shooting (`crates/solver/tests/floquet.rs`).
+pub const ORBIT_STEPS_PER_FASTEST: f64 = 16.0;
+
+/// The same for the engaged system's spectral radius (`gearshock
+/// instability`, the page's grey bands), held to 1e-6 of the shooting
+/// monodromy's: at 32 steps it was 1.8e-6 off at Omega 1.875, at 128 it is
+/// 7e-9 (a 400-point scan still takes well under a second).
+pub const ENGAGED_STEPS_PER_FASTEST: f64 = 128.0;
 
 /// Floquet multipliers of an orbit.
 #[derive(Debug, Clone, PartialEq)]
@@ -252,7 +267,7 @@ fn deriv_fixed<const M: usize, const N2: usize>(
 /// `None` if the eigenvalue iteration did not converge.
 pub fn floquet(asm: &Assembly, x: &[f64], omega: f64) -> Option<Floquet> {
     let (coefs, cuts) = orbit_pieces(asm, x);
-    monodromy(asm, omega, &cuts, Some(&coefs), 8.0)
+    monodromy(asm, omega, &cuts, Some(&coefs), ORBIT_STEPS_PER_FASTEST)
 }
 
 /// The orbit `x`'s channel coefficients (each channel's relative
@@ -285,12 +300,20 @@ fn orbit_pieces(asm: &Assembly, x: &[f64]) -> (Vec<Vec<f64>>, Vec<f64>) {
 /// of the time-varying mesh stiffness). `None` if the eigenvalue iteration
 /// did not converge.
 ///
-/// With 32 RK4 steps per period of the fastest mode (not the orbits' 8):
-/// RK4's artificial damping of an oscillation, `(omega h)^6 / 144` per
-/// step, would otherwise shift `ln rho` by some 5 % where the fastest mode
-/// decides it (a single gear pair at low Omega).
+/// With [`ENGAGED_STEPS_PER_FASTEST`] RK4 steps per period of the fastest
+/// mode (more than the orbits' [`ORBIT_STEPS_PER_FASTEST`]): RK4's
+/// artificial damping of an oscillation, `(omega h)^6 / 144` per step,
+/// would otherwise shift `ln rho` where the fastest mode decides it (a
+/// single gear pair at low Omega), and the spectral radius is the
+/// reference the other methods' multipliers are checked against.
 pub fn floquet_engaged(asm: &Assembly, omega: f64) -> Option<Floquet> {
-    monodromy(asm, omega, &[0.0, 2.0 * PI], None, 32.0)
+    monodromy(
+        asm,
+        omega,
+        &[0.0, 2.0 * PI],
+        None,
+        ENGAGED_STEPS_PER_FASTEST,
+    )
 }
 
 /// The monodromy over one period split at `cuts` (contact switches), the
@@ -326,7 +349,8 @@ pub fn monodromy_matrices(
     omega: f64,
 ) -> Option<(DMatrix<f64>, Option<DMatrix<f64>>)> {
     let (coefs, cuts) = orbit_pieces(asm, x);
-    let (main, planet) = integrate_blocks(asm, omega, &cuts, Some(&coefs), 8.0)?;
+    let (main, planet) =
+        integrate_blocks(asm, omega, &cuts, Some(&coefs), ORBIT_STEPS_PER_FASTEST)?;
     let finite = |b: &LtpBlock| b.phi.iter().all(|v| v.is_finite());
     if !finite(&main) || planet.as_ref().is_some_and(|p| !finite(p)) {
         return None;
@@ -347,10 +371,8 @@ fn integrate_blocks(
     let m = model.m;
     let h = asm.h;
     let u_at = |j: usize, theta: f64| coefs.map_or(0.0, |c| eval_coef(&c[j], h, theta));
-    // Steps in theta: for orbits at least 8 per period of the fastest mode
-    // (in tau), where RK4 keeps 99.8 % of an undamped oscillation's
-    // amplitude per step; in the compound set those fast modes are well
-    // damped and never decide stability.
+    // Steps in theta: at least `steps_per_fastest` per period of the
+    // fastest mode (in tau), or of the mesh where it is faster.
     let h_theta_max = omega * 2.0 * PI / (steps_per_fastest * model.omega_max.max(omega));
     let flat = |mat: &DMatrix<f64>| -> Vec<f64> {
         (0..mat.nrows())

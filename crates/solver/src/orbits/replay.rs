@@ -196,6 +196,7 @@ impl ShootingContinuation {
                     (0.0, 0.0),
                     period,
                     mono,
+                    o.tangent_atol_scale,
                     self.model.divergence_bound_m(),
                     budget,
                 );

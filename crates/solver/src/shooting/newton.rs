@@ -22,6 +22,16 @@
 //! exact, not the update's estimate. [`ShootOptions::broyden`] off, every
 //! iterate integrates the tangents (plain Newton).
 //!
+//! A converged period-n orbit may repeat sooner: a period-1 orbit is a
+//! fixed point of `P^3` too, and the pipeline shoots for the period its
+//! loose test read off a transient. Before its monodromy is taken, the
+//! orbit is checked after each proper divisor `d` of `n` (one plain
+//! integration of `d` periods each); where it repeats, the orbit is of
+//! period `d` and its monodromy is integrated over `d` periods. Otherwise
+//! its multipliers would be the `n/d`-th powers of its own: a period-1
+//! orbit with largest multiplier 0.964 reported as 0.895 (`0.964^3`), and a
+//! multiplier near -1 (a period doubling) read as one near +1 (a fold).
+//!
 //! The monodromy that only steers Newton may be integrated at looser
 //! tolerances ([`ShootOptions::jacobian_tol`]): the residual, and so the
 //! orbit, is always evaluated at the attempt's own.
@@ -68,6 +78,15 @@ pub struct ShootOptions {
     /// monodromy that only steers Newton (`None`: `rtol` and `atol_m`).
     /// The converged orbit's monodromy always uses `rtol` and `atol_m`.
     pub jacobian_tol: Option<(f64, f64)>,
+    /// The tangent vectors' absolute tolerance as a fraction of the
+    /// orbit's (0 < scale <= 1). The tangents start at 1 µm of mesh
+    /// deflection, a hundredth of a loaded mesh's, so at 1 they are
+    /// integrated about a hundred times less accurately, relative to their
+    /// size, than the orbit: enough for the multipliers near the unit
+    /// circle (which decide stability), not for the small ones. At 1e-2
+    /// the small ones follow too (Liouville's formula holds to 1e-8 at
+    /// rtol 1e-12), for about 1.7 times the monodromy's steps.
+    pub tangent_atol_scale: f64,
 }
 
 /// Largest orbit period shooting accepts (the same as the period detection's).
@@ -89,6 +108,7 @@ impl ShootOptions {
             max_steps_per_period: 200_000,
             broyden: true,
             jacobian_tol: None,
+            tangent_atol_scale: 1.0,
         }
     }
 
@@ -133,6 +153,14 @@ impl ShootOptions {
                     "0 < atol <= 1e-6 m",
                 );
             }
+        }
+        let scale = self.tangent_atol_scale;
+        if !(scale.is_finite() && scale > 0.0 && scale <= 1.0) {
+            return SolverError::bad_option(
+                "tangent atol scale",
+                format!("{scale}"),
+                "0 < scale <= 1",
+            );
         }
         Ok(())
     }
@@ -211,6 +239,9 @@ enum Stage {
     Jacobian,
     /// The residual at `z + alpha dz`.
     Trial { alpha: f64 },
+    /// At the converged orbit, whether it repeats after `d` mesh periods,
+    /// a proper divisor of the period shot for.
+    Divisor { d: u32 },
     /// The monodromy at the converged orbit.
     Final,
 }
@@ -218,6 +249,13 @@ enum Stage {
 /// The residual's ratio over an accepted step above which the Newton
 /// matrix is integrated afresh rather than updated.
 const SLOW_STEP: f64 = 0.5;
+
+/// How far (in residual tolerances) the converged orbit may miss its
+/// start after a proper divisor `d` of the period shot for and still count
+/// as repeating after `d` periods. A period-n orbit that is not of period d
+/// misses by its own size, far more; one that is, by about the Newton
+/// error, which the n-period residual bounds only up to `|1 - mu|` factors.
+const DIVISOR_SLACK: f64 = 10.0;
 
 /// Smallest line-search factor tried.
 const ALPHA_MIN: f64 = 1.0 / 64.0;
@@ -359,22 +397,34 @@ impl ShootRun {
                 Stage::Base => (0.0, self.base_has_tangents(), &self.tol),
                 Stage::Jacobian => (0.0, true, &self.jac_tol),
                 Stage::Trial { alpha } => (alpha, !self.opts.broyden, &self.tol),
+                Stage::Divisor { .. } => (0.0, false, &self.tol),
                 Stage::Final => (0.0, true, &self.tol),
             };
             let zt = self.point(alpha);
+            // The monodromy that only steers Newton at its own tolerances
+            // needs no accurate small multipliers.
+            let scale = match (self.stage, self.opts.jacobian_tol) {
+                (Stage::Jacobian, Some(_)) => 1.0,
+                _ => self.opts.tangent_atol_scale,
+            };
             if self.eval.is_none() {
+                let periods = match self.stage {
+                    Stage::Divisor { d } => d,
+                    _ => self.opts.period,
+                };
                 let budget = self
                     .opts
                     .max_steps_per_period
-                    .saturating_mul(u64::from(self.opts.period));
+                    .saturating_mul(u64::from(periods));
                 self.eval = Some(Box::new(MapRun::new(
                     &self.red,
                     &self.ode,
                     tol,
                     &zt,
                     self.rigid,
-                    self.opts.period,
+                    periods,
                     tangents,
+                    scale,
                     self.bound_m,
                     budget,
                 )));
@@ -409,6 +459,21 @@ impl ShootRun {
                         self.opts.period
                     ))),
                 },
+                Stage::Divisor { d } => {
+                    let repeats = value.is_ok_and(|v| {
+                        let f: Vec<f64> = v.z.iter().zip(&zt).map(|(p, z)| p - z).collect();
+                        self.red.mesh_norm_um(&f) <= DIVISOR_SLACK * self.tolerance_um(&zt)
+                    });
+                    if repeats {
+                        // The orbit's own period is d: its multipliers are
+                        // those of the d-period map, integrated afresh.
+                        self.opts.period = d;
+                        self.stage = Stage::Final;
+                        None
+                    } else {
+                        self.after_divisor(d)
+                    }
+                }
                 Stage::Final => match value {
                     Ok(v) => Some(self.converged(v.monodromy)),
                     Err(e) => Some(self.fail(format!(
@@ -456,6 +521,25 @@ impl ShootRun {
                 return Ok(None);
             }
         }
+    }
+
+    /// At the converged orbit, after the proper divisors of the period up
+    /// to `tried` were found not to repeat it: the next divisor to try, or
+    /// the orbit with the monodromy integrated for its period.
+    fn after_divisor(&mut self, tried: u32) -> Option<ShootOutcome> {
+        let n = self.opts.period;
+        if let Some(d) = (tried + 1..n).find(|d| n.is_multiple_of(*d)) {
+            self.stage = Stage::Divisor { d };
+            return None;
+        }
+        if self.jac_fresh && self.opts.jacobian_tol.is_none() {
+            // The monodromy was integrated here, at the orbit's tolerances.
+            let m = self.red.dim();
+            let mono = &self.jac + DMatrix::identity(m, m);
+            return Some(self.converged(Some(mono)));
+        }
+        self.stage = Stage::Final;
+        None
     }
 
     /// Takes the monodromy integrated at `z` as the Newton matrix.
@@ -509,14 +593,7 @@ impl ShootRun {
         self.z = zt;
         self.f = f;
         if self.res_um <= self.tolerance_um(&self.z) {
-            if self.jac_fresh && self.opts.jacobian_tol.is_none() {
-                // The monodromy was integrated here, at the orbit's tolerances.
-                let m = self.red.dim();
-                let mono = &self.jac + DMatrix::identity(m, m);
-                return Some(self.converged(Some(mono)));
-            }
-            self.stage = Stage::Final;
-            return None;
+            return self.after_divisor(0);
         }
         if self.iterations >= self.opts.max_iterations {
             return Some(self.fail(format!(

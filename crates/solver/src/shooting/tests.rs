@@ -142,7 +142,7 @@ fn monodromy_matches_finite_differences_of_the_map() {
         let tol = crate::dynamics::tolerances(&m.system, omega, 1e-12, 1e-16, red.period_s, 1e-14);
         let (z0, rigid) = red.from_state(&y0);
         let eval = |z: &[f64], mono: bool| {
-            let mut run = MapRun::new(&red, &ode, &tol, z, rigid, 2, mono, 1.0, u64::MAX);
+            let mut run = MapRun::new(&red, &ode, &tol, z, rigid, 2, mono, 1.0, 1.0, u64::MAX);
             let mut taken = 0;
             run.advance(&red, u64::MAX, &mut taken).unwrap().unwrap()
         };
@@ -287,6 +287,9 @@ fn broyden_updates_find_the_plain_newton_orbit() {
         updated.jacobian_tol = Some((1e-7, 1e-10));
         let a = converged(shoot(&m, omega, &start, &plain).unwrap());
         let b = converged(shoot(&m, omega, &start, &updated).unwrap());
+        // Both see the same period (the period-2 attempt at 1.1 lands on
+        // the period-1 orbit, which both report as such).
+        assert_eq!(a.period, b.period, "Omega {omega} period {period}");
         let red = Reduced::new(&m, omega);
         let diff: Vec<f64> = a.z.iter().zip(&b.z).map(|(x, y)| x - y).collect();
         let size = red.mesh_norm_um(&a.z);
@@ -307,7 +310,18 @@ fn broyden_updates_find_the_plain_newton_orbit() {
             1e-14,
         );
         let (z, rigid) = red.from_state(&b.start_state);
-        let mut run = MapRun::new(&red, &ode, &tol, &z, rigid, period, true, 1.0, u64::MAX);
+        let mut run = MapRun::new(
+            &red,
+            &ode,
+            &tol,
+            &z,
+            rigid,
+            b.period,
+            true,
+            1.0,
+            1.0,
+            u64::MAX,
+        );
         let mut taken = 0;
         let mono = run.advance(&red, u64::MAX, &mut taken).unwrap().unwrap();
         let mono = mono.monodromy.unwrap();

@@ -14,8 +14,9 @@
 //! the monodromy is the product of the pieces' solutions: no jump
 //! correction is needed.
 //!
-//! The tangents start with a mesh-space size of 1 µm, like the state's own
-//! scale, so they share the orbit's absolute tolerances.
+//! The tangents start with a mesh-space size of 1 µm, and their absolute
+//! tolerances are the orbit's times a scale the caller chooses
+//! (`ShootOptions::tangent_atol_scale`).
 
 use super::Reduced;
 use crate::dynamics::MeshOde;
@@ -101,7 +102,8 @@ pub(crate) struct MapValue {
 
 impl MapRun {
     /// Starts `P^periods` at `z` (rigid-body position and rate `rigid`),
-    /// with the monodromy if `with_monodromy`.
+    /// with the monodromy if `with_monodromy`, its tangents at the orbit's
+    /// absolute tolerance times `tangent_atol_scale`.
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn new(
         red: &Reduced,
@@ -111,6 +113,7 @@ impl MapRun {
         rigid: (f64, f64),
         periods: u32,
         with_monodromy: bool,
+        tangent_atol_scale: f64,
         bound_m: f64,
         max_steps: u64,
     ) -> Self {
@@ -120,7 +123,7 @@ impl MapRun {
         let mut atol = tol.atol.clone();
         for k in 0..cols {
             y0.extend(red.tangent_start(k));
-            atol.extend_from_slice(&tol.atol);
+            atol.extend(tol.atol.iter().map(|a| a * tangent_atol_scale));
         }
         let t_end = f64::from(periods) * red.period_s;
         let ext = Tolerances {

@@ -12,7 +12,11 @@
 //! direction) is at least [`LAMBDA_MIN`] per period and positive at 95 %
 //! one-sided confidence (Student's t over the four quarters' means of the
 //! measurement, which are nearly independent where the motion mixes in a
-//! few periods, as chaos does). It is not chaos (and the run goes back to
+//! few periods, as chaos does), and the growth is sustained: the exponent
+//! over the window's second half at least [`SUSTAINED`] of the first
+//! half's, which tells exponential separation from separation growing
+//! like a power of time (the finite-time exponent of `d ~ k^p` is
+//! `p ln k / k`, positive over any finite window but fading). It is not chaos (and the run goes back to
 //! its transient, looking for a candidate period at once) when the
 //! exponent is negative or below `LAMBDA_MIN` at the same confidence, or when the last
 //! decision point passes without a verdict.
@@ -44,6 +48,10 @@ pub const DECIDE_AT: &[usize] = &[16, 24, 32, 48, 64];
 /// The smallest exponent per period called chaotic.
 pub const LAMBDA_MIN: f64 = 0.05;
 
+/// The smallest ratio of the second half's exponent to the first half's
+/// for growth to count as exponential (see [`decide`]).
+pub const SUSTAINED: f64 = 0.5;
+
 /// What the probe found.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LyapunovEvidence {
@@ -61,6 +69,8 @@ impl LyapunovEvidence {
     pub fn words(&self) -> String {
         let kind = if self.chaotic {
             "chaotic"
+        } else if self.per_period >= LAMBDA_MIN {
+            "undecided (the separation grew, but not at a steady exponential rate)"
         } else if self.per_period > -LAMBDA_MIN {
             "quasi-periodic or near a bifurcation"
         } else {
@@ -181,7 +191,15 @@ pub fn decide(logs: &[f64]) -> Option<LyapunovEvidence> {
     // One-sided 95 % on the quarters' means: Student's t with 3 degrees
     // of freedom (2.353) times their standard error (sd / 2).
     let margin = 2.353 * sd / 2.0;
-    let chaotic = q > 0 && lambda >= LAMBDA_MIN && lambda > margin;
+    // Sustained growth: the second half's exponent is not much below the
+    // first's. A separation growing like a power of time (shear on a torus,
+    // a non-normal but bounded linear map) has a finite-time exponent that
+    // fades as `p ln k / k`: its second half's is at most 0.38 of its
+    // first's (at 16 periods, less later), where chaos keeps its rate.
+    let half = l.len() / 2;
+    let (first, second) = (mean(&l[..half]), mean(&l[half..]));
+    let sustained = second >= LAMBDA_MIN && second >= SUSTAINED * first;
+    let chaotic = q > 0 && lambda >= LAMBDA_MIN && lambda > margin && sustained;
     let not_chaotic = q > 0 && (lambda < 0.0 || lambda + margin < LAMBDA_MIN);
     let last = DECIDE_AT.last().is_some_and(|&n| n == k);
     (chaotic || not_chaotic || last).then_some(LyapunovEvidence {
