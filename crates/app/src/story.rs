@@ -82,28 +82,23 @@ pub fn motion_sentence(m: Motion, periods_run: u32) -> String {
 /// The impact regime in a few words, read against the mesh's backlash:
 /// without backlash the mesh is a linear spring and nothing impacts.
 pub fn contact_tag(regime: Regime, backlash_um: f64) -> &'static str {
-    if has_backlash(backlash_um) {
-        return regime.label();
+    if !has_backlash(backlash_um) {
+        return Regime::NoGap.label();
     }
-    match regime {
-        Regime::DoubleSided => "no backlash, load reverses",
-        _ => "no backlash, always in contact",
-    }
+    regime.label()
 }
 
 /// What the teeth do, as the student summary says it.
 pub fn contact_sentence(regime: Regime, backlash_um: f64) -> &'static str {
-    if !has_backlash(backlash_um) {
-        return match regime {
-            Regime::DoubleSided => {
-                "there is no backlash, so the teeth never separate: the mesh acts as a spring whose force changes sign, from the driving flank to the back flank and back"
-            }
-            _ => {
-                "there is no backlash, so the teeth never separate: the mesh acts as a spring that stays loaded on the driving flank"
-            }
-        };
-    }
+    let regime = if has_backlash(backlash_um) {
+        regime
+    } else {
+        Regime::NoGap
+    };
     match regime {
+        Regime::NoGap => {
+            "there is no backlash, so no gap: the teeth stay in contact, the mesh a linear spring"
+        }
         Regime::NoImpact => "the teeth stay in contact all the time (no impact)",
         Regime::SingleSided => {
             "the teeth separate and strike the driving flank again (single-sided impact)"

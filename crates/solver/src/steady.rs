@@ -72,6 +72,10 @@ pub enum Impact {
     DoubleSided,
     /// The teeth never touch at all (no load, no excitation large enough).
     NoContact,
+    /// No gap to cross: the mesh has no backlash, so its force is linear in
+    /// the deflection and the teeth never part (a negative deflection
+    /// loads the back flanks without an impact).
+    NoGap,
 }
 
 impl Impact {
@@ -82,6 +86,7 @@ impl Impact {
             Impact::SingleSided => "single-sided",
             Impact::DoubleSided => "double-sided",
             Impact::NoContact => "no-contact",
+            Impact::NoGap => "no-gap",
         }
     }
 
@@ -92,14 +97,28 @@ impl Impact {
             Impact::SingleSided,
             Impact::DoubleSided,
             Impact::NoContact,
+            Impact::NoGap,
         ]
         .into_iter()
         .find(|i| i.name() == s)
     }
 
+    /// The regime in words, as a reader meets it.
+    pub fn words(self) -> &'static str {
+        match self {
+            Impact::None => "no impact",
+            Impact::SingleSided => "single-sided impact",
+            Impact::DoubleSided => "double-sided impact",
+            Impact::NoContact => "no contact",
+            Impact::NoGap => "no gap (linear contact)",
+        }
+    }
+
     /// Classifies from the extremes of the relative displacement `x = delta - e`.
     pub fn classify(rel_min: f64, rel_max: f64, backlash: f64) -> Self {
-        if rel_min > backlash {
+        if backlash <= 0.0 {
+            Impact::NoGap
+        } else if rel_min > backlash {
             Impact::None
         } else if rel_min < -backlash {
             Impact::DoubleSided

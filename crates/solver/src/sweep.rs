@@ -253,9 +253,10 @@ pub struct SweepPoint {
 pub fn severity(i: Impact) -> u8 {
     match i {
         Impact::NoContact => 0,
-        Impact::None => 1,
-        Impact::SingleSided => 2,
-        Impact::DoubleSided => 3,
+        Impact::NoGap => 1,
+        Impact::None => 2,
+        Impact::SingleSided => 3,
+        Impact::DoubleSided => 4,
     }
 }
 

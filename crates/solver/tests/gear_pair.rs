@@ -73,7 +73,7 @@ fn impacts_go_from_none_to_single_to_double_sided_as_te_grows() {
             Impact::None => assert!(r.rel_min_m > b),
             Impact::SingleSided => assert!(r.rel_min_m <= b && r.rel_min_m >= -b),
             Impact::DoubleSided => assert!(r.rel_min_m < -b),
-            Impact::NoContact => unreachable!(),
+            Impact::NoContact | Impact::NoGap => unreachable!(),
         }
     }
 }

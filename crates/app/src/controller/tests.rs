@@ -456,7 +456,7 @@ fn the_map_shards_rows_and_a_cell_click_sets_both_parameters() {
         11.0,
     );
     assert_eq!(c.main.status(JobKind::Map).done, 2);
-    assert_eq!(c.main.map.counts().0, [1, 0, 1, 0]);
+    assert_eq!(c.main.map.counts().0, [0, 1, 0, 1, 0]);
     // Row 2 is 120 um, column 10 is Omega = 0.1 + 10 * 1.9 / 19 = 1.1.
     let fx = c.pick_map_point(1.1 + 0.02, 120.0 - 5.0, 20.0).unwrap();
     assert!(c.query().contains("backlash_um=120"), "{}", c.query());

@@ -170,7 +170,7 @@ pub(crate) fn contact_items(backlash_um: &[f64], pinned_um: &[f64], y: (f64, f64
 /// The key items of the regimes present, in their fixed order; the first
 /// prefixed by `prefix`.
 pub(crate) fn regime_items(present: impl Iterator<Item = Regime>, prefix: &str) -> KeyItems {
-    let mut seen = [false; 4];
+    let mut seen = [false; Regime::ALL.len()];
     for r in present {
         if let Some(i) = Regime::ALL.iter().position(|&x| x == r) {
             seen[i] = true;

@@ -73,6 +73,7 @@ pub fn regime_color(r: Regime) -> RGBColor {
         Regime::SingleSided => RGBColor(230, 120, 0),
         Regime::DoubleSided => RGBColor(200, 30, 40),
         Regime::NoContact => RGBColor(40, 150, 60),
+        Regime::NoGap => RGBColor(110, 110, 120),
     }
 }
 

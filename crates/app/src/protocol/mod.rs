@@ -264,11 +264,14 @@ pub enum Regime {
     DoubleSided,
     /// The teeth never touch.
     NoContact,
+    /// No backlash: no gap to cross, the mesh a linear spring.
+    NoGap,
 }
 
 impl Regime {
     /// All regimes, mildest first.
-    pub const ALL: [Regime; 4] = [
+    pub const ALL: [Regime; 5] = [
+        Regime::NoGap,
         Regime::NoImpact,
         Regime::SingleSided,
         Regime::DoubleSided,
@@ -277,12 +280,7 @@ impl Regime {
 
     /// Words for legends and the summary.
     pub fn label(self) -> &'static str {
-        match self {
-            Regime::NoImpact => "no impact",
-            Regime::SingleSided => "single-sided impact",
-            Regime::DoubleSided => "double-sided impact",
-            Regime::NoContact => "no contact",
-        }
+        Impact::from(self).words()
     }
 
     /// The solver's name (as in the CLI's JSON).
@@ -298,6 +296,7 @@ impl From<Impact> for Regime {
             Impact::SingleSided => Regime::SingleSided,
             Impact::DoubleSided => Regime::DoubleSided,
             Impact::NoContact => Regime::NoContact,
+            Impact::NoGap => Regime::NoGap,
         }
     }
 }
@@ -309,6 +308,7 @@ impl From<Regime> for Impact {
             Regime::SingleSided => Impact::SingleSided,
             Regime::DoubleSided => Impact::DoubleSided,
             Regime::NoContact => Impact::NoContact,
+            Regime::NoGap => Impact::NoGap,
         }
     }
 }

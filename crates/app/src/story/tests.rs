@@ -146,9 +146,8 @@ fn no_sentence_contradicts_the_classification() {
     }
 }
 
-/// Impact words follow the backlash: a mesh without backlash never
-/// crosses one, never impacts and never separates; one with backlash
-/// names its regime.
+/// Impact words follow the backlash: a mesh without backlash has no gap,
+/// never impacts and never separates; one with backlash names its regime.
 #[test]
 fn impact_words_follow_the_backlash() {
     for m in verdicts() {
@@ -173,12 +172,14 @@ fn impact_words_follow_the_backlash() {
                 ] {
                     assert!(!t.contains(w), "says {w:?} without backlash: {t}");
                 }
-                assert!(t.contains("no backlash"), "{t}");
+                assert!(t.contains("no gap"), "{t}");
             }
             r.backlash_um = 40.0;
             let summary = crate::views::omega::summary_line(&r, &[]);
             assert!(summary.contains(regime.label()), "{summary}");
-            assert!(!summary.contains("no backlash"), "{summary}");
+            if regime != Regime::NoGap {
+                assert!(!summary.contains("no gap"), "{summary}");
+            }
         }
     }
 }

@@ -92,7 +92,7 @@ pub fn agrees(
             (others_stable == Some(true)).then_some((cell.period == Some(1)) == unchanged)
         }
         BoundaryKind::DriveFlanksPart => match r {
-            Regime::NoContact => None,
+            Regime::NoContact | Regime::NoGap => None,
             Regime::NoImpact => Some(unchanged),
             Regime::SingleSided | Regime::DoubleSided => Some(!unchanged),
         },
@@ -100,7 +100,7 @@ pub fn agrees(
         BoundaryKind::DriveFlanksTouch => match r {
             Regime::NoContact => Some(unchanged),
             Regime::NoImpact | Regime::SingleSided => Some(!unchanged),
-            Regime::DoubleSided => None,
+            Regime::DoubleSided | Regime::NoGap => None,
         },
     }
 }

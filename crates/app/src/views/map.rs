@@ -190,8 +190,8 @@ impl MapStore {
 
     /// Counts of each regime among the received cells (in [`Regime::ALL`]
     /// order), of cells that are not period 1, and of failed cells.
-    pub fn counts(&self) -> ([usize; 4], usize, usize) {
-        let mut by = [0; 4];
+    pub fn counts(&self) -> ([usize; Regime::ALL.len()], usize, usize) {
+        let mut by = [0; Regime::ALL.len()];
         let (mut not_p1, mut failed) = (0, 0);
         for c in self.cells.iter().flatten() {
             if c.error.is_some() {
@@ -338,7 +338,7 @@ mod tests {
         ]);
         assert_eq!(s.done, 2);
         let (by, not_p1, failed) = s.counts();
-        assert_eq!(by, [1, 0, 1, 0]);
+        assert_eq!(by, [0, 1, 0, 1, 0]);
         assert_eq!((not_p1, failed), (1, 0));
         assert_eq!(s.cell(0, 1).map(|c| c.period), Some(Some(2)));
     }
