@@ -110,5 +110,46 @@ pub fn contact_sentence(regime: Regime, backlash_um: f64) -> &'static str {
     }
 }
 
+/// What the frequency response's harmonic-balance branch says at one Ω:
+/// the period-1 orbits it holds there.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BranchAt {
+    /// Some orbit the branch holds here is stable.
+    Stable,
+    /// The branch covers this Ω, but every orbit it holds here is unstable.
+    Unstable,
+    /// The branch does not reach this Ω (or is still computing).
+    NotCovered,
+}
+
+/// The sentence that joins the steady state found at one Ω with what the
+/// frequency response's branch says there, when they tell different
+/// stories; `None` when they agree (or the branch has nothing to say).
+/// Both are true at once: the branch holds the period-1 orbits, the run
+/// finds the motion the gears reach from its start, and several motions
+/// may coexist.
+pub fn branch_agreement(m: Motion, branch: BranchAt) -> Option<String> {
+    match (m, branch) {
+        (Motion::PeriodicExact { period: 1, .. }, BranchAt::Unstable) => Some(
+            "The frequency response's branch is unstable here, but shooting found this stable period-1 orbit: the gears follow the orbit found (drawn), which the harmonic balance misses or holds on another stretch.".into(),
+        ),
+        (Motion::PeriodicExact { period, .. }, BranchAt::Unstable) => Some(format!(
+            "The frequency response's branch holds only period-1 orbits, unstable here: the gears settle on this stable period-{period} orbit instead."
+        )),
+        (Motion::Periodic { period }, BranchAt::Unstable) if period > 1 => Some(format!(
+            "The frequency response's branch holds only period-1 orbits, unstable here: the gears move with period {period} instead."
+        )),
+        (
+            Motion::NotPeriodic
+            | Motion::PeriodAboveMaximum { .. }
+            | Motion::StillSettling { .. },
+            BranchAt::Stable,
+        ) => Some(
+            "The frequency response's branch holds a stable period-1 orbit here too: two motions coexist, and the run's start decided which one the gears reached (another start, or a sweep from the other side, may end on the branch).".into(),
+        ),
+        _ => None,
+    }
+}
+
 #[cfg(test)]
 mod tests;

@@ -213,6 +213,15 @@ pub fn must_be(key: &str, typed: &str) -> String {
     )
 }
 
+/// `s` with its first letter in upper case ("TE 20 µm" stays as it is).
+pub fn capitalize(s: &str) -> String {
+    let mut c = s.chars();
+    match c.next() {
+        Some(f) => f.to_uppercase().chain(c).collect(),
+        None => String::new(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

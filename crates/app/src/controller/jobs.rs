@@ -299,6 +299,7 @@ impl Controller {
         };
         let id = self.next_job();
         let grid = self.map_grid();
+        let linear = input.model.is_linear();
         let Some(c) = self.computation_mut(target) else {
             return Vec::new();
         };
@@ -322,7 +323,10 @@ impl Controller {
             }
             JobKind::Bif => c.bif = BifStore::new(id, total),
             JobKind::Map => c.map = MapStore::new(id, grid.clone(), map_signature),
-            JobKind::Lyap => c.lyap = LyapStore::new(id, total, v.lyap_periods),
+            JobKind::Lyap => {
+                c.lyap = LyapStore::new(id, total, v.lyap_periods);
+                c.lyap.linear = linear;
+            }
             JobKind::Orbits => c.orbits = OrbitStore::new(id),
             JobKind::Boundaries => c.boundaries = BoundaryStore::new(id, map_signature),
         }

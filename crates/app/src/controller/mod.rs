@@ -511,6 +511,11 @@ impl Controller {
         let previous = previous.filter(|_| self.family.is_none());
         let mut v = fr_view(&main.hbm, previous, overlay, mesh, &b, &ctx);
         v.whole_clearance = self.settings.view.whole_clearance;
+        v.selected_motion = main
+            .omega
+            .as_ref()
+            .filter(|r| !r.preview && (r.omega - ctx.selected_omega).abs() < 1e-12)
+            .map(|r| r.motion);
         if let Some(f) = &self.family {
             // Every member's ±b (a backlash family has one pair per value).
             let mut levels = v.backlash_um.clone();

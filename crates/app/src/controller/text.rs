@@ -22,7 +22,7 @@ impl Controller {
             JobKind::HarmonicBalance | JobKind::Overlay => labels::fr_label(&self.fr_view()),
             JobKind::Bif | JobKind::Orbits => labels::bif_label(&self.bif_view()),
             JobKind::Map | JobKind::Boundaries => labels::map_label(&self.main.map),
-            JobKind::Lyap => labels::lyap_label(&self.main.lyap.curve()),
+            JobKind::Lyap => labels::lyap_label(&self.main.lyap.curve(), self.main.lyap.linear),
             JobKind::Omega => match (&self.main.omega, &self.main.status(JobKind::Omega).error) {
                 (_, Some(e)) => format!("{title}: not computed: {e}"),
                 (Some(r), None) => labels::omega_label(title, r),
@@ -48,11 +48,39 @@ impl Controller {
     /// regime, whether the motion repeats, the dynamic factor explained);
     /// the expert figures are [`Controller::summary_text`].
     pub fn student_summary(&self) -> String {
-        match (&self.main.omega, &self.main.status(JobKind::Omega).error) {
+        let text = match (&self.main.omega, &self.main.status(JobKind::Omega).error) {
             (_, Some(e)) => format!("Not computed: {e}"),
-            (Some(r), None) => crate::views::omega::student_summary(r),
+            (Some(r), None) => {
+                let mut s = crate::views::omega::student_summary(r);
+                if let Some(more) = self.branch_agreement() {
+                    s.push(' ');
+                    s.push_str(&more);
+                }
+                s
+            }
             (None, None) => "Computing the motion at the selected Ω…".into(),
+        };
+        match &self.family {
+            Some(f) => format!(
+                "{}: {text} The other curves' motions are in the panels' titles.",
+                crate::words::capitalize(&f.spec.label(0))
+            ),
+            None => text,
         }
+    }
+
+    /// What the frequency response's branch says at the selected Ω, where
+    /// it tells another story than the steady state found there (see
+    /// [`crate::story::branch_agreement`]); `None` while either computes.
+    pub fn branch_agreement(&self) -> Option<String> {
+        let r = self.main.omega.as_ref().filter(|r| !r.preview)?;
+        if !self.main.hbm.finished {
+            return None;
+        }
+        let v = self.fr_view();
+        let br = crate::views::unstable::current_branch(&v)?;
+        let at = crate::views::unstable::branch_at(&br.points, r.omega);
+        crate::story::branch_agreement(r.motion, at)
     }
 
     /// The summary line at the selected Omega: the result's figures and the

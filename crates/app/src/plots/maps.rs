@@ -316,6 +316,7 @@ pub fn lyap_color(k: LyapKind) -> RGBColor {
         LyapKind::Periodic => RGBColor(31, 119, 180),
         LyapKind::Neutral => RGBColor(230, 120, 0),
         LyapKind::Chaotic => RGBColor(200, 30, 40),
+        LyapKind::Growth => RGBColor(120, 40, 140),
     }
 }
 
@@ -333,16 +334,20 @@ pub fn draw_lyap<DB: DrawingBackend>(
     let x = omega_range;
     // The key is under the chart, so the axes fit the curve alone.
     let y = padded_range(curve.iter().map(|p| p.1), &[0.0], 0.2);
-    let kinds = [LyapKind::Periodic, LyapKind::Neutral, LyapKind::Chaotic];
+    // The readings this model can have: chaos on a nonlinear one, growth
+    // on a linear one.
+    let kinds: Vec<LyapKind> = LyapKind::ALL
+        .into_iter()
+        .filter(|k| match k {
+            LyapKind::Chaotic => !store.linear,
+            LyapKind::Growth => store.linear,
+            _ => true,
+        })
+        .collect();
     let zero_color = BLACK;
     let mut items: KeyItems = vec![(KeyIcon::Line(zero_color, false), "λ = 0".into())];
-    for kind in kinds {
-        let label = match kind {
-            LyapKind::Periodic => "λ < 0: periodic (stable)",
-            LyapKind::Neutral => "λ ≈ 0: quasi-periodic",
-            LyapKind::Chaotic => "λ > 0: chaotic",
-        };
-        items.push((KeyIcon::Dot(lyap_color(kind), 3), label.into()));
+    for &kind in &kinds {
+        items.push((KeyIcon::Dot(lyap_color(kind), 3), kind.label().into()));
     }
     items.extend(omega_items(natural, selected));
     let failed = store.failed();
@@ -383,14 +388,14 @@ pub fn draw_lyap<DB: DrawingBackend>(
             ShapeStyle::from(&RGBColor(120, 120, 130)).stroke_width(1),
         ))
         .map_err(err)?;
-    for kind in kinds {
+    for &kind in &kinds {
         let c = lyap_color(kind);
         chart
             .draw_series(
                 curve
                     .iter()
                     .copied()
-                    .filter(|p| lyap_kind(p.1) == kind)
+                    .filter(|p| lyap_kind(p.1, store.linear) == kind)
                     .map(|p| Circle::new(p, 3, c.filled())),
             )
             .map_err(err)?;
@@ -473,6 +478,7 @@ mod tests {
 
         let lyap = LyapStore {
             id: 1,
+            linear: false,
             points: vec![
                 LyapSample {
                     index: 0,

@@ -124,6 +124,7 @@ fn ab_fr() -> FrView {
         omega_from: 0.1,
         omega_to: 2.0,
         selected_omega: 0.84,
+        selected_motion: None,
         branch_error: Some((1.9, "no convergence at Omega = 1.9".into())),
         failed: vec![],
         done: 10,
@@ -471,6 +472,7 @@ fn every_key_is_under_its_chart_never_over_the_data() {
 
     let lyap = crate::views::lyap::LyapStore {
         id: 1,
+        linear: false,
         points: [(0.5, -0.4), (1.0, 0.1), (1.5, 0.001)]
             .iter()
             .enumerate()
@@ -718,6 +720,7 @@ fn fr_view(backlash_um: f64, branches: Vec<FrBranch>) -> FrView {
         omega_from: 0.1,
         omega_to: 2.0,
         selected_omega: 0.84,
+        selected_motion: None,
         branch_error: None,
         failed: vec![],
         done: 10,

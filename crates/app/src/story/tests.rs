@@ -282,3 +282,32 @@ fn the_page_opens_on_the_periodic_state_the_first_tour_step_explains() {
         "{summary}"
     );
 }
+
+/// Where the steady state found and the frequency response's branch tell
+/// different stories, one sentence says both; where they agree, nothing
+/// is added.
+#[test]
+fn the_branch_and_the_steady_state_are_joined_in_one_sentence() {
+    use crate::story::{branch_agreement, BranchAt};
+    for m in verdicts() {
+        for at in [BranchAt::Stable, BranchAt::Unstable, BranchAt::NotCovered] {
+            let s = branch_agreement(m, at);
+            let periodic_stable =
+                m.is_exact() || matches!(m, Motion::Periodic { period } if period > 1);
+            let expect = match at {
+                BranchAt::NotCovered => false,
+                BranchAt::Unstable => periodic_stable,
+                BranchAt::Stable => {
+                    m.period().is_none() || matches!(m, Motion::StillSettling { .. })
+                }
+            };
+            assert_eq!(s.is_some(), expect, "{m:?} {at:?}: {s:?}");
+            if let (Some(s), Some(p)) = (&s, m.period()) {
+                assert!(
+                    s.contains(&format!("period-{p}")) || s.contains(&format!("period {p}")),
+                    "{s}"
+                );
+            }
+        }
+    }
+}

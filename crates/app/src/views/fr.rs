@@ -207,6 +207,10 @@ pub struct FrView {
     pub omega_to: f64,
     /// Selected Omega (the cursor).
     pub selected_omega: f64,
+    /// The classification of the steady state at the selected Omega, once
+    /// its full run has ended (not a preview): the sentence under the plot
+    /// joins it with the branch's stability there.
+    pub selected_motion: Option<crate::protocol::Motion>,
     /// The solver failure that ended the branch early, at which Omega: the
     /// branch is partial (reported, never plotted as data).
     pub branch_error: Option<(f64, String)>,
@@ -574,6 +578,7 @@ pub fn fr_view(
         omega_from: ctx.omega_from,
         omega_to: ctx.omega_to,
         selected_omega: ctx.selected_omega,
+        selected_motion: None,
         branch_error,
         failed,
         done: hbm.points.len(),

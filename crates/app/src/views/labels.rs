@@ -262,21 +262,31 @@ pub fn map_label(map: &MapStore) -> String {
     s
 }
 
-/// The Lyapunov curve: its largest exponent and where the motion is chaotic.
-pub fn lyap_label(curve: &[(f64, f64)]) -> String {
+/// The Lyapunov curve: its largest exponent and where the motion is
+/// chaotic (or, on a linear model, grows: a parametric instability).
+pub fn lyap_label(curve: &[(f64, f64)], linear: bool) -> String {
+    use super::lyap::{lyap_kind, LyapKind};
     let Some(&(om, top)) = curve.iter().max_by(|a, b| a.1.total_cmp(&b.1)) else {
         return "Largest Lyapunov exponent: computing or off.".into();
     };
-    let chaotic = curve.iter().filter(|(_, l)| *l > 0.01).count();
+    let count = |k: LyapKind| {
+        curve
+            .iter()
+            .filter(|(_, l)| lyap_kind(*l, linear) == k)
+            .count()
+    };
+    let (chaotic, growth) = (count(LyapKind::Chaotic), count(LyapKind::Growth));
+    let reading = if growth > 0 {
+        format!("positive at {growth} of them: the motion grows without bound there (parametric instability; a linear system is not chaotic)")
+    } else if chaotic > 0 {
+        format!("positive (chaos) at {chaotic} of them")
+    } else {
+        "no chaos (no clearly positive exponent)".to_string()
+    };
     format!(
-        "Largest Lyapunov exponent at {} values of Ω: highest {top:.3} per mesh period at Ω {}; {}.",
+        "Largest Lyapunov exponent at {} values of Ω: highest {top:.3} per mesh period at Ω {}; {reading}.",
         curve.len(),
         short(om),
-        if chaotic == 0 {
-            "no chaos (no clearly positive exponent)".to_string()
-        } else {
-            format!("positive (chaos) at {chaotic} of them")
-        }
     )
 }
 
@@ -347,8 +357,8 @@ mod tests {
 
     #[test]
     fn the_lyapunov_label_counts_chaos() {
-        assert!(lyap_label(&[]).contains("computing"));
-        let t = lyap_label(&[(0.5, -0.2), (1.0, 0.3), (1.5, 0.05)]);
+        assert!(lyap_label(&[], false).contains("computing"));
+        let t = lyap_label(&[(0.5, -0.2), (1.0, 0.3), (1.5, 0.05)], false);
         assert_eq!(
             t,
             "Largest Lyapunov exponent at 3 values of Ω: highest 0.300 per mesh period at Ω 1; positive (chaos) at 2 of them."

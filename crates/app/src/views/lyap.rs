@@ -15,6 +15,9 @@ pub struct LyapStore {
     pub total: usize,
     /// Periods each exponent averages over.
     pub periods: u32,
+    /// The model is linear (no backlash): a positive exponent is growth of
+    /// a parametric instability, never chaos.
+    pub linear: bool,
 }
 
 impl LyapStore {
@@ -25,6 +28,7 @@ impl LyapStore {
             points: Vec::new(),
             total,
             periods,
+            linear: false,
         }
     }
 
@@ -57,25 +61,57 @@ impl LyapStore {
     }
 }
 
-/// How an exponent of the map reads: the band around zero is
-/// [`LYAP_ZERO_BAND`] wide on each side.
+/// How an exponent of the map reads, with the thresholds of the steady
+/// run's own probe, so that this view and the summary call the same
+/// motion by the same name: below `-LYAP_ZERO_BAND` periodic, from
+/// [`LAMBDA_MIN`] up chaotic (growth, for a linear model), between them
+/// near zero.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum LyapKind {
     /// Negative: a stable periodic response.
     Periodic,
-    /// About zero: quasi-periodic (or at a bifurcation).
+    /// About zero: quasi-periodic, at a bifurcation, or too weak to call.
     Neutral,
     /// Positive: chaos.
     Chaotic,
+    /// Positive on a linear model: the motion grows without bound (a
+    /// parametric instability of the mesh stiffness), which is not chaos.
+    Growth,
 }
+
+impl LyapKind {
+    /// The readings in the key's order.
+    pub const ALL: [LyapKind; 4] = [
+        LyapKind::Periodic,
+        LyapKind::Neutral,
+        LyapKind::Chaotic,
+        LyapKind::Growth,
+    ];
+
+    /// The reading in the key's words.
+    pub fn label(self) -> &'static str {
+        match self {
+            LyapKind::Periodic => "λ < 0: periodic (stable)",
+            LyapKind::Neutral => "λ near 0: quasi-periodic or undecided",
+            LyapKind::Chaotic => "λ > 0: chaotic",
+            LyapKind::Growth => {
+                "λ > 0: grows without bound (parametric instability; a linear system is not chaotic)"
+            }
+        }
+    }
+}
+
+pub use solver::steady::LAMBDA_MIN;
 
 /// Half-width of the band of exponents read as zero (per mesh period): an
 /// average over ~100 periods is not sharper than this.
 pub const LYAP_ZERO_BAND: f64 = 0.01;
 
-/// Reads an exponent per mesh period.
-pub fn lyap_kind(per_period: f64) -> LyapKind {
-    if per_period > LYAP_ZERO_BAND {
+/// Reads an exponent per mesh period of a model, linear or not.
+pub fn lyap_kind(per_period: f64, linear: bool) -> LyapKind {
+    if linear && per_period > LYAP_ZERO_BAND {
+        LyapKind::Growth
+    } else if per_period >= LAMBDA_MIN {
         LyapKind::Chaotic
     } else if per_period < -LYAP_ZERO_BAND {
         LyapKind::Periodic
@@ -117,9 +153,12 @@ mod tests {
 
     #[test]
     fn exponents_read_by_sign() {
-        assert_eq!(lyap_kind(-0.3), LyapKind::Periodic);
-        assert_eq!(lyap_kind(0.001), LyapKind::Neutral);
-        assert_eq!(lyap_kind(0.2), LyapKind::Chaotic);
+        assert_eq!(lyap_kind(-0.3, false), LyapKind::Periodic);
+        assert_eq!(lyap_kind(0.001, false), LyapKind::Neutral);
+        assert_eq!(lyap_kind(0.03, false), LyapKind::Neutral);
+        assert_eq!(lyap_kind(0.2, false), LyapKind::Chaotic);
+        assert_eq!(lyap_kind(0.2, true), LyapKind::Growth);
+        assert_eq!(lyap_kind(-0.2, true), LyapKind::Periodic);
     }
 
     #[test]

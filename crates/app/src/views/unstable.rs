@@ -5,11 +5,45 @@
 
 use super::fr::{FrCurvePoint, FrView};
 use crate::protocol::Regime;
+use crate::story::BranchAt;
+
+/// What the branch `points` says at `omega`: stable if a stable stretch
+/// (both ends stable, or of unknown stability) covers it, unstable if only
+/// unstable stretches do, not covered otherwise.
+pub fn branch_at(points: &[FrCurvePoint], omega: f64) -> BranchAt {
+    let ok = |p: &FrCurvePoint| p.stable != Some(false);
+    let mut covered = false;
+    for w in points.windows(2).filter(|w| w[0].joins(&w[1])) {
+        let (a, b) = (w[0].omega.min(w[1].omega), w[0].omega.max(w[1].omega));
+        if omega < a || omega > b {
+            continue;
+        }
+        if ok(&w[0]) && ok(&w[1]) {
+            return BranchAt::Stable;
+        }
+        covered = true;
+    }
+    if covered {
+        BranchAt::Unstable
+    } else {
+        BranchAt::NotCovered
+    }
+}
+
+/// The branch whose stability the frequency response's sentence reads: the
+/// current settings' (a family's first member, whose steady state the
+/// summary describes), never the faded previous one or the pinned A.
+pub fn current_branch(v: &FrView) -> Option<&super::fr::FrBranch> {
+    v.branches.iter().find(|b| !b.faded && !b.pinned)
+}
 
 /// The Omega ranges, within the branch's reach, where no stretch of the
 /// branch is stable (stretches of unknown stability count as stable): there
 /// the gears do not follow any periodic solution the branch holds. Ranges
-/// narrower than 2 % of the branch's reach are left out.
+/// narrower than 0.5 % of the branch's reach are left out, and stable
+/// islands that narrow do not split a range (a stretch of a point or two
+/// between bifurcations); a wider stable island always does, so that the
+/// sentence never covers an Ω where the branch holds a stable orbit.
 pub fn unstable_ranges(points: &[FrCurvePoint]) -> Vec<(f64, f64)> {
     let lo = points.iter().map(|p| p.omega).fold(f64::INFINITY, f64::min);
     let hi = points
@@ -37,17 +71,21 @@ pub fn unstable_ranges(points: &[FrCurvePoint]) -> Vec<(f64, f64)> {
     if hi > reach {
         gaps.push((reach, hi));
     }
-    // Stable islands narrower than 2 % of the reach do not split a range.
+    let narrow = MERGE_FRACTION * (hi - lo);
     let mut merged: Vec<(f64, f64)> = Vec::new();
     for g in gaps {
         match merged.last_mut() {
-            Some(last) if g.0 - last.1 < 0.02 * (hi - lo) => last.1 = g.1,
+            Some(last) if g.0 - last.1 < narrow => last.1 = g.1,
             _ => merged.push(g),
         }
     }
-    merged.retain(|&(a, b)| b - a >= 0.02 * (hi - lo));
+    merged.retain(|&(a, b)| b - a >= narrow);
     merged
 }
+
+/// The width, as a fraction of the branch's reach, below which an unstable
+/// range is left out and a stable island does not split one.
+const MERGE_FRACTION: f64 = 0.005;
 
 pub use crate::words::short;
 
@@ -65,10 +103,11 @@ fn ranges_text(ranges: &[(f64, f64)]) -> String {
 }
 
 /// The plain sentence the plot shows when the current branch is unstable
-/// over a range: no periodic motion the branch holds is stable there, and
-/// the dots are what the gears actually do.
+/// over a range: no orbit the branch holds is stable there, and the dots
+/// are what the gears actually do; where the selected Ω lies in such a
+/// range, what its steady state is ([`crate::story::branch_agreement`]).
 pub fn unstable_sentence(v: &FrView) -> Option<String> {
-    let br = v.branches.iter().rfind(|b| !b.faded && !b.pinned)?;
+    let br = current_branch(v)?;
     let ranges = unstable_ranges(&br.points);
     if ranges.is_empty() {
         return None;
@@ -78,10 +117,38 @@ pub fn unstable_sentence(v: &FrView) -> Option<String> {
     } else {
         "the dots are the actual response"
     };
-    Some(format!(
-        "No stable periodic motion {}: {tail}.",
+    let on = match br.member {
+        Some(_) => format!(" on the {} curve", br.label),
+        None => String::new(),
+    };
+    let mut s = format!(
+        "No stable orbit on the branch{on} {}: {tail}.",
         ranges_text(&ranges)
-    ))
+    );
+    if let Some(m) = v.selected_motion {
+        let inside = ranges
+            .iter()
+            .any(|&(a, b)| v.selected_omega >= a && v.selected_omega <= b);
+        if inside {
+            if let Some(more) = crate::story::branch_agreement(m, BranchAt::Unstable) {
+                s.push_str(&format!(
+                    " At the selected Ω {}: {}",
+                    short(v.selected_omega),
+                    lower_first(&more)
+                ));
+            }
+        }
+    }
+    Some(s)
+}
+
+/// `s` with its first letter in lower case.
+fn lower_first(s: &str) -> String {
+    let mut c = s.chars();
+    match c.next() {
+        Some(f) => f.to_lowercase().chain(c).collect(),
+        None => String::new(),
+    }
 }
 
 /// The regime strip where the branch is unstable, from the time-integration
@@ -155,17 +222,39 @@ mod tests {
         // A fold: up 0.1..0.8 stable, back 0.8..0.5 unstable, up 0.5..2 stable.
         let fold = curve(&[(0.1, s), (0.8, s), (0.5, u), (0.5, s), (2.0, s)]);
         assert!(unstable_ranges(&fold).is_empty());
-        // Unknown stability counts as stable; a gap under 2 % is dropped.
+        // Unknown stability counts as stable; a gap under 0.5 % is dropped.
         assert!(unstable_ranges(&curve(&[(0.1, None), (2.0, None)])).is_empty());
-        let tiny = curve(&[(0.0, s), (1.0, s), (1.01, u), (2.0, s)]);
+        let tiny = curve(&[(0.0, s), (1.0, s), (1.004, u), (2.0, s)]);
         assert_eq!(unstable_ranges(&tiny), vec![(1.0, 2.0)]);
-        let tiny2 = curve(&[(0.0, s), (1.0, s), (1.01, u), (1.02, s), (2.0, s)]);
+        let tiny2 = curve(&[(0.0, s), (1.0, s), (1.004, u), (1.008, s), (2.0, s)]);
         assert!(unstable_ranges(&tiny2).is_empty());
-        // A stable island under 2 % of the reach does not split a range.
-        let island = [0.0, 0.5, 0.8, 0.81, 0.82, 1.5, 1.6, 2.0];
+        // A stable island under 0.5 % of the reach does not split a range.
+        let island = [0.0, 0.5, 0.8, 0.803, 0.806, 1.5, 1.6, 2.0];
         let stable = [s, s, u, s, s, u, s, s];
         let island: Vec<(f64, Option<bool>)> = island.into_iter().zip(stable).collect();
         assert_eq!(unstable_ranges(&curve(&island)), vec![(0.5, 1.6)]);
+        // A wider one does: the default set's stable period-1 stretch over
+        // Ω 0.242-0.281 between two unstable ones is 2 % of the reach, and
+        // the sentence must not cover Ω 0.27, where the orbit is stable.
+        let island = [0.1, 0.239, 0.24, 0.242, 0.281, 0.285, 0.3, 2.0];
+        let stable = [s, s, u, u, u, u, s, s];
+        let split: Vec<(f64, Option<bool>)> = island.into_iter().zip(stable).collect();
+        let stable = [s, s, u, s, s, u, s, s];
+        let kept: Vec<(f64, Option<bool>)> = island.into_iter().zip(stable).collect();
+        assert_eq!(unstable_ranges(&curve(&split)), vec![(0.239, 0.3)]);
+        assert_eq!(unstable_ranges(&curve(&kept)), vec![(0.281, 0.3)]);
+        assert_eq!(
+            branch_at(&curve(&kept), 0.27),
+            crate::story::BranchAt::Stable
+        );
+        assert_eq!(
+            branch_at(&curve(&kept), 0.29),
+            crate::story::BranchAt::Unstable
+        );
+        assert_eq!(
+            branch_at(&curve(&kept), 2.5),
+            crate::story::BranchAt::NotCovered
+        );
         assert_eq!(short(0.45), "0.45");
         assert_eq!(short(1.7), "1.7");
         assert_eq!(short(2.0), "2");
@@ -218,7 +307,7 @@ mod tests {
         let v = fr_view(&st, None, None, Some(0), &[100.0], &ctx());
         assert_eq!(
             unstable_sentence(&v).as_deref(),
-            Some("No stable periodic motion between Ω 0.45 and 1.7: the actual response (time integration) is being computed.")
+            Some("No stable orbit on the branch between Ω 0.45 and 1.7: the actual response (time integration) is being computed.")
         );
         let mut ti = FrStore::new(2, 1, 300, 30);
         ti.add(vec![FrSample {
@@ -231,7 +320,7 @@ mod tests {
         let v = fr_view(&st, None, Some(&ti), Some(0), &[100.0], &ctx());
         assert_eq!(
             unstable_sentence(&v).as_deref(),
-            Some("No stable periodic motion between Ω 0.45 and 1.7: the dots are the actual response.")
+            Some("No stable orbit on the branch between Ω 0.45 and 1.7: the dots are the actual response.")
         );
         let mut ok = HbmStore::new(1, 5);
         ok.add(
