@@ -53,6 +53,7 @@ impl From<SolverError> for Failure {
             SolverError::StepSizeTooSmall { .. }
             | SolverError::NonFinite { .. }
             | SolverError::Diverged { .. }
+            | SolverError::ParametricallyUnstable { .. }
             | SolverError::TooManySteps { .. }
             | SolverError::NotConverged { .. }
             | SolverError::ContinuationStalled { .. }

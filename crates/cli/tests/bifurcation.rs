@@ -112,3 +112,31 @@ fn jsonl_streams_each_point_as_computed_with_the_same_results() {
     let lines = json_lines(&["params", "--format", "jsonl"]);
     assert_eq!(lines, vec![json(&["params"])]);
 }
+
+/// A sweep whose shooting once went round for ever (a shot for period 4
+/// landed on a period-1 orbit, whose doubling led back to 2, then 4)
+/// ends. Run as a child with a generous bound (it takes well under a
+/// second in release), so that a return of the loop fails the test
+/// instead of hanging the suite.
+#[test]
+fn a_shooting_chain_that_lands_on_a_shorter_orbit_ends() {
+    let args = words("bifurcation --omega-from 0.05 --omega-to 2 --points 20 --chains 4 --direction up --transient-periods 20 --record-periods 5 --shard 0/4");
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_gearshock"))
+        .args(&args)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .expect("spawn");
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(600);
+    loop {
+        if let Some(status) = child.try_wait().expect("wait") {
+            assert!(status.success(), "{status}");
+            return;
+        }
+        if std::time::Instant::now() > deadline {
+            child.kill().ok();
+            panic!("the sweep did not end within 600 s");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+}

@@ -109,6 +109,20 @@ pub enum SolverError {
         /// Time (s).
         t_s: f64,
     },
+    /// A linear model (no backlash on any mesh) whose periodic response is
+    /// unstable: every motion but that orbit grows without bound, so there
+    /// is no steady state to report.
+    #[error(
+        "the response grows without bound: with no backlash the gear set is linear, and at \
+         Omega = {omega:.4} its periodic response has a Floquet multiplier of modulus \
+         {modulus:.4}, above 1 (the time-varying mesh stiffness makes it parametrically unstable)"
+    )]
+    ParametricallyUnstable {
+        /// Dimensionless mesh frequency.
+        omega: f64,
+        /// The largest multiplier's modulus.
+        modulus: f64,
+    },
     /// The step budget was used up before the end time was reached.
     #[error("more than {max_steps} steps needed by t = {t_s:.6e} s; the integration was stopped")]
     TooManySteps {

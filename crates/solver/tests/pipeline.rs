@@ -417,3 +417,42 @@ fn the_probe_tells_exponential_from_power_law_growth() {
     assert!(first.chaotic, "{first:?}");
     assert!(first.periods <= 32, "{first:?}");
 }
+
+/// A linear system (no backlash) in a band of parametric instability has
+/// no steady state: its periodic response is unstable and every other
+/// motion grows from it without bound. The run says so, as a failure,
+/// never as a motion ("not periodic", or a long period read from a
+/// growing beat), and only where the engaged system's own Floquet
+/// spectral radius (an independent computation) is above 1.
+#[test]
+fn a_linear_system_in_an_instability_band_has_no_steady_state() {
+    use solver::error::SolverError;
+    use solver::parametric::Parametric;
+    let m = model(&["backlash_um=0", "te_meshes=all", "te_um=5"]);
+    let p = Parametric::new(&m).unwrap();
+    let mut unstable_seen = 0;
+    for omega in [0.84, 1.1, 1.15, 1.62] {
+        let rho = p.at(omega).unwrap().spectral_radius;
+        match steady_state(&m, &SteadyOptions::new(omega), None) {
+            Ok(ss) => {
+                assert!(rho <= 1.0, "Omega {omega}: rho {rho}, yet {:?}", ss.motion);
+                assert!(
+                    matches!(ss.motion, Motion::PeriodicExact { period: 1, .. }),
+                    "Omega {omega}: {:?}",
+                    ss.motion
+                );
+            }
+            Err(SolverError::ParametricallyUnstable { modulus, .. }) => {
+                assert!(rho > 1.0, "Omega {omega}: rho {rho}");
+                assert!((modulus - rho).abs() < 1e-3 * rho, "{modulus} vs {rho}");
+                unstable_seen += 1;
+            }
+            Err(SolverError::Diverged { .. }) => {
+                assert!(rho > 1.0, "Omega {omega}: rho {rho}");
+                unstable_seen += 1;
+            }
+            Err(e) => panic!("Omega {omega}: {e}"),
+        }
+    }
+    assert!(unstable_seen >= 1, "no Omega in a band");
+}

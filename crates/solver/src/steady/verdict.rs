@@ -24,7 +24,7 @@ use super::{
     detect_period, poincare_point, settle_tol_um, Model, Phase, SteadyRun, MAX_PERIOD,
     SETTLE_DISTANCES,
 };
-use crate::error::Result;
+use crate::error::{Result, SolverError};
 use crate::ode::Dopri5;
 use crate::shooting::{ShootOptions, ShootOutcome, ShootRun};
 use serde::{Deserialize, Serialize};
@@ -366,6 +366,14 @@ impl SteadyRun {
                 self.start_recording(model);
                 return Ok(());
             }
+            ShootOutcome::Converged(orbit) if self.linear => {
+                // A linear model's periodic response is unique; unstable,
+                // every other motion grows from it without bound.
+                return Err(SolverError::ParametricallyUnstable {
+                    omega: self.opts.omega,
+                    modulus: orbit.max_multiplier_modulus(),
+                });
+            }
             ShootOutcome::Converged(orbit) => {
                 let doubled = orbit
                     .multipliers
@@ -374,10 +382,11 @@ impl SteadyRun {
                     .is_some_and(|mu| mu < -1.0);
                 // The orbit may repeat sooner than the period shot for
                 // (`orbit.period` divides `n`); twice its period is then at
-                // most `n`, and equal to it only where that attempt has
-                // just been made.
+                // most `n`. Only ever doubling upwards ends the chain: a
+                // shot for 4 that lands on a period-1 orbit must not go
+                // back to 2, whose doubling leads to 4 again.
                 let twice = 2 * orbit.period;
-                if doubled && twice != n && twice as usize <= MAX_PERIOD {
+                if doubled && twice > n && twice as usize <= MAX_PERIOD {
                     let span_um = self.span.span_um();
                     return self.start_shooting(model, twice, span_um, settled);
                 }
