@@ -106,7 +106,7 @@ test('at the Table 1 defaults the frequency response shows time-integration dots
   await assertPlainAttributes(page);
   // The student summary: two sentences, the dynamic factor explained; the figures behind a disclosure.
   await waitStatus(page, (x) => x.omega_job.finished_ms, 120000, 'the selected-Ω run');
-  await page.waitForFunction(() => /Dynamic factor [\d.]+: the largest tooth force is/.test(document.getElementById('summary').textContent), null, { timeout: 60000 });
+  await page.waitForFunction(() => /The largest tooth force is [\d.]+ times .* \(dynamic factor [\d.]+\)/.test(document.getElementById('summary').textContent), null, { timeout: 60000 });
   assert.equal(await page.locator('#summary-expert').isVisible(), false, 'the expert figures start folded');
   assert.deepEqual(errors, []);
   await page.close();

@@ -257,7 +257,17 @@ impl Page {
     /// when the family changed, not while it is typed.
     pub fn family_writes(&mut self) -> Vec<Write> {
         let Some(f) = self.ctl.family() else {
-            return Vec::new();
+            // No family (another preset, a reset, a link without one): the
+            // bar is emptied once, so it never shows a family not drawn.
+            if self.family_shown.is_empty() {
+                return Vec::new();
+            }
+            self.family_shown.clear();
+            self.family_input.1.clear();
+            return vec![Write::Value {
+                id: "family-values".into(),
+                value: String::new(),
+            }];
         };
         let code = f.spec.encode();
         if code == self.family_shown {

@@ -331,3 +331,30 @@ fn the_tour_card_goes_beside_each_steps_canvas_or_element_and_follows_it_each_fr
     let frame = p.draw_frame(1000.0, || 0.0, |_, _| Vec::new());
     assert!(!frame.iter().any(|w| matches!(w, Write::PlaceCard { .. })));
 }
+
+/// A preset without a family empties the family bar's values: the bar
+/// never shows a family the plots do not draw.
+#[test]
+fn a_preset_without_a_family_empties_the_family_bar() {
+    let mut p = page("");
+    let ev = |v: &str| EventIn {
+        value: v.into(),
+        key: None,
+    };
+    let values = |p: &mut Page, preset: &str, at: f64| {
+        p.act(Action::Preset, &ev(preset), at);
+        let d = p.ctl.take_dirty();
+        p.end_frame(&d).into_iter().find_map(|w| match w {
+            Write::Value { id, value } if id == "family-values" => Some(value),
+            _ => None,
+        })
+    };
+    assert_eq!(
+        values(&mut p, "fig2", 1.0).as_deref(),
+        Some("5, 10, 15, 20, 25, 30")
+    );
+    assert_eq!(values(&mut p, "pair", 2.0).as_deref(), Some(""));
+    assert!(p.ctl().family().is_none());
+    // Once emptied, the bar is left alone.
+    assert_eq!(values(&mut p, "table1", 3.0), None);
+}

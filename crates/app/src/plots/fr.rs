@@ -24,6 +24,10 @@ pub fn fr_height(v: &FrView, (w, h): (u32, u32)) -> u32 {
     h.max(FR_MIN_CHART + key)
 }
 
+/// The key's words for a dashed branch: unstable, said plainly (the
+/// Floquet test is named in the note).
+pub(crate) const UNSTABLE_KEY: &str = "dashed: unstable (a small disturbance grows)";
+
 /// The frequency response's y range: the data in the Ω range (the
 /// time-integration overlay too, `with_overlay`) and the contact lines
 /// asked for (the key is under the chart, so the axes fit the data alone),
@@ -32,14 +36,39 @@ pub fn fr_height(v: &FrView, (w, h): (u32, u32)) -> u32 {
 /// meshes share it.
 pub(super) fn fr_clipped(v: &FrView, with_overlay: bool) -> super::clip::Clipped {
     let in_range = |o: f64| o >= v.omega_from && o <= v.omega_to;
-    let overlay: &[_] = if with_overlay { &v.overlay } else { &[] };
-    let points: Vec<(f64, f64, f64)> = v
+    let pts = |ps: &[FrCurvePoint]| -> Vec<(f64, f64, f64)> {
+        ps.iter()
+            .filter(|p| in_range(p.omega))
+            .map(|p| (p.omega, p.max_um, p.min_um))
+            .collect()
+    };
+    let several = v.branches.iter().filter(|b| !b.faded).count() > 1;
+    let mut lists: Vec<(Vec<(f64, f64, f64)>, (RGBColor, RGBColor), Option<String>)> = v
         .branches
         .iter()
-        .flat_map(|b| b.points.iter())
-        .chain(overlay.iter())
-        .filter(|p| in_range(p.omega))
-        .map(|p| (p.omega, p.max_um, p.min_um))
+        .map(|b| {
+            let label = (several && !b.faded).then(|| b.label.clone());
+            (
+                pts(&b.points),
+                (branch_color(b, true), branch_color(b, false)),
+                label,
+            )
+        })
+        .collect();
+    if with_overlay && !v.overlay.is_empty() {
+        lists.push((
+            pts(&v.overlay),
+            (OVERLAY, OVERLAY),
+            several.then(|| "dots".to_string()),
+        ));
+    }
+    let curves: Vec<super::clip::Curve<'_>> = lists
+        .iter()
+        .map(|(points, colors, label)| super::clip::Curve {
+            points,
+            colors: *colors,
+            label: label.clone(),
+        })
         .collect();
     let natural: Vec<f64> = v
         .natural
@@ -48,7 +77,42 @@ pub(super) fn fr_clipped(v: &FrView, with_overlay: bool) -> super::clip::Clipped
         .filter(|&w| in_range(w))
         .collect();
     let extra = contact_levels(&v.backlash_um, &v.pinned_backlash_um, v.whole_clearance);
-    super::clip::clipped_range(&points, &natural, &extra)
+    super::clip::clipped_range(&curves, &natural, &extra)
+}
+
+/// Each current curve's first-mode peak, `(name, Omega, x µm)`, as the
+/// plot locates it (see [`super::clip`]).
+pub fn fr_first_mode_peaks(v: &FrView) -> Vec<(String, f64, f64)> {
+    let in_range = |o: f64| o >= v.omega_from && o <= v.omega_to;
+    let lists: Vec<(Vec<(f64, f64, f64)>, String)> = v
+        .branches
+        .iter()
+        .filter(|b| !b.faded)
+        .map(|b| {
+            let pts = b
+                .points
+                .iter()
+                .filter(|p| in_range(p.omega))
+                .map(|p| (p.omega, p.max_um, p.min_um))
+                .collect();
+            (pts, b.label.clone())
+        })
+        .collect();
+    let curves: Vec<super::clip::Curve<'_>> = lists
+        .iter()
+        .map(|(points, label)| super::clip::Curve {
+            points,
+            colors: (BLACK, BLACK),
+            label: Some(label.clone()),
+        })
+        .collect();
+    let natural: Vec<f64> = v
+        .natural
+        .iter()
+        .map(|n| n.omega)
+        .filter(|&w| in_range(w))
+        .collect();
+    super::clip::first_mode_peaks(&curves, &natural)
 }
 
 fn fr_y_range(v: &FrView) -> (f64, f64) {
@@ -76,10 +140,8 @@ pub fn draw_fr<DB: DrawingBackend>(
             v.mesh_label
         )
     } else {
-        format!(
-            "Frequency response, mesh {} ({}){status}",
-            v.mesh_label, v.method
-        )
+        // The method is in the note under the plot, not the title.
+        format!("Frequency response, mesh {}{status}", v.mesh_label)
     };
     let axes = Axes::new(OMEGA_AXIS, "x = δ − e (µm)");
     let mut chart = linear_chart(&upper, &caption, (x, y), &axes)?;
@@ -174,7 +236,7 @@ pub(crate) fn compact_key(items: KeyItems) -> KeyItems {
         KeyIcon::Line(..) if text.starts_with("selected") => 1,
         KeyIcon::Marker(_) => 2,
         KeyIcon::Regime(_) => 3,
-        KeyIcon::Line(..) if text.contains("±b") => 4,
+        KeyIcon::Dotted(..) => 4,
         _ => 9,
     };
     let drop = items.len() - (KEY_MAX - 1);
@@ -247,10 +309,7 @@ pub(crate) fn fr_key(v: &FrView, y: (f64, f64)) -> KeyItems {
         .filter(|b| !b.faded)
         .any(|b| b.points.iter().any(|p| p.stable == Some(false)));
     if any_unstable {
-        items.push((
-            KeyIcon::Line(CONTACT, true),
-            "unstable (Floquet): dashed".into(),
-        ));
+        items.push((KeyIcon::Line(CONTACT, true), UNSTABLE_KEY.into()));
     }
     // The regime strip is drawn under the current state's branch only (not
     // a family's members): its key only then.

@@ -19,6 +19,8 @@ pub(crate) enum KeyIcon {
     Overlay,
     /// A line in a colour, solid or dashed.
     Line(RGBColor, bool),
+    /// A dotted line in a colour (the ±b contact lines).
+    Dotted(RGBColor),
     /// A filled dot of a colour and radius.
     Dot(RGBColor, i32),
     /// A small hollow square (the downward sweep's dots).
@@ -146,7 +148,7 @@ pub(crate) fn contact_item(backlash_um: &[f64], shown: (f64, f64)) -> Option<(Ke
     } else {
         format!("±b contact lines (b = {} µm)", bs.join(", "))
     };
-    (!bs.is_empty()).then_some((KeyIcon::Line(CONTACT, true), text))
+    (!bs.is_empty()).then_some((KeyIcon::Dotted(CONTACT), text))
 }
 
 /// The key items of the ±b contact lines shown in `y`: the current
@@ -160,7 +162,7 @@ pub(crate) fn contact_items(backlash_um: &[f64], pinned_um: &[f64], y: (f64, f64
         .collect();
     if let Some((_, text)) = contact_item(&a_only, y) {
         items.push((
-            KeyIcon::Line(A_MIN, true),
+            KeyIcon::Dotted(A_MIN),
             text.replacen("±b contact lines", "A's ±b", 1),
         ));
     }
@@ -283,7 +285,7 @@ pub(crate) struct KeyPlace {
 
 fn icon_width(icon: KeyIcon) -> i32 {
     match icon {
-        KeyIcon::Line(..) | KeyIcon::Shade(..) => 22,
+        KeyIcon::Line(..) | KeyIcon::Dotted(..) | KeyIcon::Shade(..) => 22,
         _ => 14,
     }
 }
@@ -333,6 +335,16 @@ fn draw_icon<DB: DrawingBackend>(
             } else {
                 root.draw(&PathElement::new(vec![(x, y), (x + 16, y)], style))
                     .map_err(err)?;
+            }
+        }
+        KeyIcon::Dotted(color) => {
+            let style = ShapeStyle::from(&color).stroke_width(2);
+            for k in 0..4 {
+                root.draw(&PathElement::new(
+                    vec![(x + 5 * k, y), (x + 5 * k + 2, y)],
+                    style,
+                ))
+                .map_err(err)?;
             }
         }
         KeyIcon::Shade(color, alpha) => root

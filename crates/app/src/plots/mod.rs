@@ -29,7 +29,7 @@ mod omega;
 
 pub use bif::{draw_bif, draw_groups, failed_label, svg_with, svg_with_dots};
 pub use boxes::{text_box, Boxed, TextBox};
-pub use fr::{draw_fr, fr_full_key, fr_height, FR_MIN_CHART, KEY_MAX};
+pub use fr::{draw_fr, fr_first_mode_peaks, fr_full_key, fr_height, FR_MIN_CHART, KEY_MAX};
 pub(crate) use key::*;
 pub use omega::{
     draw_phase, draw_phase_with, draw_poincare, draw_poincare_with, draw_spectrum, draw_time,
@@ -526,7 +526,7 @@ fn pinned_contact_lines<'a, DB: DrawingBackend + 'a>(
     current_um: &[f64],
     x: (f64, f64),
 ) -> Res<bool> {
-    let style = ShapeStyle::from(&A_MIN).stroke_width(1);
+    let style = contact_style(A_MIN);
     let mut any = false;
     for &b in pinned_um
         .iter()
@@ -535,7 +535,7 @@ fn pinned_contact_lines<'a, DB: DrawingBackend + 'a>(
         let shown = chart.y_range();
         for v in [b, -b].into_iter().filter(|v| shown.contains(v)) {
             chart
-                .draw_series(DashedLineSeries::new(vec![(x.0, v), (x.1, v)], 6, 4, style))
+                .draw_series(DashedLineSeries::new(vec![(x.0, v), (x.1, v)], 2, 3, style))
                 .map_err(err)?;
         }
         any = true;
@@ -551,7 +551,7 @@ fn contact_lines<'a, DB: DrawingBackend + 'a>(
     x: (f64, f64),
     horizontal: bool,
 ) -> Res<()> {
-    let style = ShapeStyle::from(&CONTACT).stroke_width(1);
+    let style = contact_style(CONTACT);
     let shown = if horizontal {
         chart.y_range()
     } else {
@@ -565,11 +565,17 @@ fn contact_lines<'a, DB: DrawingBackend + 'a>(
                 vec![(v, x.0), (v, x.1)]
             };
             chart
-                .draw_series(DashedLineSeries::new(pts, 6, 4, style))
+                .draw_series(DashedLineSeries::new(pts, 2, 3, style))
                 .map_err(err)?;
         }
     }
     Ok(())
+}
+
+/// The style of a ±b contact line: dotted (2 px on, 3 off) and thin,
+/// never to be read as a dashed (unstable) branch.
+pub(crate) fn contact_style(color: RGBColor) -> ShapeStyle {
+    ShapeStyle::from(&color).stroke_width(1)
 }
 
 /// The impact regime along Omega as a thin coloured strip at the bottom of

@@ -210,6 +210,24 @@ fn panel_message<DB: DrawingBackend>(
     Ok(())
 }
 
+/// A ±b contact line: dotted, thin, so that it never reads as a dashed
+/// (unstable) branch of the same colour.
+fn dotted<'a, DB: DrawingBackend + 'a>(
+    chart: &mut Chart<'a, DB>,
+    pts: Vec<(f64, f64)>,
+    color: RGBColor,
+) -> Res<()> {
+    chart
+        .draw_series(DashedLineSeries::new(
+            pts,
+            2,
+            3,
+            super::contact_style(color),
+        ))
+        .map_err(err)?;
+    Ok(())
+}
+
 fn dashed<'a, DB: DrawingBackend + 'a>(
     chart: &mut Chart<'a, DB>,
     pts: Vec<(f64, f64)>,
@@ -234,7 +252,7 @@ fn omega_guides<'a, DB: DrawingBackend + 'a>(
 ) -> Res<()> {
     for &b in backlash_um {
         for level in [b, -b].into_iter().filter(|l| (y.0..=y.1).contains(l)) {
-            dashed(chart, vec![(x.0, level), (x.1, level)], color)?;
+            dotted(chart, vec![(x.0, level), (x.1, level)], color)?;
         }
     }
     if (x.0..=x.1).contains(&selected) {
@@ -265,7 +283,7 @@ pub fn draw_bif_panels<DB: DrawingBackend>(
         .map(|r| r.label())
         .collect();
     let key = format!(
-        "Dots: Poincaré samples coloured by regime ({}); filled: upward sweep, open: downward. Dashed: ±b, in the panel's colour; dashed red: selected Ω.",
+        "Dots: Poincaré samples coloured by regime ({}); filled: upward sweep, open: downward. Dotted: ±b, in the panel's colour; dashed red: selected Ω.",
         if regimes.is_empty() { "none yet".to_string() } else { regimes.join(", ") }
     );
     let (areas, cols) = layout(root, &title, &key, panels.len())?;
@@ -331,23 +349,23 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
     let (what, key) = if poincare {
         (
             "Poincaré sections",
-            "Dots: the state once per mesh period after the transient; dashed: ±b, in the panel's colour",
+            "Dots: the state once per mesh period after the transient; dotted: ±b, in the panel's colour",
         )
     } else {
         (
             "Phase portraits",
-            "Line: the recorded orbit; red dots: its Poincaré points; dashed: ±b, in the panel's colour",
+            "Line: the recorded orbit; red dots: its Poincaré points; dotted: ±b, in the panel's colour",
         )
     };
-    // Without backlash the dashed line is x = 0, not ±b.
+    // Without backlash the dotted line is x = 0, not ±b.
     let no_backlash = panels
         .iter()
         .filter_map(|p| p.data.as_ref().ok())
         .all(|r| !crate::story::has_backlash(r.backlash_um));
     let key = if no_backlash {
         key.replace(
-            "dashed: ±b, in the panel's colour",
-            "dashed: x = 0 (no backlash)",
+            "dotted: ±b, in the panel's colour",
+            "dotted: x = 0 (no backlash)",
         )
     } else {
         key.to_string()
@@ -398,7 +416,7 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
         // The contact lines where they fall in range (the axes fit the
         // data), in the member's colour.
         for level in [b, -b].into_iter().filter(|l| (x.0..=x.1).contains(l)) {
-            dashed(&mut chart, vec![(level, y.0), (level, y.1)], color)?;
+            dotted(&mut chart, vec![(level, y.0), (level, y.1)], color)?;
         }
         if !poincare {
             let (from, _) = panel_orbit_tail(r, n);
@@ -455,14 +473,15 @@ pub fn draw_fr_panels<DB: DrawingBackend>(
         .map_or_else(Vec::new, |v| branch_items(&v.branches));
     items.extend([
         (
-            KeyIcon::Line(GUIDE, true),
-            "±b (contact) in the panel's colour, where in range".into(),
+            KeyIcon::Dotted(GUIDE),
+            "±b (contact), grey, where in range".into(),
         ),
         (KeyIcon::Line(CURSOR, true), "selected Ω".into()),
     ]);
-    let lines = vec![KeyLine::Sentence(
-        "Solid: stable; dashed: unstable (Floquet).".into(),
-    )];
+    let lines = vec![KeyLine::Sentence(format!(
+        "Solid: stable; {}.",
+        super::fr::UNSTABLE_KEY
+    ))];
     let plan = plan_key(root, &items, lines);
     draw_key(root, &items, &plan)?;
     let (_, rest) = root.split_vertically(top);
@@ -493,13 +512,9 @@ pub fn draw_fr_panels<DB: DrawingBackend>(
             .chain(&v.pinned_backlash_um)
             .copied()
             .collect();
-        omega_guides(
-            &mut chart,
-            &levels,
-            v.selected_omega,
-            (x, y),
-            family_color(k),
-        )?;
+        // Grey: a mesh panel holds every member's curve, so no member's
+        // colour is the panel's.
+        omega_guides(&mut chart, &levels, v.selected_omega, (x, y), GUIDE)?;
         for br in v.branches.iter() {
             draw_branch(&mut chart, br)?;
         }

@@ -147,8 +147,7 @@ fn every_plot_draws_labels_units_and_legends() {
     // A comparison's key holds more than the drawn key's eight entries:
     // what gives way is counted and is in the full key.
     for text in [
-        "harmonic balance, H = 5, exact",
-        "unstable (Floquet): dashed",
+        "dashed: unstable (a small disturbance grows)",
         "6 more in the full key under the plot",
         "time integration: the actual response (1 points; within 1.5 µm of the stable curve)",
         "Solver failure after Ω = 1.9000",
@@ -368,7 +367,7 @@ fn every_key_is_under_its_chart_never_over_the_data() {
         let key = [
             "max x (A: backlash_um=100)",
             "min x (B: backlash_um=150; HBM, H = 5)",
-            "unstable (Floquet): dashed",
+            "dashed: unstable (a small disturbance grows)",
             "more in the full key under the plot",
             "solver failure: branch ends",
             "Solver failure after Ω = 1.9000",
@@ -679,10 +678,11 @@ fn the_drawn_key_is_short_and_the_full_key_complete() {
     assert_eq!(texts(&compact_key(short.clone())), texts(&short));
 }
 
-/// Every view of one member says which: the frequency response's small
-/// multiples draw each panel's ±b lines in the member's colour.
+/// The frequency response's small multiples (one panel per mesh, every
+/// member's curve in each) draw the ±b lines dotted and grey: no member's
+/// colour, and never the dashes of an unstable branch.
 #[test]
-fn fr_panels_draw_their_contact_lines_in_the_members_colour() {
+fn fr_panels_draw_their_contact_lines_dotted_and_grey() {
     use crate::views::multiples::Panel;
     let fr = |b: f64| fr_view(b, vec![]);
     let panels: Vec<Panel<FrView>> = [50.0, 100.0, 200.0]
@@ -695,10 +695,11 @@ fn fr_panels_draw_their_contact_lines_in_the_members_colour() {
     let s = svg(|root| multiples::draw_fr_panels(root, &panels, "").map(|_| ()));
     for m in 0..3 {
         assert!(
-            s.contains(&hex(family_color(m))),
-            "member {m}'s ±b colour missing"
+            !s.contains(&hex(family_color(m))),
+            "member {m}'s colour on a mesh panel without curves"
         );
     }
+    assert!(s.contains(&hex(RGBColor(90, 90, 90))), "the grey ±b lines");
 }
 
 /// A finished harmonic-balance frequency response of mesh s1a1 over

@@ -275,9 +275,21 @@ pub fn map_json(store: &MapStore) -> serde_json::Value {
 /// an example, and what a click does.
 pub fn map_note(store: &MapStore, total: usize) -> String {
     let (by, not_p1, failed) = store.counts();
+    // Every regime by its one label, in the fixed order, those present.
+    let parts: Vec<String> = Regime::ALL
+        .iter()
+        .zip(by)
+        .filter(|(_, n)| *n > 0)
+        .map(|(r, n)| format!("{n} {}", r.label()))
+        .collect();
+    let parts = if parts.is_empty() {
+        "none yet".to_string()
+    } else {
+        parts.join(", ")
+    };
     let mut note = format!(
-        "{} of {} cells: {} no impact, {} single-sided, {} double-sided, {} no contact; {} not period 1",
-        store.done, total, by[0], by[1], by[2], by[3], not_p1
+        "{} of {} cells: {parts}; {not_p1} not period 1",
+        store.done, total
     );
     if failed > 0 {
         note.push_str(&format!("; {failed} failed (dark grey)"));

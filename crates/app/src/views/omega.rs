@@ -46,27 +46,30 @@ pub fn summary_line(r: &OmegaResult, natural: &[NaturalFreq]) -> String {
     )
 }
 
-/// The summary for students: two sentences at the selected Omega, what
-/// the teeth do (the regime in words, read against the backlash), whether
-/// the motion repeats (its classification), and the dynamic factor
-/// explained.
+/// The summary for students at the selected Omega, plain first: what the
+/// teeth do (the regime in words, read against the backlash) and whether
+/// the motion repeats (its classification), then the dynamic factor
+/// explained, then the mesh and the speed's figures.
 pub fn student_summary(r: &OmegaResult) -> String {
     let what = crate::story::contact_sentence(r.regime, r.backlash_um);
     let repeats = crate::story::motion_sentence(r.motion, r.transient_periods_run);
     let preview = if r.preview { "Preview: " } else { "" };
-    let first = format!(
-        "{preview}At Ω {} ({:.0} Hz mesh frequency) on mesh {}, {what}; {repeats}.",
-        crate::views::unstable::short(r.omega),
-        r.mesh_freq_hz,
-        r.mesh_name
-    );
+    // Plain first: what the teeth do, in words; the speed's figures and
+    // the dynamic factor's name after it.
+    let first = format!("{preview}At this speed {what}; {repeats}.");
     let second = match r.dynamic_factor {
         Some(d) => format!(
-            " Dynamic factor {d:.2}: the largest tooth force is {d:.2} times the force of the steady load alone."
+            " The largest tooth force is {d:.2} times the force of the steady load alone (dynamic factor {d:.2})."
         ),
         None => String::new(),
     };
-    format!("{first}{second}")
+    let third = format!(
+        " Mesh {}, Ω {}: a mesh frequency of {:.0} Hz.",
+        r.mesh_name,
+        crate::views::unstable::short(r.omega),
+        r.mesh_freq_hz
+    );
+    format!("{first}{second}{third}")
 }
 
 /// Highest mesh order of the phasing numbers.
