@@ -1,6 +1,6 @@
 """Independent reference for gearshock's time integration.
 
-A from-scratch NumPy implementation of ../shared/MODEL.md (not a port of the
+A from-scratch NumPy implementation of docs/model.md (not a port of the
 Rust code: mesh vectors are built densely, the mass matrix is inverted with
 numpy, the ODE is integrated by scipy's DOP853 at rtol 1e-12 without event
 location) used to produce test fixtures in crates/solver/tests/fixtures/.

@@ -13,7 +13,7 @@ import { start, open, status, waitStatus, shot, canvasStats, SHOTS } from './har
 const screen = (page, name) => page.screenshot({ path: path.join(SHOTS, `${name}.png`) });
 
 const QUICK = 'bif_points=16&transient_periods=120&record_periods=40&map_omega_points=8&map_value_points=4&lyap_points=8';
-const KEY_NAMES = ['backlash_um', 'fr_ti_points', '..=', 'MODEL.md', 'the seed'];
+const KEY_NAMES = ['backlash_um', 'fr_ti_points', '..=', 'model.md', 'the seed'];
 
 let h;
 before(async () => {

@@ -4,8 +4,8 @@
 //! simulated steady response.
 //!
 //! Kinematics. The bodies turn with the model's rigid-body mode (ring held,
-//! MODEL.md): relative to the carrier every mesh passes one tooth per mesh
-//! period, so in mesh periods `tau` the carrier turns `2 pi / z_r * tau` and
+//! `docs/model.md`): relative to the carrier every mesh passes one tooth per
+//! mesh period, so in mesh periods `tau` the carrier turns `2 pi / z_r * tau` and
 //! each body its rigid-mode multiple of that. The vibration is not in the
 //! bodies' angles (the mesh histories fix the rotations only up to the
 //! rigid-body mode) but in the mesh gauges: at each pitch point a bar along

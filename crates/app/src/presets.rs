@@ -1,5 +1,6 @@
 //! Presets: the Table 1 defaults, the seed paper's figures panel for panel
-//! (`MODEL.md`, "The seed's figures, as settings") and two teaching cases.
+//! (`docs/model.md`, "The seed's figures, as settings") and two teaching
+//! cases.
 //!
 //! A preset is data: the settings every panel shares (flat link keys, the
 //! same as the CLI's `--set` and the page's URL), the family (one key and the
@@ -308,7 +309,7 @@ mod tests {
             // Plain words: no key names or file names in what a user reads.
             for word in [
                 "_um",
-                "MODEL.md",
+                "model.md",
                 "backlash_um",
                 "te_um",
                 " um",

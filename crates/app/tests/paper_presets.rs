@@ -1,8 +1,8 @@
 //! Every figure preset against what the paper states, figure by figure and
 //! panel by panel. The table below is written from the paper (Shen, Liu,
 //! Yang and Zhang: its figure captions and sections 3.1-3.2) and from
-//! `MODEL.md`'s "The seed's figures, as settings", not from `presets.rs`;
-//! every member of every preset is decoded as the page decodes a link and
+//! `docs/model.md`'s "The seed's figures, as settings", not from
+//! `presets.rs`; every member of every preset is decoded as the page decodes a link and
 //! compared with the Table 1 defaults plus the figure's stated values.
 
 // Tests may panic: that is how they fail.
@@ -131,7 +131,7 @@ const PAPER: &[Figure] = &[
     s1a1("fig6", Stated::Fixed(200.0), TE_PANELS, Some(0.84)),
     s1a1("fig7", Stated::Fixed(200.0), TE_PANELS, Some(1.97)),
     // Fig. 8 caption: TE 20 um, backlash 50 / 100 / 200 um; Figs. 9-11:
-    // "the backlash increases" (Fig. 8's values, MODEL.md).
+    // "the backlash increases" (Fig. 8's values, docs/model.md).
     s1a1("fig8", BACKLASH_PANELS, Stated::Fixed(20.0), None),
     s1a1("fig9", BACKLASH_PANELS, Stated::Fixed(20.0), Some(0.5)),
     s1a1("fig10", BACKLASH_PANELS, Stated::Fixed(20.0), Some(0.84)),
@@ -196,7 +196,7 @@ fn every_figure_preset_holds_the_papers_family_and_panels() {
                 let d = decode(&p.member_query(m, panel));
                 assert!(d.issues.is_empty(), "{}: {:?}", fig.id, d.issues);
                 let pick = |v: &[f64]| if v.len() == 1 { v[0] } else { v[m] };
-                // Table 1 (MODEL.md's defaults) with the figure's values on top.
+                // Table 1 (docs/model.md's defaults), the figure's values on top.
                 let mut want = ModelParams::default();
                 keys::set(&mut want, "te_meshes", Value::Text(fig.te_meshes.into())).unwrap();
                 keys::set(&mut want, "backlash_um", Value::Num(pick(&backlash))).unwrap();

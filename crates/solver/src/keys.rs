@@ -14,8 +14,9 @@
 //! Two keys are readings of the seed paper where it is ambiguous:
 //! `te_meshes` (its Fig. 2 varies a TE written `Ec_all`: on every mesh, or on
 //! the s1a meshes as its Table 1's sun-s1 error) and `ring_support_radius_mm`
-//! (its Table 1 prints the ring's radius as 15.79 mm, which `MODEL.md` reads
-//! as a slip for the base radius 157.9 mm; the support spring acts there).
+//! (its Table 1 prints the ring's radius as 15.79 mm, which `docs/model.md`
+//! reads as a slip for the base radius 157.9 mm; the support spring acts
+//! there).
 
 use crate::error::{Result, SolverError};
 use crate::params::{

@@ -4,7 +4,7 @@
 //!
 //! The crate is pure computation: no web, UI, clock, thread or I/O
 //! dependency, so it builds unchanged for native targets and
-//! `wasm32-unknown-unknown`. The physics is `MODEL.md`'s; see the
+//! `wasm32-unknown-unknown`. The physics is `docs/model.md`'s; see the
 //! repository's `ARCHITECTURE.md` for the map. Results as JSON and the
 //! merge of sharded runs live outside it, in the `report` crate.
 //!

@@ -1,4 +1,5 @@
-//! Parameter sets of the two built-in models, with the defaults of `MODEL.md`.
+//! Parameter sets of the two built-in models, with the defaults of
+//! `docs/model.md`.
 //!
 //! The structs hold the user's physical inputs only; everything derivable
 //! (radii, the long planet's tooth count, equivalent masses, damping
@@ -61,7 +62,7 @@ impl Phasing {
 /// be read as a TE on every mesh. This is that reading, as a setting.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum TeMeshes {
-    /// On the `s1a` meshes only (`MODEL.md`'s reading, the default).
+    /// On the `s1a` meshes only (`docs/model.md`'s reading, the default).
     S1a,
     /// The same sine amplitude on every mesh kind.
     All,
@@ -175,7 +176,7 @@ impl TeUm {
     };
 }
 
-/// Parameters of the Ravigneaux compound planetary gear set (`MODEL.md`).
+/// Parameters of the Ravigneaux compound planetary gear set (`docs/model.md`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct RavigneauxParams {
     /// Number of planet pairs N (3..=6).
@@ -215,7 +216,8 @@ pub struct RavigneauxParams {
     /// Torsional support stiffness of the ring, on its base circle (N/m).
     pub ring_support_n_m: f64,
     /// Radius (mm) at which `ring_support_n_m` acts; `None` = the ring's base
-    /// radius (`MODEL.md`). The seed prints 15.79 mm, read there as a slip.
+    /// radius (`docs/model.md`). The seed prints 15.79 mm, read there as a
+    /// slip.
     pub ring_support_radius_mm: Option<f64>,
     /// Stiffness fluctuation coefficient v (all meshes).
     pub stiffness_variation: f64,
@@ -236,7 +238,7 @@ pub struct RavigneauxParams {
 }
 
 impl Default for RavigneauxParams {
-    /// The Table 1 reading of `MODEL.md`.
+    /// The Table 1 reading of `docs/model.md`.
     fn default() -> Self {
         let mut te_um = [TeUm::ZERO; 4];
         te_um[0].sin = 20.0;

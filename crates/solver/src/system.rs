@@ -3,7 +3,7 @@
 //! Both built-in models compile to one [`MeshSystem`]: generalized coordinates
 //! `q`, a constant mass matrix `M`, a support stiffness, constant external
 //! loads `tau`, and meshes `j` whose deflections are linear in `q`,
-//! `delta_j = w_j . q`, with the force law of `MODEL.md`:
+//! `delta_j = w_j . q`, with the force law of `docs/model.md`:
 //!
 //! ```text
 //! F_j = k_j(t) g_j(delta_j - e_j(t)) + c_j (delta_j' - e_j'(t))
@@ -532,7 +532,7 @@ fn build_ravigneaux(p: &RavigneauxParams) -> Result<MeshSystem> {
     names.extend((1..=n_pl).map(|i| format!("phi_a{i}")));
     names.extend((1..=n_pl).map(|i| format!("phi_b{i}")));
 
-    // Mass matrix from the exact kinetic energy of MODEL.md.
+    // Mass matrix from the exact kinetic energy of docs/model.md.
     let nf = n_pl as f64;
     let mut mass = DMatrix::zeros(n, n);
     mass[(s1, s1)] = p.inertia_s1_kg_m2;

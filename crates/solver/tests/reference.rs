@@ -1,6 +1,6 @@
 //! Time integration against an independent reference: `tools/reference.py`,
-//! a separate NumPy implementation of MODEL.md integrated by scipy's DOP853
-//! at rtol 1e-12 (no event location, steps capped at T/40). Its Poincaré
+//! a separate NumPy implementation of `docs/model.md` integrated by scipy's
+//! DOP853 at rtol 1e-12 (no event location, steps capped at T/40). Its Poincaré
 //! samples of `delta_s1a1` over 40 periods from the static equilibrium are
 //! stored in `fixtures/reference.json`.
 

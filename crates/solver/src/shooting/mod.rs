@@ -4,10 +4,10 @@
 //! Coordinates. The train turns freely along its rigid-body mode, so the
 //! positions `q` never repeat and the full monodromy would carry trivial
 //! multipliers at 1. Shooting works on the elastic modal coordinates
-//! instead (MODEL.md, "Periodic orbits"): `q = sum_k z_k b_k + a u`, with
-//! `b_k` the mass-normalized elastic mode shapes scaled so that a unit
-//! `z_k` moves the mesh it moves most by 1 µm, and the rates likewise over
-//! omega. No mesh deflection depends on the rigid part `(a, a')`, the loads
+//! instead (`docs/model.md`, "How the equations are solved"):
+//! `q = sum_k z_k b_k + a u`, with `b_k` the mass-normalized elastic mode
+//! shapes scaled so that a unit `z_k` moves the mesh it moves most by 1 µm,
+//! and the rates likewise over omega. No mesh deflection depends on the rigid part `(a, a')`, the loads
 //! are balanced over it, and the elastic forces have no component along it
 //! (`u^T w_j = 0`, `K_sup u = 0`), so the elastic motion does not feel it
 //! and it is carried along unchanged: the reduced map has no trivial
