@@ -1,8 +1,8 @@
 //! `gearshock bench`: the solver's speed figures, as medians over repeats.
 //!
 //! Timing lives here, not in the solver (which has no clock). Every figure
-//! is the median of `repeats` runs on the default model; the README quotes
-//! them.
+//! is the median of `repeats` runs on the default model; docs/performance.md
+//! quotes them with their commands.
 
 use serde_json::{json, Value};
 use solver::dynamics::MeshOde;
@@ -24,7 +24,9 @@ pub struct BenchArgs {
     /// Fewer points and periods (for smoke tests).
     #[arg(long)]
     quick: bool,
-    /// Only the steady-state pipeline's before/after figure (issue 19).
+    /// Only the steady-state pipeline's figure: the default bifurcation
+    /// diagram by fixed integration, with the early-settle test, and by the
+    /// pipeline.
     #[arg(long)]
     pipeline_only: bool,
     /// Only the pipeline's classification check: at a dozen Omega values,
@@ -32,8 +34,9 @@ pub struct BenchArgs {
     /// periods of plain integration.
     #[arg(long)]
     classification: bool,
-    /// Only the harmonic balance's figure of issues 14 and 22 (H = 7, Omega
-    /// 0.1 to 0.5, with stability; against pyHarm's quoted time).
+    /// Only the harmonic balance's branch figure (H = 7, Omega 0.1 to 0.5,
+    /// with stability: both step controls, sampled stability, the LU;
+    /// against pyHarm's quoted time).
     #[arg(long)]
     hbm_only: bool,
     /// Only the shooting branches' figure: the page's branch job natively
@@ -59,9 +62,9 @@ pub fn run_command(a: &BenchArgs) -> Result<(), crate::failure::Failure> {
     }
     if a.hbm_only {
         let model = Model::new(&ModelParams::default()).map_err(crate::failure::Failure::from)?;
-        let v = hbm_issue14_bench(&model, if a.quick { 1 } else { a.repeats })
+        let v = hbm_branch_bench(&model, if a.quick { 1 } else { a.repeats })
             .map_err(crate::failure::Failure::from)?;
-        return crate::output::emit(&json!({ "hbm_issue14": v }));
+        return crate::output::emit(&json!({ "hbm_branch": v }));
     }
     if a.branches_only {
         let v = branches_bench(if a.quick { 1 } else { a.repeats }, a.quick)
@@ -159,10 +162,10 @@ pub fn run(repeats: u32, quick: bool) -> Result<Value, SolverError> {
     }
     let sweep_median = median(sweep_s.clone());
 
-    // Issue 19: the default bifurcation diagram (the default model, Omega
-    // 0.1 ..= 2, 200 points up and down: 400 steady states) integrated
-    // with a fixed 300 + 100 periods, with today's early settle, and by
-    // the pipeline (transient, candidate period, shooting), in one run.
+    // The default bifurcation diagram (the default model, Omega 0.1 ..= 2,
+    // 200 points up and down: 400 steady states) integrated with a fixed
+    // 300 + 100 periods, with the early-settle test, and by the pipeline
+    // (transient, candidate period, shooting), in one run.
     let pipeline = pipeline_bench(
         &model,
         if quick { 4 } else { 200 },
@@ -234,9 +237,9 @@ pub fn run(repeats: u32, quick: bool) -> Result<Value, SolverError> {
         );
     }
 
-    let issue14 = hbm_issue14_bench(&model, if quick { 1 } else { repeats.min(5) })?;
+    let branch = hbm_branch_bench(&model, if quick { 1 } else { repeats.min(5) })?;
 
-    // The sliders' grid (issue 14): backlash x TE x damping ratio over
+    // The sliders' grid: backlash x TE x damping ratio over
     // Omega 0.1 ..= 2 at H = 5, 150 nominal points (the page's), once.
     let mut grid = Vec::new();
     let grid_start = Instant::now();
@@ -286,7 +289,7 @@ pub fn run(repeats: u32, quick: bool) -> Result<Value, SolverError> {
 
     Ok(json!({
         "hbm": Value::Object(hbm),
-        "hbm_issue14": issue14,
+        "hbm_branch": branch,
         "hbm_slider_grid": {
             "cases": grid.len(),
             "complete": grid_complete,
@@ -334,26 +337,25 @@ pub fn run(repeats: u32, quick: bool) -> Result<Value, SolverError> {
     }))
 }
 
-/// Issue 14's and 22's harmonic-balance figure: H = 7 over Omega 0.1 ..= 0.5
-/// with stability, the step control before and after issue 14 and the
-/// sampled stability, alternating in one run (`runs` rounds), medians.
-fn hbm_issue14_bench(model: &Model, runs: u32) -> Result<Value, SolverError> {
-    // Issue 14: H = 7 over Omega 0.1 ..= 0.5 with stability, the step
-    // control before (on the corrector's iterations, 400 nominal points as
-    // the CLI's default) and after (on the curve's geometry, 50 nominal
-    // points), alternating in one run.
-    // Issue 22: the same branch with the monodromy on sampled points only
-    // (the default stride) against every point (stride 1), in the same run.
-    let mut before_s = Vec::new();
-    let mut after_s = Vec::new();
+/// The harmonic balance's branch figure: H = 7 over Omega 0.1 ..= 0.5 with
+/// stability, by the two step controls and with sampled stability,
+/// alternating in one run (`runs` rounds), medians.
+fn hbm_branch_bench(model: &Model, runs: u32) -> Result<Value, SolverError> {
+    // The step control on the corrector's iterations (400 nominal points,
+    // the CLI's default) against the one on the curve's geometry (50
+    // nominal points, which it needs for the same folds), and the geometry
+    // control with the monodromy on sampled points only (the default
+    // stride) against every point (stride 1).
+    let mut iterations_s = Vec::new();
+    let mut geometry_s = Vec::new();
     let mut sampled_s = Vec::new();
-    let (mut after_cpu, mut sampled_cpu) = (Vec::new(), Vec::new());
-    let mut before_points = 0;
-    let mut after_points = 0;
-    let mut before_branch = Vec::new();
-    let mut after_branch = Vec::new();
+    let (mut geometry_cpu, mut sampled_cpu) = (Vec::new(), Vec::new());
+    let mut iterations_points = 0;
+    let mut geometry_points = 0;
+    let mut iterations_branch = Vec::new();
+    let mut geometry_branch = Vec::new();
     let mut sampled_branch = Vec::new();
-    let (mut after_monodromies, mut sampled_monodromies) = (0, 0);
+    let (mut geometry_monodromies, mut sampled_monodromies) = (0, 0);
     for _ in 0..runs {
         for (control, nominal, stride) in [
             (StepControl::Iterations, 400, 1),
@@ -377,15 +379,15 @@ fn hbm_issue14_bench(model: &Model, runs: u32) -> Result<Value, SolverError> {
                 _ => None,
             };
             if control == StepControl::Iterations {
-                before_s.push(dt);
-                before_points = pts.len();
-                before_branch = pts;
+                iterations_s.push(dt);
+                iterations_points = pts.len();
+                iterations_branch = pts;
             } else if stride == 1 {
-                after_s.push(dt);
-                after_cpu.extend(cpu);
-                after_points = pts.len();
-                after_monodromies = c.stats.monodromies;
-                after_branch = pts;
+                geometry_s.push(dt);
+                geometry_cpu.extend(cpu);
+                geometry_points = pts.len();
+                geometry_monodromies = c.stats.monodromies;
+                geometry_branch = pts;
             } else {
                 sampled_s.push(dt);
                 sampled_cpu.extend(cpu);
@@ -396,13 +398,13 @@ fn hbm_issue14_bench(model: &Model, runs: u32) -> Result<Value, SolverError> {
     }
     let sampled_med = median(sampled_s);
     // Points whose stability flag or label differs between the two routes.
-    let differing = after_branch
+    let differing = geometry_branch
         .iter()
         .zip(&sampled_branch)
         .filter(|(a, b)| a.stable != b.stable || a.bifurcation != b.bifurcation)
         .count()
-        + after_branch.len().abs_diff(sampled_branch.len());
-    let (before_med, after_med) = (median(before_s), median(after_s));
+        + geometry_branch.len().abs_diff(sampled_branch.len());
+    let (iterations_med, geometry_med) = (median(iterations_s), median(geometry_s));
     let folds = |pts: &[BranchPoint]| -> Vec<f64> {
         pts.iter()
             .filter(|p| p.bifurcation == Some(solver::hbm::Bifurcation::Fold))
@@ -413,37 +415,37 @@ fn hbm_issue14_bench(model: &Model, runs: u32) -> Result<Value, SolverError> {
         "harmonics": 7,
         "omega_from": 0.1,
         "omega_to": 0.5,
-        "before": {
+        "iterations_control": {
             "step_control": "iterations",
             "nominal_points": 400,
-            "branch_points": before_points,
-            "median_ms": before_med * 1e3,
-            "folds": folds(&before_branch),
+            "branch_points": iterations_points,
+            "median_ms": iterations_med * 1e3,
+            "folds": folds(&iterations_branch),
         },
-        "after": {
+        "geometry_control": {
             "step_control": "geometry",
             "nominal_points": 50,
-            "branch_points": after_points,
-            "median_ms": after_med * 1e3,
-            "folds": folds(&after_branch),
+            "branch_points": geometry_points,
+            "median_ms": geometry_med * 1e3,
+            "folds": folds(&geometry_branch),
         },
         "sampled_stability": {
             "stride": SAMPLED_STABILITY_STRIDE,
             "branch_points": sampled_branch.len(),
             "monodromies": sampled_monodromies,
-            "monodromies_every_point": after_monodromies,
+            "monodromies_every_point": geometry_monodromies,
             "median_ms": sampled_med * 1e3,
             "cpu_median_ms": (!sampled_cpu.is_empty()).then(|| median(sampled_cpu) * 1e3),
-            "cpu_median_ms_every_point": (!after_cpu.is_empty()).then(|| median(after_cpu) * 1e3),
+            "cpu_median_ms_every_point": (!geometry_cpu.is_empty()).then(|| median(geometry_cpu) * 1e3),
             "folds": folds(&sampled_branch),
             "points_differing_from_every_point": differing,
-            "speedup_vs_every_point": after_med / sampled_med,
+            "speedup_vs_every_point": geometry_med / sampled_med,
             "speedup_vs_pyharm_quoted": 5.0 / sampled_med,
         },
-        "speedup": before_med / after_med,
-        "point_ratio": before_points as f64 / after_points.max(1) as f64,
+        "geometry_speedup_vs_iterations": iterations_med / geometry_med,
+        "point_ratio_iterations_to_geometry": iterations_points as f64 / geometry_points.max(1) as f64,
         "pyharm_quoted_s": 5.0,
-        "speedup_vs_pyharm_quoted": 5.0 / after_med,
+        "speedup_vs_pyharm_quoted": 5.0 / geometry_med,
         "lu": lu_bench(runs),
     }))
 }
@@ -492,9 +494,10 @@ fn lu_bench(runs: u32) -> Value {
     })
 }
 
-/// The before/after figures of issue 19 (see `run`): medians over
-/// `repeats` of one single-chain sweep each, and what each called the
-/// 400 steady states.
+/// The pipeline's figure (see `run`): the default diagram by fixed
+/// integration, by integration with the early-settle test and by the
+/// pipeline, medians over `repeats` of one single-chain sweep each, and
+/// what each called the 400 steady states.
 fn pipeline_bench(
     model: &Model,
     points: u32,
@@ -600,7 +603,7 @@ pub const CHECK_OMEGAS: [f64; 12] = [
     0.15, 0.3, 0.45, 0.5, 0.6, 0.7, 0.84, 1.0, 1.2, 1.36, 1.6, 1.9,
 ];
 
-/// The classification check (issue 19): at each of [`CHECK_OMEGAS`], from
+/// The classification check: at each of [`CHECK_OMEGAS`], from
 /// the static equilibrium, the pipeline at the page's defaults (300 + 100
 /// periods) and plain integration (no early settle, no shooting) over
 /// `long` + 100 periods. They agree when both find the same period, or

@@ -58,8 +58,8 @@ pub enum StepControl {
     /// tangent's turn), folds located by regula falsi; the default.
     Geometry,
     /// From the corrector's iteration count with the arclength step capped
-    /// at `1 / points`, folds labelled on the point after them: the control
-    /// before issue 14, kept for the benchmark's before/after comparison.
+    /// at `1 / points`, folds labelled on the point after them: the simpler
+    /// control that `gearshock bench` measures the geometry control against.
     Iterations,
 }
 

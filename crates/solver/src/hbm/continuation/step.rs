@@ -113,8 +113,8 @@ impl FrfContinuation {
                         }
                         self.ds = (ds / f).clamp(ds_min, DS_CAP);
                     } else {
-                        // Before issue 14: the turn limits the step, the
-                        // corrector's iterations adapt it.
+                        // StepControl::Iterations: the turn limits the
+                        // step, the corrector's iterations adapt it.
                         if cos < 0.9 && ds > ds_min {
                             self.stats.rejected_steps += 1;
                             self.ds = ds * 0.5;
