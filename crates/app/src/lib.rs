@@ -37,9 +37,6 @@ pub mod tour;
 pub mod views;
 pub mod words;
 pub mod worker;
-/// The worker's job runner under its earlier name (the pinned exports
-/// test, `tests/exports.rs`, names it so and stays unchanged).
-pub use worker as worker_core;
 
 #[cfg(target_arch = "wasm32")]
 pub mod web;

@@ -41,8 +41,8 @@ fn sources() -> Vec<(String, String)> {
 }
 
 /// Architecture invariant: no import cycle between the app's top-level
-/// modules, nor between any two of its files (`plots -> views ->
-/// worker_core -> plots` was one).
+/// modules (such as `plots -> views -> worker -> plots`), nor between any
+/// two of its files.
 #[test]
 fn the_app_has_no_import_cycle() {
     let g = modgraph::read(&src());
@@ -84,7 +84,7 @@ fn only_the_web_boundary_touches_the_browser() {
     }
 }
 
-/// Architecture invariant: no app file over 800 lines (issue 20).
+/// Architecture invariant: no app file over 800 lines.
 #[test]
 fn no_file_is_too_long() {
     for (rel, text) in sources() {

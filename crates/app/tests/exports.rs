@@ -2,9 +2,8 @@
 //! real controller and worker job runner natively, compared byte for byte
 //! with the snapshot in `tests/snapshots/exports.txt`.
 //!
-//! The snapshot was written by the code before the app's restructuring
-//! (issue 11); a refactoring that changes any exported number, column or
-//! file name fails here. To regenerate it after an intended change, run
+//! A refactoring that changes any exported number, column or file name
+//! fails here. To regenerate it after an intended change, run
 //! `GEARSHOCK_BLESS=1 cargo test -p app --test exports` and review the diff.
 
 // Tests may panic: that is how they fail.
@@ -12,7 +11,7 @@
 
 use app::controller::{Controller, Effect};
 use app::protocol::encode;
-use app::worker_core::WorkerCore;
+use app::worker::WorkerCore;
 
 /// A small but complete page: a few Omega points per view, a small map and
 /// Lyapunov curve, the time-integration overlay on.
@@ -58,7 +57,7 @@ fn settle(c: &mut Controller, cores: &mut [WorkerCore], mut fx: Vec<Effect>) -> 
 }
 
 /// The same page with a family of three TE values: every export holds
-/// every member (issue 12).
+/// every member.
 fn family_link() -> String {
     format!("{LINK}&family=te_um:0,20,30")
 }

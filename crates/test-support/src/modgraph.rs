@@ -12,8 +12,8 @@
 //! items for outsiders depends on nothing new). A module and its own
 //! submodules are one unit, so edges between ancestor and descendant do not
 //! count. [`cycle`] looks for a cycle with modules cut to their first
-//! `depth` segments: depth 1 is the top-level modules (`plots -> views ->
-//! worker_core -> plots` was one), a large depth every file
+//! `depth` segments: depth 1 is the top-level modules (a cycle such as
+//! `plots -> views -> worker -> plots`), a large depth every file
 //! (`hbm::assembly -> hbm::harmonic -> hbm::stability -> hbm::assembly`).
 
 use std::collections::{BTreeMap, BTreeSet};
