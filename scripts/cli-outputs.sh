@@ -4,7 +4,7 @@
 # files, --progress lines and refusals) and stores stdout, stderr, exit code
 # and the files written in OUTDIR. Two builds give the same outputs when
 # `diff -r OUT1 OUT2` is empty: the check of a refactoring that must change
-# nothing (the CLI split of issue 20). Both binaries must have the same
+# nothing. Both binaries must have the same
 # file name (clap prints it in the usage lines).
 #
 # usage: scripts/cli-outputs.sh path/to/gearshock OUTDIR

@@ -1,4 +1,4 @@
-// Browser tests of issue 24's page-side items: touch on a phone (a
+// Browser tests of the page on phones and for every reader: touch (a
 // vertical swipe on a plot scrolls and never selects, a tap selects, a
 // sideways drag scrubs, and the jump to the motion), every export button
 // of every view gives its file, reduced motion starts the animation

@@ -20,10 +20,10 @@ const MAP = MAP_ONLY || args.includes('--map');
 // --pool-only measures only the bifurcation sweep on 1 and 2 workers.
 const POOL_ONLY = args.includes('--pool-only');
 // --family-only measures only the main thread while a family of six draws
-// its 1000-period orbits (issue 15's case still over 100 ms).
+// its 1000-period orbits (the heaviest drawing the page makes).
 const FAMILY_ONLY = args.includes('--family-only');
 // --branches-only measures only the page at its defaults with the shooting
-// branches on the bifurcation diagram (the default) and off (issue 19).
+// branches on the bifurcation diagram (the default) and off.
 const BRANCHES_ONLY = args.includes('--branches-only');
 const ONLY = MAP_ONLY || POOL_ONLY || FAMILY_ONLY || BRANCHES_ONLY;
 

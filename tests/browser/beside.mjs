@@ -1,4 +1,4 @@
-// A second headless chromium beside the browser suite (issue 20, item 6):
+// A second headless chromium beside the browser suite (the load it makes):
 // it loads the page at its defaults, waits until the page reports every
 // view computed (or 120 s), closes it and loads it again, until killed.
 // scripts/test-under-load.sh runs it with two busy loops while the suite

@@ -1,4 +1,4 @@
-// Browser tests of issue 5's views: the impact-regime map (ViewId::Map), the
+// Browser tests of the views beyond the paper: the impact-regime map (ViewId::Map), the
 // Lyapunov curve under the bifurcation diagram, the animated gear set and
 // the A/B comparison. Small grids keep the suite quick.
 import { test, before, after } from 'node:test';

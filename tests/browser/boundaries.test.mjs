@@ -1,4 +1,4 @@
-// Browser test of issue 22 item 3: the regime map's boundaries, traced in
+// Browser test of the regime map's boundaries, traced in
 // a worker and drawn over the map, each kind named in the key; a click on
 // a curve says what it is and selects its point; the cells that disagree
 // with the side of a curve they lie on are counted and outlined. The gear

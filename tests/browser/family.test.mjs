@@ -1,4 +1,4 @@
-// Browser tests of parameter families (issue 12): the frequency response
+// Browser tests of parameter families: the frequency response
 // overlaid in colour per value, a figure preset's small multiples (Fig. 5:
 // three phase portraits and three Poincaré sections), the family link's
 // round trip and bad family input. Small grids keep the suite quick.
@@ -86,7 +86,7 @@ test('the Fig. 5 preset shows three phase portraits and three Poincaré sections
   assert.match(s.query, /family=te_um%3A0%2C20%2C30/);
   assert.match(s.query, /omega=0\.5/);
   for (const m of s.family.members) assert.equal(m.omega_job.error, null, JSON.stringify(m));
-  // The preset's note no longer says only the first member is shown.
+  // The preset's note does not say that only the first member is shown.
   await waitText(page, '#preset-note', /first curve or panel/, { not: true });
   for (const v of ['phase', 'poincare']) {
     await page.locator(`#view-${v}`).scrollIntoViewIfNeeded();

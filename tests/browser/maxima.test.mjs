@@ -1,5 +1,5 @@
-// Browser tests of the page at the largest values its settings allow
-// (issue 15): the main thread stays responsive (no task spends 100 ms of
+// Browser tests of the page at the largest values its settings allow:
+// the main thread stays responsive (no task spends 100 ms of
 // the main thread's CPU time, see harness.mjs) from the first paint until the heaviest
 // results are drawn: 1000 recorded periods (64 000 samples) in the four
 // selected-Omega views, the first harmonic-balance points at H = 15 and

@@ -1,4 +1,4 @@
-// Browser test of the paper's figure presets (issue 21): each figure
+// Browser test of the paper's figure presets: each figure
 // preset, Figs. 2 and 3 both as the paper computed them (one harmonic) and
 // as the converged branch, names the plotted quantity in plain words, the
 // tooth deflection x with the TE included, in its caption (the preset's

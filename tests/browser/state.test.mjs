@@ -1,4 +1,4 @@
-// Browser test of issue 24, "one state": every control shows the state
+// Browser test of "one state": every control shows the state
 // after a change. "Backlash b (all meshes)" fills the per-mesh-kind fields;
 // the gear pair's labels and subtitle name the gear pair; the torque's
 // tooltip states its range from the key table; a negative torque is

@@ -1,4 +1,4 @@
-// Browser tests of issue 13, "a page that teaches": the truth by default
+// Browser tests of "a page that teaches": the truth by default
 // (time-integration dots on the frequency response with no setting
 // changed), plain words, phones, text alternatives of the canvases and the
 // Copy link confirmation. Screenshots at 1366x768, 1920x1080 and 390x844

@@ -1,4 +1,4 @@
-// Browser test of issue 24, "text that fits": every plot reports the boxes
+// Browser test of "text that fits": every plot reports the boxes
 // of the text it drew (titles, tick labels, axis descriptions, the key) in
 // the page's status (`text_boxes`, measured by the canvas's measureText).
 // At 390x844 (a touch phone), 1366x768 and 1920x1080, on the default page

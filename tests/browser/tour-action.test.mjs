@@ -1,4 +1,4 @@
-// Browser test of issue 24, "a step ends with one action for the student
+// Browser test of "a step ends with one action for the student
 // and notices when it is done": on the tour's second step the card asks for
 // the backlash at 50 µm; the student drags the slider there and the card
 // reports it done (a tick, "Done: ...", Next highlighted), waiting for the

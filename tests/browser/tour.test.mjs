@@ -1,4 +1,4 @@
-// Browser test of issue 24, "a tour that shows": each step sets the state
+// Browser test of "a tour that shows": each step sets the state
 // it talks about (the backlash moved, an Ω selected: the link says so) and
 // its card sits beside the plot it points at, never over that plot's data
 // area (the plot frame the page reports, scaled to the canvas on screen),

@@ -105,7 +105,8 @@ pub struct RunArgs {
     #[arg(long)]
     pub full_transient: bool,
     /// Do not look for a periodic orbit by shooting during the transient:
-    /// integrate only, as before issue 19.
+    /// integrate only (with the early-settle test, without the Lyapunov
+    /// probe).
     #[arg(long)]
     pub no_shooting: bool,
     /// Relative tolerance of the integrator.

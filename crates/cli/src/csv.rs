@@ -60,7 +60,7 @@ pub fn keys_text() -> String {
     )
 }
 
-/// `keys --markdown`: the README's table.
+/// `keys --markdown`: the table of docs/model.md.
 pub fn keys_markdown() -> String {
     let head = String::from("| key | unit | models | allowed | meaning |\n|---|---|---|---|---|\n");
     key_rows(head, |s, [name, unit, models, allowed, meaning]| {

@@ -1,4 +1,4 @@
-//! Every write is checked (issue 25): a failed write to stdout or a file is
+//! Every write is checked: a failed write to stdout or a file is
 //! an error naming it with exit code 3, a reader that goes away stops the
 //! work quietly, and `figure --out` is checked before any work and leaves
 //! no empty or cut file behind.

@@ -51,8 +51,8 @@ pub fn base_shards() -> (Vec<Value>, Vec<Value>) {
     (sweeps, maps)
 }
 
-/// Numbers that forged counts, indices and counters have used (issue 25:
-/// 1e300, 1e20, 1.5, "7" and null as step counts).
+/// Numbers that forged counts, indices and counters are known to try
+/// (1e300, 1e20, 1.5, "7" and null as step counts among them).
 fn forged_number(r: &mut Rng) -> Value {
     match r.below(13) {
         0 => json!(u64::MAX),

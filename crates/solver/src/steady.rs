@@ -57,8 +57,8 @@ pub use verdict::{
     MAX_PROBES, PIPELINE_ITERATIONS, PROBE_FROM_REST,
 };
 
-/// The model moved to [`crate::model`]; these names stay here so that
-/// `steady::Model` keeps meaning what it always did.
+/// The model every steady run takes (defined in [`crate::model`]),
+/// re-exported beside the run for its callers.
 pub use crate::model::{Model, DIVERGENCE_FACTOR};
 
 /// Impact regime of a steady response (Kahraman & Singh, 1990).

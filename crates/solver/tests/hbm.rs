@@ -411,7 +411,7 @@ fn downward_continuation_retraces_the_upward_branch() {
 fn continuation_crosses_the_first_modes_resonance_zone() {
     // Near Omega 0.21 the branch of the compound set is nearly vertical (the
     // first mode's damping ratio is 0.0024) and contact is lost; a coarse AFT
-    // grid used to stall Newton there (H = 3 and H = 5, TE 20 and 30 um).
+    // grid stalls Newton there (H = 3 and H = 5, TE 20 and 30 um).
     for (te, h) in [("te_um=20", 3), ("te_um=30", 5)] {
         let m = model(&[te]);
         let mut spec = FrfSpec::new(0.1, 0.5, 60);
@@ -490,9 +490,9 @@ fn sequential_phasing_branch_crosses_the_range_and_turning_back_is_reported() {
 fn geometric_step_control_halves_the_points_and_keeps_the_folds() {
     // The gear pair's hysteresis band at H = 7: the step control on the
     // predictor-corrector distance and the tangent's turn against the
-    // control on the corrector's iterations (the one before it), on the
-    // same branch. The old control located a fold only to within its step
-    // and needed 200 nominal points; the new one locates folds on the
+    // control on the corrector's iterations, on the same branch. The
+    // iterations control locates a fold only to within its step and needs
+    // 200 nominal points; the geometry control locates folds on the
     // branch, and its `points` only caps the Omega step (at 0.006 here).
     let m = model(&["model=gear-pair"]);
     let run = |control, points| {

@@ -1,7 +1,7 @@
 //! What the page does on a user's [`Action`] (a button, a drop-down, a
 //! field), and what the controls, the tour's panel and the family bar
-//! show after a change: everything the web layer's listeners used to
-//! decide, as [`Write`]s and [`Effect`]s the native tests read.
+//! show after a change, decided here rather than in the web layer's
+//! listeners: as [`Write`]s and [`Effect`]s the native tests read.
 
 use super::dom::{Action, TourMove};
 use super::{Page, Write};

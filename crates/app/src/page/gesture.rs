@@ -4,7 +4,7 @@
 //! page and never selects. Until the pointer has moved [`SLOP_PX`] CSS
 //! pixels the gesture is undecided; its first clear direction decides it.
 //! A `pointercancel` (the browser took the touch to scroll) ends it with
-//! no selection. A mouse's press selects at once, as it always did.
+//! no selection. A mouse's press selects at once.
 
 use super::Page;
 use crate::views::ViewId;

@@ -318,7 +318,8 @@ impl Page {
         }
     }
 
-    /// Worker `worker`'s message, handled in `took_ms` (measured by the caller).
+    /// Worker `worker`'s message: hands it to the controller, which feeds
+    /// the computation whose job it answers.
     pub fn worker_message(&mut self, worker: usize, text: &str, now_ms: f64) -> Vec<Effect> {
         self.ctl.worker_message(worker, text, now_ms)
     }

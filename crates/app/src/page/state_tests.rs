@@ -1,5 +1,5 @@
 //! The page core's tests that every control shows the state after every
-//! change (issue 24): a shortcut's per-mesh-kind fields, the labels and the
+//! change: a shortcut's per-mesh-kind fields, the labels and the
 //! subtitle of the model shown, and a refused value that keeps the last
 //! good state and says why in plain words.
 

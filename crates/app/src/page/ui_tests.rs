@@ -1,4 +1,4 @@
-//! The page core's tests of what the web layer used to decide: a touch's
+//! The page core's tests of what it decides for the web layer: a touch's
 //! gesture (tap, scrub, swipe, cancel), the built elements and their
 //! accessible names, the actions' writes (tour, controls, family, exports),
 //! the animation under reduced motion, and a view drawn on SVG.
@@ -71,7 +71,7 @@ fn a_tap_selects_where_it_lifts_and_a_drag_along_the_axis_scrubs() {
     let (d, _) = p.begin_frame(5.0);
     p.end_frame(&d);
     assert!(p.see_orbit);
-    // A mouse selects at its press, as before.
+    // A mouse selects at its press.
     let mouse = PointerIn::new(Phase::Down, 500.0, (500.0, 0.0), "mouse");
     assert!(p.pointer(ViewId::Fr, mouse));
     assert_eq!(picked(&mut p), 1.5);

@@ -196,7 +196,7 @@ fn only_an_exact_orbit_has_a_multiplier() {
     }
 }
 
-/// Issue 19's first case: the Fig. 2 preset's first member (no backlash,
+/// A linear case: the Fig. 2 preset's first member (no backlash,
 /// TE 5 µm on every mesh, the page's Ω 0.84 and periods) is linear, so its
 /// steady state is period 1, found exactly; the summary says so and says
 /// nothing of impacts.

@@ -26,7 +26,9 @@ pub struct BifurcationArgs {
     /// Mesh to report, or `all`.
     #[arg(long)]
     mesh: Option<String>,
-    /// Number of interleaved continuation chains (see the README).
+    /// Number of interleaved continuation chains: point i continues from
+    /// point i - chains (default 1; the points split across chains run
+    /// independently, and merged shards equal the run with as many chains).
     #[arg(long)]
     chains: Option<u32>,
     /// Compute only shard i of n (every n-th point from i; implies --chains n).

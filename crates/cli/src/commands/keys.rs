@@ -8,7 +8,7 @@ use clap::Args;
 /// Options of `gearshock keys`.
 #[derive(Debug, Args)]
 pub struct KeysArgs {
-    /// Print a Markdown table (as in the README).
+    /// Print a Markdown table (as in docs/model.md).
     #[arg(long)]
     markdown: bool,
 }

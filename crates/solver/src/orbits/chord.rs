@@ -8,8 +8,8 @@
 //! integrated at the converged point itself: its multipliers (stability,
 //! the bifurcation tests) and its tangent are the point's own. A chord that
 //! does not halve the residual in a step gives up, and the caller corrects
-//! from the same prediction by full Newton (the monodromy at every iterate),
-//! as before the chord. The chord converges linearly where Newton does
+//! from the same prediction by full Newton (the monodromy at every
+//! iterate). The chord converges linearly where Newton does
 //! quadratically, so the step-size rule counts two of its iterations as
 //! one of Newton's (`CHORD_EASY`): otherwise the steps stop growing and the
 //! page's 300 points end at Omega 0.22 instead of 0.53 on the default set.
