@@ -163,7 +163,7 @@ fn mesh_rows<'a>(mesh_names: &[String], p: &'a Value) -> Vec<(String, &'a Value)
 /// A frequency-response branch: one row per point and mesh, in continuation order.
 pub fn frf(v: &Value) -> String {
     let mut s = String::from(
-        "index,omega,mesh,delta_max_m,delta_min_m,delta_amplitude_m,rel_max_m,rel_min_m,impact,stable,bifurcation\n",
+        "index,omega,mesh,delta_max_m,delta_min_m,delta_amplitude_m,x_max_m,x_min_m,impact,stable,bifurcation\n",
     );
     let mesh_names: Vec<String> = v["meshes"]
         .as_array()
@@ -180,8 +180,8 @@ pub fn frf(v: &Value) -> String {
                 cell(&m["delta_max_m"]),
                 cell(&m["delta_min_m"]),
                 cell(&m["delta_amplitude_m"]),
-                cell(&m["rel_max_m"]),
-                cell(&m["rel_min_m"]),
+                cell(&m["x_max_m"]),
+                cell(&m["x_min_m"]),
                 cell(&m["impact"]),
                 cell(&p["stable"]),
                 cell(&p["bifurcation"]),

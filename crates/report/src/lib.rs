@@ -161,8 +161,6 @@ pub fn simulate_json(model: &Model, ss: &SteadyState, mesh: usize, max_order: f6
         "delta_max_m": num(m.delta_max_m),
         "delta_mean_m": num(m.delta_mean_m),
         "delta_rms_m": num(m.delta_rms_m),
-        "relative_min_m": num(m.rel_min_m),
-        "relative_max_m": num(m.rel_max_m),
         "force_max_n": num(m.force_max_n),
         "force_min_n": num(m.force_min_n),
         "static_force_n": num(m.static_force_n),
@@ -437,8 +435,6 @@ fn branch_mesh_json(m: &solver::hbm::BranchMesh) -> Map<String, Value> {
     o.insert("delta_max_m".into(), num(m.delta_max_m));
     o.insert("delta_min_m".into(), num(m.delta_min_m));
     o.insert("delta_amplitude_m".into(), num(m.delta_amplitude_m));
-    o.insert("rel_max_m".into(), num(m.rel_max_m));
-    o.insert("rel_min_m".into(), num(m.rel_min_m));
     o.insert("harmonics_m".into(), nums(&m.harmonics_m));
     o.insert("impact".into(), Value::from(m.impact.name()));
     o
@@ -446,8 +442,8 @@ fn branch_mesh_json(m: &solver::hbm::BranchMesh) -> Map<String, Value> {
 
 /// One branch point. With one requested mesh its fields are inlined; with
 /// several they sit under `meshes` keyed by name. `x_*` is the tooth
-/// deflection `x = delta - e` (TE included), `delta_*` the rotations' part;
-/// `rel_*` repeats `x_min_m` and `x_max_m` under their older names.
+/// deflection `x = delta - e` (TE included), `delta_*` the rotations'
+/// part.
 pub fn branch_point_json(model: &Model, p: &solver::hbm::BranchPoint, meshes: &[usize]) -> Value {
     let mut o = Map::new();
     o.insert("omega".into(), num(p.omega));
