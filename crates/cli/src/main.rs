@@ -16,7 +16,8 @@
 //! share and their checks; [`input`] reads files through a size limit
 //! ([`shards`] streams a shard file's items one at a time);
 //! [`budget`] caps each command's work; [`failure`] maps errors to exit codes;
-//! [`flags`] words clap's refusals (the flag, its value, its real range).
+//! [`flags`] words clap's refusals (the flag, its value, its real range);
+//! [`reference`] renders this command line's reference, `docs/cli.md`.
 
 mod args;
 mod budget;
@@ -27,6 +28,7 @@ mod flags;
 mod input;
 mod output;
 mod progress;
+mod reference;
 mod shards;
 mod sweep;
 

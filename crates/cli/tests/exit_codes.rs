@@ -1,4 +1,4 @@
-//! The README's table of exit codes holds: each row's example, run as
+//! The table of exit codes in docs/cli.md holds: each row's example, run as
 //! written (through `sh`, for its redirection), exits with the row's code,
 //! and an I/O failure never exits 1.
 
@@ -8,12 +8,11 @@
 use std::process::Command;
 use test_support::cli::bin;
 
-/// The rows of the README's exit-code table: (code, example command).
+/// The rows of docs/cli.md's exit-code table: (code, example command).
 fn table() -> Vec<(i32, String)> {
-    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md"))
-        .expect("README");
-    readme
-        .lines()
+    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/cli.md"))
+        .expect("docs/cli.md");
+    doc.lines()
         .skip_while(|l| !l.starts_with("| Code | Meaning | Example |"))
         .skip(2)
         .take_while(|l| l.starts_with('|'))
@@ -46,7 +45,7 @@ fn sh(command: &str, env: &[(&str, &str)]) -> (Option<i32>, String) {
 }
 
 #[test]
-fn every_row_of_the_readme_table_is_the_code_of_its_example() {
+fn every_row_of_the_exit_code_table_is_the_code_of_its_example() {
     let rows = table();
     let codes: Vec<i32> = rows.iter().map(|r| r.0).collect();
     assert_eq!(codes, [0, 1, 2, 3], "the table: {rows:?}");

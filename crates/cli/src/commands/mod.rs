@@ -45,7 +45,8 @@ pub enum Command {
     /// Bifurcation diagram: Poincaré samples over a sweep of Omega.
     #[command(allow_negative_numbers = true)]
     Bifurcation(bifurcation::BifurcationArgs),
-    /// Frequency response by harmonic balance with arclength continuation.
+    /// Frequency response: the periodic branch in Omega by harmonic balance
+    /// or shooting, with arclength continuation.
     #[command(allow_negative_numbers = true)]
     Frf(frf::FrfArgs),
     /// Impact-regime map over Omega (columns) and a parameter (rows).
@@ -63,7 +64,8 @@ pub enum Command {
     /// against the backlash grows without bound).
     #[command(allow_negative_numbers = true)]
     Instability(instability::InstabilityArgs),
-    /// Join the JSON outputs of all shards of one sweep.
+    /// Join the JSON outputs of all shards of one bifurcation, map or figure
+    /// run.
     #[command(allow_negative_numbers = true)]
     Merge(merge::MergeArgs),
     /// Print every preset (the paper's figures as settings) as JSON.
@@ -76,6 +78,9 @@ pub enum Command {
     /// Measure the solver's speed (medians over repeats).
     #[command(allow_negative_numbers = true)]
     Bench(bench::BenchArgs),
+    /// Print this command line's reference in Markdown (docs/cli.md).
+    #[command(hide = true)]
+    HelpMarkdown,
 }
 
 /// Runs one subcommand.
@@ -95,5 +100,6 @@ pub fn run(command: Command) -> Result<(), Failure> {
         Command::Presets => presets::run(),
         Command::Figure { args } => crate::output::emit(&figure::run(&args)?),
         Command::Bench(a) => bench::run_command(&a),
+        Command::HelpMarkdown => crate::output::emit_text(&crate::reference::markdown()),
     }
 }
