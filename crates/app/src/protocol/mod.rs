@@ -711,8 +711,8 @@ pub enum FromWorker {
     },
 }
 
-/// A length in metres as micrometres rounded to 1e-6 µm: the one
-/// conversion of every length the page shows and exports.
+/// A length in metres as µm rounded to 1e-6 µm: the deflections and the backlash
+/// the page shows and exports (`worker::jobs::omega` scales the spectrum itself).
 pub fn um(metres: f64) -> f64 {
     (metres * 1e6 * 1e6).round() / 1e6
 }
