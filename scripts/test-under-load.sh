@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The browser suite under load (issues 15 and 20): builds the release page
+# The browser suite under load: builds the release page
 # once, starts two busy loops (`yes > /dev/null`) that keep both cores of a
 # two-core machine busy and a second headless chromium that loads the page
 # again and again beside the suite (tests/browser/beside.mjs), then runs the

@@ -1,4 +1,4 @@
-// Browser tests of one story (issues 19 and 24): the page's words about a
+// Browser tests of one story: the page's words about a
 // steady state come from its one classification. The Fig. 2 preset (no
 // backlash, a linear system) at the page's defaults is period 1, found
 // exactly, in its panel titles and its summary, which says nothing of

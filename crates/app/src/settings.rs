@@ -451,7 +451,7 @@ pub struct ViewOptions {
 /// exactly; no impact on s1a1, largest Floquet multiplier 0.90 at the
 /// default parameters) that the tour's first step explains, outside every
 /// band of parametric instability (so the Fig. 2 preset, linear, is period
-/// 1 there too). At the old 0.84 the default motion is chaotic (largest
+/// 1 there too). At Ω 0.84 the default motion is chaotic (largest
 /// Lyapunov exponent 0.23 per period), a confusing first sight. The
 /// periodic states with impact near Ω 1.87 lie at the edge of a band,
 /// where the linear Fig. 2 case grows without bound. At Ω 0.35 a mesh
