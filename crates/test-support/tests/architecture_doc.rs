@@ -1,7 +1,10 @@
-//! ARCHITECTURE.md names only what exists: every path, module, type,
-//! function and test it quotes is found in the tree, the rooms of its code
-//! maps are files or folders, and every "Architecture invariant:" names a
-//! test that exists. Data-driven: the names come from the document itself.
+//! The documents name only what exists. ARCHITECTURE.md: every path,
+//! module, type, function and test it quotes is found in the tree, the
+//! rooms of its code maps are files or folders, and every "Architecture
+//! invariant:" names a test that exists. Every relative link of the
+//! README, ARCHITECTURE.md, CONTRIBUTING.md, CHANGELOG.md and `docs/`
+//! leads to a file, and every path the README quotes exists. Data-driven:
+//! the names come from the documents themselves.
 
 // Tests may panic: that is how they fail.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
@@ -402,4 +405,116 @@ fn every_invariant_names_its_test() {
         });
         assert!(named, "this invariant names no test:\n{p}");
     }
+}
+
+/// The documents whose links are checked: the root's and `docs/`'s.
+fn documents() -> Vec<PathBuf> {
+    let root = root();
+    let mut out: Vec<PathBuf> = [
+        "README.md",
+        "ARCHITECTURE.md",
+        "CONTRIBUTING.md",
+        "CHANGELOG.md",
+    ]
+    .iter()
+    .map(|f| root.join(f))
+    .collect();
+    let mut docs: Vec<PathBuf> = std::fs::read_dir(root.join("docs"))
+        .expect("docs/")
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "md"))
+        .collect();
+    docs.sort();
+    out.extend(docs);
+    out
+}
+
+/// The targets of a Markdown text's inline links and images, `](target)`,
+/// outside code blocks.
+fn link_targets(text: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut in_code = false;
+    for line in text.lines() {
+        if line.starts_with("```") {
+            in_code = !in_code;
+            continue;
+        }
+        if in_code {
+            continue;
+        }
+        for (i, _) in line.match_indices("](") {
+            let rest = &line[i + 2..];
+            if let Some(end) = rest.find(')') {
+                out.push(rest[..end].to_string());
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn every_docs_link_exists() {
+    let mut checked = 0;
+    let mut missing = Vec::new();
+    for doc in documents() {
+        let text = std::fs::read_to_string(&doc).unwrap();
+        let dir = doc.parent().unwrap();
+        for target in link_targets(&text) {
+            if target.contains("://") || target.starts_with('#') || target.starts_with("mailto:") {
+                continue;
+            }
+            let file = target.split('#').next().unwrap();
+            checked += 1;
+            if !dir.join(file).exists() {
+                missing.push(format!("{}: {target}", doc.display()));
+            }
+        }
+    }
+    assert!(checked > 20, "only {checked} links checked");
+    assert!(missing.is_empty(), "links to nothing: {missing:?}");
+}
+
+#[test]
+fn every_path_the_readme_names_exists() {
+    let root = root();
+    let readme = std::fs::read_to_string(root.join("README.md")).expect("README.md");
+    let mut checked = 0;
+    let mut missing = Vec::new();
+    let mut paths: Vec<String> = spans(&readme)
+        .into_iter()
+        .filter_map(|s| match classify(&s) {
+            Some(Name::Path(p)) => Some(p),
+            _ => None,
+        })
+        .collect();
+    paths.extend(
+        link_targets(&readme)
+            .into_iter()
+            .filter(|t| !t.contains("://")),
+    );
+    // Commands in code blocks name scripts and files too.
+    let mut in_code = false;
+    for line in readme.lines() {
+        if line.starts_with("```") {
+            in_code = !in_code;
+        } else if in_code {
+            let words = line.split('#').next().unwrap().split_whitespace();
+            paths.extend(
+                words
+                    .filter(|w| w.starts_with("scripts/") || w.starts_with("docs/"))
+                    .map(str::to_string),
+            );
+        }
+    }
+    for p in paths {
+        checked += 1;
+        if !root.join(p.split('#').next().unwrap()).exists() {
+            missing.push(p);
+        }
+    }
+    assert!(checked > 20, "only {checked} paths checked");
+    assert!(
+        missing.is_empty(),
+        "the README names what does not exist: {missing:?}"
+    );
 }
