@@ -1,7 +1,7 @@
 //! The documents name only what exists. ARCHITECTURE.md: every path,
 //! module, type, function and test it quotes is found in the tree, the
-//! rooms of its code maps are files or folders, and every "Architecture
-//! invariant:" names a test that exists. Every relative link of the
+//! rooms of its code maps are files or folders, and every row of its table
+//! of invariants names a test that exists. Every relative link of the
 //! README, ARCHITECTURE.md, CONTRIBUTING.md, CHANGELOG.md and `docs/`
 //! leads to a file, and every path the README quotes exists. Data-driven:
 //! the names come from the documents themselves.
@@ -310,17 +310,6 @@ fn rust_exists(tree: &Tree, segments: &[String]) -> bool {
     })
 }
 
-/// The text of the source file of module `path` (`views::table`) in any crate.
-fn module_file(path: &str) -> Option<String> {
-    let rel = path.replace("::", "/");
-    CRATES.iter().find_map(|(_, src)| {
-        let base = root().join(src).join(&rel);
-        std::fs::read_to_string(base.with_extension("rs"))
-            .or_else(|_| std::fs::read_to_string(base.join("mod.rs")))
-            .ok()
-    })
-}
-
 #[test]
 fn every_name_in_architecture_md_exists() {
     let doc = doc();
@@ -374,9 +363,8 @@ fn every_room_of_the_code_maps_exists() {
     assert!(missing.is_empty(), "rooms that do not exist: {missing:?}");
 }
 
-/// Every "Architecture invariant:" paragraph names a test that exists: a
-/// test file (`crates/*/tests/*.rs`, `tests/browser/*.mjs`) or a test
-/// function.
+/// Every row of the table of invariants names a test that exists: a test
+/// file (`crates/*/tests/*.rs`, `tests/browser/*.mjs`) or a test function.
 #[test]
 fn every_invariant_names_its_test() {
     let doc = doc();
@@ -389,21 +377,25 @@ fn every_invariant_names_its_test() {
             })
         })
     };
-    let paragraphs: Vec<&str> = doc
-        .split("\n\n")
-        .filter(|p| p.starts_with("Architecture invariant:"))
+    let start = doc
+        .find("\n## Invariants\n")
+        .expect("a section of invariants");
+    let section = &doc[start + 1..];
+    let section = &section[..section[3..].find("\n## ").map_or(section.len(), |i| i + 3)];
+    let rows: Vec<&str> = section
+        .lines()
+        .filter(|l| l.starts_with("| ") && !l.starts_with("| Architecture invariant |"))
         .collect();
-    assert!(paragraphs.len() >= 8, "{} invariants", paragraphs.len());
-    for p in paragraphs {
-        let named = spans(p).iter().any(|s| {
-            let is_test_path =
-                s.contains("tests/") || s.ends_with("tests.rs") || s.ends_with("::tests");
-            // "`views::table` tests": a module whose file holds tests.
-            let module_tests = p.contains(&format!("`{s}` tests"))
-                && module_file(s).is_some_and(|t| t.contains("#[test]"));
-            (is_test_path && path_exists(s.trim_end_matches('/'))) || test_fns(s) || module_tests
-        });
-        assert!(named, "this invariant names no test:\n{p}");
+    assert!(rows.len() >= 15, "{} invariants", rows.len());
+    for row in rows {
+        let cells: Vec<&str> = row.split(" | ").collect();
+        assert_eq!(cells.len(), 2, "a row is an invariant and its tests: {row}");
+        let tests = spans(cells[1]);
+        assert!(!tests.is_empty(), "this invariant names no test:\n{row}");
+        for s in tests {
+            let is_test_path = s.contains("tests/") && path_exists(s.trim_end_matches('/'));
+            assert!(is_test_path || test_fns(&s), "no test {s} for:\n{row}");
+        }
     }
 }
 
