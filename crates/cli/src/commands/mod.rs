@@ -13,6 +13,7 @@ mod lyapunov;
 mod map;
 mod merge;
 mod modes;
+mod paper;
 mod params;
 mod presets;
 mod simulate;
@@ -81,6 +82,10 @@ pub enum Command {
     /// Print this command line's reference in Markdown (docs/cli.md).
     #[command(hide = true)]
     HelpMarkdown,
+    /// The paper's claims checked: run the commands docs/paper.md quotes
+    /// and print their record, or render docs/paper.md and the page's
+    /// claims from it (--root).
+    Paper(paper::PaperArgs),
 }
 
 /// Runs one subcommand.
@@ -101,5 +106,6 @@ pub fn run(command: Command) -> Result<(), Failure> {
         Command::Figure { args } => crate::output::emit(&figure::run(&args)?),
         Command::Bench(a) => bench::run_command(&a),
         Command::HelpMarkdown => crate::output::emit_text(&crate::reference::markdown()),
+        Command::Paper(a) => paper::run(&a),
     }
 }
