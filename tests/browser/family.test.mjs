@@ -97,7 +97,7 @@ test('the Fig. 5 preset shows three phase portraits and three Poincaré sections
   // The claims section lists every claim of docs/paper.md; a claim's figure
   // button loads that figure's whole family.
   await page.locator('#claims summary').click();
-  assert.equal(await page.locator('#claims-rows tr').count(), 14);
+  assert.equal(await page.locator('#claims-rows tr').count(), 16);
   assert.match(await page.textContent('#claim-8'), /chaos starts at Ω 0\.50 for every backlash/);
   assert.match(await page.textContent('#claim-8'), /gearshock lyapunov/);
   await shot(page.locator('#claims'), '33-claims');

@@ -4,7 +4,7 @@
 //! one builder. What a control, a button or a row says and does is decided
 //! (and tested) here; the web layer only creates what it is given.
 
-use crate::claims::{heading, with_text, CLAIMS};
+use crate::claims::{claims, heading};
 use crate::controller::Format;
 use crate::controls::{controls, Group, Widget};
 use crate::family_spec::FAMILY_KEYS;
@@ -273,16 +273,16 @@ pub fn export_bar(v: ViewId) -> Vec<Node> {
 /// The claims' rows: heading, what the paper says, the verdict, the
 /// evidence, a button loading the figure's preset, the command.
 pub fn claim_rows() -> Vec<Node> {
-    CLAIMS
+    claims()
         .iter()
         .map(|c| {
             let texts = [
                 heading(c),
-                c.says.to_string(),
-                c.verdict.to_string(),
-                c.evidence.to_string(),
+                c.says.clone(),
+                c.verdict.clone(),
+                c.evidence.clone(),
             ];
-            let figure = c.figure.and_then(preset).map(|f| {
+            let figure = c.figure.as_deref().and_then(preset).map(|f| {
                 let short = f.title.split(':').next().unwrap_or(f.id);
                 Node::new("button")
                     .attr("type", "button")
@@ -290,9 +290,9 @@ pub fn claim_rows() -> Vec<Node> {
                     .text(short)
                     .on("click", Action::LoadPreset(f.id))
             });
-            let mut command = Node::new("td").child(Node::new("code").text(c.command));
+            let mut command = Node::new("td").child(Node::new("code").text(&c.command));
             if !c.with.is_empty() {
-                command = command.child(Node::new("div").text(with_text(c)));
+                command = command.child(Node::new("div").text(&c.with));
             }
             Node::new("tr")
                 .attr("id", format!("claim-{}", c.id))
