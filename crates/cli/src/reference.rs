@@ -29,6 +29,7 @@ const NOTES: [(&str, &str); 14] = [
     ("merge", include_str!("../reference/merge.md")),
     ("presets", include_str!("../reference/presets.md")),
     ("figure", include_str!("../reference/figure.md")),
+    ("paper", include_str!("../reference/paper.md")),
     ("bench", include_str!("../reference/bench.md")),
 ];
 
