@@ -15,7 +15,7 @@ use clap::{Arg, ArgAction, Command, CommandFactory};
 const OVERVIEW: &str = include_str!("../reference/overview.md");
 
 /// Each subcommand's worked examples and output, by name.
-const NOTES: [(&str, &str); 14] = [
+const NOTES: [(&str, &str); 15] = [
     ("params", include_str!("../reference/params.md")),
     ("keys", include_str!("../reference/keys.md")),
     ("modes", include_str!("../reference/modes.md")),
