@@ -24,6 +24,9 @@ pub fn fr_height(v: &FrView, (w, h): (u32, u32)) -> u32 {
     h.max(FR_MIN_CHART + key)
 }
 
+/// A curve's points: Omega, max x and min x (µm).
+type Points = Vec<(f64, f64, f64)>;
+
 /// The key's words for a dashed branch: unstable, said plainly (the
 /// Floquet test is named in the note).
 pub(crate) const UNSTABLE_KEY: &str = "dashed: unstable (a small disturbance grows)";
@@ -36,14 +39,14 @@ pub(crate) const UNSTABLE_KEY: &str = "dashed: unstable (a small disturbance gro
 /// meshes share it.
 pub(super) fn fr_clipped(v: &FrView, with_overlay: bool) -> super::clip::Clipped {
     let in_range = |o: f64| o >= v.omega_from && o <= v.omega_to;
-    let pts = |ps: &[FrCurvePoint]| -> Vec<(f64, f64, f64)> {
+    let pts = |ps: &[FrCurvePoint]| -> Points {
         ps.iter()
             .filter(|p| in_range(p.omega))
             .map(|p| (p.omega, p.max_um, p.min_um))
             .collect()
     };
     let several = v.branches.iter().filter(|b| !b.faded).count() > 1;
-    let mut lists: Vec<(Vec<(f64, f64, f64)>, (RGBColor, RGBColor), Option<String>)> = v
+    let mut lists: Vec<(Points, (RGBColor, RGBColor), Option<String>)> = v
         .branches
         .iter()
         .map(|b| {
@@ -84,7 +87,7 @@ pub(super) fn fr_clipped(v: &FrView, with_overlay: bool) -> super::clip::Clipped
 /// plot locates it (see [`super::clip`]).
 pub fn fr_first_mode_peaks(v: &FrView) -> Vec<(String, f64, f64)> {
     let in_range = |o: f64| o >= v.omega_from && o <= v.omega_to;
-    let lists: Vec<(Vec<(f64, f64, f64)>, String)> = v
+    let lists: Vec<(Points, String)> = v
         .branches
         .iter()
         .filter(|b| !b.faded)
