@@ -7,7 +7,7 @@
 // first-mode resonance on every member's curve.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { start, open, waitStatus, shot } from './harness.mjs';
+import { start, open, waitStatus, waitText, shot } from './harness.mjs';
 
 let h;
 before(async () => {
@@ -35,8 +35,8 @@ function motionWords(tag) {
 const IMPACT = {
   none: /stay in contact all the time/,
   'no-gap': /no backlash, so no gap/,
-  single: /single-sided impact/,
-  double: /double-sided impact/,
+  'single-sided': /single-sided impact/,
+  'double-sided': /double-sided impact/,
   'no-contact': /never touch/,
 };
 
@@ -51,16 +51,17 @@ async function walk(base, omega) {
     const el = document.querySelector(q);
     return a ? el.getAttribute(a) : el.textContent;
   }, [sel, attr]);
-  const summary = await text('#summary');
   const [must, never] = motionWords(r.motion);
-  assert.match(summary, must, `${where}: ${summary}`);
+  // Written at the frame after the state arrived: waited for, then read.
+  const summary = await waitText(page, '#summary', must, { timeoutMs: 120000 });
   assert.doesNotMatch(summary, never, `${where}: ${summary}`);
   assert.match(summary, IMPACT[r.impact], `${where}: ${summary}`);
   assert.match(summary, /^(Preview: )?At this speed the teeth/, `${where}: plain first: ${summary}`);
-  // The orbit views name the same motion and regime.
+  // The orbit views name the same motion (their labels are written when
+  // they are drawn: waited for, then read).
+  const escaped = r.motion.replace(/[.*+?^${}()|[\]\\]/g, '\\$&');
   for (const id of ['#canvas-phase', '#canvas-poincare']) {
-    const label = await text(id, 'aria-label');
-    assert.ok(label.includes(`, ${r.motion}`), `${where}: ${id}: ${label}`);
+    await waitText(page, id, new RegExp(`, ${escaped}[,.]`), { attr: 'aria-label', timeoutMs: 120000 });
   }
   // The branch's sentence and the summary tell one story: where the
   // sentence calls the branch unstable at the selected Ω while the state
