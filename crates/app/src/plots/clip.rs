@@ -171,8 +171,9 @@ pub(crate) fn first_mode_peaks(curves: &[Curve<'_>], natural: &[f64]) -> Vec<(St
 
 /// Marks each clipped peak at the edge of the axis: a triangle pointing
 /// out in its curve's colour, and one line of words on a white ground:
-/// "peak 2076 µm, off the axis", or, with several curves, "peaks 598 µm
-/// (TE 5 µm) to 2672 µm (TE 30 µm), off the axis". Each family member's
+/// "peak 2076 µm, off the axis", or, with several curves, three lines
+/// "peaks off the axis: / 598 µm (TE 5 µm) to / 2672 µm (TE 30 µm)".
+/// Each family member's
 /// peak inside the axis gets a dot of its colour.
 pub(crate) fn mark_clipped<'a, DB: DrawingBackend + 'a>(
     chart: &mut Chart<'a, DB>,
@@ -219,29 +220,36 @@ pub(crate) fn mark_clipped<'a, DB: DrawingBackend + 'a>(
             Some(name) => format!("{:.0} µm ({name})", p.value),
             None => format!("{:.0} µm", p.value),
         };
-        let label = match (these.first(), these.last()) {
-            (Some(a), Some(b)) if these.len() > 1 => {
-                format!("{word}s {} to {}, off the axis", value(a), value(b))
-            }
-            (Some(a), _) => format!("{word} {}, off the axis", value(a)),
+        let lines: Vec<String> = match (these.first(), these.last()) {
+            (Some(a), Some(b)) if these.len() > 1 => vec![
+                format!("{word}s off the axis:"),
+                format!("{} to", value(a)),
+                value(b),
+            ],
+            (Some(a), _) => vec![format!("{word} {}, off the axis", value(a))],
             _ => continue,
         };
-        // On a white ground, so that no curve crosses the words.
-        let (w, h) = ((label.chars().count() as f64 * 6.6) as i32, 15);
+        // On a white ground, so that no curve crosses the words; right of
+        // the needle, or as far right as the words fit.
+        let chars = lines.iter().map(|l| l.chars().count()).max().unwrap_or(0);
+        let (w, h) = ((chars as f64 * 7.0) as i32, 14 * lines.len() as i32 + 2);
         let top = if up { at.1 + 12 } else { at.1 - 12 - h };
-        let left = at.0 + 9;
+        let width = chart.plotting_area().dim_in_pixel().0 as i32;
+        let left = (at.0 + 9).min(width - w - 2).max(2);
         let area = chart.plotting_area().strip_coord_spec();
         area.draw(&Rectangle::new(
             [(left - 2, top), (left + w, top + h)],
             WHITE.mix(0.85).filled(),
         ))
         .map_err(err)?;
-        area.draw(&Text::new(
-            label,
-            (left, top + 2),
-            ("sans-serif", 12).into_font().color(&BLACK),
-        ))
-        .map_err(err)?;
+        for (k, line) in lines.into_iter().enumerate() {
+            area.draw(&Text::new(
+                line,
+                (left, top + 2 + 14 * k as i32),
+                ("sans-serif", 12).into_font().color(&BLACK),
+            ))
+            .map_err(err)?;
+        }
     }
     Ok(())
 }
