@@ -162,8 +162,26 @@ fn mesh_rows<'a>(mesh_names: &[String], p: &'a Value) -> Vec<(String, &'a Value)
 
 /// A frequency-response branch: one row per point and mesh, in continuation order.
 pub fn frf(v: &Value) -> String {
-    let mut s = String::from(
-        "index,omega,mesh,delta_max_m,delta_min_m,delta_amplitude_m,x_max_m,x_min_m,impact,stable,bifurcation\n",
+    branch_rows(v, &[])
+}
+
+/// A shooting branch: as [`frf`], with each point's piece (the branch it
+/// lies on: 0 the first, then each switched or restarted one) and period
+/// in mesh periods.
+pub fn shooting_frf(v: &Value) -> String {
+    branch_rows(v, &["piece", "period"])
+}
+
+/// A branch's rows: `index`, the point's fields `extra`, then Omega, the
+/// mesh's extremes, stability and bifurcation.
+fn branch_rows(v: &Value, extra: &[&str]) -> String {
+    let mut s = String::from("index,");
+    for e in extra {
+        s.push_str(e);
+        s.push(',');
+    }
+    s.push_str(
+        "omega,mesh,delta_max_m,delta_min_m,delta_amplitude_m,x_max_m,x_min_m,impact,stable,bifurcation\n",
     );
     let mesh_names: Vec<String> = v["meshes"]
         .as_array()
@@ -173,9 +191,10 @@ pub fn frf(v: &Value) -> String {
         return s;
     };
     for (i, p) in points.iter().enumerate() {
+        let head: String = extra.iter().map(|e| format!("{},", cell(&p[*e]))).collect();
         for (name, m) in mesh_rows(&mesh_names, p) {
             s.push_str(&format!(
-                "{i},{},{name},{},{},{},{},{},{},{},{}\n",
+                "{i},{head}{},{name},{},{},{},{},{},{},{},{}\n",
                 cell(&p["omega"]),
                 cell(&m["delta_max_m"]),
                 cell(&m["delta_min_m"]),

@@ -5,8 +5,9 @@
 //! when stderr is a terminal (plain progress lines with `--progress`). Bad
 //! input exits with code 2 and one line that names the offending flag, key
 //! or value; a solver failure exits with 1; a failed write (a full disk,
-//! `> /dev/full`) exits with 3 naming stdout or the file, and a closed pipe
-//! with 3 and no word ([`output`]). Every option is checked before
+//! `> /dev/full`) exits with 3 naming stdout or the file, a closed stdout
+//! (`>&-`) with 3 before any work, and a closed pipe with 3 and no word
+//! ([`output`]). Every option is checked before
 //! any work starts, input files are read through a size limit, and each
 //! command's total work and memory are capped ([`budget`]).
 //!
@@ -55,7 +56,9 @@ fn main() -> ExitCode {
         Err(e) => {
             use clap::error::ErrorKind;
             if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
-                return match output::stdout(e.to_string().as_bytes()) {
+                return match output::check_stdout()
+                    .and_then(|()| output::stdout(e.to_string().as_bytes()))
+                {
                     Ok(()) => ExitCode::SUCCESS,
                     Err(f) => exit(&f),
                 };
@@ -64,7 +67,7 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    match commands::run(cli.command) {
+    match output::check_stdout().and_then(|()| commands::run(cli.command)) {
         Ok(()) => ExitCode::SUCCESS,
         Err(f) => exit(&f),
     }

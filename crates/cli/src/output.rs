@@ -38,6 +38,42 @@ pub fn failed(what: &str, e: &io::Error) -> Failure {
     }
 }
 
+/// Checks before any work that stdout is open. Rust's runtime gives a
+/// program started with stdout closed (`>&-`) a `/dev/null` opened for
+/// reading and writing in its place, so every write would succeed into
+/// nothing: the program would compute, lose the output and exit 0. That
+/// stand-in is told from a `> /dev/null` of the user's by its access mode
+/// (a shell's redirection opens for writing only).
+pub fn check_stdout() -> Result<(), Failure> {
+    if stdout_was_closed() {
+        return Err(Failure {
+            code: EXIT_IO,
+            message: "cannot write stdout: it is closed".into(),
+        });
+    }
+    Ok(())
+}
+
+/// Whether descriptor 1 is the runtime's stand-in for a closed stdout:
+/// `/dev/null` open for reading and writing (`O_RDWR`, access mode 2).
+#[cfg(target_os = "linux")]
+fn stdout_was_closed() -> bool {
+    let is_null = std::fs::read_link("/proc/self/fd/1").is_ok_and(|p| p == Path::new("/dev/null"));
+    is_null
+        && std::fs::read_to_string("/proc/self/fdinfo/1").is_ok_and(|info| {
+            info.lines()
+                .find_map(|l| l.strip_prefix("flags:"))
+                .and_then(|f| u32::from_str_radix(f.trim(), 8).ok())
+                .is_some_and(|flags| flags & 3 == 2)
+        })
+}
+
+/// Elsewhere the stand-in cannot be told from a redirection: trusted.
+#[cfg(not(target_os = "linux"))]
+fn stdout_was_closed() -> bool {
+    false
+}
+
 /// Writes `bytes` to stdout and flushes them.
 pub fn stdout(bytes: &[u8]) -> Result<(), Failure> {
     let mut out = io::stdout().lock();

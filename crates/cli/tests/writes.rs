@@ -19,9 +19,9 @@ fn with(args: &[&str], more: &[&str]) -> Vec<String> {
     args.iter().chain(more).map(|s| s.to_string()).collect()
 }
 
-#[test]
-fn a_full_disk_is_an_error_naming_stdout_with_exit_3_for_every_subcommand() {
-    let dir = temp_dir("full");
+/// One run of every subcommand (and of help), small; the sweeps' shards
+/// for merge are written into `dir`.
+fn every_subcommand(dir: &std::path::Path) -> Vec<Vec<String>> {
     let shard = |i: &str| {
         let path = dir.join(format!("b{}.json", i.replace('/', "-")));
         let args = with(
@@ -93,10 +93,20 @@ fn a_full_disk_is_an_error_naming_stdout_with_exit_3_for_every_subcommand() {
         ),
         with(&["merge", &s0, &s1], &[]),
         with(&["presets"], &[]),
+        with(
+            &["frf", "--model", "gear-pair", "--method", "shooting"],
+            &["--omega-from", "0.4", "--omega-to", "0.6", "--points", "10"],
+        ),
         with(&["figure", "fig5", "--shard", "0/3"], &SHORT),
         with(&["--help"], &[]),
     ];
-    for case in &cases {
+    cases
+}
+
+#[test]
+fn a_full_disk_is_an_error_naming_stdout_with_exit_3_for_every_subcommand() {
+    let dir = temp_dir("full");
+    for case in &every_subcommand(&dir) {
         let args: Vec<&str> = case.iter().map(String::as_str).collect();
         let out = to_full_disk(&args);
         let err = String::from_utf8_lossy(&out.stderr);
@@ -104,6 +114,41 @@ fn a_full_disk_is_an_error_naming_stdout_with_exit_3_for_every_subcommand() {
         assert_eq!(err.lines().last(), Some(FULL), "{args:?}: {err}");
         assert!(!err.contains("panicked"), "{args:?}: {err}");
     }
+}
+
+#[test]
+fn a_closed_stdout_is_an_error_with_exit_3_for_every_subcommand_before_any_work() {
+    let dir = temp_dir("closed");
+    for case in &every_subcommand(&dir) {
+        // `>&-` through the shell: the program starts with descriptor 1 closed.
+        let line = format!(
+            "exec '{}' {} >&-",
+            test_support::cli::bin().display(),
+            case.join(" ")
+        );
+        let out = std::process::Command::new("sh")
+            .arg("-c")
+            .arg(&line)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(3), "{line}: {err}");
+        assert_eq!(
+            err.trim_end(),
+            "gearshock: cannot write stdout: it is closed",
+            "{line}: no work, one line"
+        );
+    }
+    // A redirection to /dev/null is the user's choice, not a closed stdout.
+    let out = std::process::Command::new("sh")
+        .arg("-c")
+        .arg(format!(
+            "exec '{}' params > /dev/null",
+            test_support::cli::bin().display()
+        ))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
 }
 
 /// A streamed sweep of 20 000 points (minutes of work), its reader gone.

@@ -192,7 +192,7 @@ fn run_shooting(a: &FrfArgs) -> Result<(), Failure> {
         }
     }
     let value = report::shooting_frf_json(&model, &params, &c, &points, &meshes, failure.as_ref());
-    output(a.p.format, &value, |_| String::new())?;
+    output(a.p.format, &value, csv::shooting_frf)?;
     for n in c.notes() {
         note(&format!("note: {n}"));
     }
