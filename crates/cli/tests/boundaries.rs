@@ -1,5 +1,5 @@
-//! `gearshock boundaries`: the curves as JSON and CSV, and bad input
-//! refused naming the flag and its range.
+//! `gearshock boundaries`: the curves as JSON and CSV, each traced once
+//! at a coarse step, and bad input refused naming the flag and its range.
 
 // Tests may panic: that is how they fail.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
@@ -40,6 +40,57 @@ fn the_curves_are_json_with_kinds_points_and_cusps_and_csv_alike() {
         .map(|c| c["points"].as_array().unwrap().len())
         .sum();
     assert_eq!(lines.count(), points + cusps.len());
+}
+
+/// The fold curve through the cusp near Omega 0.46, as (Omega, value)
+/// ends, and the cusps, of the two-level trace at `points`.
+fn cusp_fold(points: u32) -> (Vec<[f64; 4]>, usize) {
+    let line = format!(
+        "boundaries --model gear-pair --key te_um --value-from 0.2 --value-to 40 \
+         --omega-from 0.4 --omega-to 1.3 --levels 2 --points {points}"
+    );
+    let v = json(&words(&line));
+    let ends = v["curves"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|c| c["kind"] == "fold")
+        .map(|c| {
+            let pts = c["points"].as_array().unwrap();
+            let at = |p: &serde_json::Value| {
+                (p["omega"].as_f64().unwrap(), p["value"].as_f64().unwrap())
+            };
+            let ((w0, v0), (w1, v1)) = (at(&pts[0]), at(&pts[pts.len() - 1]));
+            [w0, v0, w1, v1]
+        })
+        .filter(|e| e[0] < 0.45 && e[2] < 0.45)
+        .collect();
+    (ends, v["cusps"].as_array().unwrap().len())
+}
+
+/// At 10 and 20 points a step the two fold branches beside the cusp are
+/// closer than a step: the curve through them is traced once, from the
+/// box's top edge back to it, with one cusp, as at 30 and 60 points.
+#[test]
+fn a_coarse_trace_gives_the_cusps_fold_once() {
+    for points in [10, 20, 30] {
+        let (ends, cusps) = cusp_fold(points);
+        assert_eq!(ends.len(), 1, "{points} points: {ends:?}");
+        assert_eq!(cusps, 1, "{points} points");
+        let e = ends[0];
+        assert!(
+            e[1] == 40.0 && e[3] == 40.0 && (e[0] - e[2]).abs() > 0.005,
+            "{points} points: {e:?}"
+        );
+    }
+}
+
+#[test]
+fn the_aft_method_is_refused_saying_why() {
+    refused(
+        &words(&format!("{TRACE} --method aft")),
+        &["--method aft", "exact", "Jacobian"],
+    );
 }
 
 #[test]

@@ -384,6 +384,117 @@ fn keys_that_move_the_modes_and_empty_ranges_are_refused() {
     // A value outside the key's own range names the key and its range.
     let e = refused("backlash_um", (-5.0, 10.0), (0.4, 1.0));
     assert!(e.to_string().contains("backlash_um"), "{e}");
+    // AFT's sampled Jacobian has no derivative for a fold's test: refused,
+    // saying so, rather than a trace without folds.
+    let mut spec = BoundarySpec::new("te_um", (0.2, 40.0), (0.4, 1.3));
+    spec.method = solver::hbm::Method::Aft;
+    let e = BoundaryTrace::new(&base, spec).unwrap_err();
+    assert!(
+        matches!(&e, SolverError::BadOption { option, allowed, .. }
+            if option == "method" && allowed.contains("exact")),
+        "{e}"
+    );
+}
+
+/// The gear pair's te_um box at `points` a curve, seeded at two levels.
+fn te_box(points: u32) -> BoundaryTrace {
+    let mut spec = BoundarySpec::new("te_um", (0.2, 40.0), (0.4, 1.3));
+    spec.levels = 2;
+    spec.points = points;
+    traced(&pair(&[]), spec)
+}
+
+/// Distance in units of the box from `(omega, value)` to a curve's polyline.
+fn distance_to(c: &Curve, omega: f64, value: f64) -> f64 {
+    let (om, pr) = (0.9, 39.8);
+    let p = (omega / om, value / pr);
+    c.points
+        .windows(2)
+        .map(|s| {
+            let a = (s[0].omega / om, s[0].value / pr);
+            let b = (s[1].omega / om, s[1].value / pr);
+            let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+            let len2 = dx * dx + dy * dy;
+            let t = if len2 > 0.0 {
+                (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            (p.0 - a.0 - t * dx).hypot(p.1 - a.1 - t * dy)
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// At a coarse step the two fold branches beside the cusp near Omega 0.46
+/// run less than a step apart, in opposite directions: a closure test on
+/// nearness alone closed the curve from one branch to the other and
+/// traced it twice at 20 points (four times at 10), with its cusp each
+/// time. Coarse traces give the fine trace's curves, each once, every
+/// point on the fine curve of its kind, and the one cusp.
+#[test]
+fn coarse_traces_give_the_fine_traces_curves_once() {
+    let fine = te_box(60);
+    let kinds = |t: &BoundaryTrace| {
+        let mut k: Vec<(&str, Option<usize>)> =
+            t.curves().iter().map(|c| (c.kind.name(), c.mesh)).collect();
+        k.sort();
+        k
+    };
+    assert_eq!(fine.cusps().len(), 1, "{:?}", fine.cusps());
+    for points in [10, 20] {
+        let coarse = te_box(points);
+        assert_eq!(kinds(&coarse), kinds(&fine), "{points} points");
+        assert_eq!(coarse.cusps().len(), 1, "{points}: {:?}", coarse.cusps());
+        let (a, b) = (coarse.cusps()[0], fine.cusps()[0]);
+        assert!(
+            (a.omega - b.omega).abs() < 1e-3 && (a.value - b.value).abs() < 0.1,
+            "{points}: cusp {a:?}, fine {b:?}"
+        );
+        for c in coarse.curves() {
+            assert!(
+                !c.ends.contains(&solver::boundaries::TraceEnd::Closed),
+                "{points}: {:?} {:?}",
+                c.kind,
+                c.ends
+            );
+            for p in &c.points {
+                let d = fine
+                    .curves()
+                    .iter()
+                    .filter(|f| f.kind == c.kind && f.mesh == c.mesh)
+                    .map(|f| distance_to(f, p.omega, p.value))
+                    .fold(f64::INFINITY, f64::min);
+                assert!(
+                    d < 0.02,
+                    "{points}: {:?} point {p:?} is {d} from the fine curves",
+                    c.kind
+                );
+            }
+        }
+    }
+}
+
+/// A period-doubling start on the key's upper limit (backlash 1000 um)
+/// differences its gradient in the key backward: it is traced, not
+/// refused as out of the key's range.
+#[test]
+fn a_doubling_start_at_the_keys_upper_limit_is_traced() {
+    let mut spec = BoundarySpec::new("backlash_um", (900.0, 1000.0), (0.3, 3.0));
+    spec.levels = 2;
+    spec.points = 20;
+    let t = traced(&pair(&[]), spec);
+    assert!(
+        t.notes().iter().all(|n| !n.contains("out of range")),
+        "{:?}",
+        t.notes()
+    );
+    let from_top = t
+        .curves()
+        .iter()
+        .filter(|c| c.kind == CurveKind::PeriodDoubling)
+        .filter(|c| c.points.iter().any(|p| p.value == 1000.0))
+        .count();
+    assert!(from_top >= 1, "{:?}", t.curves());
 }
 
 /// The gear pair's (Omega, backlash) trace: backlash 0-200 um, Omega

@@ -37,7 +37,9 @@ pub struct BoundariesArgs {
     /// Harmonics H (1 ..= 40).
     #[arg(long, default_value_t = 7)]
     harmonics: usize,
-    /// exact (closed-form integration between the contact switches) or aft.
+    /// exact (closed-form integration between the contact switches), the
+    /// one method whose Jacobian has the derivative a fold's test needs;
+    /// aft is refused.
     #[arg(long, default_value = "exact")]
     method: String,
     /// Trace the contact boundaries of this mesh only (with its copies at
@@ -88,11 +90,12 @@ pub fn run(a: &BoundariesArgs) -> Result<(), Failure> {
         spec.contact_mesh = Some(crate::args::mesh_index(&model, Some(name))?);
     }
     spec.method = match Method::from_name(&a.method) {
-        Some(m @ (Method::Exact | Method::Aft)) => m,
+        Some(Method::Exact) => Method::Exact,
         _ => {
             return Err(usage(format!(
-                "--method {}: allowed exact, aft",
-                keys::truncate(&a.method, 30)
+                "--method {}: allowed {}",
+                keys::truncate(&a.method, 30),
+                solver::boundaries::ONLY_EXACT
             )))
         }
     };

@@ -209,13 +209,18 @@ pub(crate) fn eval(
         None => {
             let mut grad = vec![0.0; nx + 2];
             let mut zz = z.to_vec();
+            // Forward in p inside the key's range, backward at its upper
+            // limit (a start at backlash_um = 1000 was otherwise refused
+            // as out of range).
+            let (p_lo, p_hi) = fam.neighbours(p);
+            let h_p = if p_hi > p { p_hi - p } else { p_lo - p };
             for (i, gi) in grad.iter_mut().enumerate() {
                 let h = if i < nx {
                     1e-6 * scale
                 } else if i == nx {
                     1e-7 * (1.0 + omega.abs())
                 } else {
-                    fam.dp
+                    h_p
                 };
                 let keep = zz[i];
                 zz[i] = keep + h;

@@ -28,7 +28,7 @@ pub(crate) struct Family {
     key_min: f64,
     key_max: f64,
     /// Relative step of the differences in `p` (of the traced range).
-    pub(crate) dp: f64,
+    dp: f64,
     cache: Vec<(u64, Assembly)>,
     /// The grid every assembly of the family shares (built once).
     grid: Grid,

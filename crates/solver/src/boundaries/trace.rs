@@ -84,6 +84,9 @@ pub(crate) struct Tracer {
     /// The tangent at the start (the other direction starts along its opposite).
     t0: Vec<f64>,
     start: Vec<f64>,
+    /// The direction this tracer set out in from `start`: a curve that
+    /// closes comes back to `start` heading this way.
+    heading: Vec<f64>,
     ds: f64,
     ds_max: f64,
     steps: usize,
@@ -146,6 +149,7 @@ impl Tracer {
             t: vec![0.0; n],
             t0: vec![0.0; n],
             start: z0.clone(),
+            heading: vec![0.0; n],
             ds: 0.25 * ds_max,
             ds_max,
             steps: 0,
@@ -182,6 +186,7 @@ impl Tracer {
         tracer.z = z.clone();
         tracer.start = z;
         tracer.t0 = t.clone();
+        tracer.heading = t.clone();
         tracer.t = t;
         let first = tracer.traced(&ev);
         tracer.last = Some(first.clone());
@@ -194,6 +199,7 @@ impl Tracer {
         r.z = first.z.clone();
         r.start = first.z.clone();
         r.t = self.t0_reversed();
+        r.heading = r.t.clone();
         r.ds = 0.25 * self.ds_max;
         r.steps = 0;
         r.crawl = 0;
@@ -418,12 +424,9 @@ impl Tracer {
                         let clipped = self.clip(point);
                         return Stepped::End(TraceEnd::LeftRange, Some(clipped));
                     }
-                    let back: f64 = (0..n)
-                        .map(|i| self.metric[i] * (self.z[i] - self.start[i]).powi(2))
-                        .sum::<f64>()
-                        .sqrt();
+                    let closes = self.steps > 8 && self.passes_start(&point.z, ds);
                     self.last = Some(point.clone());
-                    if self.steps > 8 && back < 1.5 * ds {
+                    if closes {
                         let mut closing = point;
                         closing.z = self.start.clone();
                         return Stepped::End(TraceEnd::Closed, Some(closing));
@@ -438,6 +441,36 @@ impl Tracer {
                 Err(_) => return Stepped::End(TraceEnd::Failed, None),
             }
         }
+    }
+
+    /// Whether the step just taken, from the last point to `z` (of length
+    /// `ds`), passes the start heading the way this tracer set out: the
+    /// start lies within a quarter step of the segment and the tangent
+    /// points along the start's heading. Nearness alone is not enough:
+    /// near a cusp the two fold branches run side by side, less than a
+    /// step apart and in opposite directions, and a nearness test closed
+    /// the curve from one branch to the other, tracing it twice (the gear
+    /// pair's te_um trace at 20 points a step).
+    fn passes_start(&self, z: &[f64], ds: f64) -> bool {
+        let Some(last) = &self.last else { return false };
+        let n = z.len();
+        let dot = |a: &dyn Fn(usize) -> f64, b: &dyn Fn(usize) -> f64| {
+            (0..n).map(|i| self.metric[i] * a(i) * b(i)).sum::<f64>()
+        };
+        let heading = dot(&|i| self.t[i], &|i| self.heading[i]);
+        if heading <= 0.0 {
+            return false;
+        }
+        let seg = |i: usize| z[i] - last.z[i];
+        let rel = |i: usize| self.start[i] - last.z[i];
+        let len2 = dot(&seg, &seg);
+        let s = if len2 > 0.0 {
+            (dot(&rel, &seg) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let off = |i: usize| rel(i) - s * seg(i);
+        dot(&off, &off).sqrt() < 0.25 * ds
     }
 
     /// The point where the segment from the last point to `p` leaves the
