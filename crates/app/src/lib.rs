@@ -21,6 +21,7 @@
 pub mod claims;
 pub mod controller;
 pub mod controls;
+pub mod failure;
 pub mod family_spec;
 pub mod gearset;
 pub mod link;
@@ -34,6 +35,7 @@ pub mod settings;
 pub mod store;
 pub mod story;
 pub mod tour;
+pub mod validity;
 pub mod views;
 pub mod words;
 pub mod worker;

@@ -303,6 +303,7 @@ impl Controller {
         let Some(c) = self.computation_mut(target) else {
             return Vec::new();
         };
+        let issued = std::mem::take(&mut c.status_mut(kind).issued);
         *c.status_mut(kind) = JobStatus::start(id, now_ms, total);
         match kind {
             // The current state keeps its last result on screen until the
@@ -330,13 +331,12 @@ impl Controller {
             JobKind::Orbits => c.orbits = OrbitStore::new(id),
             JobKind::Boundaries => c.boundaries = BoundaryStore::new(id, map_signature),
         }
+        // The replaced job's messages spoke of the state before.
+        for message in &issued {
+            self.withdraw(message);
+        }
         if main {
             self.dirty.data(kind);
-            if kind == JobKind::HarmonicBalance {
-                let before = self.issues.len();
-                self.issues.retain(|i| !i.starts_with(HBM_FAILURE));
-                self.dirty.messages |= self.issues.len() != before;
-            }
             if kind == JobKind::Bif {
                 self.export = None;
                 // The sweep's steady states are also the frequency response's dots.
@@ -433,6 +433,7 @@ impl Controller {
             return Vec::new();
         };
         let running = c.status(kind).id != 0;
+        let issued = std::mem::take(&mut c.status_mut(kind).issued);
         *c.status_mut(kind) = JobStatus::default();
         match kind {
             JobKind::Overlay => c.overlay = FrStore::default(),
@@ -440,6 +441,9 @@ impl Controller {
             JobKind::Orbits => c.orbits = OrbitStore::default(),
             JobKind::Boundaries => c.boundaries = BoundaryStore::default(),
             _ => {}
+        }
+        for message in &issued {
+            self.withdraw(message);
         }
         self.dirty.data(kind);
         if running {

@@ -28,12 +28,16 @@ impl Controller {
             }
             FromWorker::Export { id, text } => self.export_reply(worker, id, text),
             msg => {
-                self.feed(&msg, now_ms);
+                let current = self.feed(&msg, now_ms);
                 if let FromWorker::Failed { id, message } = msg {
-                    if self.export.as_ref().is_some_and(|e| e.id == id) {
+                    let export = self.export.as_ref().is_some_and(|e| e.id == id);
+                    if export {
                         self.export = None;
                     }
-                    self.issue(message);
+                    // A replaced job's failure speaks of a state gone by.
+                    if current || export || id == 0 {
+                        self.issue(message);
+                    }
                 }
                 Vec::new()
             }
@@ -41,8 +45,9 @@ impl Controller {
     }
 
     /// Feeds a reply to every computation; the current state's messages
-    /// (a failed branch, bands not computed) join the page's.
-    fn feed(&mut self, msg: &FromWorker, now_ms: f64) {
+    /// (a failed branch, bands not computed) join the page's. Whether a
+    /// computation's current job took it.
+    fn feed(&mut self, msg: &FromWorker, now_ms: f64) -> bool {
         let omega_from = self.settings.view.omega_from;
         for target in self.targets() {
             let mut dirty = self.dirty;
@@ -57,8 +62,9 @@ impl Controller {
                 }
             }
             if fed.matched {
-                break;
+                return true;
             }
         }
+        false
     }
 }

@@ -26,7 +26,7 @@ use crate::protocol::{
 };
 use crate::settings::{mesh_names, view_key, MeshSel, Settings};
 use crate::store::status::{Dirty, JobStatus};
-use crate::store::{Computation, HBM_FAILURE};
+use crate::store::Computation;
 use crate::views::bif::{BifStore, BifView};
 use crate::views::fr::{fr_view, FrBranch, FrSource, FrStore, FrView, HbmStore};
 use crate::views::lyap::LyapStore;
@@ -224,6 +224,18 @@ impl Controller {
             .view
             .get(key)
             .or_else(|| keys::get(&self.settings.params, key).map(|x| link::value_text(&x)))
+    }
+
+    /// The warning when the state leaves the model's validity (teeth that
+    /// deflect by millimetres: [`crate::validity`]), if it does.
+    pub fn validity_warning(&self) -> Option<String> {
+        let model = self.model.as_ref().ok()?;
+        let peak = self
+            .main
+            .omega
+            .as_ref()
+            .map(|r| (r.omega, crate::validity::peak_deflection_um(&r.anim)));
+        crate::validity::warning(crate::validity::static_deflection_um(model), peak)
     }
 
     /// The mesh names of the current model.

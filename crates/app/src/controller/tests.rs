@@ -264,7 +264,7 @@ fn a_solver_failure_ends_the_branch_as_partial_and_is_reported() {
         .error
         .clone()
         .unwrap();
-    assert!(e.contains("0.5000") && e.contains("partial"), "{e}");
+    assert!(e.contains("Ω 0.5:") && e.contains("partial"), "{e}");
     assert!(c.issues.contains(&e));
     let v = c.fr_view();
     assert_eq!(v.branches.last().unwrap().points.len(), 2);
@@ -705,6 +705,47 @@ fn views_without_data_say_why() {
         assert_eq!(c.placeholder(v), Some("Not computed: no luck".into()));
     }
     assert_eq!(c.placeholder(ViewId::Fr), None, "the branch still computes");
+}
+
+/// A job's failure is in the messages while that job's state is on
+/// screen: a new job of its kind takes it back, and a replaced job's late
+/// failure never joins them.
+#[test]
+fn a_failure_leaves_the_messages_with_its_job() {
+    let (mut c, _) = Controller::new("", 0.0);
+    ready(&mut c);
+    let failed = |id, message: &str| {
+        encode(&FromWorker::Failed {
+            id,
+            message: message.into(),
+        })
+    };
+    let old = c.main.status(JobKind::Omega).id;
+    c.worker_message(0, &failed(old, "The steady state could not be found."), 5.0);
+    assert_eq!(c.issues, ["The steady state could not be found."]);
+    // A new Omega: a new job, the old failure gone.
+    c.select_omega(0.5, 6.0);
+    assert!(c.issues.is_empty(), "{:?}", c.issues);
+    // The replaced job's failure arriving late is not the state's.
+    c.worker_message(0, &failed(old, "late"), 7.0);
+    assert!(c.issues.is_empty(), "{:?}", c.issues);
+    // The harmonic balance's partial branch, likewise.
+    let hbm = c.main.hbm.id;
+    c.worker_message(
+        1,
+        &encode(&FromWorker::HbmPoints {
+            id: hbm,
+            points: Vec::new(),
+            progress: 0.0,
+            finished: true,
+            error: Some("it failed.".into()),
+            notes: Vec::new(),
+        }),
+        8.0,
+    );
+    assert_eq!(c.issues.len(), 1, "{:?}", c.issues);
+    assert!(c.set_key("backlash_um", "80", 9.0).is_ok());
+    assert!(c.issues.is_empty(), "{:?}", c.issues);
 }
 
 mod pool;

@@ -189,9 +189,23 @@ pub struct Page {
     /// When a preview of the selected-Omega views was last drawn (ms) and
     /// the summary it showed: the tests wait for this marker.
     preview_drawn: Option<(f64, String)>,
-    /// Each control's refusal shown in the messages (a newer value's
-    /// outcome replaces it).
-    refused: Vec<(String, String)>,
+    /// Each control's refusal shown in the messages, until a newer value
+    /// of its key or any change of the state ([`Refusal`]).
+    refused: Vec<Refusal>,
+}
+
+/// A value a control refused: its message and red border last while the
+/// state they speak of does. The field already shows the value in force,
+/// so once the state moves on (another setting, a preset, a click on a
+/// plot) the refusal is old news and both go.
+#[derive(Debug, Clone, PartialEq)]
+struct Refusal {
+    /// The control's key.
+    key: String,
+    /// The message it added.
+    message: String,
+    /// The state (its link) when the value was refused.
+    state: String,
 }
 
 impl Page {
@@ -340,9 +354,9 @@ impl Page {
         let mut writes = Vec::new();
         for (key, value) in std::mem::take(&mut self.pending) {
             // The key's earlier refusal gives way to this value's outcome.
-            if let Some(i) = self.refused.iter().position(|(k, _)| *k == key) {
-                let (_, old) = self.refused.remove(i);
-                self.ctl.withdraw(&old);
+            if let Some(i) = self.refused.iter().position(|r| r.key == key) {
+                let old = self.refused.remove(i);
+                self.ctl.withdraw(&old.message);
             }
             let ok = match self.ctl.set_key(&key, &value, now_ms) {
                 Ok(more) => {
@@ -350,7 +364,11 @@ impl Page {
                     true
                 }
                 Err(msg) => {
-                    self.refused.push((key.clone(), msg.clone()));
+                    self.refused.push(Refusal {
+                        key: key.clone(),
+                        message: msg.clone(),
+                        state: self.ctl.query(),
+                    });
                     self.ctl.issue(msg);
                     self.ctl.touch(true);
                     false
@@ -443,11 +461,19 @@ impl Page {
     /// The writes after a frame's views: the messages, the summaries, the
     /// link, the comparison line, as `d` says they changed.
     pub fn end_frame(&mut self, d: &Dirty) -> Vec<Write> {
-        let mut w = Vec::new();
+        let mut w = self.forget_old_refusals();
         // (A plotting failure in this frame joined the messages.)
         let again = self.ctl.take_messages_dirty();
         if d.messages || again {
             w.extend(self.messages());
+        }
+        if d.controls || d.jobs.contains(crate::protocol::JobKind::Omega) {
+            let warning = self.ctl.validity_warning();
+            w.push(Write::Hidden {
+                id: "validity".into(),
+                hidden: warning.is_none(),
+            });
+            w.push(Write::text("validity", warning.unwrap_or_default()));
         }
         if d.jobs.contains(crate::protocol::JobKind::Omega) {
             w.push(Write::text("summary", self.ctl.student_summary()));
@@ -474,6 +500,29 @@ impl Page {
         }
         w.extend(self.schematic_writes());
         w
+    }
+
+    /// The refusals whose state has moved on: their messages withdrawn and
+    /// their controls' red borders taken off.
+    fn forget_old_refusals(&mut self) -> Vec<Write> {
+        if self.refused.is_empty() {
+            return Vec::new();
+        }
+        let now = self.ctl.query();
+        let (old, kept): (Vec<Refusal>, Vec<Refusal>) = std::mem::take(&mut self.refused)
+            .into_iter()
+            .partition(|r| r.state != now);
+        self.refused = kept;
+        old.into_iter()
+            .map(|r| {
+                self.ctl.withdraw(&r.message);
+                Write::Class {
+                    id: format!("control-{}", r.key),
+                    class: "invalid",
+                    on: false,
+                }
+            })
+            .collect()
     }
 
     /// A view's drawing size on this screen (a frequency response's key

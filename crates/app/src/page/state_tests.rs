@@ -101,3 +101,22 @@ fn a_negative_torque_is_refused_in_words_and_the_last_state_kept() {
         assert_eq!(shown, kept, "{key}");
     }
 }
+
+/// A torque that deflects the teeth by millimetres is warned about beside
+/// the summary as soon as it is set, and the warning goes with it.
+#[test]
+fn a_load_outside_the_models_validity_is_warned_until_it_is_lowered() {
+    let mut p = page("");
+    let w = after(&mut p, "torque_s1_nm", "900000");
+    let shown = w.contains(&Write::Hidden {
+        id: "validity".into(),
+        hidden: false,
+    });
+    let text = text_of(&w, "validity").unwrap_or_default();
+    assert!(shown && text.starts_with("Outside the model"), "{text}");
+    let w = after(&mut p, "torque_s1_nm", "2000");
+    assert!(w.contains(&Write::Hidden {
+        id: "validity".into(),
+        hidden: true,
+    }));
+}

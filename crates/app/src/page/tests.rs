@@ -105,6 +105,47 @@ fn a_refused_value_marks_its_control_and_replaces_its_earlier_message() {
     }));
 }
 
+/// An empty TE is refused (its field keeps the TE in force, red border,
+/// message); a valid backlash then moves the state on: the TE's message
+/// and red border go with the state they spoke of.
+#[test]
+fn a_refusal_goes_once_the_state_moves_on() {
+    let (mut p, _) = page("");
+    p.input("te_um", "", 1.0);
+    let (_, marks) = p.apply_pending(2.0);
+    assert!(matches!(&marks[..], [Write::Class { on: true, .. }]));
+    let (d, _) = p.begin_frame(3.0);
+    let w = p.end_frame(&d);
+    assert!(!p.ctl().issues.is_empty());
+    assert!(w.contains(&Write::Hidden {
+        id: "messages".into(),
+        hidden: false
+    }));
+    // A refusal alone changes no state: the next frame keeps it.
+    let (d, _) = p.begin_frame(4.0);
+    p.end_frame(&d);
+    assert_eq!(p.ctl().issues.len(), 1, "{:?}", p.ctl().issues);
+    p.input("backlash_um", "80", 5.0);
+    p.apply_pending(6.0);
+    let (d, _) = p.begin_frame(7.0);
+    let w = p.end_frame(&d);
+    assert!(p.ctl().issues.is_empty(), "{:?}", p.ctl().issues);
+    assert!(w.contains(&Write::Class {
+        id: "control-te_um".into(),
+        class: "invalid",
+        on: false
+    }));
+    assert!(w.contains(&Write::Hidden {
+        id: "messages".into(),
+        hidden: true
+    }));
+    // The TE field shows the TE in force.
+    assert!(w.contains(&Write::Value {
+        id: "num-te_um".into(),
+        value: crate::controls::field_text(20.0)
+    }));
+}
+
 #[test]
 fn the_arrows_step_the_selected_omega_within_the_range() {
     let (mut p, _) = page("omega_from=0.5&omega_to=1.5&omega=1.0");

@@ -18,10 +18,6 @@ use crate::views::map::MapStore;
 use crate::views::orbits::OrbitStore;
 use status::{Dirty, JobStatus};
 
-/// How a failure of the harmonic-balance branch starts in the messages (a
-/// new branch clears the old branch's failure).
-pub const HBM_FAILURE: &str = "Frequency response: the harmonic-balance solver failed";
-
 /// One state's results: a store and a status per job kind. The pinned A
 /// computes the harmonic balance and the sweep, a family member also the
 /// selected Omega; the other stores then stay empty.
@@ -129,9 +125,11 @@ impl Computation {
                 if let Some(e) = error {
                     let at = self.hbm.points.last().map_or(omega_from, |p| p.omega);
                     let msg = format!(
-                        "{HBM_FAILURE} after Omega = {at:.4} ({e}); the branch shown is partial"
+                        "The frequency response stops at Ω {}: {e} The branch shown is partial.",
+                        crate::words::short(at)
                     );
                     st.error = Some(msg.clone());
+                    st.issued.push(msg.clone());
                     fed.issues.push(msg);
                 }
                 dirty.data(JobKind::HarmonicBalance);
@@ -150,8 +148,9 @@ impl Computation {
                     dirty.data(JobKind::Bif);
                 }
                 if let Some(e) = error {
-                    fed.issues
-                        .push(format!("Parametric-instability bands not computed: {e}"));
+                    let msg = format!("Parametric-instability bands not computed: {e}");
+                    self.status_mut(JobKind::Bif).issued.push(msg.clone());
+                    fed.issues.push(msg);
                 }
                 fed.matched = true;
             }
@@ -201,9 +200,9 @@ impl Computation {
                     st.finished_ms = Some(now_ms);
                 }
                 if let Some(e) = error {
-                    let msg = format!(
-                        "Shooting branches: the continuation failed ({e}); the branches drawn are partial"
-                    );
+                    let msg =
+                        format!("The shooting branches stop: {e} The branches drawn are partial.");
+                    st.issued.push(msg.clone());
                     self.orbits.error = Some(msg.clone());
                     fed.issues.push(msg);
                 }
@@ -245,6 +244,7 @@ impl Computation {
                     let st = self.status_mut(kind);
                     if st.id == *id {
                         st.error = Some(message.clone());
+                        st.issued.push(message.clone());
                         dirty.data(kind);
                         fed.matched = true;
                     }

@@ -24,6 +24,11 @@ pub struct JobStatus {
     pub total: usize,
     /// Why it failed, if it did.
     pub error: Option<String>,
+    /// The messages this job added to the page's (its failure, a partial
+    /// branch): taken back when the job is replaced, so the messages
+    /// speak of the state on screen.
+    #[serde(skip)]
+    pub issued: Vec<String>,
     /// When the page's own preview of this job's result was shown (the
     /// selected-Omega job only).
     pub preview_ms: Option<f64>,

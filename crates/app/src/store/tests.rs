@@ -96,15 +96,17 @@ fn a_failed_branch_is_partial_and_says_where_it_stopped() {
         points: branch(&[0.2, 0.3]),
         progress: 0.3,
         finished: true,
-        error: Some("Newton did not converge".into()),
+        error: Some("the solver did not converge at Ω 0.31.".into()),
         notes: Vec::new(),
     };
     let fed = c.feed(&msg, 5.0, 0.1, &mut Dirty::default());
     assert_eq!(
         fed.issues,
-        vec![format!(
-            "{HBM_FAILURE} after Omega = 0.3000 (Newton did not converge); the branch shown is partial"
-        )]
+        vec![
+            "The frequency response stops at Ω 0.3: the solver did not converge at Ω 0.31. \
+             The branch shown is partial."
+                .to_string()
+        ]
     );
     let st = c.status(JobKind::HarmonicBalance);
     assert_eq!(st.error.as_ref(), fed.issues.first());

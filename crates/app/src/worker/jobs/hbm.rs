@@ -2,6 +2,7 @@
 //! pseudo-arclength continuation streamed in chunks of [`HBM_CHUNK`] points.
 
 use super::{failed, Job};
+use crate::failure::{explain, is_loaded, Task};
 use crate::protocol::um;
 use crate::protocol::{FromWorker, HbmMesh, HbmSample, JobId};
 use solver::hbm::{BranchPoint, FrfContinuation, FrfSpec};
@@ -16,6 +17,8 @@ pub const HBM_CHUNK: usize = 8;
 pub(crate) struct HbmJob {
     id: JobId,
     cont: FrfContinuation,
+    /// Whether a load presses the teeth together (the failures' advice).
+    loaded: bool,
     finished: bool,
     /// Points the continuation returned beyond a chunk (a restart's piece
     /// arrives whole), sent with the next chunks.
@@ -41,6 +44,7 @@ impl HbmJob {
                 HbmJob {
                     id,
                     cont,
+                    loaded: is_loaded(model),
                     finished: false,
                     pending: std::collections::VecDeque::new(),
                 },
@@ -50,7 +54,13 @@ impl HbmJob {
                     total: 100,
                 }],
             )),
-            Err(e) => Err(failed(id, e.to_string())),
+            Err(e) => Err(failed(
+                id,
+                format!(
+                    "The frequency response could not be started: {}",
+                    explain(&e, Task::HarmonicBalance, is_loaded(model))
+                ),
+            )),
         }
     }
 }
@@ -84,7 +94,7 @@ fn hbm_chunk(job: &mut HbmJob) -> FromWorker {
         match job.cont.advance(1) {
             Ok(pts) => job.pending.extend(pts.iter().map(hbm_sample)),
             Err(e) => {
-                error = Some(e.to_string());
+                error = Some(explain(&e, Task::HarmonicBalance, job.loaded));
                 break;
             }
         }

@@ -72,6 +72,24 @@ pub enum OmegaError {
     NoHistory,
 }
 
+impl OmegaJob {
+    /// Why this job has no result, in plain words with what to try.
+    fn failure_words(&self, e: &OmegaError) -> String {
+        let at = crate::words::short(self.spec.omega);
+        match e {
+            OmegaError::Solver { source, .. } => format!(
+                "The steady state at Ω {at} could not be found: {}",
+                crate::failure::explain(
+                    source,
+                    crate::failure::Task::SteadyState,
+                    crate::failure::is_loaded(&self.model)
+                )
+            ),
+            other => format!("The steady state at Ω {at} could not be computed: {other}."),
+        }
+    }
+}
+
 impl OmegaError {
     fn solver(job: &OmegaJob) -> impl FnOnce(solver::SolverError) -> Self + '_ {
         move |source| OmegaError::Solver {
@@ -125,7 +143,7 @@ impl Job for OmegaRun {
                 id,
                 result: Box::new(result),
             },
-            Err(e) => failed(id, e.to_string()),
+            Err(e) => failed(id, self.job.failure_words(&e)),
         };
         vec![msg, FromWorker::Done { id }]
     }

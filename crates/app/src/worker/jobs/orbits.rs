@@ -7,6 +7,7 @@
 //! integrating the converged orbit over its period.
 
 use super::{excitation_at, failed, Job, SLICE_STEPS};
+use crate::failure::{explain, is_loaded, Task};
 use crate::protocol::{um, FromWorker, JobId, OrbitSample};
 use solver::model::Model;
 use solver::orbits::{ShootFrfSpec, ShootPoint, ShootingContinuation};
@@ -53,8 +54,19 @@ impl OrbitsJob {
                     total: MAX_ORBIT_POINTS,
                 }],
             )),
-            Err(e) => Err(failed(id, format!("shooting branches: {e}"))),
+            Err(e) => Err(failed(
+                id,
+                format!(
+                    "The shooting branches could not be started: {}",
+                    explain(&e, Task::Shooting, is_loaded(&model))
+                ),
+            )),
         }
+    }
+
+    /// A failure of the branch in plain words.
+    fn explain(&self, e: &solver::SolverError) -> String {
+        explain(e, Task::Shooting, is_loaded(&self.model))
     }
 
     fn reply(&mut self, points: Vec<OrbitSample>, error: Option<String>) -> Vec<FromWorker> {
@@ -83,7 +95,7 @@ impl Job for OrbitsJob {
         };
         let pts = match pts {
             Ok(pts) => pts,
-            Err(e) => return self.reply(Vec::new(), Some(e.to_string())),
+            Err(e) => return self.reply(Vec::new(), Some(self.explain(&e))),
         };
         if pts.is_empty() && !self.cont.is_finished() {
             // The branch step paused: nothing to post yet.
@@ -93,7 +105,7 @@ impl Job for OrbitsJob {
         for p in &pts {
             match orbit_sample(&self.model, p) {
                 Ok(s) => samples.push(s),
-                Err(e) => return self.reply(samples, Some(e.to_string())),
+                Err(e) => return self.reply(samples, Some(self.explain(&e))),
             }
         }
         self.reply(samples, None)
