@@ -13,6 +13,14 @@ pub struct TourStep {
     pub text: &'static str,
     /// The id of the element it points at (scrolled to and highlighted).
     pub target: &'static str,
+    /// What the card must leave in view, by element id: the target's
+    /// picture first (a plot's canvas, the gear set's drawing, a button),
+    /// then what the step asks the student to use or read.
+    pub keep_clear: &'static [&'static str],
+    /// The control the action uses (its key), if any: on a phone, whose
+    /// settings drawer starts closed, the tour opens the drawer and its
+    /// card offers a jump to the control and back.
+    pub control: Option<&'static str>,
     /// The settings it makes (key, value), as the controls would.
     pub set: &'static [(&'static str, &'static str)],
     /// The one thing the student does to end the step, said plainly.
@@ -77,6 +85,8 @@ pub const TOUR: [TourStep; 5] = [
         title: "The gear set and its meshes",
         text: "The small sun s1 drives three short planets, each meshing with a long planet, which meshes with the large sun s2 and the ring: twelve tooth meshes. The highlighted one, s1a1, is the mesh the plots show; the animation (view 8) shows all of them. The page opens at Ω 0.35, a calm motion: the teeth of s1a1 stay in contact and the motion repeats exactly every mesh period, one closed loop in the phase portrait (view 5) and one dot in the Poincaré section (view 6).",
         target: "schematic",
+        keep_clear: &["schematic-svg", "control-mesh"],
+        control: Some("mesh"),
         set: &[("mesh", "s1a1"), ("omega", "0.35")],
         action: "Now choose another mesh in “Mesh to plot” and see the highlight and the plots follow it.",
         goal: Goal::Changed { key: "mesh", from: "s1a1" },
@@ -86,6 +96,8 @@ pub const TOUR: [TourStep; 5] = [
         title: "Backlash and the frequency response",
         text: "The tour has moved the backlash from 100 to 150 µm: the grey ±b lines, where the teeth meet, moved with it, and the curve was computed again. For each Ω (mesh frequency) the curve gives the largest and smallest tooth deflection x (TE included); below +b the teeth have separated. Where the curve is dashed no periodic motion is stable: the dots are what the gears actually do.",
         target: "view-fr",
+        keep_clear: &["canvas-fr", "control-backlash_um"],
+        control: Some("backlash_um"),
         set: &[("backlash_um", "150")],
         action: "Now drag the backlash slider to 50 µm and watch the ±b lines and the curve follow.",
         goal: Goal::Near { key: "backlash_um", to: 50.0, tol: 5.0 },
@@ -95,6 +107,8 @@ pub const TOUR: [TourStep; 5] = [
         title: "When impact becomes double-sided",
         text: "The tour has chosen backlash 20 µm and Ω 1.4. The regime map colours every frequency and backlash by what the teeth do: no impact, single-sided impact (the driving flanks part and strike again) or double-sided impact (the teeth cross the whole backlash and hit the back flanks). At 20 µm and Ω 1.4 the teeth of s1a1 hit both flanks: see the time history (view 7).",
         target: "view-map",
+        keep_clear: &["canvas-map"],
+        control: None,
         set: &[("backlash_um", "20"), ("omega", "1.4")],
         action: "Now click a cell of another colour on the map and see the time history change.",
         goal: Goal::Moved,
@@ -104,6 +118,8 @@ pub const TOUR: [TourStep; 5] = [
         title: "From periodic to chaotic motion",
         text: "The tour has set the backlash back to 100 µm and selected Ω 1.2 (the red line). The bifurcation diagram samples x once per mesh period after the transient: one dot per Ω means the motion repeats every period, a cloud means it never repeats. At Ω 1.2 it is a cloud, and the Lyapunov exponent under it is positive: the motion is chaotic.",
         target: "view-bif",
+        keep_clear: &["canvas-bif"],
+        control: None,
         set: &[("backlash_um", "100"), ("omega", "1.2")],
         action: "Now click the diagram at an Ω below 0.5, where one dot per Ω shows a motion that repeats.",
         goal: Goal::Below { key: "omega", to: 0.5 },
@@ -113,6 +129,8 @@ pub const TOUR: [TourStep; 5] = [
         title: "Share what you found",
         text: "Copy link makes a link that restores every setting, the selected Ω and this tour step. Every plot exports its data (CSV, JSON) and its picture (PNG, SVG).",
         target: "copy-link",
+        keep_clear: &["copy-link", "summary"],
+        control: None,
         set: &[],
         action: "Now press Copy link.",
         goal: Goal::LinkCopied,
@@ -162,51 +180,166 @@ pub fn tour_issue(query: &str) -> Option<String> {
     })
 }
 
-/// The gap between the tour's card and the data it points at (CSS px).
+/// The gap between the tour's card and what it must leave in view (CSS px).
 const GAP: f64 = 12.0;
 
-/// Where the tour's card goes (its left and top, in page pixels): beside
-/// the data it describes, never over it. `data` is the pointed plot's data
-/// area (left, top, right, bottom), `card` the card's size, `page_w` the
-/// page's width. To the left of the data if the card fits there (over the
-/// settings, beside a plot in the first column), else to its right, else
-/// under it.
-pub fn place_card(data: [f64; 4], card: (f64, f64), page_w: f64) -> (f64, f64) {
-    let [l, t, r, b] = data;
-    let (w, _) = card;
-    if l >= w + 2.0 * GAP {
-        (l - GAP - w, t)
-    } else if page_w - r >= w + 2.0 * GAP {
-        (r + GAP, t)
-    } else {
-        let x = l.min(page_w - w - GAP / 2.0).max(GAP / 2.0);
-        (x, b + GAP)
-    }
+/// A box on the screen: left, top, right, bottom (CSS px).
+pub type Rect = [f64; 4];
+
+fn overlaps(a: Rect, b: Rect) -> bool {
+    a[0].max(b[0]) < a[2].min(b[2]) && a[1].max(b[1]) < a[3].min(b[3])
 }
 
-/// What the window says when the card is placed (CSS px).
+/// How far apart two boxes are (0 if they touch or overlap).
+fn distance(a: Rect, b: Rect) -> f64 {
+    let dx = (b[0] - a[2]).max(a[0] - b[2]).max(0.0);
+    let dy = (b[1] - a[3]).max(a[1] - b[3]).max(0.0);
+    dx.hypot(dy)
+}
+
+/// What the window says when the card is placed (CSS px, boxes in the
+/// viewport's coordinates).
+#[derive(Debug, Clone, PartialEq)]
 pub struct Geometry {
-    /// The pointed data's box in viewport pixels (left, top, right, bottom).
-    pub data: [f64; 4],
+    /// What the card must leave in view: the step's target first (a
+    /// plot's canvas, the gear set's picture, a button), then the controls
+    /// it names (those shown: a closed drawer's have no box).
+    pub keep_clear: Vec<Rect>,
+    /// What the card had better leave in view too, where the screen has
+    /// room: the highlighted target whole (its caption and key), the plots.
+    pub prefer_clear: Vec<Rect>,
+    /// The card's box now, if it shows.
+    pub card_now: Option<Rect>,
+    /// Where the target was on the page (its left and top) when the card
+    /// was last placed: the card keeps its place beside the target as the
+    /// page's layout shifts (a plot above grows).
+    pub anchor: Option<(f64, f64)>,
     /// The page's scroll (x, y).
     pub scroll: (f64, f64),
-    /// The page's width.
-    pub page_w: f64,
-    /// The viewport's height.
-    pub view_h: f64,
+    /// The viewport's width and height.
+    pub view: (f64, f64),
     /// The card's size (width, height).
     pub card: (f64, f64),
 }
 
-/// Where the card goes, in page pixels ([`place_card`]), and, for a new
-/// step (its target just scrolled to the top), how far the page scrolls on
-/// so that the card's bottom shows: never past the data's top.
-pub fn placement(g: &Geometry, new_step: bool) -> ((f64, f64), Option<f64>) {
+/// Where the card goes and how far the page scrolls on.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Placement {
+    /// The card's left and top in page pixels; `None`: it stays where it
+    /// is (docked at the screen's foot, or already clear of everything).
+    pub at: Option<(f64, f64)>,
+    /// How far to scroll the page down (negative: up), if at all.
+    pub scroll_by: Option<f64>,
+    /// Where the target is on the page now ([`Geometry::anchor`] for the
+    /// next placement).
+    pub anchor: Option<(f64, f64)>,
+}
+
+/// The card's spot in the viewport: within the screen, over none of the
+/// boxes to keep clear, and as near the first (the target) as can be.
+/// Tried at every edge of every box and of the screen; `None` if no spot
+/// is free.
+pub fn free_spot(keep_clear: &[Rect], card: (f64, f64), view: (f64, f64)) -> Option<(f64, f64)> {
+    let (w, h) = card;
+    let (vw, vh) = view;
+    let edge = GAP / 2.0;
+    let target = *keep_clear.first()?;
+    let mut xs = vec![edge, vw - w - edge];
+    let mut ys = vec![edge, vh - h - edge];
+    for r in keep_clear {
+        xs.extend([r[0] - GAP - w, r[2] + GAP, r[0], r[2] - w]);
+        ys.extend([r[1], r[3] + GAP, r[1] - GAP - h, r[3] - h]);
+    }
+    let grown = |r: &Rect| [r[0] - 4.0, r[1] - 4.0, r[2] + 4.0, r[3] + 4.0];
+    let mut best: Option<(f64, (f64, f64))> = None;
+    for &x in &xs {
+        for &y in &ys {
+            let c = [x, y, x + w, y + h];
+            let inside = x >= edge - 0.5
+                && y >= edge - 0.5
+                && c[2] <= vw - edge + 0.5
+                && c[3] <= vh - edge + 0.5;
+            if !inside || keep_clear.iter().any(|r| overlaps(c, grown(r))) {
+                continue;
+            }
+            // Near the target, and level with its top where it can be.
+            let score = distance(c, target) + 0.1 * (y - target[1].max(edge)).abs();
+            if best.is_none_or(|(s, _)| score < s - 1e-9) {
+                best = Some((score, (x, y)));
+            }
+        }
+    }
+    best.map(|(_, at)| at)
+}
+
+/// Where the card goes ([`Placement`]). `docked`: the card sits at the
+/// foot of the screen (a phone's), so a new step scrolls its target to the
+/// top, above the card. Else the card goes on a free spot of the screen
+/// beside the target ([`free_spot`]), clear of what it had better leave
+/// in view too where there is one such spot. A later frame moves it with
+/// its target as the layout shifts, and looks for a new spot only if it
+/// then covers something (the plot grew). With no free spot it goes under
+/// the target, and a new step scrolls on until the card shows, never past
+/// the target's top.
+pub fn placement(g: &Geometry, new_step: bool, docked: bool) -> Placement {
     let (sx, sy) = g.scroll;
-    let [l, t, r, b] = g.data;
-    let (x, y) = place_card([l + sx, t + sy, r + sx, b + sy], g.card, g.page_w);
-    let by = (y - sy + g.card.1 + 8.0 - g.view_h).min(t - 8.0);
-    ((x, y), (new_step && by > 0.0).then_some(by))
+    let Some(&target) = g.keep_clear.first() else {
+        return Placement {
+            at: None,
+            scroll_by: None,
+            anchor: None,
+        };
+    };
+    let anchor = Some((target[0] + sx, target[1] + sy));
+    if docked {
+        let by = target[1] - GAP;
+        return Placement {
+            at: None,
+            scroll_by: (new_step && by.abs() > 1.0).then_some(by),
+            anchor,
+        };
+    }
+    let clear = |c: Rect| !g.keep_clear.iter().any(|r| overlaps(c, *r));
+    if let (false, Some(now)) = (new_step, g.card_now) {
+        // The target moved on the page by (dx, dy): the card with it.
+        let (dx, dy) = match (g.anchor, anchor) {
+            (Some(then), Some(now)) => (now.0 - then.0, now.1 - then.1),
+            _ => (0.0, 0.0),
+        };
+        let moved = [now[0] + dx, now[1] + dy, now[2] + dx, now[3] + dy];
+        if clear(moved) {
+            let shifted = dx.abs() >= 0.5 || dy.abs() >= 0.5;
+            return Placement {
+                at: shifted.then_some((moved[0] + sx, moved[1] + sy)),
+                scroll_by: None,
+                anchor,
+            };
+        }
+    }
+    let both: Vec<Rect> = g
+        .keep_clear
+        .iter()
+        .chain(&g.prefer_clear)
+        .copied()
+        .collect();
+    let spot =
+        free_spot(&both, g.card, g.view).or_else(|| free_spot(&g.keep_clear, g.card, g.view));
+    if let Some((x, y)) = spot {
+        return Placement {
+            at: Some((x + sx, y + sy)),
+            scroll_by: None,
+            anchor,
+        };
+    }
+    let (w, h) = g.card;
+    let x = target[0].min(g.view.0 - w - GAP / 2.0).max(GAP / 2.0);
+    let y = target[3] + GAP;
+    let by = (y + h + 8.0 - g.view.1).min(target[1] - 8.0);
+    Placement {
+        at: Some((x + sx, y + sy)),
+        scroll_by: (new_step && by > 0.0).then_some(by),
+        anchor,
+    }
 }
 
 /// The step's counter: "Step 2 of 5".
@@ -218,29 +351,90 @@ pub fn counter(step: usize) -> String {
 mod tests {
     use super::*;
 
+    /// A laptop's step 2: the frequency response's canvas fills the main
+    /// column and the backlash slider sits in the settings on its left.
+    /// The card goes in the settings' column, under the slider.
     #[test]
-    fn a_new_steps_card_under_its_data_is_scrolled_into_view_but_never_past_the_datas_top() {
-        // A phone: 390 px wide, the plot (data 20..370 x 100..400 in the
-        // viewport, scrolled by 1000) leaves no room beside it, so the card
-        // (300 x 200) goes under it, at page y 1412, whose bottom is 1612 -
-        // 1000 = 612 + 8 past a 500 px viewport: scroll on by 120, as the
-        // data's top (100 - 8 = 92) allows only 92.
+    fn the_card_leaves_the_plot_and_the_control_it_names_in_view() {
+        let canvas = [341.0, 90.0, 1341.0, 630.0];
+        let slider = [29.0, 240.0, 303.0, 290.0];
         let g = Geometry {
-            data: [20.0, 100.0, 370.0, 400.0],
+            keep_clear: vec![canvas, slider],
+            prefer_clear: vec![[333.0, 16.0, 1350.0, 700.0]],
+            card_now: None,
+            anchor: None,
+            scroll: (0.0, 1200.0),
+            view: (1366.0, 768.0),
+            card: (304.0, 420.0),
+        };
+        let p = placement(&g, true, false);
+        let Some((x, y)) = p.at else {
+            panic!("{p:?}");
+        };
+        let card = [x, y - 1200.0, x + 304.0, y - 1200.0 + 420.0];
+        assert!(
+            !overlaps(card, canvas) && !overlaps(card, slider),
+            "{card:?}"
+        );
+        assert!(card[1] >= slider[3] && card[3] <= 768.0, "{card:?}");
+        assert_eq!(p.scroll_by, None);
+        // A later frame leaves a card that covers nothing where it is...
+        let later = Geometry {
+            card_now: Some(card),
+            anchor: p.anchor,
+            ..g.clone()
+        };
+        assert_eq!(placement(&later, false, false).at, None);
+        // ...moves it with its target when a plot above grew by 40 px...
+        let shifted = Geometry {
+            keep_clear: vec![[341.0, 130.0, 1341.0, 670.0], slider],
+            ..later.clone()
+        };
+        assert_eq!(placement(&shifted, false, false).at, Some((x, y + 40.0)));
+        // ...and moves one that the grown plot now runs under.
+        let grown = Geometry {
+            card_now: Some([500.0, 100.0, 804.0, 520.0]),
+            ..g.clone()
+        };
+        assert!(placement(&grown, false, false).at.is_some());
+    }
+
+    /// A phone's card is docked at the screen's foot: a new step scrolls
+    /// its target's top just under the screen's top; later frames scroll
+    /// nothing.
+    #[test]
+    fn a_docked_card_scrolls_its_target_to_the_top() {
+        let g = Geometry {
+            keep_clear: vec![[8.0, 300.0, 382.0, 800.0]],
+            prefer_clear: Vec::new(),
+            card_now: None,
+            anchor: None,
             scroll: (0.0, 1000.0),
-            page_w: 390.0,
-            view_h: 500.0,
+            view: (390.0, 844.0),
+            card: (374.0, 320.0),
+        };
+        let p = placement(&g, true, true);
+        assert_eq!((p.at, p.scroll_by), (None, Some(288.0)));
+        assert_eq!(placement(&g, false, true).scroll_by, None);
+    }
+
+    /// With no free spot on the screen the card goes under its target and
+    /// a new step scrolls on until it shows, never past the target's top.
+    #[test]
+    fn with_no_free_spot_the_card_goes_under_its_target() {
+        let g = Geometry {
+            keep_clear: vec![[20.0, 100.0, 370.0, 400.0]],
+            prefer_clear: Vec::new(),
+            card_now: None,
+            anchor: None,
+            scroll: (0.0, 1000.0),
+            view: (390.0, 500.0),
             card: (300.0, 200.0),
         };
-        let ((x, y), by) = placement(&g, true);
-        assert_eq!(y, 1412.0);
-        assert!(x >= 0.0 && x + 300.0 <= 390.0);
-        assert_eq!(by, Some(92.0));
-        // Not a new step: the card follows its data without scrolling.
-        assert_eq!(placement(&g, false).1, None);
-        // A tall viewport: the card shows, no scroll.
-        let tall = Geometry { view_h: 900.0, ..g };
-        assert_eq!(placement(&tall, true).1, None);
+        let p = placement(&g, true, false);
+        assert_eq!(p.at.map(|(_, y)| y), Some(1412.0));
+        assert_eq!(p.scroll_by, Some(92.0));
+        assert_eq!(placement(&g, false, false).scroll_by, None);
     }
 
     #[test]
@@ -261,27 +455,31 @@ mod tests {
         assert_eq!(counter(1), "Step 2 of 5");
     }
 
-    fn overlaps(a: [f64; 4], b: [f64; 4]) -> bool {
-        a[0].max(b[0]) < a[2].min(b[2]) && a[1].max(b[1]) < a[3].min(b[3])
-    }
-
-    /// The card sits beside the data at a phone's, a laptop's and a wide
-    /// screen's widths, wherever the data lie across the page.
+    /// A free spot is on the screen and over nothing to keep clear, at a
+    /// laptop's and a wide screen's sizes, wherever the target lies.
     #[test]
-    fn the_card_never_covers_the_data() {
-        for page_w in [390.0_f64, 1366.0, 1920.0] {
-            for left in [8.0_f64, 120.0, 420.0, 900.0]
-                .into_iter()
-                .filter(|l| l + 200.0 < page_w)
-            {
-                let data = [left, 300.0, (left + 700.0).min(page_w - 8.0), 800.0];
-                let card = ((page_w - 16.0).min(352.0), 320.0);
-                let (x, y) = place_card(data, card, page_w);
-                let cb = [x, y, x + card.0, y + card.1];
-                assert!(!overlaps(cb, data), "{page_w} {left}: {cb:?} over {data:?}");
-                assert!(x >= 0.0 && x + card.0 <= page_w, "{page_w} {left}: {cb:?}");
+    fn a_free_spot_never_covers_what_it_must_leave_in_view() {
+        for (vw, vh) in [(1366.0_f64, 768.0_f64), (1920.0, 1080.0)] {
+            for left in [8.0_f64, 120.0, 341.0, 900.0] {
+                let target = [left, 60.0, (left + 1000.0).min(vw - 8.0), 640.0];
+                let control = [20.0, 500.0, 300.0, 540.0];
+                let card = (304.0, 420.0);
+                let Some((x, y)) = free_spot(&[target, control], card, (vw, vh)) else {
+                    continue;
+                };
+                let c = [x, y, x + card.0, y + card.1];
+                assert!(
+                    !overlaps(c, target) && !overlaps(c, control),
+                    "{vw} {left}: {c:?}"
+                );
+                assert!(
+                    c[0] >= 0.0 && c[2] <= vw && c[1] >= 0.0 && c[3] <= vh,
+                    "{c:?}"
+                );
             }
         }
+        // Nothing to keep clear: no spot to look for.
+        assert_eq!(free_spot(&[], (10.0, 10.0), (100.0, 100.0)), None);
     }
 
     /// Every step sets real keys to values they accept, and points at a
@@ -290,12 +488,28 @@ mod tests {
     fn every_step_sets_real_settings_and_points_at_the_page() {
         let html = include_str!("../../../index.html");
         assert!((4..=6).contains(&TOUR.len()));
+        let controls: Vec<String> = crate::controls::controls()
+            .iter()
+            .map(|c| format!("control-{}", c.key))
+            .collect();
         for s in TOUR {
             assert!(
                 html.contains(&format!("id=\"{}\"", s.target)),
                 "{}",
                 s.target
             );
+            // What the card leaves in view: parts of the page or controls.
+            for id in s.keep_clear {
+                let there =
+                    html.contains(&format!("id=\"{id}\"")) || controls.contains(&id.to_string());
+                assert!(there, "{id}");
+            }
+            if let Some(c) = s.control {
+                assert!(
+                    s.keep_clear.contains(&format!("control-{c}").as_str()),
+                    "{c}"
+                );
+            }
             for (k, v) in s.set {
                 let mut settings = crate::settings::Settings::default();
                 let ok = if crate::settings::view_key(k).is_some() {

@@ -256,45 +256,86 @@ fn paint(p: &Shell, writes: Vec<Write>) {
             Write::Options { options, .. } => panel::set_options(&p.doc, &e, &options),
             Write::Scroll(_) => e.scroll_into_view(),
             Write::PlaceCard {
-                beside, new_step, ..
-            } => place_card(p, &e, &beside, new_step),
+                keep_clear,
+                prefer_clear,
+                docked,
+                new_step,
+                ..
+            } => place_card(p, &e, (&keep_clear, &prefer_clear), docked, new_step),
             Write::Url(_) => {}
         }
     }
 }
 
-/// Places `card` beside the element `beside` as [`crate::tour::placement`]
+/// Places `card` clear of the elements `keep_clear` (its target first)
+/// and, where it can, of `prefer_clear`, as [`crate::tour::placement`]
 /// says from the window's geometry, and scrolls on if it says so.
-fn place_card(p: &Shell, card: &Element, beside: &str, new_step: bool) {
-    let (Some(card), Some(data)) = (
-        card.dyn_ref::<web_sys::HtmlElement>(),
-        p.doc.get_element_by_id(beside),
-    ) else {
+/// Elements without a box (in a closed drawer) are left out; without its
+/// target the card stays.
+fn place_card(
+    p: &Shell,
+    card: &Element,
+    (keep_clear, prefer_clear): (&[String], &[String]),
+    docked: bool,
+    new_step: bool,
+) {
+    let Some(card) = card.dyn_ref::<web_sys::HtmlElement>() else {
         return;
     };
-    let r = data.get_bounding_client_rect();
-    let (page_w, view_h) = p.doc.document_element().map_or((0.0, 0.0), |e| {
+    let rect = |e: &Element| {
+        let r = e.get_bounding_client_rect();
+        [r.left(), r.top(), r.right(), r.bottom()]
+    };
+    let boxes = |ids: &[String]| -> Vec<Option<[f64; 4]>> {
+        ids.iter()
+            .map(|id| {
+                p.doc
+                    .get_element_by_id(id)
+                    .map(|e| rect(&e))
+                    .filter(|r| r[2] > r[0] && r[3] > r[1])
+            })
+            .collect()
+    };
+    let keep = boxes(keep_clear);
+    if keep.first().is_none_or(Option::is_none) {
+        return;
+    }
+    let view = p.doc.document_element().map_or((0.0, 0.0), |e| {
         (f64::from(e.client_width()), f64::from(e.client_height()))
     });
+    let shown = !card.hidden() && card.offset_width() > 0;
+    // Where the target was when the card was last placed ("x y").
+    let anchor = card.get_attribute("data-anchor").and_then(|a| {
+        let (x, y) = a.split_once(' ')?;
+        Some((x.parse().ok()?, y.parse().ok()?))
+    });
     let g = crate::tour::Geometry {
-        data: [r.left(), r.top(), r.right(), r.bottom()],
+        keep_clear: keep.into_iter().flatten().collect(),
+        prefer_clear: boxes(prefer_clear).into_iter().flatten().collect(),
+        card_now: shown.then(|| rect(card)),
+        anchor,
         scroll: (
             p.window.scroll_x().unwrap_or(0.0),
             p.window.scroll_y().unwrap_or(0.0),
         ),
-        page_w,
-        view_h,
+        view,
         card: (
             f64::from(card.offset_width()),
             f64::from(card.offset_height()),
         ),
     };
-    let ((x, y), by) = crate::tour::placement(&g, new_step);
-    let style = card.style();
-    check(style.set_property("left", &format!("{x:.0}px")));
-    check(style.set_property("top", &format!("{y:.0}px")));
-    if let Some(by) = by {
+    let placed = crate::tour::placement(&g, new_step, docked);
+    if let Some((x, y)) = placed.at {
+        let style = card.style();
+        check(style.set_property("left", &format!("{x:.0}px")));
+        check(style.set_property("top", &format!("{y:.0}px")));
+    }
+    if let Some(by) = placed.scroll_by {
         p.window.scroll_by_with_x_and_y(0.0, by);
+    }
+    if let Some((x, y)) = placed.anchor {
+        // The target's place on the page (a scroll does not move it).
+        check(card.set_attribute("data-anchor", &format!("{x:.1} {y:.1}")));
     }
 }
 

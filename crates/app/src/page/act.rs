@@ -91,13 +91,26 @@ impl Page {
                 self.offer(r)
             }
             Action::Params => vec![ctl.export_params()],
+            Action::Tour(TourMove::ToControl) => {
+                out.writes.extend(self.tour_to_control());
+                out.frame = false;
+                Vec::new()
+            }
+            Action::Tour(TourMove::ToTarget) => {
+                if let Some(s) = ctl.tour() {
+                    out.writes.push(Write::Scroll(TOUR[s].target.into()));
+                    out.writes.extend(self.place_tour_card(true));
+                }
+                out.frame = false;
+                Vec::new()
+            }
             Action::Tour(m) => {
                 let now = ctl.tour();
                 let step = match m {
                     TourMove::Start => Some(0),
                     TourMove::Back => now.map(|s| s.saturating_sub(1)),
                     TourMove::Next => now.map(|s| s + 1).filter(|&s| s < TOUR.len()),
-                    TourMove::Skip => None,
+                    TourMove::Skip | TourMove::ToControl | TourMove::ToTarget => None,
                 };
                 let fx = ctl.tour_go(step, now_ms);
                 self.tour_copied = false;
@@ -348,11 +361,67 @@ impl Page {
                 on: step == 0,
             },
         ]);
+        // A phone's settings drawer starts closed, far above the plots:
+        // the card says where the control is and jumps there and back.
+        let jump = self.narrow.then_some(s.control).flatten();
+        for id in ["tour-control", "tour-plot"] {
+            w.push(Write::Hidden {
+                id: id.into(),
+                hidden: jump.is_none(),
+            });
+        }
+        if let Some(key) = jump {
+            w.push(Write::text(
+                "tour-control",
+                format!("Show “{}” ↑", self.control_label(key)),
+            ));
+            let back = if s.target == "schematic" {
+                "Back to the gear set ↓"
+            } else {
+                "Back to the plot ↓"
+            };
+            w.push(Write::text("tour-plot", back));
+        }
         if scroll {
+            if jump.is_some() {
+                w.push(Write::Flag {
+                    id: "drawer".into(),
+                    name: "open",
+                    on: true,
+                });
+            }
             w.push(Write::Scroll(s.target.into()));
             w.extend(self.place_tour_card(true));
         }
         w
+    }
+
+    /// The control the tour's step uses, scrolled to (its drawer opened).
+    fn tour_to_control(&self) -> Vec<Write> {
+        let Some(key) = self.ctl.tour().and_then(|s| TOUR[s].control) else {
+            return Vec::new();
+        };
+        vec![
+            Write::Flag {
+                id: "drawer".into(),
+                name: "open",
+                on: true,
+            },
+            Write::Scroll(format!("control-{key}")),
+        ]
+    }
+
+    /// A control's label as the settings show it for the current model,
+    /// without its parenthesis ("Backlash b").
+    fn control_label(&self, key: &str) -> String {
+        let model = self.ctl.settings().params.kind();
+        controls().iter().find(|c| c.key == key).map_or_else(
+            || key.to_string(),
+            |c| {
+                let label = label_for(c, model);
+                label.split(" (").next().unwrap_or(&label).to_string()
+            },
+        )
     }
 
     /// Whether the tour's current step's action is done ([`crate::tour::done`]),
@@ -366,17 +435,18 @@ impl Page {
         ))
     }
 
-    /// The tour's card placed beside what its step points at (for a view,
-    /// its whole canvas: data, axes and key), if the tour is on.
+    /// The tour's card placed beside what its step points at (a view's
+    /// whole canvas: data, axes and key) and the control it names, if the
+    /// tour is on, and off the plots where the screen has room; docked at
+    /// the screen's foot on a phone.
     pub fn place_tour_card(&self, new_step: bool) -> Option<Write> {
-        let target = TOUR[self.ctl.tour()?].target;
-        let beside = match target.strip_prefix("view-") {
-            Some(k) if crate::views::VIEWS.iter().any(|s| s.key == k) => format!("canvas-{k}"),
-            _ => target.to_string(),
-        };
+        let step = &TOUR[self.ctl.tour()?];
         Some(Write::PlaceCard {
             id: "tour".into(),
-            beside,
+            keep_clear: step.keep_clear.iter().map(|s| s.to_string()).collect(),
+            // The highlighted target whole, and the plots.
+            prefer_clear: vec![step.target.to_string(), "views".to_string()],
+            docked: self.narrow,
             new_step,
         })
     }

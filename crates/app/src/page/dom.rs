@@ -73,6 +73,11 @@ pub enum TourMove {
     Next,
     /// End the tour.
     Skip,
+    /// Scroll to the control the step's action uses (a phone's drawer
+    /// opened first).
+    ToControl,
+    /// Scroll back to the step's target.
+    ToTarget,
 }
 
 /// An element to create: tag, attributes, text, children and listeners.
@@ -360,7 +365,7 @@ pub fn built() -> Vec<(String, Vec<Node>)> {
 
 /// The listeners of the page's fixed elements (those in `index.html`):
 /// (element id, event, action).
-pub const WIRING: [(&str, &str, Action); 20] = [
+pub const WIRING: [(&str, &str, Action); 22] = [
     ("preset", "change", Action::Preset),
     ("reset", "click", Action::Reset),
     ("pin-a", "click", Action::PinA),
@@ -371,6 +376,8 @@ pub const WIRING: [(&str, &str, Action); 20] = [
     ("tour-back", "click", Action::Tour(TourMove::Back)),
     ("tour-next", "click", Action::Tour(TourMove::Next)),
     ("tour-skip", "click", Action::Tour(TourMove::Skip)),
+    ("tour-control", "click", Action::Tour(TourMove::ToControl)),
+    ("tour-plot", "click", Action::Tour(TourMove::ToTarget)),
     ("family-key", "change", Action::FamilyKey),
     ("family-values", "input", Action::FamilyValues),
     ("family-values", "keydown", Action::FamilyApply),

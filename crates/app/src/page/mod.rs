@@ -91,14 +91,20 @@ pub enum Write {
     },
     /// An element scrolled into view.
     Scroll(String),
-    /// A card (the tour's) placed beside an element, never over it, and
-    /// for a new step scrolled on until it shows
+    /// A card (the tour's) placed beside what it points at, never over
+    /// it, and for a new step scrolled on until both show
     /// ([`crate::tour::placement`], from what the window says).
     PlaceCard {
         /// The card's id.
         id: String,
-        /// The id of the element it goes beside.
-        beside: String,
+        /// The ids of what it must leave in view, its target first.
+        keep_clear: Vec<String>,
+        /// The ids of what it had better leave in view too, where the
+        /// screen has room.
+        prefer_clear: Vec<String>,
+        /// Docked at the screen's foot (a phone's): placed by the style
+        /// sheet, its target scrolled above it.
+        docked: bool,
         /// A new step (its target just scrolled to): scroll on if needed.
         new_step: bool,
     },

@@ -284,13 +284,13 @@ fn a_tour_steps_action_shows_done_once_the_student_does_it() {
     assert_eq!(p.tour_done(), Some(true));
 }
 
-/// Each tour step's card goes beside a part of `index.html`: a view's
-/// canvas (not its section, whose text runs below the plot) and the
-/// element itself otherwise. A new step places it after scrolling to the
-/// target; every frame of the tour places it again, as its plot grows;
+/// Each tour step's card is placed clear of its target's picture (a
+/// view's canvas, not its section, whose text runs below the plot) and of
+/// the control it names (docked at a phone's foot here). A new step
+/// places it after scrolling to the target; every frame of the tour places it again, as its plot grows;
 /// with the tour over, nothing is placed.
 #[test]
-fn the_tour_card_goes_beside_each_steps_canvas_or_element_and_follows_it_each_frame() {
+fn the_tour_card_leaves_each_steps_picture_and_control_in_view_each_frame() {
     let html = include_str!("../../../../index.html");
     let mut p = page("");
     let mut out = p.act(Action::Tour(TourMove::Start), &EventIn::default(), 1.0);
@@ -301,7 +301,9 @@ fn the_tour_card_goes_beside_each_steps_canvas_or_element_and_follows_it_each_fr
             .position(|w| w == &Write::Scroll(s.target.into()));
         let Some(Write::PlaceCard {
             id,
-            beside,
+            keep_clear,
+            prefer_clear,
+            docked: true,
             new_step: true,
         }) = at.and_then(|at| out.writes.get(at + 1))
         else {
@@ -311,17 +313,29 @@ fn the_tour_card_goes_beside_each_steps_canvas_or_element_and_follows_it_each_fr
             );
         };
         assert_eq!(id, "tour");
-        assert!(html.contains(&format!("id=\"{beside}\"")), "{beside}");
         assert!(html.contains(&format!("id=\"{id}\"")));
+        let first = keep_clear.first().cloned().unwrap_or_default();
         let canvas = s.target.starts_with("view-");
-        assert_eq!(beside.starts_with("canvas-"), canvas, "{beside}");
-        assert!(beside.ends_with(s.target.trim_start_matches("view-")));
+        assert_eq!(first.starts_with("canvas-"), canvas, "{first}");
+        if canvas {
+            assert!(first.ends_with(s.target.trim_start_matches("view-")));
+        }
+        if let Some(c) = s.control {
+            assert!(
+                keep_clear.contains(&format!("control-{c}")),
+                "{keep_clear:?}"
+            );
+        }
+        assert_eq!(prefer_clear.first(), Some(&s.target.to_string()));
+        assert!(html.contains("id=\"views\""));
         let frame = p.draw_frame(16.0 * (i + 1) as f64, || 0.0, |_, _| Vec::new());
         assert_eq!(
             frame.last(),
             Some(&Write::PlaceCard {
                 id: id.clone(),
-                beside: beside.clone(),
+                keep_clear: keep_clear.clone(),
+                prefer_clear: prefer_clear.clone(),
+                docked: true,
                 new_step: false
             })
         );
@@ -357,4 +371,53 @@ fn a_preset_without_a_family_empties_the_family_bar() {
     assert!(p.ctl().family().is_none());
     // Once emptied, the bar is left alone.
     assert_eq!(values(&mut p, "table1", 3.0), None);
+}
+
+/// On a phone the settings drawer starts closed, far above the plots: a
+/// step whose action uses a control opens the drawer, the card is docked
+/// at the screen's foot and offers a jump to the control and back.
+#[test]
+fn on_a_phone_the_tour_opens_the_drawer_and_jumps_to_the_control() {
+    let (ctl, _) = Controller::new("", 0.0);
+    let mut p = Page::new(ctl, true);
+    let out = p.act(Action::Tour(TourMove::Start), &EventIn::default(), 1.0);
+    let open = Write::Flag {
+        id: "drawer".into(),
+        name: "open",
+        on: true,
+    };
+    assert!(out.writes.contains(&open), "{:?}", out.writes);
+    assert!(out.writes.contains(&Write::Hidden {
+        id: "tour-control".into(),
+        hidden: false
+    }));
+    assert!(out
+        .writes
+        .contains(&Write::text("tour-control", "Show “Mesh to plot” ↑")));
+    assert!(out.writes.iter().any(|w| matches!(
+        w,
+        Write::PlaceCard {
+            docked: true,
+            new_step: true,
+            ..
+        }
+    )));
+    let jump = p.act(Action::Tour(TourMove::ToControl), &EventIn::default(), 2.0);
+    assert_eq!(
+        jump.writes,
+        vec![open, Write::Scroll("control-mesh".into())]
+    );
+    let back = p.act(Action::Tour(TourMove::ToTarget), &EventIn::default(), 3.0);
+    assert_eq!(
+        back.writes.first(),
+        Some(&Write::Scroll("schematic".into()))
+    );
+    // Step 3 uses no control: no jump offered.
+    for t in [4.0, 5.0] {
+        p.act(Action::Tour(TourMove::Next), &EventIn::default(), t);
+    }
+    assert!(p.tour_writes(false).contains(&Write::Hidden {
+        id: "tour-control".into(),
+        hidden: true
+    }));
 }

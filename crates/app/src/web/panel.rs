@@ -63,11 +63,11 @@ fn on(page: &Shared, e: &Element, kind: &str, action: Action) {
 }
 
 fn act(page: &Shared, action: Action, ev: &EventIn) {
-    match action {
-        Action::CopyLink => return copy_link(page),
-        Action::Png(v) => return png_2x(page, v),
-        _ => {}
+    if let Action::Png(v) = action {
+        return png_2x(page, v);
     }
+    // The core hears of every action, the copy of the link too (the
+    // tour's last step is done by it); the clipboard is this layer's.
     let out = {
         let mut p = page.borrow_mut();
         let t = now(&p.window);
@@ -77,6 +77,9 @@ fn act(page: &Shared, action: Action, ev: &EventIn) {
     run_effects(page, out.effects);
     if out.frame {
         request_frame(page);
+    }
+    if matches!(action, Action::CopyLink) {
+        copy_link(page);
     }
 }
 
