@@ -1,8 +1,9 @@
 // Browser test of "text that fits": every plot reports the boxes
 // of the text it drew (titles, tick labels, axis descriptions, the key) in
 // the page's status (`text_boxes`, measured by the canvas's measureText).
-// At 390x844 (a touch phone), 1366x768 and 1920x1080, on the default page
-// and on the Fig. 9 preset (small multiples with panel titles), no two
+// At 390x844 (a touch phone), 1366x768 and 1920x1080, on the default page,
+// on the Fig. 9 preset (small multiples with panel titles) and at a load
+// of 900 000 N m (tick labels like "-100000.0"), no two
 // boxes of one canvas overlap and none leaves its canvas. Screenshots of
 // the plots go to tests/browser/screenshots/ for a human to look at.
 import { test, before, after } from 'node:test';
@@ -103,7 +104,7 @@ const QUICK = 'bif_points=24&transient_periods=120&record_periods=40&map_omega_p
 const FIG9_VIEWS = ['phase', 'poincare', 'time', 'spectrum'];
 
 for (const size of SIZES) {
-  test(`at ${size.name} no plot's text overlaps other text or leaves its canvas (default page, Fig. 9)`, async () => {
+  test(`at ${size.name} no plot's text overlaps other text or leaves its canvas (default page, Fig. 9, 900 000 N m)`, async () => {
     const h = await start(size.context);
     try {
       const { page, errors } = await open(h.browser, h.url, QUICK);
@@ -114,9 +115,32 @@ for (const size of SIZES) {
         if (s[job].id !== 0) assert.ok(s.text_boxes[v].boxes.length > 3, `${v}: ${JSON.stringify(s.text_boxes[v])}`);
       }
       for (const v of ['fr', 'bif', 'poincare']) await viewShot(page, v, `text-${size.name}-${v}`);
+      // The frequency response uses the width of its screen and its key
+      // leaves the data room.
+      const fr = await page.evaluate(() => {
+        const c = document.getElementById('canvas-fr');
+        const r = c.getBoundingClientRect();
+        return { css: [r.width, r.height], drawn: [c.width, c.height] };
+      });
+      const frame = (await status(page)).fr_frame;
+      const dataCssHeight = ((frame[3] - frame[1]) * fr.css[1]) / fr.drawn[1];
+      if (!size.name.startsWith('phone')) {
+        const main = await page.evaluate(() => document.querySelector('main').getBoundingClientRect().width);
+        assert.ok(fr.css[0] >= main - 40, `the frequency response ${fr.css.map(Math.round)} in a ${Math.round(main)} px column`);
+        // At 1920 its key under the chart left it 170 px of data when drawn
+        // in one of two columns; across both, drawn wider, about 400.
+        const least = size.name === '1920x1080' ? 350 : 200;
+        assert.ok(dataCssHeight >= least, `the frequency response's data ${Math.round(dataCssHeight)} px high`);
+      }
       await page.selectOption('#preset', 'fig9');
       await watch(page, (x) => x.family?.values?.length === 3 && x.family.members.length === 2 && settled(x, FIG9_VIEWS), 'the Fig. 9 orbits drawn', seen);
       await viewShot(page, 'phase', `text-${size.name}-fig9-phase`);
+      // A load far outside the model's validity: ticks like "-100000.0"
+      // are whole and clear of the axis descriptions.
+      const big = await open(h.browser, h.url, `${QUICK}&torque_s1_nm=900000`);
+      await watch(big.page, (x) => settled(x), 'the 900 000 N m views computed and drawn', seen);
+      for (const v of ['fr', 'time']) await viewShot(big.page, v, `text-${size.name}-900000-${v}`);
+      errors.push(...big.errors);
       const found = [...seen];
       assert.deepEqual(found, [], `text boxes that overlap or leave their canvas at ${size.name}:\n${found.join('\n')}`);
       assert.deepEqual(errors, []);

@@ -76,6 +76,7 @@ impl Page {
         let (ctl, effects) = Controller::with_workers(&b.query, b.now_ms, workers);
         let narrow = b.width.is_some_and(|w| w < f64::from(plots::NARROW));
         let mut page = Page::new(ctl, narrow);
+        page.set_wide(b.width.is_some_and(|w| w >= super::WIDE_SCREEN));
         if b.reduced_motion {
             page.prefer_still();
         }
@@ -190,6 +191,12 @@ mod tests {
             ..b.clone()
         };
         assert!(!Page::boot(&wide).0.narrow());
+        assert!(!Page::boot(&wide).0.wide(), "1280 CSS pixels: one column");
+        let full_hd = Browser {
+            width: Some(1920.0),
+            ..b.clone()
+        };
+        assert!(Page::boot(&full_hd).0.wide());
         // An unknown width is not a phone.
         let unknown = Browser { width: None, ..b };
         assert!(!Page::boot(&unknown).0.narrow());

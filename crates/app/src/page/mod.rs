@@ -163,6 +163,9 @@ pub struct Page {
     last_query: String,
     /// Whether the screen is narrow (a phone): plots draw on fewer, larger pixels.
     narrow: bool,
+    /// Whether the screen is wide ([`WIDE_SCREEN`]): the frequency
+    /// response spans the views' columns, drawn [`WIDE_FR_WIDTH`] wide.
+    wide: bool,
     /// What a pressed pointer on an Omega axis is doing.
     gesture: gesture::Gesture,
     /// When the Copy link's confirmation goes (ms).
@@ -227,6 +230,7 @@ impl Page {
             text_boxes: std::array::from_fn(|_| ((0, 0), Vec::new())),
             last_query: String::new(),
             narrow,
+            wide: false,
             gesture: gesture::Gesture::Idle,
             gestures: (0, ""),
             toast_until: None,
@@ -269,6 +273,16 @@ impl Page {
     /// Whether the screen is narrow.
     pub fn narrow(&self) -> bool {
         self.narrow
+    }
+
+    /// Whether the screen is wide.
+    pub fn wide(&self) -> bool {
+        self.wide
+    }
+
+    /// Draws for a wide screen (`wide`) or not.
+    pub fn set_wide(&mut self, wide: bool) {
+        self.wide = wide;
     }
 
     // ------------------------------------------------------------ input
@@ -537,7 +551,7 @@ impl Page {
         let (w, h) = screen_size(
             self.ctl.base_canvas_size(view),
             view == ViewId::Fr,
-            self.narrow,
+            (self.narrow, self.wide),
         );
         match (fr, self.ctl.panels()) {
             (Some(fr), None) => (w, plots::fr_height(fr, (w, h))),
@@ -551,14 +565,34 @@ impl Page {
 /// read at about 10 pixels rather than the 6 of the 760-pixel drawing.
 pub const PHONE_PLOT_WIDTH: u32 = 480;
 
-/// A plot canvas's size on the screen for its drawing size `(w, h)`: as
-/// drawn, or on a narrow screen [`PHONE_PLOT_WIDTH`] wide and taller for
-/// its width (the frequency response of one mesh 640 pixels high).
-pub fn screen_size((w, h): (u32, u32), fr: bool, narrow: bool) -> (u32, u32) {
-    match (narrow, fr && h == plots::HEIGHT) {
-        (false, _) => (w, h),
-        (true, true) => (PHONE_PLOT_WIDTH, 640),
-        (true, false) => (PHONE_PLOT_WIDTH, h * 13 / 10),
+/// The window width (CSS px) from which the page's views take two
+/// columns beside the settings (the style sheet's `minmax(520px, 1fr)`
+/// grid), so the frequency response spans both: its own row, drawn wider.
+pub const WIDE_SCREEN: f64 = 1400.0;
+
+/// The frequency response's drawing width on a wide screen: across both
+/// columns of a 1920-pixel window (about 1 550 CSS pixels) its 13-pixel
+/// words read at about 17 pixels, as the 760-pixel drawing's do in the
+/// one column of a 1366-pixel window.
+pub const WIDE_FR_WIDTH: u32 = 1160;
+
+/// The frequency response's drawing height on a wide screen (one mesh;
+/// taller if its key needs: `fr_height`).
+pub const WIDE_FR_HEIGHT: u32 = 480;
+
+/// A plot canvas's size on the screen for its drawing size `(w, h)` and
+/// the screen `(narrow, wide)`: as drawn; on a narrow screen
+/// [`PHONE_PLOT_WIDTH`] wide and taller for its width (the frequency
+/// response of one mesh 640 pixels high); on a wide screen the frequency
+/// response [`WIDE_FR_WIDTH`] wide (one mesh [`WIDE_FR_HEIGHT`] high).
+pub fn screen_size((w, h): (u32, u32), fr: bool, (narrow, wide): (bool, bool)) -> (u32, u32) {
+    let one = fr && h == plots::HEIGHT;
+    match (narrow, wide && fr, one) {
+        (true, _, true) => (PHONE_PLOT_WIDTH, 640),
+        (true, _, false) => (PHONE_PLOT_WIDTH, h * 13 / 10),
+        (false, true, true) => (WIDE_FR_WIDTH, WIDE_FR_HEIGHT),
+        (false, true, false) => (WIDE_FR_WIDTH, h),
+        (false, false, _) => (w, h),
     }
 }
 

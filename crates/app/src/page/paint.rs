@@ -143,7 +143,7 @@ impl Page {
         let mut w = Vec::new();
         for view in ViewId::ALL {
             let base = crate::controller::view_size(view);
-            let (cw, ch) = super::screen_size(base, view == ViewId::Fr, self.narrow);
+            let (cw, ch) = super::screen_size(base, view == ViewId::Fr, (self.narrow, self.wide));
             let mut ids = vec![format!("canvas-{}", view.key())];
             if view == ViewId::Time {
                 ids.push("canvas-time-cursor".into());

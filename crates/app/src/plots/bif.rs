@@ -98,7 +98,10 @@ pub fn draw_bif<DB: DrawingBackend>(
     let plan = plan_key(root, &items, Vec::new());
     let upper = chart_area(root, &plan);
     let caption = format!("Bifurcation diagram, mesh {}{status}", v.mesh_label);
-    let axes = Axes::new(OMEGA_AXIS, "Poincaré samples of x = δ − e (µm)");
+    let axes = Axes {
+        y_area_min: super::STACKED_Y_AREA,
+        ..Axes::new(OMEGA_AXIS, "Poincaré samples of x = δ − e (µm)")
+    };
     let mut chart = linear_chart(&upper, &caption, (x, y), &axes)?;
     contact_lines(&mut chart, &v.backlash_um, x, true)?;
     pinned_contact_lines(&mut chart, &v.pinned_backlash_um, &v.backlash_um, x)?;

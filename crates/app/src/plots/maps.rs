@@ -59,10 +59,33 @@ pub fn draw_map<DB: DrawingBackend>(
     let x = g.x_range();
     let y = g.y_range();
     let (w, h) = root.dim_in_pixel();
-    // The key sits under the x axis description (two more lines for the
-    // boundaries).
-    let key_h = if v.boundaries.is_empty() { 40 } else { 76 };
-    let (plot_area, key_area) = root.split_vertically(h as i32 - key_h);
+    // The key: every regime (so the colours read the same in every map),
+    // the period mark, pending and failed cells; each kind of boundary
+    // shown and the disagreement mark. Laid out first: its area under the
+    // x axis description is as tall as its lines (a phone's takes three).
+    let mut items: Vec<(Entry, String)> = Regime::ALL
+        .iter()
+        .map(|&r| (Entry::Swatch(regime_color(r)), r.label().to_string()))
+        .collect();
+    items.push((Entry::Text, "• not period 1".into()));
+    items.push((Entry::Swatch(PENDING), "not computed yet".into()));
+    if v.store.counts().2 > 0 {
+        items.push((Entry::Swatch(FAILED), "failed".into()));
+    }
+    for kind in BoundaryKind::ALL {
+        if v.boundaries.iter().any(|c| c.kind == kind) {
+            items.push((Entry::Line(kind), kind.label().into()));
+        }
+    }
+    if !v.cusps.is_empty() {
+        items.push((Entry::Text, "○ a cusp: the jump disappears".into()));
+    }
+    if !v.disagree.is_empty() {
+        items.push((Entry::Mark, MARK_LABEL.into()));
+    }
+    let key = lay_out_key(root, items, w);
+    let key_h = key.last().map_or(0, |(_, _, (_, ky), _)| *ky) + 17 + 6;
+    let (plot_area, key_area) = root.split_vertically(h as i32 - key_h.max(40));
     let caption = format!("Impact-regime map, {}{status}", v.mesh_label);
     let axes = Axes {
         grid: false,
@@ -130,88 +153,32 @@ pub fn draw_map<DB: DrawingBackend>(
         })
         .collect();
     overlay.marks = mark_rects(&frame, g, &v.disagree);
-    // The key: every regime (so the colours read the same in every map),
-    // the period mark, pending and failed cells; each kind of boundary
-    // shown and the disagreement mark.
-    let mut items: Vec<(Entry, String)> = Regime::ALL
-        .iter()
-        .map(|&r| (Entry::Swatch(regime_color(r)), r.label().to_string()))
-        .collect();
-    items.push((Entry::Text, "• not period 1".into()));
-    items.push((Entry::Swatch(PENDING), "not computed yet".into()));
-    if v.store.counts().2 > 0 {
-        items.push((Entry::Swatch(FAILED), "failed".into()));
-    }
-    for kind in BoundaryKind::ALL {
-        if v.boundaries.iter().any(|c| c.kind == kind) {
-            items.push((Entry::Line(kind), kind.label().into()));
-        }
-    }
-    if !v.cusps.is_empty() {
-        items.push((Entry::Text, "○ a cusp: the jump disappears".into()));
-    }
-    if !v.disagree.is_empty() {
-        items.push((Entry::Mark, MARK_LABEL.into()));
-    }
     let font = small();
-    let (mut kx, mut ky) = (12, 4);
-    for (entry, text) in items {
-        let tw = key_area
-            .estimate_text_size(&text, &font)
-            .map_or(8 * text.len() as u32, |(w, _)| w) as i32;
-        if kx + 18 + tw > w as i32 - 8 {
-            kx = 12;
-            ky += 17;
-        }
-        let color = match entry {
+    for (entry, text, (kx, ky), _) in key {
+        let swatch = |style: ShapeStyle| Rectangle::new([(kx, ky + 1), (kx + 12, ky + 12)], style);
+        match entry {
             Entry::Text => {
                 key_area
                     .draw(&Text::new(text, (kx, ky), font.clone()))
                     .map_err(err)?;
-                kx += tw + 16;
                 continue;
             }
-            Entry::Line(kind) => {
-                draw_line_sample(&key_area, (kx - 1, ky + 7), kind)?;
+            Entry::Line(kind) => draw_line_sample(&key_area, (kx - 1, ky + 7), kind)?,
+            Entry::Mark => key_area
+                .draw(&swatch(ShapeStyle::from(&MARK).stroke_width(2)))
+                .map_err(err)?,
+            Entry::Swatch(color) => {
                 key_area
-                    .draw(&Text::new(text, (kx + 17, ky), font.clone()))
+                    .draw(&swatch(ShapeStyle::from(&color).filled()))
                     .map_err(err)?;
-                kx += 17 + tw + 16;
-                continue;
+                key_area
+                    .draw(&swatch(ShapeStyle::from(&GRID).stroke_width(1)))
+                    .map_err(err)?;
             }
-            Entry::Mark => {
-                key_area
-                    .draw(&Rectangle::new(
-                        [(kx, ky + 1), (kx + 12, ky + 12)],
-                        ShapeStyle::from(&MARK).stroke_width(2),
-                    ))
-                    .map_err(err)?;
-                key_area
-                    .draw(&Text::new(text, (kx + 17, ky), font.clone()))
-                    .map_err(err)?;
-                kx += 17 + tw + 16;
-                continue;
-            }
-            Entry::Swatch(color) => color,
-        };
-        {
-            key_area
-                .draw(&Rectangle::new(
-                    [(kx, ky + 1), (kx + 12, ky + 12)],
-                    ShapeStyle::from(&color).filled(),
-                ))
-                .map_err(err)?;
-            key_area
-                .draw(&Rectangle::new(
-                    [(kx, ky + 1), (kx + 12, ky + 12)],
-                    ShapeStyle::from(&GRID).stroke_width(1),
-                ))
-                .map_err(err)?;
-            key_area
-                .draw(&Text::new(text, (kx + 17, ky), font.clone()))
-                .map_err(err)?;
-            kx += 17 + tw + 16;
         }
+        key_area
+            .draw(&Text::new(text, (kx + 17, ky), font.clone()))
+            .map_err(err)?;
     }
     root.present().map_err(err)?;
     Ok((frame, overlay))
@@ -297,6 +264,34 @@ pub fn map_svg(v: &MapView, size: (u32, u32)) -> Res<String> {
     super::svg_with(&s, size, |root| draw_map_overlay(root, &frame, &overlay))
 }
 
+/// The map's key entries placed in lines across a canvas `w` pixels wide:
+/// each entry with its position in the key's area and its text's width.
+fn lay_out_key<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    items: Vec<(Entry, String)>,
+    w: u32,
+) -> Vec<(Entry, String, (i32, i32), i32)> {
+    let font = small();
+    let (mut kx, mut ky) = (12, 4);
+    items
+        .into_iter()
+        .map(|(entry, text)| {
+            let tw = root
+                .estimate_text_size(&text, &font)
+                .map_or(8 * text.len() as u32, |(w, _)| w) as i32;
+            // A swatch, a line or a mark goes before its words.
+            let icon = if matches!(entry, Entry::Text) { 0 } else { 17 };
+            if kx + icon + tw > w as i32 - 8 && kx > 12 {
+                kx = 12;
+                ky += 17;
+            }
+            let at = (kx, ky);
+            kx += icon + tw + 16;
+            (entry, text, at, tw)
+        })
+        .collect()
+}
+
 /// An entry of the map's key.
 #[derive(Debug, Clone, Copy)]
 enum Entry {
@@ -365,6 +360,7 @@ pub fn draw_lyap<DB: DrawingBackend>(
         y_labels: Some(5),
         // Two decimals, and zero without a sign (plotters wrote "-0.0").
         y_format: Some(|v: &f64| format!("{:.2}", if v.abs() < 1e-9 { 0.0 } else { *v })),
+        y_area_min: super::STACKED_Y_AREA,
         ..Axes::new(OMEGA_AXIS, "λ per mesh period (−)")
     };
     let mut chart = linear_chart(&area, &caption, (x, y), &axes)?;

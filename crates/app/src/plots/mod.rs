@@ -254,7 +254,14 @@ pub(crate) struct Axes {
     pub(crate) y_labels: Option<usize>,
     /// How the y labels are written, if not plotters' default.
     pub(crate) y_format: Option<fn(&f64) -> String>,
+    /// The y label area's least width (pixels); wider if its labels need.
+    pub(crate) y_area_min: u32,
 }
+
+/// The y label area's least width of the bifurcation diagram and the
+/// Lyapunov exponent drawn under it: their Ω axes line up, pixel for
+/// pixel, while their labels fit in it (6 characters and the description).
+pub(crate) const STACKED_Y_AREA: u32 = 84;
 
 impl Axes {
     /// Axes with grid lines and default labels.
@@ -265,6 +272,7 @@ impl Axes {
             grid: true,
             y_labels: None,
             y_format: None,
+            y_area_min: 64,
         }
     }
 }
@@ -433,18 +441,60 @@ pub(crate) fn fit_desc<DB: DrawingBackend, CT: plotters::coord::CoordTranslate>(
         .unwrap_or_else(|| words.last().map_or(String::new(), |w| (*w).to_string()))
 }
 
-/// A linear chart over `x` and `y` with the shared layout and `axes`.
+/// A linear chart over `x` and `y` with the shared layout and `axes`,
+/// its y label area as wide as its tick labels need ([`y_label_area`]).
 pub(crate) fn linear_chart<'a, DB: DrawingBackend>(
     area: &'a DrawingArea<DB, Shift>,
     caption: &str,
     (x, y): ((f64, f64), (f64, f64)),
     axes: &Axes,
 ) -> Res<Chart<'a, DB>> {
-    let mut chart = chart_layout(area, caption)?
-        .build_cartesian_2d(x.0..x.1, y.0..y.1)
-        .map_err(err)?;
+    let plotters_own = |v: &f64| plotters::coord::types::RangedCoordf64::format(v);
+    let format: &dyn Fn(&f64) -> String = match &axes.y_format {
+        Some(f) => f,
+        None => &plotters_own,
+    };
+    let labels = y_tick_labels(y, axes.y_labels.unwrap_or(Y_LABELS), format);
+    let mut b = chart_layout(area, caption)?;
+    b.y_label_area_size(y_label_area(area, &labels, true).max(axes.y_area_min));
+    let mut chart = b.build_cartesian_2d(x.0..x.1, y.0..y.1).map_err(err)?;
     draw_axes(&mut chart, axes)?;
     Ok(chart)
+}
+
+/// Plotters' number of y tick labels unless a chart asks for another.
+const Y_LABELS: usize = 11;
+
+/// The y tick labels plotters draws over `y` with `n` labels at most,
+/// written by `format`.
+pub(crate) fn y_tick_labels(
+    y: (f64, f64),
+    n: usize,
+    format: &dyn Fn(&f64) -> String,
+) -> Vec<String> {
+    let coord: plotters::coord::types::RangedCoordf64 = (y.0..y.1).into();
+    coord.key_points(n).iter().map(format).collect()
+}
+
+/// The width a y label area needs for `labels` and, if `described`, the
+/// rotated axis description at its left edge apart from them: plotters
+/// draws the labels right-aligned 10 pixels from the axis (twice its
+/// 5-pixel tick) and the description from the area's left edge. A
+/// "-100000.0" needs about 100 pixels (in a fixed 64 it was cut to
+/// "100000.0", and a "6500.0" ran into the description).
+pub(crate) fn y_label_area<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    labels: &[String],
+    described: bool,
+) -> u32 {
+    let size = |t: &str| area.estimate_text_size(t, &small()).unwrap_or((0, 0));
+    let widest = labels.iter().map(|l| size(l).0).max().unwrap_or(0);
+    let desc = if described {
+        size("x (µm)").1.max(13) + 6
+    } else {
+        0
+    };
+    widest + 10 + 4 + desc
 }
 
 /// A plot with nothing to show yet: a frame and a message (never blank).

@@ -138,26 +138,38 @@ fn panel_chart<'a, DB: DrawingBackend>(
     first: bool,
 ) -> Res<Chart<'a, DB>> {
     let under = super::draw_caption(area, title, super::Align::Centre, 15)?;
-    let mut chart = ChartBuilder::on(area)
-        .margin(6)
-        .margin_top(under as u32 + 8)
-        .margin_right(16)
-        .x_label_area_size(42)
-        .y_label_area_size(if first { 58 } else { 44 })
-        .build_cartesian_2d(x.0..x.1, y.0..y.1)
-        .map_err(err)?;
     let fmt = |span: f64| {
         move |v: &f64| -> String {
-            if span >= 20.0 {
+            let s = if span >= 20.0 {
                 format!("{v:.0}")
             } else if span >= 2.0 {
                 format!("{v:.1}")
             } else {
                 format!("{v:.2}")
+            };
+            // Zero without a sign (a tick at -1e-17 read "-0.00").
+            match s.strip_prefix('-') {
+                Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_string(),
+                _ => s,
             }
         }
     };
     let (fx, fy) = (fmt(x.1 - x.0), fmt(y.1 - y.0));
+    // The labels' own width; the first panel's holds the description too.
+    let labels = super::y_tick_labels(y, 6, &fy);
+    let y_area = if first {
+        super::y_label_area(area, &labels, true).max(58)
+    } else {
+        super::y_label_area(area, &labels, false).max(44)
+    };
+    let mut chart = ChartBuilder::on(area)
+        .margin(6)
+        .margin_top(under as u32 + 8)
+        .margin_right(16)
+        .x_label_area_size(42)
+        .y_label_area_size(y_area)
+        .build_cartesian_2d(x.0..x.1, y.0..y.1)
+        .map_err(err)?;
     let y_desc = super::fit_desc(
         chart.plotting_area(),
         y_desc,
