@@ -292,10 +292,18 @@ pub fn placement(g: &Geometry, new_step: bool, docked: bool) -> Placement {
     };
     let anchor = Some((target[0] + sx, target[1] + sy));
     if docked {
-        let by = target[1] - GAP;
+        // A new step: its target to the top. Later: the page scrolls with
+        // the target as the layout above it shifts (a note grows), so it
+        // stays where it was, above the card; a reader's own scroll moves
+        // nothing on the page and is left alone.
+        let by = match (new_step, g.anchor) {
+            (true, _) => target[1] - GAP,
+            (false, Some(then)) => target[1] + sy - then.1,
+            (false, None) => 0.0,
+        };
         return Placement {
             at: None,
-            scroll_by: (new_step && by.abs() > 1.0).then_some(by),
+            scroll_by: (by.abs() > 1.0).then_some(by),
             anchor,
         };
     }
@@ -401,7 +409,7 @@ mod tests {
 
     /// A phone's card is docked at the screen's foot: a new step scrolls
     /// its target's top just under the screen's top; later frames scroll
-    /// nothing.
+    /// only with a shift of the layout.
     #[test]
     fn a_docked_card_scrolls_its_target_to_the_top() {
         let g = Geometry {
@@ -416,6 +424,20 @@ mod tests {
         let p = placement(&g, true, true);
         assert_eq!((p.at, p.scroll_by), (None, Some(288.0)));
         assert_eq!(placement(&g, false, true).scroll_by, None);
+        // The target at the top (page y 1300): a note above it grows by
+        // 105 px, and the page scrolls on with it.
+        let placed = Geometry {
+            keep_clear: vec![[8.0, 12.0, 382.0, 512.0]],
+            scroll: (0.0, 1288.0),
+            anchor: Some((8.0, 1300.0)),
+            ..g.clone()
+        };
+        assert_eq!(placement(&placed, false, true).scroll_by, None);
+        let shifted = Geometry {
+            keep_clear: vec![[8.0, 117.0, 382.0, 617.0]],
+            ..placed.clone()
+        };
+        assert_eq!(placement(&shifted, false, true).scroll_by, Some(105.0));
     }
 
     /// With no free spot on the screen the card goes under its target and
