@@ -1,6 +1,8 @@
 // Browser test of the regime map's boundaries, traced in
 // a worker and drawn over the map, each kind named in the key; a click on
-// a curve says what it is and selects its point; the cells that disagree
+// a curve marks it and its point on the map, says what it is beside the
+// map and selects its point; the progress bar stays until the trace ends
+// (the compound set's runs a minute past its cells); the cells that disagree
 // with the side of a curve they lie on are counted and outlined. The gear
 // pair traces its boundaries in seconds; the compound set's default map
 // (the second test) in about a minute.
@@ -78,7 +80,11 @@ async function clickACurve(page, s, before, after) {
   assert.ok(set, s2.query);
   assert.ok(Math.abs(s2.omega - p.omega) <= 3 * perPxOmega, `${s2.omega} vs ${p.omega}`);
   assert.ok(Math.abs(Number(set[1]) - p.value) <= 3 * perPxValue, `${set[1]} vs ${p.value}`);
-  await waitText(page, '#note-map', /Here .* µm\./);
+  // Its sentence beside the map, and the curve marked on it.
+  await waitText(page, '#map-picked', /^◯ Here .* µm\.$/);
+  assert.ok(await page.isVisible('#map-picked'));
+  await waitStatus(page, (x) => x.map_drawn?.picked === true, 30000, 'the picked curve marked');
+  assert.doesNotMatch(await page.textContent('#note-map'), /Here /);
   // The curves depend on everything but the backlash: they are kept.
   assert.equal(s2.map_boundaries.job.id, b.job.id);
   await shot(page.locator('#view-map'), after);
@@ -110,7 +116,14 @@ test('the map draws its traced boundaries, a click on one says what it is and se
 // no Lyapunov curve keep the rest short.
 test('the default map draws its traced boundaries and a click on one selects it', async () => {
   const { page, errors } = await open(h.browser, h.url, 'boundaries=on&bif_points=8&lyap_points=0');
+  // The map's cells end long before its boundaries: the progress bar and
+  // the status line stay until the trace ends.
+  await waitStatus(page, (x) => x.map.finished_ms != null && !x.map_boundaries.finished, 900000, 'the cells done, the trace running');
+  await waitText(page, '#progress-map-label', /^tracing the regime boundaries: \d+%$/);
+  assert.ok(await page.isVisible('#progress-map'), 'the progress bar shows while the trace runs');
+  assert.match(await page.textContent('#status'), /Computing/);
   const s = await boundariesDrawn(page, 900000, 'default map');
+  await page.waitForFunction(() => document.getElementById('progress-map').hidden, null, { timeout: 60000 });
   const b = s.map_boundaries;
   assert.equal(b.job.error, null);
   assert.ok(b.shown >= 2, JSON.stringify(b));

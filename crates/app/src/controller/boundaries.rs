@@ -8,6 +8,18 @@ use crate::views::boundaries::{describe, pick};
 /// How near a click must be to a curve to pick it (pixels).
 pub(super) const PICK_PX: f64 = 6.0;
 
+/// A clicked boundary: what it marks, in a sentence shown beside the map,
+/// and where, marked on it.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct PickedMark {
+    /// What the curve marks, in a sentence.
+    pub(super) sentence: String,
+    /// The curve's place among the boundaries shown.
+    pub(super) curve: usize,
+    /// The picked point `(omega, value)`.
+    pub(super) at: (f64, f64),
+}
+
 impl Controller {
     /// A click at `(omega, value)` of the map, `px` pixels per unit of
     /// Omega and of the value: if it is within [`PICK_PX`] of a shown
@@ -34,7 +46,11 @@ impl Controller {
                 fx.extend(self.select_omega(picked.omega, now_ms));
                 fx
             });
-        self.picked_boundary = r.is_ok().then_some(sentence);
+        self.picked_boundary = r.is_ok().then_some(PickedMark {
+            sentence,
+            curve: picked.curve,
+            at: (picked.omega, v),
+        });
         self.dirty.data(JobKind::Boundaries);
         Some(r)
     }
@@ -46,8 +62,8 @@ impl Controller {
         }
     }
 
-    /// The note under the map: its cells, then the boundaries (how many,
-    /// what the outlined cells mean, what a click picked).
+    /// The note over the map: its cells, then the boundaries (how many,
+    /// what the outlined cells mean, how to learn what a curve marks).
     pub fn map_note_text(&self) -> String {
         let st = self.main.status(JobKind::Map);
         let mut note = crate::views::map::map_note(&self.main.map, st.total);
@@ -71,15 +87,18 @@ impl Controller {
                 crate::plots::boundaries::MARK_LABEL
             ));
         }
-        match &self.picked_boundary {
-            Some(s) => {
-                note.push(' ');
-                note.push_str(s);
-            }
-            None if !shown.is_empty() => note.push_str(" Click a curve to see what it marks."),
-            None => {}
+        if !shown.is_empty() {
+            note.push_str(" Click a curve to see what it marks.");
         }
         note
+    }
+
+    /// What the clicked boundary marks, for beside the map (a ring marks
+    /// its point on the map), if one is clicked.
+    pub fn picked_boundary_text(&self) -> Option<String> {
+        self.picked_boundary
+            .as_ref()
+            .map(|p| format!("◯ {}", p.sentence))
     }
 
     /// The boundaries for the tests: the job, the curves shown by kind,
@@ -116,7 +135,7 @@ impl Controller {
             "finished": b.finished,
             "judged": judged,
             "disagree": disagree.len(),
-            "picked": self.picked_boundary,
+            "picked": self.picked_boundary.as_ref().map(|p| &p.sentence),
         })
     }
 }

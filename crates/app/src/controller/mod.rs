@@ -127,8 +127,9 @@ pub struct Controller {
     export: Option<PendingExport>,
     /// The "Start here" tour's step (0-based), if it is running.
     tour: Option<usize>,
-    /// What the boundary last clicked on the map marks, in a sentence.
-    picked_boundary: Option<String>,
+    /// The boundary last clicked on the map: what it marks, in a sentence,
+    /// and where.
+    picked_boundary: Option<boundaries::PickedMark>,
 }
 
 impl Controller {
@@ -407,6 +408,7 @@ impl Controller {
             _ => None,
         };
         let (boundaries, disagree, _) = self.map_boundaries();
+        let picked = self.picked_boundary.as_ref().map(|p| (p.curve, p.at));
         MapView {
             store: &self.main.map,
             mesh_label: match &self.settings.view.mesh {
@@ -417,6 +419,7 @@ impl Controller {
             boundaries,
             cusps: self.main.boundaries.cusps.clone(),
             disagree,
+            picked,
         }
     }
 

@@ -43,6 +43,7 @@ impl Page {
                 "curve_paths": o.curves.iter().skip(o.curves.len() / 2).map(|l| l.paths.len()).sum::<usize>(),
                 "marks": o.marks.len(),
                 "cusps": o.cusps.len(),
+                "picked": o.picked.is_some(),
             });
         }
         (writes, overlay(&d))
@@ -245,8 +246,9 @@ pub(super) fn overlay(d: &Drawn) -> Vec<Item> {
     ];
     let lines = lines.into_iter().flatten().map(SubPath::Polyline).collect();
     items.push(shape(lines, None, Some("rgba(0,0,0,0.7)")));
-    // The traced boundaries over the cells, then the marks and the cusps.
-    for l in &o.curves {
+    // The traced boundaries over the cells (a clicked one's glow under
+    // them), then the marks, the cusps and the clicked point's ring.
+    for l in o.picked.iter().map(|(l, _)| l).chain(&o.curves) {
         let parts = l
             .paths
             .iter()
@@ -289,6 +291,17 @@ pub(super) fn overlay(d: &Drawn) -> Vec<Item> {
             fill: Some("#fff".into()),
             even_odd: false,
             stroke: Some(("#000".into(), 2.0)),
+        });
+    }
+    if let Some((_, at)) = &o.picked {
+        items.push(Item::Shape {
+            parts: vec![SubPath::Circle {
+                c: DVec2::new(at[0], at[1]),
+                r: 8.0,
+            }],
+            fill: None,
+            even_odd: false,
+            stroke: Some((rgb(plots::boundaries::PICKED), 3.0)),
         });
     }
     items

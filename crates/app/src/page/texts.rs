@@ -69,7 +69,7 @@ impl Page {
         let mut busy = false;
         let mut w = Vec::new();
         for view in ViewId::ALL {
-            let prog = self.ctl.view_status(view).progress(now_ms);
+            let (prog, label) = self.view_progress(view, now_ms);
             busy |= prog.is_some();
             let id = format!("progress-{}", view.key());
             w.push(Write::Hidden {
@@ -89,10 +89,7 @@ impl Page {
                 name: "style",
                 value: format!("width:{:.1}%", 100.0 * frac),
             });
-            w.push(Write::text(
-                &format!("{id}-label"),
-                view.progress_label(done, total),
-            ));
+            w.push(Write::text(&format!("{id}-label"), label));
         }
         w.push(Write::text("status", if busy { COMPUTING } else { "" }));
         // The Copy link's confirmation goes after its two seconds.
@@ -104,6 +101,27 @@ impl Page {
             });
         }
         w
+    }
+
+    /// A view's progress at `now_ms` (done, total) and its label, if it
+    /// shows one. The map's runs on while its boundaries are traced, long
+    /// after its cells (a minute on the compound set): the bar stays
+    /// until the trace ends.
+    fn view_progress(&self, view: ViewId, now_ms: f64) -> (Option<(usize, usize)>, String) {
+        let main = self.ctl.main();
+        let prog = self.ctl.view_status(view).progress(now_ms);
+        let trace = main.status(JobKind::Boundaries).progress(now_ms);
+        match (view, prog, trace) {
+            (ViewId::Map, None, Some((done, total))) => (
+                Some((done, total)),
+                format!(
+                    "tracing the regime boundaries: {}%",
+                    100 * done / total.max(1)
+                ),
+            ),
+            (_, Some((done, total)), _) => (Some((done, total)), view.progress_label(done, total)),
+            _ => (None, String::new()),
+        }
     }
 
     /// The Copy link's confirmation `text`, shown from `now_ms` for
@@ -139,6 +157,12 @@ impl Page {
             }),
             ViewId::Bif if family => computing(self.running(JobKind::Bif)),
             ViewId::Bif => main.status(JobKind::Bif).caption_suffix(),
+            ViewId::Map
+                if main.status(JobKind::Boundaries).running()
+                    && !main.status(JobKind::Map).running() =>
+            {
+                " (tracing the boundaries…)".into()
+            }
             ViewId::Map => main.status(JobKind::Map).map_caption_suffix(),
             ViewId::Lyap => main.status(JobKind::Lyap).caption_suffix(),
             ViewId::Phase | ViewId::Poincare if family => computing(self.running(JobKind::Omega)),
@@ -154,25 +178,35 @@ impl Page {
     /// has one, and the frequency response's full key (one line per entry,
     /// behind "details"; empty for the mesh panels, whose key is complete).
     pub fn note(&self, view: ViewId, fr: Option<&FrView>) -> Vec<Write> {
-        let text = match (view, fr) {
+        match (view, fr) {
             (ViewId::Fr, Some(fr)) if self.ctl.panels().is_some() => {
                 let note = crate::views::fr::fr_panels_note(fr);
-                return vec![
+                vec![
                     Write::text("note-fr", note),
                     Write::text("key-fr", String::new()),
-                ];
+                ]
             }
             (ViewId::Fr, Some(fr)) => {
                 let key = crate::plots::fr_full_key(fr).join("\n");
-                return vec![
+                vec![
                     Write::text("note-fr", crate::views::fr::fr_note(fr)),
                     Write::text("key-fr", key),
-                ];
+                ]
             }
-            (ViewId::Map, _) => self.ctl.map_note_text(),
-            _ => return Vec::new(),
-        };
-        vec![Write::text(&format!("note-{}", view.key()), text)]
+            // The map's note over it; what a clicked boundary marks under it.
+            (ViewId::Map, _) => {
+                let picked = self.ctl.picked_boundary_text();
+                vec![
+                    Write::text("note-map", self.ctl.map_note_text()),
+                    Write::Hidden {
+                        id: "map-picked".into(),
+                        hidden: picked.is_none(),
+                    },
+                    Write::text("map-picked", picked.unwrap_or_default()),
+                ]
+            }
+            _ => Vec::new(),
+        }
     }
 
     /// Everything the tests and the benchmark read: the controller's

@@ -29,6 +29,35 @@ const LIGHT: RGBColor = RGBColor(255, 255, 255);
 pub const MARK: RGBColor = RGBColor(255, 225, 0);
 /// What the mark means, in the key.
 pub const MARK_LABEL: &str = "the periodic branch is not what the gears do here";
+/// The glow under a clicked curve and the ring at its picked point (the
+/// sentence beside the map starts with the same ring).
+pub const PICKED: RGBColor = RGBColor(230, 0, 170);
+
+/// A clicked curve's glow (a wide line under its own) and the ring at its
+/// picked point, in pixels.
+pub fn picked_glow(
+    frame: &PlotFrame,
+    curve: &BoundaryCurve,
+    (omega, value): (f64, f64),
+) -> (OverlayLine, [f64; 2]) {
+    let path = curve
+        .points
+        .iter()
+        .map(|p| {
+            let q = frame.to_px(p.omega, p.value);
+            [q.x, q.y]
+        })
+        .collect();
+    let at = frame.to_px(omega, value);
+    (
+        OverlayLine {
+            color: PICKED,
+            width: style(curve.kind).width + 8.0,
+            paths: vec![path],
+        },
+        [at.x, at.y],
+    )
+}
 
 /// Each kind's style: the jump solid black, period doubling dashed black,
 /// the contact changes white (solid, dashed, dotted).

@@ -43,6 +43,9 @@ pub struct MapOverlay {
     pub cusps: Vec<[f64; 2]>,
     /// Outlines of the cells that disagree with the curves (pixels).
     pub marks: Vec<[f64; 4]>,
+    /// The clicked curve's glow, drawn under the curves, and the ring at
+    /// its picked point, drawn over everything.
+    pub picked: Option<(OverlayLine, [f64; 2])>,
 }
 
 /// Draws the map's axes and key; returns where its cells lie (to map
@@ -144,6 +147,10 @@ pub fn draw_map<DB: DrawingBackend>(
     );
     // The boundaries, their cusps and the cells that disagree with them.
     overlay.curves = curve_lines(&frame, &v.boundaries);
+    overlay.picked = v.picked.and_then(|(i, at)| {
+        let c = v.boundaries.get(i)?;
+        Some(super::boundaries::picked_glow(&frame, c, at))
+    });
     overlay.cusps = v
         .cusps
         .iter()
@@ -223,9 +230,10 @@ pub fn draw_map_overlay<DB: DrawingBackend>(
         root.draw(&PathElement::new(l.to_vec(), line))
             .map_err(err)?;
     }
-    // The traced boundaries, the cells that disagree with them, the cusps.
+    // The traced boundaries (a clicked one's glow under them), the cells
+    // that disagree with them, the cusps, the clicked point's ring.
     let px = |q: &[f64; 2]| (q[0].round() as i32, q[1].round() as i32);
-    for l in &o.curves {
+    for l in o.picked.iter().map(|(l, _)| l).chain(&o.curves) {
         let style = l.color.stroke_width(l.width.round() as u32);
         for p in &l.paths {
             root.draw(&PathElement::new(
@@ -247,6 +255,10 @@ pub fn draw_map_overlay<DB: DrawingBackend>(
             .map_err(err)?;
         root.draw(&Circle::new(px(c), 5, BLACK.stroke_width(2)))
             .map_err(err)?;
+    }
+    if let Some((_, at)) = &o.picked {
+        let ring = super::boundaries::PICKED.stroke_width(3);
+        root.draw(&Circle::new(px(at), 8, ring)).map_err(err)?;
     }
     Ok(())
 }
@@ -451,6 +463,7 @@ mod tests {
             boundaries: Vec::new(),
             cusps: Vec::new(),
             disagree: Vec::new(),
+            picked: None,
         };
         let mut s = String::new();
         let frame = {

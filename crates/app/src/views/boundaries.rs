@@ -227,6 +227,8 @@ pub fn disagreements(
 /// A point of a curve picked by a click.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Picked {
+    /// The picked curve's place in the list picked from.
+    pub curve: usize,
     /// What the curve marks.
     pub kind: BoundaryKind,
     /// The mesh whose contact it follows.
@@ -247,7 +249,7 @@ pub fn pick(
     tolerance_px: f64,
 ) -> Option<Picked> {
     let mut best: Option<(f64, Picked)> = None;
-    for c in curves {
+    for (i, c) in curves.iter().enumerate() {
         for seg in c.points.windows(2) {
             let a = (seg[0].omega * px.0, seg[0].value * px.1);
             let b = (seg[1].omega * px.0, seg[1].value * px.1);
@@ -262,6 +264,7 @@ pub fn pick(
             let d = (p.0 - a.0 - t * dx).hypot(p.1 - a.1 - t * dy);
             if d <= tolerance_px && best.as_ref().is_none_or(|(bd, _)| d < *bd) {
                 let picked = Picked {
+                    curve: i,
                     kind: c.kind,
                     mesh: c.mesh,
                     omega: seg[0].omega + t * (seg[1].omega - seg[0].omega),

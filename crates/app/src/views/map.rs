@@ -224,6 +224,9 @@ pub struct MapView<'a> {
     pub cusps: Vec<(f64, f64)>,
     /// The cells `(row, column)` that disagree with the curves.
     pub disagree: Vec<(u32, u32)>,
+    /// The clicked curve (its place in `boundaries`) and its picked point
+    /// `(omega, value)`, marked on the map.
+    pub picked: Option<(usize, (f64, f64))>,
 }
 
 /// The map's cells as CSV, row by row (the format of `gearshock map --format csv`).

@@ -138,6 +138,7 @@ pub(crate) fn run(args: &FigureArgs) -> Result<Value, Failure> {
         boundaries: shown,
         cusps: boundaries.cusps.clone(),
         disagree: disagree.clone(),
+        picked: None,
     };
     let svg = app::plots::maps::map_svg(&view, SIZE).map_err(|e| Failure {
         code: 1,
