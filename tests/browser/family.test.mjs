@@ -144,10 +144,12 @@ test('the Fig. 2 preset link shows its four mesh panels at once, every TE curve 
   // Choosing a mesh shows it alone, and the link drops the panels.
   await page.selectOption('#sel-mesh', 's2b1');
   await page.waitForFunction(() => !location.search.includes('panels='));
-  // One mesh's plot: 400 pixels high, 480 on a wide screen (this one's
-  // 1500 pixels), where it is drawn wider too.
+  // One mesh's plot again, not the panels' 680: 400 pixels high or a
+  // little more as its key needs (480 on a wide screen, this one's 1500
+  // pixels, where it is drawn wider too).
   await page.waitForFunction(() => document.getElementById('canvas-fr').height < 680, null, { timeout: 60000 });
-  assert.ok(['400', '480'].includes(await page.getAttribute('#canvas-fr', 'height')));
+  const single = Number(await page.getAttribute('#canvas-fr', 'height'));
+  assert.ok(single >= 400 && single <= 520, `height ${single}`);
   assert.deepEqual(errors, []);
   await page.close();
 });

@@ -86,13 +86,13 @@ test('at the Table 1 defaults the frequency response shows time-integration dots
   await waitStatus(page, (x) => x.draws[0] > s.draws[0], 120000, 'a redraw with the dots');
   // The branch is unstable over a range at the defaults: the plot says so in words.
   const sentence = s.fr_sentence ?? '';
-  assert.match(sentence, /^No stable periodic motion between Ω [\d.]+ and [\d.]+( and between [\d.]+ and [\d.]+)*: the dots are the actual response\.$/);
+  assert.match(sentence, /^No stable orbit on the branch between Ω [\d.]+ and [\d.]+( and between [\d.]+ and [\d.]+)*: the dots are the actual response\.$/);
   // The issue's finding: no periodic motion is stable over Ω 1.0-1.6 at the defaults.
   const ranges = [...sentence.matchAll(/([\d.]+) and ([\d.]+)/g)].map((m) => [Number(m[1]), Number(m[2])]);
   assert.ok(ranges.some(([a, b]) => a <= 1.0 && b >= 1.6), sentence);
   // The canvas's text alternative says the same, from the same data.
   await page.waitForFunction(
-    () => /Frequency response of s1a1: peak \d+ µm at Ω [\d.]+.*No stable periodic motion between Ω/.test(document.getElementById('canvas-fr').getAttribute('aria-label') ?? ''),
+    () => /Frequency response of s1a1: peak \d+ µm at Ω [\d.]+.*No stable orbit on the branch between Ω/.test(document.getElementById('canvas-fr').getAttribute('aria-label') ?? ''),
     null,
     { timeout: 60000 },
   );
