@@ -693,16 +693,7 @@ impl Controller {
             "ab_labels": self.ab_labels(),
             "family": self.family_status(),
             "fr_panels": self.panels,
-            // Each panel's (or the single plot's) curves' first-mode peaks:
-            // name, Omega, x (µm).
-            "fr_first_mode_peaks": match &self.panels {
-                Some(_) => self
-                    .fr_panels()
-                    .iter()
-                    .map(|p| p.data.as_ref().map(crate::plots::fr_first_mode_peaks).unwrap_or_default())
-                    .collect::<Vec<_>>(),
-                None => vec![crate::plots::fr_first_mode_peaks(&fr)],
-            },
+            "fr_first_mode_peaks": self.first_mode_peaks(&fr),
             "fr_progress": st(JobKind::HarmonicBalance).progress(now_ms),
             "fr_overlay_progress": st(JobKind::Overlay).progress(now_ms),
             "bif_progress": st(JobKind::Bif).progress(now_ms),

@@ -9,6 +9,25 @@ use crate::panels::mesh_words;
 use crate::views::multiples::{panel_titles, Panel};
 
 impl Controller {
+    /// Each frequency-response panel's (or the single plot's, `fr`)
+    /// curves' first-mode peaks: name, Omega, x (µm), as the plots locate
+    /// them; the tests' status reads them.
+    pub(super) fn first_mode_peaks(&self, fr: &FrView) -> Vec<Vec<(String, f64, f64)>> {
+        match &self.panels {
+            Some(_) => self
+                .fr_panels()
+                .iter()
+                .map(|p| {
+                    p.data
+                        .as_ref()
+                        .map(crate::plots::fr_first_mode_peaks)
+                        .unwrap_or_default()
+                })
+                .collect(),
+            None => vec![crate::plots::fr_first_mode_peaks(fr)],
+        }
+    }
+
     /// The frequency response of each panel's mesh, titled with the mesh
     /// in words ("(a) s1a1 (small sun – short planet a1)"); empty without
     /// panels.
