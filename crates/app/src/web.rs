@@ -282,6 +282,10 @@ fn place_card(
     let Some(card) = card.dyn_ref::<web_sys::HtmlElement>() else {
         return;
     };
+    // The reader went to a control: the page stays where it was scrolled.
+    if docked && !new_step && card.has_attribute("data-at-control") {
+        return;
+    }
     let rect = |e: &Element| {
         let r = e.get_bounding_client_rect();
         [r.left(), r.top(), r.right(), r.bottom()]

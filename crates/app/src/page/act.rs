@@ -98,6 +98,7 @@ impl Page {
             }
             Action::Tour(TourMove::ToTarget) => {
                 if let Some(s) = ctl.tour() {
+                    out.writes.push(at_control(false));
                     out.writes.push(Write::Scroll(TOUR[s].target.into()));
                     out.writes.extend(self.place_tour_card(true));
                 }
@@ -105,6 +106,7 @@ impl Page {
                 Vec::new()
             }
             Action::Tour(m) => {
+                out.writes.push(at_control(false));
                 let now = ctl.tour();
                 let step = match m {
                     TourMove::Start => Some(0),
@@ -407,6 +409,9 @@ impl Page {
                 name: "open",
                 on: true,
             },
+            // The reader is at the control: the docked card no longer
+            // scrolls with the target as the layout shifts below.
+            at_control(true),
             Write::Scroll(format!("control-{key}")),
         ]
     }
@@ -449,5 +454,16 @@ impl Page {
             docked: self.narrow,
             new_step,
         })
+    }
+}
+
+/// Marks the tour's card as showing the reader a control (`on`) or back at
+/// its target: while at a control, the web layer does not scroll the
+/// page with the target.
+fn at_control(on: bool) -> Write {
+    Write::Flag {
+        id: "tour".into(),
+        name: "data-at-control",
+        on,
     }
 }

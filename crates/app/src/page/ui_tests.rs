@@ -403,14 +403,21 @@ fn on_a_phone_the_tour_opens_the_drawer_and_jumps_to_the_control() {
         }
     )));
     let jump = p.act(Action::Tour(TourMove::ToControl), &EventIn::default(), 2.0);
+    // The card is marked at the control, so that a layout shift under it
+    // does not scroll the control away; back at the target, unmarked.
+    let at = |on: bool| Write::Flag {
+        id: "tour".into(),
+        name: "data-at-control",
+        on,
+    };
     assert_eq!(
         jump.writes,
-        vec![open, Write::Scroll("control-mesh".into())]
+        vec![open, at(true), Write::Scroll("control-mesh".into())]
     );
     let back = p.act(Action::Tour(TourMove::ToTarget), &EventIn::default(), 3.0);
     assert_eq!(
-        back.writes.first(),
-        Some(&Write::Scroll("schematic".into()))
+        back.writes[..2],
+        [at(false), Write::Scroll("schematic".into())]
     );
     // Step 3 uses no control: no jump offered.
     for t in [4.0, 5.0] {
