@@ -41,6 +41,15 @@ pub(crate) struct Clipped {
     pub inside: Vec<Peak>,
 }
 
+/// The first mode: the lowest finite natural frequency (Omega).
+fn first_mode(natural: &[f64]) -> Option<f64> {
+    natural
+        .iter()
+        .copied()
+        .filter(|w| w.is_finite())
+        .min_by(f64::total_cmp)
+}
+
 /// One curve's points `(omega, max, min)`, its colour and its name.
 pub(crate) struct Curve<'a> {
     pub points: &'a [(f64, f64, f64)],
@@ -65,12 +74,7 @@ pub(crate) fn clipped_range(curves: &[Curve<'_>], natural: &[f64], extra: &[f64]
         peaks: Vec::new(),
         inside: Vec::new(),
     };
-    let Some(first) = natural
-        .iter()
-        .copied()
-        .filter(|w| w.is_finite())
-        .min_by(f64::total_cmp)
-    else {
+    let Some(first) = first_mode(natural) else {
         return full;
     };
     let near = |w: f64| (w - first).abs() <= WINDOW;
@@ -148,12 +152,7 @@ pub(crate) fn clipped_range(curves: &[Curve<'_>], natural: &[f64], extra: &[f64]
 /// search, for the page's status (a test reads where every member's
 /// resonance lies).
 pub(crate) fn first_mode_peaks(curves: &[Curve<'_>], natural: &[f64]) -> Vec<(String, f64, f64)> {
-    let Some(first) = natural
-        .iter()
-        .copied()
-        .filter(|w| w.is_finite())
-        .min_by(f64::total_cmp)
-    else {
+    let Some(first) = first_mode(natural) else {
         return Vec::new();
     };
     curves

@@ -38,6 +38,31 @@ pub(crate) const UNSTABLE_KEY: &str = "dashed: unstable (a small disturbance gro
 /// rest ([`super::clip`]). The single plot and each panel of several
 /// meshes share it.
 pub(super) fn fr_clipped(v: &FrView, with_overlay: bool) -> super::clip::Clipped {
+    let lists = fr_lists(v, with_overlay);
+    let extra = contact_levels(&v.backlash_um, &v.pinned_backlash_um, v.whole_clearance);
+    super::clip::clipped_range(&curves(&lists), &natural_in_range(v), &extra)
+}
+
+/// Each current curve's first-mode peak, `(name, Omega, x µm)`, as the
+/// plot locates it (see [`super::clip`]).
+pub fn fr_first_mode_peaks(v: &FrView) -> Vec<(String, f64, f64)> {
+    // The lists follow the branches one for one (no overlay asked for).
+    let lists: Vec<_> = fr_lists(v, false)
+        .into_iter()
+        .zip(&v.branches)
+        .filter(|(_, b)| !b.faded)
+        .map(|(l, _)| l)
+        .collect();
+    super::clip::first_mode_peaks(&curves(&lists), &natural_in_range(v))
+}
+
+/// One curve for the clipping: its points in the Omega range, its max and
+/// min colours, and its name where there are several current curves.
+type CurveList = (Points, (RGBColor, RGBColor), Option<String>);
+
+/// Every branch's curve (faded ones too), then the overlay's dots
+/// (`with_overlay`).
+fn fr_lists(v: &FrView, with_overlay: bool) -> Vec<CurveList> {
     let in_range = |o: f64| o >= v.omega_from && o <= v.omega_to;
     let pts = |ps: &[FrCurvePoint]| -> Points {
         ps.iter()
@@ -46,7 +71,7 @@ pub(super) fn fr_clipped(v: &FrView, with_overlay: bool) -> super::clip::Clipped
             .collect()
     };
     let several = v.branches.iter().filter(|b| !b.faded).count() > 1;
-    let mut lists: Vec<(Points, (RGBColor, RGBColor), Option<String>)> = v
+    let mut lists: Vec<CurveList> = v
         .branches
         .iter()
         .map(|b| {
@@ -65,57 +90,28 @@ pub(super) fn fr_clipped(v: &FrView, with_overlay: bool) -> super::clip::Clipped
             several.then(|| "dots".to_string()),
         ));
     }
-    let curves: Vec<super::clip::Curve<'_>> = lists
+    lists
+}
+
+/// The clipping's view of `lists`.
+fn curves(lists: &[CurveList]) -> Vec<super::clip::Curve<'_>> {
+    lists
         .iter()
         .map(|(points, colors, label)| super::clip::Curve {
             points,
             colors: *colors,
             label: label.clone(),
         })
-        .collect();
-    let natural: Vec<f64> = v
-        .natural
-        .iter()
-        .map(|n| n.omega)
-        .filter(|&w| in_range(w))
-        .collect();
-    let extra = contact_levels(&v.backlash_um, &v.pinned_backlash_um, v.whole_clearance);
-    super::clip::clipped_range(&curves, &natural, &extra)
+        .collect()
 }
 
-/// Each current curve's first-mode peak, `(name, Omega, x µm)`, as the
-/// plot locates it (see [`super::clip`]).
-pub fn fr_first_mode_peaks(v: &FrView) -> Vec<(String, f64, f64)> {
-    let in_range = |o: f64| o >= v.omega_from && o <= v.omega_to;
-    let lists: Vec<(Points, String)> = v
-        .branches
-        .iter()
-        .filter(|b| !b.faded)
-        .map(|b| {
-            let pts = b
-                .points
-                .iter()
-                .filter(|p| in_range(p.omega))
-                .map(|p| (p.omega, p.max_um, p.min_um))
-                .collect();
-            (pts, b.label.clone())
-        })
-        .collect();
-    let curves: Vec<super::clip::Curve<'_>> = lists
-        .iter()
-        .map(|(points, label)| super::clip::Curve {
-            points,
-            colors: (BLACK, BLACK),
-            label: Some(label.clone()),
-        })
-        .collect();
-    let natural: Vec<f64> = v
-        .natural
+/// The natural frequencies in the Omega range.
+fn natural_in_range(v: &FrView) -> Vec<f64> {
+    v.natural
         .iter()
         .map(|n| n.omega)
-        .filter(|&w| in_range(w))
-        .collect();
-    super::clip::first_mode_peaks(&curves, &natural)
+        .filter(|&w| w >= v.omega_from && w <= v.omega_to)
+        .collect()
 }
 
 fn fr_y_range(v: &FrView) -> (f64, f64) {

@@ -233,12 +233,7 @@ pub fn map_label(map: &MapStore) -> String {
     } else {
         "backlash"
     };
-    let parts: Vec<String> = Regime::ALL
-        .iter()
-        .zip(by)
-        .filter(|(_, n)| *n > 0)
-        .map(|(r, n)| format!("{n} {}", r.label()))
-        .collect();
+    let parts = crate::views::map::regime_counts(&by);
     let mut s = format!(
         "Impact-regime map over Ω {} to {} and {axis} {} to {} µm, {} of {} cells",
         short(g.omega_from),

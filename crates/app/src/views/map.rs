@@ -274,17 +274,22 @@ pub fn map_json(store: &MapStore) -> serde_json::Value {
     serde_json::json!({ "grid": store.grid, "cells": cells })
 }
 
+/// Every regime present with its count, by its one label, in the fixed
+/// order ("36 no gap (linear contact)"), from [`MapStore::counts`].
+pub fn regime_counts(by: &[usize; Regime::ALL.len()]) -> Vec<String> {
+    Regime::ALL
+        .iter()
+        .zip(by)
+        .filter(|(_, n)| **n > 0)
+        .map(|(r, n)| format!("{n} {}", r.label()))
+        .collect()
+}
+
 /// The note under the map: cells done, counts per regime, failures with
 /// an example, and what a click does.
 pub fn map_note(store: &MapStore, total: usize) -> String {
     let (by, not_p1, failed) = store.counts();
-    // Every regime by its one label, in the fixed order, those present.
-    let parts: Vec<String> = Regime::ALL
-        .iter()
-        .zip(by)
-        .filter(|(_, n)| *n > 0)
-        .map(|(r, n)| format!("{n} {}", r.label()))
-        .collect();
+    let parts = regime_counts(&by);
     let parts = if parts.is_empty() {
         "none yet".to_string()
     } else {
