@@ -28,11 +28,13 @@ pub const MAX_SAMPLES: u64 = 2_000_000;
 /// coordinate, so its work grows like the cube; this allows every point
 /// count up to H = 27 and some hours at H = 40.
 pub const MAX_FRF_WORK: u64 = 2_000_000_000;
-/// Most `--levels x --points x (2 --harmonics + 1)^3` of one boundary
-/// trace: each level is a frequency response of `--points`, and each curve
-/// point a corrector whose iterations assemble some seven Jacobians, so a
-/// tenth of a frequency response's budget per level.
-pub const MAX_BOUNDARY_WORK: u64 = 200_000_000;
+/// Most work units one boundary trace may take, as its estimate before it
+/// starts gives them (`BoundarySpec::estimated_work`, in the units of
+/// `solver::hbm::HbmCost`, about a microsecond of one core each): about an
+/// hour. The estimate knows the model: its unknowns, channels and
+/// resonances in the range (the compound set's default trace, 50 million
+/// units measured, 42 s; the gear pair's, 0.8 million, 0.6 s).
+pub const MAX_BOUNDARY_WORK: f64 = 3.6e9;
 
 /// Steps a mesh period takes for accuracy alone, whatever the stiffness
 /// (measured on the default model: 18 to 67 between Omega 2 and 0.1).
@@ -86,6 +88,33 @@ impl StepCost {
             .sum::<f64>()
             / f64::from(n)
     }
+}
+
+/// The largest value in `lo ..= hi` whose work `work(value)` is at most
+/// `max` (the work grows with the value), or `None` if `lo`'s is over.
+pub fn largest_within(
+    lo: u32,
+    hi: u32,
+    max: f64,
+    work: impl Fn(u32) -> Result<f64, Failure>,
+) -> Result<Option<u32>, Failure> {
+    if work(lo)? > max {
+        return Ok(None);
+    }
+    if work(hi)? <= max {
+        return Ok(Some(hi));
+    }
+    // `ok` fits, `over` does not.
+    let (mut ok, mut over) = (lo, hi);
+    while over - ok > 1 {
+        let mid = ok + (over - ok) / 2;
+        if work(mid)? <= max {
+            ok = mid;
+        } else {
+            over = mid;
+        }
+    }
+    Ok(Some(ok))
 }
 
 /// Checks `periods` mesh periods (the product `formula` of the options) at

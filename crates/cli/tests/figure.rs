@@ -163,6 +163,39 @@ fn figure_fig5_writes_three_phase_portraits_and_three_poincare_sections() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// The map's budget knows the model: where its periods' budget is over
+/// the limit (stiff planet meshes take some ten times the steps a period),
+/// a few pilot cells price a cell, and an undamped stiff set's cells,
+/// which neither settle nor show chaos, are refused before the map starts.
+#[test]
+fn figure_map_over_its_budget_is_refused_before_it_starts() {
+    let dir = test_support::cli::temp_dir("figure-map-budget");
+    let out = dir.join("never-written");
+    let link = "damping_ratio=0&stiffness_ab_n_m=1e12&stiffness_rb_n_m=1e12\
+                &map_omega_points=200&map_value_points=100\
+                &map_transient_periods=3000&map_record_periods=1000";
+    let o = gearshock(&[
+        "figure",
+        "map",
+        "--out",
+        out.to_str().unwrap(),
+        "--link",
+        link,
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    for needle in [
+        "figure map --link",
+        "integration steps",
+        "4e9",
+        "map_omega_points x map_value_points ..= ",
+    ] {
+        assert!(err.contains(needle), "{needle}: {err}");
+    }
+    assert!(!out.exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn figure_map_draws_a_links_map_with_the_boundaries_the_boundaries_command_traces() {
     let dir = test_support::cli::temp_dir("figure-map");

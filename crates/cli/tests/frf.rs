@@ -71,6 +71,29 @@ fn frf_bad_options_exit_2_naming_them() {
     }
 }
 
+/// A shooting branch's budget knows the model: its pilot prices a period
+/// (the compound set's 18 tangents make a branch point some 12 000
+/// integration steps), and a branch over it is refused before any work,
+/// naming the points that fit.
+#[test]
+fn a_shooting_branch_over_its_budget_is_refused_naming_the_points_that_fit() {
+    let out = gearshock(&words(
+        "frf --method shooting --omega-from 0.4 --omega-to 20 --points 100000",
+    ));
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    for needle in [
+        "--points 100000",
+        "integration steps",
+        "4e9",
+        "allowed --points 2 ..= ",
+    ] {
+        assert!(err.contains(needle), "{needle}: {err}");
+    }
+    assert!(out.stdout.is_empty());
+}
+
 /// `frf --method shooting`: the same JSON branch (omega, stable,
 /// bifurcation) plus each point's period; the gear pair's two folds bound
 /// its hysteresis band, a period doubling starts a period-2 branch, and

@@ -70,6 +70,8 @@ pub fn boundaries_json(
             "level_points": t.stats.level_points,
             "curve_points": t.stats.curve_points,
             "newton_iterations": t.stats.newton_iterations,
+            "work_units": t.stats.work(),
+            "work_units_estimated": t.estimated_work().round() as u64,
         },
     })
 }

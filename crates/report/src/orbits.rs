@@ -50,6 +50,7 @@ pub fn shooting_frf_json(
             "newton_iterations": s.newton_iterations,
             "rejected_steps": s.rejected_steps,
             "integrator_steps": s.integrator_steps,
+            "work_steps": s.work_steps,
         },
     })
 }

@@ -6,7 +6,7 @@
 //! with code 1.
 
 use crate::args::{KeyRange, OmegaRange, ParamArgs};
-use crate::budget::MAX_BOUNDARY_WORK;
+use crate::budget::{largest_within, MAX_BOUNDARY_WORK};
 use crate::csv;
 use crate::failure::{usage, Failure};
 use crate::output::{note, output};
@@ -15,6 +15,7 @@ use clap::Args;
 use solver::boundaries::{BoundarySpec, BoundaryTrace};
 use solver::hbm::Method;
 use solver::keys;
+use solver::params::ModelParams;
 use solver::SolverError;
 
 /// Options of `gearshock boundaries`.
@@ -75,6 +76,58 @@ impl Sweep for Trace {
     }
 }
 
+/// Checks a trace's estimated work on `params` against
+/// [`MAX_BOUNDARY_WORK`]; over it, refuses naming the estimate and the
+/// points (or else the harmonics) that would fit. `context` prefixes the
+/// refusal (`figure map --link ` names the link's settings instead of
+/// flags: `points` and `harmonics` then).
+pub(crate) fn check_trace(
+    params: &ModelParams,
+    spec: &BoundarySpec,
+    context: &str,
+) -> Result<(), Failure> {
+    let work = spec.estimated_work(params)?;
+    if work <= MAX_BOUNDARY_WORK {
+        return Ok(());
+    }
+    let with = |f: &dyn Fn(&mut BoundarySpec)| {
+        let mut s = spec.clone();
+        f(&mut s);
+        s.estimated_work(params).map_err(Failure::from)
+    };
+    let flag = |name: &str| {
+        if context.is_empty() {
+            format!("--{name}")
+        } else {
+            name.to_string()
+        }
+    };
+    let fits = match largest_within(10, spec.points, MAX_BOUNDARY_WORK, |p| {
+        with(&|s| s.points = p)
+    })? {
+        Some(p) => format!(
+            "{} 10 ..= {p} at {} {}",
+            flag("points"),
+            flag("harmonics"),
+            spec.harmonics
+        ),
+        None => match largest_within(1, spec.harmonics as u32, MAX_BOUNDARY_WORK, |h| {
+            with(&|s| {
+                s.points = 10;
+                s.harmonics = h as usize;
+            })
+        })? {
+            Some(h) => format!("{} 1 ..= {h} at {} 10", flag("harmonics"), flag("points")),
+            None => "a narrower Omega range or fewer levels".to_string(),
+        },
+    };
+    Err(usage(format!(
+        "{context}boundaries: about {work:.1e} work units (about a microsecond each) on this model, \
+         over the {MAX_BOUNDARY_WORK:.1e} one trace may take: allowed {fits}, --levels {}",
+        spec.levels
+    )))
+}
+
 /// Checks the options and the budget, traces the curves and prints them.
 pub fn run(a: &BoundariesArgs) -> Result<(), Failure> {
     let (params, model) = a.p.load()?;
@@ -100,17 +153,8 @@ pub fn run(a: &BoundariesArgs) -> Result<(), Failure> {
         }
     };
     // Out-of-range levels, points and harmonics are refused by the
-    // solver's own check, naming them; the budget is their product.
-    if (2..=50).contains(&a.levels) && (10..=2000).contains(&a.points) && a.harmonics <= 40 {
-        let work = u64::from(a.levels) * u64::from(a.points) * (2 * a.harmonics as u64 + 1).pow(3);
-        if work > MAX_BOUNDARY_WORK {
-            return Err(usage(format!(
-                "--levels {} x --points {} x (2 x --harmonics {} + 1)^3 = {work} is more than the {} \
-                 one boundary trace may take: use fewer levels, points or harmonics",
-                a.levels, a.points, a.harmonics, MAX_BOUNDARY_WORK
-            )));
-        }
-    }
+    // estimate's own check (the solver's), naming them.
+    check_trace(&params, &spec, "")?;
     let mut run = Trace {
         t: BoundaryTrace::new(&params, spec)?,
         failure: None,

@@ -3,7 +3,7 @@
 //! there, marked incomplete, and exits with code 1.
 
 use crate::args::{meshes, OmegaRange, ParamArgs};
-use crate::budget::MAX_FRF_WORK;
+use crate::budget::{largest_within, MAX_FRF_WORK, MAX_STEPS};
 use crate::csv;
 use crate::failure::{usage, Failure};
 use crate::output::{note, output};
@@ -157,6 +157,29 @@ pub fn run(a: &FrfArgs) -> Result<(), Failure> {
     }
 }
 
+/// Checks a shooting branch's estimated work (`ShootFrfSpec::estimate`:
+/// a pilot integration prices a period on this model) against
+/// [`MAX_STEPS`]; over it, refuses naming the estimate and the points that
+/// would fit.
+fn check_shooting(model: &solver::steady::Model, spec: &ShootFrfSpec) -> Result<(), Failure> {
+    let est = spec.estimate(model)?;
+    let work = est.work(spec.points);
+    if work <= MAX_STEPS {
+        return Ok(());
+    }
+    let fits = largest_within(2, spec.points, MAX_STEPS, |p| Ok(est.work(p)))?;
+    Err(usage(format!(
+        "frf --method shooting --points {}: about {work:.1e} integration steps ({:.0} a branch point \
+         on this model), over the {MAX_STEPS:.0e} limit: allowed {}",
+        spec.points,
+        est.steps_per_point,
+        match fits {
+            Some(p) => format!("--points 2 ..= {p} over this Omega range"),
+            None => "a narrower Omega range".to_string(),
+        }
+    )))
+}
+
 /// `--method shooting`: the periodic branches by shooting continuation.
 fn run_shooting(a: &FrfArgs) -> Result<(), Failure> {
     let (params, model) = a.p.load()?;
@@ -170,6 +193,7 @@ fn run_shooting(a: &FrfArgs) -> Result<(), Failure> {
     spec.period = a.period;
     spec.switch_branches = !a.no_switch;
     let meshes = meshes(&model, a.mesh.as_deref())?;
+    check_shooting(&model, &spec)?;
     let mut c = ShootingContinuation::new(&model, spec)?;
     let mut points = vec![c.first_point()?];
     let mut failure = None;

@@ -37,6 +37,7 @@ type Monodromies = (DMatrix<f64>, Option<DMatrix<f64>>);
 
 /// The monodromy matrices of the orbit `x` at `(omega, p)`.
 fn monodromies(fam: &mut Family, x: &[f64], omega: f64, p: f64) -> Result<Monodromies> {
+    fam.integrated_monodromy(omega);
     let asm = fam.assembly(p)?;
     monodromy_matrices(asm, x, omega).ok_or_else(|| SolverError::Singular {
         what: format!("monodromy at Omega = {omega}"),
@@ -200,6 +201,7 @@ pub(crate) fn eval(
     let (g, v) = bordered_solve(&a, b, c, omega)?;
     let scale = 1.0 + inf_norm(x);
     let (dx_om, dx_p) = if full || frozen.is_none() {
+        fam.factored(nx);
         branch_motion(&j, &r_p)
     } else {
         (DVector::zeros(nx), DVector::zeros(nx))

@@ -6,7 +6,7 @@
 
 use crate::error::{Result, SolverError};
 use crate::hbm::harmonic::Grid;
-use crate::hbm::{Assembly, HbmModel, Method};
+use crate::hbm::{Assembly, HbmCost, HbmModel, Method};
 use crate::keys::{self, KeyType, Value};
 use crate::model::Model;
 use crate::params::ModelParams;
@@ -32,6 +32,11 @@ pub(crate) struct Family {
     cache: Vec<(u64, Assembly)>,
     /// The grid every assembly of the family shares (built once).
     grid: Grid,
+    /// What its operations cost.
+    cost: HbmCost,
+    /// Work units spent so far ([`HbmCost`]): every evaluation, assembly,
+    /// monodromy and factorization the curves made.
+    pub(crate) work: f64,
 }
 
 impl Family {
@@ -59,7 +64,10 @@ impl Family {
                 })
             }
         };
+        let hbm = HbmModel::from_system(&MeshSystem::build(base)?, symmetric)?;
         Ok(Family {
+            cost: HbmCost::of(&hbm, Assembly::harmonics(h, method)),
+            work: 0.0,
             base: base.clone(),
             key: key.into(),
             method,
@@ -98,6 +106,7 @@ impl Family {
         let index = match self.cache.iter().position(|(b, _)| *b == bits) {
             Some(i) => i,
             None => {
+                self.work += self.cost.assembly();
                 let hbm = self.hbm_at(p)?;
                 if self.cache.len() >= CACHE {
                     self.cache.remove(0);
@@ -129,6 +138,11 @@ impl Family {
         r: &mut [f64],
         jac: Option<&mut DMatrix<f64>>,
     ) -> Result<()> {
+        self.work += if jac.is_some() {
+            self.cost.jacobian()
+        } else {
+            self.cost.residual()
+        };
         self.assembly(p)?.evaluate(x, omega, r, jac);
         if r.iter().all(|v| v.is_finite()) {
             Ok(())
@@ -139,6 +153,26 @@ impl Family {
                 iterations: 0,
             })
         }
+    }
+
+    /// What its operations cost.
+    pub(crate) fn cost(&self) -> HbmCost {
+        self.cost
+    }
+
+    /// Counts the factorization of a dense matrix of size `n`.
+    pub(crate) fn factored(&mut self, n: usize) {
+        self.work += HbmCost::factor(n);
+    }
+
+    /// Counts `units` of other work.
+    pub(crate) fn spend(&mut self, units: f64) {
+        self.work += units;
+    }
+
+    /// Counts a monodromy matrix at `omega`.
+    pub(crate) fn integrated_monodromy(&mut self, omega: f64) {
+        self.work += self.cost.monodromy(omega);
     }
 
     /// Whether the key changes only what the harmonic balance's laws, loads

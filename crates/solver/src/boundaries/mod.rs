@@ -7,6 +7,7 @@
 //!
 //! - [`bordered`]: what the systems share (an evaluation, the bordered test).
 //! - [`doubling`]: the period-doubling test function on the monodromy.
+//! - [`estimate`]: what a trace will cost, before it starts.
 //! - [`family`]: the harmonic-balance residual as a function of `p`.
 //! - [`systems`]: the augmented systems (the branch equations plus the
 //!   condition that vanishes on the boundary).
@@ -34,6 +35,7 @@
 
 mod bordered;
 mod doubling;
+mod estimate;
 mod family;
 mod run;
 mod starts;
@@ -318,6 +320,19 @@ pub struct BoundaryStats {
     pub curve_points: u64,
     /// Newton iterations of the curves' correctors.
     pub newton_iterations: u64,
+    /// Work units ([`crate::hbm::HbmCost`]) of the seeding branches: their
+    /// Newton iterations and monodromies.
+    pub level_work: u64,
+    /// Work units of the curves: every evaluation, assembly, monodromy and
+    /// factorization of their correctors.
+    pub curve_work: u64,
+}
+
+impl BoundaryStats {
+    /// Work units of the whole trace.
+    pub fn work(&self) -> u64 {
+        self.level_work + self.curve_work
+    }
 }
 
 /// The keys whose value the trace can vary: those that change only the
@@ -357,12 +372,14 @@ pub struct BoundaryTrace {
     notes: Vec<String>,
     /// Work so far.
     pub stats: BoundaryStats,
+    /// The work estimated before it started ([`BoundarySpec::estimated_work`]).
+    estimated_work: f64,
 }
 
 impl BoundaryTrace {
     /// Prepares the trace; bad options and keys fail here, naming them.
     pub fn new(base: &ModelParams, spec: BoundarySpec) -> Result<Self> {
-        spec.validate(base)?;
+        let estimated_work = spec.estimated_work(base)?;
         let fam = Family::new(
             base,
             &spec.key,
@@ -393,7 +410,14 @@ impl BoundaryTrace {
             cusps: Vec::new(),
             notes: Vec::new(),
             stats: BoundaryStats::default(),
+            estimated_work,
         })
+    }
+
+    /// The work units estimated before the trace started
+    /// ([`BoundarySpec::estimated_work`]), beside [`BoundaryStats::work`].
+    pub fn estimated_work(&self) -> f64 {
+        self.estimated_work
     }
 
     /// The options.
@@ -448,6 +472,7 @@ impl BoundaryTrace {
                 self.begin_next_curve();
                 done += 1;
             }
+            self.stats.curve_work = self.fam.work.round() as u64;
         }
         Ok(done)
     }
@@ -480,6 +505,11 @@ impl BoundaryTrace {
             self.level_run = Some((c, points));
             return Ok(got);
         }
+        let cost = self.fam.cost();
+        let work = c.stats.jacobians as f64 * cost.newton_iteration()
+            + c.stats.monodromies as f64
+                * cost.mean_monodromy(self.spec.omega_from, self.spec.omega_to);
+        self.stats.level_work += work.round() as u64;
         if let Some(e) = failed {
             self.notes.push(format!(
                 "The branch at {} = {p} failed ({e}); its points before the failure seed the curves.",

@@ -30,6 +30,7 @@ use super::family::Family;
 use super::CurveKind;
 use crate::error::{Result, SolverError};
 use crate::hbm::harmonic::{n_coef, te_real_coefficients};
+use crate::hbm::HbmCost;
 use nalgebra::{DMatrix, DVector};
 
 /// The condition a curve follows.
@@ -89,6 +90,7 @@ impl System {
         let mut j = DMatrix::zeros(nx, nx + 1);
         fam.evaluate(x, omega, p, &mut r, Some(&mut j))?;
         let jx = j.columns(0, nx).into_owned();
+        fam.spend(5.0 * HbmCost::factor(nx));
         let svd = jx.svd(true, true);
         let (u, vt) = match (svd.u, svd.v_t) {
             (Some(u), Some(vt)) => (u, vt),
@@ -197,6 +199,8 @@ fn fold_eval(
     };
     let mut e = DVector::zeros(nx + 1);
     e[nx] = 1.0;
+    fam.factored(nx + 1);
+    fam.factored(nx + 1);
     let sol = crate::dense::Lu::new(a.clone())
         .solve(&e)
         .ok_or_else(singular)?;
@@ -362,6 +366,7 @@ fn contact_eval(
     // The extremum's rate of change along the branch (theta* drops out:
     // x' = 0 there): dX = -J^-1 (R_Omega dOmega + R_p dp).
     let (g_om, g_p) = if full {
+        fam.factored(nx);
         let (dx_om, dx_p) = branch_motion(&j, &r_p);
         (c1_x.dot(&dx_om), c1_x.dot(&dx_p) + c1_p)
     } else {

@@ -17,6 +17,7 @@ use super::family::Family;
 use super::systems::System;
 use crate::error::{Result, SolverError};
 use crate::hbm::continuation::overshoot;
+use crate::hbm::HbmCost;
 use nalgebra::{DMatrix, DVector};
 use std::f64::consts::PI;
 
@@ -98,6 +99,13 @@ pub(crate) struct Tracer {
     pub(crate) newton_iterations: u64,
 }
 
+/// A curve's point budget in each direction at the largest step
+/// `ds_max`: twelve times across the box at that step; more is a curve
+/// wound up where its conditions degenerate.
+pub(crate) fn max_steps(ds_max: f64) -> usize {
+    (12.0 / ds_max) as usize + 100
+}
+
 fn rms(v: &[f64]) -> f64 {
     if v.is_empty() {
         return 0.0;
@@ -153,9 +161,7 @@ impl Tracer {
             ds: 0.25 * ds_max,
             ds_max,
             steps: 0,
-            // Twelve times across the box at the largest step: more is a
-            // curve wound up where its conditions degenerate.
-            max_steps: (12.0 / ds_max) as usize + 100,
+            max_steps: max_steps(ds_max),
             crawl: 0,
             last: None,
             newton_iterations: 0,
@@ -173,6 +179,8 @@ impl Tracer {
         // The tangent: the null vector of the system's Jacobian.
         let mut sq = DMatrix::zeros(n, n);
         sq.view_mut((0, 0), (n - 1, n)).copy_from(&ev.jac);
+        // A singular value decomposition: some five factorizations' work.
+        fam.spend(5.0 * HbmCost::factor(n));
         let svd = sq.svd(false, true);
         let vt = svd.v_t.ok_or_else(|| SolverError::Singular {
             what: "tangent of a boundary curve".into(),
@@ -290,6 +298,7 @@ impl Tracer {
                 g[n - 1] += row[i] * (z[i] - pred[i]);
             }
             last_res = ev.res.amax();
+            fam.factored(n);
             let dz = crate::dense::Lu::new(a)
                 .solve(&g)
                 .ok_or_else(|| SolverError::Singular {
@@ -382,6 +391,7 @@ impl Tracer {
             let outcome = self
                 .correct(fam, &pred, &row, true)
                 .and_then(|(z, ev, it)| {
+                    fam.factored(n);
                     let t = self
                         .tangent(&ev, &row)
                         .ok_or_else(|| SolverError::Singular {

@@ -8,11 +8,13 @@
 //!   seed's describing function, the multiplication operator.
 //! - [`assembly`]: residual and analytic Jacobian.
 //! - [`stability`]: monodromy matrix and Floquet multipliers.
+//! - [`cost`]: what each of these operations costs on a model, in work units.
 //! - [`continuation`]: Newton, pseudo-arclength continuation in Omega,
 //!   folds, stability changes and restarts (the frequency response).
 
 pub mod assembly;
 pub mod continuation;
+pub mod cost;
 pub mod harmonic;
 pub mod model;
 pub mod stability;
@@ -23,5 +25,6 @@ pub use continuation::{
     LeftOutReason, PieceEnd, Restart, StepControl, DEFAULT_STABILITY_STRIDE,
     SAMPLED_STABILITY_STRIDE,
 };
+pub use cost::HbmCost;
 pub use model::{HbmModel, Reduction};
 pub use stability::Floquet;

@@ -37,10 +37,12 @@ use nalgebra::{DMatrix, DVector};
 use replay::{Halt, Replay, Step};
 
 mod chord;
+mod estimate;
 mod locate;
 mod replay;
 
 use chord::Jacobian;
+pub use estimate::ShootEstimate;
 
 /// Options of a shooting frequency response.
 #[derive(Debug, Clone, PartialEq)]
@@ -125,6 +127,10 @@ pub struct ShootFrfStats {
     pub rejected_steps: u64,
     /// Integrator steps over every evaluation.
     pub integrator_steps: u64,
+    /// The work of those steps, in integration steps: a step carrying the
+    /// monodromy's `n` tangent vectors counts `1 + n` (as
+    /// [`ShootingContinuation::advance_within`] charges it).
+    pub work_steps: u64,
     /// Evaluations of the map that failed (a predictor far out of range,
     /// a blow-up), counted as the one-shot run counts them however a run
     /// is sliced.
@@ -210,7 +216,15 @@ impl ShootingContinuation {
         };
         let mut opts = spec.shooting.clone();
         opts.period = spec.period;
+        // The first orbit's Newton integrates the monodromy at every
+        // iterate (no Broyden): its steps count as carrying the tangents.
+        let tangent_cost = 1 + Reduced::new(model, omega0).dim() as u64;
+        let steps_of = |o: &ShootOutcome| match o {
+            ShootOutcome::Converged(o) => o.steps,
+            ShootOutcome::Failed(f) => f.steps,
+        };
         let mut out = shoot(model, omega0, &model.static_state(), &opts)?;
+        let mut first_work = steps_of(&out) * tangent_cost;
         if !matches!(out, ShootOutcome::Converged(_)) {
             // From the static state Newton may be too far: settle a while first.
             let mut so = SteadyOptions::new(omega0);
@@ -218,6 +232,7 @@ impl ShootingContinuation {
             so.samples_per_period = 0;
             let ss = steady_state(model, &so, None)?;
             out = shoot(model, omega0, &ss.end_state, &opts)?;
+            first_work += ss.stats.integrator.steps + steps_of(&out) * tangent_cost;
         }
         let orbit = match out {
             ShootOutcome::Converged(o) => o,
@@ -251,7 +266,10 @@ impl ShootingContinuation {
             pending: Vec::new(),
             pieces: 0,
             notes: Vec::new(),
-            stats: ShootFrfStats::default(),
+            stats: ShootFrfStats {
+                work_steps: first_work,
+                ..ShootFrfStats::default()
+            },
             replay: Replay::default(),
         };
         let (_, solved) = me.unbounded(|me| me.evaluate(&y, me.spec.period))?;

@@ -155,8 +155,10 @@ impl ShootingContinuation {
     ) -> Step<(Vec<f64>, Option<DMatrix<f64>>)> {
         let key = Key::new(z, omega, period, u8::from(mono));
         let red = Reduced::new(&self.model, omega);
+        let cost = 1 + if mono { red.dim() as u64 } else { 0 };
         if let Some((v, taken)) = self.replay.recorded(&key) {
             self.stats.integrator_steps += taken;
+            self.stats.work_steps += taken * cost;
             return match v {
                 Value::Map(g, m) => Ok((g, m)),
                 Value::Failed(e) => {
@@ -203,7 +205,6 @@ impl ShootingContinuation {
                 (run, 0)
             }
         };
-        let cost = 1 + if mono { red.dim() as u64 } else { 0 };
         let allowed = (self.replay.budget / cost).max(1);
         let before = taken;
         let out = run.advance(&red, allowed, &mut taken);
@@ -216,6 +217,7 @@ impl ShootingContinuation {
             Err(e) => {
                 self.replay.record(key, Value::Failed(e.clone()), taken);
                 self.stats.integrator_steps += taken;
+                self.stats.work_steps += taken * cost;
                 self.stats.failed_evaluations += 1;
                 return Err(Halt::Fail(e));
             }
@@ -226,6 +228,7 @@ impl ShootingContinuation {
                 self.replay
                     .record(key, Value::Map(g.clone(), v.monodromy.clone()), taken);
                 self.stats.integrator_steps += taken;
+                self.stats.work_steps += taken * cost;
                 Ok((g, v.monodromy))
             }
             None => {
@@ -241,6 +244,7 @@ impl ShootingContinuation {
         let key = Key::new(z, omega, period, 2);
         if let Some((v, taken)) = self.replay.recorded(&key) {
             self.stats.integrator_steps += taken;
+            self.stats.work_steps += taken;
             return match v {
                 Value::Extremes(m) => Ok(m),
                 Value::Map(..) | Value::Failed(_) => Err(Halt::Fail(SolverError::Singular {
@@ -256,6 +260,7 @@ impl ShootingContinuation {
         self.replay
             .record(key, Value::Extremes(meshes.clone()), taken);
         self.stats.integrator_steps += taken;
+        self.stats.work_steps += taken;
         Ok(meshes)
     }
 

@@ -7,7 +7,7 @@
 //! link's grid, mesh, periods and harmonics, 5 levels and 50 points.
 
 use super::{write_all, FigureArgs, Files};
-use crate::budget::{check_work, StepCost, MAX_BOUNDARY_WORK};
+use crate::budget::{largest_within, StepCost, MAX_BOUNDARY_WORK, MAX_STEPS};
 use crate::failure::{usage, Failure};
 use crate::{output, progress};
 use app::protocol::{BoundaryCurve, MapSample};
@@ -18,10 +18,63 @@ use app::views::map::{map_csv, map_json, MapGrid, MapStore, MapView};
 use serde_json::{json, Value};
 use solver::boundaries::{BoundarySpec, BoundaryTrace};
 use solver::map::{MapSpec, RegimeMap};
+use solver::params::ModelParams;
 use solver::steady::Model;
 
 /// Size of the SVG (the page's map canvas).
 const SIZE: (u32, u32) = (app::plots::WIDTH, 460);
+
+/// Checks the map's cells against [`MAX_STEPS`]: their periods' budget
+/// first (every cell running its whole transient), and where that is over,
+/// the estimate from a few pilot cells (most cells settle or find chaos
+/// long before their budget); over that too, refuses naming the estimate
+/// and how many cells would fit.
+fn check_cells(
+    model: &Model,
+    map: &RegimeMap,
+    grid: &MapGrid,
+    v: &app::settings::ViewOptions,
+) -> Result<(), Failure> {
+    let cells = grid.cells() as u64;
+    let periods = u64::from(v.map_transient_periods) + u64::from(v.map_record_periods);
+    let per_period =
+        StepCost::of(model).mean_per_period(grid.omega_from, grid.omega_to, grid.omega_points);
+    if cells as f64 * periods as f64 * per_period <= MAX_STEPS {
+        return Ok(());
+    }
+    let (steps, _) = map.estimated_steps(Some(MAX_STEPS))?;
+    if steps <= MAX_STEPS {
+        return Ok(());
+    }
+    let per_cell = steps / cells as f64;
+    Err(usage(format!(
+        "figure map --link: about {steps:.1e} integration steps ({per_cell:.0} or more a cell on this \
+         model), over the {MAX_STEPS:.0e} limit: allowed map_omega_points x map_value_points ..= {}, \
+         or fewer map periods",
+        (MAX_STEPS / per_cell).floor()
+    )))
+}
+
+/// Checks the boundary trace's estimated work against
+/// [`MAX_BOUNDARY_WORK`]; over it, refuses naming the harmonics that fit.
+fn check_trace(params: &ModelParams, bs: &BoundarySpec) -> Result<(), Failure> {
+    let work = bs.estimated_work(params)?;
+    if work <= MAX_BOUNDARY_WORK {
+        return Ok(());
+    }
+    let fits = largest_within(1, bs.harmonics as u32, MAX_BOUNDARY_WORK, |h| {
+        let mut s = bs.clone();
+        s.harmonics = h as usize;
+        s.estimated_work(params).map_err(Failure::from)
+    })?;
+    Err(usage(format!(
+        "figure map --link harmonics={}: the boundary trace would take about {work:.1e} work units \
+         (about a microsecond each) on this model, over the {MAX_BOUNDARY_WORK:.1e} limit: allowed \
+         harmonics 1 ..= {}",
+        bs.harmonics,
+        fits.map_or("none".to_string(), |h| h.to_string())
+    )))
+}
 
 /// Runs the map figure.
 pub(crate) fn run(args: &FigureArgs) -> Result<Value, Failure> {
@@ -65,25 +118,18 @@ pub(crate) fn run(args: &FigureArgs) -> Result<Value, Failure> {
     spec.steady.transient_periods = v.map_transient_periods;
     spec.steady.record_periods = v.map_record_periods;
     spec.mesh = mesh;
-    let cells = grid.cells() as u64;
-    let periods = u64::from(v.map_transient_periods) + u64::from(v.map_record_periods);
-    check_work(
-        cells * periods,
-        StepCost::of(&model).mean_per_period(grid.omega_from, grid.omega_to, grid.omega_points),
-        &format!("{cells} cells x (map_transient_periods + map_record_periods {periods})"),
-        "use a smaller map in --link",
-    )?;
-    let h = u64::from(v.harmonics);
-    let work = u64::from(BOUNDARY_LEVELS) * u64::from(BOUNDARY_POINTS) * (2 * h + 1).pow(3);
-    if work > MAX_BOUNDARY_WORK {
-        return Err(usage(format!(
-            "figure map --link harmonics={}: the boundary trace would take {work} of its budget {MAX_BOUNDARY_WORK}; use fewer harmonics",
-            v.harmonics
-        )));
-    }
-    output::check_dir("--out", out)?;
-
     let mut map = RegimeMap::new(params, spec)?;
+    check_cells(&model, &map, &grid, v)?;
+    let mut bs = BoundarySpec::new(
+        &grid.key,
+        (grid.value_from, grid.value_to),
+        (grid.omega_from, grid.omega_to),
+    );
+    bs.levels = BOUNDARY_LEVELS;
+    bs.points = BOUNDARY_POINTS;
+    bs.harmonics = v.harmonics as usize;
+    check_trace(params, &bs)?;
+    output::check_dir("--out", out)?;
     let mut bar = progress::Progress::new(
         map.total() + 1000,
         "cells and per mille of the boundaries",
@@ -95,14 +141,6 @@ pub(crate) fn run(args: &FigureArgs) -> Result<Value, Failure> {
         store.add(new);
         bar.update(store.done);
     }
-    let mut bs = BoundarySpec::new(
-        &grid.key,
-        (grid.value_from, grid.value_to),
-        (grid.omega_from, grid.omega_to),
-    );
-    bs.levels = BOUNDARY_LEVELS;
-    bs.points = BOUNDARY_POINTS;
-    bs.harmonics = v.harmonics as usize;
     let mut trace = BoundaryTrace::new(params, bs)?;
     let mut failure = None;
     while !trace.is_finished() {
