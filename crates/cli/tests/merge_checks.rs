@@ -5,7 +5,7 @@
 //!   `--shard i/n` implies): numbers pass through unchanged.
 //! - Checked: forged shards (counters that are not whole numbers,
 //!   Poincaré arrays of the wrong length, a model or shard that is not the
-//!   run's, fields gearshock never writes) are refused with exit 2 and one
+//!   run's, fields gearshock never writes, a cell's fields that disagree) are refused with exit 2 and one
 //!   line naming the file, the field and the allowed range.
 
 // Tests may panic: that is how they fail.
@@ -293,6 +293,40 @@ fn forged_map_shards_are_refused_naming_file_field_value_and_range() {
             &["impact", "null in a failed cell"],
         ),
         ("/cells/0/extra", json!(null), &["field extra"]),
+        // A cell's fields agree: cell 0 is periodic-exact, cell 1 not
+        // periodic; an exact orbit's multipliers are those of a stable one.
+        (
+            "/cells/0/max_multiplier_modulus",
+            json!(5),
+            &[
+                "max_multiplier_modulus = 5",
+                "a stable orbit",
+                "periodic-exact",
+            ],
+        ),
+        (
+            "/cells/0/exact",
+            json!(false),
+            &["exact = false", "true with motion \"periodic-exact\""],
+        ),
+        (
+            "/cells/0/motion",
+            json!("not-periodic"),
+            &["exact = true", "false with motion \"not-periodic\""],
+        ),
+        (
+            "/cells/0/period",
+            Value::Null,
+            &["period = null", "a whole number with a periodic motion"],
+        ),
+        (
+            "/cells/1/max_multiplier_modulus",
+            json!(0.5),
+            &[
+                "max_multiplier_modulus = 0.5",
+                "null with motion \"not-periodic\"",
+            ],
+        ),
         (
             "/spec/shard",
             json!("0/1000000000"),

@@ -277,7 +277,8 @@ fn items_from_inputs(merged: &Value, key: &str, shards: &[Value]) -> Result<(), 
 
 /// Every cell of an accepted map is one gearshock writes: `period` null or
 /// 1 ..= `record_periods`, a motion it names, and a regime exactly when
-/// the cell did not fail.
+/// the cell did not fail; its fields agree (exact exactly when its motion
+/// is `periodic-exact`, with the multipliers of a stable orbit).
 fn map_cells_well_formed(v: &Value) -> Result<(), String> {
     let record = v["spec"]["record_periods"].as_u64().unwrap_or(0);
     for c in v["cells"].as_array().map_or(&[][..], Vec::as_slice) {
@@ -289,7 +290,13 @@ fn map_cells_well_formed(v: &Value) -> Result<(), String> {
             .as_str()
             .is_some_and(|m| solver::steady::Motion::NAMES.contains(&m));
         let regime_fine = c["error"].is_null() != c["impact"].is_null();
-        if !(period_fine && motion_fine && regime_fine) {
+        let exact = c["motion"] == "periodic-exact";
+        let agree = c["exact"] == exact
+            && match c["max_multiplier_modulus"].as_f64() {
+                Some(m) => exact && m <= 1.0 + solver::shooting::floquet::STABILITY_MARGIN,
+                None => !exact,
+            };
+        if !(period_fine && motion_fine && regime_fine && agree) {
             return Err(format!(
                 "accepted a cell gearshock does not write: {}",
                 solver::keys::truncate(&c.to_string(), 200)

@@ -289,7 +289,10 @@ pub fn sweep_point(p: &Value, shape: &SweepShape, where_: &str) -> Result<()> {
 
 /// The classification's fields of a point or cell: `exact` (a boolean),
 /// `max_multiplier_modulus` and `lyapunov_per_period` (numbers or null),
-/// `motion` (one of [`MOTIONS`]).
+/// `motion` (one of [`MOTIONS`]), and that they agree as gearshock writes
+/// them: an orbit is exact exactly when its motion is `periodic-exact`,
+/// and only an exact orbit has multipliers, which are inside the unit
+/// circle (an unstable orbit is never a steady state's verdict).
 fn motion_fields(o: &Map<String, Value>, top: &At, where_: &str) -> Result<()> {
     if !o["exact"].is_boolean() {
         return Err(refuse(where_, "exact", o.get("exact"), "true or false"));
@@ -304,8 +307,34 @@ fn motion_fields(o: &Map<String, Value>, top: &At, where_: &str) -> Result<()> {
             &format!("one of {}", MOTIONS.join(", ")),
         ));
     }
+    let exact = o["motion"] == EXACT;
+    if o["exact"] != exact {
+        return Err(refuse(
+            where_,
+            "exact",
+            o.get("exact"),
+            &format!("{exact} with motion {}", shown(o.get("motion"))),
+        ));
+    }
+    let modulus = o.get("max_multiplier_modulus");
+    let stable_limit = 1.0 + solver::shooting::floquet::STABILITY_MARGIN;
+    let agrees = match modulus.and_then(Value::as_f64) {
+        Some(m) => exact && m <= stable_limit,
+        None => !exact,
+    };
+    if !agrees {
+        let allowed = if exact {
+            format!("a number at most {stable_limit} (a stable orbit) with motion {EXACT}")
+        } else {
+            format!("null with motion {}", shown(o.get("motion")))
+        };
+        return Err(refuse(where_, "max_multiplier_modulus", modulus, &allowed));
+    }
     Ok(())
 }
+
+/// The motion of an orbit found by shooting.
+const EXACT: &str = "periodic-exact";
 
 /// `period`: `null` (not periodic within the record) or a whole number of
 /// mesh periods no longer than the record.
@@ -340,10 +369,30 @@ pub fn map_cell(c: &Value, record_periods: u64, where_: &str) -> Result<()> {
     )?;
     period(o, record_periods, &top)?;
     motion_fields(o, &top, where_)?;
+    // A cell's period is its motion's: a periodic one has it, no other.
+    let periodic = matches!(o["motion"].as_str(), Some(EXACT | "periodic"));
+    if o["period"].is_null() == periodic {
+        let allowed = if periodic {
+            "a whole number with a periodic motion"
+        } else {
+            "null with a motion that is not periodic"
+        };
+        return Err(refuse(where_, "period", o.get("period"), allowed));
+    }
     if o["error"].is_null() {
         impact(o, "impact", &top)
     } else if o["impact"].is_null() {
-        message(o, "error", &top)
+        message(o, "error", &top)?;
+        if o["motion"] == "not-periodic" {
+            Ok(())
+        } else {
+            Err(refuse(
+                where_,
+                "motion",
+                o.get("motion"),
+                "not-periodic in a failed cell",
+            ))
+        }
     } else {
         Err(refuse(
             where_,
