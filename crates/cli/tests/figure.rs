@@ -254,6 +254,29 @@ fn figure_map_draws_a_links_map_with_the_boundaries_the_boundaries_command_trace
         panel["disagree"].as_u64().unwrap() <= judged && judged > 0,
         "{panel}"
     );
+    // A link that says boundaries=off gets the map alone, as the page
+    // shows it, and the note says so.
+    let v = json(&[
+        "figure",
+        "map",
+        "--out",
+        out,
+        "--link",
+        &format!("{link}&boundaries=off"),
+    ]);
+    assert_eq!(v["panels"][0]["boundaries"], "off");
+    assert_eq!(v["panels"][0]["curves"], 0);
+    let data: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("map.json")).unwrap()).unwrap();
+    assert_eq!(
+        data["boundaries"]["curves"].as_array().map(Vec::len),
+        Some(0)
+    );
+    assert!(
+        data["boundaries"].to_string().contains("boundaries=off"),
+        "{}",
+        data["boundaries"]
+    );
     // Options of the paper's figures are refused, naming where the map's come from.
     let o = gearshock(&["figure", "map", "--out", out, "--points", "20"]);
     assert_eq!(o.status.code(), Some(2));

@@ -4,7 +4,10 @@
 //! code: `map.svg`, the cells as `map.csv`, and `map.json` (the cells, the
 //! curves and cusps as `gearshock boundaries` names them, the cells that
 //! disagree with the curves). The map and the trace are the page's: the
-//! link's grid, mesh, periods and harmonics, 5 levels and 50 points.
+//! link's grid, mesh, periods and harmonics, 5 levels and 50 points. A
+//! link that says `boundaries=off` gets the map alone (and its note says
+//! so); one that does not say, the boundaries too (the page's default is
+//! off, the figure's purpose the curves).
 
 use super::{write_all, FigureArgs, Files};
 use crate::budget::{largest_within, StepCost, MAX_BOUNDARY_WORK, MAX_STEPS};
@@ -76,6 +79,14 @@ fn check_trace(params: &ModelParams, bs: &BoundarySpec) -> Result<(), Failure> {
     )))
 }
 
+/// Whether the link's query names `key` (a setting the link gives, not
+/// the page's default).
+fn link_sets(query: &str, key: &str) -> bool {
+    query
+        .split('&')
+        .any(|pair| pair.split_once('=').map_or(pair, |(k, _)| k) == key)
+}
+
 /// Runs the map figure.
 pub(crate) fn run(args: &FigureArgs) -> Result<Value, Failure> {
     if args.shard.is_some() {
@@ -128,7 +139,12 @@ pub(crate) fn run(args: &FigureArgs) -> Result<Value, Failure> {
     bs.levels = BOUNDARY_LEVELS;
     bs.points = BOUNDARY_POINTS;
     bs.harmonics = v.harmonics as usize;
-    check_trace(params, &bs)?;
+    // The page traces the boundaries only when asked (its default is
+    // off); the figure draws them unless the link says boundaries=off.
+    let traced = !link_sets(query, "boundaries") || v.boundaries;
+    if traced {
+        check_trace(params, &bs)?;
+    }
     output::check_dir("--out", out)?;
     let mut bar = progress::Progress::new(
         map.total() + 1000,
@@ -141,24 +157,35 @@ pub(crate) fn run(args: &FigureArgs) -> Result<Value, Failure> {
         store.add(new);
         bar.update(store.done);
     }
-    let mut trace = BoundaryTrace::new(params, bs)?;
     let mut failure = None;
-    while !trace.is_finished() {
-        if let Err(e) = trace.advance(8) {
-            failure = Some(e);
-            break;
+    let boundaries = if traced {
+        let mut trace = BoundaryTrace::new(params, bs)?;
+        while !trace.is_finished() {
+            if let Err(e) = trace.advance(8) {
+                failure = Some(e);
+                break;
+            }
+            bar.update(store.done + (1000.0 * trace.progress()) as usize);
         }
-        bar.update(store.done + (1000.0 * trace.progress()) as usize);
-    }
-    bar.finish();
-    let boundaries = BoundaryStore {
-        id: 1,
-        curves: trace.curves().iter().map(BoundaryCurve::from).collect(),
-        cusps: trace.cusps().iter().map(|c| (c.omega, c.value)).collect(),
-        notes: trace.notes().to_vec(),
-        finished: failure.is_none(),
-        signature: String::new(),
+        BoundaryStore {
+            id: 1,
+            curves: trace.curves().iter().map(BoundaryCurve::from).collect(),
+            cusps: trace.cusps().iter().map(|c| (c.omega, c.value)).collect(),
+            notes: trace.notes().to_vec(),
+            finished: failure.is_none(),
+            signature: String::new(),
+        }
+    } else {
+        BoundaryStore {
+            id: 1,
+            curves: Vec::new(),
+            cusps: Vec::new(),
+            notes: vec!["The link says boundaries=off: no boundary was traced.".to_string()],
+            finished: true,
+            signature: String::new(),
+        }
     };
+    bar.finish();
     let shown = boundaries.shown(mesh);
     let (disagree, judged) = disagreements(&grid, &store, &shown);
     let names: Vec<String> = model.system.meshes.iter().map(|m| m.name.clone()).collect();
@@ -215,6 +242,7 @@ pub(crate) fn run(args: &FigureArgs) -> Result<Value, Failure> {
         "panels": [{
             "panel": "map",
             "files": ["map.svg", "map.json", "map.csv"],
+            "boundaries": if traced { "on" } else { "off" },
             "curves": boundaries.curves.len(),
             "cusps": boundaries.cusps.len(),
             "judged": judged,
