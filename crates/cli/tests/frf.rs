@@ -94,6 +94,144 @@ fn a_shooting_branch_over_its_budget_is_refused_naming_the_points_that_fit() {
     assert!(out.stdout.is_empty());
 }
 
+/// The points of piece `piece` of a shooting branch, as (Omega, period,
+/// bifurcation).
+fn piece_of(branch: &[serde_json::Value], piece: u64) -> Vec<(f64, u64, String)> {
+    branch
+        .iter()
+        .filter(|p| p["piece"] == piece)
+        .map(|p| {
+            (
+                p["omega"].as_f64().unwrap(),
+                p["period"].as_u64().unwrap(),
+                p["bifurcation"].as_str().unwrap_or("").to_string(),
+            )
+        })
+        .collect()
+}
+
+/// A shooting branch says where and why each piece ended: the gear
+/// pair's first branch lands on the range's end (it was "left the range
+/// at Omega 1.249227", inside the range), the period-2 piece from the
+/// doubling at 0.5568 ends at the doubling where it rejoins (labelled one,
+/// not a fold) without jumping to the other bubble at 0.75, and every
+/// step within a piece is bounded.
+#[test]
+fn a_shooting_branch_ends_on_the_range_or_says_why_with_bounded_steps() {
+    let v = json(&words(
+        "frf --model gear-pair --method shooting --omega-from 0.4 --omega-to 1.3 --points 50",
+    ));
+    assert_eq!(v["complete"], true, "{}", v["notes"]);
+    assert_eq!(v["restarts"], serde_json::json!([]));
+    assert_eq!(v["left_out"], serde_json::json!([]));
+    let notes = v["notes"].to_string();
+    assert!(
+        notes.contains("the period-1 branch reached the range's end at Omega 1.3"),
+        "{notes}"
+    );
+    let branch = v["branch"].as_array().unwrap();
+    let first = piece_of(branch, 0);
+    assert!((first.last().unwrap().0 - 1.3).abs() < 1e-9, "{first:?}");
+    let pieces: std::collections::BTreeSet<u64> = branch
+        .iter()
+        .map(|p| p["piece"].as_u64().unwrap())
+        .collect();
+    for piece in pieces {
+        let pts = piece_of(branch, piece);
+        for w in pts.windows(2) {
+            // A step moves Omega by at most 1.5 nominal steps (0.027),
+            // and a corrected point lies within two steps of the last.
+            assert!(
+                (w[1].0 - w[0].0).abs() <= 3.0 * 0.9 / 50.0,
+                "piece {piece}: {w:?}"
+            );
+        }
+    }
+    let doubled: Vec<(f64, u64, String)> = branch
+        .iter()
+        .filter(|p| p["period"] == 2)
+        .map(|p| {
+            (
+                p["omega"].as_f64().unwrap(),
+                2,
+                p["bifurcation"].as_str().unwrap_or("").to_string(),
+            )
+        })
+        .collect();
+    assert!(
+        doubled
+            .iter()
+            .any(|(w, _, b)| b == "period-doubling" && (w - 0.5904).abs() < 1e-3),
+        "{doubled:?}"
+    );
+    assert!(
+        !doubled
+            .iter()
+            .any(|(w, _, b)| b == "fold" && (w - 0.5904).abs() < 1e-3),
+        "{doubled:?}"
+    );
+}
+
+/// Undamped, the gear pair's first branch folds back from 0.47 and leaves
+/// the range at its start: it is restarted from the other end, downward,
+/// until it meets the part followed, and the restart is reported as the
+/// harmonic balance reports its own. Where no orbit can be found (the
+/// compound set is chaotic over Omega 0.53 to 0.7), the gap is left out
+/// and the branch is not complete.
+#[test]
+fn a_shooting_branch_that_turns_back_is_restarted_or_leaves_out_what_it_cannot_cover() {
+    let v = json(&words(
+        "frf --model gear-pair --method shooting --omega-from 0.4 --omega-to 1.3 --points 50 \
+         --set damping_ratio=0",
+    ));
+    assert_eq!(v["complete"], true, "{}", v["notes"]);
+    let r = &v["restarts"][0];
+    assert_eq!(r["reason"], "turned-back", "{r}");
+    assert_eq!(r["start_omega"], 1.3);
+    assert_eq!(r["direction"], "down");
+    assert!(v["notes"]
+        .to_string()
+        .contains("turned back at a fold and left the range at its start"));
+    let v = json(&words(
+        "frf --method shooting --omega-from 0.5 --omega-to 0.7 --points 10",
+    ));
+    assert_eq!(v["complete"], false, "{}", v["notes"]);
+    let gap = &v["left_out"][0];
+    assert_eq!(gap["reason"], "not-followed", "{gap}");
+    assert_eq!(gap["omega_to"], 0.7);
+}
+
+/// The flags a method ignores are refused, naming them.
+#[test]
+fn flags_the_method_ignores_are_refused() {
+    let base = "frf --model gear-pair --omega-from 0.4 --omega-to 1.3 --points 20";
+    for (extra, needle) in [
+        (
+            "--method shooting --no-stability",
+            "--no-stability: --method shooting does not take it",
+        ),
+        (
+            "--method shooting --harmonics 5",
+            "--harmonics: --method shooting does not take it",
+        ),
+        (
+            "--method shooting --grid 512",
+            "--grid: --method shooting does not take it",
+        ),
+        ("--period 2", "--period: only --method shooting takes it"),
+        (
+            "--method aft --no-switch",
+            "--no-switch: only --method shooting takes it",
+        ),
+    ] {
+        let out = gearshock(&words(&format!("{base} {extra}")));
+        assert_eq!(out.status.code(), Some(2), "{extra}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(needle), "{extra}: {err}");
+        assert!(out.stdout.is_empty());
+    }
+}
+
 /// `frf --method shooting`: the same JSON branch (omega, stable,
 /// bifurcation) plus each point's period; the gear pair's two folds bound
 /// its hysteresis band, a period doubling starts a period-2 branch, and

@@ -1,6 +1,7 @@
 //! `gearshock frf --method shooting` as JSON: the harmonic-balance
 //! response's `branch` shape (`omega`, `stable`, `bifurcation`, the mesh's
-//! extremes) plus each point's `period`.
+//! extremes) plus each point's `period`, and its `restarts` and `left_out`
+//! as the harmonic balance writes them.
 
 use super::{branch_point_json, mesh_names, num};
 use serde_json::{json, Value};
@@ -37,7 +38,20 @@ pub fn shooting_frf_json(
             "atol_m": num(spec.shooting.atol_m),
         },
         "meshes": names,
-        "complete": error.is_none(),
+        // Complete only where the first branch covers the whole range.
+        "complete": error.is_none() && c.is_complete(),
+        "restarts": c.restarts().iter().map(|r| json!({
+            "piece": r.piece,
+            "reason": r.reason.name(),
+            "stopped_at_omega": num(r.stopped_at),
+            "start_omega": num(r.start_omega),
+            "direction": r.direction.name(),
+        })).collect::<Vec<_>>(),
+        "left_out": c.left_out().iter().map(|l| json!({
+            "omega_from": num(l.from),
+            "omega_to": num(l.to),
+            "reason": l.reason_name(),
+        })).collect::<Vec<_>>(),
         "notes": c.notes(),
         "error": error.map_or(Value::Null, |e| Value::from(e.to_string())),
         "branch": branch.iter().map(|p| {

@@ -50,20 +50,22 @@ impl Model {
     /// The resonances in `[from, to]`: the distinct elastic natural
     /// frequencies `omega_k / j` for `j = 1 ..= min(harmonics, 3)` (Omega
     /// or one of its first three multiples, which the mesh stiffness and
-    /// the impacts excite, meeting a natural frequency). Where a response
-    /// turns, folds, changes contact and doubles its period, so what a
-    /// branch or a boundary trace over the range costs grows with them.
-    pub fn resonances(&self, harmonics: usize, from: f64, to: f64) -> usize {
-        let mut found: Vec<f64> = Vec::new();
+    /// the impacts excite, meeting a natural frequency), as the primary
+    /// ones (`j = 1`) and the superharmonic ones. Where a response turns,
+    /// folds, changes contact and doubles its period, so what a branch or
+    /// a boundary trace over the range costs grows with them.
+    pub fn resonances(&self, harmonics: usize, from: f64, to: f64) -> (usize, usize) {
+        let mut found: Vec<(f64, usize)> = Vec::new();
         for mode in self.modes.elastic() {
             for j in 1..=harmonics.min(3) {
                 let w = mode.omega / j as f64;
-                if (from..=to).contains(&w) && !found.iter().any(|f| (f - w).abs() <= 1e-6 * w) {
-                    found.push(w);
+                if (from..=to).contains(&w) && !found.iter().any(|f| (f.0 - w).abs() <= 1e-6 * w) {
+                    found.push((w, j));
                 }
             }
         }
-        found.len()
+        let primary = found.iter().filter(|f| f.1 == 1).count();
+        (primary, found.len() - primary)
     }
 
     /// The largest mesh deflection (m) a bounded response is taken to reach:

@@ -76,6 +76,9 @@ fn every_branch_of_the_slider_grid_covers_the_range() {
                             assert!(b == 0.0 && l.to - l.from < 1e-3, "{case}: {l:?}");
                         }
                         LeftOutReason::Tangle => tangled += l.to - l.from,
+                        LeftOutReason::NotFollowed | LeftOutReason::RestartsUsed => {
+                            panic!("{case}: {l:?} is shooting's")
+                        }
                     }
                 }
                 assert!(tangled < 0.15 * 1.9, "{case}: {tangled} of Omega left out");

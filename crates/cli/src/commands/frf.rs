@@ -25,28 +25,31 @@ pub struct FrfArgs {
     /// Nominal points: the largest continuation step is range / points.
     #[arg(long, default_value_t = 400)]
     points: u32,
-    /// Harmonics H (1 ..= 40).
-    #[arg(long, default_value_t = 7)]
-    harmonics: usize,
+    /// Harmonics H (1 ..= 40; default 7). Not with --method shooting.
+    #[arg(long)]
+    harmonics: Option<usize>,
     /// aft (time grid, any H), exact (closed-form integration between the
     /// contact switches, any H), describing-function (the seed's Eqs. 9-13,
     /// H = 1) or shooting (periodic orbits of the time integration by
     /// Newton, continued in Omega; period doublings followed).
     #[arg(long, default_value = "exact")]
     method: String,
-    /// With --method shooting: the first branch's period in mesh periods.
-    #[arg(long, default_value_t = 1)]
-    period: u32,
+    /// With --method shooting: the first branch's period in mesh periods
+    /// (default 1).
+    #[arg(long)]
+    period: Option<u32>,
     /// With --method shooting: do not follow the period-doubled branches.
     #[arg(long)]
     no_switch: bool,
     /// Continue up from --omega-from or down from --omega-to.
     #[arg(long, default_value = "up")]
     direction: String,
-    /// AFT time-grid size (default: max(64 H, 256) rounded up to a power of two).
+    /// AFT time-grid size (default: max(64 H, 256) rounded up to a power of
+    /// two). Not with --method shooting.
     #[arg(long)]
     grid: Option<usize>,
-    /// Skip the Floquet stability of each point.
+    /// Skip the Floquet stability of each point. Not with --method
+    /// shooting, whose corrector needs each point's monodromy.
     #[arg(long)]
     no_stability: bool,
     /// Mesh to report, or `all`.
@@ -87,14 +90,45 @@ impl Sweep for Branch {
     }
 }
 
+/// The harmonics when none are given.
+const DEFAULT_HARMONICS: usize = 7;
+
+/// Refuses the flags a method ignores, naming the flag and the method:
+/// the harmonic balance's (`--harmonics`, `--grid`, `--no-stability`)
+/// with shooting, shooting's (`--period`, `--no-switch`) with the others.
+fn refuse_ignored(a: &FrfArgs) -> Result<(), Failure> {
+    let shooting = a.method == "shooting";
+    let given: [(&str, bool, bool); 5] = [
+        ("--harmonics", a.harmonics.is_some(), false),
+        ("--grid", a.grid.is_some(), false),
+        ("--no-stability", a.no_stability, false),
+        ("--period", a.period.is_some(), true),
+        ("--no-switch", a.no_switch, true),
+    ];
+    for (flag, is_given, for_shooting) in given {
+        if is_given && for_shooting != shooting {
+            return Err(usage(if shooting {
+                format!("{flag}: --method shooting does not take it (it belongs to the harmonic balance)")
+            } else {
+                format!(
+                    "{flag}: only --method shooting takes it, not --method {}",
+                    keys::truncate(&a.method, 30)
+                )
+            }));
+        }
+    }
+    Ok(())
+}
+
 /// Checks the options and the budget, follows the branch and prints it.
 pub fn run(a: &FrfArgs) -> Result<(), Failure> {
+    refuse_ignored(a)?;
     if a.method == "shooting" {
         return run_shooting(a);
     }
     let (params, model) = a.p.load()?;
     let mut spec = FrfSpec::new(a.range.omega_from, a.range.omega_to, a.points);
-    spec.harmonics = a.harmonics;
+    spec.harmonics = a.harmonics.unwrap_or(DEFAULT_HARMONICS);
     spec.method = Method::from_name(&a.method).ok_or_else(|| {
         usage(format!(
             "--method {}: allowed aft, exact, describing-function, shooting",
@@ -111,7 +145,7 @@ pub fn run(a: &FrfArgs) -> Result<(), Failure> {
     spec.stability = !a.no_stability;
     let meshes = meshes(&model, a.mesh.as_deref())?;
     // Larger H is refused by the solver's own check, naming it.
-    let (points, harmonics) = (a.points, a.harmonics);
+    let (points, harmonics) = (a.points, spec.harmonics);
     if harmonics <= 40 {
         let work = u64::from(points) * (2 * harmonics as u64 + 1).pow(3);
         if work > MAX_FRF_WORK {
@@ -190,7 +224,7 @@ fn run_shooting(a: &FrfArgs) -> Result<(), Failure> {
             keys::truncate(&a.direction, 20)
         ))
     })?;
-    spec.period = a.period;
+    spec.period = a.period.unwrap_or(1);
     spec.switch_branches = !a.no_switch;
     let meshes = meshes(&model, a.mesh.as_deref())?;
     check_shooting(&model, &spec)?;

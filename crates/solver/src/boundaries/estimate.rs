@@ -49,7 +49,9 @@ impl BoundarySpec {
         let model = Model::new(base)?;
         let hbm = HbmModel::from_system(&MeshSystem::build(base)?, self.symmetric)?;
         let cost = HbmCost::of(&hbm, Assembly::harmonics(self.harmonics, self.method));
-        let r = model.resonances(self.harmonics, self.omega_from, self.omega_to) as f64;
+        let (primary, superharmonic) =
+            model.resonances(self.harmonics, self.omega_from, self.omega_to);
+        let r = (primary + superharmonic) as f64;
         let points = f64::from(self.points);
         let monodromy = cost.mean_monodromy(self.omega_from, self.omega_to);
         let branch_points = points + BRANCH_POINTS_PER_RESONANCE * r;

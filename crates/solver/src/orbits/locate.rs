@@ -17,8 +17,9 @@ impl ShootingContinuation {
     }
 
     /// Locates a fold between the cursor and `end` (Illinois on the
-    /// tangent's Omega component over the arclength).
-    pub(super) fn locate(&mut self, c: &Cursor, end: &Solved) -> Step<Option<ShootPoint>> {
+    /// tangent's Omega component over the arclength): the solution there,
+    /// which the caller labels.
+    pub(super) fn locate(&mut self, c: &Cursor, end: &Solved) -> Step<Option<Solved>> {
         let n = c.y.len() - 1;
         let ds = c.ds;
         let f = |me: &Self, s: &Solved| me.tangent(s, &c.tangent).map(|t| t[n]);
@@ -55,12 +56,7 @@ impl ShootingContinuation {
                 break;
             }
         }
-        Ok(Some(self.emit(
-            &best,
-            c.period,
-            c.piece,
-            Some(Bifurcation::Fold),
-        )?))
+        Ok(Some(best))
     }
 
     /// Locates a period doubling between the cursor and `end` (Illinois on

@@ -27,7 +27,7 @@
 
 use crate::bifurcation::Bifurcation;
 use crate::error::{Result, SolverError};
-use crate::hbm::BranchPoint;
+use crate::hbm::{BranchPoint, LeftOut, PieceEnd, Restart};
 use crate::shooting::floquet::{real_eigenvector, Multipliers};
 use crate::shooting::{shoot, Reduced, ShootOptions, ShootOutcome, MAX_SHOOT_PERIOD};
 use crate::steady::{steady_state, SteadyOptions};
@@ -39,6 +39,7 @@ use replay::{Halt, Replay, Step};
 mod chord;
 mod estimate;
 mod locate;
+mod pieces;
 mod replay;
 
 use chord::Jacobian;
@@ -158,6 +159,11 @@ struct Cursor {
     /// The Jacobian at `y`, the chord corrector's first matrix (`None` at a
     /// switched branch's start: full Newton there).
     jac: Option<Jacobian>,
+    /// A piece of the first branch (the spec's period), which must cover
+    /// the range; a doubled branch is not.
+    main: bool,
+    /// The direction a piece of the first branch set out in.
+    dir: Direction,
 }
 
 /// A point solved on the branch: `Y`, residual size, monodromy, `dG/dOmega`.
@@ -182,8 +188,16 @@ pub struct ShootingContinuation {
     /// Branches to follow after the current one.
     pending: Vec<Cursor>,
     pieces: u32,
-    /// Why the last branch ended, in words.
+    /// How each branch ended, and every restart and gap, in words.
     notes: Vec<String>,
+    /// The Omega span of every piece of the first branch: `(piece, lo, hi)`.
+    spans: Vec<(u32, f64, f64)>,
+    /// Restarts of the first branch where a piece ended early.
+    restarts: Vec<Restart>,
+    /// Parts of the range no piece of the first branch covers.
+    left_out: Vec<LeftOut>,
+    /// Omega of restarts whose first orbit was not found.
+    failed_starts: Vec<f64>,
     /// Counters.
     pub stats: ShootFrfStats,
     /// The integrations of the step in progress (bounded work per call).
@@ -205,6 +219,18 @@ fn newton_rhs(g: &[f64], t: &[f64], y: &[f64], pred: &[f64]) -> DVector<f64> {
 
 /// Largest number of points on one branch (a guard against a loop).
 const MAX_BRANCH_POINTS: u32 = 5_000;
+
+/// Farthest a corrected point may lie from the last one, in steps.
+const MAX_JUMP: f64 = 2.0;
+
+/// The Euclidean distance between two points of the unknowns.
+fn distance(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y) * (x - y))
+        .sum::<f64>()
+        .sqrt()
+}
 
 impl ShootingContinuation {
     /// Finds the first orbit at the range's start and its tangent.
@@ -266,6 +292,10 @@ impl ShootingContinuation {
             pending: Vec::new(),
             pieces: 0,
             notes: Vec::new(),
+            spans: Vec::new(),
+            restarts: Vec::new(),
+            left_out: Vec::new(),
+            failed_starts: Vec::new(),
             stats: ShootFrfStats {
                 work_steps: first_work,
                 ..ShootFrfStats::default()
@@ -289,6 +319,8 @@ impl ShootingContinuation {
             count: 0,
             doubles_again: false,
             jac: Some(Jacobian::of(&solved)),
+            main: true,
+            dir: me.spec.direction,
         });
         Ok(me)
     }
@@ -298,7 +330,8 @@ impl ShootingContinuation {
         &self.spec
     }
 
-    /// Notes on how branches ended.
+    /// Notes on how branches ended, where the first branch was restarted
+    /// and what it left out.
     pub fn notes(&self) -> &[String] {
         &self.notes
     }
@@ -363,6 +396,7 @@ impl ShootingContinuation {
                 self.pieces,
                 self.notes.len(),
                 self.stats,
+                self.coverage(),
             );
             let mut step_out = Vec::new();
             match self.step(&mut step_out) {
@@ -371,12 +405,13 @@ impl ShootingContinuation {
                     out.extend(step_out);
                 }
                 Err(Halt::Pause) => {
-                    let (cur, pending, pieces, notes, stats) = saved;
+                    let (cur, pending, pieces, notes, stats, coverage) = saved;
                     self.cur = cur;
                     self.pending = pending;
                     self.pieces = pieces;
                     self.notes.truncate(notes);
                     self.stats = stats;
+                    self.restore(coverage);
                     break;
                 }
                 Err(Halt::Fail(e)) => {
@@ -408,20 +443,24 @@ impl ShootingContinuation {
                     .zip(&c.tangent)
                     .map(|(y, t)| y + c.ds * t)
                     .collect();
-            match self.correct(&pred, &c.tangent, c.period, c.jac.as_ref())? {
-                Some(s) => break s,
-                None => {
-                    self.stats.rejected_steps += 1;
-                    c.ds *= 0.5;
-                    if c.ds < ds_min {
-                        self.notes.push(format!(
-                            "the period-{} branch stalled at Omega {:.6}: the corrector failed at ever smaller steps",
-                            c.period,
-                            self.omega_of(&c.y)
-                        ));
-                        return Ok(());
-                    }
+            // A corrected point farther from the last than `MAX_JUMP`
+            // steps has jumped to another part of the branch (a period-2
+            // piece went from Omega 0.5764 to 0.7520 in one step): the
+            // step is retried shorter, as where the corrector fails.
+            if let Some(s) = self.correct(&pred, &c.tangent, c.period, c.jac.as_ref())? {
+                if distance(&s.y, &c.y) <= MAX_JUMP * c.ds {
+                    break s;
                 }
+            }
+            self.stats.rejected_steps += 1;
+            c.ds *= 0.5;
+            if c.ds < ds_min {
+                let omega = self.omega_of(&c.y);
+                self.notes.push(format!(
+                    "the period-{} branch stalled at Omega {omega:.6}: the corrector failed at ever smaller steps",
+                    c.period,
+                ));
+                return self.end_piece(&c, PieceEnd::Failed, omega, out);
             }
         };
         let omega = self.omega_of(&solved.y);
@@ -430,14 +469,13 @@ impl ShootingContinuation {
                 "the period-{} branch ended at Omega {omega:.6}: singular tangent",
                 c.period
             ));
-            return Ok(());
+            return self.end_piece(&c, PieceEnd::Failed, omega, out);
         };
         let m = Multipliers::of(&solved.monodromy);
         let (pd, ns) = (
             m.as_ref().map_or(0, pd_count),
             m.as_ref().map_or(0, ns_count),
         );
-        let omega_prev = self.omega_of(&c.y);
         // A switched branch leaves at right angles (its first tangent has
         // no Omega part): no fold is read from its first points.
         let fold = c.tangent[c.y.len() - 1] * tangent[c.y.len() - 1] < 0.0
@@ -458,8 +496,26 @@ impl ShootingContinuation {
         }
         // Locate what lies between the points, in arclength order.
         if fold && self.in_range(omega) {
-            if let Some(p) = self.locate(&c, &solved)? {
-                out.push(p);
+            if let Some(at) = self.locate(&c, &solved)? {
+                // A doubled branch turns back where it rejoins the branch it
+                // left: there its orbit repeats after half its period, and
+                // the turn is that branch's period doubling, not a fold.
+                if c.doubles_again && self.repeats_at_half(&at.y, c.period, 1e-2)? {
+                    out.push(self.emit(
+                        &at,
+                        c.period,
+                        c.piece,
+                        Some(Bifurcation::PeriodDoubling),
+                    )?);
+                    self.notes.push(format!(
+                        "the period-{} branch rejoined the period-{} branch at its period doubling at Omega {:.6}",
+                        c.period,
+                        c.period / 2,
+                        self.omega_of(&at.y)
+                    ));
+                    return Ok(());
+                }
+                out.push(self.emit(&at, c.period, c.piece, Some(Bifurcation::Fold))?);
             }
         }
         if pd != c.pd_count && self.in_range(omega) {
@@ -484,11 +540,7 @@ impl ShootingContinuation {
         }
         let label = (ns != c.ns_count).then_some(Bifurcation::NeimarkSacker);
         if !self.in_range(omega) {
-            self.notes.push(format!(
-                "the period-{} branch left the range at Omega {:.6}",
-                c.period, omega_prev
-            ));
-            return Ok(());
+            return self.leave_range(&c, &solved, out);
         }
         out.push(self.emit(&solved, c.period, c.piece, label)?);
         c.count += 1;
@@ -503,9 +555,20 @@ impl ShootingContinuation {
         c.ns_count = ns;
         c.stable = m.as_ref().is_some_and(Multipliers::is_stable);
         if c.count >= MAX_BRANCH_POINTS {
+            let omega = self.omega_of(&c.y);
             self.notes.push(format!(
-                "the period-{} branch reached {MAX_BRANCH_POINTS} points",
+                "the period-{} branch reached {MAX_BRANCH_POINTS} points at Omega {omega:.6}",
                 c.period
+            ));
+            return self.end_piece(&c, PieceEnd::PointLimit, omega, out);
+        }
+        // A restarted piece ends where it meets the branch already followed.
+        if c.main && c.piece > 0 && self.coverage_gaps().is_empty() {
+            self.notes.push(format!(
+                "the period-{} branch's piece {} met the part already followed at Omega {:.6}",
+                c.period,
+                c.piece,
+                self.omega_of(&c.y)
             ));
             return Ok(());
         }
@@ -547,6 +610,8 @@ impl ShootingContinuation {
             count: 0,
             doubles_again: true,
             jac: None,
+            main: false,
+            dir: self.spec.direction,
         });
     }
 
@@ -694,6 +759,7 @@ impl ShootingContinuation {
         let n = s.y.len() - 1;
         let omega = self.omega_of(&s.y);
         let meshes = self.extremes(&s.y[..n], omega, period)?;
+        self.cover(piece, omega);
         let m = Multipliers::of(&s.monodromy);
         self.stats.points += 1;
         Ok(ShootPoint {

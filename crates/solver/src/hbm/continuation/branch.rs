@@ -180,8 +180,11 @@ pub enum PieceEnd {
     Diverged,
     /// It made no progress in Omega over many points (a tangle of close folds).
     Stalled,
-    /// The corrector failed at the smallest step.
+    /// The corrector failed at the smallest step (or, on a shooting
+    /// branch, its tangent was singular).
     Failed,
+    /// A shooting branch reached its point limit (a guard against a loop).
+    PointLimit,
 }
 
 impl PieceEnd {
@@ -193,6 +196,7 @@ impl PieceEnd {
             PieceEnd::Diverged => "diverged",
             PieceEnd::Stalled => "stalled",
             PieceEnd::Failed => "corrector-failed",
+            PieceEnd::PointLimit => "point-limit",
         }
     }
 }
@@ -231,6 +235,9 @@ impl Restart {
                 self.stopped_at
             ),
             PieceEnd::Failed => format!("could not be corrected at Omega {:.4}", self.stopped_at),
+            PieceEnd::PointLimit => {
+                format!("reached its point limit at Omega {:.4}", self.stopped_at)
+            }
         };
         let dir = match self.direction {
             Direction::Up => "upward",
@@ -279,6 +286,11 @@ pub enum LeftOutReason {
     /// Pieces from both sides wound through many close folds there and a
     /// start inside did not get across either.
     Tangle,
+    /// No piece of a shooting branch got across, and three starts inside
+    /// found no first orbit.
+    NotFollowed,
+    /// A shooting branch's restarts ran out before a piece got there.
+    RestartsUsed,
 }
 
 impl LeftOut {
@@ -297,6 +309,17 @@ impl LeftOut {
                  the motion.",
                 self.from, self.to
             ),
+            LeftOutReason::NotFollowed => format!(
+                "Between Omega {:.5} and {:.5} no piece of the branch got across and no \
+                 first orbit was found inside: no point is drawn there; time integration \
+                 shows the motion.",
+                self.from, self.to
+            ),
+            LeftOutReason::RestartsUsed => format!(
+                "Between Omega {:.5} and {:.5} the branch was not followed: its restarts \
+                 ran out before a piece got there; no point is drawn there.",
+                self.from, self.to
+            ),
         }
     }
 
@@ -305,6 +328,8 @@ impl LeftOut {
         match self.reason {
             LeftOutReason::Unbounded => "unbounded",
             LeftOutReason::Tangle => "tangle",
+            LeftOutReason::NotFollowed => "not-followed",
+            LeftOutReason::RestartsUsed => "restarts-used",
         }
     }
 }

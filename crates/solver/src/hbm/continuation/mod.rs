@@ -532,12 +532,13 @@ impl FrfContinuation {
                     self.left_at_start = how == PieceEnd::TurnedBack;
                     Ok(())
                 }
-                PieceEnd::Diverged | PieceEnd::Stalled | PieceEnd::Failed => {
-                    Err(SolverError::ContinuationStalled {
-                        omega: stopped_at,
-                        points: self.stats.points + self.queue.len() as u64,
-                    })
-                }
+                PieceEnd::Diverged
+                | PieceEnd::Stalled
+                | PieceEnd::Failed
+                | PieceEnd::PointLimit => Err(SolverError::ContinuationStalled {
+                    omega: stopped_at,
+                    points: self.stats.points + self.queue.len() as u64,
+                }),
             };
         }
         // First from the other end, backward; then from the middle of the
