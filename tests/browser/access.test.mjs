@@ -104,6 +104,51 @@ test('on a phone a swipe over a plot scrolls and never selects; a tap selects, a
   }
 });
 
+test('on a phone every button, field, drop-down, slider and disclosure is at least 24 px square', async () => {
+  const phone = await start({ viewport: { width: 390, height: 844 }, hasTouch: true, isMobile: true });
+  try {
+    const { page, errors } = await open(phone.browser, phone.url, QUICK);
+    await waitStatus(page, (s) => s.workers_ready > 0, 60000, 'workers');
+    // The drawer open and every disclosure open, so every control shows.
+    await page.evaluate(() => document.querySelectorAll('details').forEach((d) => { d.open = true; }));
+    const small = await page.evaluate(() => {
+      const controls = [...document.querySelectorAll('button, select, input, summary, [tabindex="0"]')];
+      return controls
+        .filter((e) => e.offsetParent !== null || e.tagName === 'SUMMARY')
+        .map((e) => {
+          const r = e.getBoundingClientRect();
+          return { what: `${e.tagName.toLowerCase()}#${e.id || e.textContent.trim().slice(0, 30)}`, w: r.width, h: r.height };
+        })
+        .filter((c) => c.w > 0 && c.h > 0 && (c.w < 23.5 || c.h < 23.5));
+    });
+    const total = await page.evaluate(() => document.querySelectorAll('button, select, input, summary').length);
+    assert.ok(total > 100, `${total} controls`);
+    assert.deepEqual(small.map((c) => `${c.what} ${Math.round(c.w)}x${Math.round(c.h)}`), []);
+    assert.deepEqual(errors, []);
+  } finally {
+    await phone.close();
+  }
+});
+
+test('printed, the page shows the settings and the plots, not the buttons', async () => {
+  const { page, errors } = await open(h.browser, h.url, `${QUICK}&backlash_um=60`);
+  await waitStatus(page, allDone, 120000, 'all jobs');
+  await page.emulateMedia({ media: 'print' });
+  for (const id of ['copy-link', 'tour-start', 'reset', 'family-apply']) {
+    assert.equal(await page.isVisible(`#${id}`), false, `${id} prints`);
+  }
+  assert.equal(await page.locator('#exports-fr button').first().isVisible(), false, 'export buttons print');
+  // The settings print as their values.
+  assert.equal(await page.isVisible('#num-backlash_um'), true);
+  assert.equal(await page.inputValue('#num-backlash_um'), '60');
+  assert.equal(await page.isVisible('#slider-backlash_um'), false);
+  for (const v of ['fr', 'map', 'bif', 'phase']) assert.equal(await page.isVisible(`#canvas-${v}`), true, v);
+  await page.screenshot({ path: path.join(ROOT, 'tests/browser/screenshots/print-1500.png'), fullPage: false });
+  await page.emulateMedia({ media: 'screen' });
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
 test('every export button of every view gives its file', async () => {
   const { page, errors } = await open(h.browser, h.url, QUICK);
   await waitStatus(page, allDone, 120000, 'all jobs');

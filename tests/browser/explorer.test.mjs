@@ -215,7 +215,7 @@ test('exports: CSV and JSON of the views, and the CLI formats of simulate and bi
   assert.equal(bif.points.length, 32);
   assert.deepEqual(bif.points.slice(0, 3).map((p) => p.index), [0, 1, 2]);
   const png = await grab('spectrum', 'PNG');
-  assert.equal(png.name, 'gearshock-spectrum.png');
+  assert.equal(png.name, 'gearshock-spectrum-s1a1-omega0.35.png');
   assert.deepEqual(errors, []);
   await page.close();
 });

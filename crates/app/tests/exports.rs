@@ -166,11 +166,11 @@ fn a_familys_exports_hold_every_member() {
     let all = exports_of(&family_link(), 2);
     let labels = ["TE 0 µm", "TE 20 µm", "TE 30 µm"];
     for name in [
-        "gearshock-bif-s1a1.csv",
-        "gearshock-phase-s1a1.csv",
-        "gearshock-poincare-s1a1.csv",
-        "gearshock-time-s1a1.csv",
-        "gearshock-spectrum-s1a1.csv",
+        "gearshock-bif-s1a1-te_um-0_20_30.csv",
+        "gearshock-phase-s1a1-omega1.05-te_um-0_20_30.csv",
+        "gearshock-poincare-s1a1-omega1.05-te_um-0_20_30.csv",
+        "gearshock-time-s1a1-omega1.05-te_um-0_20_30.csv",
+        "gearshock-spectrum-s1a1-omega1.05-te_um-0_20_30.csv",
     ] {
         let csv = file_text(&all, name);
         assert!(csv.starts_with("member,"), "{name}: {csv}");
@@ -183,9 +183,9 @@ fn a_familys_exports_hold_every_member() {
         assert_eq!(seen, labels, "{name}");
     }
     for name in [
-        "gearshock-bif-s1a1.json",
-        "gearshock-phase-s1a1.json",
-        "gearshock-spectrum-s1a1.json",
+        "gearshock-bif-s1a1-te_um-0_20_30.json",
+        "gearshock-phase-s1a1-omega1.05-te_um-0_20_30.json",
+        "gearshock-spectrum-s1a1-omega1.05-te_um-0_20_30.json",
     ] {
         let j: serde_json::Value = serde_json::from_str(file_text(&all, name)).expect(name);
         assert_eq!(j["family"]["values"], serde_json::json!([0.0, 20.0, 30.0]));
@@ -197,7 +197,7 @@ fn a_familys_exports_hold_every_member() {
         }
     }
     // Each member is its own computation: the bifurcation rows differ.
-    let bif = file_text(&all, "gearshock-bif-s1a1.csv");
+    let bif = file_text(&all, "gearshock-bif-s1a1-te_um-0_20_30.csv");
     let rows = |l: &str| -> Vec<String> {
         bif.lines()
             .filter(|r| r.starts_with(l))
@@ -228,7 +228,10 @@ fn every_export_is_the_same_whatever_the_pool_size() {
     assert_eq!(app::controller::chain_count(400), 8);
     assert_eq!(app::controller::chain_count(150), 3);
     let two = exports_of(&link, 2);
-    assert!(two.contains("gearshock-bifurcation"), "no CLI sweep export");
+    assert!(
+        two.contains("gearshock-bif-bifurcation"),
+        "no CLI sweep export"
+    );
     for workers in [1, 3, 8] {
         let got = exports_of(&link, workers);
         assert!(

@@ -107,7 +107,7 @@ impl Page {
             .plot_svg(v)
             .map_err(|e| PngFailure::Picture(e.to_string()))?;
         let (w, h) = self.ctl.canvas_size(v);
-        let name = format!("gearshock-{}.png", v.key());
+        let name = self.ctl.file_name(v, None, "png");
         Ok(Png {
             svg,
             name,
@@ -213,7 +213,7 @@ mod tests {
             .any(|i| i.contains("could not start a Web Worker")));
         assert!(issues.iter().any(|i| i.contains("Web Worker 2 failed")));
         let png = p.png(ViewId::Bif).unwrap();
-        assert_eq!(png.name, "gearshock-bif.png");
+        assert_eq!(png.name, "gearshock-bif-s1a1.png");
         assert_eq!(png.size, (2 * plots::WIDTH, 2 * plots::HEIGHT));
         assert!(png.svg.starts_with("<svg"), "{}", &png.svg[..40]);
         p.png_failed(PngFailure::NotLoaded);

@@ -134,7 +134,7 @@ impl Controller {
         };
         let (ext, mime) = format.file();
         Ok(Effect::Download {
-            name: format!("gearshock-{}-{}.{ext}", view.key(), self.mesh_file_label()),
+            name: self.file_name(view, None, ext),
             mime: mime.into(),
             text,
         })
@@ -185,7 +185,7 @@ impl Controller {
             JobKind::Omega => {
                 let r = self.exportable_omega()?;
                 Ok(vec![Effect::Download {
-                    name: format!("gearshock-simulate-{}-{}.json", r.mesh_name, r.omega),
+                    name: self.file_name(view, Some("simulate"), "json"),
                     mime: "application/json".into(),
                     text: r.cli_json.clone(),
                 }])
@@ -243,7 +243,7 @@ impl Controller {
         if worker == 0 {
             self.export = None;
             return vec![Effect::Download {
-                name: format!("gearshock-bifurcation-{}.json", self.mesh_file_label()),
+                name: self.file_name(ViewId::Bif, Some("bifurcation"), "json"),
                 mime: "application/json".into(),
                 text,
             }];
@@ -266,9 +266,38 @@ impl Controller {
         self.post(0, &msg)
     }
 
-    /// The plotted mesh for file names.
-    pub fn mesh_file_label(&self) -> String {
-        self.settings.view.mesh.text().to_string()
+    /// An export's file name: the view, what the file holds if the view
+    /// has two formats of it (`simulate`, `bifurcation`: the CLI's), the
+    /// plotted mesh, Ω for the views of the selected Ω, and the family's
+    /// key and values if one is shown, so that no two files of different
+    /// states share a name: `gearshock-phase-simulate-s1a1-omega0.84.json`,
+    /// `gearshock-fr-s1a1-te_um-0_20_30.png`.
+    pub fn file_name(&self, view: ViewId, what: Option<&str>, ext: &str) -> String {
+        let mut name = format!("gearshock-{}", view.key());
+        if let Some(w) = what {
+            name.push('-');
+            name.push_str(w);
+        }
+        name.push('-');
+        name.push_str(self.settings.view.mesh.text());
+        if view.spec().data == JobKind::Omega {
+            let omega = self
+                .main
+                .omega
+                .as_ref()
+                .map_or(self.settings.view.omega, |r| r.omega);
+            name.push_str(&format!("-omega{}", crate::settings::fmt_exact(omega)));
+        }
+        if let Some(f) = &self.family {
+            let values: Vec<String> = f
+                .spec
+                .values
+                .iter()
+                .map(|x| crate::settings::fmt_exact(*x))
+                .collect();
+            name.push_str(&format!("-{}-{}", f.spec.key.key, values.join("_")));
+        }
+        format!("{name}.{ext}")
     }
 
     /// The CLI commands that reproduce the current views natively.
@@ -325,3 +354,43 @@ impl Controller {
 mod members;
 mod svg;
 pub use svg::{view_size, Drawn, SvgError};
+
+#[cfg(test)]
+mod tests {
+    use crate::controller::Controller;
+
+    /// Every export's file name says which view, mesh, Ω and family it
+    /// holds: files of different states never overwrite each other, and the
+    /// four views of the selected Ω save their command-line JSON apart.
+    #[test]
+    fn export_names_carry_the_view_the_mesh_omega_and_the_family() {
+        use crate::views::ViewId;
+        let (c, _) = Controller::new("omega=0.84&mesh=s2b1", 0.0);
+        assert_eq!(
+            c.file_name(ViewId::Fr, None, "csv"),
+            "gearshock-fr-s2b1.csv"
+        );
+        assert_eq!(
+            c.file_name(ViewId::Phase, None, "png"),
+            "gearshock-phase-s2b1-omega0.84.png"
+        );
+        let cli: Vec<String> = [
+            ViewId::Phase,
+            ViewId::Poincare,
+            ViewId::Time,
+            ViewId::Spectrum,
+        ]
+        .iter()
+        .map(|&v| c.file_name(v, Some("simulate"), "json"))
+        .collect();
+        assert_eq!(cli[0], "gearshock-phase-simulate-s2b1-omega0.84.json");
+        let mut distinct = cli.clone();
+        distinct.dedup();
+        assert_eq!(distinct.len(), 4, "{cli:?}");
+        let (f, _) = Controller::new("family=te_um:0,20,30", 0.0);
+        assert_eq!(
+            f.file_name(ViewId::Bif, Some("bifurcation"), "json"),
+            "gearshock-bif-bifurcation-s1a1-te_um-0_20_30.json"
+        );
+    }
+}

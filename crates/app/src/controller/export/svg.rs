@@ -180,7 +180,7 @@ impl Controller {
     /// The view as an SVG file to download.
     pub fn export_svg(&self, view: ViewId) -> Result<Effect, SvgError> {
         Ok(Effect::Download {
-            name: format!("gearshock-{}-{}.svg", view.key(), self.mesh_file_label()),
+            name: self.file_name(view, None, "svg"),
             mime: "image/svg+xml".into(),
             text: self.plot_svg(view)?,
         })
