@@ -592,4 +592,50 @@ mod tests {
         assert!(done(&TOUR[4], with(&[]), true));
         assert!(!done(&TOUR[4], with(&[]), false));
     }
+
+    /// The page opens on a periodic state, and the tour's first step, which
+    /// sets it, says what it is: at the default Ω the plotted mesh's motion is
+    /// period 1, found exactly, without impact, as the step's text claims.
+    #[test]
+    fn the_page_opens_on_the_periodic_state_the_first_tour_step_explains() {
+        use crate::protocol::{Motion, Regime, RunOptions};
+        use crate::worker::jobs::omega::{omega_result, selected_spec, OmegaJob};
+        let step = &crate::tour::TOUR[0];
+        let omega = crate::settings::DEFAULT_OMEGA.to_string();
+        assert!(
+            step.set.contains(&("omega", omega.as_str())),
+            "{:?}",
+            step.set
+        );
+        assert!(step.text.contains(&format!("Ω {omega}")), "{}", step.text);
+        let s = crate::settings::Settings::default();
+        let model = solver::model::Model::new(&s.params).expect("model");
+        let run = RunOptions {
+            transient_periods: s.view.transient_periods,
+            record_periods: s.view.record_periods,
+        };
+        let job = OmegaJob {
+            id: 1,
+            spec: selected_spec(&s, &model, run),
+            model,
+        };
+        let r = omega_result(&job, None).expect("the steady state");
+        assert!(
+            matches!(r.motion, Motion::PeriodicExact { period: 1, .. }),
+            "{:?}",
+            r.motion
+        );
+        assert_eq!(r.regime, Regime::NoImpact);
+        // What the step claims, in the summary's words too.
+        assert!(
+            step.text.contains("stay in contact")
+                && step.text.contains("repeats exactly every mesh period")
+        );
+        let summary = crate::views::omega::student_summary(&r);
+        assert!(
+            summary.contains("stay in contact")
+                && summary.contains("repeats exactly every mesh period"),
+            "{summary}"
+        );
+    }
 }

@@ -1,6 +1,9 @@
-//! The app's architecture, checked on its source: no import cycle, the
-//! browser touched only by the `web` boundary, a `//!` doc on every file,
-//! and the size limits that keep each module readable.
+//! The architecture of the page's crates, checked on their source: the
+//! shared figures (`crates/figures`), the worker (`crates/worker`) and the
+//! page (`crates/app`). No import cycle inside any of them, the browser
+//! touched only by the page's `web` boundary, a `//!` doc on every file,
+//! the size limit that keeps each file readable, and ARCHITECTURE.md's maps
+//! of the three naming real files.
 
 // Tests may panic: that is how they fail.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
@@ -9,8 +12,21 @@ use test_support::modgraph;
 
 use std::path::{Path, PathBuf};
 
-fn src() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("src")
+/// The page's crates: (name, the heading of its section in
+/// ARCHITECTURE.md, its folder).
+const CRATES: [(&str, &str, &str); 3] = [
+    ("figures", "## The figures", "../figures"),
+    ("worker", "## The worker", "../worker"),
+    ("app", "## The app", "."),
+];
+
+fn dir(krate: &str) -> PathBuf {
+    let (_, _, rel) = CRATES.iter().find(|(n, _, _)| *n == krate).unwrap();
+    Path::new(env!("CARGO_MANIFEST_DIR")).join(rel)
+}
+
+fn src(krate: &str) -> PathBuf {
+    dir(krate).join("src")
 }
 
 fn files(dir: &Path, out: &mut Vec<PathBuf>) {
@@ -24,14 +40,15 @@ fn files(dir: &Path, out: &mut Vec<PathBuf>) {
     }
 }
 
-fn sources() -> Vec<(String, String)> {
+/// Every source file of a crate: (path relative to its `src`, text).
+fn sources(krate: &str) -> Vec<(String, String)> {
     let mut paths = Vec::new();
-    files(&src(), &mut paths);
+    files(&src(krate), &mut paths);
     paths
         .into_iter()
         .map(|p| {
             let rel = p
-                .strip_prefix(src())
+                .strip_prefix(src(krate))
                 .unwrap()
                 .to_string_lossy()
                 .replace('\\', "/");
@@ -40,97 +57,117 @@ fn sources() -> Vec<(String, String)> {
         .collect()
 }
 
-/// Architecture invariant: no import cycle between the app's top-level
-/// modules (such as `plots -> views -> worker -> plots`), nor between any
-/// two of its files.
+/// Architecture invariant: no import cycle between the top-level modules
+/// of the figures, the worker or the app (such as `plots -> views ->
+/// story -> plots`), nor between any two of their files.
 #[test]
-fn the_app_has_no_import_cycle() {
-    let g = modgraph::read(&src());
-    for (a, b) in [
-        ("plots", "views"),
-        ("controller", "views"),
-        ("worker", "protocol"),
-        ("store", "views"),
-        ("page", "controller"),
-        ("web", "page"),
-    ] {
-        assert!(
-            g.edges
-                .iter()
-                .any(|(x, y)| x.starts_with(a) && y.starts_with(b)),
-            "{a} -> {b} not seen"
-        );
-    }
-    for depth in [1, 2, 99] {
-        assert_eq!(modgraph::cycle(&g, depth), None, "at depth {depth}");
+fn no_page_crate_has_an_import_cycle() {
+    let seen = [
+        ("figures", "plots", "views"),
+        ("figures", "views", "protocol"),
+        ("figures", "link", "settings"),
+        ("worker", "runner", "jobs"),
+        ("app", "controller", "store"),
+        ("app", "page", "controller"),
+        ("app", "web", "page"),
+    ];
+    for (krate, _, _) in CRATES {
+        let g = modgraph::read(&src(krate));
+        for (_, a, b) in seen.iter().filter(|(k, _, _)| *k == krate) {
+            assert!(
+                g.edges
+                    .iter()
+                    .any(|(x, y)| x.starts_with(a) && y.starts_with(b)),
+                "{krate}: {a} -> {b} not seen"
+            );
+        }
+        for depth in [1, 2, 99] {
+            assert_eq!(modgraph::cycle(&g, depth), None, "{krate} at depth {depth}");
+        }
     }
 }
 
-/// Architecture invariant: only the `web` boundary (web.rs and web/)
-/// touches `web_sys` and `wasm_bindgen`; every file says what it is.
+/// Architecture invariant: only the page's `web` boundary (`crates/app`'s
+/// web.rs and web/) touches `web_sys`, `wasm_bindgen` and `js_sys`; every
+/// file of the three crates says what it is.
 #[test]
 fn only_the_web_boundary_touches_the_browser() {
-    let all = sources();
-    assert!(all.len() > 30, "{} files", all.len());
-    for (rel, text) in &all {
-        assert!(text.starts_with("//!"), "{rel} must start with a //! doc");
-        let web = rel == "web.rs" || rel.starts_with("web/");
-        let code = text.lines().filter(|l| !l.trim_start().starts_with("//"));
-        for line in code.filter(|_| !web) {
-            for name in ["web_sys", "wasm_bindgen", "js_sys"] {
-                assert!(!line.contains(name), "{rel} uses {name}: {line}");
+    for (krate, _, _) in CRATES {
+        let all = sources(krate);
+        assert!(all.len() > 10, "{krate}: {} files", all.len());
+        for (rel, text) in &all {
+            assert!(
+                text.starts_with("//!"),
+                "{krate}: {rel} must start with a //! doc"
+            );
+            let web = krate == "app" && (rel == "web.rs" || rel.starts_with("web/"));
+            let code = text.lines().filter(|l| !l.trim_start().starts_with("//"));
+            for line in code.filter(|_| !web) {
+                for name in ["web_sys", "wasm_bindgen", "js_sys"] {
+                    assert!(!line.contains(name), "{krate}: {rel} uses {name}: {line}");
+                }
             }
         }
     }
 }
 
-/// Architecture invariant: no app file over 800 lines.
+/// Architecture invariant: no file of the figures, the worker or the app
+/// over 800 lines.
 #[test]
 fn no_file_is_too_long() {
-    for (rel, text) in sources() {
-        let n = text.lines().count();
-        assert!(n <= 800, "{rel}: {n} lines (at most 800)");
+    for (krate, _, _) in CRATES {
+        for (rel, text) in sources(krate) {
+            let n = text.lines().count();
+            assert!(n <= 800, "{krate}: {rel}: {n} lines (at most 800)");
+        }
     }
 }
 
-/// ARCHITECTURE.md's app section stays true: every file and folder its
-/// code map names exists under `crates/app/src` (its invariants and their
-/// tests are checked with the rest of the file by `test-support`).
+/// ARCHITECTURE.md's sections on the figures, the worker and the app stay
+/// true: every file and folder a section's code map names exists in its
+/// crate (its invariants and their tests are checked with the rest of the
+/// file by `test-support`).
 #[test]
-fn the_app_map_names_real_files() {
+fn the_crate_maps_name_real_files() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let doc = std::fs::read_to_string(root.join("../../ARCHITECTURE.md")).unwrap();
-    let start = doc.find("## The app").expect("an app section");
-    let end = doc[start + 3..]
-        .find("\n## ")
-        .map_or(doc.len(), |i| start + 3 + i);
-    let section = &doc[start..end];
-    let mut all = Vec::new();
-    files(&src(), &mut all);
-    files(&root.join("tests"), &mut all);
-    // Files and folders: words ending in `.rs` or `/` in the code map.
-    let words =
-        section.split(|c: char| c.is_whitespace() || c == '(' || c == ')' || c == ',' || c == '`');
     let mut named = 0;
-    for w in words {
-        let w = w.trim_end_matches(['.', ':', ';']);
-        let is_path = (w.ends_with(".rs") || (w.ends_with('/') && w.len() > 1))
-            && w.chars()
-                .all(|c| c.is_ascii_alphanumeric() || "_/.".contains(c));
-        if !is_path || w.starts_with("crates/") {
-            continue;
+    for (krate, heading, _) in CRATES {
+        let start = doc
+            .find(&format!("{heading}\n"))
+            .unwrap_or_else(|| panic!("a section {heading}"));
+        let end = doc[start + 3..]
+            .find("\n## ")
+            .map_or(doc.len(), |i| start + 3 + i);
+        let section = &doc[start..end];
+        let mut all = Vec::new();
+        files(&src(krate), &mut all);
+        if dir(krate).join("tests").exists() {
+            files(&dir(krate).join("tests"), &mut all);
         }
-        let here = src().join(w);
-        // A file (or a folder) in one of the rooms.
-        let in_a_room = all.iter().any(|p| {
-            let p = p.to_string_lossy();
-            p.ends_with(&format!("/{w}")) || (w.ends_with('/') && p.contains(&format!("/{w}")))
-        });
-        assert!(
-            here.exists() || in_a_room,
-            "ARCHITECTURE.md names {w}, which does not exist"
-        );
-        named += 1;
+        // Files and folders: words ending in `.rs` or `/` in the code map.
+        let words = section
+            .split(|c: char| c.is_whitespace() || c == '(' || c == ')' || c == ',' || c == '`');
+        for w in words {
+            let w = w.trim_end_matches(['.', ':', ';']);
+            let is_path = (w.ends_with(".rs") || (w.ends_with('/') && w.len() > 1))
+                && w.chars()
+                    .all(|c| c.is_ascii_alphanumeric() || "_/.".contains(c));
+            if !is_path || w.starts_with("crates/") {
+                continue;
+            }
+            let here = src(krate).join(w);
+            // A file (or a folder) in one of the crate's rooms.
+            let in_a_room = all.iter().any(|p| {
+                let p = p.to_string_lossy();
+                p.ends_with(&format!("/{w}")) || (w.ends_with('/') && p.contains(&format!("/{w}")))
+            });
+            assert!(
+                here.exists() || in_a_room,
+                "ARCHITECTURE.md's {heading} names {w}, which is not in {krate}"
+            );
+            named += 1;
+        }
     }
     assert!(named > 30, "only {named} files named");
 }

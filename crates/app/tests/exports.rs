@@ -10,8 +10,8 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use app::controller::{Controller, Effect};
-use app::protocol::encode;
-use app::worker::WorkerCore;
+use figures::protocol::encode;
+use worker::WorkerCore;
 
 /// A small but complete page: a few Omega points per view, a small map and
 /// Lyapunov curve, the time-integration overlay on.
@@ -93,7 +93,7 @@ fn exports_of(link: &str, workers: usize) -> String {
 /// controller for them: (file name, text).
 fn files(c: &mut Controller, cores: &mut [WorkerCore]) -> Vec<(String, String)> {
     use app::controller::Format;
-    use app::views::{ViewId, VIEWS};
+    use figures::views::{ViewId, VIEWS};
     let mut out = Vec::new();
     let file = |e: Effect| match e {
         Effect::Download { name, text, .. } => (name, text),

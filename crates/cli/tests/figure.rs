@@ -123,7 +123,7 @@ fn figure_fig5_writes_three_phase_portraits_and_three_poincare_sections() {
         );
         for (i, b) in [50, 100, 150, 200].iter().enumerate() {
             assert!(svg.contains(&format!("backlash {b} µm")), "{name}: {b}");
-            let c = app::plots::family_color(i);
+            let c = figures::plots::family_color(i);
             let hex = format!("#{:02X}{:02X}{:02X}", c.0, c.1, c.2);
             assert!(svg.contains(&hex), "{name}: the colour of backlash {b} µm");
         }

@@ -3,10 +3,10 @@
 //! untrusted text, each checked for panics and for the invariants its
 //! output promises.
 //!
-//! - `link`: the page's link decoder ([`app::link::decode`]) on random
+//! - `link`: the page's link decoder ([`figures::link::decode`]) on random
 //!   pairs of real and junk keys with hostile values, nested pinned states,
 //!   mutated real links and raw bytes. The result must build, keep every
-//!   job capped and round-trip through [`app::link::encode_ab`].
+//!   job capped and round-trip through [`figures::link::encode_ab`].
 //! - `params`: the parameter JSON ([`solver::keys::from_json_str`]) on
 //!   random objects, mutated real parameter files and raw text. A set it
 //!   accepts must round-trip through [`solver::keys::to_json`].
@@ -200,8 +200,12 @@ pub fn all_keys() -> Vec<String> {
             }
         }
     }
-    keys.extend(app::settings::VIEW_KEYS.iter().map(|k| k.name.to_string()));
-    keys.push(app::link::PINNED_KEY.to_string());
+    keys.extend(
+        figures::settings::VIEW_KEYS
+            .iter()
+            .map(|k| k.name.to_string()),
+    );
+    keys.push(figures::link::PINNED_KEY.to_string());
     keys
 }
 
@@ -250,15 +254,18 @@ pub fn link_input(r: &mut Rng, keys: &[String]) -> String {
             let mut parts = Vec::new();
             for _ in 0..r.below(30) {
                 let k = key_text(r, keys);
-                let v = if k == app::link::PINNED_KEY && r.chance(70) {
+                let v = if k == figures::link::PINNED_KEY && r.chance(70) {
                     let inner = link_input(&mut r.clone(), keys);
                     r.bits();
-                    app::link::percent_encode(&inner)
+                    figures::link::percent_encode(&inner)
                 } else {
                     value_text(r)
                 };
                 let (k, v) = if r.chance(20) {
-                    (app::link::percent_encode(&k), app::link::percent_encode(&v))
+                    (
+                        figures::link::percent_encode(&k),
+                        figures::link::percent_encode(&v),
+                    )
                 } else {
                     (k, v)
                 };
@@ -275,8 +282,8 @@ pub fn link_input(r: &mut Rng, keys: &[String]) -> String {
         6..=8 => {
             let mut inner = r.clone();
             r.bits();
-            let d = app::link::decode(&link_input(&mut inner, keys));
-            let q = app::link::encode_ab(&d.settings, d.pinned.as_ref());
+            let d = figures::link::decode(&link_input(&mut inner, keys));
+            let q = figures::link::encode_ab(&d.settings, d.pinned.as_ref());
             mutate_text(r, &q)
         }
         // Raw junk, sometimes longer than the decoder reads.
@@ -355,7 +362,7 @@ pub fn params_input(r: &mut Rng, keys: &[String]) -> String {
 
 /// Checks the link decoder on one input; `Err` says what broke.
 pub fn check_link(query: &str) -> Result<(), String> {
-    use app::link::{decode, encode_ab};
+    use figures::link::{decode, encode_ab};
     let d = decode(query);
     solver::steady::Model::new(&d.settings.params)
         .map_err(|e| format!("decoded parameters do not build: {e}"))?;
@@ -363,9 +370,9 @@ pub fn check_link(query: &str) -> Result<(), String> {
     if !(v.omega_from < v.omega_to && v.map_from < v.map_to) {
         return Err("a decoded range is not increasing".into());
     }
-    if v.bif_points > app::settings::MAX_BIF_POINTS
-        || v.record_periods > app::settings::MAX_RECORD
-        || v.map_omega_points > app::settings::MAX_MAP_OMEGA_POINTS
+    if v.bif_points > figures::settings::MAX_BIF_POINTS
+        || v.record_periods > figures::settings::MAX_RECORD
+        || v.map_omega_points > figures::settings::MAX_MAP_OMEGA_POINTS
     {
         return Err("a decoded job is over its cap".into());
     }

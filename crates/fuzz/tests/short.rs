@@ -44,7 +44,7 @@ fn the_generators_reach_what_they_target() {
     let (mut pinned, mut params_ok, mut merged, mut refused) = (0, 0, 0, 0);
     for n in 0..400 {
         let mut r = fuzz::Rng::new(7, n);
-        if app::link::decode(&fuzz::link_input(&mut r, &keys))
+        if figures::link::decode(&fuzz::link_input(&mut r, &keys))
             .pinned
             .is_some()
         {

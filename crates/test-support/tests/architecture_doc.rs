@@ -20,8 +20,10 @@ fn doc() -> String {
 }
 
 /// The crates whose source a name may refer to, as (crate, src folder).
-const CRATES: [(&str, &str); 5] = [
+const CRATES: [(&str, &str); 7] = [
     ("solver", "crates/solver/src"),
+    ("figures", "crates/figures/src"),
+    ("worker", "crates/worker/src"),
     ("app", "crates/app/src"),
     ("cli", "crates/cli/src"),
     ("wasm_bench", "crates/wasm-bench/src"),

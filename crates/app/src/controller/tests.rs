@@ -411,9 +411,17 @@ fn map_cells(id: JobId, cells: &[(u32, u32, crate::protocol::Regime, Option<u32>
         id,
         cells: cells
             .iter()
-            .map(|&(row, column, regime, period)| {
-                crate::views::test_support::map_cell(row, column, regime, period)
-            })
+            .map(
+                |&(row, column, regime, period)| crate::protocol::MapSample {
+                    row,
+                    column,
+                    omega: 0.0,
+                    value: 0.0,
+                    regime,
+                    period,
+                    error: None,
+                },
+            )
             .collect(),
     })
 }

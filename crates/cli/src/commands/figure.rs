@@ -1,5 +1,5 @@
 //! `gearshock figure ID --out DIR`: computes every panel of one of the
-//! paper's figures (a preset of `app::presets`, the page's own table) and
+//! paper's figures (a preset of `figures::presets`, the page's own table) and
 //! writes, per panel, an SVG drawn by the page's plotting code (plotters'
 //! SVG backend) and the panel's data as JSON and CSV.
 //!
@@ -28,18 +28,18 @@ pub mod shard;
 
 use crate::failure::{usage, Failure};
 use crate::{output, progress};
-use app::presets::{preset, Preset};
-use app::protocol::{OmegaResult, RunOptions};
-use app::views::bif::{BifPoint, BifView};
-use app::views::omega::OmegaView;
-use app::worker::jobs::omega::{omega_result, selected_spec, OmegaJob};
 use clap::Args;
+use figures::presets::{preset, Preset};
+use figures::protocol::{OmegaResult, RunOptions};
+use figures::views::bif::{BifPoint, BifView};
+use figures::views::omega::OmegaView;
 use plotters::prelude::{IntoDrawingArea, SVGBackend};
 use serde_json::{json, Value};
 use solver::hbm::{FrfContinuation, FrfSpec};
 use solver::steady::Model;
 use solver::sweep::{canonical_order, BifurcationSweep, Direction, SweepSpec};
 use std::path::{Path, PathBuf};
+use worker::jobs::omega::{omega_result, selected_spec, OmegaJob};
 
 /// Size of each panel's SVG (pixels).
 const SIZE: (u32, u32) = (800, 500);
@@ -81,7 +81,7 @@ pub(crate) type Files = Vec<(String, String)>;
 /// One member of the family: its link and decoded settings.
 pub(crate) struct Member {
     pub(crate) query: String,
-    pub(crate) settings: app::settings::Settings,
+    pub(crate) settings: figures::settings::Settings,
     pub(crate) model: Model,
 }
 
@@ -90,7 +90,7 @@ pub(crate) fn members(p: &Preset) -> Result<Vec<Member>, Failure> {
     (0..count)
         .map(|m| {
             let query = p.member_query(m, 0);
-            let d = app::link::decode(&query);
+            let d = figures::link::decode(&query);
             if let Some(issue) = d.issues.first() {
                 return Err(usage(format!("figure {}: {issue}", p.id)));
             }
@@ -159,7 +159,7 @@ pub fn run(args: &FigureArgs) -> Result<Value, Failure> {
         )));
     }
     let Some(p) = preset(&args.id) else {
-        let ids: Vec<&str> = app::presets::PRESETS
+        let ids: Vec<&str> = figures::presets::PRESETS
             .iter()
             .map(|p| p.id)
             .filter(|id| id.starts_with("fig"))
@@ -268,7 +268,7 @@ fn frf_panels(
     // Per member: the JSON of its branch on each panel's mesh, and the
     // branch as the page's store (for the SVG's overlaid curves).
     let mut per_panel: Vec<Vec<Value>> = vec![Vec::new(); names.len()];
-    let mut stores: Vec<app::views::fr::HbmStore> = Vec::new();
+    let mut stores: Vec<figures::views::fr::HbmStore> = Vec::new();
     let mut failures = Vec::new();
     for (i, m) in members.iter().enumerate() {
         let v = &m.settings.view;
@@ -290,13 +290,10 @@ fn frf_panels(
         if let Some(e) = &failure {
             failures.push(format!("{}: {e}", m.query));
         }
-        stores.push(app::views::fr::HbmStore {
+        stores.push(figures::views::fr::HbmStore {
             id: i as u64 + 1,
             harmonics: v.harmonics,
-            points: branch
-                .iter()
-                .map(app::worker::jobs::hbm::hbm_sample)
-                .collect(),
+            points: branch.iter().map(worker::jobs::hbm::hbm_sample).collect(),
             progress: c.progress(),
             finished: true,
             error: failure.as_ref().map(ToString::to_string),
@@ -344,9 +341,9 @@ fn frf_panels(
         let view = frf_view(p, members, &stores, name)?;
         let mut text = String::new();
         {
-            let size = (app::plots::WIDTH, app::plots::HEIGHT);
+            let size = (figures::plots::WIDTH, figures::plots::HEIGHT);
             let root = SVGBackend::with_string(&mut text, size).into_drawing_area();
-            drawn(&svg, app::plots::draw_fr(&root, &view, "").map(|_| ()))?;
+            drawn(&svg, figures::plots::draw_fr(&root, &view, "").map(|_| ()))?;
         }
         files.push((svg, text));
         let data = json!({
@@ -386,9 +383,9 @@ fn frf_panels(
 fn frf_view(
     p: &Preset,
     members: &[Member],
-    stores: &[app::views::fr::HbmStore],
+    stores: &[figures::views::fr::HbmStore],
     name: &str,
-) -> Result<app::views::fr::FrView, Failure> {
+) -> Result<figures::views::fr::FrView, Failure> {
     let first = members
         .first()
         .ok_or_else(|| usage(format!("figure {}: no members", p.id)))?;
@@ -400,12 +397,12 @@ fn frf_view(
     };
     let j = mesh(first)?;
     let v = &first.settings.view;
-    let ctx = app::views::ViewContext {
+    let ctx = figures::views::ViewContext {
         omega_from: v.omega_from,
         omega_to: v.omega_to,
         selected_omega: v.omega,
         mesh_label: name.to_string(),
-        natural: app::views::natural_in_range(&first.model, v.omega_from, v.omega_to),
+        natural: figures::views::natural_in_range(&first.model, v.omega_from, v.omega_to),
     };
     let b_um = |m: &Member, j: usize| (m.model.system.meshes[j].backlash_m * 1e9).round() / 1e3;
     let mut levels = Vec::new();
@@ -415,17 +412,18 @@ fn frf_view(
     let store = stores
         .first()
         .ok_or_else(|| usage(format!("figure {}: no branches", p.id)))?;
-    let mut view = app::views::fr::fr_view(store, None, None, Some(j), &levels, &ctx);
-    view.backlash_um = app::views::distinct(&levels, None);
+    let mut view = figures::views::fr::fr_view(store, None, None, Some(j), &levels, &ctx);
+    view.backlash_um = figures::views::distinct(&levels, None);
     let label = |i: usize| match p.family {
         Some(f) => {
             let x = f.values.get(i).copied().unwrap_or(f64::NAN);
-            app::family_spec::family_key(f.key)
+            figures::family_spec::family_key(f.key)
                 .map_or_else(|| format!("{} {x}", f.key), |k| k.label(x))
         }
         None => String::new(),
     };
-    let partial = |s: &app::views::fr::HbmStore| if s.error.is_some() { "; partial" } else { "" };
+    let partial =
+        |s: &figures::views::fr::HbmStore| if s.error.is_some() { "; partial" } else { "" };
     for br in view.branches.iter_mut() {
         br.member = Some(0);
         br.label = format!("{}{}", label(0), partial(store));
@@ -433,7 +431,7 @@ fn frf_view(
     for (i, (m, s)) in members.iter().zip(stores).enumerate().skip(1) {
         let (points, markers) = s.curve(Some(mesh(m)?));
         view.markers.extend(markers);
-        view.branches.push(app::views::fr::FrBranch {
+        view.branches.push(figures::views::fr::FrBranch {
             label: format!("{}{}", label(i), partial(s)),
             points,
             faded: false,
@@ -493,8 +491,8 @@ pub(crate) fn orbit_files(
     files: &mut Files,
 ) -> Result<Vec<Value>, Failure> {
     // The title names the member and the motion, from the one
-    // classification the page's panel titles use (`app::story`).
-    let verdict = app::story::motion_tag(r.motion);
+    // classification the page's panel titles use (`figures::story`).
+    let verdict = figures::story::motion_tag(r.motion);
     let label = format!("{}: {verdict}", member_label(p, i));
     let mut out = Vec::new();
     for (k, view) in [(i, OmegaView::Phase), (n + i, OmegaView::Poincare)] {
@@ -506,16 +504,19 @@ pub(crate) fn orbit_files(
             drawn(
                 &svg,
                 match view {
-                    OmegaView::Poincare => app::plots::draw_poincare(&root, r, &label),
-                    _ => app::plots::draw_phase(&root, r, &label),
+                    OmegaView::Poincare => figures::plots::draw_poincare(&root, r, &label),
+                    _ => figures::plots::draw_phase(&root, r, &label),
                 },
             )?;
         }
         files.push((svg, text));
-        let mut data = app::views::omega::omega_json(r, view);
+        let mut data = figures::views::omega::omega_json(r, view);
         data["query"] = json!(m.query);
         files.push((format!("{name}.json"), data.to_string()));
-        files.push((format!("{name}.csv"), app::views::omega::omega_csv(r, view)));
+        files.push((
+            format!("{name}.csv"),
+            figures::views::omega::omega_csv(r, view),
+        ));
         out.push(json!({
             "panel": name,
             "view": if matches!(view, OmegaView::Poincare) { "poincare" } else { "phase" },
@@ -622,7 +623,7 @@ pub(crate) fn bif_files(
     files.push((format!("{name}.json"), data.to_string()));
     files.push((format!("{name}.csv"), crate::csv::sweep(data)));
     let view = bif_view(m, spec, data)?;
-    let natural = app::views::natural_in_range(&m.model, spec.omega_from, spec.omega_to);
+    let natural = figures::views::natural_in_range(&m.model, spec.omega_from, spec.omega_to);
     let svg = format!("{name}.svg");
     let text = drawn(&svg, bif_svg(&view, &natural, &member_label(p, i)))?;
     files.push((svg, text));
@@ -657,17 +658,17 @@ fn bifurcation_panels(
 /// SVG export draws it).
 fn bif_svg(
     view: &BifView,
-    natural: &[app::views::NaturalFreq],
+    natural: &[figures::views::NaturalFreq],
     status: &str,
 ) -> Result<String, String> {
     let mut chart = String::new();
     let groups = {
         let root = SVGBackend::with_string(&mut chart, SIZE).into_drawing_area();
-        app::plots::draw_bif(&root, view, natural, status)
+        figures::plots::draw_bif(&root, view, natural, status)
             .map_err(|e| e.to_string())?
             .1
     };
-    app::plots::svg_with_dots(&chart, SIZE, &groups).map_err(|e| e.to_string())
+    figures::plots::svg_with_dots(&chart, SIZE, &groups).map_err(|e| e.to_string())
 }
 
 /// The page's bifurcation view of one sweep, from its JSON (one mesh, its
@@ -713,7 +714,7 @@ fn bif_view(m: &Member, spec: &SweepSpec, data: &Value) -> Result<BifView, solve
         unstable_bands: solver::parametric::Parametric::new(&m.model).and_then(|p| {
             p.unstable_bands(
                 (spec.omega_from, spec.omega_to),
-                app::worker::jobs::bif::BAND_SAMPLES,
+                worker::jobs::bif::BAND_SAMPLES,
             )
         })?,
         pinned: Vec::new(),

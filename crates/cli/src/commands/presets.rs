@@ -1,8 +1,8 @@
 //! `gearshock presets`: every preset of the page (the paper's figures panel
 //! for panel, the Table 1 defaults and the teaching cases) as JSON, read
-//! from the same table the page uses (`app::presets`).
+//! from the same table the page uses (`figures::presets`).
 
-use app::presets::{Preset, PRESETS};
+use figures::presets::{Preset, PRESETS};
 use serde_json::{json, Map, Value};
 
 /// A link value as JSON: a number where it reads as one, a word otherwise.

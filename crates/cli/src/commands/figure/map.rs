@@ -13,11 +13,11 @@ use super::{write_all, FigureArgs, Files};
 use crate::budget::{largest_within, StepCost, MAX_BOUNDARY_WORK, MAX_STEPS};
 use crate::failure::{usage, Failure};
 use crate::{output, progress};
-use app::protocol::{BoundaryCurve, MapSample};
-use app::views::boundaries::{
+use figures::protocol::{BoundaryCurve, MapSample};
+use figures::views::boundaries::{
     boundaries_json, disagreements, BoundaryStore, BOUNDARY_LEVELS, BOUNDARY_POINTS,
 };
-use app::views::map::{map_csv, map_json, MapGrid, MapStore, MapView};
+use figures::views::map::{map_csv, map_json, MapGrid, MapStore, MapView};
 use serde_json::{json, Value};
 use solver::boundaries::{BoundarySpec, BoundaryTrace};
 use solver::map::{MapSpec, RegimeMap};
@@ -25,7 +25,7 @@ use solver::params::ModelParams;
 use solver::steady::Model;
 
 /// Size of the SVG (the page's map canvas).
-const SIZE: (u32, u32) = (app::plots::WIDTH, 460);
+const SIZE: (u32, u32) = (figures::plots::WIDTH, 460);
 
 /// Checks the map's cells against [`MAX_STEPS`]: their periods' budget
 /// first (every cell running its whole transient), and where that is over,
@@ -36,7 +36,7 @@ fn check_cells(
     model: &Model,
     map: &RegimeMap,
     grid: &MapGrid,
-    v: &app::settings::ViewOptions,
+    v: &figures::settings::ViewOptions,
 ) -> Result<(), Failure> {
     let cells = grid.cells() as u64;
     let periods = u64::from(v.map_transient_periods) + u64::from(v.map_record_periods);
@@ -111,7 +111,7 @@ pub(crate) fn run(args: &FigureArgs) -> Result<Value, Failure> {
         .ok_or_else(|| usage("figure map: --out DIR is required"))?;
     let query = args.link.as_deref().unwrap_or("");
     let query = query.split_once('?').map_or(query, |(_, q)| q);
-    let d = app::link::decode(query);
+    let d = figures::link::decode(query);
     if let Some(issue) = d.issues.first() {
         return Err(usage(format!("figure map --link: {issue}")));
     }
@@ -205,7 +205,7 @@ pub(crate) fn run(args: &FigureArgs) -> Result<Value, Failure> {
         disagree: disagree.clone(),
         picked: None,
     };
-    let svg = app::plots::maps::map_svg(&view, SIZE).map_err(|e| Failure {
+    let svg = figures::plots::maps::map_svg(&view, SIZE).map_err(|e| Failure {
         code: 1,
         message: format!("cannot draw map.svg: {e}"),
     })?;

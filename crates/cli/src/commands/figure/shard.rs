@@ -13,12 +13,12 @@ use super::{
     FigureArgs, Files, Member,
 };
 use crate::failure::{usage, Failure};
-use app::presets::{preset, Preset};
-use app::protocol::{AnimHistory, Motion, OmegaResult, Regime};
-use app::worker::jobs::omega::SAMPLES_PER_PERIOD;
+use figures::presets::{preset, Preset};
+use figures::protocol::{AnimHistory, Motion, OmegaResult, Regime};
 use serde_json::{json, Map, Value};
 use solver::keys::truncate;
 use std::path::Path;
+use worker::jobs::omega::SAMPLES_PER_PERIOD;
 
 /// The options a shard was computed with: every shard of one figure must
 /// carry the same.

@@ -5,7 +5,7 @@
 //! [`SLICE_STEPS`] integrator steps, so a newer job waits at most one slice.
 
 use super::{Job, SLICE_STEPS};
-use crate::protocol::{FromWorker, JobId};
+use figures::protocol::{FromWorker, JobId};
 use solver::model::Model;
 
 /// A chain's share of an Omega grid: every `chains`-th of `points` grid

@@ -3,7 +3,7 @@
 
 use super::jobs::bif::BandsCache;
 use super::jobs::{self, failed, Job};
-use crate::protocol::{FromWorker, JobId, JobKind, JobSpec};
+use figures::protocol::{FromWorker, JobId, JobKind, JobSpec};
 use serde_json::{Map, Value};
 use solver::keys;
 use solver::model::Model;

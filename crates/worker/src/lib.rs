@@ -1,11 +1,15 @@
 //! The Web Worker's job runner, as plain Rust: no browser types, so it is
-//! tested natively.
+//! tested natively, and the command line's `figure` runs its jobs too.
 //!
-//! The worker's thin shell (`web.rs`) feeds every incoming message to
-//! [`WorkerCore::handle`] and, while [`WorkerCore::has_work`], calls
-//! [`WorkerCore::step`] in a loop for a few milliseconds, posts the replies,
-//! and yields to the event loop so that newer jobs and cancels arrive. One
-//! step is one bounded chunk of one job ([`jobs::Job::step`]).
+//! Architecture invariant: this crate imports the solver, `report` and the
+//! shared `figures` (the messages and results it speaks), never the page.
+//!
+//! The page's worker shell (`crates/app/src/web/worker.rs`) feeds every
+//! incoming message to [`WorkerCore::handle`] and, while
+//! [`WorkerCore::has_work`], calls [`WorkerCore::step`] in a loop for a
+//! few milliseconds, posts the replies, and yields to the event loop so
+//! that newer jobs and cancels arrive. One step is one bounded chunk of one
+//! job ([`jobs::Job::step`]).
 //!
 //! The worker keeps one [`runner::Runner`] per computation (the current
 //! state, the pinned A, each family member: a [`Target`]). The
@@ -17,7 +21,7 @@
 //! turns, one slice each; the Lyapunov curve, then the impact-regime map,
 //! then the shooting branches run when those are idle.
 
-use crate::protocol::{encode, FromWorker, JobId, JobKind, Target, ToWorker};
+use figures::protocol::{encode, FromWorker, JobId, JobKind, Target, ToWorker};
 use jobs::bif::BandsCache;
 use jobs::{failed, Job};
 use runner::Runner;
@@ -73,7 +77,7 @@ impl WorkerCore {
                 job,
             } => {
                 if let Target::Member(m) = target {
-                    if m == 0 || m as usize > crate::family_spec::MAX_MEMBERS {
+                    if m == 0 || m as usize > figures::family_spec::MAX_MEMBERS {
                         return vec![failed(id, format!("no family member {m}"))];
                     }
                 }

@@ -8,9 +8,9 @@
 // Tests may panic: that is how they fail.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use app::link::decode;
-use app::presets::{preset, PRESETS};
-use app::settings::MeshSel;
+use figures::link::decode;
+use figures::presets::{preset, PRESETS};
+use figures::settings::MeshSel;
 use solver::keys::{self, Value};
 use solver::params::ModelParams;
 
@@ -216,13 +216,13 @@ fn every_figure_preset_holds_the_papers_family_and_panels() {
                     assert_eq!(d.settings.view.harmonics, fig.harmonics, "{}", fig.id);
                 }
                 // The note names the plotted quantity in plain words.
-                assert!(p.note.contains(app::presets::X_WORDS), "{}", fig.id);
+                assert!(p.note.contains(figures::presets::X_WORDS), "{}", fig.id);
                 if let Some(omega) = fig.omega {
                     assert_eq!(d.settings.view.omega, omega, "{}", fig.id);
                     assert!(p.settings.contains(&("omega", &omega.to_string()[..])));
                 }
                 // The page's link of this member restores it exactly.
-                let again = decode(&app::link::encode(&d.settings));
+                let again = decode(&figures::link::encode(&d.settings));
                 assert!(again.issues.is_empty(), "{:?}", again.issues);
                 assert_eq!(again.settings, d.settings, "{}", fig.id);
                 if fig.bifurcation {

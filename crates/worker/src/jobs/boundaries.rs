@@ -4,7 +4,7 @@
 //! posted as soon as it is finished, so the map shows them one by one.
 
 use super::Job;
-use crate::protocol::{BoundaryCurve, FromWorker, JobId};
+use figures::protocol::{BoundaryCurve, FromWorker, JobId};
 use solver::boundaries::{BoundarySpec, BoundaryTrace};
 use solver::params::ModelParams;
 

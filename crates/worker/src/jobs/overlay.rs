@@ -4,8 +4,8 @@
 
 use super::chain::{Chain, ChainJob, ChainKind};
 use super::failed;
-use crate::protocol::um;
-use crate::protocol::{FrSample, FromWorker, JobId, MeshExtremes, RunOptions};
+use figures::protocol::um;
+use figures::protocol::{FrSample, FromWorker, JobId, MeshExtremes, RunOptions};
 use solver::model::Model;
 use solver::steady::{SteadyOptions, SteadyRun};
 use solver::sweep::SweepSpec;

@@ -1,8 +1,8 @@
 //! The worker job runner's tests: real jobs on small models.
 
 use super::*;
-use crate::protocol::{encode, JobSpec, OmegaSpec, OrbitSample, RunOptions};
-use crate::worker::jobs::hbm::HBM_CHUNK;
+use crate::jobs::hbm::HBM_CHUNK;
+use figures::protocol::{encode, JobSpec, OmegaSpec, OrbitSample, RunOptions};
 use serde_json::Map;
 use solver::keys;
 use solver::params::ModelParams;
@@ -495,8 +495,8 @@ fn steps_to_omega(core: &mut WorkerCore) -> (Vec<FromWorker>, usize) {
 
 #[test]
 fn a_new_omega_job_preempts_a_running_steady_state_within_one_slice() {
-    use crate::worker::jobs::omega::{omega_result, OmegaJob};
-    use crate::worker::jobs::SLICE_STEPS;
+    use crate::jobs::omega::{omega_result, OmegaJob};
+    use crate::jobs::SLICE_STEPS;
     let mut core = WorkerCore::new();
     let p = ModelParams::default();
     let run = RunOptions {

@@ -4,7 +4,7 @@
 
 use super::chain::{Chain, ChainJob, ChainKind};
 use super::failed;
-use crate::protocol::{FromWorker, JobId, LyapSample};
+use figures::protocol::{FromWorker, JobId, LyapSample};
 use solver::lyapunov::{LyapunovOptions, LyapunovRun};
 use solver::model::Model;
 

@@ -7,8 +7,8 @@
 //! integrating the converged orbit over its period.
 
 use super::{excitation_at, failed, Job, SLICE_STEPS};
-use crate::failure::{explain, is_loaded, Task};
-use crate::protocol::{um, FromWorker, JobId, OrbitSample};
+use figures::failure::{explain, is_loaded, Task};
+use figures::protocol::{um, FromWorker, JobId, OrbitSample};
 use solver::model::Model;
 use solver::orbits::{ShootFrfSpec, ShootPoint, ShootingContinuation};
 use solver::shooting::Reduced;

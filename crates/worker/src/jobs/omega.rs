@@ -4,11 +4,11 @@
 //! page's bounded preview run ([`omega_result`] with a start state).
 
 use super::{excitation_at, failed, Job, SLICE_STEPS};
-use crate::protocol::{
+use figures::protocol::{
     history_start, um, AnimHistory, FromWorker, JobId, MeshSummary, OmegaResult, OmegaSpec,
     RunOptions,
 };
-use crate::settings::Settings;
+use figures::settings::Settings;
 use solver::model::Model;
 use solver::steady::{spectrum, steady_state, SteadyOptions, SteadyRun, SteadyState};
 
@@ -75,14 +75,14 @@ pub enum OmegaError {
 impl OmegaJob {
     /// Why this job has no result, in plain words with what to try.
     fn failure_words(&self, e: &OmegaError) -> String {
-        let at = crate::words::short(self.spec.omega);
+        let at = figures::words::short(self.spec.omega);
         match e {
             OmegaError::Solver { source, .. } => format!(
                 "The steady state at Ω {at} could not be found: {}",
-                crate::failure::explain(
+                figures::failure::explain(
                     source,
-                    crate::failure::Task::SteadyState,
-                    crate::failure::is_loaded(&self.model)
+                    figures::failure::Task::SteadyState,
+                    figures::failure::is_loaded(&self.model)
                 )
             ),
             other => format!("The steady state at Ω {at} could not be computed: {other}."),

@@ -2,7 +2,7 @@
 //! of one cell's steady state per step.
 
 use super::{failed, Job, SLICE_STEPS};
-use crate::protocol::{FromWorker, JobId, MapSample};
+use figures::protocol::{FromWorker, JobId, MapSample};
 use solver::map::{MapSpec, RegimeMap};
 use solver::params::ModelParams;
 

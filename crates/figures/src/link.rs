@@ -137,7 +137,8 @@ fn pairs(query: &str, issues: &mut Vec<String>) -> Vec<(String, String)> {
     out
 }
 
-pub(crate) fn value_text(v: &Value) -> String {
+/// A value as a link writes it: a number exactly, a text as it is.
+pub fn value_text(v: &Value) -> String {
     match v {
         Value::Num(x) => fmt_exact(*x),
         Value::Text(t) => t.clone(),

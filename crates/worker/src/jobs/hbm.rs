@@ -2,9 +2,9 @@
 //! pseudo-arclength continuation streamed in chunks of [`HBM_CHUNK`] points.
 
 use super::{failed, Job};
-use crate::failure::{explain, is_loaded, Task};
-use crate::protocol::um;
-use crate::protocol::{FromWorker, HbmMesh, HbmSample, JobId};
+use figures::failure::{explain, is_loaded, Task};
+use figures::protocol::um;
+use figures::protocol::{FromWorker, HbmMesh, HbmSample, JobId};
 use solver::hbm::{BranchPoint, FrfContinuation, FrfSpec};
 use solver::model::Model;
 

@@ -4,11 +4,11 @@
 //! solver runs.
 
 use super::{drain, run_msg, steps_to_omega};
-use crate::protocol::{
+use crate::jobs::SLICE_STEPS;
+use crate::WorkerCore;
+use figures::protocol::{
     FromWorker, JobSpec, LyapSample, MapSample, MeshExtremes, OmegaSpec, RunOptions,
 };
-use crate::worker::jobs::SLICE_STEPS;
-use crate::worker::WorkerCore;
 use solver::lyapunov::{largest_exponent, LyapunovOptions};
 use solver::map::{MapSpec, RegimeMap};
 use solver::model::Model;
@@ -143,8 +143,8 @@ fn an_overlay_point_pauses_for_a_new_omega_job_and_keeps_its_bits() {
             .meshes
             .iter()
             .map(|x| MeshExtremes {
-                rel_min_um: crate::protocol::um(x.rel_min_m),
-                rel_max_um: crate::protocol::um(x.rel_max_m),
+                rel_min_um: figures::protocol::um(x.rel_min_m),
+                rel_max_um: figures::protocol::um(x.rel_max_m),
                 regime: x.impact.into(),
                 dynamic_factor: x.dynamic_factor,
             })

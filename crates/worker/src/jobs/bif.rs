@@ -3,8 +3,8 @@
 //! export; shard 0 first sends the parametric-instability bands of the range.
 
 use super::{excitation_at, failed, Job, SLICE_STEPS};
-use crate::protocol::um;
-use crate::protocol::{BifMesh, BifSample, FromWorker, JobId, RunOptions};
+use figures::protocol::um;
+use figures::protocol::{BifMesh, BifSample, FromWorker, JobId, RunOptions};
 use serde_json::Value;
 use solver::keys;
 use solver::model::Model;

@@ -62,7 +62,8 @@ pub(crate) type Chart<'a, DB> = ChartContext<
     Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
 >;
 
-pub(crate) fn err<E: std::fmt::Display>(e: E) -> DrawError {
+/// Any drawing backend's error as a [`DrawError`].
+pub fn err<E: std::fmt::Display>(e: E) -> DrawError {
     DrawError(e.to_string())
 }
 

@@ -1,11 +1,11 @@
 //! The worker's jobs, one module per kind, behind one trait.
 //!
-//! Each kind's module turns its [`crate::protocol::JobSpec`] into a job
+//! Each kind's module turns its [`figures::protocol::JobSpec`] into a job
 //! (`start`), and the job computes one bounded chunk per [`Job::step`]
 //! (a slice of a steady state or of a Lyapunov run, or a few
 //! harmonic-balance points), posting its data and progress as
 //! [`FromWorker`] messages. Cancelling a job is dropping it; the runner
-//! ([`crate::worker::WorkerCore`]) keeps at most one job of each kind per
+//! ([`crate::WorkerCore`]) keeps at most one job of each kind per
 //! computation and loops over the kinds in its priority order. [`start`]
 //! is the one place that maps a spec to its kind's job.
 //!
@@ -29,8 +29,8 @@ pub mod omega;
 pub mod orbits;
 pub mod overlay;
 
-use crate::protocol::{FromWorker, JobId, JobSpec};
 use bif::{BandsCache, BifJob, BifSpec};
+use figures::protocol::{FromWorker, JobId, JobSpec};
 use hbm::HbmJob;
 use map::MapJob;
 use omega::{OmegaJob, OmegaRun};
