@@ -3,7 +3,8 @@
 //! page (`crates/app`). No import cycle inside any of them, the browser
 //! touched only by the page's `web` boundary, a `//!` doc on every file,
 //! the size limit that keeps each file readable, and ARCHITECTURE.md's maps
-//! of the three naming real files.
+//! of the three naming real files. Which crate may import which is checked
+//! for the whole workspace by `test-support`'s `layers` test.
 
 // Tests may panic: that is how they fail.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
