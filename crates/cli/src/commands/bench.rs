@@ -6,7 +6,10 @@
 
 use serde_json::{json, Value};
 use solver::dynamics::MeshOde;
-use solver::hbm::{BranchPoint, FrfContinuation, FrfSpec, StepControl, SAMPLED_STABILITY_STRIDE};
+use solver::hbm::model::Law;
+use solver::hbm::{
+    BranchPoint, FrfContinuation, FrfSpec, HbmModel, StepControl, SAMPLED_STABILITY_STRIDE,
+};
 use solver::map::{MapSpec, RegimeMap};
 use solver::ode::Ode;
 use solver::params::ModelParams;
@@ -35,8 +38,8 @@ pub struct BenchArgs {
     #[arg(long)]
     classification: bool,
     /// Only the harmonic balance's branch figure (H = 7, Omega 0.1 to 0.5,
-    /// with stability: both step controls, sampled stability, the LU;
-    /// against pyHarm's quoted time).
+    /// with stability: both step controls, sampled stability, the LU).
+    /// The same sweep beside pyHarm, both run: scripts/bench-pyharm.sh.
     #[arg(long)]
     hbm_only: bool,
     /// Only the shooting branches' figure: the page's branch job natively
@@ -44,6 +47,12 @@ pub struct BenchArgs {
     /// gear pair's whole branch.
     #[arg(long)]
     branches_only: bool,
+    /// Print, instead of timing anything, the harmonic-balance problem that
+    /// `gearshock frf` solves on the default model (its scaled modal
+    /// coordinates, channels and force laws) as JSON, so that another code
+    /// can solve the same equations (scripts/bench-pyharm.sh).
+    #[arg(long)]
+    hbm_problem: bool,
 }
 
 /// Checks the options, runs every benchmark and prints the figures.
@@ -53,6 +62,12 @@ pub fn run_command(a: &BenchArgs) -> Result<(), crate::failure::Failure> {
             "--repeats {} is out of range: allowed 1 ..= 100",
             a.repeats
         )));
+    }
+    if a.hbm_problem {
+        let model = Model::new(&ModelParams::default()).map_err(crate::failure::Failure::from)?;
+        let hbm =
+            HbmModel::from_system(&model.system, true).map_err(crate::failure::Failure::from)?;
+        return crate::output::emit(&hbm_problem(&model, &hbm));
     }
     if a.classification {
         let model = Model::new(&ModelParams::default()).map_err(crate::failure::Failure::from)?;
@@ -83,6 +98,67 @@ pub fn run_command(a: &BenchArgs) -> Result<(), crate::failure::Failure> {
         return crate::output::emit(&json!({ "bifurcation_pipeline": v }));
     }
     crate::output::emit(&run(a.repeats, a.quick)?)
+}
+
+/// The harmonic-balance problem of `model` as JSON (see `docs/model.md`
+/// and `solver::hbm::model`): in scaled modal coordinates `x` (channel
+/// displacements in micrometres, time `tau = omega_ref t`, phase
+/// `theta = Omega tau`),
+/// `x'' + C x' + K x + sum_j n_j d_j k_j(theta) g_j(d_j . x - e_j(theta))
+///  = f0 + Omega sum_j n_j c_j d_j e_j'(theta)`,
+/// with `k_j = k (1 + v cos(theta + phase))` and
+/// `e_j = mean + cos cos(theta + phase) + sin sin(theta + phase)`.
+fn hbm_problem(model: &Model, hbm: &HbmModel) -> Value {
+    let rows = |m: &nalgebra::DMatrix<f64>| -> Vec<Vec<f64>> {
+        (0..m.nrows())
+            .map(|i| m.row(i).iter().copied().collect())
+            .collect()
+    };
+    let channels: Vec<Value> = hbm
+        .channels
+        .iter()
+        .map(|ch| {
+            let names: Vec<&str> = ch
+                .meshes
+                .iter()
+                .map(|&i| model.system.meshes[i].name.as_str())
+                .collect();
+            let law = match ch.law {
+                Law::Mesh {
+                    k,
+                    variation,
+                    phase_rad,
+                    backlash_um,
+                    te_mean_um,
+                    te_cos_um,
+                    te_sin_um,
+                } => json!({
+                    "k": k, "variation": variation, "phase_rad": phase_rad,
+                    "backlash_um": backlash_um, "te_mean_um": te_mean_um,
+                    "te_cos_um": te_cos_um, "te_sin_um": te_sin_um,
+                }),
+                Law::Cubic { alpha } => json!({ "cubic_alpha": alpha }),
+            };
+            json!({
+                "meshes": names,
+                "d": ch.d,
+                "multiplicity": ch.multiplicity,
+                "damping": ch.damping,
+                "law": law,
+            })
+        })
+        .collect();
+    json!({
+        "model": "ravigneaux",
+        "params": Value::Object(solver::keys::to_json(&ModelParams::default())),
+        "omega_ref_rad_s": model.system.omega_ref_rad_s,
+        "reduction": format!("{:?}", hbm.reduction),
+        "m": hbm.m,
+        "stiffness": rows(&hbm.stiffness),
+        "damping": rows(&hbm.damping),
+        "load": hbm.load,
+        "channels": channels,
+    })
 }
 
 fn median(mut xs: Vec<f64>) -> f64 {
@@ -440,12 +516,9 @@ fn hbm_branch_bench(model: &Model, runs: u32) -> Result<Value, SolverError> {
             "folds": folds(&sampled_branch),
             "points_differing_from_every_point": differing,
             "speedup_vs_every_point": geometry_med / sampled_med,
-            "speedup_vs_pyharm_quoted": 5.0 / sampled_med,
         },
         "geometry_speedup_vs_iterations": iterations_med / geometry_med,
         "point_ratio_iterations_to_geometry": iterations_points as f64 / geometry_points.max(1) as f64,
-        "pyharm_quoted_s": 5.0,
-        "speedup_vs_pyharm_quoted": 5.0 / geometry_med,
         "lu": lu_bench(runs),
     }))
 }
