@@ -40,6 +40,8 @@ fn every_subcommand(dir: &std::path::Path) -> Vec<Vec<String>> {
         with(&["keys"], &[]),
         with(&["keys", "--markdown"], &[]),
         with(&["modes"], &[]),
+        with(&["campbell"], &[]),
+        with(&["campbell", "--format", "csv"], &[]),
         with(&["simulate", "--omega", "0.5"], &SHORT),
         with(&["simulate", "--omega", "0.5", "--format", "csv"], &SHORT),
         with(

@@ -32,6 +32,7 @@
 
 pub mod bifurcation;
 pub mod boundaries;
+pub mod campbell;
 pub mod dense;
 pub mod dynamics;
 pub mod error;

@@ -5,6 +5,7 @@
 mod bench;
 mod bifurcation;
 mod boundaries;
+mod campbell;
 mod figure;
 mod frf;
 mod instability;
@@ -57,6 +58,11 @@ pub enum Command {
     /// (the jump), contact changes, cusps.
     #[command(allow_negative_numbers = true)]
     Boundaries(boundaries::BoundariesArgs),
+    /// Campbell diagram: the natural frequencies against input speed (rpm),
+    /// the mesh orders, and their crossings (critical speeds) with each
+    /// mode's excitation by the planets' phasing.
+    #[command(allow_negative_numbers = true)]
+    Campbell(campbell::CampbellArgs),
     /// Largest Lyapunov exponent of the Poincaré map over a sweep of Omega.
     #[command(allow_negative_numbers = true)]
     Lyapunov(lyapunov::LyapunovArgs),
@@ -99,6 +105,7 @@ pub fn run(command: Command) -> Result<(), Failure> {
         Command::Frf(a) => frf::run(&a),
         Command::Map(a) => map::run(&a),
         Command::Boundaries(a) => boundaries::run(&a),
+        Command::Campbell(a) => campbell::run(&a),
         Command::Lyapunov(a) => lyapunov::run(&a),
         Command::Instability(a) => instability::run(&a),
         Command::Merge(a) => merge::run(&a),

@@ -1,0 +1,137 @@
+//! `gearshock campbell`: the critical speeds against `gearshock modes`'s
+//! natural frequencies, in JSON and CSV, and its refusals.
+
+// Tests may panic: that is how they fail.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+use test_support::cli::{gearshock, json};
+
+/// Every crossing is a natural frequency that `modes` reports, divided by
+/// its order, at the speed whose mesh frequency is that quotient; Omega at
+/// that speed is the mode's Omega over the order; the default range ends
+/// at Omega 2 and holds every crossing below it.
+#[test]
+fn crossings_are_the_models_natural_frequencies_over_their_orders() {
+    let c = json(&["campbell", "--orders", "3"]);
+    let modes = json(&["modes"]);
+    let natural: Vec<f64> = modes["natural_frequencies_hz"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| f.as_f64().unwrap())
+        .filter(|f| *f > 0.0)
+        .collect();
+    let per_rpm = c["mesh_hz_per_rpm"].as_f64().unwrap();
+    let omega_ref = modes["omega_ref_rad_s"].as_f64().unwrap();
+    let rpm_to = c["rpm_to"].as_f64().unwrap();
+    let two_pi = 2.0 * std::f64::consts::PI;
+    assert!(
+        (rpm_to * per_rpm * two_pi / omega_ref - 2.0).abs() < 1e-9,
+        "{rpm_to}"
+    );
+    let crossings = c["crossings"].as_array().unwrap();
+    let mut expected = 0;
+    for f in natural.iter() {
+        let distinct = natural
+            .iter()
+            .position(|g| (g - f).abs() <= 1e-6 * f)
+            .unwrap();
+        if natural[distinct] != *f {
+            continue;
+        }
+        for order in 1..=3 {
+            let omega = two_pi * f / f64::from(order) / omega_ref;
+            if omega <= 2.0 {
+                expected += 1;
+            }
+        }
+    }
+    assert_eq!(crossings.len(), expected, "{c}");
+    for x in crossings {
+        let order = x["order"].as_f64().unwrap();
+        let rpm = x["rpm"].as_f64().unwrap();
+        let f = rpm * per_rpm * order;
+        assert!(
+            natural.iter().any(|n| (n - f).abs() <= 1e-9 * n),
+            "{x}: {f} Hz is not a natural frequency of {natural:?}"
+        );
+        let omega = x["omega"].as_f64().unwrap();
+        assert!(
+            (omega - two_pi * f / order / omega_ref).abs() <= 1e-9 * omega,
+            "{x}"
+        );
+        // In-phase planets excite the rotational modes only.
+        let rotational = x["mode_kind"] == "rotational";
+        assert_eq!(x["excited"].as_bool(), Some(rotational), "{x}");
+    }
+    // The in-phase planets' planet modes are listed, never excited.
+    let planet = c["modes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|m| m["kind"] == "planet")
+        .expect("a planet mode");
+    assert!(
+        planet["participation"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .all(|p| p.as_f64().unwrap() <= 1e-9),
+        "{planet}"
+    );
+    // The first mode met by order 1 at the speed of Omega 0.2315.
+    let first = crossings.iter().find(|x| x["order"] == 1).unwrap();
+    assert!(
+        (first["omega"].as_f64().unwrap() - 0.2315).abs() < 5e-4,
+        "{first}"
+    );
+}
+
+/// The CSV holds the same rows as the JSON: in-phase planets' crossings
+/// with planet modes among them, marked not excited, the rotational ones
+/// excited.
+#[test]
+fn the_csv_holds_every_crossing() {
+    let c = json(&["campbell", "--rpm-to", "6000", "--orders", "6"]);
+    let out = gearshock(&[
+        "campbell", "--rpm-to", "6000", "--orders", "6", "--format", "csv",
+    ]);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    let rows: Vec<&str> = text.lines().collect();
+    assert!(rows[0].starts_with("rpm,order,omega,"), "{}", rows[0]);
+    assert_eq!(rows.len() - 1, c["crossings"].as_array().unwrap().len());
+    assert!(
+        rows.iter()
+            .any(|r| r.contains(",planet,") && r.ends_with(",false")),
+        "{text}"
+    );
+    assert!(
+        rows.iter()
+            .all(|r| !(r.contains(",rotational,") && r.ends_with(",false"))),
+        "{text}"
+    );
+}
+
+#[test]
+fn bad_speeds_and_orders_are_refused_naming_the_option() {
+    for (args, name) in [
+        (
+            &["campbell", "--rpm-from", "5", "--rpm-to", "2"][..],
+            "--rpm-to 2",
+        ),
+        (&["campbell", "--rpm-to", "NaN"][..], "--rpm-to NaN"),
+        (&["campbell", "--rpm-from", "-3"][..], "--rpm-from -3"),
+        (&["campbell", "--orders", "13"][..], "--orders 13"),
+        (&["campbell", "--orders", "0"][..], "--orders 0"),
+    ] {
+        let out = gearshock(args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(
+            err.contains(name) && err.contains("allowed"),
+            "{args:?}: {err}"
+        );
+        assert!(out.stdout.is_empty(), "{args:?}");
+    }
+}
