@@ -51,15 +51,52 @@ pub struct ParamArgs {
     pub progress: bool,
 }
 
-/// The Omega range of a sweep.
+/// The Omega range of a sweep, given as Omega or as the input member's
+/// speed in rpm (either end either way).
 #[derive(Debug, Args)]
 pub struct OmegaRange {
     /// First Omega.
-    #[arg(long, allow_hyphen_values = true, value_parser = crate::flags::finite)]
-    pub omega_from: f64,
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::flags::finite,
+          required_unless_present = "rpm_from", conflicts_with = "rpm_from")]
+    omega_from: Option<f64>,
     /// Last Omega.
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::flags::finite,
+          required_unless_present = "rpm_to", conflicts_with = "rpm_to")]
+    omega_to: Option<f64>,
+    /// First input speed in rpm (of the small sun s1, or of the pinion),
+    /// instead of --omega-from.
     #[arg(long, allow_hyphen_values = true, value_parser = crate::flags::finite)]
-    pub omega_to: f64,
+    rpm_from: Option<f64>,
+    /// Last input speed in rpm, instead of --omega-to.
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::flags::finite)]
+    rpm_to: Option<f64>,
+}
+
+impl OmegaRange {
+    /// The range in Omega on `model`: speeds given in rpm are converted
+    /// (`solver::campbell::omega_at`) and the conversion said on stderr,
+    /// so that a range refused later in Omega can be read back in rpm.
+    pub fn omegas(&self, model: &Model) -> Result<(f64, f64), Failure> {
+        let end = |omega: Option<f64>, rpm: Option<f64>, flag: &str| -> Result<f64, Failure> {
+            match (omega, rpm) {
+                (Some(o), _) => Ok(o),
+                (None, Some(r)) if r > 0.0 => {
+                    let o = solver::campbell::omega_at(model, r);
+                    crate::output::note(&format!("note: {flag} {r} is Omega {o:.6}"));
+                    Ok(o)
+                }
+                (None, Some(r)) => Err(usage(format!(
+                    "{flag} {r} is out of range: allowed above 0 rpm"
+                ))),
+                // clap requires one of the two.
+                (None, None) => Err(usage(format!("{flag} is missing"))),
+            }
+        };
+        Ok((
+            end(self.omega_from, self.rpm_from, "--rpm-from")?,
+            end(self.omega_to, self.rpm_to, "--rpm-to")?,
+        ))
+    }
 }
 
 /// An Omega range and its number of points (200 by default: a

@@ -135,3 +135,85 @@ fn bad_speeds_and_orders_are_refused_naming_the_option() {
         assert!(out.stdout.is_empty(), "{args:?}");
     }
 }
+
+/// A sweep's range given in rpm is the range in Omega at those speeds
+/// (mesh frequency per rpm from `campbell`, omega_ref from `modes`), and
+/// the sweep is the one given those Omega values.
+#[test]
+fn a_range_in_rpm_is_the_same_sweep_as_in_omega() {
+    let per_rpm = json(&["campbell"])["mesh_hz_per_rpm"].as_f64().unwrap();
+    let omega_ref = json(&["modes"])["omega_ref_rad_s"].as_f64().unwrap();
+    let omega = |rpm: f64| rpm * per_rpm * 2.0 * std::f64::consts::PI / omega_ref;
+    let by_rpm = json(&[
+        "instability",
+        "--rpm-from",
+        "500",
+        "--rpm-to",
+        "6000",
+        "--points",
+        "7",
+    ]);
+    let spec = &by_rpm["spec"];
+    for (key, rpm) in [("omega_from", 500.0), ("omega_to", 6000.0)] {
+        let got = spec[key].as_f64().unwrap();
+        assert!(
+            (got - omega(rpm)).abs() <= 1e-12 * got,
+            "{key}: {got} against {}",
+            omega(rpm)
+        );
+    }
+    let (from, to) = (spec["omega_from"].to_string(), spec["omega_to"].to_string());
+    let by_omega = json(&[
+        "instability",
+        "--omega-from",
+        &from,
+        "--omega-to",
+        &to,
+        "--points",
+        "7",
+    ]);
+    assert_eq!(by_rpm, by_omega);
+    // Either end either way.
+    let mixed = json(&[
+        "instability",
+        "--rpm-from",
+        "500",
+        "--omega-to",
+        &to,
+        "--points",
+        "7",
+    ]);
+    assert_eq!(mixed, by_omega);
+}
+
+#[test]
+fn a_range_given_both_ways_or_below_zero_rpm_is_refused() {
+    for (args, says) in [
+        (
+            &[
+                "instability",
+                "--rpm-from",
+                "500",
+                "--omega-from",
+                "0.1",
+                "--omega-to",
+                "1",
+            ][..],
+            "cannot be used with",
+        ),
+        (
+            &["frf", "--rpm-from", "-5", "--rpm-to", "900"][..],
+            "--rpm-from -5 is out of range",
+        ),
+        (
+            &["bifurcation", "--rpm-from", "0", "--rpm-to", "900"][..],
+            "--rpm-from 0 is out of range",
+        ),
+    ] {
+        let out = gearshock(args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(says), "{args:?}: {err}");
+        assert!(out.stdout.is_empty(), "{args:?}");
+    }
+}

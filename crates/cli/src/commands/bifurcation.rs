@@ -39,11 +39,8 @@ pub struct BifurcationArgs {
 /// Checks the options and the budget, runs the sweep and prints it.
 pub fn run(a: &BifurcationArgs) -> Result<(), Failure> {
     let (params, model) = a.p.load()?;
-    let mut spec = SweepSpec::new(
-        a.grid.range.omega_from,
-        a.grid.range.omega_to,
-        a.grid.points,
-    );
+    let (omega_from, omega_to) = a.grid.range.omegas(&model)?;
+    let mut spec = SweepSpec::new(omega_from, omega_to, a.grid.points);
     a.run.apply(&mut spec.steady);
     spec.directions = Directions::from_name(&a.direction).ok_or_else(|| {
         usage(format!(

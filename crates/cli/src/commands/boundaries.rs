@@ -131,10 +131,11 @@ pub(crate) fn check_trace(
 /// Checks the options and the budget, traces the curves and prints them.
 pub fn run(a: &BoundariesArgs) -> Result<(), Failure> {
     let (params, model) = a.p.load()?;
+    let (omega_from, omega_to) = a.range.omegas(&model)?;
     let mut spec = BoundarySpec::new(
         &a.rows.key,
         (a.rows.value_from + 0.0, a.rows.value_to + 0.0),
-        (a.range.omega_from, a.range.omega_to),
+        (omega_from, omega_to),
     );
     spec.levels = a.levels;
     spec.points = a.points;

@@ -127,7 +127,8 @@ pub fn run(a: &FrfArgs) -> Result<(), Failure> {
         return run_shooting(a);
     }
     let (params, model) = a.p.load()?;
-    let mut spec = FrfSpec::new(a.range.omega_from, a.range.omega_to, a.points);
+    let (omega_from, omega_to) = a.range.omegas(&model)?;
+    let mut spec = FrfSpec::new(omega_from, omega_to, a.points);
     spec.harmonics = a.harmonics.unwrap_or(DEFAULT_HARMONICS);
     spec.method = Method::from_name(&a.method).ok_or_else(|| {
         usage(format!(
@@ -217,7 +218,8 @@ fn check_shooting(model: &solver::steady::Model, spec: &ShootFrfSpec) -> Result<
 /// `--method shooting`: the periodic branches by shooting continuation.
 fn run_shooting(a: &FrfArgs) -> Result<(), Failure> {
     let (params, model) = a.p.load()?;
-    let mut spec = ShootFrfSpec::new(a.range.omega_from, a.range.omega_to, a.points);
+    let (omega_from, omega_to) = a.range.omegas(&model)?;
+    let mut spec = ShootFrfSpec::new(omega_from, omega_to, a.points);
     spec.direction = Direction::from_name(&a.direction).ok_or_else(|| {
         usage(format!(
             "--direction {}: allowed up, down",

@@ -21,18 +21,10 @@ pub struct InstabilityArgs {
 /// Scans Omega, says the unstable bands on stderr and prints the points.
 pub fn run(a: &InstabilityArgs) -> Result<(), Failure> {
     let (params, model) = a.p.load()?;
-    let omegas = omega_grid(
-        a.grid.range.omega_from,
-        a.grid.range.omega_to,
-        a.grid.points,
-        100_000,
-    )?;
+    let (omega_from, omega_to) = a.grid.range.omegas(&model)?;
+    let omegas = omega_grid(omega_from, omega_to, a.grid.points, 100_000)?;
     let engaged = Parametric::new(&model)?;
-    let spec = report::instability_spec_json(
-        a.grid.range.omega_from,
-        a.grid.range.omega_to,
-        a.grid.points,
-    );
+    let spec = report::instability_spec_json(omega_from, omega_to, a.grid.points);
     let lines = Lines {
         header: stream_header(&model, &params, Some(spec.clone())),
         line: &report::instability_point_json,

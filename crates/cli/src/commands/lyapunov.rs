@@ -32,8 +32,9 @@ pub struct LyapunovArgs {
 pub fn run(a: &LyapunovArgs) -> Result<(), Failure> {
     let (params, model) = a.p.load()?;
     let (points, transient_periods, periods) = (a.points, a.transient_periods, a.periods);
-    let omegas = omega_grid(a.range.omega_from, a.range.omega_to, points, 10_000)?;
-    let mut opts = LyapunovOptions::new(a.range.omega_from);
+    let (omega_from, omega_to) = a.range.omegas(&model)?;
+    let omegas = omega_grid(omega_from, omega_to, points, 10_000)?;
+    let mut opts = LyapunovOptions::new(omega_from);
     opts.transient_periods = transient_periods;
     opts.periods = periods;
     // Every option checked before the first point is computed.
@@ -41,7 +42,7 @@ pub fn run(a: &LyapunovArgs) -> Result<(), Failure> {
     // The transient once, then two trajectories over the periods.
     check_work(
         u64::from(points) * (u64::from(transient_periods) + 2 * u64::from(periods)),
-        StepCost::of(&model).mean_per_period(a.range.omega_from, a.range.omega_to, points),
+        StepCost::of(&model).mean_per_period(omega_from, omega_to, points),
         &format!(
             "--points {points} x (--transient-periods {transient_periods} + 2 x --periods {periods})"
         ),

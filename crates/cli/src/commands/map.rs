@@ -40,9 +40,10 @@ pub struct MapArgs {
 /// Checks the options and the budget, computes the map and prints it.
 pub fn run(a: &MapArgs) -> Result<(), Failure> {
     let (params, model) = a.p.load()?;
+    let (omega_from, omega_to) = a.range.omegas(&model)?;
     // `+ 0.0` turns a typed -0 into 0, so the echoed spec reads 0.
     let mut spec = MapSpec::new(
-        (a.range.omega_from, a.range.omega_to, a.omega_points),
+        (omega_from, omega_to, a.omega_points),
         &a.rows.key,
         (
             a.rows.value_from + 0.0,
