@@ -26,8 +26,10 @@ after(async () => {
 /** The canvases a screen reader meets: every canvas not hidden from it. */
 async function canvasLabels(page) {
   return page.evaluate(() =>
+    // The page's canvases; present mode's stage (hidden until a view is
+    // presented) is tested in present.test.mjs.
     [...document.querySelectorAll('canvas')]
-      .filter((c) => c.getAttribute('aria-hidden') !== 'true')
+      .filter((c) => c.getAttribute('aria-hidden') !== 'true' && !c.closest('[hidden]'))
       .map((c) => ({ id: c.id, role: c.getAttribute('role'), label: c.getAttribute('aria-label') ?? '' })),
   );
 }
@@ -361,6 +363,7 @@ test('on a phone (touch, 390x844) a tap or a sideways drag on the frequency resp
     // Larger plots: drawn on 480 pixels across the screen's width, taller
     // for their width, so the 13-pixel words read at 9 CSS pixels or more.
     const sizes = await page.evaluate(() => Object.fromEntries([...document.querySelectorAll('canvas[role=img]')]
+      .filter((c) => !c.closest('[hidden]'))
       .map((c) => [c.id, { w: c.width, h: c.height, css: c.getBoundingClientRect().width }])));
     assert.deepEqual([sizes['canvas-fr'].w, sizes['canvas-fr'].h], [480, 640]);
     for (const [id, c] of Object.entries(sizes)) {

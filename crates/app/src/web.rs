@@ -28,6 +28,7 @@ use web_sys::{
 mod anim;
 mod canvas;
 mod panel;
+mod present;
 mod worker;
 
 pub use worker::start_worker;
@@ -119,6 +120,9 @@ pub fn start_app() {
     }));
     panel::build(&page);
     paint(&page.borrow(), page.borrow().core.first_writes());
+    let w = page.borrow_mut().core.first_present_writes();
+    paint(&page.borrow(), w);
+    present::build(&page);
     build_canvas_events(&page);
     start_workers(&page);
     run_effects(&page, effects);
@@ -212,6 +216,7 @@ fn frame(page: &Shared, ts: f64) {
     run_effects(page, effects);
     let mut p = page.borrow_mut();
     paint(&p, marks);
+    present::fit(&mut p);
     let Shell {
         core, doc, window, ..
     } = &mut *p;
@@ -255,6 +260,11 @@ fn paint(p: &Shell, writes: Vec<Write>) {
             }
             Write::Options { options, .. } => panel::set_options(&p.doc, &e, &options),
             Write::Scroll(_) => e.scroll_into_view(),
+            Write::Focus(_) => {
+                if let Some(h) = e.dyn_ref::<web_sys::HtmlElement>() {
+                    check(h.focus());
+                }
+            }
             Write::PlaceCard {
                 keep_clear,
                 prefer_clear,
@@ -350,6 +360,9 @@ fn canvas(doc: &Document, view: ViewId) -> Option<HtmlCanvasElement> {
 /// Draws one view on its canvas (the core draws, this fills the dots and
 /// the map's cells); returns its writes, to make after the frame's drawing.
 fn draw_view(core: &mut Page, doc: &Document, v: ViewId) -> Vec<Write> {
+    if core.presented_view() == Some(v) {
+        return present::draw(core, doc, v);
+    }
     let Some(cv) = canvas(doc, v) else {
         return Vec::new();
     };

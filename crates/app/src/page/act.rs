@@ -165,6 +165,17 @@ impl Page {
                 out.writes.push(Write::Scroll("view-phase".into()));
                 Vec::new()
             }
+            Action::Present(m) => {
+                out.writes.extend(self.present_move(m));
+                Vec::new()
+            }
+            Action::OmegaStep(n) => {
+                let key = if n < 0 { "ArrowLeft" } else { "ArrowRight" };
+                for _ in 0..n.unsigned_abs() {
+                    self.key(key, false);
+                }
+                Vec::new()
+            }
             Action::CopyLink => {
                 self.tour_copied = true;
                 out.writes.extend(self.tour_writes(false));

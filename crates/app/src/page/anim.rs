@@ -29,7 +29,7 @@ pub struct Anim {
     /// while workers load the cores.
     offscreen: [bool; 2],
     /// The drawing model and the parameters it was built from.
-    set: Option<(solver::params::ModelParams, GearSet)>,
+    pub(super) set: Option<(solver::params::ModelParams, GearSet)>,
     /// What the last frame showed (for the tests' status).
     pub(super) info: serde_json::Value,
 }
@@ -134,7 +134,7 @@ impl Page {
             self.anim.clock.pos = 0.0;
         }
         self.anim.clock.advance(dt, spp, len);
-        let in_view = !self.anim.offscreen.iter().all(|&o| o);
+        let in_view = self.presenting_anim() || !self.anim.offscreen.iter().all(|&o| o);
         if !(self.anim.dirty || (self.anim.clock.playing && in_view)) {
             return AnimDraw::Nothing;
         }
@@ -150,14 +150,7 @@ impl Page {
     /// and the writes that go with it (its note, the play button's word);
     /// `None` before any motion or for a model that cannot be drawn.
     pub fn anim_scene(&mut self, size: (f64, f64)) -> Option<(Scene, Vec<Write>)> {
-        let params = self.ctl.settings().params.clone();
-        if self.anim.set.as_ref().is_none_or(|(q, _)| *q != params) {
-            let meshes: Vec<(solver::params::MeshKind, usize)> = match self.ctl.model() {
-                Ok(m) => m.system.meshes.iter().map(|x| (x.kind, x.planet)).collect(),
-                Err(_) => Vec::new(),
-            };
-            self.anim.set = GearSet::new(&params, &meshes).map(|g| (params, g));
-        }
+        self.anim_set();
         let (Some((_, set)), Some(r)) = (self.anim.set.as_ref(), self.ctl.main().omega.as_ref())
         else {
             return None;
@@ -185,6 +178,20 @@ impl Page {
             Write::text("anim-play", if clock.playing { "Pause" } else { "Play" }),
         ];
         Some((scene, writes))
+    }
+
+    /// Builds the drawing model of the gear set for the current
+    /// parameters, if they changed; whether there is one.
+    pub(super) fn anim_set(&mut self) -> Option<()> {
+        let params = self.ctl.settings().params.clone();
+        if self.anim.set.as_ref().is_none_or(|(q, _)| *q != params) {
+            let meshes: Vec<(solver::params::MeshKind, usize)> = match self.ctl.model() {
+                Ok(m) => m.system.meshes.iter().map(|x| (x.kind, x.planet)).collect(),
+                Err(_) => Vec::new(),
+            };
+            self.anim.set = GearSet::new(&params, &meshes).map(|g| (params, g));
+        }
+        self.anim.set.as_ref().map(|_| ())
     }
 
     /// Draws on the gear set's canvas a frame and a line saying the

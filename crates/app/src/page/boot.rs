@@ -73,13 +73,18 @@ impl Page {
     /// effects (the workers' first jobs).
     pub fn boot(b: &Browser) -> (Page, Vec<Effect>) {
         let workers = worker_count(b.cores, b.forced_workers);
-        let (ctl, effects) = Controller::with_workers(&b.query, b.now_ms, workers);
+        let (shown, query, issue) = super::present::split_present(&b.query);
+        let (mut ctl, effects) = Controller::with_workers(&query, b.now_ms, workers);
+        if let Some(issue) = issue {
+            ctl.issue(issue);
+        }
         let narrow = b.width.is_some_and(|w| w < f64::from(plots::NARROW));
         let mut page = Page::new(ctl, narrow);
         page.set_wide(b.width.is_some_and(|w| w >= super::WIDE_SCREEN));
         if b.reduced_motion {
             page.prefer_still();
         }
+        page.present_from_link(shown);
         (page, effects)
     }
 
@@ -89,6 +94,16 @@ impl Page {
         let mut w = self.fit_writes();
         w.extend(self.tour_writes(true));
         w
+    }
+
+    /// The first writes that need the state's texts: present mode's
+    /// stage, when the link opens in it.
+    pub fn first_present_writes(&mut self) -> Vec<Write> {
+        if self.presenting() {
+            self.present_writes()
+        } else {
+            Vec::new()
+        }
     }
 
     /// Worker `w`'s message `text`, handled at `clock()`; the time it took

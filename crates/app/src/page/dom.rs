@@ -4,12 +4,13 @@
 //! one builder. What a control, a button or a row says and does is decided
 //! (and tested) here; the web layer only creates what it is given.
 
+use super::present::PresentMove;
 use crate::claims::{claims, heading};
 use crate::controller::Format;
 use crate::controls::{controls, Group, Widget};
 use crate::family_spec::FAMILY_KEYS;
 use crate::presets::{preset, PRESETS};
-use crate::views::ViewId;
+use crate::views::{ViewId, PAGE};
 
 /// What a user's event on an element asks of the page.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -60,6 +61,11 @@ pub enum Action {
     AnimSpeed,
     /// The "see the motion" jump after a selection on a phone.
     SeeOrbit,
+    /// Present mode: open a part, move, leave.
+    Present(super::present::PresentMove),
+    /// Step the selected Ω by this many keyboard steps (present mode's
+    /// buttons, for a screen without keys).
+    OmegaStep(i8),
 }
 
 /// A tour button's move.
@@ -275,6 +281,20 @@ pub fn export_bar(v: ViewId) -> Vec<Node> {
     bar
 }
 
+/// The button that presents a part of the page on the whole screen.
+pub fn present_button(key: &'static str, title: &str) -> Node {
+    let n = crate::views::part_number(key).unwrap_or(0);
+    button(
+        "Present",
+        &format!(
+            "Show view {n}, {title}, alone on the whole screen for a projector; Escape leaves"
+        ),
+        Action::Present(PresentMove::Open(key)),
+    )
+    .attr("id", format!("present-{key}"))
+    .attr("class", "present-open")
+}
+
 /// The claims' rows: heading, what the paper says, the verdict, the
 /// evidence, a button loading the figure's preset, the command.
 pub fn claim_rows() -> Vec<Node> {
@@ -360,12 +380,18 @@ pub fn built() -> Vec<(String, Vec<Node>)> {
     for v in ViewId::ALL {
         all.push((format!("exports-{}", v.key()), export_bar(v)));
     }
+    for part in PAGE {
+        all.push((
+            format!("present-slot-{}", part.key),
+            vec![present_button(part.key, part.title)],
+        ));
+    }
     all
 }
 
 /// The listeners of the page's fixed elements (those in `index.html`):
 /// (element id, event, action).
-pub const WIRING: [(&str, &str, Action); 22] = [
+pub const WIRING: [(&str, &str, Action); 27] = [
     ("preset", "change", Action::Preset),
     ("reset", "click", Action::Reset),
     ("pin-a", "click", Action::PinA),
@@ -388,4 +414,13 @@ pub const WIRING: [(&str, &str, Action); 22] = [
     ("anim-fwd", "click", Action::AnimStep(1)),
     ("anim-speed", "change", Action::AnimSpeed),
     ("see-orbit", "click", Action::SeeOrbit),
+    (
+        "present-leave",
+        "click",
+        Action::Present(PresentMove::Leave),
+    ),
+    ("present-next", "click", Action::Present(PresentMove::Next)),
+    ("present-back", "click", Action::Present(PresentMove::Back)),
+    ("present-omega-down", "click", Action::OmegaStep(-1)),
+    ("present-omega-up", "click", Action::OmegaStep(1)),
 ];

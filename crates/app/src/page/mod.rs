@@ -17,11 +17,13 @@ pub mod dom;
 mod frame;
 pub mod gesture;
 mod paint;
+pub mod present;
 pub mod redraw;
 mod texts;
 
 use crate::controller::{Controller, Effect};
 use crate::plots::{self, PlotFrame};
+use crate::protocol::JobKind;
 use crate::store::status::Dirty;
 use crate::views::{ViewId, DRAW_ORDER, VIEWS};
 use redraw::{Decision, FrameTurn, Redraw};
@@ -110,6 +112,8 @@ pub enum Write {
     },
     /// The page's address (the query, without `?`).
     Url(String),
+    /// An element given the keyboard's focus.
+    Focus(String),
 }
 
 impl Write {
@@ -131,6 +135,7 @@ impl Write {
             | Write::Options { id, .. }
             | Write::Flag { id, .. }
             | Write::Scroll(id)
+            | Write::Focus(id)
             | Write::PlaceCard { id, .. } => Some(id),
             Write::Url(_) => None,
         }
@@ -201,6 +206,8 @@ pub struct Page {
     /// Each control's refusal shown in the messages, until a newer value
     /// of its key or any change of the state ([`Refusal`]).
     refused: Vec<Refusal>,
+    /// Present mode: one part of the page on the whole screen.
+    present: present::Present,
 }
 
 /// A value a control refused: its message and red border last while the
@@ -252,6 +259,7 @@ impl Page {
             max_frame_ms: 0.0,
             preview_drawn: None,
             refused: Vec::new(),
+            present: present::Present::default(),
         }
     }
 
@@ -487,7 +495,7 @@ impl Page {
         if d.messages || again {
             w.extend(self.messages());
         }
-        if d.controls || d.jobs.contains(crate::protocol::JobKind::Omega) {
+        if d.controls || d.jobs.contains(JobKind::Omega) {
             let warning = self.ctl.validity_warning();
             w.push(Write::Hidden {
                 id: "validity".into(),
@@ -495,7 +503,7 @@ impl Page {
             });
             w.push(Write::text("validity", warning.unwrap_or_default()));
         }
-        if d.jobs.contains(crate::protocol::JobKind::Omega) {
+        if d.jobs.contains(JobKind::Omega) {
             w.push(Write::text("summary", self.ctl.student_summary()));
             w.push(Write::text("summary-expert", self.ctl.summary_text()));
             w.push(Write::Attr {
@@ -504,8 +512,11 @@ impl Page {
                 value: self.ctl.anim_label(),
             });
         }
+        if self.presenting() && (d.url || d.controls || d.jobs.contains(JobKind::Omega)) {
+            w.extend(self.present_writes());
+        }
         if d.url || d.controls {
-            let q = self.ctl.query();
+            let q = self.link_query();
             if q != self.last_query {
                 self.last_query = q.clone();
                 w.push(Write::Url(q));

@@ -55,6 +55,11 @@ impl Redraw {
         }
     }
 
+    /// Marks `view` for drawing (its canvas changed size: present mode).
+    pub fn mark_view(&mut self, view: ViewId) {
+        self.need[view.slot()] = true;
+    }
+
     /// Whether a view still waits for a frame.
     pub fn pending(&self) -> bool {
         self.need.iter().any(|&n| n)

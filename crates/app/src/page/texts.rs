@@ -273,6 +273,7 @@ impl Page {
                 serde_json::json!({"step": self.ctl.tour(), "done": self.tour_done()}),
             );
             o.insert("map_drawn".into(), self.map_drawn.clone());
+            o.insert("present".into(), self.present_status());
             let boxes: serde_json::Map<String, serde_json::Value> = VIEWS
                 .iter()
                 .zip(&self.text_boxes)

@@ -135,6 +135,9 @@ pub(super) fn paint_items(ctx: &CanvasRenderingContext2d, items: &[Item], size: 
 }
 
 fn draw_anim(p: &mut Shell) {
+    if super::present::draw_anim(p) {
+        return;
+    }
     let Some(cv) = by_id::<HtmlCanvasElement>(&p.doc, "canvas-anim") else {
         return;
     };

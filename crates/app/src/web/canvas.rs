@@ -19,14 +19,29 @@ type Error = DrawingErrorKind<<CanvasBackend as DrawingBackend>::ErrorType>;
 pub(super) struct Canvas {
     inner: CanvasBackend,
     ctx: CanvasRenderingContext2d,
+    /// The drawing's size, where it is not the canvas's (present mode).
+    size: Option<(u32, u32)>,
 }
 
 impl Canvas {
     /// The backend of `canvas`, if it has a 2D context.
     pub(super) fn new(canvas: &HtmlCanvasElement) -> Option<Self> {
+        Self::scaled(canvas, None, 1.0)
+    }
+
+    /// The backend of `canvas` for a drawing of `size` pixels (the
+    /// canvas's own where `None`), each `scale` canvas pixels wide: the
+    /// context's transform scales every line and word, so they are drawn
+    /// sharp at the canvas's resolution.
+    pub(super) fn scaled(
+        canvas: &HtmlCanvasElement,
+        size: Option<(u32, u32)>,
+        scale: f64,
+    ) -> Option<Self> {
         let ctx = super::ctx2d(canvas)?;
+        super::check(ctx.set_transform(scale, 0.0, 0.0, scale, 0.0, 0.0));
         let inner = CanvasBackend::with_canvas_object(canvas.clone())?;
-        Some(Self { inner, ctx })
+        Some(Self { inner, ctx, size })
     }
 }
 
@@ -34,7 +49,7 @@ impl DrawingBackend for Canvas {
     type ErrorType = <CanvasBackend as DrawingBackend>::ErrorType;
 
     fn get_size(&self) -> (u32, u32) {
-        self.inner.get_size()
+        self.size.unwrap_or_else(|| self.inner.get_size())
     }
 
     fn ensure_prepared(&mut self) -> Result<(), Error> {
