@@ -27,6 +27,7 @@ use web_sys::{
 
 mod anim;
 mod canvas;
+mod gif;
 mod panel;
 mod present;
 mod worker;

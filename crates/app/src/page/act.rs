@@ -165,6 +165,11 @@ impl Page {
                 out.writes.push(Write::Scroll("view-phase".into()));
                 Vec::new()
             }
+            // The web layer draws and encodes the GIF (Page::gif_plan).
+            Action::AnimGif => {
+                out.frame = false;
+                Vec::new()
+            }
             Action::Present(m) => {
                 out.writes.extend(self.present_move(m));
                 Vec::new()

@@ -32,6 +32,8 @@ pub struct Anim {
     pub(super) set: Option<(solver::params::ModelParams, GearSet)>,
     /// What the last frame showed (for the tests' status).
     pub(super) info: serde_json::Value,
+    /// The last GIF made (for the tests' status).
+    pub(super) gif: serde_json::Value,
 }
 
 /// What one tick of the animation's loop draws.

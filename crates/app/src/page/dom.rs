@@ -61,6 +61,9 @@ pub enum Action {
     AnimSpeed,
     /// The "see the motion" jump after a selection on a phone.
     SeeOrbit,
+    /// The gear set in motion as an animated GIF (the web layer draws
+    /// the frames).
+    AnimGif,
     /// Present mode: open a part, move, leave.
     Present(super::present::PresentMove),
     /// Step the selected Ω by this many keyboard steps (present mode's
@@ -391,7 +394,7 @@ pub fn built() -> Vec<(String, Vec<Node>)> {
 
 /// The listeners of the page's fixed elements (those in `index.html`):
 /// (element id, event, action).
-pub const WIRING: [(&str, &str, Action); 27] = [
+pub const WIRING: [(&str, &str, Action); 28] = [
     ("preset", "change", Action::Preset),
     ("reset", "click", Action::Reset),
     ("pin-a", "click", Action::PinA),
@@ -413,6 +416,7 @@ pub const WIRING: [(&str, &str, Action); 27] = [
     ("anim-back", "click", Action::AnimStep(-1)),
     ("anim-fwd", "click", Action::AnimStep(1)),
     ("anim-speed", "change", Action::AnimSpeed),
+    ("anim-gif", "click", Action::AnimGif),
     ("see-orbit", "click", Action::SeeOrbit),
     (
         "present-leave",

@@ -16,6 +16,7 @@ pub mod boot;
 pub mod dom;
 mod frame;
 pub mod gesture;
+pub mod gif;
 mod paint;
 pub mod present;
 pub mod redraw;

@@ -265,6 +265,7 @@ impl Page {
                     .map(|(ms, summary)| serde_json::json!({"ms": ms, "summary": summary}))),
             );
             o.insert("anim".into(), self.anim.info.clone());
+            o.insert("gif".into(), self.anim.gif.clone());
             let (n, last) = self.gestures;
             o.insert("gesture".into(), serde_json::json!({"n": n, "last": last}));
             o.insert("see_orbit".into(), serde_json::json!(self.see_orbit));

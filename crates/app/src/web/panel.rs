@@ -66,6 +66,9 @@ fn act(page: &Shared, action: Action, ev: &EventIn) {
     if let Action::Png(v) = action {
         return png_2x(page, v);
     }
+    if let Action::AnimGif = action {
+        return super::gif::export(page);
+    }
     // The core hears of every action, the copy of the link too (the
     // tour's last step is done by it); the clipboard is this layer's.
     let out = {
@@ -137,7 +140,7 @@ fn blob(text: &str, mime: &str) -> Result<Blob, JsValue> {
 
 /// Offers `blob` as the file `name` through an object URL (a data URL
 /// over 2 MB is refused by the browser without a word).
-fn download_blob(doc: &Document, name: &str, blob: &Blob) {
+pub(super) fn download_blob(doc: &Document, name: &str, blob: &Blob) {
     let Ok(url) = Url::create_object_url_with_blob(blob) else {
         return;
     };
