@@ -16,8 +16,8 @@ pub mod multiples;
 pub mod omega;
 pub mod orbits;
 mod table;
-#[cfg(test)]
-pub(crate) mod test_support;
+#[cfg(any(test, feature = "test-support"))]
+pub mod test_support;
 pub mod unstable;
 
 pub use table::{part_number, PagePart, ViewId, ViewSpec, DRAW_ORDER, PAGE, VIEWS};

@@ -7,7 +7,7 @@ use crate::protocol::{HbmMesh, HbmSample, MapSample, MeshExtremes, Motion, Omega
 
 /// The view context of the tests: Omega 0.1 to 2, 0.5 selected, mesh s1a1,
 /// no natural frequencies.
-pub(crate) fn ctx() -> ViewContext {
+pub fn ctx() -> ViewContext {
     ViewContext {
         omega_from: 0.1,
         omega_to: 2.0,
@@ -19,7 +19,7 @@ pub(crate) fn ctx() -> ViewContext {
 
 /// A harmonic-balance point at `omega` with one `(min, max)` (µm) per mesh,
 /// no impact, of the given stability, in piece 0.
-pub(crate) fn hbm_point(omega: f64, meshes: &[(f64, f64)], stable: bool) -> HbmSample {
+pub fn hbm_point(omega: f64, meshes: &[(f64, f64)], stable: bool) -> HbmSample {
     HbmSample {
         omega,
         meshes: meshes
@@ -37,7 +37,7 @@ pub(crate) fn hbm_point(omega: f64, meshes: &[(f64, f64)], stable: bool) -> HbmS
 }
 
 /// A harmonic-balance point with one mesh peaking at `hi` µm in `regime`.
-pub(crate) fn hbm_peak(omega: f64, hi: f64, regime: Regime, stable: bool) -> HbmSample {
+pub fn hbm_peak(omega: f64, hi: f64, regime: Regime, stable: bool) -> HbmSample {
     let mut p = hbm_point(omega, &[(0.0, hi)], stable);
     p.meshes[0].regime = regime;
     p
@@ -45,7 +45,7 @@ pub(crate) fn hbm_peak(omega: f64, hi: f64, regime: Regime, stable: bool) -> Hbm
 
 /// One mesh's time-integration extremes (µm), single-sided impact, with
 /// the dynamic factor `df`.
-pub(crate) fn ext(lo: f64, hi: f64, df: Option<f64>) -> MeshExtremes {
+pub fn ext(lo: f64, hi: f64, df: Option<f64>) -> MeshExtremes {
     MeshExtremes {
         rel_min_um: lo,
         rel_max_um: hi,
@@ -56,7 +56,7 @@ pub(crate) fn ext(lo: f64, hi: f64, df: Option<f64>) -> MeshExtremes {
 
 /// A map cell at `(row, column)` with its regime and period (Omega and
 /// value left at 0: the stores place cells by their indices).
-pub(crate) fn map_cell(row: u32, column: u32, regime: Regime, period: Option<u32>) -> MapSample {
+pub fn map_cell(row: u32, column: u32, regime: Regime, period: Option<u32>) -> MapSample {
     MapSample {
         row,
         column,
@@ -70,7 +70,7 @@ pub(crate) fn map_cell(row: u32, column: u32, regime: Regime, period: Option<u32
 
 /// A period-1 exact steady state at Ω 0.84 on s1a1 (100 µm backlash,
 /// single-sided impact): x = 110 + 30 sin, 20 recorded periods.
-pub(crate) fn omega_result() -> OmegaResult {
+pub fn omega_result() -> OmegaResult {
     let n = 64 * 20;
     let x: Vec<f64> = (0..n)
         .map(|k| 110.0 + 30.0 * (k as f64 / 64.0 * std::f64::consts::TAU).sin())
@@ -113,7 +113,7 @@ pub(crate) fn omega_result() -> OmegaResult {
 
 /// A map grid of backlash rows, 0 ..= `value_to` µm in `rows` rows, over
 /// Omega 0.1 ..= 2.0 in 20 columns (step 0.1).
-pub(crate) fn backlash_grid(value_to: f64, rows: u32) -> crate::views::map::MapGrid {
+pub fn backlash_grid(value_to: f64, rows: u32) -> crate::views::map::MapGrid {
     crate::views::map::MapGrid {
         key: "backlash_um".into(),
         omega_from: 0.1,
