@@ -25,6 +25,8 @@ pub(crate) enum KeyIcon {
     Dot(RGBColor, i32),
     /// A small hollow square (the downward sweep's dots).
     Square(RGBColor),
+    /// A hollow circle of a colour and radius.
+    Ring(RGBColor, i32),
     /// A shaded band (colour, opacity).
     Shade(RGBColor, f64),
     /// A cross (failed points).
@@ -358,6 +360,9 @@ fn draw_icon<DB: DrawingBackend>(
             .map_err(err)?,
         KeyIcon::Dot(color, radius) => root
             .draw(&Circle::new(c, radius, color.filled()))
+            .map_err(err)?,
+        KeyIcon::Ring(color, radius) => root
+            .draw(&Circle::new(c, radius, color.stroke_width(2)))
             .map_err(err)?,
         KeyIcon::Square(color) => root
             .draw(&Rectangle::new(

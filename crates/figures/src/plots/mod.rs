@@ -18,6 +18,7 @@
 mod bif;
 pub mod boundaries;
 mod boxes;
+pub mod campbell;
 mod clip;
 pub mod css;
 pub mod decimate;

@@ -8,6 +8,7 @@
 
 pub mod bif;
 pub mod boundaries;
+pub mod campbell;
 pub mod fr;
 pub mod labels;
 pub mod lyap;
