@@ -6,7 +6,33 @@
 //! inside the plot; the key is under the chart.
 
 use super::*;
-use crate::views::campbell::{grouped, CampbellView, ORDERS};
+use crate::views::campbell::{grouped, CampbellCrossing, CampbellView, ORDERS};
+
+/// How close (pixels) a click must come to a crossing to pick it.
+pub const PICK_PX: f64 = 12.0;
+
+/// The crossing of `view` nearest the pixel `(px, py)` of its plot drawn
+/// with `frame`, if one is within [`PICK_PX`].
+pub fn pick<'a>(
+    view: &'a CampbellView,
+    frame: &PlotFrame,
+    px: f64,
+    py: f64,
+) -> Option<&'a CampbellCrossing> {
+    view.crossings
+        .iter()
+        .map(|c| {
+            (
+                c,
+                frame
+                    .to_px(c.rpm, c.frequency_hz)
+                    .distance(DVec2::new(px, py)),
+            )
+        })
+        .filter(|(_, d)| *d <= PICK_PX)
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(c, _)| c)
+}
 
 /// The colour of the hollow, cancelled crossings.
 const CANCELLED: RGBColor = RGBColor(120, 120, 120);
@@ -60,11 +86,24 @@ pub fn draw_campbell<DB: DrawingBackend>(
     let plan = plan_key(root, &items, Vec::new());
     let area = chart_area(root, &plan);
     let caption = format!("Campbell diagram: natural frequencies against input speed{status}");
-    let axes = Axes {
-        y_format: Some(|v: &f64| grouped(*v)),
-        ..Axes::new("input member's speed (rpm)", "frequency (Hz)")
-    };
-    let mut chart = linear_chart(&area, &caption, (x, y), &axes)?;
+    let mut b = chart_layout(&area, &caption)?;
+    b.y_label_area_size(72);
+    let mut chart = b.build_cartesian_2d(x.0..x.1, y.0..y.1).map_err(err)?;
+    let plot_w = chart.plotting_area().dim_in_pixel().0;
+    chart
+        .configure_mesh()
+        .x_labels((plot_w as usize / 80).clamp(3, 10))
+        .y_labels(8)
+        .light_line_style(GRID.mix(0.5))
+        .bold_line_style(GRID)
+        .x_label_formatter(&|v: &f64| grouped(*v))
+        .y_label_formatter(&|v: &f64| grouped(*v))
+        .x_desc("input member's speed (rpm)")
+        .y_desc("frequency (Hz)")
+        .label_style(small())
+        .axis_desc_style(small())
+        .draw()
+        .map_err(err)?;
     chart
         .draw_series(view.modes.iter().map(|m| {
             PathElement::new(
@@ -74,10 +113,16 @@ pub fn draw_campbell<DB: DrawingBackend>(
         }))
         .map_err(err)?;
     for k in 1..=ORDERS {
-        let top = f64::from(k) * view.mesh_hz_per_rpm * x.1;
+        // Cut where the line leaves the plot, at its right or its top.
+        let slope = f64::from(k) * view.mesh_hz_per_rpm;
+        let end = if slope * x.1 <= y.1 {
+            (x.1, slope * x.1)
+        } else {
+            (y.1 / slope, y.1)
+        };
         chart
             .draw_series(std::iter::once(PathElement::new(
-                vec![(0.0, 0.0), (x.1, top.min(y.1))],
+                vec![(0.0, 0.0), end],
                 ShapeStyle::from(&order_color(k)).stroke_width(2),
             )))
             .map_err(err)?;
@@ -148,5 +193,22 @@ mod tests {
             assert!(p.y >= frame.top_left.y - 1e-6 && p.y <= frame.bottom_right.y + 1e-6);
         }
         assert!(frame.bottom_right.y < f64::from(HEIGHT));
+    }
+
+    #[test]
+    fn a_click_near_a_crossing_picks_it() {
+        let q = crate::link::decode("");
+        let v = CampbellView::new(&Model::new(&q.settings.params).unwrap(), 2.0, 0.5).unwrap();
+        let frame = PlotFrame {
+            top_left: DVec2::new(80.0, 40.0),
+            bottom_right: DVec2::new(740.0, 300.0),
+            x_range: (0.0, v.rpm_max),
+            y_range: (0.0, v.hz_max),
+        };
+        let c = &v.crossings[0];
+        let p = frame.to_px(c.rpm, c.frequency_hz);
+        assert_eq!(pick(&v, &frame, p.x + 3.0, p.y - 2.0), Some(c));
+        // At standstill, the top of the axis: no crossing is near.
+        assert_eq!(pick(&v, &frame, 80.0, 40.0), None);
     }
 }

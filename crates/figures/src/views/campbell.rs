@@ -11,7 +11,6 @@
 //! reaches the highest order's mesh frequency at the top speed, so every
 //! order line ends inside the plot, and only modes under it are drawn.
 
-use crate::plots::PlotFrame;
 use solver::campbell::{rpm_at, Campbell, CANCELLED};
 use solver::modal::ModeKind;
 use solver::model::Model;
@@ -21,9 +20,6 @@ pub const ORDERS: u32 = 4;
 
 /// How many critical speeds the text alternative names.
 pub const NAMED: usize = 3;
-
-/// How close (pixels) a click must come to a crossing to pick it.
-pub const PICK_PX: f64 = 12.0;
 
 /// One natural frequency drawn as a horizontal line.
 #[derive(Debug, Clone, PartialEq)]
@@ -79,7 +75,20 @@ impl CampbellView {
     pub fn new(model: &Model, omega_max: f64, selected_omega: f64) -> Result<Self, String> {
         let rpm_max = rpm_at(model, omega_max);
         let c = Campbell::new(model, 0.0, rpm_max, ORDERS).map_err(|e| e.to_string())?;
-        let hz_max = f64::from(ORDERS) * c.mesh_hz_per_rpm * rpm_max * 1.04;
+        // Up to the highest mode an order can reach, so that the crossings
+        // spread over the plot; the order lines are cut where they leave it.
+        let reach = f64::from(ORDERS) * c.mesh_hz_per_rpm * rpm_max;
+        let top_mode = c
+            .modes
+            .iter()
+            .map(|m| m.frequency_hz)
+            .filter(|f| *f <= reach)
+            .fold(0.0, f64::max);
+        let hz_max = if top_mode > 0.0 {
+            (top_mode * 1.12).min(reach * 1.04)
+        } else {
+            reach * 1.04
+        };
         let modes = c
             .modes
             .iter()
@@ -115,31 +124,21 @@ impl CampbellView {
         })
     }
 
-    /// The crossing nearest the pixel `(px, py)` of a plot drawn with
-    /// `frame`, if one is within [`PICK_PX`].
-    pub fn pick(&self, frame: &PlotFrame, px: f64, py: f64) -> Option<&CampbellCrossing> {
-        self.crossings
-            .iter()
-            .map(|c| {
-                (
-                    c,
-                    frame
-                        .to_px(c.rpm, c.frequency_hz)
-                        .distance(glam::DVec2::new(px, py)),
-                )
-            })
-            .filter(|(_, d)| *d <= PICK_PX)
-            .min_by(|a, b| a.1.total_cmp(&b.1))
-            .map(|(c, _)| c)
+    /// The excited critical speeds in the order the label names them:
+    /// the lowest order first (the mesh frequency itself excites most),
+    /// each order's from the slowest.
+    pub fn by_order(&self) -> Vec<&CampbellCrossing> {
+        let mut v: Vec<&CampbellCrossing> = self.crossings.iter().filter(|c| c.excited).collect();
+        v.sort_by(|a, b| a.order.cmp(&b.order).then(a.rpm.total_cmp(&b.rpm)));
+        v
     }
 
-    /// The first [`NAMED`] excited critical speeds in words, for the
-    /// caption and the plot's text alternative.
+    /// The first [`NAMED`] excited critical speeds of [`Self::by_order`]
+    /// in words, for the caption and the plot's text alternative.
     pub fn label(&self) -> String {
         let excited: Vec<String> = self
-            .crossings
-            .iter()
-            .filter(|c| c.excited)
+            .by_order()
+            .into_iter()
             .take(NAMED)
             .map(crossing_words)
             .collect();
@@ -147,10 +146,28 @@ impl CampbellView {
             "Campbell diagram: natural frequencies against input speed, 0 to {} rpm, with mesh orders 1 to {ORDERS}.",
             grouped(self.rpm_max)
         );
+        format!("{head} {}", self.note_with(&excited))
+    }
+
+    /// The note over the plot: the first critical speeds in words.
+    pub fn note(&self) -> String {
+        let excited: Vec<String> = self
+            .by_order()
+            .into_iter()
+            .take(NAMED)
+            .map(crossing_words)
+            .collect();
+        self.note_with(&excited)
+    }
+
+    fn note_with(&self, excited: &[String]) -> String {
         if excited.is_empty() {
-            format!("{head} No mesh order meets a natural frequency the meshes excite in this speed range.")
+            "No mesh order meets a natural frequency the meshes excite in this speed range.".into()
         } else {
-            format!("{head} Critical speeds: {}.", excited.join("; "))
+            format!(
+                "Critical speeds, lowest order first: {}.",
+                excited.join("; ")
+            )
         }
     }
 }
@@ -291,25 +308,10 @@ mod tests {
         let v = CampbellView::new(&model(""), 2.0, 0.5).unwrap();
         let label = v.label();
         assert!(label.starts_with("Campbell diagram: natural frequencies"));
-        let first = v.crossings.iter().find(|c| c.excited).unwrap();
+        let first = v.by_order()[0];
+        assert_eq!((first.order, first.rank), (1, 0));
         assert!(label.contains(&crossing_words(first)), "{label}");
         assert!(label.matches(" meets ").count() <= NAMED);
         assert_eq!(campbell_csv(&v).lines().count(), v.crossings.len() + 1);
-    }
-
-    #[test]
-    fn a_click_near_a_crossing_picks_it() {
-        let v = CampbellView::new(&model(""), 2.0, 0.5).unwrap();
-        let frame = PlotFrame {
-            top_left: glam::DVec2::new(80.0, 40.0),
-            bottom_right: glam::DVec2::new(740.0, 300.0),
-            x_range: (0.0, v.rpm_max),
-            y_range: (0.0, v.hz_max),
-        };
-        let c = &v.crossings[0];
-        let p = frame.to_px(c.rpm, c.frequency_hz);
-        assert_eq!(v.pick(&frame, p.x + 3.0, p.y - 2.0), Some(c));
-        // At standstill, the top of the axis: no crossing is near.
-        assert_eq!(v.pick(&frame, 80.0, 40.0), None);
     }
 }
