@@ -394,7 +394,7 @@ fn canvas_xy(cv: &HtmlCanvasElement, e: &MouseEvent) -> (f64, f64) {
 /// the arrows pick Omega (the core tells a tap and a drag from a swipe).
 fn build_canvas_events(page: &Shared) {
     let doc = page.borrow().doc.clone();
-    for view in [ViewId::Map, ViewId::Time] {
+    for view in [ViewId::Map, ViewId::Time, ViewId::Campbell] {
         let Some(cv) = canvas(&doc, view) else {
             continue;
         };
@@ -408,6 +408,15 @@ fn build_canvas_events(page: &Shared) {
             };
             run_effects(&p2, fx);
             request_frame(&p2);
+        });
+    }
+    if let Some(cv) = canvas(&doc, ViewId::Campbell) {
+        let p2 = page.clone();
+        listen(&cv.into(), "keydown", move |e: KeyboardEvent| {
+            if p2.borrow_mut().core.campbell_key(&e.key()) {
+                e.prevent_default();
+                request_frame(&p2);
+            }
         });
     }
     for view in [ViewId::Fr, ViewId::Bif, ViewId::Lyap] {

@@ -100,7 +100,8 @@ fn files(c: &mut Controller, cores: &mut [WorkerCore]) -> Vec<(String, String)> 
         Effect::Post { .. } => panic!("a data export posts nothing"),
     };
     // The order the snapshot was written in: the sweeps, the map and the
-    // Lyapunov curve, then the selected-Omega views.
+    // Lyapunov curve, then the selected-Omega views, then the Campbell
+    // diagram's critical speeds.
     let order = [ViewId::Fr, ViewId::Bif, ViewId::Map, ViewId::Lyap]
         .into_iter()
         .chain([
@@ -108,6 +109,7 @@ fn files(c: &mut Controller, cores: &mut [WorkerCore]) -> Vec<(String, String)> 
             ViewId::Poincare,
             ViewId::Time,
             ViewId::Spectrum,
+            ViewId::Campbell,
         ]);
     assert_eq!(order.clone().count(), VIEWS.len());
     for view in order {

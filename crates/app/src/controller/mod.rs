@@ -772,6 +772,7 @@ impl Controller {
 }
 
 mod boundaries;
+pub(crate) mod campbell;
 mod export;
 mod text;
 pub use export::{ExportError, Format};

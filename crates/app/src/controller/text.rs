@@ -15,6 +15,9 @@ impl Controller {
     pub fn canvas_label(&self, view: crate::views::ViewId) -> String {
         use crate::views::labels;
         let title = view.spec().title;
+        if view == crate::views::ViewId::Campbell {
+            return self.campbell_label();
+        }
         match view.spec().data {
             JobKind::HarmonicBalance | JobKind::Overlay if self.panels.is_some() => {
                 labels::fr_panels_label(&self.fr_panels())
@@ -120,6 +123,9 @@ impl Controller {
         use JobKind;
         let st = self.view_status(view);
         let not_computed = |e: &String| format!("Not computed: {e}");
+        if view == crate::views::ViewId::Campbell {
+            return self.campbell_view().err().map(|e| not_computed(&e));
+        }
         match view.spec().data {
             JobKind::HarmonicBalance | JobKind::Overlay => {
                 let e = st.error.as_ref()?;

@@ -330,8 +330,32 @@ impl Page {
                 self.anim_seek(x, y);
                 Vec::new()
             }
+            ViewId::Campbell => {
+                let frame = self.frames[ViewId::Campbell.slot()];
+                let picked = frame.and_then(|f| {
+                    let v = self.ctl.campbell_view().ok()?;
+                    crate::plots::campbell::pick(&v, &f, x, y).map(|c| c.omega)
+                });
+                self.pending_omega = picked.or(self.pending_omega);
+                Vec::new()
+            }
             _ => Vec::new(),
         }
+    }
+
+    /// A key on the Campbell diagram: the arrows select the next or the
+    /// previous critical speed. Returns whether the key was used.
+    pub fn campbell_key(&mut self, key: &str) -> bool {
+        let dir = match key {
+            "ArrowLeft" | "ArrowDown" => -1.0,
+            "ArrowRight" | "ArrowUp" => 1.0,
+            _ => return false,
+        };
+        let from = self.pending_omega.unwrap_or(self.ctl.settings().view.omega);
+        if let Some(omega) = self.ctl.campbell_step(from, dir) {
+            self.pending_omega = Some(omega);
+        }
+        true
     }
 
     /// A click at pixel `(x, y)` of the map: that cell's value and Omega.

@@ -212,9 +212,9 @@ mod tests {
             vec![ViewId::Poincare, ViewId::Time, ViewId::Spectrum]
         );
         let third = plan(&mut r, 300.0, 3.0, |_| None);
-        assert_eq!(third, vec![ViewId::Lyap, ViewId::Map]);
+        assert_eq!(third, vec![ViewId::Lyap, ViewId::Map, ViewId::Campbell]);
         assert!(!r.pending());
-        assert_eq!(r.draws, [1; 8]);
+        assert_eq!(r.draws, [1; 9]);
         assert_eq!(r.first_draw_ms[ViewId::Fr.slot()], 103.0);
         assert_eq!(r.max_draw_ms[ViewId::Map.slot()], 3.0);
         // Nothing marked: nothing drawn.

@@ -119,6 +119,8 @@ impl Page {
                     100 * done / total.max(1)
                 ),
             ),
+            // Drawn from the model at once: nothing to wait for.
+            (ViewId::Campbell, _, _) => (None, String::new()),
             (_, Some((done, total)), _) => (Some((done, total)), view.progress_label(done, total)),
             _ => (None, String::new()),
         }
@@ -165,6 +167,7 @@ impl Page {
             }
             ViewId::Map => main.status(JobKind::Map).map_caption_suffix(),
             ViewId::Lyap => main.status(JobKind::Lyap).caption_suffix(),
+            ViewId::Campbell => String::new(),
             ViewId::Phase | ViewId::Poincare if family => computing(self.running(JobKind::Omega)),
             ViewId::Phase | ViewId::Poincare | ViewId::Time | ViewId::Spectrum => {
                 let preview = main.omega.as_ref().is_some_and(|r| r.preview);
@@ -179,6 +182,7 @@ impl Page {
     /// behind "details"; empty for the mesh panels, whose key is complete).
     pub fn note(&self, view: ViewId, fr: Option<&FrView>) -> Vec<Write> {
         match (view, fr) {
+            (ViewId::Campbell, _) => vec![Write::text("note-campbell", self.ctl.campbell_note())],
             (ViewId::Fr, Some(fr)) if self.ctl.panels().is_some() => {
                 let note = crate::views::fr::fr_panels_note(fr);
                 vec![
@@ -207,6 +211,28 @@ impl Page {
             }
             _ => Vec::new(),
         }
+    }
+
+    /// The Campbell diagram's critical speeds, each with its pixel on the
+    /// canvas (where a click selects it) once the diagram is drawn.
+    fn campbell_status(&self) -> serde_json::Value {
+        let Ok(v) = self.ctl.campbell_view() else {
+            return serde_json::Value::Null;
+        };
+        let frame = self.frame(ViewId::Campbell);
+        let crossings: Vec<serde_json::Value> = v
+            .crossings
+            .iter()
+            .map(|c| {
+                let mut j = crate::controller::campbell::crossing_json(c);
+                if let (Some(f), Some(o)) = (frame, j.as_object_mut()) {
+                    let p = f.to_px(c.rpm, c.frequency_hz);
+                    o.insert("px".into(), serde_json::json!([p.x, p.y]));
+                }
+                j
+            })
+            .collect();
+        serde_json::json!({"label": v.label(), "crossings": crossings})
     }
 
     /// Everything the tests and the benchmark read: the controller's
@@ -242,7 +268,13 @@ impl Page {
                 serde_json::json!(self.last_input_ms),
             );
             o.insert("now_ms".into(), serde_json::json!(now_ms));
-            for view in [ViewId::Map, ViewId::Lyap, ViewId::Bif, ViewId::Time] {
+            for view in [
+                ViewId::Map,
+                ViewId::Lyap,
+                ViewId::Bif,
+                ViewId::Time,
+                ViewId::Campbell,
+            ] {
                 o.insert(
                     format!("{}_frame", view.key()),
                     frame_json(self.frame(view)),
@@ -275,6 +307,7 @@ impl Page {
             );
             o.insert("map_drawn".into(), self.map_drawn.clone());
             o.insert("present".into(), self.present_status());
+            o.insert("campbell".into(), self.campbell_status());
             let boxes: serde_json::Map<String, serde_json::Value> = VIEWS
                 .iter()
                 .zip(&self.text_boxes)

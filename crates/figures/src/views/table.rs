@@ -25,6 +25,10 @@ pub enum ViewId {
     Map,
     /// Largest Lyapunov exponent over Omega (under the bifurcation diagram).
     Lyap,
+    /// Campbell diagram: natural frequencies against input speed, with the
+    /// mesh orders' crossings (drawn from the model, with the selected
+    /// Omega's speed, so it follows the selected-Omega job).
+    Campbell,
 }
 
 /// What the page needs to know about a view.
@@ -46,7 +50,7 @@ pub struct ViewSpec {
 }
 
 /// Every view, in [`ViewId`] order.
-pub const VIEWS: [ViewSpec; 8] = [
+pub const VIEWS: [ViewSpec; 9] = [
     ViewSpec {
         id: ViewId::Fr,
         key: "fr",
@@ -111,6 +115,14 @@ pub const VIEWS: [ViewSpec; 8] = [
         shows: JobKind::Lyap.set(),
         progressive: true,
     },
+    ViewSpec {
+        id: ViewId::Campbell,
+        key: "campbell",
+        title: "Campbell diagram",
+        data: JobKind::Omega,
+        shows: JobKind::Omega.set(),
+        progressive: false,
+    },
 ];
 
 /// One numbered part of the page, in page order: the views of [`VIEWS`]
@@ -128,7 +140,7 @@ pub struct PagePart {
 /// motion stops repeating), then the views of the motion at the selected
 /// Omega. A part's number is its place here; `index.html` is checked
 /// against it (order, headings and every "view N" in the help texts).
-pub const PAGE: [PagePart; 9] = [
+pub const PAGE: [PagePart; 10] = [
     PagePart {
         key: "fr",
         title: "Frequency response",
@@ -165,6 +177,10 @@ pub const PAGE: [PagePart; 9] = [
         key: "spectrum",
         title: "Spectrum",
     },
+    PagePart {
+        key: "campbell",
+        title: "Campbell diagram",
+    },
 ];
 
 /// The number of the page part with key `key` (1-based), if there is one.
@@ -174,7 +190,7 @@ pub fn part_number(key: &str) -> Option<usize> {
 
 /// The order in which dirty views are drawn: the views a slider drag
 /// watches first (the frequency response, then the phase portrait).
-pub const DRAW_ORDER: [ViewId; 8] = [
+pub const DRAW_ORDER: [ViewId; 9] = [
     ViewId::Fr,
     ViewId::Phase,
     ViewId::Bif,
@@ -183,11 +199,12 @@ pub const DRAW_ORDER: [ViewId; 8] = [
     ViewId::Spectrum,
     ViewId::Lyap,
     ViewId::Map,
+    ViewId::Campbell,
 ];
 
 impl ViewId {
     /// Every view, in slot order.
-    pub const ALL: [ViewId; 8] = [
+    pub const ALL: [ViewId; 9] = [
         ViewId::Fr,
         ViewId::Bif,
         ViewId::Phase,
@@ -196,6 +213,7 @@ impl ViewId {
         ViewId::Spectrum,
         ViewId::Map,
         ViewId::Lyap,
+        ViewId::Campbell,
     ];
 
     /// The view's slot in per-view arrays.
@@ -252,6 +270,9 @@ impl ViewId {
 
     /// The CLI-format export's button title, for the views that have one.
     pub fn cli_export_title(self) -> Option<&'static str> {
+        if self == ViewId::Campbell {
+            return None;
+        }
         match self.spec().data {
             JobKind::Bif => Some("The sweep as `gearshock bifurcation` JSON (the CLI's format)"),
             JobKind::Omega => Some("This run as `gearshock simulate` JSON (the CLI's format)"),

@@ -54,6 +54,9 @@ pub enum ExportError {
     /// The view has no CLI-format export.
     #[error("this view has no CLI-format export")]
     NoCliFormat,
+    /// The model's natural frequencies cannot be computed.
+    #[error("the natural frequencies cannot be computed: {0}")]
+    Modes(String),
     /// The data could not be written as JSON.
     #[error("cannot write the JSON: {0}")]
     Json(String),
@@ -77,6 +80,9 @@ impl Controller {
     pub fn export(&self, view: ViewId, format: Format) -> Result<Effect, ExportError> {
         let csv = format == Format::Csv;
         let text = match view.spec().data {
+            _ if view == ViewId::Campbell => {
+                self.campbell_export(csv).map_err(ExportError::Modes)?
+            }
             JobKind::HarmonicBalance | JobKind::Overlay if self.panels.is_some() => {
                 self.fr_panels_export(csv)?
             }

@@ -89,6 +89,11 @@ impl Controller {
         let whole = v.whole_clearance;
         let first = |frames: Vec<Option<PlotFrame>>| frames.into_iter().flatten().next();
         let mut d = Drawn::default();
+        if view == ViewId::Campbell {
+            let c = self.campbell_view().map_err(plots::DrawError)?;
+            d.frame = Some(plots::campbell::draw_campbell(root, &c, status)?);
+            return Ok(d);
+        }
         match view.spec().data {
             // Clicks pick Omega on the first panel's axis (all share it).
             JobKind::HarmonicBalance | JobKind::Overlay if self.panels.is_some() => {
