@@ -396,7 +396,13 @@ mod tests {
         assert_eq!(p.present_key(), Some("map"));
         p.present_keydown("ArrowUp", false);
         p.present_keydown("PageUp", false);
-        assert_eq!(p.present_key(), Some("spectrum"), "wraps round");
+        // Wraps round to the page's last view (the Campbell diagram).
+        assert_eq!(
+            p.present_key(),
+            PAGE.last().map(|part| part.key),
+            "wraps round"
+        );
+        assert_eq!(p.present_key(), Some("campbell"));
         p.present_keydown("PageDown", false);
         assert_eq!(p.present_key(), Some("fr"));
         // The left and right arrows step Ω, as on the page's plots.
