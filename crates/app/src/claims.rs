@@ -72,10 +72,10 @@ mod tests {
                 assert!(!text.is_empty(), "claim {}", c.id);
             }
             if let Some(f) = &c.figure {
-                assert!(crate::presets::preset(f).is_some(), "{f}");
+                assert!(figures::presets::preset(f).is_some(), "{f}");
                 // The page names the plotted quantity in plain words.
                 assert!(
-                    c.evidence.contains(crate::presets::X_WORDS),
+                    c.evidence.contains(figures::presets::X_WORDS),
                     "claim {}'s evidence does not name x in plain words",
                     c.id
                 );

@@ -476,7 +476,7 @@ mod tests {
     use solver::model::Model;
 
     fn set(query: &str) -> (GearSet, Model) {
-        let s = crate::link::decode(query).settings;
+        let s = figures::link::decode(query).settings;
         let model = Model::new(&s.params).unwrap();
         let meshes: Vec<(MeshKind, usize)> = model
             .system

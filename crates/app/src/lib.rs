@@ -20,14 +20,6 @@
 
 #![warn(unreachable_pub)]
 
-// The shared crates' modules, named by the paths the page's code uses
-// (`crate::settings`, `crate::worker::jobs`): the page imports them, and
-// neither imports the page.
-pub(crate) use ::worker;
-pub(crate) use figures::{
-    controls, family_spec, link, panels, plots, presets, protocol, settings, story, views, words,
-};
-
 pub mod claims;
 pub mod controller;
 pub mod gearset;

@@ -7,7 +7,7 @@
 use crate::gearset::{
     gauge_factor, sample_at, tooth_outline, view_transform, AnimClock, BodyKind, Contact, GearSet,
 };
-use crate::protocol::OmegaResult;
+use figures::protocol::OmegaResult;
 use glam::DVec2;
 
 /// One piece of a path.
@@ -355,13 +355,13 @@ mod tests {
             .count();
         assert_eq!(dots, 1);
     }
-    use crate::protocol::{OmegaSpec, RunOptions};
-    use crate::worker::jobs::omega::{omega_result, OmegaJob};
+    use figures::protocol::{OmegaSpec, RunOptions};
     use solver::model::Model;
+    use worker::jobs::omega::{omega_result, OmegaJob};
 
     /// The default set and a real (short) steady state of it.
     fn fixture() -> (GearSet, OmegaResult) {
-        let s = crate::link::decode("backlash_um=20").settings;
+        let s = figures::link::decode("backlash_um=20").settings;
         let model = Model::new(&s.params).unwrap();
         let meshes: Vec<_> = model
             .system

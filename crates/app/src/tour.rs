@@ -510,7 +510,7 @@ mod tests {
     fn every_step_sets_real_settings_and_points_at_the_page() {
         let html = include_str!("../../../index.html");
         assert!((4..=6).contains(&TOUR.len()));
-        let controls: Vec<String> = crate::controls::controls()
+        let controls: Vec<String> = figures::controls::controls()
             .iter()
             .map(|c| format!("control-{}", c.key))
             .collect();
@@ -533,8 +533,8 @@ mod tests {
                 );
             }
             for (k, v) in s.set {
-                let mut settings = crate::settings::Settings::default();
-                let ok = if crate::settings::view_key(k).is_some() {
+                let mut settings = figures::settings::Settings::default();
+                let ok = if figures::settings::view_key(k).is_some() {
                     settings.view.set(k, v, &["s1a1".to_string()]).is_ok()
                 } else {
                     solver::keys::set_assignment(&mut settings.params, &format!("{k}={v}")).is_ok()
@@ -598,17 +598,17 @@ mod tests {
     /// period 1, found exactly, without impact, as the step's text claims.
     #[test]
     fn the_page_opens_on_the_periodic_state_the_first_tour_step_explains() {
-        use crate::protocol::{Motion, Regime, RunOptions};
-        use crate::worker::jobs::omega::{omega_result, selected_spec, OmegaJob};
+        use figures::protocol::{Motion, Regime, RunOptions};
+        use worker::jobs::omega::{omega_result, selected_spec, OmegaJob};
         let step = &crate::tour::TOUR[0];
-        let omega = crate::settings::DEFAULT_OMEGA.to_string();
+        let omega = figures::settings::DEFAULT_OMEGA.to_string();
         assert!(
             step.set.contains(&("omega", omega.as_str())),
             "{:?}",
             step.set
         );
         assert!(step.text.contains(&format!("Ω {omega}")), "{}", step.text);
-        let s = crate::settings::Settings::default();
+        let s = figures::settings::Settings::default();
         let model = solver::model::Model::new(&s.params).expect("model");
         let run = RunOptions {
             transient_periods: s.view.transient_periods,
@@ -631,7 +631,7 @@ mod tests {
             step.text.contains("stay in contact")
                 && step.text.contains("repeats exactly every mesh period")
         );
-        let summary = crate::views::omega::student_summary(&r);
+        let summary = figures::views::omega::student_summary(&r);
         assert!(
             summary.contains("stay in contact")
                 && summary.contains("repeats exactly every mesh period"),

@@ -6,8 +6,8 @@
 //! page warns from the static deflection at once and from the steady
 //! state's peak once it is computed.
 
-use crate::protocol::AnimHistory;
-use crate::words::short;
+use figures::protocol::AnimHistory;
+use figures::words::short;
 use solver::model::Model;
 
 /// The tooth deflection (µm) from which the small-deflection model is

@@ -14,7 +14,7 @@
 use crate::controller::Effect;
 use crate::page::boot::{drawing_px, Browser, POINTER_EVENTS};
 use crate::page::{Page, Phase, PointerIn, Write};
-use crate::views::ViewId;
+use figures::views::ViewId;
 use plotters::prelude::IntoDrawingArea;
 use std::cell::RefCell;
 use std::rc::Rc;

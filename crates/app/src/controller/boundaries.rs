@@ -3,7 +3,7 @@
 //! under the map, and the tests' status.
 
 use super::*;
-use crate::views::boundaries::{describe, pick};
+use figures::views::boundaries::{describe, pick};
 
 /// How near a click must be to a curve to pick it (pixels).
 pub(super) const PICK_PX: f64 = 6.0;
@@ -40,7 +40,7 @@ impl Controller {
         // The value as the slider holds it (three decimals), Omega exact.
         let v = (picked.value * 1e3).round() / 1e3;
         let r = self
-            .set_key(&key, &crate::settings::fmt_exact(v), now_ms)
+            .set_key(&key, &figures::settings::fmt_exact(v), now_ms)
             .map(|mut fx| {
                 self.dirty.controls = true;
                 fx.extend(self.select_omega(picked.omega, now_ms));
@@ -66,7 +66,7 @@ impl Controller {
     /// what the outlined cells mean, how to learn what a curve marks).
     pub fn map_note_text(&self) -> String {
         let st = self.main.status(JobKind::Map);
-        let mut note = crate::views::map::map_note(&self.main.map, st.total);
+        let mut note = figures::views::map::map_note(&self.main.map, st.total);
         let b = &self.main.boundaries;
         if b.id == 0 {
             return note;
@@ -84,7 +84,7 @@ impl Controller {
             note.push_str(&format!(
                 " {} cells outlined in yellow lie on the wrong side of a curve: {}.",
                 disagree.len(),
-                crate::plots::boundaries::MARK_LABEL
+                figures::plots::boundaries::MARK_LABEL
             ));
         }
         if !shown.is_empty() {
@@ -107,7 +107,7 @@ impl Controller {
     pub(super) fn boundaries_status(&self) -> serde_json::Value {
         let b = &self.main.boundaries;
         let (shown, disagree, judged) = self.map_boundaries();
-        let kinds: std::collections::BTreeMap<&str, usize> = crate::protocol::BoundaryKind::ALL
+        let kinds: std::collections::BTreeMap<&str, usize> = figures::protocol::BoundaryKind::ALL
             .iter()
             .map(|k| {
                 (

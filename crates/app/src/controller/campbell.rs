@@ -3,7 +3,7 @@
 //! critical speed a click or an arrow key selects.
 
 use super::Controller;
-use crate::views::campbell::{campbell_csv, CampbellCrossing, CampbellView};
+use figures::views::campbell::{campbell_csv, CampbellCrossing, CampbellView};
 
 impl Controller {
     /// The Campbell diagram of the current model, from standstill to the

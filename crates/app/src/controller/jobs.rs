@@ -4,8 +4,8 @@
 //! to the workers.
 
 use super::*;
-use crate::views::boundaries::{BoundaryStore, BOUNDARY_LEVELS, BOUNDARY_POINTS};
-use crate::worker::jobs::omega::{selected_spec, OmegaJob, PREVIEW_RUN};
+use figures::views::boundaries::{BoundaryStore, BOUNDARY_LEVELS, BOUNDARY_POINTS};
+use worker::jobs::omega::{selected_spec, OmegaJob, PREVIEW_RUN};
 
 /// A job's parameters as the worker messages carry them.
 pub(super) type Params = serde_json::Map<String, serde_json::Value>;
@@ -18,7 +18,7 @@ pub(super) const MEMBER_KINDS: KindSet =
 
 /// Steady states in a bifurcation sweep of view settings `v` (both
 /// directions count twice).
-pub(super) fn bif_total(v: &crate::settings::ViewOptions) -> usize {
+pub(super) fn bif_total(v: &figures::settings::ViewOptions) -> usize {
     let per_dir = if v.bif_dir == solver::sweep::Directions::Both {
         2
     } else {
@@ -293,7 +293,7 @@ impl Controller {
             JobKind::Bif => bif_total(v),
             JobKind::Map => self.map_grid().cells(),
             JobKind::Lyap => v.lyap_points as usize,
-            JobKind::Orbits => crate::worker::jobs::orbits::MAX_ORBIT_POINTS,
+            JobKind::Orbits => worker::jobs::orbits::MAX_ORBIT_POINTS,
             // Per mille.
             JobKind::Boundaries => 1000,
         };
@@ -496,7 +496,7 @@ impl Controller {
             model: model.clone(),
             spec: selected_spec(&self.settings, model, PREVIEW_RUN),
         };
-        if let Ok(r) = crate::worker::jobs::omega::omega_result(&job, Some(&start)) {
+        if let Ok(r) = worker::jobs::omega::omega_result(&job, Some(&start)) {
             self.main.omega = Some(r);
             self.main.status_mut(JobKind::Omega).preview_ms = Some(now_ms);
         }

@@ -5,9 +5,9 @@
 
 use super::jobs::MEMBER_KINDS;
 use super::*;
-use crate::family_spec::FamilySpec;
-use crate::views::bif::BifView;
-use crate::views::multiples::{panel_titles, Panel};
+use figures::family_spec::FamilySpec;
+use figures::views::bif::BifView;
+use figures::views::multiples::{panel_titles, Panel};
 
 /// One family member besides the current state, and its results (its
 /// branch, its sweep, its selected-Omega run).
@@ -66,7 +66,7 @@ impl Controller {
         values: &str,
         now_ms: f64,
     ) -> Result<Vec<Effect>, String> {
-        let spec = crate::family_spec::parse_parts(key, values, &self.settings.params)?;
+        let spec = figures::family_spec::parse_parts(key, values, &self.settings.params)?;
         self.set_family(spec, now_ms)
     }
 
@@ -197,7 +197,7 @@ impl Controller {
         };
         let titles = self.panel_titles(offset);
         let waiting = || {
-            Err(crate::views::omega::computing_message(
+            Err(figures::views::omega::computing_message(
                 self.settings.view.omega,
             ))
         };
@@ -239,7 +239,7 @@ impl Controller {
                     "bif_points": c.bif.samples.len(),
                     "omega_job": c.status(JobKind::Omega),
                     "period": c.omega.as_ref().map(|r| r.period),
-                    "motion": c.omega.as_ref().map(|r| crate::story::motion_tag(r.motion)),
+                    "motion": c.omega.as_ref().map(|r| figures::story::motion_tag(r.motion)),
                 })
             })
             .collect();
@@ -249,7 +249,7 @@ impl Controller {
             .omega_panels(0)
             .iter()
             .map(|p| match &p.data {
-                Ok(r) => crate::plots::multiples::phase_panel_title(&p.title, r),
+                Ok(r) => figures::plots::multiples::phase_panel_title(&p.title, r),
                 Err(_) => p.title.clone(),
             })
             .collect();

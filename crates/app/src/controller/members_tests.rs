@@ -4,7 +4,7 @@
 
 use super::tests::{posts, ready};
 use super::*;
-use crate::protocol::{BifMesh, BifSample, HbmMesh, HbmSample, Regime};
+use figures::protocol::{BifMesh, BifSample, HbmMesh, HbmSample, Regime};
 
 /// The member jobs posted: (member, kind, worker, its TE in µm).
 fn member_jobs(p: &[(usize, ToWorker)]) -> Vec<(u32, JobKind, usize, f64)> {
@@ -123,7 +123,7 @@ fn member_replies_become_coloured_curves_labelled_in_words() {
     assert_eq!(st["family"]["members"][1]["fr_branch_points"], 0);
     assert_eq!(st["family"]["labels"][2], "TE 30 µm");
     // The CSV export says which value each row belongs to.
-    let csv = crate::views::fr::fr_csv(&c.fr_view());
+    let csv = figures::views::fr::fr_csv(&c.fr_view());
     assert!(csv.contains("\nhbm (TE 0 µm),0.5,10,-10,"), "{csv}");
     assert!(csv.contains("\nhbm (TE 20 µm),1,20,-20,"), "{csv}");
     assert!(c.members_running(JobKind::HarmonicBalance));
@@ -148,7 +148,7 @@ fn the_small_multiples_share_their_axes_and_letter_their_panels() {
         }],
         worst_mesh: 0,
         period: Some(1),
-        motion: crate::protocol::Motion::Periodic { period: 1 },
+        motion: figures::protocol::Motion::Periodic { period: 1 },
         error: None,
     };
     let bif = |id, x| {
@@ -179,7 +179,7 @@ fn the_small_multiples_share_their_axes_and_letter_their_panels() {
     assert_eq!(c.fr_view().backlash_um, vec![50.0, 100.0, 200.0]);
     // One range for all, fitted to the data (as every plot's axes are):
     // it holds panel c's -700 µm and panel a's +10 µm.
-    let (x, y) = crate::plots::multiples::bif_ranges(&panels);
+    let (x, y) = figures::plots::multiples::bif_ranges(&panels);
     assert_eq!(x, (c.settings.view.omega_from, c.settings.view.omega_to));
     assert!(y.0 < -700.0 && y.1 > 10.0, "{y:?}");
     // The Poincaré panels are lettered d-f.
@@ -191,11 +191,11 @@ fn the_small_multiples_share_their_axes_and_letter_their_panels() {
     );
     // The SVG picture: the three panels with both panels' dots inside the
     // one SVG document (plotters closes it when the chart is presented).
-    let svg = c.plot_svg(crate::views::ViewId::Bif).unwrap();
+    let svg = c.plot_svg(figures::views::ViewId::Bif).unwrap();
     assert!(svg.contains("(c) backlash 200 µm"));
     assert_eq!(svg.matches("</svg>").count(), 1);
     assert!(svg.trim_end().ends_with("</svg>"));
-    let c = crate::plots::regime_color(Regime::SingleSided);
+    let c = figures::plots::regime_color(Regime::SingleSided);
     let orange = format!("#{:02X}{:02X}{:02X}", c.0, c.1, c.2);
     assert_eq!(svg.matches(&orange).count(), 2, "two single-sided dots");
 }
@@ -333,15 +333,15 @@ fn fig2_shows_its_four_mesh_panels_as_a_projection_of_the_same_branches() {
     }
     // The note says the panels hold the branches only (the dots are the
     // plotted mesh's alone).
-    let note = crate::views::fr::fr_panels_note(&c.fr_view());
+    let note = figures::views::fr::fr_panels_note(&c.fr_view());
     assert!(note.contains("one panel per mesh") && !note.contains("Hollow dots"));
     // The text alternative and the SVG name all four meshes.
-    let label = c.canvas_label(crate::views::ViewId::Fr);
-    let svg = c.plot_svg(crate::views::ViewId::Fr).unwrap();
+    let label = c.canvas_label(figures::views::ViewId::Fr);
+    let svg = c.plot_svg(figures::views::ViewId::Fr).unwrap();
     assert!(svg.contains("height=\"680\""), "the taller canvas");
     for m in names {
         assert!(label.contains(m), "{label}");
-        assert!(svg.contains(&crate::panels::mesh_words(m)), "{m}");
+        assert!(svg.contains(&figures::panels::mesh_words(m)), "{m}");
     }
     // The link restores the panels; choosing a mesh shows it alone.
     let (again, _) = Controller::new(&link, 0.0);
@@ -356,12 +356,12 @@ fn a_familys_svg_pictures_are_its_small_multiples() {
     let (mut c, _) = Controller::new("family=te_um:0,20,30", 0.0);
     ready(&mut c);
     for view in [
-        crate::views::ViewId::Bif,
-        crate::views::ViewId::Phase,
-        crate::views::ViewId::Poincare,
+        figures::views::ViewId::Bif,
+        figures::views::ViewId::Phase,
+        figures::views::ViewId::Poincare,
     ] {
         let svg = c.plot_svg(view).unwrap();
-        let offset = if view == crate::views::ViewId::Poincare {
+        let offset = if view == figures::views::ViewId::Poincare {
             3
         } else {
             0
@@ -383,7 +383,7 @@ fn the_mesh_panels_export_every_panel() {
     c.apply_preset("fig3", 1.0);
     let n = c.model.as_ref().unwrap().system.meshes.len();
     c.worker_message(1, &hbm_meshes(c.main.hbm.id, n, |j| j as f64 + 1.0), 2.0);
-    let text = |f| match c.export(crate::views::ViewId::Fr, f).unwrap() {
+    let text = |f| match c.export(figures::views::ViewId::Fr, f).unwrap() {
         Effect::Download { text, .. } => text,
         Effect::Post { .. } => panic!("a data export posts nothing"),
     };

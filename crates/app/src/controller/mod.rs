@@ -5,7 +5,7 @@
 //! controller queues messages for a worker until it has said "ready".
 //! Jobs are restarted by what a change affects: a model parameter restarts
 //! everything, a view option the kinds its row of
-//! [`crate::settings::VIEW_KEYS`] names. The current state, the pinned A
+//! [`figures::settings::VIEW_KEYS`] names. The current state, the pinned A
 //! and each family member are each one [`Computation`], addressed by a
 //! [`Target`]; every reply goes to [`Computation::feed`]. The
 //! harmonic-balance branch of `ViewId::Fr` runs on the last worker (worker
@@ -18,21 +18,21 @@
 //! independent and shared by every worker. The page core redraws the views
 //! whose data changed ([`Dirty`]), once per animation frame.
 
-use crate::link;
-use crate::presets;
-use crate::protocol::{
+use crate::store::status::{Dirty, JobStatus};
+use crate::store::Computation;
+use figures::link;
+use figures::presets;
+use figures::protocol::{
     encode, um, FromWorker, JobId, JobKind, JobSpec, KindSet, OmegaResult, RunOptions, Target,
     ToWorker,
 };
-use crate::settings::{mesh_names, view_key, MeshSel, Settings};
-use crate::store::status::{Dirty, JobStatus};
-use crate::store::Computation;
-use crate::views::bif::{BifStore, BifView};
-use crate::views::fr::{fr_view, FrBranch, FrSource, FrStore, FrView, HbmStore};
-use crate::views::lyap::LyapStore;
-use crate::views::map::{MapGrid, MapStore, MapView};
-use crate::views::orbits::OrbitStore;
-use crate::views::{distinct, natural_in_range, ViewContext};
+use figures::settings::{mesh_names, view_key, MeshSel, Settings};
+use figures::views::bif::{BifStore, BifView};
+use figures::views::fr::{fr_view, FrBranch, FrSource, FrStore, FrView, HbmStore};
+use figures::views::lyap::LyapStore;
+use figures::views::map::{MapGrid, MapStore, MapView};
+use figures::views::orbits::OrbitStore;
+use figures::views::{distinct, natural_in_range, ViewContext};
 use solver::keys;
 use solver::model::Model;
 
@@ -277,10 +277,10 @@ impl Controller {
             self.settings
                 .view
                 .set(key, text, &meshes)
-                .map_err(|_| crate::words::must_be(key, text))?;
+                .map_err(|_| figures::words::must_be(key, text))?;
             if key == "map_key" && self.settings.view.map_key != before.map_key {
                 // A new axis gets that key's own default range.
-                let (lo, hi) = crate::settings::map_default_range(&self.settings.view.map_key);
+                let (lo, hi) = figures::settings::map_default_range(&self.settings.view.map_key);
                 self.settings.view.map_from = lo;
                 self.settings.view.map_to = hi;
                 self.dirty.controls = true;
@@ -304,7 +304,7 @@ impl Controller {
         }
         // The message in a sentence with the allowed range ("Backlash b must be
         // between 0 and 1000 µm"), not the CLI's key syntax.
-        let plain = |_| crate::words::must_be(key, text);
+        let plain = |_| figures::words::must_be(key, text);
         let value = keys::parse_value(key, text).map_err(plain)?;
         let mut params = self.settings.params.clone();
         keys::set(&mut params, key, value).map_err(plain)?;
@@ -335,7 +335,7 @@ impl Controller {
     /// Moves the selected Omega (clicks and drags on the Omega axes).
     pub fn select_omega(&mut self, omega: f64, now_ms: f64) -> Vec<Effect> {
         let omega = (omega * 1e4).round() / 1e4;
-        let text = crate::settings::fmt_exact(omega);
+        let text = figures::settings::fmt_exact(omega);
         match self.set_key("omega", &text, now_ms) {
             Ok(fx) => {
                 self.dirty.controls = true;
@@ -394,7 +394,7 @@ impl Controller {
             .cell_at(omega, value)
             .ok_or_else(|| "the click is outside the map".to_string())?;
         let v = (grid.value(row) * 1e3).round() / 1e3;
-        let mut fx = self.set_key(&grid.key, &crate::settings::fmt_exact(v), now_ms)?;
+        let mut fx = self.set_key(&grid.key, &figures::settings::fmt_exact(v), now_ms)?;
         self.dirty.controls = true;
         fx.extend(self.select_omega(grid.omega(column), now_ms));
         Ok(fx)
@@ -425,7 +425,13 @@ impl Controller {
 
     /// The boundaries the map shows, and the cells that disagree with
     /// them with how many cells were judged.
-    fn map_boundaries(&self) -> (Vec<&crate::protocol::BoundaryCurve>, Vec<(u32, u32)>, usize) {
+    fn map_boundaries(
+        &self,
+    ) -> (
+        Vec<&figures::protocol::BoundaryCurve>,
+        Vec<(u32, u32)>,
+        usize,
+    ) {
         let mesh = self
             .model
             .as_ref()
@@ -434,7 +440,7 @@ impl Controller {
         let shown = self.main.boundaries.shown(mesh);
         let (disagree, judged) = match &self.main.map.grid {
             Some(g) if !shown.is_empty() => {
-                crate::views::boundaries::disagreements(g, &self.main.map, &shown)
+                figures::views::boundaries::disagreements(g, &self.main.map, &shown)
             }
             _ => (Vec::new(), 0),
         };
@@ -452,12 +458,12 @@ impl Controller {
             let v: Vec<String> = f
                 .values
                 .iter()
-                .map(|x| crate::settings::fmt_exact(*x))
+                .map(|x| figures::settings::fmt_exact(*x))
                 .collect();
             query.push_str(&format!("&family={}:{}", f.key, v.join(",")));
         }
         if let Some(m) = p.meshes.filter(|m| m.len() > 1) {
-            query.push_str(&format!("&{}={}", crate::panels::PANELS_KEY, m.join(",")));
+            query.push_str(&format!("&{}={}", figures::panels::PANELS_KEY, m.join(",")));
         }
         let fx = self.load_query(&query, now_ms);
         self.preset_note = Some(presets::note(p));
@@ -672,7 +678,7 @@ impl Controller {
             // The frequency response's time-integration dots and the
             // sentence under it where the branch is unstable.
             "fr_dots": fr.overlay.len(),
-            "fr_sentence": crate::views::unstable::unstable_sentence(&fr),
+            "fr_sentence": figures::views::unstable::unstable_sentence(&fr),
             "bif": st(JobKind::Bif),
             "bif_bands": self.instability_bands(),
             "omega_job": st(JobKind::Omega),
@@ -703,7 +709,7 @@ impl Controller {
             "omega_result": main.omega.as_ref().map(|r| serde_json::json!({
                 "omega": r.omega, "mesh": r.mesh_name, "impact": r.regime.solver_name(),
                 "period": r.period, "preview": r.preview,
-                "motion": crate::story::motion_tag(r.motion),
+                "motion": figures::story::motion_tag(r.motion),
             })),
         });
         if let Some(o) = out.as_object_mut() {

@@ -5,8 +5,8 @@
 //! panels compute nothing new.
 
 use super::*;
-use crate::panels::mesh_words;
-use crate::views::multiples::{panel_titles, Panel};
+use figures::panels::mesh_words;
+use figures::views::multiples::{panel_titles, Panel};
 
 impl Controller {
     /// Each frequency-response panel's (or the single plot's, `fr`)
@@ -20,11 +20,11 @@ impl Controller {
                 .map(|p| {
                     p.data
                         .as_ref()
-                        .map(crate::plots::fr_first_mode_peaks)
+                        .map(figures::plots::fr_first_mode_peaks)
                         .unwrap_or_default()
                 })
                 .collect(),
-            None => vec![crate::plots::fr_first_mode_peaks(fr)],
+            None => vec![figures::plots::fr_first_mode_peaks(fr)],
         }
     }
 

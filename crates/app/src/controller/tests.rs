@@ -2,7 +2,7 @@
 //! hand-made worker messages.
 
 use super::*;
-use crate::protocol::{FrSample, HbmMesh, HbmSample, OmegaSpec};
+use figures::protocol::{FrSample, HbmMesh, HbmSample, OmegaSpec};
 
 pub(super) fn posts(fx: &[Effect]) -> Vec<(usize, ToWorker)> {
     fx.iter()
@@ -29,7 +29,7 @@ fn hbm_points(id: JobId, omegas: &[f64], finished: bool, error: Option<&str>) ->
                 meshes: vec![HbmMesh {
                     rel_min_um: 80.0,
                     rel_max_um: 120.0,
-                    regime: crate::protocol::Regime::NoImpact,
+                    regime: figures::protocol::Regime::NoImpact,
                 }],
                 stable: Some(true),
                 bifurcation: None,
@@ -157,7 +157,7 @@ fn run_omega_jobs(c: &mut Controller, p: &[(usize, ToWorker)], now_ms: f64) {
                 ..
             }
         ) {
-            let mut core = crate::worker::WorkerCore::new();
+            let mut core = worker::WorkerCore::new();
             core.handle(&encode(m));
             while core.has_work() {
                 for reply in core.step() {
@@ -192,13 +192,13 @@ fn a_slider_change_previews_the_selected_omega_from_the_last_end_state() {
     assert_eq!(pre.backlash_um, 150.0);
     assert_eq!(
         pre.record_periods,
-        crate::worker::jobs::omega::PREVIEW_RUN.record_periods
+        worker::jobs::omega::PREVIEW_RUN.record_periods
     );
     // Bounded: its transient, plus its window where shooting from the
     // window's end confirmed an orbit (the window then counts as transient).
-    let bound = crate::worker::jobs::omega::PREVIEW_RUN;
+    let bound = worker::jobs::omega::PREVIEW_RUN;
     assert!(pre.transient_periods_run <= bound.transient_periods + bound.record_periods);
-    assert!(crate::views::omega::summary_line(&pre, &[]).starts_with("Preview ("));
+    assert!(figures::views::omega::summary_line(&pre, &[]).starts_with("Preview ("));
     // The full run (from the static state, as the CLI starts) replaces it.
     run_omega_jobs(&mut c, &p, 20.0);
     let after = c.main.omega.clone().unwrap();
@@ -330,7 +330,7 @@ fn the_time_integration_overlay_runs_on_both_workers_when_asked() {
 /// each arriving sweep point marks the frequency response for a redraw.
 #[test]
 fn at_the_defaults_the_frequency_response_shows_the_sweeps_steady_states() {
-    use crate::protocol::{BifMesh, BifSample, Regime};
+    use figures::protocol::{BifMesh, BifSample, Regime};
     let (mut c, _) = Controller::new("", 0.0);
     ready(&mut c);
     assert_eq!(c.main.overlay.id, 0, "no overlay job at the defaults");
@@ -406,13 +406,13 @@ fn the_tour_sets_each_steps_state_and_its_step_is_in_the_link() {
     assert_eq!(d.settings.view.omega, 0.5);
 }
 
-fn map_cells(id: JobId, cells: &[(u32, u32, crate::protocol::Regime, Option<u32>)]) -> String {
+fn map_cells(id: JobId, cells: &[(u32, u32, figures::protocol::Regime, Option<u32>)]) -> String {
     encode(&FromWorker::MapCells {
         id,
         cells: cells
             .iter()
             .map(
-                |&(row, column, regime, period)| crate::protocol::MapSample {
+                |&(row, column, regime, period)| figures::protocol::MapSample {
                     row,
                     column,
                     omega: 0.0,
@@ -428,7 +428,7 @@ fn map_cells(id: JobId, cells: &[(u32, u32, crate::protocol::Regime, Option<u32>
 
 #[test]
 fn the_map_shards_rows_and_a_cell_click_sets_both_parameters() {
-    use crate::protocol::Regime;
+    use figures::protocol::Regime;
     let (mut c, _) = Controller::new(
         "map_omega_points=20&map_value_points=4&map_from=40&map_to=160",
         0.0,
@@ -524,7 +524,7 @@ fn the_lyapunov_curve_collects_both_chains_and_can_be_switched_off() {
             id,
             points: idx
                 .iter()
-                .map(|&i| crate::protocol::LyapSample {
+                .map(|&i| figures::protocol::LyapSample {
                     index: i,
                     omega: 0.1 + f64::from(i),
                     per_period: Some(-0.1 * f64::from(i)),
@@ -680,7 +680,7 @@ fn the_messages_box_shows_eight_and_counts_the_rest() {
 /// job's failure (only while it has no data); with data it plots.
 #[test]
 fn views_without_data_say_why() {
-    use crate::views::ViewId;
+    use figures::views::ViewId;
     let (mut c, _) = Controller::new("lyap_points=0", 0.0);
     ready(&mut c);
     let omega = c.settings.view.omega;

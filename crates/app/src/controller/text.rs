@@ -6,16 +6,16 @@ use super::*;
 
 impl Controller {
     /// The status of the job whose data `view` shows.
-    pub fn view_status(&self, view: crate::views::ViewId) -> &JobStatus {
+    pub fn view_status(&self, view: figures::views::ViewId) -> &JobStatus {
         self.main.status(view.spec().data)
     }
 
     /// The text alternative of a view's canvas (its `aria-label`), from
     /// the data it draws.
-    pub fn canvas_label(&self, view: crate::views::ViewId) -> String {
-        use crate::views::labels;
+    pub fn canvas_label(&self, view: figures::views::ViewId) -> String {
+        use figures::views::labels;
         let title = view.spec().title;
-        if view == crate::views::ViewId::Campbell {
+        if view == figures::views::ViewId::Campbell {
             return self.campbell_label();
         }
         match view.spec().data {
@@ -39,9 +39,9 @@ impl Controller {
         match &self.main.omega {
             Some(r) => format!(
                 "The gear set in slow motion at Ω {}, each mesh coloured by its contact state; mesh {}: {}.",
-                crate::views::unstable::short(r.omega),
+                figures::views::unstable::short(r.omega),
                 r.mesh_name,
-                crate::story::contact_tag(r.regime, r.backlash_um)
+                figures::story::contact_tag(r.regime, r.backlash_um)
             ),
             None => "The gear set in slow motion: computing the motion.".into(),
         }
@@ -54,7 +54,7 @@ impl Controller {
         let text = match (&self.main.omega, &self.main.status(JobKind::Omega).error) {
             (_, Some(e)) => format!("Not computed: {e}"),
             (Some(r), None) => {
-                let mut s = crate::views::omega::student_summary(r);
+                let mut s = figures::views::omega::student_summary(r);
                 if let Some(more) = self.branch_agreement() {
                     s.push(' ');
                     s.push_str(&more);
@@ -66,7 +66,7 @@ impl Controller {
         match &self.family {
             Some(f) => format!(
                 "{}: {text} The other curves' motions are in the panels' titles.",
-                crate::words::capitalize(&f.spec.label(0))
+                figures::words::capitalize(&f.spec.label(0))
             ),
             None => text,
         }
@@ -74,16 +74,16 @@ impl Controller {
 
     /// What the frequency response's branch says at the selected Ω, where
     /// it tells another story than the steady state found there (see
-    /// [`crate::story::branch_agreement`]); `None` while either computes.
+    /// [`figures::story::branch_agreement`]); `None` while either computes.
     pub fn branch_agreement(&self) -> Option<String> {
         let r = self.main.omega.as_ref().filter(|r| !r.preview)?;
         if !self.main.hbm.finished {
             return None;
         }
         let v = self.fr_view();
-        let br = crate::views::unstable::current_branch(&v)?;
-        let at = crate::views::unstable::branch_at(&br.points, r.omega);
-        crate::story::branch_agreement(r.motion, at)
+        let br = figures::views::unstable::current_branch(&v)?;
+        let at = figures::views::unstable::branch_at(&br.points, r.omega);
+        figures::story::branch_agreement(r.motion, at)
     }
 
     /// The summary line at the selected Omega: the result's figures and the
@@ -93,9 +93,10 @@ impl Controller {
         let text = match (&self.main.omega, &self.main.status(JobKind::Omega).error) {
             (_, Some(e)) => format!("Not computed: {e}"),
             (Some(r), None) => {
-                let mut s = crate::views::omega::summary_line(r, &natural);
+                let mut s = figures::views::omega::summary_line(r, &natural);
                 if let Ok(m) = &self.model {
-                    let line = crate::views::omega::phasing_line(m, &self.settings.params, Some(r));
+                    let line =
+                        figures::views::omega::phasing_line(m, &self.settings.params, Some(r));
                     if let Some(line) = line {
                         s.push(' ');
                         s.push_str(&line);
@@ -119,11 +120,11 @@ impl Controller {
     /// What `view` shows instead of a plot, if it has nothing to plot: why
     /// (its job failed before any data, it waits for the workers, it is
     /// switched off, its first result is computing).
-    pub fn placeholder(&self, view: crate::views::ViewId) -> Option<String> {
+    pub fn placeholder(&self, view: figures::views::ViewId) -> Option<String> {
         use JobKind;
         let st = self.view_status(view);
         let not_computed = |e: &String| format!("Not computed: {e}");
-        if view == crate::views::ViewId::Campbell {
+        if view == figures::views::ViewId::Campbell {
             return self.campbell_view().err().map(|e| not_computed(&e));
         }
         match view.spec().data {
@@ -156,7 +157,7 @@ impl Controller {
                 .map(not_computed),
             JobKind::Omega => match (&self.main.omega, &st.error) {
                 (_, Some(e)) => Some(not_computed(e)),
-                (None, None) => Some(crate::views::omega::computing_message(
+                (None, None) => Some(figures::views::omega::computing_message(
                     self.settings.view.omega,
                 )),
                 (Some(_), None) => None,

@@ -6,8 +6,10 @@
 use super::dom::{Action, TourMove};
 use super::{Page, Write};
 use crate::controller::Effect;
-use crate::controls::{controls, field_text, label_for, model_subtitle, shown_for, Target, Widget};
 use crate::tour::{counter, TOUR};
+use figures::controls::{
+    controls, field_text, label_for, model_subtitle, shown_for, Target, Widget,
+};
 
 /// What a user's event carries: the element's value (a field's text, a
 /// drop-down's choice) and, for a key press, the key.
@@ -308,7 +310,7 @@ impl Page {
             .spec
             .values
             .iter()
-            .map(|x| crate::settings::fmt_exact(*x))
+            .map(|x| figures::settings::fmt_exact(*x))
             .collect();
         self.family_input = (f.spec.key.key.to_string(), values.join(", "));
         self.family_shown = code;

@@ -7,7 +7,7 @@
 use super::{Page, Write};
 use crate::gearset::{AnimClock, GearSet};
 use crate::scene::{anim_note, gear_scene, Item, Scene, SubPath};
-use crate::views::ViewId;
+use figures::views::ViewId;
 use glam::DVec2;
 use plotters::coord::Shift;
 use plotters::prelude::{DrawingArea, DrawingBackend};
@@ -200,7 +200,7 @@ impl Page {
     /// motion is on its way (before any motion: never a blank canvas).
     pub fn draw_anim_placeholder<DB: DrawingBackend>(&mut self, root: &DrawingArea<DB, Shift>) {
         let why = "The gear set and its meshes appear here once the motion at the selected Ω is computed.";
-        if let Err(e) = crate::plots::draw_message(root, "The gear set", why) {
+        if let Err(e) = figures::plots::draw_message(root, "The gear set", why) {
             self.issue(e.to_string());
         }
     }

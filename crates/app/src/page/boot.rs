@@ -6,8 +6,8 @@
 
 use super::{Page, PngFailure, Write};
 use crate::controller::{pool_size, Controller, Effect};
-use crate::plots;
-use crate::views::ViewId;
+use figures::plots;
+use figures::views::ViewId;
 
 /// A view's PNG as the browser makes it: its SVG picture rasterized at
 /// `size` (twice the drawing's) and offered as the file `name`.

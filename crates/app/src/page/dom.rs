@@ -7,10 +7,10 @@
 use super::present::PresentMove;
 use crate::claims::{claims, heading};
 use crate::controller::Format;
-use crate::controls::{controls, Group, Widget};
-use crate::family_spec::FAMILY_KEYS;
-use crate::presets::{preset, PRESETS};
-use crate::views::{ViewId, PAGE};
+use figures::controls::{controls, Group, Widget};
+use figures::family_spec::FAMILY_KEYS;
+use figures::presets::{preset, PRESETS};
+use figures::views::{ViewId, PAGE};
 
 /// What a user's event on an element asks of the page.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -189,7 +189,7 @@ pub fn control_panel() -> Vec<Node> {
                 .filter(|c| c.group == group)
                 .map(|c| {
                     let key = c.key;
-                    let tooltip = crate::words::tooltip(key, c.description);
+                    let tooltip = figures::words::tooltip(key, c.description);
                     let applies = match c.applies {
                         solver::keys::Applies::Both => "both",
                         solver::keys::Applies::Ravigneaux => "ravigneaux",
@@ -286,7 +286,7 @@ pub fn export_bar(v: ViewId) -> Vec<Node> {
 
 /// The button that presents a part of the page on the whole screen.
 pub fn present_button(key: &'static str, title: &str) -> Node {
-    let n = crate::views::part_number(key).unwrap_or(0);
+    let n = figures::views::part_number(key).unwrap_or(0);
     button(
         "Present",
         &format!(

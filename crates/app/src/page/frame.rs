@@ -5,10 +5,10 @@
 
 use super::redraw::Decision;
 use super::{Page, Write};
-use crate::plots::Boxed;
 use crate::scene::Item;
-use crate::views::fr::FrView;
-use crate::views::ViewId;
+use figures::plots::Boxed;
+use figures::views::fr::FrView;
+use figures::views::ViewId;
 use plotters::prelude::{DrawingBackend, IntoDrawingArea};
 use std::cell::RefCell;
 use std::rc::Rc;
@@ -67,7 +67,7 @@ impl Page {
 mod tests {
     use super::*;
     use crate::page::redraw::FRAME_BUDGET_MS;
-    use crate::views::DRAW_ORDER;
+    use figures::views::DRAW_ORDER;
     use std::cell::Cell;
 
     fn page() -> Page {

@@ -7,7 +7,7 @@
 //! no selection. A mouse's press selects at once.
 
 use super::Page;
-use crate::views::ViewId;
+use figures::views::ViewId;
 
 /// How far (CSS pixels) a finger moves before its gesture is a drag or a
 /// swipe rather than a tap.

@@ -15,9 +15,9 @@
 
 use super::Page;
 use crate::gearset::{AnimClock, BodyKind, GearSet};
-use crate::protocol::OmegaResult;
 use crate::scene::{gear_scene, Item, Scene, SubPath};
-use crate::views::ViewId;
+use figures::protocol::OmegaResult;
+use figures::views::ViewId;
 use rustc_hash::FxHashMap;
 
 /// The most frames in a GIF: a period of eight mesh periods still gets
@@ -323,7 +323,7 @@ impl Page {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::views::test_support::omega_result;
+    use figures::views::test_support::omega_result;
 
     /// The fixture with an animation window: every mesh of the default
     /// set following the period-1 history, its last 12 periods.
@@ -434,12 +434,16 @@ mod tests {
         let mut r = result(Some(1));
         r.anim.x_um.resize(meshes, r.anim.x_um[0].clone());
         r.anim.backlash_um.resize(meshes, 100.0);
-        let id = page.ctl().main().status(crate::protocol::JobKind::Omega).id;
-        let reply = crate::protocol::FromWorker::Omega {
+        let id = page
+            .ctl()
+            .main()
+            .status(figures::protocol::JobKind::Omega)
+            .id;
+        let reply = figures::protocol::FromWorker::Omega {
             id,
             result: Box::new(r),
         };
-        page.worker_message(0, &crate::protocol::encode(&reply), 1.0);
+        page.worker_message(0, &figures::protocol::encode(&reply), 1.0);
         let (plan, name) = page.gif_plan().unwrap();
         assert_eq!(name, "gearshock-anim-s1a1-omega0.84.gif");
         // Small frames keep the test's rasterizer quick.

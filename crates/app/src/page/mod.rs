@@ -23,10 +23,10 @@ pub mod redraw;
 mod texts;
 
 use crate::controller::{Controller, Effect};
-use crate::plots::{self, PlotFrame};
-use crate::protocol::JobKind;
 use crate::store::status::Dirty;
-use crate::views::{ViewId, DRAW_ORDER, VIEWS};
+use figures::plots::{self, PlotFrame};
+use figures::protocol::JobKind;
+use figures::views::{ViewId, DRAW_ORDER, VIEWS};
 use redraw::{Decision, FrameTurn, Redraw};
 
 pub use act::{Acted, EventIn, PngFailure};
@@ -164,7 +164,7 @@ pub struct Page {
     frames: [Option<PlotFrame>; VIEWS.len()],
     /// Each view's canvas size and the boxes of the text last drawn on it
     /// (the tests check that none overlap or leave the canvas).
-    text_boxes: [((u32, u32), Vec<crate::plots::TextBox>); VIEWS.len()],
+    text_boxes: [((u32, u32), Vec<figures::plots::TextBox>); VIEWS.len()],
     /// The link last written to the address bar.
     last_query: String,
     /// Whether the screen is narrow (a phone): plots draw on fewer, larger pixels.
@@ -248,7 +248,7 @@ impl Page {
             anim: anim::Anim::default(),
             frame_requested: false,
             family_input: (
-                crate::family_spec::FAMILY_KEYS
+                figures::family_spec::FAMILY_KEYS
                     .first()
                     .map_or_else(String::new, |k| k.key.to_string()),
                 String::new(),
@@ -334,7 +334,7 @@ impl Page {
                 let frame = self.frames[ViewId::Campbell.slot()];
                 let picked = frame.and_then(|f| {
                     let v = self.ctl.campbell_view().ok()?;
-                    crate::plots::campbell::pick(&v, &f, x, y).map(|c| c.omega)
+                    figures::plots::campbell::pick(&v, &f, x, y).map(|c| c.omega)
                 });
                 self.pending_omega = picked.or(self.pending_omega);
                 Vec::new()
@@ -496,7 +496,7 @@ impl Page {
         &mut self,
         view: ViewId,
         size: (u32, u32),
-        boxes: Vec<crate::plots::TextBox>,
+        boxes: Vec<figures::plots::TextBox>,
     ) {
         self.text_boxes[view.slot()] = (size, boxes);
     }
@@ -583,7 +583,7 @@ impl Page {
 
     /// A view's drawing size on this screen (a frequency response's key
     /// may need a taller canvas: `fr_height`).
-    pub fn canvas_size(&self, view: ViewId, fr: Option<&crate::views::fr::FrView>) -> (u32, u32) {
+    pub fn canvas_size(&self, view: ViewId, fr: Option<&figures::views::fr::FrView>) -> (u32, u32) {
         let (w, h) = screen_size(
             self.ctl.base_canvas_size(view),
             view == ViewId::Fr,

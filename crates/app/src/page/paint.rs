@@ -8,10 +8,10 @@
 
 use super::{Page, Write};
 use crate::controller::{Drawn, SvgError};
-use crate::plots;
 use crate::scene::{Item, SubPath};
-use crate::views::fr::FrView;
-use crate::views::ViewId;
+use figures::plots;
+use figures::views::fr::FrView;
+use figures::views::ViewId;
 use glam::DVec2;
 use plotters::coord::Shift;
 use plotters::prelude::{DrawingArea, DrawingBackend};

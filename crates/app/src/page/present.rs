@@ -14,7 +14,7 @@
 //! a lecturer can open straight into it.
 
 use super::{Page, Write};
-use crate::views::{ViewId, PAGE};
+use figures::views::{ViewId, PAGE};
 
 /// The link's key of present mode; its value is a part's key (`fr`, `anim`).
 pub const PRESENT_KEY: &str = "present";

@@ -2,7 +2,7 @@
 //! pure type fed with the page's clock (`now_ms`), so it is tested natively.
 //!
 //! A change marks views as needed ([`Redraw::mark`]); each frame the page
-//! walks [`crate::views::DRAW_ORDER`] and asks [`Redraw::decide`] per view: draw it, skip
+//! walks [`figures::views::DRAW_ORDER`] and asks [`Redraw::decide`] per view: draw it, skip
 //! it for now (a running sweep's view is redrawn at most every
 //! [`RUNNING_REDRAW_MS`], though a new job's start and its first points show
 //! at once), or stop (the frame's budget [`FRAME_BUDGET_MS`] is spent; the
@@ -10,7 +10,7 @@
 //! tests' status reports.
 
 use crate::store::status::{Dirty, JobStatus};
-use crate::views::{ViewId, VIEWS};
+use figures::views::{ViewId, VIEWS};
 
 /// Main-thread time after which a frame starts no further view (ms): a
 /// full refresh spreads over a few frames instead of blocking one. (Drawing
@@ -161,8 +161,8 @@ impl FrameTurn {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::protocol::{JobKind, KindSet};
-    use crate::views::DRAW_ORDER;
+    use figures::protocol::{JobKind, KindSet};
+    use figures::views::DRAW_ORDER;
 
     /// The views drawn in one frame if each takes `draw_ms`:
     /// [`Redraw::decide`] over

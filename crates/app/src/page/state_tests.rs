@@ -56,8 +56,8 @@ fn the_gear_pair_names_its_one_mesh_and_itself() {
         sub.contains("gear pair") && !sub.contains("Ravigneaux"),
         "{sub}"
     );
-    for c in crate::controls::controls() {
-        if !crate::controls::shown_for(&c, solver::params::ModelKind::GearPair) {
+    for c in figures::controls::controls() {
+        if !figures::controls::shown_for(&c, solver::params::ModelKind::GearPair) {
             continue;
         }
         let label = text_of(&w, &format!("label-{}", c.key)).unwrap_or_default();
@@ -95,7 +95,7 @@ fn a_negative_torque_is_refused_in_words_and_the_last_state_kept() {
         // The field goes back to the value in force.
         let shown = value_of(&w, &format!("num-{key}")).unwrap_or_default();
         let kept = match solver::keys::get(&before, key) {
-            Some(solver::keys::Value::Num(x)) => crate::controls::field_text(x),
+            Some(solver::keys::Value::Num(x)) => figures::controls::field_text(x),
             _ => String::new(),
         };
         assert_eq!(shown, kept, "{key}");

@@ -5,8 +5,8 @@
 
 use super::*;
 use crate::controller::Effect;
-use crate::protocol::{encode, JobKind, JobSpec, ToWorker};
-use crate::worker::WorkerCore;
+use figures::protocol::{encode, JobKind, JobSpec, ToWorker};
+use worker::WorkerCore;
 
 /// A page on `link` whose two workers said "ready"; the messages posted.
 fn page(link: &str) -> (Page, Vec<Effect>) {
@@ -142,7 +142,7 @@ fn a_refusal_goes_once_the_state_moves_on() {
     // The TE field shows the TE in force.
     assert!(w.contains(&Write::Value {
         id: "num-te_um".into(),
-        value: crate::controls::field_text(20.0)
+        value: figures::controls::field_text(20.0)
     }));
 }
 

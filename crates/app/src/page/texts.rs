@@ -3,9 +3,9 @@
 //! caption status and note, and the status the tests read.
 
 use super::{Page, Write};
-use crate::protocol::JobKind;
-use crate::views::fr::FrView;
-use crate::views::{ViewId, VIEWS};
+use figures::protocol::JobKind;
+use figures::views::fr::FrView;
+use figures::views::{ViewId, VIEWS};
 
 /// How long the Copy link's confirmation shows (ms).
 pub(crate) const TOAST_MS: f64 = 2000.0;
@@ -155,7 +155,7 @@ impl Page {
         let family = self.ctl.family().is_some();
         match view {
             ViewId::Fr => fr.map_or_else(String::new, |v| {
-                crate::views::fr::fr_caption_suffix(self.running(JobKind::HarmonicBalance), v)
+                figures::views::fr::fr_caption_suffix(self.running(JobKind::HarmonicBalance), v)
             }),
             ViewId::Bif if family => computing(self.running(JobKind::Bif)),
             ViewId::Bif => main.status(JobKind::Bif).caption_suffix(),
@@ -172,7 +172,7 @@ impl Page {
             ViewId::Phase | ViewId::Poincare | ViewId::Time | ViewId::Spectrum => {
                 let preview = main.omega.as_ref().is_some_and(|r| r.preview);
                 let running = main.status(JobKind::Omega).running();
-                crate::views::omega::caption_suffix(preview, running).to_string()
+                figures::views::omega::caption_suffix(preview, running).to_string()
             }
         }
     }
@@ -184,16 +184,16 @@ impl Page {
         match (view, fr) {
             (ViewId::Campbell, _) => vec![Write::text("note-campbell", self.ctl.campbell_note())],
             (ViewId::Fr, Some(fr)) if self.ctl.panels().is_some() => {
-                let note = crate::views::fr::fr_panels_note(fr);
+                let note = figures::views::fr::fr_panels_note(fr);
                 vec![
                     Write::text("note-fr", note),
                     Write::text("key-fr", String::new()),
                 ]
             }
             (ViewId::Fr, Some(fr)) => {
-                let key = crate::plots::fr_full_key(fr).join("\n");
+                let key = figures::plots::fr_full_key(fr).join("\n");
                 vec![
-                    Write::text("note-fr", crate::views::fr::fr_note(fr)),
+                    Write::text("note-fr", figures::views::fr::fr_note(fr)),
                     Write::text("key-fr", key),
                 ]
             }
@@ -240,7 +240,7 @@ impl Page {
     /// marker, and the gear set's last frame under `anim`.
     pub fn status(&self, now_ms: f64) -> serde_json::Value {
         let mut v = self.ctl.status(now_ms);
-        let frame_json = |f: Option<crate::plots::PlotFrame>| {
+        let frame_json = |f: Option<figures::plots::PlotFrame>| {
             serde_json::json!(f.map(|f| [
                 f.top_left.x,
                 f.top_left.y,

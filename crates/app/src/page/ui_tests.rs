@@ -5,7 +5,7 @@
 
 use super::dom::{built, Action, TourMove, WIRING};
 use super::*;
-use crate::plots::PlotFrame;
+use figures::plots::PlotFrame;
 use glam::DVec2;
 
 fn page(link: &str) -> Page {

@@ -9,13 +9,13 @@
 
 pub mod status;
 
-use crate::protocol::{FromWorker, JobKind, OmegaResult};
-use crate::views::bif::BifStore;
-use crate::views::boundaries::BoundaryStore;
-use crate::views::fr::{FrStore, HbmStore};
-use crate::views::lyap::LyapStore;
-use crate::views::map::MapStore;
-use crate::views::orbits::OrbitStore;
+use figures::protocol::{FromWorker, JobKind, OmegaResult};
+use figures::views::bif::BifStore;
+use figures::views::boundaries::BoundaryStore;
+use figures::views::fr::{FrStore, HbmStore};
+use figures::views::lyap::LyapStore;
+use figures::views::map::MapStore;
+use figures::views::orbits::OrbitStore;
 use status::{Dirty, JobStatus};
 
 /// One state's results: a store and a status per job kind. The pinned A
@@ -126,7 +126,7 @@ impl Computation {
                     let at = self.hbm.points.last().map_or(omega_from, |p| p.omega);
                     let msg = format!(
                         "The frequency response stops at Ω {}: {e} The branch shown is partial.",
-                        crate::words::short(at)
+                        figures::words::short(at)
                     );
                     st.error = Some(msg.clone());
                     st.issued.push(msg.clone());

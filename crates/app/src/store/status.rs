@@ -2,7 +2,7 @@
 //! and timing ([`JobStatus`]) and whose data changed ([`Dirty`]). The
 //! controller writes both; the redraw scheduler and the captions read them.
 
-use crate::protocol::{JobId, KindSet};
+use figures::protocol::{JobId, KindSet};
 
 /// Jobs shorter than this show no progress indicator (ms).
 pub const PROGRESS_AFTER_MS: f64 = 200.0;

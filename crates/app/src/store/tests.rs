@@ -2,8 +2,8 @@
 //! current job it answers, and says what changed.
 
 use super::*;
-use crate::protocol::{BifMesh, BifSample, HbmMesh, HbmSample, JobKind, KindSet, Regime};
 use crate::store::status::JobStatus;
+use figures::protocol::{BifMesh, BifSample, HbmMesh, HbmSample, JobKind, KindSet, Regime};
 
 fn branch(omegas: &[f64]) -> Vec<HbmSample> {
     omegas
@@ -35,7 +35,7 @@ fn sweep_point(index: u32) -> BifSample {
         }],
         worst_mesh: 0,
         period: Some(1),
-        motion: crate::protocol::Motion::Periodic { period: 1 },
+        motion: figures::protocol::Motion::Periodic { period: 1 },
         error: None,
     }
 }

@@ -5,8 +5,8 @@
 //! whole page per label: some 300 per page load, up to 36 ms each, all on
 //! the main thread.
 
-use crate::plots::css;
-use crate::plots::decimate::long_path;
+use figures::plots::css;
+use figures::plots::decimate::long_path;
 use plotters_backend::{
     BackendColor, BackendCoord, BackendStyle, BackendTextStyle, DrawingBackend, DrawingErrorKind,
 };

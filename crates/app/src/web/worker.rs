@@ -5,13 +5,13 @@
 //! arrive.
 
 use super::check;
-use crate::worker::slicer::{Next, Slicer, SLICE_PAUSE_MS};
-use crate::worker::{ready_message, WorkerCore};
 use std::cell::{Cell, RefCell};
 use std::rc::Rc;
 use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
 use web_sys::{DedicatedWorkerGlobalScope, MessageChannel, MessageEvent};
+use worker::slicer::{Next, Slicer, SLICE_PAUSE_MS};
+use worker::{ready_message, WorkerCore};
 
 /// Runs a Web Worker: posts "ready", then serves jobs in bounded chunks,
 /// woken through a `MessageChannel` (which, unlike `setTimeout`, is not
@@ -27,9 +27,9 @@ pub fn start_worker() {
 
     let post = {
         let scope = scope.clone();
-        move |msgs: Vec<crate::protocol::FromWorker>| {
+        move |msgs: Vec<figures::protocol::FromWorker>| {
             for m in msgs {
-                check(scope.post_message(&JsValue::from_str(&crate::protocol::encode(&m))));
+                check(scope.post_message(&JsValue::from_str(&figures::protocol::encode(&m))));
             }
         }
     };

@@ -5,7 +5,7 @@
 
 use super::super::*;
 use super::ExportError;
-use crate::views::omega::{omega_csv, omega_json, OmegaView};
+use figures::views::omega::{omega_csv, omega_json, OmegaView};
 
 /// CSV texts of one shape, one per member, as one CSV with a leading
 /// `member` column (the header once; commas in a label become `;`).
@@ -54,7 +54,7 @@ impl Controller {
                 .zip(&panels)
                 .filter_map(|((label, _), p)| {
                     let v = p.data.as_ref().ok()?;
-                    Some((label.clone(), crate::views::bif::bif_csv(v)))
+                    Some((label.clone(), figures::views::bif::bif_csv(v)))
                 })
                 .collect();
             return Ok(member_csv(&parts));

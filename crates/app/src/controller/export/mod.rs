@@ -5,8 +5,8 @@
 //! export (`svg.rs`).
 
 use super::*;
-use crate::protocol::JobKind;
-use crate::views::{omega::OmegaView, ViewId};
+use figures::protocol::JobKind;
+use figures::views::{omega::OmegaView, ViewId};
 
 /// A data export's format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -89,7 +89,7 @@ impl Controller {
             JobKind::HarmonicBalance | JobKind::Overlay => {
                 let v = self.fr_view();
                 if csv {
-                    crate::views::fr::fr_csv(&v)
+                    figures::views::fr::fr_csv(&v)
                 } else {
                     json_text(serde_json::to_string_pretty(&v))?
                 }
@@ -99,21 +99,23 @@ impl Controller {
             JobKind::Bif | JobKind::Orbits => {
                 let v = self.bif_view();
                 if csv {
-                    crate::views::bif::bif_csv(&v)
+                    figures::views::bif::bif_csv(&v)
                 } else {
                     json_text(serde_json::to_string(&v))?
                 }
             }
-            JobKind::Map | JobKind::Boundaries if csv => crate::views::map::map_csv(&self.main.map),
+            JobKind::Map | JobKind::Boundaries if csv => {
+                figures::views::map::map_csv(&self.main.map)
+            }
             JobKind::Map | JobKind::Boundaries => {
-                let mut j = crate::views::map::map_json(&self.main.map);
+                let mut j = figures::views::map::map_json(&self.main.map);
                 // The traced boundaries, when they are on.
                 if self.main.boundaries.id != 0 {
                     let names = self.mesh_names();
                     if let Some(o) = j.as_object_mut() {
                         o.insert(
                             "boundaries".into(),
-                            crate::views::boundaries::boundaries_json(
+                            figures::views::boundaries::boundaries_json(
                                 &self.main.boundaries,
                                 &names,
                             ),
@@ -122,8 +124,8 @@ impl Controller {
                 }
                 j.to_string()
             }
-            JobKind::Lyap if csv => crate::views::lyap::lyap_csv(&self.main.lyap),
-            JobKind::Lyap => crate::views::lyap::lyap_json(&self.main.lyap).to_string(),
+            JobKind::Lyap if csv => figures::views::lyap::lyap_csv(&self.main.lyap),
+            JobKind::Lyap => figures::views::lyap::lyap_json(&self.main.lyap).to_string(),
             JobKind::Omega if self.family.is_some() => {
                 let which = OmegaView::of(view).ok_or(ExportError::NoCliFormat)?;
                 self.family_omega_export(which, csv)?
@@ -132,9 +134,9 @@ impl Controller {
                 let r = self.exportable_omega()?;
                 let which = OmegaView::of(view).ok_or(ExportError::NoCliFormat)?;
                 if csv {
-                    crate::views::omega::omega_csv(r, which)
+                    figures::views::omega::omega_csv(r, which)
                 } else {
-                    crate::views::omega::omega_json(r, which).to_string()
+                    figures::views::omega::omega_json(r, which).to_string()
                 }
             }
         };
@@ -155,7 +157,7 @@ impl Controller {
             let mut out = String::new();
             for (name, p) in names.iter().zip(&panels) {
                 let Ok(v) = &p.data else { continue };
-                let text = crate::views::fr::fr_csv(v);
+                let text = figures::views::fr::fr_csv(v);
                 let mut lines = text.lines();
                 if out.is_empty() {
                     out = format!("mesh,{}\n", lines.next().unwrap_or_default());
@@ -292,14 +294,14 @@ impl Controller {
                 .omega
                 .as_ref()
                 .map_or(self.settings.view.omega, |r| r.omega);
-            name.push_str(&format!("-omega{}", crate::settings::fmt_exact(omega)));
+            name.push_str(&format!("-omega{}", figures::settings::fmt_exact(omega)));
         }
         if let Some(f) = &self.family {
             let values: Vec<String> = f
                 .spec
                 .values
                 .iter()
-                .map(|x| crate::settings::fmt_exact(*x))
+                .map(|x| figures::settings::fmt_exact(*x))
                 .collect();
             name.push_str(&format!("-{}-{}", f.spec.key.key, values.join("_")));
         }
@@ -370,7 +372,7 @@ mod tests {
     /// four views of the selected Ω save their command-line JSON apart.
     #[test]
     fn export_names_carry_the_view_the_mesh_omega_and_the_family() {
-        use crate::views::ViewId;
+        use figures::views::ViewId;
         let (c, _) = Controller::new("omega=0.84&mesh=s2b1", 0.0);
         assert_eq!(
             c.file_name(ViewId::Fr, None, "csv"),

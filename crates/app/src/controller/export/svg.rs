@@ -4,10 +4,10 @@
 
 use super::super::*;
 use super::ExportError;
-use crate::plots::maps::{self, MapOverlay};
-use crate::plots::{self, DrawError, PlotFrame, PointGroup};
-use crate::views::fr::FrView;
-use crate::views::ViewId;
+use figures::plots::maps::{self, MapOverlay};
+use figures::plots::{self, DrawError, PlotFrame, PointGroup};
+use figures::views::fr::FrView;
+use figures::views::ViewId;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
