@@ -36,3 +36,40 @@ fn simulate_reports_one_mesh_with_si_units() {
     assert!(text.starts_with("t_s,delta_m,velocity_m_s"));
     assert_eq!(text.lines().count(), 1 + 2 * 64);
 }
+
+/// `load_sharing`: in-phase planets on equal meshes share every kind's
+/// load exactly (factor 1 to round-off, every planet's peak the same);
+/// five sequential planets do not; the gear pair has nothing to share.
+#[test]
+fn load_sharing_is_one_for_in_phase_planets_and_above_for_sequential() {
+    let v = json(&["simulate", "--omega", "0.35", "--set", "planets=4"]);
+    let s = v["load_sharing"].as_object().expect("object");
+    assert_eq!(s.len(), 4, "{s:?}");
+    for (kind, k) in s {
+        let f = k["factor"].as_f64().expect("factor");
+        assert!((f - 1.0).abs() <= 1e-9, "{kind}: {f}");
+        assert_eq!(
+            k["peak_force_n"].as_array().expect("peaks").len(),
+            4,
+            "{kind}"
+        );
+    }
+    let v = json(&[
+        "simulate",
+        "--omega",
+        "0.35",
+        "--set",
+        "planets=5",
+        "--set",
+        "phasing=sequential",
+    ]);
+    let worst = v["load_sharing"]
+        .as_object()
+        .expect("object")
+        .values()
+        .map(|k| k["factor"].as_f64().expect("factor"))
+        .fold(1.0, f64::max);
+    assert!(worst > 1.001, "{}", v["load_sharing"]);
+    let v = json(&["simulate", "--model", "gear-pair", "--omega", "0.5"]);
+    assert_eq!(v["load_sharing"], serde_json::json!({}));
+}

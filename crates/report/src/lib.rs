@@ -119,6 +119,26 @@ fn stats_json(s: &SteadyStats) -> Value {
     })
 }
 
+/// How the planets share the load over the steady state
+/// (`solver::sharing`): per mesh kind, each planet mesh's largest force
+/// (N) and the largest over the mean; an empty object for the gear pair.
+fn load_sharing_json(
+    sys: &solver::system::MeshSystem,
+    meshes: &[solver::steady::MeshSteady],
+) -> Value {
+    let mut out = Map::new();
+    for k in solver::sharing::load_sharing(sys, meshes) {
+        out.insert(
+            k.kind.key().to_string(),
+            json!({
+                "peak_force_n": k.peak_force_n.iter().map(|f| num(*f)).collect::<Vec<Value>>(),
+                "factor": k.factor.map_or(Value::Null, num),
+            }),
+        );
+    }
+    Value::Object(out)
+}
+
 /// `gearshock simulate`: one steady-state response, focused on mesh `mesh`.
 pub fn simulate_json(model: &Model, ss: &SteadyState, mesh: usize, max_order: f64) -> Value {
     let sys = &model.system;
@@ -190,6 +210,7 @@ pub fn simulate_json(model: &Model, ss: &SteadyState, mesh: usize, max_order: f6
             "amplitude_m": nums(&s.amplitude),
         })),
         "all_meshes": Value::Object(all),
+        "load_sharing": load_sharing_json(sys, &ss.meshes),
         "warnings": sys.warnings,
         "stats": stats_json(&ss.stats),
     })

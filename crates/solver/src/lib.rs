@@ -48,6 +48,7 @@ pub mod orbits;
 pub mod parametric;
 pub mod params;
 pub(crate) mod separation;
+pub mod sharing;
 pub mod shooting;
 pub mod steady;
 pub mod sweep;
