@@ -7,7 +7,8 @@
 //! terms, so its natural frequencies do not change with speed: each is a
 //! horizontal line, and order `k` crosses it where `k f_mesh(rpm) = f_n`,
 //! with `f_mesh = rpm / 60 z_in |n_in - n_c| / n_in` (the input member's
-//! teeth and its speed relative to the carrier, [`SpeedInfo`]). At that
+//! teeth and its speed relative to the carrier,
+//! [`crate::system::SpeedInfo::mesh_hz_per_rpm`]). At that
 //! speed `Omega = omega_n / (k omega_ref)`.
 //!
 //! Which crossings the meshes can excite follows from the planets' mesh
@@ -28,7 +29,6 @@
 
 use crate::error::{Result, SolverError};
 use crate::modal::ModeKind;
-use crate::system::SpeedInfo;
 use crate::Model;
 use nalgebra::Complex;
 use std::f64::consts::PI;
@@ -98,7 +98,7 @@ impl Campbell {
                 allowed: format!("1 ..= {MAX_ORDER}"),
             });
         }
-        let mesh_hz_per_rpm = mesh_hz_per_rpm(&model.system.speed);
+        let mesh_hz_per_rpm = model.system.speed.mesh_hz_per_rpm();
         let modes = mode_lines(model, orders);
         let mut crossings = Vec::new();
         for (i, line) in modes.iter().enumerate() {
@@ -128,20 +128,18 @@ impl Campbell {
     }
 }
 
-/// Mesh frequency (Hz) per input rpm.
-pub fn mesh_hz_per_rpm(speed: &SpeedInfo) -> f64 {
-    f64::from(speed.input_teeth) * speed.relative_per_input.abs() / 60.0
-}
-
 /// Input speed (rpm) at `omega` on `model`: `omega omega_ref / (2 pi)` is
 /// the mesh frequency.
 pub fn rpm_at(model: &Model, omega: f64) -> f64 {
-    omega * model.system.omega_ref_rad_s / (2.0 * PI) / mesh_hz_per_rpm(&model.system.speed)
+    model
+        .system
+        .speed
+        .input_speed_rpm(omega * model.system.omega_ref_rad_s / (2.0 * PI))
 }
 
 /// Omega at input speed `rpm` on `model` (the inverse of [`rpm_at`]).
 pub fn omega_at(model: &Model, rpm: f64) -> f64 {
-    rpm * mesh_hz_per_rpm(&model.system.speed) * 2.0 * PI / model.system.omega_ref_rad_s
+    rpm * model.system.speed.mesh_hz_per_rpm() * 2.0 * PI / model.system.omega_ref_rad_s
 }
 
 fn check_range(rpm_from: f64, rpm_to: f64) -> Result<()> {

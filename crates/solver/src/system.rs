@@ -232,9 +232,14 @@ pub struct SpeedInfo {
 }
 
 impl SpeedInfo {
+    /// Mesh frequency (Hz) per input shaft rpm: `z_in |n_in - n_c| / n_in / 60`.
+    pub fn mesh_hz_per_rpm(&self) -> f64 {
+        f64::from(self.input_teeth) * self.relative_per_input.abs() / 60.0
+    }
+
     /// Input shaft speed (rpm) that gives mesh frequency `mesh_freq_hz`.
     pub fn input_speed_rpm(&self, mesh_freq_hz: f64) -> f64 {
-        60.0 * mesh_freq_hz / (f64::from(self.input_teeth) * self.relative_per_input.abs())
+        mesh_freq_hz / self.mesh_hz_per_rpm()
     }
 }
 
