@@ -340,46 +340,70 @@ pub struct SteadyRun {
     opts: SteadyOptions,
     ode: MeshOde,
     int: Dopri5,
+    /// The integrator's tolerances (a converged orbit restarts it).
+    tol: Tolerances,
+    facts: RunFacts,
+    settling: Settling,
+    periods_run: u32,
+    phase: Phase,
+    shooting: ShootingLog,
+    probing: Probing,
+    /// A recorded window whose verdict shooting is trying to confirm:
+    /// its start, its recorder and its periods (now counted in
+    /// `periods_run`).
+    window: Option<(f64, Box<Recorder>, u32)>,
+}
+
+/// What a run knows from its start and never changes.
+#[derive(Debug, Clone)]
+struct RunFacts {
     omega_rad_s: f64,
     period: f64,
     bound_m: f64,
+    /// Integrator steps allowed in all.
     budget: u64,
+    /// Whether the model is linear (no backlash on any mesh): its steady
+    /// state is the period-1 orbit shooting finds in one Newton step, or
+    /// parametric growth; never chaos, so it is never probed for it.
+    linear: bool,
+}
+
+/// The evidence that the transient has died out.
+#[derive(Debug, Clone)]
+struct Settling {
     /// The slowest modal decay per period (see `has_settled`).
     rho_modal: f64,
     poincare_hist: Vec<Vec<f64>>,
     span: SpanTracker,
     deflections: Vec<f64>,
-    periods_run: u32,
-    settled: bool,
-    phase: Phase,
-    /// The integrator's tolerances (a converged orbit restarts it).
-    tol: Tolerances,
     /// The latest Poincaré points, for the candidate period.
     pipe_hist: Vec<Vec<f64>>,
+    settled: bool,
+}
+
+/// Shooting's attempts to find the exact orbit, and its outcome.
+#[derive(Debug, Clone, Default)]
+struct ShootingLog {
     /// The exact orbit's verdict, once shooting has found it.
     exact: Option<Motion>,
-    shooting_note: Option<String>,
-    shooting_attempts: u32,
-    shooting_steps: u64,
-    /// The Lyapunov probe beside a recording started without an orbit.
+    note: Option<String>,
+    attempts: u32,
+    steps: u64,
+}
+
+/// The Lyapunov probe beside a recording started without an orbit.
+#[derive(Debug, Clone)]
+struct Probing {
     probe: Option<Box<Probe>>,
     /// Probes started so far (at most `verdict::MAX_PROBES`).
-    probes: u32,
+    count: u32,
     /// The first transient period after which a probe may start: later
     /// from the static equilibrium, whose transient from rest can look
     /// chaotic for dozens of periods (`verdict::PROBE_FROM_REST`).
-    probe_from: u32,
+    from: u32,
     /// Its finished probe's evidence, and the neighbour's steps.
     lyapunov: Option<LyapunovEvidence>,
-    probe_steps: u64,
-    /// Whether the model is linear (no backlash on any mesh): its steady
-    /// state is the period-1 orbit shooting finds in one Newton step, or
-    /// parametric growth; never chaos, so it is never probed for it.
-    linear: bool,
-    /// A recorded window whose verdict shooting is trying to confirm:
-    /// its start, its recorder and its periods (now counted in
-    /// `periods_run`).
-    window: Option<(f64, Box<Recorder>, u32)>,
+    steps: u64,
 }
 
 impl SteadyRun {
@@ -405,29 +429,32 @@ impl SteadyRun {
             opts: opts.clone(),
             ode,
             int,
-            omega_rad_s,
-            period,
-            bound_m: model.divergence_bound_m(),
-            budget,
-            rho_modal: (-model.modes.slowest_decay_rate(sys.omega_ref_rad_s) * period).exp(),
-            poincare_hist: Vec::new(),
-            span: SpanTracker::new(n_mesh),
-            deflections: vec![0.0; n_mesh],
-            periods_run: 0,
-            settled: false,
-            phase: Phase::Transient { p: 1 },
             tol,
-            pipe_hist: Vec::new(),
-            exact: None,
-            shooting_note: None,
-            shooting_attempts: 0,
-            shooting_steps: 0,
-            probe: None,
-            probes: 0,
-            probe_from: if start.is_some() { 0 } else { PROBE_FROM_REST },
-            lyapunov: None,
-            probe_steps: 0,
-            linear: model.is_linear(),
+            facts: RunFacts {
+                omega_rad_s,
+                period,
+                bound_m: model.divergence_bound_m(),
+                budget,
+                linear: model.is_linear(),
+            },
+            settling: Settling {
+                rho_modal: (-model.modes.slowest_decay_rate(sys.omega_ref_rad_s) * period).exp(),
+                poincare_hist: Vec::new(),
+                span: SpanTracker::new(n_mesh),
+                deflections: vec![0.0; n_mesh],
+                pipe_hist: Vec::new(),
+                settled: false,
+            },
+            periods_run: 0,
+            phase: Phase::Transient { p: 1 },
+            shooting: ShootingLog::default(),
+            probing: Probing {
+                probe: None,
+                count: 0,
+                from: if start.is_some() { 0 } else { PROBE_FROM_REST },
+                lyapunov: None,
+                steps: 0,
+            },
             window: None,
         })
     }
@@ -451,7 +478,7 @@ impl SteadyRun {
     ) -> Result<Self> {
         let mut run = SteadyRun::new(model, opts, from.map(|(y, _)| y))?;
         let after_chaos = from.is_some_and(|(_, chaos)| chaos);
-        if after_chaos && opts.shooting && opts.transient_periods > 0 && !run.linear {
+        if after_chaos && opts.shooting && opts.transient_periods > 0 && !run.facts.linear {
             run.start_probe(model)?;
         }
         Ok(run)
@@ -460,9 +487,9 @@ impl SteadyRun {
     /// Integrator steps taken so far (shooting's included).
     pub fn steps(&self) -> u64 {
         self.int.stats.steps
-            + self.shooting_steps
-            + self.probe_steps
-            + self.probe.as_ref().map_or(0, |p| p.steps())
+            + self.shooting.steps
+            + self.probing.steps
+            + self.probing.probe.as_ref().map_or(0, |p| p.steps())
     }
 
     /// Whether the run has returned its result or failed.
@@ -502,7 +529,7 @@ impl SteadyRun {
                 }
                 Phase::Transient { p } => {
                     let p_now = *p;
-                    let t_end = f64::from(p_now) * self.period;
+                    let t_end = f64::from(p_now) * self.facts.period;
                     while self.int.t() < t_end {
                         if steps >= max_steps {
                             return Ok(None);
@@ -511,38 +538,47 @@ impl SteadyRun {
                             .step(&mut self.ode, t_end)
                             .map_err(|e| model.explain_failure(&self.ode, &self.int, e))?;
                         steps += 1;
-                        guard(&self.int, self.budget)?;
+                        guard(&self.int, self.facts.budget)?;
                         if self.opts.early_settle || self.opts.shooting {
                             self.ode
-                                .deflections(&self.int.y()[..dof], &mut self.deflections);
-                            self.span.add(&self.deflections);
+                                .deflections(&self.int.y()[..dof], &mut self.settling.deflections);
+                            self.settling.span.add(&self.settling.deflections);
                         }
                     }
                     self.periods_run = p_now;
-                    model.check_bounded(&self.ode, self.int.t(), self.int.y(), self.bound_m)?;
+                    model.check_bounded(
+                        &self.ode,
+                        self.int.t(),
+                        self.int.y(),
+                        self.facts.bound_m,
+                    )?;
                     self.phase = Phase::Transient { p: p_now + 1 };
-                    let span_um = self.span.span_um();
-                    let point =
-                        poincare_point(&self.ode, self.int.t(), self.int.y(), self.omega_rad_s);
+                    let span_um = self.settling.span.span_um();
+                    let point = poincare_point(
+                        &self.ode,
+                        self.int.t(),
+                        self.int.y(),
+                        self.facts.omega_rad_s,
+                    );
                     if self.opts.shooting {
-                        self.pipe_hist.push(point.clone());
-                        if self.pipe_hist.len() > 2 * MAX_PERIOD + 1 {
-                            self.pipe_hist.remove(0);
+                        self.settling.pipe_hist.push(point.clone());
+                        if self.settling.pipe_hist.len() > 2 * MAX_PERIOD + 1 {
+                            self.settling.pipe_hist.remove(0);
                         }
                     }
                     if self.opts.early_settle {
-                        let hist = &mut self.poincare_hist;
+                        let hist = &mut self.settling.poincare_hist;
                         hist.push(point);
                         if hist.len() > SETTLE_DISTANCES * 8 + 1 {
                             hist.remove(0);
                         }
                         let tol = settle_tol_um(span_um);
-                        if p_now >= 5 && has_settled(hist, tol, self.rho_modal) {
-                            self.settled = true;
-                            let candidate = if self.linear {
+                        if p_now >= 5 && has_settled(hist, tol, self.settling.rho_modal) {
+                            self.settling.settled = true;
+                            let candidate = if self.facts.linear {
                                 Some(1)
                             } else {
-                                candidate_period(&self.pipe_hist, 10.0 * tol)
+                                candidate_period(&self.settling.pipe_hist, 10.0 * tol)
                             };
                             match candidate {
                                 Some(n) if self.opts.shooting => {
@@ -555,17 +591,17 @@ impl SteadyRun {
                     }
                     if self.opts.shooting && CHECKPOINTS.contains(&p_now) {
                         if let Some(n) = self.checkpoint_candidate(span_um) {
-                            self.span.reset_keep_last();
+                            self.settling.span.reset_keep_last();
                             self.start_shooting(model, n, span_um, false)?;
                             continue;
                         }
                         if self.may_probe() {
-                            self.span.reset_keep_last();
+                            self.settling.span.reset_keep_last();
                             self.start_probe(model)?;
                             continue;
                         }
                     }
-                    self.span.reset_keep_last();
+                    self.settling.span.reset_keep_last();
                 }
                 Phase::Shoot {
                     run,
@@ -580,7 +616,7 @@ impl SteadyRun {
                     let out = run.advance(max_steps - steps.min(max_steps));
                     let taken = run.steps() - before;
                     steps += taken;
-                    self.shooting_steps += taken;
+                    self.shooting.steps += taken;
                     let Some(out) = out? else {
                         return Ok(None);
                     };
@@ -590,7 +626,7 @@ impl SteadyRun {
                     }
                 }
                 Phase::Record { r, t_rec, rec } => {
-                    let t_end = *t_rec + f64::from(*r) * self.period;
+                    let t_end = *t_rec + f64::from(*r) * self.facts.period;
                     while self.int.t() < t_end {
                         if steps >= max_steps {
                             return Ok(None);
@@ -600,10 +636,10 @@ impl SteadyRun {
                             .step(&mut self.ode, t_end)
                             .map_err(|e| model.explain_failure(&self.ode, &self.int, e))?;
                         steps += 1;
-                        guard(&self.int, self.budget)?;
+                        guard(&self.int, self.facts.budget)?;
                         rec.on_step(&self.ode, &self.int, info);
                     }
-                    if let Some(pr) = &mut self.probe {
+                    if let Some(pr) = &mut self.probing.probe {
                         loop {
                             if steps >= max_steps {
                                 return Ok(None);
@@ -614,11 +650,21 @@ impl SteadyRun {
                             steps += 1;
                         }
                     }
-                    model.check_bounded(&self.ode, self.int.t(), self.int.y(), self.bound_m)?;
-                    rec.on_period(&self.ode, self.int.t(), self.int.y(), self.omega_rad_s);
+                    model.check_bounded(
+                        &self.ode,
+                        self.int.t(),
+                        self.int.y(),
+                        self.facts.bound_m,
+                    )?;
+                    rec.on_period(
+                        &self.ode,
+                        self.int.t(),
+                        self.int.y(),
+                        self.facts.omega_rad_s,
+                    );
                     let r_now = *r;
                     let target = self.record_target();
-                    if self.probe.is_some() && self.probe_period(model, r_now, target)? {
+                    if self.probing.probe.is_some() && self.probe_period(model, r_now, target)? {
                         continue;
                     }
                     let Phase::Record { r, t_rec, .. } = &mut self.phase else {
@@ -634,7 +680,7 @@ impl SteadyRun {
                             return Ok(None);
                         };
                         let mut rec = *rec;
-                        if let Some(n) = self.exact.as_ref().and_then(Motion::period) {
+                        if let Some(n) = self.shooting.exact.as_ref().and_then(Motion::period) {
                             rec.repeat_poincare(n as usize, self.opts.record_periods as usize);
                         } else if let Some(n) = self.period_to_confirm(&rec) {
                             self.confirm_window(model, t_rec, rec, n, target);
@@ -649,13 +695,13 @@ impl SteadyRun {
 
     /// Ends the transient: the recorded window starts at the last whole period.
     fn start_recording(&mut self, model: &Model) {
-        let t_rec = f64::from(self.periods_run) * self.period;
+        let t_rec = f64::from(self.periods_run) * self.facts.period;
         let rec = Recorder::new(
             model,
             &self.ode,
             &self.opts,
             t_rec,
-            self.period,
+            self.facts.period,
             self.int.y(),
         );
         self.phase = Phase::Record {
@@ -669,7 +715,7 @@ impl SteadyRun {
         let end_state = self.int.y().to_vec();
         let (period_detected, recorded) = window_verdict(&rec);
         let (meshes, histories, times) = rec.finish(model);
-        let motion = match &self.exact {
+        let motion = match &self.shooting.exact {
             // The recorded points may show a shorter period that divides
             // the one shot for (the orbit repeats sooner).
             Some(Motion::PeriodicExact {
@@ -687,9 +733,9 @@ impl SteadyRun {
         };
         SteadyState {
             omega: self.opts.omega,
-            omega_rad_s: self.omega_rad_s,
-            mesh_freq_hz: self.omega_rad_s / (2.0 * PI),
-            period_s: self.period,
+            omega_rad_s: self.facts.omega_rad_s,
+            mesh_freq_hz: self.facts.omega_rad_s / (2.0 * PI),
+            period_s: self.facts.period,
             record_start_s: t_rec,
             meshes,
             sample_times_s: times,
@@ -697,15 +743,15 @@ impl SteadyRun {
             end_state,
             period: motion.period(),
             motion,
-            shooting_note: self.shooting_note.clone(),
-            lyapunov: self.lyapunov,
+            shooting_note: self.shooting.note.clone(),
+            lyapunov: self.probing.lyapunov,
             stats: SteadyStats {
                 transient_periods_run: self.periods_run,
-                settled: self.settled,
+                settled: self.settling.settled,
                 integrator: self.int.stats,
-                shooting_attempts: self.shooting_attempts,
-                shooting_steps: self.shooting_steps,
-                probe_steps: self.probe_steps,
+                shooting_attempts: self.shooting.attempts,
+                shooting_steps: self.shooting.steps,
+                probe_steps: self.probing.steps,
             },
         }
     }

@@ -10,33 +10,72 @@ use crate::ode::{Dopri5, StepInfo};
 /// Accumulates the recorded window.
 #[derive(Debug, Clone)]
 pub(super) struct Recorder {
-    n_mesh: usize,
+    clock: SampleClock,
+    /// The mesh states at the last step's start and end.
+    prev: Vec<MeshInstant>,
+    cur: Vec<MeshInstant>,
+    /// Each mesh's extremes, sums and Poincaré samples.
+    meshes: Vec<MeshWindow>,
+    n_samples: u64,
+    /// The Poincaré points in mesh space, one per period.
+    pc_points: Vec<Vec<f64>>,
+    history_meshes: Vec<usize>,
+    histories: Vec<MeshHistory>,
+    times: Vec<f64>,
+    /// Scratch state for the dense output.
+    ybuf: Vec<f64>,
+}
+
+/// When the recorded window is sampled: `samples_per_period` evenly spaced
+/// samples per period from `t_rec`, `total_samples` in all.
+#[derive(Debug, Clone, Copy)]
+struct SampleClock {
     t_rec: f64,
     period: f64,
     samples_per_period: u32,
     total_samples: u64,
     next_sample: u64,
-    prev: Vec<MeshInstant>,
-    cur: Vec<MeshInstant>,
-    d_min: Vec<f64>,
-    d_max: Vec<f64>,
-    x_min: Vec<f64>,
-    x_max: Vec<f64>,
-    f_min: Vec<f64>,
-    f_max: Vec<f64>,
-    sum: Vec<f64>,
-    sum_sq: Vec<f64>,
-    contact: Vec<[u64; 3]>,
-    n_samples: u64,
-    pc_delta: Vec<Vec<f64>>,
-    pc_vel: Vec<Vec<f64>>,
-    pc_x: Vec<Vec<f64>>,
-    pc_xv: Vec<Vec<f64>>,
-    pc_points: Vec<Vec<f64>>,
-    history_meshes: Vec<usize>,
-    histories: Vec<MeshHistory>,
-    times: Vec<f64>,
-    ybuf: Vec<f64>,
+}
+
+/// One mesh's share of the window: exact extremes of the deflection
+/// `delta`, of `x = delta - e` and of the force; the sums of the samples;
+/// the sample counts in drive contact, apart and in back contact; the Poincaré
+/// samples.
+#[derive(Debug, Clone)]
+struct MeshWindow {
+    d_min: f64,
+    d_max: f64,
+    x_min: f64,
+    x_max: f64,
+    f_min: f64,
+    f_max: f64,
+    sum: f64,
+    sum_sq: f64,
+    contact: [u64; 3],
+    pc_delta: Vec<f64>,
+    pc_vel: Vec<f64>,
+    pc_x: Vec<f64>,
+    pc_xv: Vec<f64>,
+}
+
+impl MeshWindow {
+    fn new(m: &MeshInstant) -> Self {
+        MeshWindow {
+            d_min: m.delta,
+            d_max: m.delta,
+            x_min: m.rel,
+            x_max: m.rel,
+            f_min: m.force,
+            f_max: m.force,
+            sum: 0.0,
+            sum_sq: 0.0,
+            contact: [0; 3],
+            pc_delta: Vec::new(),
+            pc_vel: Vec::new(),
+            pc_x: Vec::new(),
+            pc_xv: Vec::new(),
+        }
+    }
 }
 
 impl Recorder {
@@ -63,28 +102,17 @@ impl Recorder {
             0
         };
         let mut r = Recorder {
-            n_mesh,
-            t_rec,
-            period,
-            samples_per_period: opts.samples_per_period,
-            total_samples: total,
-            next_sample: 0,
+            clock: SampleClock {
+                t_rec,
+                period,
+                samples_per_period: opts.samples_per_period,
+                total_samples: total,
+                next_sample: 0,
+            },
             prev: cur.clone(),
-            d_min: cur.iter().map(|m| m.delta).collect(),
-            d_max: cur.iter().map(|m| m.delta).collect(),
-            x_min: cur.iter().map(|m| m.rel).collect(),
-            x_max: cur.iter().map(|m| m.rel).collect(),
-            f_min: cur.iter().map(|m| m.force).collect(),
-            f_max: cur.iter().map(|m| m.force).collect(),
+            meshes: cur.iter().map(MeshWindow::new).collect(),
             cur,
-            sum: vec![0.0; n_mesh],
-            sum_sq: vec![0.0; n_mesh],
-            contact: vec![[0; 3]; n_mesh],
             n_samples: 0,
-            pc_delta: vec![Vec::new(); n_mesh],
-            pc_vel: vec![Vec::new(); n_mesh],
-            pc_x: vec![Vec::new(); n_mesh],
-            pc_xv: vec![Vec::new(); n_mesh],
             pc_points: Vec::new(),
             histories: history_meshes
                 .iter()
@@ -100,7 +128,7 @@ impl Recorder {
             times: Vec::new(),
             ybuf: vec![0.0; y.len()],
         };
-        if r.total_samples > 0 {
+        if r.clock.total_samples > 0 {
             let inst = r.cur.clone();
             r.sample(ode, t_rec, &inst);
         }
@@ -108,9 +136,9 @@ impl Recorder {
     }
 
     pub(super) fn sample(&mut self, ode: &MeshOde, t: f64, inst: &[MeshInstant]) {
-        for (j, mi) in inst.iter().enumerate() {
-            self.sum[j] += mi.delta;
-            self.sum_sq[j] += mi.delta * mi.delta;
+        for (j, (mi, w)) in inst.iter().zip(&mut self.meshes).enumerate() {
+            w.sum += mi.delta;
+            w.sum_sq += mi.delta * mi.delta;
             let b = ode.backlash(j);
             let c = if mi.rel > b {
                 0
@@ -119,9 +147,9 @@ impl Recorder {
             } else {
                 1
             };
-            self.contact[j][c] += 1;
-            self.f_min[j] = min(self.f_min[j], mi.force);
-            self.f_max[j] = max(self.f_max[j], mi.force);
+            w.contact[c] += 1;
+            w.f_min = min(w.f_min, mi.force);
+            w.f_max = max(w.f_max, mi.force);
         }
         for h in &mut self.histories {
             let mi = inst[h.mesh];
@@ -134,11 +162,12 @@ impl Recorder {
             self.times.push(t);
         }
         self.n_samples += 1;
-        self.next_sample += 1;
+        self.clock.next_sample += 1;
     }
 
     pub(super) fn sample_time(&self, k: u64) -> f64 {
-        self.t_rec + self.period * (k as f64) / f64::from(self.samples_per_period)
+        let c = &self.clock;
+        c.t_rec + c.period * (k as f64) / f64::from(c.samples_per_period)
     }
 
     pub(super) fn on_step(&mut self, ode: &MeshOde, int: &Dopri5, info: StepInfo) {
@@ -146,14 +175,14 @@ impl Recorder {
         ode.mesh_instants(info.t1, int.y(), &mut self.cur);
         let h = info.t1 - info.t0;
         let mut ybuf = std::mem::take(&mut self.ybuf);
-        for j in 0..self.n_mesh {
+        for (j, w) in self.meshes.iter_mut().enumerate() {
             let (a, b) = (self.prev[j], self.cur[j]);
-            self.d_min[j] = min(self.d_min[j], b.delta);
-            self.d_max[j] = max(self.d_max[j], b.delta);
-            self.x_min[j] = min(self.x_min[j], b.rel);
-            self.x_max[j] = max(self.x_max[j], b.rel);
-            self.f_min[j] = min(self.f_min[j], b.force);
-            self.f_max[j] = max(self.f_max[j], b.force);
+            w.d_min = min(w.d_min, b.delta);
+            w.d_max = max(w.d_max, b.delta);
+            w.x_min = min(w.x_min, b.rel);
+            w.x_max = max(w.x_max, b.rel);
+            w.f_min = min(w.f_min, b.force);
+            w.f_max = max(w.f_max, b.force);
             // Interior extremum of delta or of x: the rate changes sign.
             for rel in [false, true] {
                 let (v0, v1, r0, r1) = if rel {
@@ -168,21 +197,21 @@ impl Recorder {
                         let mi = ode.mesh_instant(j, t, &ybuf);
                         let v = if rel { mi.rel } else { mi.delta };
                         let (lo, hi) = if rel {
-                            (&mut self.x_min[j], &mut self.x_max[j])
+                            (&mut w.x_min, &mut w.x_max)
                         } else {
-                            (&mut self.d_min[j], &mut self.d_max[j])
+                            (&mut w.d_min, &mut w.d_max)
                         };
                         *lo = min(*lo, v);
                         *hi = max(*hi, v);
-                        self.f_min[j] = min(self.f_min[j], mi.force);
-                        self.f_max[j] = max(self.f_max[j], mi.force);
+                        w.f_min = min(w.f_min, mi.force);
+                        w.f_max = max(w.f_max, mi.force);
                     }
                 }
             }
         }
         let mut inst = Vec::new();
-        while self.next_sample < self.total_samples {
-            let ts = self.sample_time(self.next_sample);
+        while self.clock.next_sample < self.clock.total_samples {
+            let ts = self.sample_time(self.clock.next_sample);
             if ts > info.t1 {
                 break;
             }
@@ -194,12 +223,12 @@ impl Recorder {
     }
 
     pub(super) fn on_period(&mut self, ode: &MeshOde, t: f64, y: &[f64], omega_rad_s: f64) {
-        for j in 0..self.n_mesh {
+        for (j, w) in self.meshes.iter_mut().enumerate() {
             let mi = ode.mesh_instant(j, t, y);
-            self.pc_delta[j].push(mi.delta);
-            self.pc_vel[j].push(mi.delta_dot);
-            self.pc_x[j].push(mi.rel);
-            self.pc_xv[j].push(mi.rel_dot);
+            w.pc_delta.push(mi.delta);
+            w.pc_vel.push(mi.delta_dot);
+            w.pc_x.push(mi.rel);
+            w.pc_xv.push(mi.rel_dot);
         }
         self.pc_points.push(poincare_point(ode, t, y, omega_rad_s));
     }
@@ -213,13 +242,11 @@ impl Recorder {
         if n == 0 || self.pc_points.len() < n {
             return;
         }
-        let all = (self.pc_delta.iter_mut())
-            .chain(self.pc_vel.iter_mut())
-            .chain(self.pc_x.iter_mut())
-            .chain(self.pc_xv.iter_mut());
-        for series in all {
-            while series.len() < total {
-                series.push(series[series.len() - n]);
+        for w in &mut self.meshes {
+            for series in [&mut w.pc_delta, &mut w.pc_vel, &mut w.pc_x, &mut w.pc_xv] {
+                while series.len() < total {
+                    series.push(series[series.len() - n]);
+                }
             }
         }
         while self.pc_points.len() < total {
@@ -235,42 +262,41 @@ impl Recorder {
 
     /// The largest range of a mesh deflection so far (µm).
     pub(super) fn span_um(&self) -> f64 {
-        self.d_min
+        self.meshes
             .iter()
-            .zip(&self.d_max)
-            .map(|(lo, hi)| hi - lo)
+            .map(|w| w.d_max - w.d_min)
             .fold(0.0, f64::max)
             * 1e6
     }
 
     pub(super) fn finish(self, model: &Model) -> (Vec<MeshSteady>, Vec<MeshHistory>, Vec<f64>) {
         let ns = self.n_samples as f64;
-        let meshes = (0..self.n_mesh)
-            .map(|j| {
+        let meshes = (self.meshes.into_iter().enumerate())
+            .map(|(j, w)| {
                 let fs = model.statics.mesh_force_n[j];
                 let b = model.system.meshes[j].backlash_m;
                 MeshSteady {
-                    delta_min_m: self.d_min[j],
-                    delta_max_m: self.d_max[j],
-                    delta_mean_m: if ns > 0.0 { self.sum[j] / ns } else { f64::NAN },
+                    delta_min_m: w.d_min,
+                    delta_max_m: w.d_max,
+                    delta_mean_m: if ns > 0.0 { w.sum / ns } else { f64::NAN },
                     delta_rms_m: if ns > 0.0 {
-                        (self.sum_sq[j] / ns).sqrt()
+                        (w.sum_sq / ns).sqrt()
                     } else {
                         f64::NAN
                     },
-                    rel_min_m: self.x_min[j],
-                    rel_max_m: self.x_max[j],
-                    force_max_n: self.f_max[j],
-                    force_min_n: self.f_min[j],
+                    rel_min_m: w.x_min,
+                    rel_max_m: w.x_max,
+                    force_max_n: w.f_max,
+                    force_min_n: w.f_min,
                     static_force_n: fs,
-                    dynamic_factor: (fs.abs() > 1e-9).then(|| self.f_max[j] / fs),
-                    impact: Impact::classify(self.x_min[j], self.x_max[j], b),
-                    poincare_delta_m: self.pc_delta[j].clone(),
-                    poincare_velocity_m_s: self.pc_vel[j].clone(),
-                    poincare_x_m: self.pc_x[j].clone(),
-                    poincare_x_velocity_m_s: self.pc_xv[j].clone(),
+                    dynamic_factor: (fs.abs() > 1e-9).then(|| w.f_max / fs),
+                    impact: Impact::classify(w.x_min, w.x_max, b),
+                    poincare_delta_m: w.pc_delta,
+                    poincare_velocity_m_s: w.pc_vel,
+                    poincare_x_m: w.pc_x,
+                    poincare_x_velocity_m_s: w.pc_xv,
                     contact_fraction: if ns > 0.0 {
-                        let c = self.contact[j];
+                        let c = w.contact;
                         [c[0] as f64 / ns, c[1] as f64 / ns, c[2] as f64 / ns]
                     } else {
                         [0.0; 3]

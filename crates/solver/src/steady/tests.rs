@@ -23,7 +23,7 @@ fn a_failed_shooting_attempt_falls_back_to_integration_and_says_so() {
     });
     run.after_shooting(&model, failed, 3, false)
         .expect("the fallback starts");
-    assert!(run.exact.is_none());
+    assert!(run.shooting.exact.is_none());
     assert!(matches!(
         run.phase,
         Phase::Record { .. } | Phase::Transient { .. }

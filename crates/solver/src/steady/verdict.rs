@@ -262,7 +262,7 @@ impl SteadyRun {
         if !self.opts.shooting {
             return None;
         }
-        if self.linear {
+        if self.facts.linear {
             return Some(1);
         }
         match window_verdict(rec).1 {
@@ -270,7 +270,7 @@ impl SteadyRun {
             // Without chaotic evidence, a candidate read with the loose
             // tolerance from the window's last points, as at a checkpoint
             // (a budget below the first checkpoint has none).
-            Motion::NotPeriodic if !self.lyapunov.is_some_and(|ev| ev.chaotic) => {
+            Motion::NotPeriodic if !self.probing.lyapunov.is_some_and(|ev| ev.chaotic) => {
                 candidate_period(rec.points(), loose_tol_um(rec.span_um()))
             }
             _ => None,
@@ -324,7 +324,7 @@ impl SteadyRun {
     ) -> Result<()> {
         let opts = pipeline_options(n, self.opts.rtol, self.opts.atol_m, span_um);
         let run = ShootRun::new(model, self.opts.omega, self.int.y(), &opts)?;
-        self.shooting_attempts += 1;
+        self.shooting.attempts += 1;
         self.phase = Phase::Shoot {
             run: Box::new(run),
             period: n,
@@ -346,27 +346,27 @@ impl SteadyRun {
     ) -> Result<()> {
         match out {
             ShootOutcome::Converged(orbit) if orbit.is_stable() => {
-                let t = f64::from(self.periods_run) * self.period;
+                let t = f64::from(self.periods_run) * self.facts.period;
                 let stats = self.int.stats;
                 self.int = Dopri5::new(
                     &mut self.ode,
                     t,
                     &orbit.start_state,
-                    self.period / 200.0,
+                    self.facts.period / 200.0,
                     self.tol.clone(),
                 );
                 self.int.stats = stats;
-                self.exact = Some(Motion::PeriodicExact {
+                self.shooting.exact = Some(Motion::PeriodicExact {
                     period: orbit.period,
                     max_multiplier_modulus: orbit.max_multiplier_modulus(),
                     newton_iterations: orbit.iterations,
                 });
-                self.settled = true;
+                self.settling.settled = true;
                 self.window = None;
                 self.start_recording(model);
                 return Ok(());
             }
-            ShootOutcome::Converged(orbit) if self.linear => {
+            ShootOutcome::Converged(orbit) if self.facts.linear => {
                 // A linear model's periodic response is unique; unstable,
                 // every other motion grows from it without bound.
                 return Err(SolverError::ParametricallyUnstable {
@@ -387,7 +387,7 @@ impl SteadyRun {
                 // back to 2, whose doubling leads to 4 again.
                 let twice = 2 * orbit.period;
                 if doubled && twice > n && twice as usize <= MAX_PERIOD {
-                    let span_um = self.span.span_um();
+                    let span_um = self.settling.span.span_um();
                     return self.start_shooting(model, twice, span_um, settled);
                 }
                 let how = match orbit.multipliers.as_ref().and_then(|m| m.critical()) {
@@ -430,25 +430,27 @@ impl SteadyRun {
     /// model period 1, once (its orbit is unique, and where it is unstable
     /// the motion grows without bound: another attempt finds the same).
     pub(super) fn checkpoint_candidate(&self, span_um: f64) -> Option<u32> {
-        if self.linear {
-            return (self.shooting_attempts == 0).then_some(1);
+        if self.facts.linear {
+            return (self.shooting.attempts == 0).then_some(1);
         }
-        candidate_period(&self.pipe_hist, loose_tol_um(span_um))
+        candidate_period(&self.settling.pipe_hist, loose_tol_um(span_um))
     }
 
     /// Whether the run may start a Lyapunov probe now: not for a linear
     /// model (it cannot be chaotic), at most [`MAX_PROBES`] times, and not
     /// before `probe_from` transient periods.
     pub(super) fn may_probe(&self) -> bool {
-        !self.linear && self.probes < MAX_PROBES && self.periods_run >= self.probe_from
+        !self.facts.linear
+            && self.probing.count < MAX_PROBES
+            && self.periods_run >= self.probing.from
     }
 
     /// Starts recording from the current state (the end of transient
     /// period `periods_run`) with the Lyapunov probe beside it.
     pub(super) fn start_probe(&mut self, model: &Model) -> Result<()> {
-        self.probes += 1;
+        self.probing.count += 1;
         let probe = Probe::new(model, &self.ode, self.int.t(), self.int.y(), &self.tol)?;
-        self.probe = Some(Box::new(probe));
+        self.probing.probe = Some(Box::new(probe));
         self.start_recording(model);
         Ok(())
     }
@@ -457,7 +459,7 @@ impl SteadyRun {
     /// orbit (without time histories) two of its periods, the rest of the
     /// Poincaré samples following from its periodicity.
     pub(super) fn record_target(&self) -> u32 {
-        match self.exact.as_ref().and_then(Motion::period) {
+        match self.shooting.exact.as_ref().and_then(Motion::period) {
             Some(n) if self.opts.history_meshes.is_empty() => {
                 (2 * n).clamp(1, self.opts.record_periods)
             }
@@ -471,31 +473,31 @@ impl SteadyRun {
     /// period in the latest points is then shot for at once), `false` if
     /// the recording goes on (chaos, with the probe done, or undecided).
     pub(super) fn probe_period(&mut self, model: &Model, r: u32, target: u32) -> Result<bool> {
-        let Some(pr) = self.probe.as_mut() else {
+        let Some(pr) = self.probing.probe.as_mut() else {
             return Ok(false);
         };
         let (t, y) = (self.int.t(), self.int.y());
         let ev = pr.measure(&self.ode, t, y)?;
         // The recorded points feed the transient's tests too, should the
         // run go back to it.
-        let point = poincare_point(&self.ode, t, y, self.omega_rad_s);
+        let point = poincare_point(&self.ode, t, y, self.facts.omega_rad_s);
         if self.opts.early_settle {
-            self.poincare_hist.push(point.clone());
-            if self.poincare_hist.len() > SETTLE_DISTANCES * 8 + 1 {
-                self.poincare_hist.remove(0);
+            self.settling.poincare_hist.push(point.clone());
+            if self.settling.poincare_hist.len() > SETTLE_DISTANCES * 8 + 1 {
+                self.settling.poincare_hist.remove(0);
             }
         }
-        self.pipe_hist.push(point);
-        if self.pipe_hist.len() > 2 * MAX_PERIOD + 1 {
-            self.pipe_hist.remove(0);
+        self.settling.pipe_hist.push(point);
+        if self.settling.pipe_hist.len() > 2 * MAX_PERIOD + 1 {
+            self.settling.pipe_hist.remove(0);
         }
         if ev.is_none() && r < target {
             return Ok(false);
         }
-        self.probe_steps += pr.steps();
-        self.probe = None;
+        self.probing.steps += pr.steps();
+        self.probing.probe = None;
         if let Some(ev) = ev {
-            self.lyapunov = Some(ev);
+            self.probing.lyapunov = Some(ev);
             if ev.chaotic {
                 return Ok(false);
             }
@@ -508,25 +510,25 @@ impl SteadyRun {
         self.phase = Phase::Transient {
             p: self.periods_run + 1,
         };
-        self.span.reset_keep_last();
+        self.settling.span.reset_keep_last();
         // Without chaos the motion settles (or winds on a torus): shoot for
         // the period the points suggest, or else for period 1, the usual
         // steady state, whose transient may decay too slowly for the loose
         // test (a largest multiplier of 0.998 needs some 2 000 periods to
         // come within 2 % of the span).
-        let n = candidate_period(&self.pipe_hist, loose_tol_um(span_um)).unwrap_or(1);
+        let n = candidate_period(&self.settling.pipe_hist, loose_tol_um(span_um)).unwrap_or(1);
         self.start_shooting(model, n, span_um, false)?;
         Ok(true)
     }
 
     /// Adds a shooting attempt that did not give the steady state to the note.
     fn note_attempt(&mut self, what: String) {
-        match &mut self.shooting_note {
+        match &mut self.shooting.note {
             Some(note) => {
                 note.push_str("; ");
                 note.push_str(&what);
             }
-            None => self.shooting_note = Some(what),
+            None => self.shooting.note = Some(what),
         }
     }
 }
