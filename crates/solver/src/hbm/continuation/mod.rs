@@ -97,55 +97,87 @@ pub use branch::{
 pub struct FrfContinuation {
     asm: Assembly,
     spec: FrfSpec,
+    cursor: Cursor,
+    stability: StabilityTrack,
+    piece: Piece,
+    coverage: Coverage,
+    recon: Reconstruction,
+    started: bool,
+    finished: bool,
+    max_points: u64,
+    /// Work so far.
+    pub stats: FrfStats,
+    /// Points computed but not yet returned.
+    queue: Vec<BranchPoint>,
+    /// A failure to report once the points before it are returned.
+    pending_error: Option<SolverError>,
+}
+
+/// Where the continuation stands: the last point `y` (harmonic
+/// coefficients and Omega), its unit tangent and the step sizes.
+#[derive(Debug, Clone)]
+struct Cursor {
     y: Vec<f64>,
     tangent: Vec<f64>,
     ds: f64,
     ds_max: f64,
     scale: f64,
-    started: bool,
-    finished: bool,
+}
+
+/// The stability of the points behind the cursor, for locating changes.
+#[derive(Debug, Clone)]
+struct StabilityTrack {
     prev_stable: Option<bool>,
     prev_multipliers: Vec<Complex<f64>>,
     since_fold: u32,
     /// The points at the queue's end whose stability is not decided yet:
     /// their distance (in points) from the last fold.
     unresolved: Vec<u32>,
-    max_points: u64,
-    /// Work so far.
-    pub stats: FrfStats,
-    x0: Vec<f64>,
-    transform: Option<DMatrix<f64>>,
-    mesh_to_channel: Vec<usize>,
-    /// A fine grid on which reconstructed orbits are sampled for their extremes.
-    recon: harmonic::Grid,
-    left_at_start: bool,
-    /// Direction and start of the current piece.
-    dir: Direction,
-    start_omega: f64,
-    /// Points computed but not yet returned.
-    queue: Vec<BranchPoint>,
     /// A fold whose location failed: labelled on the next point.
     pending_fold: bool,
-    /// The current piece's index.
-    piece: u32,
+}
+
+/// The current piece of the curve (a restart begins a new one).
+#[derive(Debug, Clone)]
+struct Piece {
+    /// The piece's index.
+    index: u32,
+    /// Its direction and start.
+    dir: Direction,
+    start_omega: f64,
+    /// Points since it last advanced its frontier.
+    since_progress: u64,
+    /// The farthest Omega in its direction.
+    frontier: f64,
+    /// An amplitude beyond which the piece has diverged.
+    divergence: f64,
+}
+
+/// What the pieces cover of the Omega range, and what they leave out.
+#[derive(Debug, Clone)]
+struct Coverage {
     /// The Omega span `(lo, hi)` of every piece so far.
     spans: Vec<(f64, f64)>,
     /// Automatic restarts so far.
     restarts: Vec<Restart>,
     /// Whether a piece that ends early is followed by a restart.
     restarts_allowed: bool,
-    /// Points of the current piece since it last advanced its frontier.
-    since_progress: u64,
-    /// The current piece's frontier: the farthest Omega in its direction.
-    frontier: f64,
-    /// An amplitude beyond which the piece has diverged.
-    divergence: f64,
     /// Parts of the range that no piece covers, and why.
     left_out: Vec<LeftOut>,
     /// Omega of restarts whose first point Newton did not find.
     failed_starts: Vec<f64>,
-    /// A failure to report once the points before it are returned.
-    pending_error: Option<SolverError>,
+    left_at_start: bool,
+}
+
+/// How the harmonic coefficients map back to the gear set's meshes.
+#[derive(Debug, Clone)]
+struct Reconstruction {
+    /// The start (the static equilibrium in the HBM coordinates).
+    x0: Vec<f64>,
+    transform: Option<DMatrix<f64>>,
+    mesh_to_channel: Vec<usize>,
+    /// A fine grid on which reconstructed orbits are sampled for their extremes.
+    grid: harmonic::Grid,
 }
 
 const NEWTON_MAX: usize = 12;
@@ -237,41 +269,51 @@ impl FrfContinuation {
         let ds_max = 1.0 / f64::from(spec.points);
         let divergence = DIVERGENCE_FACTOR * inf_norm(&x0).max(1.0);
         Ok(FrfContinuation {
-            divergence,
             max_points: 20 * u64::from(spec.points) + 4000,
             asm,
-            y: Vec::new(),
-            tangent: Vec::new(),
-            ds: ds_max,
-            ds_max,
-            scale: 1.0,
+            cursor: Cursor {
+                y: Vec::new(),
+                tangent: Vec::new(),
+                ds: ds_max,
+                ds_max,
+                scale: 1.0,
+            },
+            stability: StabilityTrack {
+                prev_stable: None,
+                prev_multipliers: Vec::new(),
+                since_fold: u32::MAX,
+                unresolved: Vec::new(),
+                pending_fold: false,
+            },
+            piece: Piece {
+                index: 0,
+                dir: spec.direction,
+                start_omega: match spec.direction {
+                    Direction::Up => spec.omega_from,
+                    Direction::Down => spec.omega_to,
+                },
+                since_progress: 0,
+                frontier: f64::NAN,
+                divergence,
+            },
+            coverage: Coverage {
+                spans: Vec::new(),
+                restarts: Vec::new(),
+                restarts_allowed: true,
+                left_out: Vec::new(),
+                failed_starts: Vec::new(),
+                left_at_start: false,
+            },
+            recon: Reconstruction {
+                x0,
+                transform,
+                mesh_to_channel,
+                grid: harmonic::Grid::new(h, recon_samples(h)),
+            },
             started: false,
             finished: false,
-            prev_stable: None,
-            prev_multipliers: Vec::new(),
-            since_fold: u32::MAX,
-            unresolved: Vec::new(),
             stats: FrfStats::default(),
-            x0,
-            transform,
-            mesh_to_channel,
-            recon: harmonic::Grid::new(h, recon_samples(h)),
-            left_at_start: false,
-            dir: spec.direction,
-            start_omega: match spec.direction {
-                Direction::Up => spec.omega_from,
-                Direction::Down => spec.omega_to,
-            },
             queue: Vec::new(),
-            pending_fold: false,
-            piece: 0,
-            spans: Vec::new(),
-            restarts: Vec::new(),
-            restarts_allowed: true,
-            since_progress: 0,
-            frontier: f64::NAN,
-            left_out: Vec::new(),
-            failed_starts: Vec::new(),
             pending_error: None,
             spec,
         })
@@ -297,27 +339,27 @@ impl FrfContinuation {
     /// reached by a restart either (continue from the other end, in the
     /// other direction, to see it).
     pub fn left_at_start(&self) -> bool {
-        self.left_at_start
+        self.coverage.left_at_start
     }
 
     /// The automatic restarts: where a piece of the branch ended early, why,
     /// and where the next one started.
     pub fn restarts(&self) -> &[Restart] {
-        &self.restarts
+        &self.coverage.restarts
     }
 
     /// Plain sentences saying what the continuation did beyond following
     /// one branch from end to end (empty when it did just that).
     pub fn notes(&self) -> Vec<String> {
-        let mut notes: Vec<String> = self.restarts.iter().map(Restart::note).collect();
-        notes.extend(self.left_out.iter().map(LeftOut::note));
+        let mut notes: Vec<String> = self.coverage.restarts.iter().map(Restart::note).collect();
+        notes.extend(self.coverage.left_out.iter().map(LeftOut::note));
         notes
     }
 
     /// The Omega intervals no piece covers, and why: a pole of the periodic
     /// response, or a tangle of folds that no piece got across.
     pub fn left_out(&self) -> &[LeftOut] {
-        &self.left_out
+        &self.coverage.left_out
     }
 
     /// Fraction of the Omega range covered so far, for progress bars.
@@ -333,8 +375,8 @@ impl FrfContinuation {
     /// The parts of the Omega range that no piece has covered yet, except
     /// the poles (where pieces on both sides diverged).
     fn coverage_gaps(&self) -> Vec<(f64, f64)> {
-        let mut spans = self.spans.clone();
-        spans.extend(self.left_out.iter().map(|l| (l.from, l.to)));
+        let mut spans = self.coverage.spans.clone();
+        spans.extend(self.coverage.left_out.iter().map(|l| (l.from, l.to)));
         Self::gaps_of(&self.spec, spans)
     }
 
@@ -358,7 +400,7 @@ impl FrfContinuation {
 
     /// Physical generalized coordinates `q(theta)` are `transform x 1e-6`.
     pub fn transform(&self) -> Option<&DMatrix<f64>> {
-        self.transform.as_ref()
+        self.recon.transform.as_ref()
     }
 
     /// Computes up to `k` further points. On a solver failure the branch ends
@@ -378,12 +420,12 @@ impl FrfContinuation {
                 return Err(e);
             }
         }
-        while self.queue.len() - self.unresolved.len() < k && !self.finished {
+        while self.queue.len() - self.stability.unresolved.len() < k && !self.finished {
             let before = self.queue.len();
             let outcome = if !self.started {
                 self.start()
             } else if self.stats.points >= self.max_points {
-                let omega = self.y.last().copied().unwrap_or(f64::NAN);
+                let omega = self.cursor.y.last().copied().unwrap_or(f64::NAN);
                 self.finished = true;
                 Err(SolverError::ContinuationStalled {
                     omega,
@@ -393,8 +435,11 @@ impl FrfContinuation {
                 match self.step() {
                     // A corrector that fails at the smallest step ends the
                     // piece; a restart may cover the rest.
-                    Err(e) if self.restarts_allowed && self.restarts.len() < MAX_RESTARTS => {
-                        let omega = self.y[self.n_x()];
+                    Err(e)
+                        if self.coverage.restarts_allowed
+                            && self.coverage.restarts.len() < MAX_RESTARTS =>
+                    {
+                        let omega = self.cursor.y[self.n_x()];
                         self.end_piece(PieceEnd::Failed, omega).map_err(|_| e)
                     }
                     other => other,
@@ -421,7 +466,7 @@ impl FrfContinuation {
         }
         // At most `k` now; a located fold and the point after it can come
         // in one step, and the second then waits for the next call.
-        let n = (self.queue.len() - self.unresolved.len()).min(k);
+        let n = (self.queue.len() - self.stability.unresolved.len()).min(k);
         Ok(self.queue.drain(..n).collect())
     }
 
@@ -434,35 +479,35 @@ impl FrfContinuation {
     /// (for a restarted piece) covered the rest of the range.
     fn emit(&mut self, p: BranchPoint) -> Result<()> {
         let omega = p.omega;
-        let piece = self.piece as usize;
-        if self.spans.len() <= piece {
-            self.spans.push((omega, omega));
+        let piece = self.piece.index as usize;
+        if self.coverage.spans.len() <= piece {
+            self.coverage.spans.push((omega, omega));
         }
-        let span = &mut self.spans[piece];
+        let span = &mut self.coverage.spans[piece];
         span.0 = span.0.min(omega).max(self.spec.omega_from);
         span.1 = span.1.max(omega).min(self.spec.omega_to);
-        let ahead = match self.dir {
-            Direction::Up => omega > self.frontier,
-            Direction::Down => omega < self.frontier,
+        let ahead = match self.piece.dir {
+            Direction::Up => omega > self.piece.frontier,
+            Direction::Down => omega < self.piece.frontier,
         };
-        if ahead || self.frontier.is_nan() {
-            self.frontier = omega;
-            self.since_progress = 0;
+        if ahead || self.piece.frontier.is_nan() {
+            self.piece.frontier = omega;
+            self.piece.since_progress = 0;
         } else {
-            self.since_progress += 1;
+            self.piece.since_progress += 1;
         }
         let amplitude = inf_norm(&p.coefficients);
         self.queue.push(p);
         if self.finished || !self.started {
             return Ok(());
         }
-        if amplitude > self.divergence {
+        if amplitude > self.piece.divergence {
             return self.end_piece(PieceEnd::Diverged, omega);
         }
-        if self.since_progress > self.stall_window() {
+        if self.piece.since_progress > self.stall_window() {
             return self.end_piece(PieceEnd::Stalled, omega);
         }
-        if self.piece > 0 && self.coverage_gaps().is_empty() {
+        if self.piece.index > 0 && self.coverage_gaps().is_empty() {
             self.finished = true;
         }
         Ok(())
@@ -497,22 +542,28 @@ impl FrfContinuation {
         loop {
             let gaps = self.coverage_gaps();
             let tried = gaps.iter().copied().find(|g| {
-                let down_pending = self.restarts.last().is_some_and(|r| {
+                let down_pending = self.coverage.restarts.last().is_some_and(|r| {
                     r.piece >= 2
                         && r.direction == Direction::Up
                         && (g.1 - r.start_omega).abs() <= tol
                 });
                 let inside = |w: f64| g.0 - tol <= w && w <= g.1 + tol;
-                let failed = self.failed_starts.iter().filter(|&&w| inside(w)).count();
+                let failed = self
+                    .coverage
+                    .failed_starts
+                    .iter()
+                    .filter(|&&w| inside(w))
+                    .count();
                 !down_pending
                     && (failed >= GAP_STARTS.len()
                         || self
+                            .coverage
                             .restarts
                             .iter()
                             .any(|r| r.piece >= 2 && inside(r.start_omega)))
             });
             match tried {
-                Some(g) => self.left_out.push(LeftOut {
+                Some(g) => self.coverage.left_out.push(LeftOut {
                     from: g.0,
                     to: g.1,
                     reason: LeftOutReason::Tangle,
@@ -525,11 +576,11 @@ impl FrfContinuation {
             self.finished = true;
             return Ok(());
         }
-        if !self.restarts_allowed || self.restarts.len() >= MAX_RESTARTS {
+        if !self.coverage.restarts_allowed || self.coverage.restarts.len() >= MAX_RESTARTS {
             self.finished = true;
             return match how {
                 PieceEnd::TurnedBack | PieceEnd::Reached => {
-                    self.left_at_start = how == PieceEnd::TurnedBack;
+                    self.coverage.left_at_start = how == PieceEnd::TurnedBack;
                     Ok(())
                 }
                 PieceEnd::Diverged
@@ -544,11 +595,11 @@ impl FrfContinuation {
         // First from the other end, backward; then from the middle of the
         // first gap, upward, and from the same start downward if the gap
         // below it remains.
-        let down_again = self.restarts.last().and_then(|r| {
+        let down_again = self.coverage.restarts.last().and_then(|r| {
             let below = gaps.iter().any(|g| (g.1 - r.start_omega).abs() <= tol);
             (r.piece >= 2 && r.direction == Direction::Up && below).then_some(r.start_omega)
         });
-        let (start_omega, dir) = if self.restarts.is_empty() {
+        let (start_omega, dir) = if self.coverage.restarts.is_empty() {
             match self.spec.direction {
                 Direction::Up => (self.spec.omega_to, Direction::Down),
                 Direction::Down => (self.spec.omega_from, Direction::Up),
@@ -558,6 +609,7 @@ impl FrfContinuation {
         } else {
             let (a, b) = gaps[0];
             let failed = self
+                .coverage
                 .failed_starts
                 .iter()
                 .filter(|&&w| a - tol <= w && w <= b + tol)
@@ -565,23 +617,23 @@ impl FrfContinuation {
             let frac = GAP_STARTS[failed.min(GAP_STARTS.len() - 1)];
             (a + frac * (b - a), Direction::Up)
         };
-        self.piece += 1;
-        self.restarts.push(Restart {
-            piece: self.piece,
+        self.piece.index += 1;
+        self.coverage.restarts.push(Restart {
+            piece: self.piece.index,
             reason: how,
             stopped_at,
             start_omega,
             direction: dir,
         });
-        self.dir = dir;
-        self.start_omega = start_omega;
-        self.prev_stable = None;
-        self.prev_multipliers.clear();
-        self.since_fold = u32::MAX;
-        self.pending_fold = false;
-        self.ds = self.ds_max;
-        self.frontier = f64::NAN;
-        self.since_progress = 0;
+        self.piece.dir = dir;
+        self.piece.start_omega = start_omega;
+        self.stability.prev_stable = None;
+        self.stability.prev_multipliers.clear();
+        self.stability.since_fold = u32::MAX;
+        self.stability.pending_fold = false;
+        self.cursor.ds = self.cursor.ds_max;
+        self.piece.frontier = f64::NAN;
+        self.piece.since_progress = 0;
         Ok(())
     }
 }

@@ -11,19 +11,19 @@ impl FrfContinuation {
         fold: Option<Bifurcation>,
     ) -> BranchPoint {
         let nx = self.n_x();
-        let omega = self.y[nx];
-        let x = self.y[..nx].to_vec();
+        let omega = self.cursor.y[nx];
+        let x = self.cursor.y[..nx].to_vec();
         let meshes = self.meshes_of(&x);
         let bifurcation = fold;
         if fold.is_some() {
-            self.since_fold = 0;
+            self.stability.since_fold = 0;
         } else {
-            self.since_fold = self.since_fold.saturating_add(1);
+            self.stability.since_fold = self.stability.since_fold.saturating_add(1);
         }
         // Stability is decided once the next sampled point is known
         // ([`FrfContinuation::resolve_stability`]).
         if self.spec.stability {
-            self.unresolved.push(self.since_fold);
+            self.stability.unresolved.push(self.stability.since_fold);
         }
         BranchPoint {
             omega,
@@ -33,7 +33,7 @@ impl FrfContinuation {
             bifurcation,
             newton_iterations,
             coefficients: x,
-            piece: self.piece,
+            piece: self.piece.index,
         }
     }
 
@@ -58,8 +58,8 @@ impl FrfContinuation {
                 for (r, t) in rel_coef.iter_mut().zip(te) {
                     *r -= t;
                 }
-                let (dmin, dmax) = extremes(&self.recon, &coef, h);
-                let (xmin, xmax) = extremes(&self.recon, &rel_coef, h);
+                let (dmin, dmax) = extremes(&self.recon.grid, &coef, h);
+                let (xmin, xmax) = extremes(&self.recon.grid, &rel_coef, h);
                 let mut harmonics_m = vec![coef[0] * 1e-6];
                 for k in 1..=h {
                     harmonics_m.push(coef[2 * k - 1].hypot(coef[2 * k]) * 1e-6);
@@ -76,7 +76,8 @@ impl FrfContinuation {
                 }
             })
             .collect();
-        self.mesh_to_channel
+        self.recon
+            .mesh_to_channel
             .iter()
             .map(|&c| per_channel[c].clone())
             .collect()

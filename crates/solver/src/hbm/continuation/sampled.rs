@@ -38,16 +38,16 @@ impl FrfContinuation {
 
     /// Whether enough points wait for their stability to sample the next.
     pub(super) fn stability_due(&self) -> bool {
-        self.unresolved.len() >= self.spec.stability_stride.max(1) as usize
+        self.stability.unresolved.len() >= self.spec.stability_stride.max(1) as usize
     }
 
     /// Decides the stability of every waiting point and labels the changes.
     pub(super) fn resolve_stability(&mut self) {
-        let n = self.unresolved.len();
+        let n = self.stability.unresolved.len();
         if n == 0 {
             return;
         }
-        let since = std::mem::take(&mut self.unresolved);
+        let since = std::mem::take(&mut self.stability.unresolved);
         let first = self.queue.len() - n;
         let every = self.spec.stability_stride <= 1;
         let mut known: Vec<Option<Verdict>> = vec![None; n];
@@ -55,11 +55,11 @@ impl FrfContinuation {
         // The reference before the waiting points: the last decided point
         // of the piece, or the piece's first point itself.
         let mut left: isize = -1;
-        if (self.prev_stable.is_none() || every) && n > 1 {
+        if (self.stability.prev_stable.is_none() || every) && n > 1 {
             known[0] = Some(self.floquet_at(first));
             left = 0;
         }
-        let prev_stable = self.prev_stable;
+        let prev_stable = self.stability.prev_stable;
         let stable_at = |known: &[Option<Verdict>], i: isize| -> Option<bool> {
             if i < 0 {
                 prev_stable
@@ -101,9 +101,10 @@ impl FrfContinuation {
             let (stable, multipliers) = verdict.unwrap_or((None, Vec::new()));
             let p = &mut self.queue[first + j];
             if p.bifurcation.is_none() {
-                if let (Some(a), Some(b)) = (self.prev_stable, stable) {
+                if let (Some(a), Some(b)) = (self.stability.prev_stable, stable) {
                     if a != b {
-                        let kind = classify_crossing(&self.prev_multipliers, &multipliers);
+                        let kind =
+                            classify_crossing(&self.stability.prev_multipliers, &multipliers);
                         // A real multiplier through +1 next to a turn is the
                         // fold itself (the monodromy of the truncated orbit
                         // and the truncated balance place it a point apart).
@@ -113,9 +114,9 @@ impl FrfContinuation {
                     }
                 }
             }
-            self.prev_stable = stable;
+            self.stability.prev_stable = stable;
             if !multipliers.is_empty() || stable.is_none() {
-                self.prev_multipliers.clone_from(&multipliers);
+                self.stability.prev_multipliers.clone_from(&multipliers);
             }
             p.stable = stable;
             p.multipliers = multipliers;

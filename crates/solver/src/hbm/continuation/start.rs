@@ -9,24 +9,26 @@ impl FrfContinuation {
     /// the next guess) because a many-harmonic Newton from the static guess
     /// can wander into the dead zone and stall.
     pub(super) fn start(&mut self) -> Result<()> {
-        let omega = self.start_omega;
+        let omega = self.piece.start_omega;
         let nx = self.n_x();
         let found = match self.start_in_h(omega) {
             Ok(found) => Ok(found),
             // The fallback (a continuation from below) only for the first
             // piece: a restart that cannot start directly tries the next.
-            Err(direct) if self.piece == 0 => self.start_from_below(omega).map_err(|_| direct),
+            Err(direct) if self.piece.index == 0 => {
+                self.start_from_below(omega).map_err(|_| direct)
+            }
             Err(direct) => Err(direct),
         };
         let (x, iterations) = match found {
             Ok(found) => found,
-            Err(e) if self.piece > 0 => {
+            Err(e) if self.piece.index > 0 => {
                 // No piece: the restart is withdrawn and the next one tried
                 // (elsewhere in the same gap, or the next gap).
-                self.failed_starts.push(omega);
-                return match self.restarts.pop() {
+                self.coverage.failed_starts.push(omega);
+                return match self.coverage.restarts.pop() {
                     Some(r) => {
-                        self.piece -= 1;
+                        self.piece.index -= 1;
                         self.end_piece(r.reason, r.stopped_at)
                     }
                     None => {
@@ -42,18 +44,18 @@ impl FrfContinuation {
         };
         let mut r = vec![0.0; nx];
         let mut jac = DMatrix::zeros(nx, nx + 1);
-        if self.piece > 0 && inf_norm(&x) > self.divergence {
+        if self.piece.index > 0 && inf_norm(&x) > self.piece.divergence {
             // A start beyond the divergence bound lies in a gap where the
             // response is unbounded: a pole, which the pieces on both sides
             // approached. It is left out, and the next gap is tried.
             if let (Some(r), Some(&gap)) = (
-                self.restarts.pop(),
+                self.coverage.restarts.pop(),
                 self.coverage_gaps()
                     .iter()
                     .find(|g| g.0 <= omega && omega <= g.1),
             ) {
-                self.piece -= 1;
-                self.left_out.push(LeftOut {
+                self.piece.index -= 1;
+                self.coverage.left_out.push(LeftOut {
                     from: gap.0,
                     to: gap.1,
                     reason: LeftOutReason::Unbounded,
@@ -61,20 +63,24 @@ impl FrfContinuation {
                 return self.end_piece(r.reason, r.stopped_at);
             }
         }
-        self.scale = (3.0 * rms(&x[self.asm.model.m..])).max(1.0);
-        self.y = x;
-        self.y.push(omega);
+        self.cursor.scale = (3.0 * rms(&x[self.asm.model.m..])).max(1.0);
+        self.cursor.y = x;
+        self.cursor.y.push(omega);
         // First tangent: [R_X R_Omega] t = 0 with t_Omega = +-1.
         self.asm
-            .evaluate(&self.y[..nx], omega, &mut r, Some(&mut jac));
+            .evaluate(&self.cursor.y[..nx], omega, &mut r, Some(&mut jac));
         let lu = crate::dense::Lu::new(jac.columns(0, nx).into_owned());
         let rhs = DVector::from_iterator(nx, (0..nx).map(|i| -jac[(i, nx)]));
         let tx = lu.solve(&rhs).ok_or_else(|| SolverError::Singular {
             what: format!("harmonic-balance Jacobian at Omega = {omega}"),
         })?;
-        let sign = if self.dir == Direction::Up { 1.0 } else { -1.0 };
-        self.tangent = tx.iter().map(|v| v * sign).collect();
-        self.tangent.push(sign);
+        let sign = if self.piece.dir == Direction::Up {
+            1.0
+        } else {
+            -1.0
+        };
+        self.cursor.tangent = tx.iter().map(|v| v * sign).collect();
+        self.cursor.tangent.push(sign);
         self.normalize_tangent();
         self.started = true;
         let p = self.point(iterations, None);
@@ -84,7 +90,7 @@ impl FrfContinuation {
     /// Newton at `omega` continued in the number of harmonics.
     pub(super) fn start_in_h(&mut self, omega: f64) -> Result<(Vec<f64>, usize)> {
         let m = self.asm.model.m;
-        let mut x: Vec<f64> = self.x0[..m].to_vec();
+        let mut x: Vec<f64> = self.recon.x0[..m].to_vec();
         let mut iterations = 0;
         for hh in 1..=self.asm.h {
             x.resize(m * harmonic::n_coef(hh), 0.0);
@@ -121,11 +127,11 @@ impl FrfContinuation {
         let mut inner = FrfContinuation::with_model(
             self.asm.model.clone(),
             spec,
-            self.x0.clone(),
+            self.recon.x0.clone(),
             None,
-            self.mesh_to_channel.clone(),
+            self.recon.mesh_to_channel.clone(),
         )?;
-        inner.restarts_allowed = false;
+        inner.coverage.restarts_allowed = false;
         let mut last = None;
         while !inner.is_finished() {
             if let Some(p) = inner.advance(64)?.pop() {

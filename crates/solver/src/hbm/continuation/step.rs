@@ -11,7 +11,7 @@ impl FrfContinuation {
             let range = self.spec.omega_to - self.spec.omega_from;
             1.0 / (range * range)
         } else {
-            1.0 / (self.scale * self.scale * self.n_x() as f64)
+            1.0 / (self.cursor.scale * self.cursor.scale * self.n_x() as f64)
         }
     }
 
@@ -21,22 +21,22 @@ impl FrfContinuation {
     pub(super) fn update_scale(&mut self) {
         let m = self.asm.model.m;
         let nx = self.n_x();
-        let amp = 3.0 * rms(&self.y[m..nx]);
+        let amp = 3.0 * rms(&self.cursor.y[m..nx]);
         if self.spec.step_control == StepControl::Geometry {
-            self.scale = amp.max(1.0);
+            self.cursor.scale = amp.max(1.0);
             self.normalize_tangent();
-        } else if amp > self.scale {
-            self.scale = amp;
+        } else if amp > self.cursor.scale {
+            self.cursor.scale = amp;
             self.normalize_tangent();
         }
     }
 
     pub(super) fn normalize_tangent(&mut self) {
-        let norm: f64 = (0..self.tangent.len())
-            .map(|i| self.metric(i) * self.tangent[i] * self.tangent[i])
+        let norm: f64 = (0..self.cursor.tangent.len())
+            .map(|i| self.metric(i) * self.cursor.tangent[i] * self.cursor.tangent[i])
             .sum::<f64>()
             .sqrt();
-        for t in &mut self.tangent {
+        for t in &mut self.cursor.tangent {
             *t /= norm;
         }
     }
@@ -54,11 +54,11 @@ impl FrfContinuation {
     pub(super) fn step(&mut self) -> Result<()> {
         let nx = self.n_x();
         let n = nx + 1;
-        let omega_now = self.y[nx];
-        let ds_min = 1e-5 * self.ds_max;
+        let omega_now = self.cursor.y[nx];
+        let ds_min = 1e-5 * self.cursor.ds_max;
         loop {
-            let t_om = self.tangent[nx];
-            let end = match self.dir {
+            let t_om = self.cursor.tangent[nx];
+            let end = match self.piece.dir {
                 Direction::Up => self.spec.omega_to,
                 Direction::Down => self.spec.omega_from,
             };
@@ -67,9 +67,9 @@ impl FrfContinuation {
             let mut ds = match self.spec.step_control {
                 StepControl::Geometry => {
                     let omega_cap = range / f64::from(self.spec.points) / t_om.abs().max(1e-300);
-                    self.ds.min(omega_cap).min(DS_CAP).max(ds_min)
+                    self.cursor.ds.min(omega_cap).min(DS_CAP).max(ds_min)
                 }
-                StepControl::Iterations => self.ds,
+                StepControl::Iterations => self.cursor.ds,
             };
             // Land on the end of the range instead of overshooting it.
             let mut landing = false;
@@ -80,7 +80,9 @@ impl FrfContinuation {
                     landing = true;
                 }
             }
-            let pred: Vec<f64> = (0..n).map(|i| self.y[i] + ds * self.tangent[i]).collect();
+            let pred: Vec<f64> = (0..n)
+                .map(|i| self.cursor.y[i] + ds * self.cursor.tangent[i])
+                .collect();
             if landing {
                 // The last point sits exactly on the end of the range: a
                 // natural-parameter Newton at Omega = end from the predictor.
@@ -88,15 +90,15 @@ impl FrfContinuation {
                 let mut stats = self.stats;
                 if let Ok(iterations) = newton_fixed(&mut self.asm, &mut x, end, &mut stats) {
                     self.stats = stats;
-                    self.y[..nx].copy_from_slice(&x);
-                    self.y[nx] = end;
+                    self.cursor.y[..nx].copy_from_slice(&x);
+                    self.cursor.y[nx] = end;
                     return self.finish_piece(iterations, None, PieceEnd::Reached);
                 }
             }
             match self.correct(&pred) {
                 Ok((y_new, t_new, iterations)) => {
                     let cos: f64 = (0..n)
-                        .map(|i| self.metric(i) * t_new[i] * self.tangent[i])
+                        .map(|i| self.metric(i) * t_new[i] * self.cursor.tangent[i])
                         .sum();
                     let alpha = cos.clamp(-1.0, 1.0).acos();
                     let dist = (0..n)
@@ -108,20 +110,20 @@ impl FrfContinuation {
                         let f = overshoot(dist, alpha);
                         if f > 2.0 && ds > ds_min {
                             self.stats.rejected_steps += 1;
-                            self.ds = (ds / f.min(4.0)).max(ds_min);
+                            self.cursor.ds = (ds / f.min(4.0)).max(ds_min);
                             continue;
                         }
-                        self.ds = (ds / f).clamp(ds_min, DS_CAP);
+                        self.cursor.ds = (ds / f).clamp(ds_min, DS_CAP);
                     } else {
                         // StepControl::Iterations: the turn limits the
                         // step, the corrector's iterations adapt it.
                         if cos < 0.9 && ds > ds_min {
                             self.stats.rejected_steps += 1;
-                            self.ds = ds * 0.5;
+                            self.cursor.ds = ds * 0.5;
                             continue;
                         }
-                        self.ds = if iterations <= 2 {
-                            (ds * 1.4).min(self.ds_max)
+                        self.cursor.ds = if iterations <= 2 {
+                            (ds * 1.4).min(self.cursor.ds_max)
                         } else if iterations >= 5 {
                             ds * 0.6
                         } else {
@@ -129,37 +131,38 @@ impl FrfContinuation {
                         }
                         .max(ds_min);
                     }
-                    if t_new[nx].signum() != self.tangent[nx].signum() && !geometry {
-                        self.pending_fold = true;
-                    } else if t_new[nx].signum() != self.tangent[nx].signum() {
+                    if t_new[nx].signum() != self.cursor.tangent[nx].signum() && !geometry {
+                        self.stability.pending_fold = true;
+                    } else if t_new[nx].signum() != self.cursor.tangent[nx].signum() {
                         // A fold between the two points: locate it, and
                         // put it on the branch before the new point.
                         if let Some((y_fold, t_fold, it)) = self.locate_fold(ds, t_new[nx]) {
                             let (y_keep, t_keep) = (
-                                std::mem::replace(&mut self.y, y_fold),
-                                std::mem::replace(&mut self.tangent, t_fold),
+                                std::mem::replace(&mut self.cursor.y, y_fold),
+                                std::mem::replace(&mut self.cursor.tangent, t_fold),
                             );
                             let fold_point = self.point(it, Some(Bifurcation::Fold));
-                            self.y = y_keep;
-                            self.tangent = t_keep;
+                            self.cursor.y = y_keep;
+                            self.cursor.tangent = t_keep;
                             self.emit(fold_point)?;
                             if !self.started || self.finished {
                                 return Ok(());
                             }
                         } else {
-                            self.pending_fold = true;
+                            self.stability.pending_fold = true;
                         }
                     }
-                    self.y = y_new;
-                    self.tangent = t_new;
+                    self.cursor.y = y_new;
+                    self.cursor.tangent = t_new;
                     self.update_scale();
-                    let omega = self.y[nx];
-                    let label = std::mem::take(&mut self.pending_fold).then_some(Bifurcation::Fold);
+                    let omega = self.cursor.y[nx];
+                    let label = std::mem::take(&mut self.stability.pending_fold)
+                        .then_some(Bifurcation::Fold);
                     if omega > self.spec.omega_to + 1e-12 || omega < self.spec.omega_from - 1e-12 {
                         // Left through the end it started from: the branch
                         // turned back at a fold and the rest of the range
                         // was not reached.
-                        let at_start = match self.dir {
+                        let at_start = match self.piece.dir {
                             Direction::Up => omega < self.spec.omega_from + 1e-9,
                             Direction::Down => omega > self.spec.omega_to - 1e-9,
                         };
@@ -178,14 +181,14 @@ impl FrfContinuation {
                     if ds <= ds_min {
                         return Err(e);
                     }
-                    self.ds = (ds * 0.5).max(ds_min);
+                    self.cursor.ds = (ds * 0.5).max(ds_min);
                 }
             }
         }
     }
 
-    /// Locates a fold between the current point (`self.y`, tangent
-    /// `self.tangent`) and the solution a step `ds` further: the zero of the
+    /// Locates a fold between the current point (`self.cursor.y`, tangent
+    /// `self.cursor.tangent`) and the solution a step `ds` further: the zero of the
     /// tangent's Omega component along the branch, by the Illinois variant
     /// of regula falsi on the step length, each trial a corrector on the
     /// hyperplane normal to the current tangent. Returns the fold's solution,
@@ -198,7 +201,7 @@ impl FrfContinuation {
     ) -> Option<(Vec<f64>, Vec<f64>, usize)> {
         let nx = self.n_x();
         let n = nx + 1;
-        let (mut a, mut fa) = (0.0, self.tangent[nx]);
+        let (mut a, mut fa) = (0.0, self.cursor.tangent[nx]);
         let (mut b, mut fb) = (ds, f_end);
         if fa.signum() == fb.signum() {
             return None;
@@ -207,7 +210,9 @@ impl FrfContinuation {
         let mut omega_prev = f64::NAN;
         for _ in 0..FOLD_ITERATIONS {
             let s = (a * fb - b * fa) / (fb - fa);
-            let pred: Vec<f64> = (0..n).map(|i| self.y[i] + s * self.tangent[i]).collect();
+            let pred: Vec<f64> = (0..n)
+                .map(|i| self.cursor.y[i] + s * self.cursor.tangent[i])
+                .collect();
             let (y, t, it) = self.correct(&pred).ok()?;
             let fs = t[nx];
             let omega = y[nx];
@@ -238,7 +243,9 @@ impl FrfContinuation {
         // arclength row below them. A factorization takes it over, and the
         // one it replaces gives its storage back for the next.
         let mut jac = DMatrix::zeros(n, n);
-        let weighted_t: Vec<f64> = (0..n).map(|i| self.metric(i) * self.tangent[i]).collect();
+        let weighted_t: Vec<f64> = (0..n)
+            .map(|i| self.metric(i) * self.cursor.tangent[i])
+            .collect();
         let mut res_prev = f64::INFINITY;
         // The last factorization and the size of the step it produced: once
         // a step is below `CHORD_STEP`, the Jacobian moves by less than that
@@ -321,7 +328,7 @@ impl FrfContinuation {
                     .sum::<f64>()
                     .sqrt();
                 let dot: f64 = (0..n)
-                    .map(|i| self.metric(i) * t[i] * self.tangent[i])
+                    .map(|i| self.metric(i) * t[i] * self.cursor.tangent[i])
                     .sum();
                 let sign = if dot < 0.0 { -1.0 } else { 1.0 };
                 for v in &mut t {
