@@ -117,17 +117,17 @@ impl Page {
                     TourMove::Skip | TourMove::ToControl | TourMove::ToTarget => None,
                 };
                 let fx = ctl.tour_go(step, now_ms);
-                self.tour_copied = false;
+                self.notices.tour_copied = false;
                 out.writes.extend(self.tour_writes(true));
                 fx
             }
             Action::FamilyKey => {
-                self.family_input.0 = ev.value.clone();
+                self.family_bar.key = ev.value.clone();
                 out.frame = false;
                 Vec::new()
             }
             Action::FamilyValues => {
-                self.family_input.1 = ev.value.clone();
+                self.family_bar.values = ev.value.clone();
                 out.frame = false;
                 Vec::new()
             }
@@ -136,7 +136,7 @@ impl Page {
                 Vec::new()
             }
             Action::FamilyApply => {
-                let (key, values) = self.family_input.clone();
+                let (key, values) = (self.family_bar.key.clone(), self.family_bar.values.clone());
                 let r = self.ctl.set_family_text(&key, &values, now_ms);
                 let error = r.as_ref().err().cloned().unwrap_or_default();
                 out.writes.push(Write::text("family-error", error));
@@ -159,7 +159,7 @@ impl Page {
                 Vec::new()
             }
             Action::SeeOrbit => {
-                self.see_orbit = false;
+                self.notices.see_orbit = false;
                 out.writes.push(Write::Hidden {
                     id: "see-orbit".into(),
                     hidden: true,
@@ -184,7 +184,7 @@ impl Page {
                 Vec::new()
             }
             Action::CopyLink => {
-                self.tour_copied = true;
+                self.notices.tour_copied = true;
                 out.writes.extend(self.tour_writes(false));
                 out.frame = false;
                 Vec::new()
@@ -230,8 +230,8 @@ impl Page {
         let mut options: Vec<(String, String)> =
             names.iter().map(|n| (n.clone(), n.clone())).collect();
         options.push(("worst".into(), "worst mesh at each Ω".into()));
-        if options != self.schematic.1 {
-            self.schematic.1 = options.clone();
+        if options != self.schematic.options {
+            self.schematic.options = options.clone();
             w.push(Write::Options {
                 id: "sel-mesh".into(),
                 options,
@@ -292,18 +292,18 @@ impl Page {
         let Some(f) = self.ctl.family() else {
             // No family (another preset, a reset, a link without one): the
             // bar is emptied once, so it never shows a family not drawn.
-            if self.family_shown.is_empty() {
+            if self.family_bar.shown.is_empty() {
                 return Vec::new();
             }
-            self.family_shown.clear();
-            self.family_input.1.clear();
+            self.family_bar.shown.clear();
+            self.family_bar.values.clear();
             return vec![Write::Value {
                 id: "family-values".into(),
                 value: String::new(),
             }];
         };
         let code = f.spec.encode();
-        if code == self.family_shown {
+        if code == self.family_bar.shown {
             return Vec::new();
         }
         let values: Vec<String> = f
@@ -312,16 +312,17 @@ impl Page {
             .iter()
             .map(|x| figures::settings::fmt_exact(*x))
             .collect();
-        self.family_input = (f.spec.key.key.to_string(), values.join(", "));
-        self.family_shown = code;
+        self.family_bar.key = f.spec.key.key.to_string();
+        self.family_bar.values = values.join(", ");
+        self.family_bar.shown = code;
         vec![
             Write::Value {
                 id: "family-key".into(),
-                value: self.family_input.0.clone(),
+                value: self.family_bar.key.clone(),
             },
             Write::Value {
                 id: "family-values".into(),
-                value: self.family_input.1.clone(),
+                value: self.family_bar.values.clone(),
             },
         ]
     }
@@ -383,7 +384,7 @@ impl Page {
         ]);
         // A phone's settings drawer starts closed, far above the plots:
         // the card says where the control is and jumps there and back.
-        let jump = self.narrow.then_some(s.control).flatten();
+        let jump = self.screen.narrow.then_some(s.control).flatten();
         for id in ["tour-control", "tour-plot"] {
             w.push(Write::Hidden {
                 id: id.into(),
@@ -454,7 +455,7 @@ impl Page {
         Some(crate::tour::done(
             step,
             |k| self.ctl.setting_text(k),
-            self.tour_copied,
+            self.notices.tour_copied,
         ))
     }
 
@@ -469,7 +470,7 @@ impl Page {
             keep_clear: step.keep_clear.iter().map(|s| s.to_string()).collect(),
             // The highlighted target whole, and the plots.
             prefer_clear: vec![step.target.to_string(), "views".to_string()],
-            docked: self.narrow,
+            docked: self.screen.narrow,
             new_step,
         })
     }

@@ -140,7 +140,7 @@ impl Page {
         if !(self.anim.dirty || (self.anim.clock.playing && in_view)) {
             return AnimDraw::Nothing;
         }
-        let views_waiting = self.frame_requested && self.wants_frame();
+        let views_waiting = self.turn.requested && self.wants_frame();
         if !self.turn.anim_draws(ts, views_waiting) {
             return AnimDraw::Nothing;
         }

@@ -117,15 +117,16 @@ impl Page {
             _ => None,
         };
         if let Some(kind) = ended {
-            self.gestures = (self.gestures.0 + 1, kind);
+            self.telemetry.gestures_ended += 1;
+            self.telemetry.last_gesture = kind;
         }
         if !select {
             return false;
         }
         let omega = self.frames[view.slot()].and_then(|f| f.x_at(e.x_px));
-        self.pending_omega = omega.or(self.pending_omega);
-        if omega.is_some() && self.narrow {
-            self.see_orbit = true;
+        self.input.omega = omega.or(self.input.omega);
+        if omega.is_some() && self.screen.narrow {
+            self.notices.see_orbit = true;
         }
         omega.is_some()
     }

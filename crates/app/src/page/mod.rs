@@ -153,48 +153,72 @@ pub const OMEGA_STEP_SHIFT: f64 = 0.1;
 /// schedule, the plots' frames, and the figures the tests read.
 pub struct Page {
     ctl: Controller,
-    /// Slider and field values waiting for the next frame (the latest per key).
-    pending: Vec<(String, String)>,
-    /// An Omega picked on a plot, waiting for the next frame.
-    pending_omega: Option<f64>,
+    input: PendingInput,
     redraw: Redraw,
     turn: FrameTurn,
     /// Each view's plot frame as last drawn (views with pixel-to-data
     /// mappings), by [`ViewId::slot`].
     frames: [Option<PlotFrame>; VIEWS.len()],
-    /// Each view's canvas size and the boxes of the text last drawn on it
-    /// (the tests check that none overlap or leave the canvas).
-    text_boxes: [((u32, u32), Vec<figures::plots::TextBox>); VIEWS.len()],
     /// The link last written to the address bar.
     last_query: String,
-    /// Whether the screen is narrow (a phone): plots draw on fewer, larger pixels.
-    narrow: bool,
-    /// Whether the screen is wide ([`WIDE_SCREEN`]): the frequency
-    /// response spans the views' columns, drawn [`WIDE_FR_WIDTH`] wide.
-    wide: bool,
+    screen: Screen,
     /// What a pressed pointer on an Omega axis is doing.
     gesture: gesture::Gesture,
+    notices: Notices,
+    telemetry: Telemetry,
+    /// The gear set's animation.
+    anim: anim::Anim,
+    family_bar: FamilyBar,
+    schematic: SchematicShown,
+    /// Each control's refusal shown in the messages, until a newer value
+    /// of its key or any change of the state ([`Refusal`]).
+    refused: Vec<Refusal>,
+    /// Present mode: one part of the page on the whole screen.
+    present: present::Present,
+}
+
+/// Input waiting for the next frame.
+#[derive(Debug, Default)]
+struct PendingInput {
+    /// Slider and field values (the latest per key).
+    values: Vec<(String, String)>,
+    /// An Omega picked on a plot.
+    omega: Option<f64>,
+}
+
+/// The screen's size class.
+#[derive(Debug, Default)]
+struct Screen {
+    /// A phone: plots draw on fewer, larger pixels.
+    narrow: bool,
+    /// Wide ([`WIDE_SCREEN`]): the frequency response spans the views'
+    /// columns, drawn [`WIDE_FR_WIDTH`] wide.
+    wide: bool,
+}
+
+/// Short-lived notices the page offers.
+#[derive(Debug, Default)]
+struct Notices {
     /// When the Copy link's confirmation goes (ms).
     toast_until: Option<f64>,
-    /// How many gestures on an Omega axis ended, and how the last did.
-    gestures: (u32, &'static str),
     /// Whether the phone's "see the motion" jump is offered.
     see_orbit: bool,
     /// Whether the link was copied during the tour's current step.
     tour_copied: bool,
-    /// What the map's last drawing put over its cells (the tests read it).
+}
+
+/// What the page reports for the tests and the benchmark to read: nothing
+/// here changes what is drawn.
+#[derive(Debug)]
+struct Telemetry {
+    /// Each view's canvas size and the boxes of the text last drawn on it
+    /// (the tests check that none overlap or leave the canvas).
+    text_boxes: [((u32, u32), Vec<figures::plots::TextBox>); VIEWS.len()],
+    /// What the map's last drawing put over its cells.
     map_drawn: serde_json::Value,
-    /// The gear set's animation.
-    anim: anim::Anim,
-    /// Whether an animation frame is requested for the views.
-    frame_requested: bool,
-    /// The family bar's key and values as chosen and typed.
-    family_input: (String, String),
-    /// The family the bar's fields last showed (its link code).
-    family_shown: String,
-    /// The mesh the schematic last highlighted, and the plotted mesh's
-    /// options last written (the drop-down is rebuilt only when they change).
-    schematic: (String, Vec<(String, String)>),
+    /// How many gestures on an Omega axis ended, and how the last did.
+    gestures_ended: u32,
+    last_gesture: &'static str,
     /// When the last input arrived (ms).
     last_input_ms: f64,
     /// The longest handling of one worker message (ms).
@@ -204,11 +228,39 @@ pub struct Page {
     /// When a preview of the selected-Omega views was last drawn (ms) and
     /// the summary it showed: the tests wait for this marker.
     preview_drawn: Option<(f64, String)>,
-    /// Each control's refusal shown in the messages, until a newer value
-    /// of its key or any change of the state ([`Refusal`]).
-    refused: Vec<Refusal>,
-    /// Present mode: one part of the page on the whole screen.
-    present: present::Present,
+}
+
+impl Default for Telemetry {
+    fn default() -> Self {
+        Telemetry {
+            text_boxes: std::array::from_fn(|_| ((0, 0), Vec::new())),
+            map_drawn: serde_json::Value::Null,
+            gestures_ended: 0,
+            last_gesture: "",
+            last_input_ms: 0.0,
+            max_message_ms: 0.0,
+            max_frame_ms: 0.0,
+            preview_drawn: None,
+        }
+    }
+}
+
+/// The family bar's fields as chosen and typed, and the family they last
+/// showed.
+#[derive(Debug)]
+struct FamilyBar {
+    key: String,
+    values: String,
+    /// The shown family's link code.
+    shown: String,
+}
+
+/// The mesh the schematic last highlighted and the plotted mesh's options
+/// last written (the drop-down is rebuilt only when they change).
+#[derive(Debug, Default)]
+struct SchematicShown {
+    mesh: String,
+    options: Vec<(String, String)>,
 }
 
 /// A value a control refused: its message and red border last while the
@@ -230,35 +282,27 @@ impl Page {
     pub fn new(ctl: Controller, narrow: bool) -> Self {
         Page {
             ctl,
-            pending: Vec::new(),
-            pending_omega: None,
+            input: PendingInput::default(),
             redraw: Redraw::default(),
             turn: FrameTurn::default(),
             frames: [None; VIEWS.len()],
-            text_boxes: std::array::from_fn(|_| ((0, 0), Vec::new())),
             last_query: String::new(),
-            narrow,
-            wide: false,
+            screen: Screen {
+                narrow,
+                wide: false,
+            },
             gesture: gesture::Gesture::Idle,
-            gestures: (0, ""),
-            toast_until: None,
-            see_orbit: false,
-            tour_copied: false,
-            map_drawn: serde_json::Value::Null,
+            notices: Notices::default(),
+            telemetry: Telemetry::default(),
             anim: anim::Anim::default(),
-            frame_requested: false,
-            family_input: (
-                figures::family_spec::FAMILY_KEYS
+            family_bar: FamilyBar {
+                key: figures::family_spec::FAMILY_KEYS
                     .first()
                     .map_or_else(String::new, |k| k.key.to_string()),
-                String::new(),
-            ),
-            family_shown: String::new(),
-            schematic: (String::new(), Vec::new()),
-            last_input_ms: 0.0,
-            max_message_ms: 0.0,
-            max_frame_ms: 0.0,
-            preview_drawn: None,
+                values: String::new(),
+                shown: String::new(),
+            },
+            schematic: SchematicShown::default(),
             refused: Vec::new(),
             present: present::Present::default(),
         }
@@ -281,17 +325,17 @@ impl Page {
 
     /// Whether the screen is narrow.
     pub fn narrow(&self) -> bool {
-        self.narrow
+        self.screen.narrow
     }
 
     /// Whether the screen is wide.
     pub fn wide(&self) -> bool {
-        self.wide
+        self.screen.wide
     }
 
     /// Draws for a wide screen (`wide`) or not.
     pub fn set_wide(&mut self, wide: bool) {
-        self.wide = wide;
+        self.screen.wide = wide;
     }
 
     // ------------------------------------------------------------ input
@@ -299,9 +343,9 @@ impl Page {
     /// A control's new text (a slider moved, a field changed), applied at
     /// the next frame; only a key's latest value is kept.
     pub fn input(&mut self, key: &str, value: &str, now_ms: f64) {
-        self.last_input_ms = now_ms;
-        self.pending.retain(|(k, _)| k != key);
-        self.pending.push((key.to_string(), value.to_string()));
+        self.telemetry.last_input_ms = now_ms;
+        self.input.values.retain(|(k, _)| k != key);
+        self.input.values.push((key.to_string(), value.to_string()));
     }
 
     /// A key pressed on an Omega axis: the arrows move the selected Omega
@@ -315,9 +359,9 @@ impl Page {
         };
         let v = &self.ctl.settings().view;
         let share = if shift { OMEGA_STEP_SHIFT } else { OMEGA_STEP };
-        let from = self.pending_omega.unwrap_or(v.omega);
+        let from = self.input.omega.unwrap_or(v.omega);
         let step = (v.omega_to - v.omega_from) * share;
-        self.pending_omega = Some((from + dir * step).clamp(v.omega_from, v.omega_to));
+        self.input.omega = Some((from + dir * step).clamp(v.omega_from, v.omega_to));
         true
     }
 
@@ -336,7 +380,7 @@ impl Page {
                     let v = self.ctl.campbell_view().ok()?;
                     figures::plots::campbell::pick(&v, &f, x, y).map(|c| c.omega)
                 });
-                self.pending_omega = picked.or(self.pending_omega);
+                self.input.omega = picked.or(self.input.omega);
                 Vec::new()
             }
             _ => Vec::new(),
@@ -351,9 +395,9 @@ impl Page {
             "ArrowRight" | "ArrowUp" => 1.0,
             _ => return false,
         };
-        let from = self.pending_omega.unwrap_or(self.ctl.settings().view.omega);
+        let from = self.input.omega.unwrap_or(self.ctl.settings().view.omega);
         if let Some(omega) = self.ctl.campbell_step(from, dir) {
-            self.pending_omega = Some(omega);
+            self.input.omega = Some(omega);
         }
         true
     }
@@ -393,7 +437,7 @@ impl Page {
 
     /// Records how long a worker message's handling took.
     pub fn message_took(&mut self, ms: f64) {
-        self.max_message_ms = self.max_message_ms.max(ms);
+        self.telemetry.max_message_ms = self.telemetry.max_message_ms.max(ms);
     }
 
     // ------------------------------------------------------------ frames
@@ -402,10 +446,10 @@ impl Page {
     /// refused one marks its control invalid and says why), then a picked
     /// Omega. Returns the messages to post and the controls to mark.
     pub fn apply_pending(&mut self, now_ms: f64) -> (Vec<Effect>, Vec<Write>) {
-        self.frame_requested = false;
+        self.turn.requested = false;
         let mut fx = Vec::new();
         let mut writes = Vec::new();
-        for (key, value) in std::mem::take(&mut self.pending) {
+        for (key, value) in std::mem::take(&mut self.input.values) {
             // The key's earlier refusal gives way to this value's outcome.
             if let Some(i) = self.refused.iter().position(|r| r.key == key) {
                 let old = self.refused.remove(i);
@@ -433,7 +477,7 @@ impl Page {
                 on: !ok,
             });
         }
-        if let Some(o) = self.pending_omega.take() {
+        if let Some(o) = self.input.omega.take() {
             fx.extend(self.ctl.select_omega(o, now_ms));
             writes.extend(self.see_orbit_writes());
         }
@@ -466,7 +510,7 @@ impl Page {
         self.turn.views_drew(ts);
         let preview = self.ctl.main().omega.as_ref().is_some_and(|r| r.preview);
         if view == ViewId::Phase && preview && self.ctl.family().is_none() {
-            self.preview_drawn = Some((end_ms, self.ctl.summary_text()));
+            self.telemetry.preview_drawn = Some((end_ms, self.ctl.summary_text()));
         }
     }
 
@@ -482,7 +526,7 @@ impl Page {
 
     /// Records how long frame's work took.
     pub fn frame_took(&mut self, ms: f64) {
-        self.max_frame_ms = self.max_frame_ms.max(ms);
+        self.telemetry.max_frame_ms = self.telemetry.max_frame_ms.max(ms);
     }
 
     /// The plot frame `view` was last drawn in.
@@ -498,7 +542,7 @@ impl Page {
         size: (u32, u32),
         boxes: Vec<figures::plots::TextBox>,
     ) {
-        self.text_boxes[view.slot()] = (size, boxes);
+        self.telemetry.text_boxes[view.slot()] = (size, boxes);
     }
 
     /// Records the plot frame `view` was drawn in (`None`: nothing to click).
@@ -587,7 +631,7 @@ impl Page {
         let (w, h) = screen_size(
             self.ctl.base_canvas_size(view),
             view == ViewId::Fr,
-            (self.narrow, self.wide),
+            (self.screen.narrow, self.screen.wide),
         );
         match (fr, self.ctl.panels()) {
             (Some(fr), None) => (w, plots::fr_height(fr, (w, h))),

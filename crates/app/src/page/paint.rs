@@ -39,7 +39,7 @@ impl Page {
         let (writes, d) = self.draw_view_data(view, root, fr);
         if let (ViewId::Map, Some(o)) = (view, &d.map) {
             // Every kind's line over its halo: half the lines are the curves'.
-            self.map_drawn = serde_json::json!({
+            self.telemetry.map_drawn = serde_json::json!({
                 "curve_paths": o.curves.iter().skip(o.curves.len() / 2).map(|l| l.paths.len()).sum::<usize>(),
                 "marks": o.marks.len(),
                 "cusps": o.cusps.len(),
@@ -97,14 +97,14 @@ impl Page {
     /// Whether to request an animation frame now: none is pending (marks
     /// one pending).
     pub fn request_frame(&mut self) -> bool {
-        !std::mem::replace(&mut self.frame_requested, true)
+        !std::mem::replace(&mut self.turn.requested, true)
     }
 
     /// The end of a frame: whether views still wait, so that the web layer
     /// requests the next frame at once (then marked pending).
     pub fn next_frame(&mut self) -> bool {
-        self.frame_requested = self.wants_frame();
-        self.frame_requested
+        self.turn.requested = self.wants_frame();
+        self.turn.requested
     }
 
     /// The schematic of the model shown, its plotted mesh highlighted.
@@ -124,7 +124,7 @@ impl Page {
             },
         ];
         let now = self.ctl.highlighted_mesh();
-        let before = std::mem::replace(&mut self.schematic.0, now.clone());
+        let before = std::mem::replace(&mut self.schematic.mesh, now.clone());
         if before != now {
             for (name, on) in [(before, false), (now, true)] {
                 w.push(Write::Class {
@@ -144,7 +144,11 @@ impl Page {
         let mut w = Vec::new();
         for view in ViewId::ALL {
             let base = crate::controller::view_size(view);
-            let (cw, ch) = super::screen_size(base, view == ViewId::Fr, (self.narrow, self.wide));
+            let (cw, ch) = super::screen_size(
+                base,
+                view == ViewId::Fr,
+                (self.screen.narrow, self.screen.wide),
+            );
             let mut ids = vec![format!("canvas-{}", view.key())];
             if view == ViewId::Time {
                 ids.push("canvas-time-cursor".into());
@@ -173,7 +177,7 @@ impl Page {
             Write::text("see-orbit", format!("See the motion at Ω = {omega:.2} ↓")),
             Write::Hidden {
                 id: "see-orbit".into(),
-                hidden: !self.see_orbit,
+                hidden: !self.notices.see_orbit,
             },
         ]
     }

@@ -125,6 +125,8 @@ impl Redraw {
 /// time stamp (the one every callback of a frame receives).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct FrameTurn {
+    /// Whether an animation frame is requested for the views.
+    pub requested: bool,
     views_ts: f64,
     anim_ts: f64,
     yielded: bool,

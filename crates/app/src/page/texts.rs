@@ -93,8 +93,8 @@ impl Page {
         }
         w.push(Write::text("status", if busy { COMPUTING } else { "" }));
         // The Copy link's confirmation goes after its two seconds.
-        if self.toast_until.is_some_and(|t| now_ms >= t) {
-            self.toast_until = None;
+        if self.notices.toast_until.is_some_and(|t| now_ms >= t) {
+            self.notices.toast_until = None;
             w.push(Write::Hidden {
                 id: "copy-done".into(),
                 hidden: true,
@@ -129,7 +129,7 @@ impl Page {
     /// The Copy link's confirmation `text`, shown from `now_ms` for
     /// [`TOAST_MS`]; `stamp` (the wall clock's ms) marks it for the tests.
     pub fn confirm(&mut self, text: &str, now_ms: f64, stamp: f64) -> Vec<Write> {
-        self.toast_until = Some(now_ms + TOAST_MS);
+        self.notices.toast_until = Some(now_ms + TOAST_MS);
         vec![
             Write::text("copy-done", text),
             Write::Attr {
@@ -260,12 +260,15 @@ impl Page {
             o.insert("first_draw_ms".into(), serde_json::json!(r.first_draw_ms));
             o.insert(
                 "max_message_ms".into(),
-                serde_json::json!(self.max_message_ms),
+                serde_json::json!(self.telemetry.max_message_ms),
             );
-            o.insert("max_frame_ms".into(), serde_json::json!(self.max_frame_ms));
+            o.insert(
+                "max_frame_ms".into(),
+                serde_json::json!(self.telemetry.max_frame_ms),
+            );
             o.insert(
                 "last_input_ms".into(),
-                serde_json::json!(self.last_input_ms),
+                serde_json::json!(self.telemetry.last_input_ms),
             );
             o.insert("now_ms".into(), serde_json::json!(now_ms));
             for view in [
@@ -292,25 +295,29 @@ impl Page {
             o.insert(
                 "preview_drawn".into(),
                 serde_json::json!(self
+                    .telemetry
                     .preview_drawn
                     .as_ref()
                     .map(|(ms, summary)| serde_json::json!({"ms": ms, "summary": summary}))),
             );
             o.insert("anim".into(), self.anim.info.clone());
             o.insert("gif".into(), self.anim.gif.clone());
-            let (n, last) = self.gestures;
+            let (n, last) = (self.telemetry.gestures_ended, self.telemetry.last_gesture);
             o.insert("gesture".into(), serde_json::json!({"n": n, "last": last}));
-            o.insert("see_orbit".into(), serde_json::json!(self.see_orbit));
+            o.insert(
+                "see_orbit".into(),
+                serde_json::json!(self.notices.see_orbit),
+            );
             o.insert(
                 "tour".into(),
                 serde_json::json!({"step": self.ctl.tour(), "done": self.tour_done()}),
             );
-            o.insert("map_drawn".into(), self.map_drawn.clone());
+            o.insert("map_drawn".into(), self.telemetry.map_drawn.clone());
             o.insert("present".into(), self.present_status());
             o.insert("campbell".into(), self.campbell_status());
             let boxes: serde_json::Map<String, serde_json::Value> = VIEWS
                 .iter()
-                .zip(&self.text_boxes)
+                .zip(&self.telemetry.text_boxes)
                 .map(|(spec, (size, b))| {
                     (
                         spec.key.to_string(),

@@ -42,13 +42,19 @@ fn a_vertical_swipe_scrolls_and_never_selects() {
     assert!(!p.pointer(ViewId::Fr, touch(Phase::Move, 340.0, 60.0)));
     assert!(!p.pointer(ViewId::Fr, touch(Phase::Up, 340.0, 60.0)));
     assert_eq!(picked(&mut p), 0.84);
-    assert_eq!(p.gestures, (1, "scroll"));
+    assert_eq!(
+        (p.telemetry.gestures_ended, p.telemetry.last_gesture),
+        (1, "scroll")
+    );
     // The browser took the touch to scroll: a cancel, then nothing.
     p.pointer(ViewId::Fr, touch(Phase::Down, 300.0, 200.0));
     assert!(!p.pointer(ViewId::Fr, touch(Phase::Cancel, 300.0, 200.0)));
     assert!(!p.pointer(ViewId::Fr, touch(Phase::Up, 300.0, 200.0)));
     assert_eq!(picked(&mut p), 0.84);
-    assert_eq!(p.gestures, (2, "cancel"));
+    assert_eq!(
+        (p.telemetry.gestures_ended, p.telemetry.last_gesture),
+        (2, "cancel")
+    );
 }
 
 #[test]
@@ -70,7 +76,7 @@ fn a_tap_selects_where_it_lifts_and_a_drag_along_the_axis_scrubs() {
     // On a phone the selection offers the jump to the motion.
     let (d, _) = p.begin_frame(5.0);
     p.end_frame(&d);
-    assert!(p.see_orbit);
+    assert!(p.notices.see_orbit);
     // A mouse selects at its press.
     let mouse = PointerIn::new(Phase::Down, 500.0, (500.0, 0.0), "mouse");
     assert!(p.pointer(ViewId::Fr, mouse));
