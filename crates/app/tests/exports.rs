@@ -227,8 +227,8 @@ fn every_export_is_the_same_whatever_the_pool_size() {
             && link.contains("fr_ti_points=150")
             && link.contains("lyap_points=150")
     );
-    assert_eq!(app::controller::chain_count(400), 8);
-    assert_eq!(app::controller::chain_count(150), 3);
+    assert_eq!(app::store::kinds::chain_count(400), 8);
+    assert_eq!(app::store::kinds::chain_count(150), 3);
     let two = exports_of(&link, 2);
     assert!(
         two.contains("gearshock-bif-bifurcation"),

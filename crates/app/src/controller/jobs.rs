@@ -4,28 +4,11 @@
 //! to the workers.
 
 use super::*;
-use figures::views::boundaries::{BoundaryStore, BOUNDARY_LEVELS, BOUNDARY_POINTS};
+use crate::store::kinds::{self, Pool, StartCx};
 use worker::jobs::omega::{selected_spec, OmegaJob, PREVIEW_RUN};
 
 /// A job's parameters as the worker messages carry them.
 pub(super) type Params = serde_json::Map<String, serde_json::Value>;
-
-/// The kinds the pinned A computes (drawn under the current state's).
-pub(super) const PINNED_KINDS: KindSet = KindSet::of(&[JobKind::HarmonicBalance, JobKind::Bif]);
-/// The kinds a family member computes (its curve, its panel, its orbit).
-pub(super) const MEMBER_KINDS: KindSet =
-    KindSet::of(&[JobKind::Omega, JobKind::HarmonicBalance, JobKind::Bif]);
-
-/// Steady states in a bifurcation sweep of view settings `v` (both
-/// directions count twice).
-pub(super) fn bif_total(v: &figures::settings::ViewOptions) -> usize {
-    let per_dir = if v.bif_dir == solver::sweep::Directions::Both {
-        2
-    } else {
-        1
-    };
-    v.bif_points as usize * per_dir
-}
 
 /// What a target computes with: its settings (a member's are the current
 /// view with its own parameters) and its model.
@@ -53,48 +36,28 @@ impl Controller {
         self.workers.len()
     }
 
+    /// The pool's placement rules.
+    pub(super) fn pool(&self) -> Pool {
+        Pool {
+            size: self.workers.len(),
+        }
+    }
+
     /// The worker that runs the current state's harmonic-balance branch: the last.
     pub fn hbm_worker(&self) -> usize {
-        self.workers.len() - 1
+        self.pool().hbm_worker()
     }
 
     /// The worker that runs A's harmonic-balance branch: the one before the
     /// last when the pool has more than two (so both branches compute at
     /// once), else the last.
     pub fn pinned_hbm_worker(&self) -> usize {
-        let n = self.workers.len();
-        if n > 2 {
-            n - 2
-        } else {
-            n - 1
-        }
+        self.pool().pinned_hbm_worker()
     }
 
     /// The worker of chain (or share) `shard`: chains are dealt round robin.
     pub fn shard_worker(&self, shard: u32) -> usize {
-        shard as usize % self.workers.len()
-    }
-
-    /// The worker of `target`'s job of `kind`, shard `shard`: the
-    /// selected-Omega runs and the branches spread over the pool by target,
-    /// the chains round robin. The map's boundaries go to the last worker,
-    /// the shooting branches (one job, shard 0) to the first: the two long
-    /// jobs run side by side on a pool of two or more. On one worker the
-    /// boundaries, served after the branches, waited for all of them: with
-    /// the compound set's default map the page's trace had not begun after
-    /// 13 minutes, while alone it takes about a minute.
-    fn worker_of(&self, target: Target, kind: JobKind, shard: u32) -> usize {
-        let pool = self.workers.len();
-        match (kind, target) {
-            (JobKind::Boundaries, _) => pool - 1,
-            (JobKind::HarmonicBalance, Target::Main) => self.hbm_worker(),
-            (JobKind::HarmonicBalance, Target::A) => self.pinned_hbm_worker(),
-            (JobKind::HarmonicBalance, Target::Member(m)) => {
-                (self.hbm_worker() + m as usize) % pool
-            }
-            (JobKind::Omega, Target::Member(m)) => m as usize % pool,
-            _ => self.shard_worker(shard),
-        }
+        self.pool().shard_worker(shard)
     }
 
     /// How many of `chains` chains worker `worker` holds.
@@ -165,7 +128,7 @@ impl Controller {
         let mut fx = Vec::new();
         for shard in 0..chains {
             let job = job(shard);
-            let worker = self.worker_of(target, job.kind(), shard);
+            let worker = kinds::of(job.kind()).worker(target, shard, self.pool());
             let msg = ToWorker::Run {
                 target,
                 id,
@@ -223,9 +186,8 @@ impl Controller {
         let input = match self.inputs(target) {
             Ok(i) => i,
             Err(e) => {
-                let kinds: Vec<JobKind> = kinds.iter().collect();
                 if let Some(c) = self.computation_mut(target) {
-                    c.fail_all(&kinds, &e);
+                    c.fail_all(kinds, &e);
                 }
                 return Vec::new();
             }
@@ -237,7 +199,8 @@ impl Controller {
         fx
     }
 
-    /// Starts `target`'s job of `kind` with `input`.
+    /// Starts `target`'s job of `kind` with `input`: the kind's shards
+    /// and store come from its module ([`kinds::of`]).
     fn start_kind(
         &mut self,
         target: Target,
@@ -245,91 +208,36 @@ impl Controller {
         input: &Inputs,
         now_ms: f64,
     ) -> Vec<Effect> {
-        let v = &input.settings.view;
         let main = target == Target::Main;
-        // Everything the map depends on (it restarts only if that changed).
-        let map_signature = match kind {
-            JobKind::Map => self.map_signature(&input.model, &input.params),
-            JobKind::Boundaries => self.boundaries_signature(&input.model, &input.params),
-            _ => String::new(),
+        let k = kinds::of(kind);
+        let cx = StartCx {
+            settings: &input.settings,
+            model: &input.model,
+            main,
+            grid: self.map_grid(),
+            mesh: input.settings.mesh_index(&input.model),
+            map_signature: self.map_signature(&input.model, &input.params),
+            boundaries_signature: self.boundaries_signature(&input.model, &input.params),
+            workers: self.workers.len(),
         };
-        // The units of the job's progress, and its shards: `None` for a
-        // kind switched off (its running job dropped).
-        let shards = match kind {
-            JobKind::Omega | JobKind::HarmonicBalance => Some(1),
-            JobKind::Overlay => (v.fr_ti_points > 0).then(|| chain_count(v.fr_ti_points)),
-            JobKind::Bif => Some(chain_count(v.bif_points)),
-            JobKind::Map => {
-                let st = self.main.status(JobKind::Map);
-                if map_signature == self.main.map.signature && st.error.is_none() {
-                    // What the map depends on did not change.
-                    return Vec::new();
-                }
-                Some((self.workers.len() as u32).min(v.map_value_points))
-            }
-            JobKind::Lyap => (v.lyap_points >= 2).then(|| chain_count(v.lyap_points)),
-            // One continuation, on one worker.
-            JobKind::Orbits => v.branches.then_some(1),
-            JobKind::Boundaries => {
-                let st = self.main.status(JobKind::Boundaries);
-                if v.boundaries
-                    && map_signature == self.main.boundaries.signature
-                    && st.error.is_none()
-                {
-                    // What the curves depend on did not change (a click
-                    // on the map sets the key they vary).
-                    return Vec::new();
-                }
-                v.boundaries.then_some(1)
-            }
-        };
-        let Some(chains) = shards else {
+        if k.unchanged(&cx, &self.main) {
+            return Vec::new();
+        }
+        let Some(chains) = k.shards(&cx) else {
             return self.switch_off(target, kind);
         };
-        let total = match kind {
-            JobKind::Omega => 1,
-            JobKind::HarmonicBalance => 100,
-            JobKind::Overlay => v.fr_ti_points as usize,
-            JobKind::Bif => bif_total(v),
-            JobKind::Map => self.map_grid().cells(),
-            JobKind::Lyap => v.lyap_points as usize,
-            JobKind::Orbits => worker::jobs::orbits::MAX_ORBIT_POINTS,
-            // Per mille.
-            JobKind::Boundaries => 1000,
-        };
+        let total = k.total(&cx);
         let id = self.next_job();
-        let grid = self.map_grid();
-        let linear = input.model.is_linear();
         let Some(c) = self.computation_mut(target) else {
             return Vec::new();
         };
+        let replaced = c.status(kind).id;
         let issued = std::mem::take(&mut c.status_mut(kind).issued);
         *c.status_mut(kind) = JobStatus::start(id, now_ms, total);
-        match kind {
-            // The current state keeps its last result on screen until the
-            // new one (or its preview) arrives; a member's panel waits.
-            JobKind::Omega if !main => c.omega = None,
-            JobKind::Omega => {}
-            JobKind::HarmonicBalance => {
-                // Keep the last complete branch (not a half-computed one)
-                // to fade under the new one while it computes.
-                if main && c.hbm.is_complete() {
-                    c.hbm_previous = Some(std::mem::take(&mut c.hbm));
-                }
-                c.hbm = HbmStore::new(id, v.harmonics);
-            }
-            JobKind::Overlay => {
-                c.overlay =
-                    FrStore::new(id, v.fr_ti_points, v.transient_periods, v.fr_record_periods)
-            }
-            JobKind::Bif => c.bif = BifStore::new(id, total),
-            JobKind::Map => c.map = MapStore::new(id, grid.clone(), map_signature),
-            JobKind::Lyap => {
-                c.lyap = LyapStore::new(id, total, v.lyap_periods);
-                c.lyap.linear = linear;
-            }
-            JobKind::Orbits => c.orbits = OrbitStore::new(id),
-            JobKind::Boundaries => c.boundaries = BoundaryStore::new(id, map_signature),
+        k.begin(c, id, total, &cx);
+        // A pending export of the replaced job speaks of the state before.
+        if main && self.export.as_ref().is_some_and(|e| e.id == replaced) {
+            self.export = None;
         }
         // The replaced job's messages spoke of the state before.
         for message in &issued {
@@ -337,91 +245,13 @@ impl Controller {
         }
         if main {
             self.dirty.data(kind);
-            if kind == JobKind::Bif {
-                self.export = None;
-                // The sweep's steady states are also the frequency response's dots.
-                self.dirty.data(JobKind::Overlay);
-            }
+            self.dirty.data(k.also_shown_as());
         }
-        let run = |record_periods| RunOptions {
-            transient_periods: v.transient_periods,
-            record_periods,
-        };
-        let mesh = input.settings.mesh_index(&input.model);
-        let fx = self.post_shards((target, id, &input.params), chains, |shard| match kind {
-            JobKind::Omega => JobSpec::Omega(selected_spec(
-                &input.settings,
-                &input.model,
-                run(v.record_periods),
-            )),
-            JobKind::HarmonicBalance => JobSpec::HarmonicBalance {
-                omega_from: v.omega_from,
-                omega_to: v.omega_to,
-                points: v.fr_points,
-                harmonics: v.harmonics,
-                stability: true,
-            },
-            JobKind::Overlay => JobSpec::Overlay {
-                omega_from: v.omega_from,
-                omega_to: v.omega_to,
-                points: v.fr_ti_points,
-                chains,
-                shard,
-                run: run(v.fr_record_periods),
-            },
-            JobKind::Bif => JobSpec::Bif {
-                omega_from: v.omega_from,
-                omega_to: v.omega_to,
-                points: v.bif_points,
-                directions: v.bif_dir.name().to_string(),
-                chains,
-                shard,
-                run: run(v.record_periods),
-            },
-            JobKind::Map => JobSpec::Map {
-                key: grid.key.clone(),
-                omega_from: grid.omega_from,
-                omega_to: grid.omega_to,
-                omega_points: grid.omega_points,
-                value_from: grid.value_from,
-                value_to: grid.value_to,
-                value_points: grid.value_points,
-                mesh,
-                shards: chains,
-                shard,
-                run: RunOptions {
-                    transient_periods: v.map_transient_periods,
-                    record_periods: v.map_record_periods,
-                },
-            },
-            JobKind::Lyap => JobSpec::Lyap {
-                omega_from: v.omega_from,
-                omega_to: v.omega_to,
-                points: v.lyap_points,
-                chains,
-                shard,
-                transient_periods: v.lyap_transient_periods,
-                periods: v.lyap_periods,
-            },
-            JobKind::Orbits => JobSpec::Orbits {
-                omega_from: v.omega_from,
-                omega_to: v.omega_to,
-                points: v.bif_points,
-            },
-            JobKind::Boundaries => JobSpec::Boundaries {
-                key: grid.key.clone(),
-                omega_from: grid.omega_from,
-                omega_to: grid.omega_to,
-                value_from: grid.value_from,
-                value_to: grid.value_to,
-                levels: BOUNDARY_LEVELS,
-                points: BOUNDARY_POINTS,
-                harmonics: v.harmonics as usize,
-                contact_mesh: mesh,
-            },
+        let fx = self.post_shards((target, id, &input.params), chains, |shard| {
+            k.spec(&cx, chains, shard)
         });
-        if main && kind == JobKind::Omega {
-            self.preview_omega(&input.model, id, now_ms);
+        if main && k.previews() {
+            self.preview_omega(&input.model, kind, id, now_ms);
         }
         fx
     }
@@ -435,13 +265,7 @@ impl Controller {
         let running = c.status(kind).id != 0;
         let issued = std::mem::take(&mut c.status_mut(kind).issued);
         *c.status_mut(kind) = JobStatus::default();
-        match kind {
-            JobKind::Overlay => c.overlay = FrStore::default(),
-            JobKind::Lyap => c.lyap = LyapStore::default(),
-            JobKind::Orbits => c.orbits = OrbitStore::default(),
-            JobKind::Boundaries => c.boundaries = BoundaryStore::default(),
-            _ => {}
-        }
+        kinds::of(kind).clear(c);
         for message in &issued {
             self.withdraw(message);
         }
@@ -460,8 +284,7 @@ impl Controller {
         if let Err(e) = &self.model {
             // No jobs on an invalid model: say why on every view.
             let e = e.clone();
-            let all: Vec<JobKind> = kinds.iter().collect();
-            self.main.fail_all(&all, &e);
+            self.main.fail_all(kinds, &e);
             for kind in JobKind::ALL {
                 fx.extend(self.cancel(Target::Main, Some(kind)));
             }
@@ -481,7 +304,7 @@ impl Controller {
     /// under the new settings. The worker's full steady state replaces it;
     /// without a previous state, or if the run fails or exceeds its step
     /// budget, the views keep the last result until then.
-    fn preview_omega(&mut self, model: &Model, id: JobId, now_ms: f64) {
+    fn preview_omega(&mut self, model: &Model, kind: JobKind, id: JobId, now_ms: f64) {
         let Some(start) = self
             .main
             .omega
@@ -498,7 +321,7 @@ impl Controller {
         };
         if let Ok(r) = worker::jobs::omega::omega_result(&job, Some(&start)) {
             self.main.omega = Some(r);
-            self.main.status_mut(JobKind::Omega).preview_ms = Some(now_ms);
+            self.main.status_mut(kind).preview_ms = Some(now_ms);
         }
     }
 

@@ -3,7 +3,6 @@
 //! sweep and selected-Omega steady state in the workers, beside the current
 //! state's jobs, and arrive progressively like them.
 
-use super::jobs::MEMBER_KINDS;
 use super::*;
 use figures::family_spec::FamilySpec;
 use figures::views::bif::BifView;
@@ -53,7 +52,7 @@ impl Controller {
         } else {
             fx.extend(self.restart_members(KindSet::ALL, now_ms));
         }
-        self.dirty.data(MEMBER_KINDS);
+        self.dirty.data(KindSet::MEMBER);
         self.dirty.url = true;
         Ok(fx)
     }
@@ -77,7 +76,7 @@ impl Controller {
         }
         let fx = self.cancel_members();
         self.family = None;
-        self.dirty.data(MEMBER_KINDS);
+        self.dirty.data(KindSet::MEMBER);
         self.dirty.url = true;
         fx
     }
@@ -106,7 +105,7 @@ impl Controller {
         let n = family.spec.values.len().saturating_sub(1);
         let rebuild = family.members.len() != n || what == KindSet::ALL;
         self.family = Some(family);
-        let kinds = what.and(MEMBER_KINDS);
+        let kinds = what.and(KindSet::MEMBER);
         // The members' running jobs of those kinds (all of them, if the
         // members change) are dropped first.
         if rebuild {

@@ -18,30 +18,26 @@
 //! independent and shared by every worker. The page core redraws the views
 //! whose data changed ([`Dirty`]), once per animation frame.
 
+use crate::store::kinds::chain_count;
 use crate::store::status::{Dirty, JobStatus};
 use crate::store::Computation;
 use figures::link;
 use figures::presets;
 use figures::protocol::{
-    encode, um, FromWorker, JobId, JobKind, JobSpec, KindSet, OmegaResult, RunOptions, Target,
-    ToWorker,
+    encode, um, FromWorker, JobId, JobKind, JobSpec, KindSet, OmegaResult, Target, ToWorker,
 };
 use figures::settings::{mesh_names, view_key, MeshSel, Settings};
-use figures::views::bif::{BifStore, BifView};
-use figures::views::fr::{fr_view, FrBranch, FrSource, FrStore, FrView, HbmStore};
-use figures::views::lyap::LyapStore;
-use figures::views::map::{MapGrid, MapStore, MapView};
-use figures::views::orbits::OrbitStore;
+use figures::views::bif::BifView;
+use figures::views::fr::{fr_view, FrBranch, FrSource, FrStore, FrView};
+use figures::views::map::{MapGrid, MapView};
 use figures::views::{distinct, natural_in_range, ViewContext};
 use solver::keys;
 use solver::model::Model;
 
 /// The fewest Web Workers the page runs (also the pool of [`Controller::new`]).
 pub const MIN_WORKERS: usize = 2;
-/// The most Web Workers the page runs.
-pub const MAX_WORKERS: usize = 8;
-/// A continuation chain's fewest grid points (see [`chain_count`]).
-pub const MIN_CHAIN_POINTS: u32 = 50;
+/// The most Web Workers the page runs: as many as a sweep's chains.
+pub const MAX_WORKERS: usize = crate::store::kinds::MAX_CHAINS as usize;
 
 /// The worker pool for a machine with `hardware_concurrency` logical cores
 /// (`navigator.hardwareConcurrency`; `None` or 0 when the browser does not
@@ -52,17 +48,6 @@ pub fn pool_size(hardware_concurrency: Option<u32>) -> usize {
     cores.saturating_sub(1).clamp(MIN_WORKERS, MAX_WORKERS)
 }
 
-/// Interleaved continuation chains of a sweep of `points` grid points:
-/// one per [`MIN_CHAIN_POINTS`] points, at least 2 and at most
-/// [`MAX_WORKERS`] (never more than the points). It depends on the points
-/// only, never on the pool, so that each chain continues from the same
-/// states and a sweep gives the same bits on any machine.
-pub fn chain_count(points: u32) -> u32 {
-    (points / MIN_CHAIN_POINTS)
-        .clamp(2, MAX_WORKERS as u32)
-        .min(points)
-        .max(1)
-}
 /// Something the web layer must do.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Effect {

@@ -2,7 +2,6 @@
 //! jobs (the harmonic-balance branch and the sweep) start and are fed like
 //! every computation's ([`Target::A`]).
 
-use super::jobs::PINNED_KINDS;
 use super::*;
 
 /// The pinned state A of an A/B comparison and its two sweeps (the
@@ -30,13 +29,12 @@ impl Controller {
     /// for A (B's next change would cancel them).
     pub fn pin_a(&mut self, now_ms: f64) -> Vec<Effect> {
         let mut fx = self.cancel_pinned();
-        let complete =
-            self.main.hbm.finished && self.main.status(JobKind::Bif).finished_ms.is_some();
+        let complete = (KindSet::PINNED.iter()).all(|k| self.main.status(k).finished_ms.is_some());
         if complete {
             let mut comp = Computation::default();
             comp.hbm = self.main.hbm.clone();
             comp.bif = self.main.bif.clone();
-            for kind in PINNED_KINDS.iter() {
+            for kind in KindSet::PINNED.iter() {
                 *comp.status_mut(kind) = self.main.status(kind).clone();
             }
             self.pinned = Some(Pinned {
@@ -46,7 +44,7 @@ impl Controller {
         } else {
             fx.extend(self.start_pinned(self.settings.clone(), now_ms));
         }
-        self.dirty.data(PINNED_KINDS);
+        self.dirty.data(KindSet::PINNED);
         self.dirty.url = true;
         fx
     }
@@ -55,7 +53,7 @@ impl Controller {
     pub fn clear_a(&mut self) -> Vec<Effect> {
         let fx = self.cancel_pinned();
         self.pinned = None;
-        self.dirty.data(PINNED_KINDS);
+        self.dirty.data(KindSet::PINNED);
         self.dirty.url = true;
         fx
     }
@@ -64,7 +62,7 @@ impl Controller {
         let running = self
             .pinned
             .as_ref()
-            .is_some_and(|p| p.comp.running(&[JobKind::HarmonicBalance, JobKind::Bif]));
+            .is_some_and(|p| p.comp.running(KindSet::PINNED));
         if running {
             self.cancel(Target::A, None)
         } else {
@@ -78,6 +76,6 @@ impl Controller {
             settings: a,
             comp: Computation::default(),
         });
-        self.start(Target::A, PINNED_KINDS, now_ms)
+        self.start(Target::A, KindSet::PINNED, now_ms)
     }
 }

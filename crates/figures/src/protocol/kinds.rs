@@ -3,6 +3,7 @@
 //! ([`KindSet`]: what a change restarts, which kinds' data changed), and
 //! whose computation a job belongs to ([`Target`]).
 
+use super::JobSpec;
 use serde::{Deserialize, Serialize};
 
 /// The kinds of job. The discriminant is the kind's slot in every per-kind
@@ -68,6 +69,12 @@ impl KindSet {
     pub const NONE: KindSet = KindSet(0);
     /// Every kind.
     pub const ALL: KindSet = KindSet((1 << JobKind::COUNT) - 1);
+    /// The kinds the pinned state A of a comparison computes (drawn under
+    /// the current state's).
+    pub const PINNED: KindSet = KindSet::of(&[JobKind::HarmonicBalance, JobKind::Bif]);
+    /// The kinds a family member computes (its curve, its panel, its orbit).
+    pub const MEMBER: KindSet =
+        KindSet::of(&[JobKind::Omega, JobKind::HarmonicBalance, JobKind::Bif]);
 
     /// The set of `kinds`.
     pub const fn of(kinds: &[JobKind]) -> KindSet {
@@ -138,6 +145,22 @@ pub enum Target {
     A,
     /// A family member, 1-based.
     Member(u32),
+}
+
+impl JobSpec {
+    /// The kind of this job.
+    pub fn kind(&self) -> JobKind {
+        match self {
+            JobSpec::Omega(_) => JobKind::Omega,
+            JobSpec::HarmonicBalance { .. } => JobKind::HarmonicBalance,
+            JobSpec::Overlay { .. } => JobKind::Overlay,
+            JobSpec::Bif { .. } => JobKind::Bif,
+            JobSpec::Map { .. } => JobKind::Map,
+            JobSpec::Lyap { .. } => JobKind::Lyap,
+            JobSpec::Orbits { .. } => JobKind::Orbits,
+            JobSpec::Boundaries { .. } => JobKind::Boundaries,
+        }
+    }
 }
 
 #[cfg(test)]

@@ -200,22 +200,6 @@ pub enum JobSpec {
     },
 }
 
-impl JobSpec {
-    /// The kind of this job.
-    pub fn kind(&self) -> JobKind {
-        match self {
-            JobSpec::Omega(_) => JobKind::Omega,
-            JobSpec::HarmonicBalance { .. } => JobKind::HarmonicBalance,
-            JobSpec::Overlay { .. } => JobKind::Overlay,
-            JobSpec::Bif { .. } => JobKind::Bif,
-            JobSpec::Map { .. } => JobKind::Map,
-            JobSpec::Lyap { .. } => JobKind::Lyap,
-            JobSpec::Orbits { .. } => JobKind::Orbits,
-            JobSpec::Boundaries { .. } => JobKind::Boundaries,
-        }
-    }
-}
-
 /// A message from the page to a worker.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "type", rename_all = "snake_case")]

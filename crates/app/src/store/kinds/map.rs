@@ -1,0 +1,74 @@
+//! The impact-regime map ([`JobKind::Map`]): its rows shared among the
+//! workers; it restarts only when what it depends on changed (a click on
+//! a cell sets the key its rows vary, which does not).
+
+use super::{FeedCx, Kind, StartCx};
+use crate::store::status::Dirty;
+use crate::store::{Computation, Fed};
+use figures::protocol::{FromWorker, JobId, JobKind, JobSpec, RunOptions};
+use figures::views::map::MapStore;
+
+pub(super) struct Map;
+
+impl Kind for Map {
+    fn kind(&self) -> JobKind {
+        JobKind::Map
+    }
+
+    fn shards(&self, cx: &StartCx) -> Option<u32> {
+        Some((cx.workers as u32).min(cx.view().map_value_points))
+    }
+
+    fn unchanged(&self, cx: &StartCx, main: &Computation) -> bool {
+        cx.map_signature == main.map.signature && main.status(JobKind::Map).error.is_none()
+    }
+
+    fn total(&self, cx: &StartCx) -> usize {
+        cx.grid.cells()
+    }
+
+    fn begin(&self, c: &mut Computation, id: JobId, _total: usize, cx: &StartCx) {
+        c.map = MapStore::new(id, cx.grid.clone(), cx.map_signature.clone());
+    }
+
+    fn spec(&self, cx: &StartCx, chains: u32, shard: u32) -> JobSpec {
+        let (g, v) = (&cx.grid, cx.view());
+        JobSpec::Map {
+            key: g.key.clone(),
+            omega_from: g.omega_from,
+            omega_to: g.omega_to,
+            omega_points: g.omega_points,
+            value_from: g.value_from,
+            value_to: g.value_to,
+            value_points: g.value_points,
+            mesh: cx.mesh,
+            shards: chains,
+            shard,
+            run: RunOptions {
+                transient_periods: v.map_transient_periods,
+                record_periods: v.map_record_periods,
+            },
+        }
+    }
+
+    fn feed(
+        &self,
+        c: &mut Computation,
+        msg: &FromWorker,
+        cx: &FeedCx,
+        dirty: &mut Dirty,
+        _fed: &mut Fed,
+    ) -> bool {
+        let FromWorker::MapCells { id, cells } = msg else {
+            return false;
+        };
+        if !super::ours(*id, c.map.id) {
+            return false;
+        }
+        c.map.add(cells.clone());
+        let done = c.map.done;
+        c.status_mut(JobKind::Map).record(done, cx.now_ms);
+        dirty.data(JobKind::Map);
+        true
+    }
+}
