@@ -172,3 +172,49 @@ fn the_crate_maps_name_real_files() {
     }
     assert!(named > 30, "only {named} files named");
 }
+
+/// Architecture invariant: a job kind lives in one place. Its name
+/// (`JobKind::X`) appears, outside tests, only in the kinds' table
+/// (`protocol/kinds.rs`), the views' table (`views/table.rs`) and its own
+/// page-side module (`store/kinds/`), with at most one other file for a
+/// kind whose data another kind's view shows: at most 4 files per kind.
+#[test]
+fn a_job_kind_is_named_in_at_most_four_files() {
+    let kinds = [
+        "Omega",
+        "HarmonicBalance",
+        "Overlay",
+        "Bif",
+        "Map",
+        "Lyap",
+        "Orbits",
+        "Boundaries",
+    ];
+    let mut all = Vec::new();
+    for (krate, _, _) in CRATES {
+        for (rel, text) in sources(krate) {
+            let test_file = rel.ends_with("tests.rs") || rel.contains("tests/");
+            if !test_file {
+                all.push((format!("{krate}/{rel}"), text));
+            }
+        }
+    }
+    for kind in kinds {
+        let pattern = format!("JobKind::{kind}");
+        let naming: Vec<&str> = all
+            .iter()
+            .filter(|(_, text)| {
+                text.match_indices(&pattern).any(|(i, _)| {
+                    let next = text[i + pattern.len()..].chars().next();
+                    !next.is_some_and(|c| c.is_alphanumeric() || c == '_')
+                })
+            })
+            .map(|(name, _)| name.as_str())
+            .collect();
+        assert!(
+            naming.len() <= 4,
+            "JobKind::{kind} is named in {} files: {naming:?}",
+            naming.len()
+        );
+    }
+}

@@ -21,7 +21,7 @@
 //! turns, one slice each; the Lyapunov curve, then the impact-regime map,
 //! then the shooting branches run when those are idle.
 
-use figures::protocol::{encode, FromWorker, JobId, JobKind, Target, ToWorker};
+use figures::protocol::{encode, FromWorker, JobId, KindSet, Target, ToWorker};
 use jobs::bif::BandsCache;
 use jobs::{failed, Job};
 use runner::Runner;
@@ -165,7 +165,7 @@ impl WorkerCore {
         if let Some(out) = self
             .computations
             .iter_mut()
-            .find_map(|(_, r)| r.step_kind(JobKind::Omega))
+            .find_map(|(_, r)| KindSet::SELECTED.iter().find_map(|k| r.step_kind(k)))
         {
             return out;
         }

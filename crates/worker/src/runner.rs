@@ -1,5 +1,7 @@
 //! One computation's jobs in a worker: at most one job of each kind, its
-//! shards taking turns, served in the kinds' priority order.
+//! shards taking turns, served in the kinds' priority order
+//! ([`JobKind::URGENT`], then [`JobKind::TAKING_TURNS`], then
+//! [`JobKind::WHEN_IDLE`]).
 
 use super::jobs::bif::BandsCache;
 use super::jobs::{self, failed, Job};
@@ -9,21 +11,8 @@ use solver::keys;
 use solver::model::Model;
 use solver::params::ModelParams;
 
-/// The kinds in the order a computation serves them after the
-/// harmonic-balance branch: the overlay and the bifurcation sweep take
-/// turns (so both diagrams fill in together and show their first points
-/// early), then the Lyapunov curve, the map, the shooting branches drawn
-/// over the sweep and last the boundaries drawn over the map (the slower,
-/// secondary views must not delay the main diagrams, and the branches and
-/// boundaries, which can take a minute or more on the compound set, must
-/// not delay any view: they are drawn as they come).
-const TAKING_TURNS: [JobKind; 2] = [JobKind::Overlay, JobKind::Bif];
-const WHEN_IDLE: [JobKind; 4] = [
-    JobKind::Lyap,
-    JobKind::Map,
-    JobKind::Orbits,
-    JobKind::Boundaries,
-];
+/// The kinds taking turns (see [`JobKind::TAKING_TURNS`]).
+const TAKING_TURNS: [JobKind; 2] = JobKind::TAKING_TURNS;
 
 /// One computation's jobs.
 #[derive(Default)]
@@ -107,7 +96,7 @@ impl Runner {
         if shards[i].finished() {
             let job = shards.remove(i);
             self.next_shard[k] = i;
-            if kind == JobKind::Bif {
+            if job.exports() {
                 if self.finished.iter().any(|j| j.id() != job.id()) {
                     self.finished.clear();
                 }
@@ -121,7 +110,7 @@ impl Runner {
 
     /// One chunk of the most urgent job.
     pub(super) fn step(&mut self) -> Vec<FromWorker> {
-        for kind in [JobKind::Omega, JobKind::HarmonicBalance] {
+        for kind in JobKind::URGENT {
             if let Some(out) = self.step_kind(kind) {
                 return out;
             }
@@ -133,7 +122,7 @@ impl Runner {
                 return out;
             }
         }
-        WHEN_IDLE
+        JobKind::WHEN_IDLE
             .iter()
             .find_map(|&kind| self.step_kind(kind))
             .unwrap_or_default()

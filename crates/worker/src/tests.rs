@@ -2,7 +2,7 @@
 
 use super::*;
 use crate::jobs::hbm::HBM_CHUNK;
-use figures::protocol::{encode, JobSpec, OmegaSpec, OrbitSample, RunOptions};
+use figures::protocol::{encode, JobKind, JobSpec, OmegaSpec, OrbitSample, RunOptions};
 use serde_json::Map;
 use solver::keys;
 use solver::params::ModelParams;

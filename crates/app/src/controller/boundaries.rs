@@ -51,28 +51,28 @@ impl Controller {
             curve: picked.curve,
             at: (picked.omega, v),
         });
-        self.dirty.data(JobKind::Boundaries);
+        self.dirty.data(figures::views::ViewId::Map.spec().shows);
         Some(r)
     }
 
     /// Forgets the picked boundary (a click on a cell).
     pub fn clear_picked_boundary(&mut self) {
         if self.picked_boundary.take().is_some() {
-            self.dirty.data(JobKind::Boundaries);
+            self.dirty.data(figures::views::ViewId::Map.spec().shows);
         }
     }
 
     /// The note over the map: its cells, then the boundaries (how many,
     /// what the outlined cells mean, how to learn what a curve marks).
     pub fn map_note_text(&self) -> String {
-        let st = self.main.status(JobKind::Map);
+        let st = self.main.map_status();
         let mut note = figures::views::map::map_note(&self.main.map, st.total);
         let b = &self.main.boundaries;
         if b.id == 0 {
             return note;
         }
         let (shown, disagree, _) = self.map_boundaries();
-        let bst = self.main.status(JobKind::Boundaries);
+        let bst = self.main.boundaries_status();
         note.push_str(&format!(" Boundaries: {} curves traced", shown.len()));
         if let Some(e) = &bst.error {
             note.push_str(&format!(" (stopped: {e})"));
@@ -126,7 +126,6 @@ impl Controller {
         });
         serde_json::json!({
             "sample": sample,
-            "job": self.main.status(JobKind::Boundaries),
             "curves": b.curves.len(),
             "shown": shown.len(),
             "kinds": kinds,

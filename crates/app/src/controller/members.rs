@@ -160,7 +160,7 @@ impl Controller {
         let mut out = vec![Panel {
             title: titles[0].clone(),
             data: match (
-                &self.main.status(JobKind::Bif).error,
+                &self.main.bif_status().error,
                 self.main.bif.samples.is_empty(),
             ) {
                 (Some(e), true) => Err(e.clone()),
@@ -179,7 +179,7 @@ impl Controller {
                 })
                 .unwrap_or_default();
             let c = &m.comp;
-            let data = match (&c.status(JobKind::Bif).error, c.bif.samples.is_empty()) {
+            let data = match (&c.bif_status().error, c.bif.samples.is_empty()) {
                 (Some(e), true) => Err(e.clone()),
                 _ => Ok(c.bif.view(mesh, &backlash, &ctx)),
             };
@@ -202,7 +202,7 @@ impl Controller {
         };
         let panel = |c: &Computation, title: String| Panel {
             title,
-            data: match (&c.omega, &c.status(JobKind::Omega).error) {
+            data: match (&c.omega, &c.omega_status().error) {
                 (_, Some(e)) => Err(format!("Not computed: {e}")),
                 (Some(r), None) => Ok(r.clone()),
                 (None, None) => waiting(),
@@ -230,16 +230,15 @@ impl Controller {
             .iter()
             .map(|m| {
                 let c = &m.comp;
-                serde_json::json!({
+                let mut member = serde_json::json!({
                     "value": m.value,
-                    "fr": c.status(JobKind::HarmonicBalance),
                     "fr_branch_points": c.hbm.points.len(),
-                    "bif": c.status(JobKind::Bif),
                     "bif_points": c.bif.samples.len(),
-                    "omega_job": c.status(JobKind::Omega),
                     "period": c.omega.as_ref().map(|r| r.period),
                     "motion": c.omega.as_ref().map(|r| figures::story::motion_tag(r.motion)),
-                })
+                });
+                crate::store::kinds::put_statuses(&mut member, c, KindSet::MEMBER, None);
+                member
             })
             .collect();
         // The phase portraits' panel titles as drawn (a member still

@@ -18,7 +18,7 @@
 //! independent and shared by every worker. The page core redraws the views
 //! whose data changed ([`Dirty`]), once per animation frame.
 
-use crate::store::kinds::chain_count;
+use crate::store::kinds::{self, chain_count};
 use crate::store::status::{Dirty, JobStatus};
 use crate::store::Computation;
 use figures::link;
@@ -280,9 +280,9 @@ impl Controller {
             }
             // The sweeps' views share the mesh and the range: they are
             // redrawn even without new data; the axes of x are every view's.
-            self.dirty.data(KindSet::ALL.without(JobKind::Omega.set()));
+            self.dirty.data(KindSet::ALL.without(KindSet::SELECTED));
             if key == "clearance" {
-                self.dirty.data(JobKind::Omega);
+                self.dirty.data(KindSet::SELECTED);
             }
             self.dirty.url = true;
             return Ok(self.restart(row.restarts, now_ms));
@@ -635,14 +635,12 @@ impl Controller {
     pub fn status(&self, now_ms: f64) -> serde_json::Value {
         let fr = self.fr_view();
         let main = &self.main;
-        let st = |k| main.status(k);
         // What the bifurcation diagram draws of the shooting branches.
         let bif_branches = {
             let v = self.bif_view();
             let periods: std::collections::BTreeSet<u32> =
                 v.branches.iter().map(|l| l.period).collect();
             serde_json::json!({
-                "job": st(JobKind::Orbits),
                 "points": main.orbits.points.len(),
                 "stable_lines": v.branches.iter().filter(|l| l.stable).count(),
                 "unstable_lines": v.branches.iter().filter(|l| !l.stable).count(),
@@ -654,41 +652,31 @@ impl Controller {
             "query": self.query(),
             "issues": self.issues,
             "omega": self.settings.view.omega,
-            "fr": st(JobKind::HarmonicBalance),
             "fr_method": self.fr_method(),
             "fr_branch_points": main.hbm.points.len(),
             "fr_partial": main.hbm.error,
-            "fr_overlay": st(JobKind::Overlay),
             "fr_discrepancy": fr.discrepancy,
             // The frequency response's time-integration dots and the
             // sentence under it where the branch is unstable.
             "fr_dots": fr.overlay.len(),
             "fr_sentence": figures::views::unstable::unstable_sentence(&fr),
-            "bif": st(JobKind::Bif),
             "bif_bands": self.instability_bands(),
-            "omega_job": st(JobKind::Omega),
-            "map": st(JobKind::Map),
             "map_grid": main.map.grid,
-            "map_progress": st(JobKind::Map).progress(now_ms),
             "map_counts": main.map.counts(),
-            "lyap": st(JobKind::Lyap),
             "lyap_points": main.lyap.curve().len(),
-            "lyap_progress": st(JobKind::Lyap).progress(now_ms),
-            "pinned": self.pinned.as_ref().map(|p| serde_json::json!({
-                "query": link::encode(&p.settings),
-                "fr": p.comp.status(JobKind::HarmonicBalance),
-                "bif": p.comp.status(JobKind::Bif),
-                "fr_branch_points": p.comp.hbm.points.len(),
-                "bif_points": p.comp.bif.samples.len(),
-            })),
+            "pinned": self.pinned.as_ref().map(|p| {
+                let mut a = serde_json::json!({
+                    "query": link::encode(&p.settings),
+                    "fr_branch_points": p.comp.hbm.points.len(),
+                    "bif_points": p.comp.bif.samples.len(),
+                });
+                kinds::put_statuses(&mut a, &p.comp, KindSet::PINNED, None);
+                a
+            }),
             "ab_labels": self.ab_labels(),
             "family": self.family_status(),
             "fr_panels": self.panels,
             "fr_first_mode_peaks": self.first_mode_peaks(&fr),
-            "fr_progress": st(JobKind::HarmonicBalance).progress(now_ms),
-            "fr_overlay_progress": st(JobKind::Overlay).progress(now_ms),
-            "bif_progress": st(JobKind::Bif).progress(now_ms),
-            "omega_progress": st(JobKind::Omega).progress(now_ms),
             "workers_ready": self.workers.iter().filter(|w| w.ready).count(),
             "workers": self.workers.len(),
             "omega_result": main.omega.as_ref().map(|r| serde_json::json!({
@@ -701,6 +689,7 @@ impl Controller {
             o.insert("bif_branches".into(), bif_branches);
             o.insert("map_boundaries".into(), self.boundaries_status());
         }
+        kinds::put_statuses(&mut out, main, KindSet::ALL, Some(now_ms));
         out
     }
 

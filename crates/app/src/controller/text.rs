@@ -3,6 +3,7 @@
 //! what a view without data shows, the messages box and the highlighted mesh.
 
 use super::*;
+use figures::views::ViewId;
 
 impl Controller {
     /// The status of the job whose data `view` shows.
@@ -15,18 +16,20 @@ impl Controller {
     pub fn canvas_label(&self, view: figures::views::ViewId) -> String {
         use figures::views::labels;
         let title = view.spec().title;
-        if view == figures::views::ViewId::Campbell {
+        if view == ViewId::Campbell {
             return self.campbell_label();
         }
-        match view.spec().data {
-            JobKind::HarmonicBalance | JobKind::Overlay if self.panels.is_some() => {
-                labels::fr_panels_label(&self.fr_panels())
-            }
-            JobKind::HarmonicBalance | JobKind::Overlay => labels::fr_label(&self.fr_view()),
-            JobKind::Bif | JobKind::Orbits => labels::bif_label(&self.bif_view()),
-            JobKind::Map | JobKind::Boundaries => labels::map_label(&self.main.map),
-            JobKind::Lyap => labels::lyap_label(&self.main.lyap.curve(), self.main.lyap.linear),
-            JobKind::Omega => match (&self.main.omega, &self.main.status(JobKind::Omega).error) {
+        match view {
+            ViewId::Fr if self.panels.is_some() => labels::fr_panels_label(&self.fr_panels()),
+            ViewId::Fr => labels::fr_label(&self.fr_view()),
+            ViewId::Bif => labels::bif_label(&self.bif_view()),
+            ViewId::Map => labels::map_label(&self.main.map),
+            ViewId::Lyap => labels::lyap_label(&self.main.lyap.curve(), self.main.lyap.linear),
+            ViewId::Phase
+            | ViewId::Poincare
+            | ViewId::Time
+            | ViewId::Spectrum
+            | ViewId::Campbell => match (&self.main.omega, &self.main.omega_status().error) {
                 (_, Some(e)) => format!("{title}: not computed: {e}"),
                 (Some(r), None) => labels::omega_label(title, r),
                 (None, None) => format!("{title}: computing."),
@@ -51,7 +54,7 @@ impl Controller {
     /// regime, whether the motion repeats, the dynamic factor explained);
     /// the expert figures are [`Controller::summary_text`].
     pub fn student_summary(&self) -> String {
-        let text = match (&self.main.omega, &self.main.status(JobKind::Omega).error) {
+        let text = match (&self.main.omega, &self.main.omega_status().error) {
             (_, Some(e)) => format!("Not computed: {e}"),
             (Some(r), None) => {
                 let mut s = figures::views::omega::student_summary(r);
@@ -90,7 +93,7 @@ impl Controller {
     /// planet phasing clause, or why there is none yet; the model's warnings.
     pub fn summary_text(&self) -> String {
         let natural = self.view_context().natural;
-        let text = match (&self.main.omega, &self.main.status(JobKind::Omega).error) {
+        let text = match (&self.main.omega, &self.main.omega_status().error) {
             (_, Some(e)) => format!("Not computed: {e}"),
             (Some(r), None) => {
                 let mut s = figures::views::omega::summary_line(r, &natural);
@@ -102,7 +105,7 @@ impl Controller {
                         s.push_str(&line);
                     }
                 }
-                if self.main.status(JobKind::Omega).running() && !r.preview {
+                if self.main.omega_status().running() && !r.preview {
                     s.push_str(" Updating…");
                 }
                 s
@@ -121,47 +124,46 @@ impl Controller {
     /// (its job failed before any data, it waits for the workers, it is
     /// switched off, its first result is computing).
     pub fn placeholder(&self, view: figures::views::ViewId) -> Option<String> {
-        use JobKind;
         let st = self.view_status(view);
         let not_computed = |e: &String| format!("Not computed: {e}");
-        if view == figures::views::ViewId::Campbell {
-            return self.campbell_view().err().map(|e| not_computed(&e));
-        }
-        match view.spec().data {
-            JobKind::HarmonicBalance | JobKind::Overlay => {
+        match view {
+            ViewId::Campbell => self.campbell_view().err().map(|e| not_computed(&e)),
+            ViewId::Fr => {
                 let e = st.error.as_ref()?;
                 let v = self.fr_view();
                 let has_data =
                     v.branches.iter().any(|b| !b.points.is_empty()) || !v.overlay.is_empty();
                 (!has_data).then(|| not_computed(e))
             }
-            JobKind::Bif | JobKind::Orbits => st
+            ViewId::Bif => st
                 .error
                 .as_ref()
                 .filter(|_| self.main.bif.samples.is_empty())
                 .map(not_computed),
-            JobKind::Map | JobKind::Boundaries => (self.main.map.done == 0
+            ViewId::Map => (self.main.map.done == 0
                 && (st.error.is_some() || self.main.map.grid.is_none()))
             .then(|| {
                 st.error
                     .as_ref()
                     .map_or_else(|| "Waiting for the Web Workers…".to_string(), not_computed)
             }),
-            JobKind::Lyap if self.main.lyap.id == 0 => Some(
+            ViewId::Lyap if self.main.lyap.id == 0 => Some(
                 "Off: set Lyapunov Ω points above 0 (Regime map and Lyapunov exponent).".into(),
             ),
-            JobKind::Lyap => st
+            ViewId::Lyap => st
                 .error
                 .as_ref()
                 .filter(|_| self.main.lyap.points.is_empty())
                 .map(not_computed),
-            JobKind::Omega => match (&self.main.omega, &st.error) {
-                (_, Some(e)) => Some(not_computed(e)),
-                (None, None) => Some(figures::views::omega::computing_message(
-                    self.settings.view.omega,
-                )),
-                (Some(_), None) => None,
-            },
+            ViewId::Phase | ViewId::Poincare | ViewId::Time | ViewId::Spectrum => {
+                match (&self.main.omega, &st.error) {
+                    (_, Some(e)) => Some(not_computed(e)),
+                    (None, None) => Some(figures::views::omega::computing_message(
+                        self.settings.view.omega,
+                    )),
+                    (Some(_), None) => None,
+                }
+            }
         }
     }
 

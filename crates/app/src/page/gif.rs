@@ -434,11 +434,7 @@ mod tests {
         let mut r = result(Some(1));
         r.anim.x_um.resize(meshes, r.anim.x_um[0].clone());
         r.anim.backlash_um.resize(meshes, 100.0);
-        let id = page
-            .ctl()
-            .main()
-            .status(figures::protocol::JobKind::Omega)
-            .id;
+        let id = page.ctl().main().omega_status().id;
         let reply = figures::protocol::FromWorker::Omega {
             id,
             result: Box::new(r),

@@ -25,7 +25,7 @@ mod texts;
 use crate::controller::{Controller, Effect};
 use crate::store::status::Dirty;
 use figures::plots::{self, PlotFrame};
-use figures::protocol::JobKind;
+use figures::protocol::KindSet;
 use figures::views::{ViewId, DRAW_ORDER, VIEWS};
 use redraw::{Decision, FrameTurn, Redraw};
 
@@ -564,7 +564,7 @@ impl Page {
         if d.messages || again {
             w.extend(self.messages());
         }
-        if d.controls || d.jobs.contains(JobKind::Omega) {
+        if d.controls || d.jobs.intersects(KindSet::SELECTED) {
             let warning = self.ctl.validity_warning();
             w.push(Write::Hidden {
                 id: "validity".into(),
@@ -572,7 +572,7 @@ impl Page {
             });
             w.push(Write::text("validity", warning.unwrap_or_default()));
         }
-        if d.jobs.contains(JobKind::Omega) {
+        if d.jobs.intersects(KindSet::SELECTED) {
             w.push(Write::text("summary", self.ctl.student_summary()));
             w.push(Write::text("summary-expert", self.ctl.summary_text()));
             w.push(Write::Attr {
@@ -581,7 +581,7 @@ impl Page {
                 value: self.ctl.anim_label(),
             });
         }
-        if self.presenting() && (d.url || d.controls || d.jobs.contains(JobKind::Omega)) {
+        if self.presenting() && (d.url || d.controls || d.jobs.intersects(KindSet::SELECTED)) {
             w.extend(self.present_writes());
         }
         if d.url || d.controls {

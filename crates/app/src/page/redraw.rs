@@ -163,7 +163,7 @@ impl FrameTurn {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use figures::protocol::{JobKind, KindSet};
+    use figures::protocol::KindSet;
     use figures::views::DRAW_ORDER;
 
     /// The views drawn in one frame if each takes `draw_ms`:
@@ -236,7 +236,7 @@ mod tests {
             ..JobStatus::default()
         };
         let bif = Dirty {
-            jobs: KindSet::of(&[JobKind::Bif, JobKind::Omega]),
+            jobs: ViewId::Bif.spec().shows.with(KindSet::SELECTED),
             ..Dirty::default()
         };
         r.mark(&bif);

@@ -3,7 +3,6 @@
 //! caption status and note, and the status the tests read.
 
 use super::{Page, Write};
-use figures::protocol::JobKind;
 use figures::views::fr::FrView;
 use figures::views::{ViewId, VIEWS};
 
@@ -110,7 +109,7 @@ impl Page {
     fn view_progress(&self, view: ViewId, now_ms: f64) -> (Option<(usize, usize)>, String) {
         let main = self.ctl.main();
         let prog = self.ctl.view_status(view).progress(now_ms);
-        let trace = main.status(JobKind::Boundaries).progress(now_ms);
+        let trace = main.boundaries_status().progress(now_ms);
         match (view, prog, trace) {
             (ViewId::Map, None, Some((done, total))) => (
                 Some((done, total)),
@@ -144,8 +143,10 @@ impl Page {
         ]
     }
 
-    /// Whether any job of `kind` runs, the current state's or a member's.
-    fn running(&self, kind: JobKind) -> bool {
+    /// Whether the job whose data `view` shows runs, the current state's
+    /// or a member's.
+    fn running(&self, view: ViewId) -> bool {
+        let kind = view.spec().data;
         self.ctl.main().status(kind).running() || self.ctl.members_running(kind)
     }
 
@@ -155,23 +156,20 @@ impl Page {
         let family = self.ctl.family().is_some();
         match view {
             ViewId::Fr => fr.map_or_else(String::new, |v| {
-                figures::views::fr::fr_caption_suffix(self.running(JobKind::HarmonicBalance), v)
+                figures::views::fr::fr_caption_suffix(self.running(view), v)
             }),
-            ViewId::Bif if family => computing(self.running(JobKind::Bif)),
-            ViewId::Bif => main.status(JobKind::Bif).caption_suffix(),
-            ViewId::Map
-                if main.status(JobKind::Boundaries).running()
-                    && !main.status(JobKind::Map).running() =>
-            {
+            ViewId::Bif if family => computing(self.running(view)),
+            ViewId::Bif => main.bif_status().caption_suffix(),
+            ViewId::Map if main.boundaries_status().running() && !main.map_status().running() => {
                 " (tracing the boundaries…)".into()
             }
-            ViewId::Map => main.status(JobKind::Map).map_caption_suffix(),
-            ViewId::Lyap => main.status(JobKind::Lyap).caption_suffix(),
+            ViewId::Map => main.map_status().map_caption_suffix(),
+            ViewId::Lyap => main.lyap_status().caption_suffix(),
             ViewId::Campbell => String::new(),
-            ViewId::Phase | ViewId::Poincare if family => computing(self.running(JobKind::Omega)),
+            ViewId::Phase | ViewId::Poincare if family => computing(self.running(view)),
             ViewId::Phase | ViewId::Poincare | ViewId::Time | ViewId::Spectrum => {
                 let preview = main.omega.as_ref().is_some_and(|r| r.preview);
-                let running = main.status(JobKind::Omega).running();
+                let running = main.omega_status().running();
                 figures::views::omega::caption_suffix(preview, running).to_string()
             }
         }

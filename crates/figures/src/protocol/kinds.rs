@@ -46,6 +46,24 @@ impl JobKind {
         JobKind::Orbits,
         JobKind::Boundaries,
     ];
+    /// The kinds a worker serves first in each computation, in order (the
+    /// selected Omega, then the harmonic-balance branch).
+    pub const URGENT: [JobKind; 2] = [JobKind::Omega, JobKind::HarmonicBalance];
+    /// The kinds whose shards a worker then serves in turns (so the
+    /// frequency response's dots and the bifurcation diagram fill in
+    /// together and show their first points early).
+    pub const TAKING_TURNS: [JobKind; 2] = [JobKind::Overlay, JobKind::Bif];
+    /// The kinds served when the others are idle, in order: the slower,
+    /// secondary views must not delay the main diagrams, and the shooting
+    /// branches and the map's boundaries, which can take a minute or more
+    /// on the compound set, must not delay any view (they are drawn as
+    /// they come).
+    pub const WHEN_IDLE: [JobKind; 4] = [
+        JobKind::Lyap,
+        JobKind::Map,
+        JobKind::Orbits,
+        JobKind::Boundaries,
+    ];
     /// How many kinds there are (the length of per-kind arrays).
     pub const COUNT: usize = Self::ALL.len();
 
@@ -72,6 +90,8 @@ impl KindSet {
     /// The kinds the pinned state A of a comparison computes (drawn under
     /// the current state's).
     pub const PINNED: KindSet = KindSet::of(&[JobKind::HarmonicBalance, JobKind::Bif]);
+    /// The selected Omega's kind: the summary and the views at that Omega.
+    pub const SELECTED: KindSet = KindSet::of(&[JobKind::Omega]);
     /// The kinds a family member computes (its curve, its panel, its orbit).
     pub const MEMBER: KindSet =
         KindSet::of(&[JobKind::Omega, JobKind::HarmonicBalance, JobKind::Bif]);
@@ -113,6 +133,11 @@ impl KindSet {
     /// Adds `kind`.
     pub fn insert(&mut self, kind: JobKind) {
         self.0 |= 1 << kind as u8;
+    }
+
+    /// Whether the sets share a kind.
+    pub const fn intersects(self, other: KindSet) -> bool {
+        self.0 & other.0 != 0
     }
 
     /// Whether the set is empty.

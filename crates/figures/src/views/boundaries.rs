@@ -1,4 +1,4 @@
-//! The regime map's traced boundaries (`JobKind::Boundaries`): the store
+//! The regime map's traced boundaries (the boundaries job): the store
 //! that collects the worker's curves, the curves the map shows, the check
 //! of the sampled cells against the side of the curves they lie on, the
 //! curve point a click picks and the sentence that says what it is.

@@ -1,4 +1,4 @@
-//! The shooting branches of the bifurcation diagram (`JobKind::Orbits`):
+//! The shooting branches of the bifurcation diagram (their own job):
 //! the store of the continuation's points, and the lines the diagram draws
 //! from them, stable solid and unstable thin, one line per Poincaré sample
 //! of a period-n orbit (n lines on a period-n branch), as continuation

@@ -221,6 +221,12 @@ impl ViewId {
         self as usize
     }
 
+    /// Whether the view shows the selected Omega's steady state (or is
+    /// drawn at it).
+    pub fn at_selected_omega(self) -> bool {
+        self.spec().data == JobKind::Omega
+    }
+
     /// The view's entry in [`VIEWS`].
     pub fn spec(self) -> &'static ViewSpec {
         &VIEWS[self.slot()]

@@ -210,6 +210,10 @@ impl Job for BifJob {
     fn export(&self, mesh: Option<usize>, other: &[String]) -> Option<FromWorker> {
         Some(self.export_json(mesh, other))
     }
+
+    fn exports(&self) -> bool {
+        true
+    }
 }
 
 fn bif_sample(sweep: &BifurcationSweep, p: &SweepPoint) -> BifSample {

@@ -68,6 +68,10 @@ pub trait Job {
     fn export(&self, _mesh: Option<usize>, _other: &[String]) -> Option<FromWorker> {
         None
     }
+    /// Whether the finished shards are kept for [`Job::export`].
+    fn exports(&self) -> bool {
+        false
+    }
 }
 
 /// The message of a job that failed.

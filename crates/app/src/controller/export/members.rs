@@ -83,7 +83,7 @@ impl Controller {
         if let Some(f) = &self.family {
             for m in &f.members {
                 match &m.comp.omega {
-                    Some(r) if !r.preview && m.comp.status(JobKind::Omega).error.is_none() => {
+                    Some(r) if !r.preview && m.comp.omega_status().error.is_none() => {
                         results.push(r)
                     }
                     _ => return Err(ExportError::NotComputed),

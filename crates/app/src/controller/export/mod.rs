@@ -5,7 +5,6 @@
 //! export (`svg.rs`).
 
 use super::*;
-use figures::protocol::JobKind;
 use figures::views::{omega::OmegaView, ViewId};
 
 /// A data export's format.
@@ -79,14 +78,10 @@ impl Controller {
     /// The data behind `view` as a file in `format`.
     pub fn export(&self, view: ViewId, format: Format) -> Result<Effect, ExportError> {
         let csv = format == Format::Csv;
-        let text = match view.spec().data {
-            _ if view == ViewId::Campbell => {
-                self.campbell_export(csv).map_err(ExportError::Modes)?
-            }
-            JobKind::HarmonicBalance | JobKind::Overlay if self.panels.is_some() => {
-                self.fr_panels_export(csv)?
-            }
-            JobKind::HarmonicBalance | JobKind::Overlay => {
+        let text = match view {
+            ViewId::Campbell => self.campbell_export(csv).map_err(ExportError::Modes)?,
+            ViewId::Fr if self.panels.is_some() => self.fr_panels_export(csv)?,
+            ViewId::Fr => {
                 let v = self.fr_view();
                 if csv {
                     figures::views::fr::fr_csv(&v)
@@ -95,8 +90,8 @@ impl Controller {
                 }
             }
             // A family: every member, named.
-            JobKind::Bif if self.family.is_some() => self.family_bif_export(csv)?,
-            JobKind::Bif | JobKind::Orbits => {
+            ViewId::Bif if self.family.is_some() => self.family_bif_export(csv)?,
+            ViewId::Bif => {
                 let v = self.bif_view();
                 if csv {
                     figures::views::bif::bif_csv(&v)
@@ -104,10 +99,8 @@ impl Controller {
                     json_text(serde_json::to_string(&v))?
                 }
             }
-            JobKind::Map | JobKind::Boundaries if csv => {
-                figures::views::map::map_csv(&self.main.map)
-            }
-            JobKind::Map | JobKind::Boundaries => {
+            ViewId::Map if csv => figures::views::map::map_csv(&self.main.map),
+            ViewId::Map => {
                 let mut j = figures::views::map::map_json(&self.main.map);
                 // The traced boundaries, when they are on.
                 if self.main.boundaries.id != 0 {
@@ -124,13 +117,15 @@ impl Controller {
                 }
                 j.to_string()
             }
-            JobKind::Lyap if csv => figures::views::lyap::lyap_csv(&self.main.lyap),
-            JobKind::Lyap => figures::views::lyap::lyap_json(&self.main.lyap).to_string(),
-            JobKind::Omega if self.family.is_some() => {
+            ViewId::Lyap if csv => figures::views::lyap::lyap_csv(&self.main.lyap),
+            ViewId::Lyap => figures::views::lyap::lyap_json(&self.main.lyap).to_string(),
+            ViewId::Phase | ViewId::Poincare | ViewId::Time | ViewId::Spectrum
+                if self.family.is_some() =>
+            {
                 let which = OmegaView::of(view).ok_or(ExportError::NoCliFormat)?;
                 self.family_omega_export(which, csv)?
             }
-            JobKind::Omega => {
+            ViewId::Phase | ViewId::Poincare | ViewId::Time | ViewId::Spectrum => {
                 let r = self.exportable_omega()?;
                 let which = OmegaView::of(view).ok_or(ExportError::NoCliFormat)?;
                 if csv {
@@ -188,9 +183,9 @@ impl Controller {
     /// bifurcation sweep, assembled from the workers' shards (messages to
     /// post; the download follows their replies).
     pub fn export_cli(&mut self, view: ViewId) -> Result<Vec<Effect>, ExportError> {
-        match view.spec().data {
-            JobKind::Bif => self.request_bif_export(),
-            JobKind::Omega => {
+        match view {
+            ViewId::Bif => self.request_bif_export(),
+            _ if view.at_selected_omega() => {
                 let r = self.exportable_omega()?;
                 Ok(vec![Effect::Download {
                     name: self.file_name(view, Some("simulate"), "json"),
@@ -215,7 +210,7 @@ impl Controller {
     /// worker but the first sends its shards, then worker 0 (which holds
     /// chain 0) merges them with its own.
     fn request_bif_export(&mut self) -> Result<Vec<Effect>, ExportError> {
-        if self.main.status(JobKind::Bif).finished_ms.is_none() {
+        if self.main.bif_status().finished_ms.is_none() {
             return Err(ExportError::SweepRunning);
         }
         let (mesh, _) = self.mesh_and_backlash();
@@ -288,7 +283,7 @@ impl Controller {
         }
         name.push('-');
         name.push_str(self.settings.view.mesh.text());
-        if view.spec().data == JobKind::Omega {
+        if view.at_selected_omega() {
             let omega = self
                 .main
                 .omega

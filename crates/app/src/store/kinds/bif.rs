@@ -3,8 +3,8 @@
 //! instability bands of its range; without an overlay job of its own the
 //! frequency response shows its points as dots.
 
-use super::{chain_count, FeedCx, Kind, StartCx};
-use crate::store::status::Dirty;
+use super::{chain_count, FeedCx, Kind, StartCx, StatusKey};
+use crate::store::status::{Dirty, JobStatus};
 use crate::store::{Computation, Fed};
 use figures::protocol::{FromWorker, JobId, JobKind, JobSpec, KindSet};
 use figures::settings::ViewOptions;
@@ -23,6 +23,13 @@ fn bif_total(v: &ViewOptions) -> usize {
     v.bif_points as usize * per_dir
 }
 
+impl Computation {
+    /// The status of the bifurcation sweep's job.
+    pub fn bif_status(&self) -> &JobStatus {
+        self.status(JobKind::Bif)
+    }
+}
+
 impl Kind for Bif {
     fn kind(&self) -> JobKind {
         JobKind::Bif
@@ -30,6 +37,10 @@ impl Kind for Bif {
 
     fn shards(&self, cx: &StartCx) -> Option<u32> {
         Some(chain_count(cx.view().bif_points))
+    }
+
+    fn status_key(&self) -> StatusKey {
+        StatusKey::Top("bif")
     }
 
     fn total(&self, cx: &StartCx) -> usize {

@@ -3,13 +3,20 @@
 //! view asks for them, and restarted only when what the curves depend on
 //! changed.
 
-use super::{FeedCx, Kind, Pool, StartCx};
-use crate::store::status::Dirty;
+use super::{FeedCx, Kind, Pool, StartCx, StatusKey};
+use crate::store::status::{Dirty, JobStatus};
 use crate::store::{Computation, Fed};
 use figures::protocol::{FromWorker, JobId, JobKind, JobSpec, Target};
 use figures::views::boundaries::{BoundaryStore, BOUNDARY_LEVELS, BOUNDARY_POINTS};
 
 pub(super) struct Boundaries;
+
+impl Computation {
+    /// The status of the map's boundaries's job.
+    pub fn boundaries_status(&self) -> &JobStatus {
+        self.status(JobKind::Boundaries)
+    }
+}
 
 impl Kind for Boundaries {
     fn kind(&self) -> JobKind {
@@ -28,6 +35,10 @@ impl Kind for Boundaries {
     }
 
     /// Per mille.
+    fn status_key(&self) -> StatusKey {
+        StatusKey::Job("map_boundaries")
+    }
+
     fn total(&self, _cx: &StartCx) -> usize {
         1000
     }

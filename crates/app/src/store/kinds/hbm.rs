@@ -3,13 +3,20 @@
 //! progress in per cent; the current state's last complete branch fades
 //! under the new one while it computes.
 
-use super::{FeedCx, Kind, Pool, StartCx};
-use crate::store::status::Dirty;
+use super::{FeedCx, Kind, Pool, StartCx, StatusKey};
+use crate::store::status::{Dirty, JobStatus};
 use crate::store::{Computation, Fed};
 use figures::protocol::{FromWorker, JobId, JobKind, JobSpec, Target};
 use figures::views::fr::HbmStore;
 
 pub(super) struct HarmonicBalance;
+
+impl Computation {
+    /// The status of the harmonic-balance branch's job.
+    pub fn hbm_status(&self) -> &JobStatus {
+        self.status(JobKind::HarmonicBalance)
+    }
+}
 
 impl Kind for HarmonicBalance {
     fn kind(&self) -> JobKind {
@@ -18,6 +25,10 @@ impl Kind for HarmonicBalance {
 
     fn shards(&self, _cx: &StartCx) -> Option<u32> {
         Some(1)
+    }
+
+    fn status_key(&self) -> StatusKey {
+        StatusKey::Top("fr")
     }
 
     fn total(&self, _cx: &StartCx) -> usize {

@@ -1,13 +1,20 @@
 //! The largest Lyapunov exponent over Omega ([`JobKind::Lyap`]): points
 //! along interleaved chains, off below two points.
 
-use super::{chain_count, FeedCx, Kind, StartCx};
-use crate::store::status::Dirty;
+use super::{chain_count, FeedCx, Kind, StartCx, StatusKey};
+use crate::store::status::{Dirty, JobStatus};
 use crate::store::{Computation, Fed};
 use figures::protocol::{FromWorker, JobId, JobKind, JobSpec};
 use figures::views::lyap::LyapStore;
 
 pub(super) struct Lyap;
+
+impl Computation {
+    /// The status of the Lyapunov curve's job.
+    pub fn lyap_status(&self) -> &JobStatus {
+        self.status(JobKind::Lyap)
+    }
+}
 
 impl Kind for Lyap {
     fn kind(&self) -> JobKind {
@@ -17,6 +24,10 @@ impl Kind for Lyap {
     fn shards(&self, cx: &StartCx) -> Option<u32> {
         let points = cx.view().lyap_points;
         (points >= 2).then(|| chain_count(points))
+    }
+
+    fn status_key(&self) -> StatusKey {
+        StatusKey::Top("lyap")
     }
 
     fn total(&self, cx: &StartCx) -> usize {

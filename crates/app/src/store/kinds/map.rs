@@ -2,13 +2,20 @@
 //! workers; it restarts only when what it depends on changed (a click on
 //! a cell sets the key its rows vary, which does not).
 
-use super::{FeedCx, Kind, StartCx};
-use crate::store::status::Dirty;
+use super::{FeedCx, Kind, StartCx, StatusKey};
+use crate::store::status::{Dirty, JobStatus};
 use crate::store::{Computation, Fed};
 use figures::protocol::{FromWorker, JobId, JobKind, JobSpec, RunOptions};
 use figures::views::map::MapStore;
 
 pub(super) struct Map;
+
+impl Computation {
+    /// The status of the regime map's job.
+    pub fn map_status(&self) -> &JobStatus {
+        self.status(JobKind::Map)
+    }
+}
 
 impl Kind for Map {
     fn kind(&self) -> JobKind {
@@ -21,6 +28,10 @@ impl Kind for Map {
 
     fn unchanged(&self, cx: &StartCx, main: &Computation) -> bool {
         cx.map_signature == main.map.signature && main.status(JobKind::Map).error.is_none()
+    }
+
+    fn status_key(&self) -> StatusKey {
+        StatusKey::Top("map")
     }
 
     fn total(&self, cx: &StartCx) -> usize {

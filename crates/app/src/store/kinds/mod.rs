@@ -99,6 +99,15 @@ impl Pool {
     }
 }
 
+/// Where a kind's job status sits in the page's status JSON.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StatusKey {
+    /// A top-level key, its progress beside it.
+    Top(&'static str),
+    /// The `job` of the object under this key.
+    Job(&'static str),
+}
+
 /// One job kind's page side.
 pub trait Kind: Sync {
     /// The kind.
@@ -138,6 +147,11 @@ pub trait Kind: Sync {
         KindSet::NONE
     }
 
+    /// Where the tests and the benchmark read the job's status in the
+    /// page's status JSON: a top-level key (with its progress beside it
+    /// as `{key}_progress`), or the `job` of the object under that key.
+    fn status_key(&self) -> StatusKey;
+
     /// Whether the current state's quick preview follows the job's start.
     fn previews(&self) -> bool {
         false
@@ -176,6 +190,40 @@ const KINDS: [&dyn Kind; JobKind::COUNT] = [
 /// The page side of `kind`.
 pub fn of(kind: JobKind) -> &'static dyn Kind {
     KINDS[kind.slot()]
+}
+
+/// Puts the job status of each of `kinds` in `c` where
+/// [`Kind::status_key`] says, into the status JSON `out` (an object;
+/// `Job` keys into the objects already there); with `now_ms`, each
+/// top-level status's progress beside it.
+pub fn put_statuses(
+    out: &mut serde_json::Value,
+    c: &Computation,
+    kinds: KindSet,
+    now_ms: Option<f64>,
+) {
+    let Some(o) = out.as_object_mut() else {
+        return;
+    };
+    for kind in kinds.iter() {
+        let st = c.status(kind);
+        match of(kind).status_key() {
+            StatusKey::Top(key) => {
+                o.insert(key.into(), serde_json::json!(st));
+                if let Some(now) = now_ms {
+                    o.insert(
+                        format!("{key}_progress"),
+                        serde_json::json!(st.progress(now)),
+                    );
+                }
+            }
+            StatusKey::Job(key) => {
+                if let Some(inner) = o.get_mut(key).and_then(|v| v.as_object_mut()) {
+                    inner.insert("job".into(), serde_json::json!(st));
+                }
+            }
+        }
+    }
 }
 
 /// The most chains a sweep is split into (and the most workers the page runs).

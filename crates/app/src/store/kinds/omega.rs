@@ -2,13 +2,20 @@
 //! current state keeps its last result on screen until the new one (or
 //! its preview) arrives.
 
-use super::{FeedCx, Kind, Pool, StartCx};
-use crate::store::status::Dirty;
+use super::{FeedCx, Kind, Pool, StartCx, StatusKey};
+use crate::store::status::{Dirty, JobStatus};
 use crate::store::{Computation, Fed};
 use figures::protocol::{FromWorker, JobId, JobKind, JobSpec, Target};
 use worker::jobs::omega::selected_spec;
 
 pub(super) struct Omega;
+
+impl Computation {
+    /// The status of the selected Omega's steady state's job.
+    pub fn omega_status(&self) -> &JobStatus {
+        self.status(JobKind::Omega)
+    }
+}
 
 impl Kind for Omega {
     fn kind(&self) -> JobKind {
@@ -17,6 +24,10 @@ impl Kind for Omega {
 
     fn shards(&self, _cx: &StartCx) -> Option<u32> {
         Some(1)
+    }
+
+    fn status_key(&self) -> StatusKey {
+        StatusKey::Top("omega_job")
     }
 
     fn total(&self, _cx: &StartCx) -> usize {

@@ -2,7 +2,7 @@
 //! continuation on the first worker (beside the boundaries on the last),
 //! drawn on the bifurcation diagram; off unless the view asks for them.
 
-use super::{FeedCx, Kind, StartCx};
+use super::{FeedCx, Kind, StartCx, StatusKey};
 use crate::store::status::Dirty;
 use crate::store::{Computation, Fed};
 use figures::protocol::{FromWorker, JobId, JobKind, JobSpec};
@@ -17,6 +17,10 @@ impl Kind for Orbits {
 
     fn shards(&self, cx: &StartCx) -> Option<u32> {
         cx.view().branches.then_some(1)
+    }
+
+    fn status_key(&self) -> StatusKey {
+        StatusKey::Job("bif_branches")
     }
 
     fn total(&self, _cx: &StartCx) -> usize {

@@ -2,7 +2,7 @@
 //! ([`JobKind::Overlay`]): steady states along interleaved chains, off
 //! when the view asks for no points.
 
-use super::{chain_count, FeedCx, Kind, StartCx};
+use super::{chain_count, FeedCx, Kind, StartCx, StatusKey};
 use crate::store::status::Dirty;
 use crate::store::{Computation, Fed};
 use figures::protocol::{FromWorker, JobId, JobKind, JobSpec};
@@ -18,6 +18,10 @@ impl Kind for Overlay {
     fn shards(&self, cx: &StartCx) -> Option<u32> {
         let points = cx.view().fr_ti_points;
         (points > 0).then(|| chain_count(points))
+    }
+
+    fn status_key(&self) -> StatusKey {
+        StatusKey::Top("fr_overlay")
     }
 
     fn total(&self, cx: &StartCx) -> usize {
