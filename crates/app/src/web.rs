@@ -221,7 +221,7 @@ fn frame(page: &Shared, ts: f64) {
     let Shell {
         core, doc, window, ..
     } = &mut *p;
-    let writes = core.draw_frame(ts, || now(window), |core, v| draw_view(core, doc, v));
+    let writes = core.draw_frame(ts, || now(window), |core, v| paint_canvas(core, doc, v));
     paint(&p, writes);
     if p.core.next_frame() {
         let page2 = page.clone();
@@ -360,7 +360,7 @@ fn canvas(doc: &Document, view: ViewId) -> Option<HtmlCanvasElement> {
 
 /// Draws one view on its canvas (the core draws, this fills the dots and
 /// the map's cells); returns its writes, to make after the frame's drawing.
-fn draw_view(core: &mut Page, doc: &Document, v: ViewId) -> Vec<Write> {
+fn paint_canvas(core: &mut Page, doc: &Document, v: ViewId) -> Vec<Write> {
     if core.presented_view() == Some(v) {
         return present::draw(core, doc, v);
     }

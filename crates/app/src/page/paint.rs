@@ -68,7 +68,7 @@ impl Page {
                     .map(|()| None)
                     .map_err(SvgError::from)
             }
-            None => self.ctl.draw_view(view, root, &suffix, fr).map(Some),
+            None => self.ctl.plot(view, root, &suffix, fr).map(Some),
         };
         if view == ViewId::Time {
             self.anim_touch();

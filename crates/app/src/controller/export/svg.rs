@@ -31,7 +31,7 @@ pub enum SvgError {
     Draw(#[from] DrawError),
 }
 
-/// What [`Controller::draw_view`] leaves to its caller: the plot frame
+/// What [`Controller::plot`] leaves to its caller: the plot frame
 /// that maps pixels to data (the views one clicks on), and what a canvas
 /// fills faster itself than plotters does: the bifurcation dots and the
 /// map's cells.
@@ -77,7 +77,7 @@ impl Controller {
     /// view model `fr` if the caller built it already. What the backend
     /// draws faster itself is returned, not drawn: the bifurcation dots and
     /// the map's cells ([`Drawn`]).
-    pub fn draw_view<DB: DrawingBackend>(
+    pub fn plot<DB: DrawingBackend>(
         &self,
         view: ViewId,
         root: &DrawingArea<DB, Shift>,
@@ -165,7 +165,7 @@ impl Controller {
         let mut s = String::new();
         let d = {
             let root = SVGBackend::with_string(&mut s, size).into_drawing_area();
-            let d = self.draw_view(view, &root, "", None)?;
+            let d = self.plot(view, &root, "", None)?;
             root.present().map_err(plots::err)?;
             d
         };
