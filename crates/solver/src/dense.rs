@@ -46,7 +46,7 @@ pub fn eigenvalues_with(
 }
 
 /// QR sweeps [`eigenvalues`] allows before it gives up.
-pub const SCHUR_ITERATIONS: usize = 100_000;
+pub(crate) const SCHUR_ITERATIONS: usize = 100_000;
 
 /// The factors `P A = L U` of a square matrix: unit lower `L` below the
 /// diagonal and `U` on and above it, in one column-major buffer, and the

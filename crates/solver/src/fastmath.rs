@@ -39,7 +39,7 @@ pub fn min(a: f64, b: f64) -> f64 {
 /// `log2 x = e + log2 m` with `m` in `[sqrt(1/2), sqrt(2))`, `ln m` by the
 /// series of `2 atanh(s)`, `s = (m - 1) / (m + 1)`, `|s| <= 0.172` (seven
 /// terms: error below 1e-13).
-pub fn log2_pos(x: f64) -> f64 {
+pub(crate) fn log2_pos(x: f64) -> f64 {
     if !(x > 0.0 && x < f64::INFINITY) {
         return f64::NAN;
     }
@@ -70,7 +70,7 @@ pub fn log2_pos(x: f64) -> f64 {
 ///
 /// `2^y = 2^k e^t`, `k` the nearest integer, `t = (y - k) ln 2` in
 /// `[-0.347, 0.347]`, `e^t` by its Taylor polynomial of degree 11.
-pub fn exp2(y: f64) -> f64 {
+pub(crate) fn exp2(y: f64) -> f64 {
     if y.is_nan() {
         return f64::NAN;
     }

@@ -36,7 +36,7 @@ pub mod campbell;
 pub mod dense;
 pub mod dynamics;
 pub mod error;
-pub mod fastmath;
+pub(crate) mod fastmath;
 pub mod hbm;
 pub mod keys;
 pub mod lyapunov;
@@ -53,7 +53,7 @@ pub mod shooting;
 pub mod steady;
 pub mod sweep;
 pub mod system;
-pub mod trig;
+pub(crate) mod trig;
 
 pub use error::{Result, SolverError};
 pub use model::Model;

@@ -135,4 +135,4 @@ impl Model {
 
 /// How many times the model's deflection scale a mesh deflection may reach
 /// before the response counts as unbounded ([`Model::divergence_bound_m`]).
-pub const DIVERGENCE_FACTOR: f64 = 100.0;
+pub(crate) const DIVERGENCE_FACTOR: f64 = 100.0;

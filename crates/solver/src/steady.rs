@@ -46,20 +46,18 @@ mod verdict;
 
 pub use options::{SteadyOptions, DEFAULT_ATOL_M, DEFAULT_RTOL};
 use probe::Probe;
-pub use probe::{decide, LyapunovEvidence, DECIDE_AT, LAMBDA_MIN, PROBE_SEPARATION_UM};
+pub use probe::{decide, LyapunovEvidence, DECIDE_AT, LAMBDA_MIN};
 use record::Recorder;
-pub use settle::detect_period;
+pub(crate) use settle::detect_period;
 use settle::{has_settled, SpanTracker, SETTLE_DISTANCES};
 pub use spectrum::{spectrum, Spectrum};
 use verdict::window_verdict;
-pub use verdict::{
-    candidate_period, classify_recorded, loose_tol_um, pipeline_options, Motion, CHECKPOINTS,
-    MAX_PROBES, PIPELINE_ITERATIONS, PROBE_FROM_REST,
-};
+pub(crate) use verdict::{candidate_period, CHECKPOINTS, PROBE_FROM_REST};
+pub use verdict::{classify_recorded, Motion, MAX_PROBES};
 
 /// The model every steady run takes (defined in [`crate::model`]),
 /// re-exported beside the run for its callers.
-pub use crate::model::{Model, DIVERGENCE_FACTOR};
+pub use crate::model::Model;
 
 /// Impact regime of a steady response (Kahraman & Singh, 1990).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

@@ -250,7 +250,7 @@ pub struct SweepPoint {
 }
 
 /// Orders impact regimes from mild to severe (for "worst over meshes").
-pub fn severity(i: Impact) -> u8 {
+pub(crate) fn severity(i: Impact) -> u8 {
     match i {
         Impact::NoContact => 0,
         Impact::NoGap => 1,

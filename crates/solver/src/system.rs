@@ -30,11 +30,8 @@ use crate::params::{GearPairParams, MeshKind, ModelKind, ModelParams, Phasing, R
 use nalgebra::{DMatrix, DVector};
 use std::f64::consts::PI;
 
-/// Characteristic deflection b_c = 1 um: dimensionless deflections read as micrometres.
-pub const LENGTH_SCALE_M: f64 = 1e-6;
-
 /// Relative tolerance on the torque balance over the rigid-body mode.
-pub const TORQUE_BALANCE_RTOL: f64 = 1e-5;
+pub(crate) const TORQUE_BALANCE_RTOL: f64 = 1e-5;
 
 /// One mesh: its sparse mesh vector and force law.
 #[derive(Debug, Clone, PartialEq)]

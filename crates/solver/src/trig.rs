@@ -46,7 +46,7 @@ const REDUCE_MAX: f64 = 1e5;
 
 /// `(sin x, cos x)`.
 #[inline]
-pub fn phase_sin_cos(x: f64) -> (f64, f64) {
+pub(crate) fn phase_sin_cos(x: f64) -> (f64, f64) {
     if x.abs() > REDUCE_MAX || !x.is_finite() {
         return x.sin_cos();
     }

@@ -338,7 +338,7 @@ impl BoundaryStats {
 /// The keys whose value the trace can vary: those that change only the
 /// contact laws, the transmission error, the loads or the damping, never
 /// the modes the harmonic balance is written in.
-pub const VARIABLE_KEYS: &str =
+pub(crate) const VARIABLE_KEYS: &str =
     "backlash_um, te_um, damping_ratio, stiffness_variation, the torques \
      and the per-mesh backlash and TE keys";
 

@@ -23,10 +23,11 @@ use std::f64::consts::PI;
 
 mod exact;
 
-pub use exact::{channel_exact, contact_switches, te_real_coefficients, ExactScratch, SwitchTable};
+pub(crate) use exact::{channel_exact, te_real_coefficients, ExactScratch};
+pub use exact::{contact_switches, SwitchTable};
 
 /// Number of real coefficients for `h` harmonics.
-pub fn n_coef(h: usize) -> usize {
+pub(crate) fn n_coef(h: usize) -> usize {
     2 * h + 1
 }
 
@@ -135,7 +136,7 @@ impl Grid {
 /// Precomputed per-channel excitation on the grid: stiffness `k(theta_i)`
 /// and TE `e(theta_i)` (for mesh laws).
 #[derive(Debug, Clone, PartialEq)]
-pub struct ChannelTables {
+pub(crate) struct ChannelTables {
     k: Vec<f64>,
     e: Vec<f64>,
 }
@@ -167,7 +168,7 @@ impl ChannelTables {
 
 /// Scratch buffers for one channel evaluation.
 #[derive(Debug, Clone, Default)]
-pub struct Scratch {
+pub(crate) struct Scratch {
     u: Vec<f64>,
     f: Vec<f64>,
     s: Vec<f64>,
@@ -175,7 +176,7 @@ pub struct Scratch {
 
 /// AFT: force coefficients `force[0..2h+1]` and slope coefficients
 /// `slope[0..=2h]` of a channel whose displacement has coefficients `u_coef`.
-pub fn channel_aft(
+pub(crate) fn channel_aft(
     grid: &Grid,
     law: &Law,
     tables: &ChannelTables,
@@ -219,7 +220,7 @@ pub fn channel_aft(
 
 /// `J[p][q] = proj_p(s phi_q)` for slope coefficients `s_l` (`l = 0..=2h`),
 /// row-major `nc x nc` into `out`.
-pub fn mult_operator(s: &[Complex<f64>], h: usize, out: &mut [f64]) {
+pub(crate) fn mult_operator(s: &[Complex<f64>], h: usize, out: &mut [f64]) {
     let nc = n_coef(h);
     let at = |l: isize| -> Complex<f64> {
         if l >= 0 {
@@ -309,7 +310,7 @@ fn upper_part(mu: f64) -> ([f64; 3], [f64; 4]) {
 /// it, which makes its method differ from a one-harmonic balance whenever
 /// `v != 0`. Kept here, the method *is* the one-harmonic Galerkin balance
 /// and equals AFT at `H = 1` up to AFT's quadrature error.
-pub fn channel_df(law: &Law, u_coef: &[f64], force: &mut [f64], slope: &mut [Complex<f64>]) {
+pub(crate) fn channel_df(law: &Law, u_coef: &[f64], force: &mut [f64], slope: &mut [Complex<f64>]) {
     let Law::Mesh {
         k,
         variation: v,
@@ -387,7 +388,7 @@ pub fn channel_df(law: &Law, u_coef: &[f64], force: &mut [f64], slope: &mut [Com
 }
 
 /// Evaluates a channel displacement's trigonometric polynomial at `theta`.
-pub fn eval_coef(coef: &[f64], h: usize, theta: f64) -> f64 {
+pub(crate) fn eval_coef(coef: &[f64], h: usize, theta: f64) -> f64 {
     // One sin_cos, then the angle-addition recurrence for the harmonics.
     let (s1, c1) = crate::trig::phase_sin_cos(theta);
     let (mut sn, mut cs) = (s1, c1);

@@ -22,8 +22,7 @@ pub mod stability;
 pub use assembly::{Assembly, Method};
 pub use continuation::{
     Bifurcation, BranchMesh, BranchPoint, FrfContinuation, FrfSpec, FrfStats, LeftOut,
-    LeftOutReason, PieceEnd, Restart, StepControl, DEFAULT_STABILITY_STRIDE,
-    SAMPLED_STABILITY_STRIDE,
+    LeftOutReason, PieceEnd, Restart, StepControl, SAMPLED_STABILITY_STRIDE,
 };
 pub use cost::HbmCost;
 pub use model::{HbmModel, Reduction};

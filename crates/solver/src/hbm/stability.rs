@@ -33,13 +33,13 @@ use std::f64::consts::PI;
 /// set at Omega 1.875 was 3.7e-4 off the shooting monodromy's (at rtol
 /// 1e-13), at 16 it is 2.2e-5, within the 1e-4 at which the branch's
 /// stability is compared with shooting (`crates/solver/tests/floquet.rs`).
-pub const ORBIT_STEPS_PER_FASTEST: f64 = 16.0;
+pub(crate) const ORBIT_STEPS_PER_FASTEST: f64 = 16.0;
 
 /// The same for the engaged system's spectral radius (`gearshock
 /// instability`, the page's grey bands), held to 1e-6 of the shooting
 /// monodromy's: at 32 steps it was 1.8e-6 off at Omega 1.875, at 128 it is
 /// 7e-9 (a 400-point scan still takes well under a second).
-pub const ENGAGED_STEPS_PER_FASTEST: f64 = 128.0;
+pub(crate) const ENGAGED_STEPS_PER_FASTEST: f64 = 128.0;
 
 /// Floquet multipliers of an orbit.
 #[derive(Debug, Clone, PartialEq)]
@@ -306,7 +306,7 @@ fn orbit_pieces(asm: &Assembly, x: &[f64]) -> (Vec<Vec<f64>>, Vec<f64>) {
 /// would otherwise shift `ln rho` where the fastest mode decides it (a
 /// single gear pair at low Omega), and the spectral radius is the
 /// reference the other methods' multipliers are checked against.
-pub fn floquet_engaged(asm: &Assembly, omega: f64) -> Option<Floquet> {
+pub(crate) fn floquet_engaged(asm: &Assembly, omega: f64) -> Option<Floquet> {
     monodromy(
         asm,
         omega,
@@ -343,7 +343,7 @@ fn monodromy(
 /// the symmetric reduction) of the orbit `x` at `omega`, as [`floquet`]
 /// computes them: for test functions on the multipliers (the boundaries'
 /// period doublings). `None` if they are not finite.
-pub fn monodromy_matrices(
+pub(crate) fn monodromy_matrices(
     asm: &Assembly,
     x: &[f64],
     omega: f64,

@@ -94,7 +94,7 @@ pub fn classify_multiplier(v: Complex<f64>) -> Bifurcation {
 /// A unit vector `e` with `monodromy e = mu e` for a real multiplier `mu`:
 /// the right singular vector of `monodromy - mu I` with the smallest
 /// singular value.
-pub fn real_eigenvector(monodromy: &DMatrix<f64>, mu: f64) -> Option<DVector<f64>> {
+pub(crate) fn real_eigenvector(monodromy: &DMatrix<f64>, mu: f64) -> Option<DVector<f64>> {
     let m = monodromy.nrows();
     let a = monodromy - DMatrix::identity(m, m) * mu;
     let svd = a.try_svd(false, true, 1e-14, 10_000)?;

@@ -30,9 +30,8 @@ mod tests;
 pub(crate) mod variational;
 
 pub use floquet::{classify_multiplier, Multipliers};
-pub use newton::{
-    shoot, Orbit, ShootFailure, ShootOptions, ShootOutcome, ShootRun, MAX_SHOOT_PERIOD,
-};
+pub use newton::{shoot, Orbit, ShootFailure, ShootOptions, ShootOutcome};
+pub(crate) use newton::{ShootRun, MAX_SHOOT_PERIOD};
 
 use crate::modal::ModeKind;
 use crate::Model;

@@ -90,7 +90,7 @@ pub struct ShootOptions {
 }
 
 /// Largest orbit period shooting accepts (the same as the period detection's).
-pub const MAX_SHOOT_PERIOD: u32 = 32;
+pub(crate) const MAX_SHOOT_PERIOD: u32 = 32;
 
 impl ShootOptions {
     /// Defaults for a period-`period` orbit: 16 iterations, integrator at
@@ -262,7 +262,7 @@ const ALPHA_MIN: f64 = 1.0 / 64.0;
 
 /// A shooting attempt that can pause and resume (see the module doc).
 #[derive(Debug, Clone)]
-pub struct ShootRun {
+pub(crate) struct ShootRun {
     opts: ShootOptions,
     omega: f64,
     red: Reduced,
@@ -338,11 +338,6 @@ impl ShootRun {
     /// Integrator steps so far.
     pub fn steps(&self) -> u64 {
         self.steps
-    }
-
-    /// The reduced coordinates in use.
-    pub fn reduced(&self) -> &Reduced {
-        &self.red
     }
 
     /// Continues for at most `max_steps` integrator steps (at least one):

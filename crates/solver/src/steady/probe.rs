@@ -34,13 +34,13 @@ use crate::separation::{dist2, mesh_point, neighbour, Rigid};
 use crate::Model;
 
 /// Separation of the neighbour in mesh space (µm).
-pub const PROBE_SEPARATION_UM: f64 = 0.1;
+pub(crate) const PROBE_SEPARATION_UM: f64 = 0.1;
 
 /// How much looser the neighbour's tolerances are than the run's.
-pub const NEIGHBOUR_LOOSER: f64 = 10.0;
+pub(crate) const NEIGHBOUR_LOOSER: f64 = 10.0;
 
 /// First measured periods left out of the mean.
-pub const SKIP: usize = 2;
+pub(crate) const SKIP: usize = 2;
 
 /// Measured periods at which the probe decides.
 pub const DECIDE_AT: &[usize] = &[16, 24, 32, 48, 64];
@@ -50,7 +50,7 @@ pub const LAMBDA_MIN: f64 = 0.05;
 
 /// The smallest ratio of the second half's exponent to the first half's
 /// for growth to count as exponential (see [`decide`]).
-pub const SUSTAINED: f64 = 0.5;
+pub(crate) const SUSTAINED: f64 = 0.5;
 
 /// What the probe found.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -58,7 +58,7 @@ pub(super) fn has_settled(hist: &[Vec<f64>], tol: f64, rho_modal_per_period: f64
 
 /// Smallest `p` such that every recorded Poincaré point repeats after `p`
 /// periods within `tol` (um); at least three repetitions must be seen.
-pub fn detect_period(points: &[Vec<f64>], tol: f64) -> Option<u32> {
+pub(crate) fn detect_period(points: &[Vec<f64>], tol: f64) -> Option<u32> {
     let n = points.len();
     (1..=MAX_PERIOD.min(n / 3))
         .find(|&p| (0..n - p).all(|i| dist_inf(&points[i], &points[i + p]) <= tol))

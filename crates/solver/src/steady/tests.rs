@@ -4,6 +4,7 @@
 use super::*;
 use crate::params::ModelParams;
 use crate::shooting::{ShootFailure, ShootOutcome};
+use crate::steady::verdict::PIPELINE_ITERATIONS;
 
 /// A failed attempt (as Newton reports one) at the default set's chaotic
 /// Omega 0.84: the run integrates on (recording beside the Lyapunov

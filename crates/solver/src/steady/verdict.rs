@@ -30,7 +30,7 @@ use crate::shooting::{ShootOptions, ShootOutcome, ShootRun};
 use serde::{Deserialize, Serialize};
 
 /// The transient periods after which a candidate period is looked for.
-pub const CHECKPOINTS: &[u32] = &[6, 12, 24, 48, 96, 192, 384, 768, 1536, 3072, 6144];
+pub(crate) const CHECKPOINTS: &[u32] = &[6, 12, 24, 48, 96, 192, 384, 768, 1536, 3072, 6144];
 
 /// Lyapunov probes a steady run makes at most.
 pub const MAX_PROBES: u32 = 2;
@@ -41,10 +41,10 @@ pub const MAX_PROBES: u32 = 2;
 /// exponent of 0.14 per period over periods 6 to 22, then a stable
 /// period-2 orbit). Runs continued from another state (sweeps, maps)
 /// probe from the first checkpoint.
-pub const PROBE_FROM_REST: u32 = 96;
+pub(crate) const PROBE_FROM_REST: u32 = 96;
 
 /// Newton iterations a steady run gives one shooting attempt.
-pub const PIPELINE_ITERATIONS: u32 = 8;
+pub(crate) const PIPELINE_ITERATIONS: u32 = 8;
 
 /// How a steady state was classified. It travels as JSON (the page's
 /// worker replies, the CLI's figure shards) tagged by its [`Motion::name`]
@@ -168,7 +168,7 @@ impl Motion {
 /// relative accuracy (`tangent_atol_scale`): a largest multiplier far
 /// inside the unit circle (the gear pair's 0.081 at Omega 0.15) is then
 /// right to 1e-8 instead of 6e-6.
-pub fn pipeline_options(period: u32, rtol: f64, atol_m: f64, span_um: f64) -> ShootOptions {
+pub(crate) fn pipeline_options(period: u32, rtol: f64, atol_m: f64, span_um: f64) -> ShootOptions {
     let mut o = ShootOptions::new(period);
     o.max_iterations = PIPELINE_ITERATIONS;
     o.rtol = (rtol * 1e-2).clamp(1e-13, 1e-9);
@@ -182,7 +182,7 @@ pub fn pipeline_options(period: u32, rtol: f64, atol_m: f64, span_um: f64) -> Sh
 
 /// The loose tolerance (µm) of [`candidate_period`] for an orbit whose
 /// deflections span `span_um`: 2 % of the span, plus the settle tolerance.
-pub fn loose_tol_um(span_um: f64) -> f64 {
+pub(crate) fn loose_tol_um(span_um: f64) -> f64 {
     0.02 * span_um + settle_tol_um(span_um)
 }
 
@@ -196,7 +196,7 @@ fn dist_inf(a: &[f64], b: &[f64]) -> f64 {
 /// The smallest `p <= MAX_PERIOD` such that the last `p` Poincaré points
 /// (newest last) each lie within `tol` of the point `p` before it, if the
 /// history holds `2 p` points.
-pub fn candidate_period(points: &[Vec<f64>], tol: f64) -> Option<u32> {
+pub(crate) fn candidate_period(points: &[Vec<f64>], tol: f64) -> Option<u32> {
     let n = points.len();
     (1..=MAX_PERIOD.min(n / 2)).find_map(|p| {
         (0..p)

@@ -45,7 +45,7 @@ pub struct FrfSpec {
 /// The default [`FrfSpec::stability_stride`]: every point. The sampled
 /// route ([`SAMPLED_STABILITY_STRIDE`]) changed 2 of the default branch's
 /// 496 points' flags or labels, not yet explained, so it is not the default.
-pub const DEFAULT_STABILITY_STRIDE: u32 = 1;
+pub(crate) const DEFAULT_STABILITY_STRIDE: u32 = 1;
 
 /// The stride of the sampled stability route that `gearshock bench`
 /// measures beside every point.

@@ -88,7 +88,7 @@ mod step;
 
 pub use branch::{
     Bifurcation, BranchMesh, BranchPoint, FrfSpec, FrfStats, LeftOut, LeftOutReason, PieceEnd,
-    Restart, StepControl, DEFAULT_STABILITY_STRIDE, SAMPLED_STABILITY_STRIDE,
+    Restart, StepControl, SAMPLED_STABILITY_STRIDE,
 };
 
 /// A continuation in progress; [`FrfContinuation::advance`] computes a bounded

@@ -18,7 +18,7 @@ use super::*;
 /// (C1) function of the coefficients: no grid kinks, and the Jacobian from
 /// [`mult_operator`] is its exact derivative. At `h = 1` it equals the
 /// describing function's closed forms. Non-mesh laws fall back to AFT.
-pub fn channel_exact(
+pub(crate) fn channel_exact(
     h: usize,
     table: &SwitchTable,
     law: &Law,
@@ -293,7 +293,7 @@ pub fn contact_switches(
 }
 
 /// The TE of a mesh law as real coefficients `[mean, cos 1, sin 1]` in theta.
-pub fn te_real_coefficients(law: &Law) -> [f64; 3] {
+pub(crate) fn te_real_coefficients(law: &Law) -> [f64; 3] {
     law.te_terms()
         .map_or([0.0; 3], |(phase, [mean, cos, sin])| {
             // c cos(t + p) + s sin(t + p) = (c cos p + s sin p) cos t + (s cos p - c sin p) sin t
@@ -339,7 +339,7 @@ fn illinois(g: &dyn Fn(f64) -> f64, mut a: f64, mut b: f64, mut ga: f64, mut gb:
 
 /// Scratch buffers of [`channel_exact`].
 #[derive(Debug, Clone, Default)]
-pub struct ExactScratch {
+pub(crate) struct ExactScratch {
     x: Vec<f64>,
     dx: Vec<f64>,
     pieces: Vec<(f64, f64)>,
