@@ -498,6 +498,17 @@ pub fn fmt_exact(x: f64) -> String {
 }
 
 impl ViewOptions {
+    /// Whether the frequency response has a time-integration overlay job
+    /// of its own (otherwise its dots are the sweep's steady states).
+    pub fn overlay_on(&self) -> bool {
+        self.fr_ti_points > 0
+    }
+
+    /// Whether the Lyapunov curve is computed (two points at least).
+    pub fn lyap_on(&self) -> bool {
+        self.lyap_points >= 2
+    }
+
     /// The value of a view key as link text.
     pub fn get(&self, name: &str) -> Option<String> {
         Some(match view_key(name)?.field {

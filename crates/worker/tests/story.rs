@@ -23,7 +23,7 @@ fn texts(r: &OmegaResult) -> Vec<String> {
         mesh_label: "s1a1".into(),
         natural: vec![],
     };
-    let mut bif = BifStore::new(1, 1).view(Some(0), &[r.backlash_um], &ctx);
+    let mut bif = BifStore::new(1).view(Some(0), &[r.backlash_um], &ctx);
     bif.points.push(BifPoint {
         omega: r.omega,
         x_um: 1.0,

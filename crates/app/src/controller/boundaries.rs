@@ -68,7 +68,7 @@ impl Controller {
         let st = self.main.map_status();
         let mut note = figures::views::map::map_note(&self.main.map, st.total);
         let b = &self.main.boundaries;
-        if b.id == 0 {
+        if !self.settings.view.boundaries {
             return note;
         }
         let (shown, disagree, _) = self.map_boundaries();

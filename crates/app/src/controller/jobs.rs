@@ -234,7 +234,7 @@ impl Controller {
         let replaced = c.status(kind).id;
         let issued = std::mem::take(&mut c.status_mut(kind).issued);
         *c.status_mut(kind) = JobStatus::start(id, now_ms, total);
-        k.begin(c, id, total, &cx);
+        k.begin(c, total, &cx);
         // A pending export of the replaced job speaks of the state before.
         if main && self.export.as_ref().is_some_and(|e| e.id == replaced) {
             self.export = None;

@@ -94,7 +94,7 @@ fn a_family_link_fans_out_member_jobs_and_restores_exactly() {
 fn member_replies_become_coloured_curves_labelled_in_words() {
     let (mut c, _) = Controller::new("family=te_um:0,20,30", 0.0);
     ready(&mut c);
-    let main = c.main.hbm.id;
+    let main = c.main.status(JobKind::HarmonicBalance).id;
     c.worker_message(1, &hbm(main, 10.0), 2.0);
     let m1 = member_id(&c, 0, JobKind::HarmonicBalance);
     let m2 = member_id(&c, 1, JobKind::HarmonicBalance);
@@ -157,7 +157,7 @@ fn the_small_multiples_share_their_axes_and_letter_their_panels() {
             points: vec![sample(0.5, x)],
         })
     };
-    c.worker_message(0, &bif(c.main.bif.id, 10.0), 2.0);
+    c.worker_message(0, &bif(c.main.status(JobKind::Bif).id, 10.0), 2.0);
     c.worker_message(0, &bif(member_id(&c, 1, JobKind::Bif), -700.0), 2.0);
     let panels = c.bif_panels();
     let titles: Vec<&str> = panels.iter().map(|p| p.title.as_str()).collect();
@@ -303,7 +303,7 @@ fn fig2_shows_its_four_mesh_panels_as_a_projection_of_the_same_branches() {
         .iter()
         .map(|m| model.system.mesh_index(m).unwrap())
         .collect();
-    let main = c.main.hbm.id;
+    let main = c.main.status(JobKind::HarmonicBalance).id;
     c.worker_message(1, &hbm_meshes(main, n, |j| j as f64 + 1.0), 2.0);
     for i in 0..5 {
         let id = member_id(&c, i, JobKind::HarmonicBalance);
@@ -382,7 +382,13 @@ fn the_mesh_panels_export_every_panel() {
     ready(&mut c);
     c.apply_preset("fig3", 1.0);
     let n = c.model.as_ref().unwrap().system.meshes.len();
-    c.worker_message(1, &hbm_meshes(c.main.hbm.id, n, |j| j as f64 + 1.0), 2.0);
+    c.worker_message(
+        1,
+        &hbm_meshes(c.main.status(JobKind::HarmonicBalance).id, n, |j| {
+            j as f64 + 1.0
+        }),
+        2.0,
+    );
     let text = |f| match c.export(figures::views::ViewId::Fr, f).unwrap() {
         Effect::Download { text, .. } => text,
         Effect::Post { .. } => panic!("a data export posts nothing"),

@@ -507,7 +507,7 @@ impl Controller {
         // The time-integration dots: the overlay job's when it is on, else
         // the bifurcation sweep's steady states (the same computation, free).
         let swept;
-        let overlay = if main.overlay.id != 0 {
+        let overlay = if self.settings.view.overlay_on() {
             Some(&main.overlay)
         } else {
             let v = &self.settings.view;

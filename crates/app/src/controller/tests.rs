@@ -49,7 +49,7 @@ fn hbm_points(id: JobId, omegas: &[f64], finished: bool, error: Option<&str>) ->
 fn instability_bands_come_from_the_current_sweep() {
     let (mut c, _) = Controller::new("", 0.0);
     ready(&mut c);
-    let id = c.main.bif.id;
+    let id = c.main.status(JobKind::Bif).id;
     let msg = |id, bands: Vec<(f64, f64)>| {
         encode(&FromWorker::Bands {
             id,
@@ -111,13 +111,13 @@ fn jobs_queue_until_ready_then_split_over_two_workers() {
 fn slider_change_restarts_and_stale_replies_are_ignored() {
     let (mut c, _) = Controller::new("", 0.0);
     ready(&mut c);
-    let old = c.main.hbm.id;
+    let old = c.main.status(JobKind::HarmonicBalance).id;
     let fx = c.set_key("backlash_um", "150", 10.0).unwrap();
     // Omega, branch, two bifurcation and two Lyapunov shards, the shooting
     // branches; the map over backlash does not depend on the backlash, so
     // it goes on.
     assert_eq!(posts(&fx).len(), 7);
-    assert_ne!(c.main.hbm.id, old);
+    assert_ne!(c.main.status(JobKind::HarmonicBalance).id, old);
     assert!(c.query().contains("backlash_um=150"));
     c.worker_message(1, &hbm_points(old, &[0.1], false, None), 11.0);
     assert!(c.main.hbm.points.is_empty());
@@ -223,7 +223,7 @@ fn progress_shows_only_for_long_jobs() {
         c.main.status(JobKind::HarmonicBalance).progress(300.0),
         Some((0, 100))
     );
-    let id = c.main.hbm.id;
+    let id = c.main.status(JobKind::HarmonicBalance).id;
     c.worker_message(1, &hbm_points(id, &[0.1, 1.05], false, None), 350.0);
     assert_eq!(
         c.main.status(JobKind::HarmonicBalance).progress(360.0),
@@ -250,7 +250,7 @@ fn progress_shows_only_for_long_jobs() {
 fn a_solver_failure_ends_the_branch_as_partial_and_is_reported() {
     let (mut c, _) = Controller::new("", 0.0);
     ready(&mut c);
-    let id = c.main.hbm.id;
+    let id = c.main.status(JobKind::HarmonicBalance).id;
     c.worker_message(1, &hbm_points(id, &[0.1, 0.5], false, None), 10.0);
     c.worker_message(
         1,
@@ -295,7 +295,7 @@ fn the_time_integration_overlay_runs_on_both_workers_when_asked() {
         .map(|(w, _)| *w)
         .collect();
     assert_eq!(ti, vec![0, 1]);
-    let id = c.main.overlay.id;
+    let id = c.main.status(JobKind::Overlay).id;
     let pts = (0..4)
         .map(|i| FrSample {
             index: i,
@@ -333,8 +333,12 @@ fn at_the_defaults_the_frequency_response_shows_the_sweeps_steady_states() {
     use figures::protocol::{BifMesh, BifSample, Regime};
     let (mut c, _) = Controller::new("", 0.0);
     ready(&mut c);
-    assert_eq!(c.main.overlay.id, 0, "no overlay job at the defaults");
-    let id = c.main.bif.id;
+    assert_eq!(
+        c.main.status(JobKind::Overlay).id,
+        0,
+        "no overlay job at the defaults"
+    );
+    let id = c.main.status(JobKind::Bif).id;
     let sample = |index: u32, omega: f64, up: bool, lo: f64, hi: f64| BifSample {
         index,
         omega,
@@ -452,7 +456,7 @@ fn the_map_shards_rows_and_a_cell_click_sets_both_parameters() {
         })
         .collect();
     assert_eq!(shards, vec![(0, 0, 2), (1, 1, 2)]);
-    let id = c.main.map.id;
+    let id = c.main.status(JobKind::Map).id;
     c.worker_message(
         0,
         &map_cells(id, &[(0, 0, Regime::NoImpact, Some(1))]),
@@ -471,7 +475,7 @@ fn the_map_shards_rows_and_a_cell_click_sets_both_parameters() {
     assert_eq!(c.settings.view.omega, 1.1);
     assert!(c.query().contains("omega=1.1&"), "{}", c.query());
     // The map goes on (same signature), everything else restarts.
-    assert_eq!(c.main.map.id, id);
+    assert_eq!(c.main.status(JobKind::Map).id, id);
     assert!(!posts(&fx).iter().any(|(_, m)| matches!(
         m,
         ToWorker::Run {
@@ -487,15 +491,15 @@ fn the_map_shards_rows_and_a_cell_click_sets_both_parameters() {
         (c.settings.view.map_from, c.settings.view.map_to),
         (0.0, 60.0)
     );
-    assert_ne!(c.main.map.id, id);
+    assert_ne!(c.main.status(JobKind::Map).id, id);
     c.set_key("map_value_points", "7", 31.0).unwrap();
     c.pick_map_point(0.1, 30.0, 32.0).unwrap();
     assert!(c.query().contains("te_um=30"), "{}", c.query());
     assert_eq!(c.settings.view.omega, 0.1);
     // Another parameter changes the map's model: it restarts.
-    let before = c.main.map.id;
+    let before = c.main.status(JobKind::Map).id;
     c.set_key("damping_ratio", "0.05", 40.0).unwrap();
-    assert_ne!(c.main.map.id, before);
+    assert_ne!(c.main.status(JobKind::Map).id, before);
 }
 
 #[test]
@@ -518,7 +522,7 @@ fn the_lyapunov_curve_collects_both_chains_and_can_be_switched_off() {
             .count(),
         2
     );
-    let id = c.main.lyap.id;
+    let id = c.main.status(JobKind::Lyap).id;
     let pts = |idx: &[u32]| {
         encode(&FromWorker::LyapPoints {
             id,
@@ -548,7 +552,7 @@ fn the_lyapunov_curve_collects_both_chains_and_can_be_switched_off() {
             ..
         }
     )));
-    assert_eq!(c.main.lyap.id, 0);
+    assert_eq!(c.main.status(JobKind::Lyap).id, 0);
 }
 
 #[test]
@@ -579,7 +583,13 @@ fn a_link_with_a_pinned_state_computes_both_and_pinning_keeps_a() {
             (1, JobKind::Bif)
         ]
     );
-    let a_id = c.pinned.as_ref().unwrap().comp.hbm.id;
+    let a_id = c
+        .pinned
+        .as_ref()
+        .unwrap()
+        .comp
+        .status(JobKind::HarmonicBalance)
+        .id;
     c.worker_message(1, &hbm_points(a_id, &[0.1, 1.0, 2.0], true, None), 5.0);
     let a = c.pinned.as_ref().unwrap();
     assert_eq!(a.comp.hbm.points.len(), 3);
@@ -613,7 +623,7 @@ fn a_link_with_a_pinned_state_computes_both_and_pinning_keeps_a() {
 fn pin_as_a_keeps_finished_results_while_b_changes() {
     let (mut c, _) = Controller::new("bif_points=2&bif_dir=up", 0.0);
     ready(&mut c);
-    let id = c.main.hbm.id;
+    let id = c.main.status(JobKind::HarmonicBalance).id;
     c.worker_message(1, &hbm_points(id, &[0.1, 2.0], true, None), 5.0);
     c.main.status_mut(JobKind::Bif).finished_ms = Some(6.0);
     let fx = c.pin_a(7.0);
@@ -698,7 +708,7 @@ fn views_without_data_say_why() {
             message: "no luck".into(),
         })
     };
-    c.worker_message(0, &failed(c.main.bif.id), 5.0);
+    c.worker_message(0, &failed(c.main.status(JobKind::Bif).id), 5.0);
     assert_eq!(
         c.placeholder(ViewId::Bif),
         Some("Not computed: no luck".into())
@@ -738,7 +748,7 @@ fn a_failure_leaves_the_messages_with_its_job() {
     c.worker_message(0, &failed(old, "late"), 7.0);
     assert!(c.issues.is_empty(), "{:?}", c.issues);
     // The harmonic balance's partial branch, likewise.
-    let hbm = c.main.hbm.id;
+    let hbm = c.main.status(JobKind::HarmonicBalance).id;
     c.worker_message(
         1,
         &encode(&FromWorker::HbmPoints {

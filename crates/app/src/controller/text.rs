@@ -147,7 +147,7 @@ impl Controller {
                     .as_ref()
                     .map_or_else(|| "Waiting for the Web Workers…".to_string(), not_computed)
             }),
-            ViewId::Lyap if self.main.lyap.id == 0 => Some(
+            ViewId::Lyap if !self.settings.view.lyap_on() => Some(
                 "Off: set Lyapunov Ω points above 0 (Regime map and Lyapunov exponent).".into(),
             ),
             ViewId::Lyap => st

@@ -61,7 +61,9 @@ impl Page {
             Some(message) => {
                 // No plot, no frame to map clicks with (the Lyapunov curve
                 // drops its frame only when switched off).
-                if view == ViewId::Time || (view == ViewId::Lyap && self.ctl.main().lyap.id == 0) {
+                if view == ViewId::Time
+                    || (view == ViewId::Lyap && !self.ctl.settings().view.lyap_on())
+                {
                     self.set_frame(view, None);
                 }
                 plots::draw_message(root, view.spec().title, &message)

@@ -31,7 +31,7 @@ pub struct Computation {
     pub hbm: HbmStore,
     /// The last complete branch, shown faded while a new one computes.
     pub hbm_previous: Option<HbmStore>,
-    /// The time-integration overlay's points (`kinds/overlay.rs`; id 0: off).
+    /// The time-integration overlay's points (`kinds/overlay.rs`; empty when off).
     pub overlay: FrStore,
     /// The bifurcation sweep's points (`kinds/bif.rs`).
     pub bif: BifStore,
@@ -45,11 +45,12 @@ pub struct Computation {
     pub map: MapStore,
     /// The Lyapunov curve's points (`kinds/lyap.rs`).
     pub lyap: LyapStore,
-    /// The shooting branches' points (`kinds/orbits.rs`; id 0: off).
+    /// The shooting branches' points (`kinds/orbits.rs`; empty when off).
     pub orbits: OrbitStore,
-    /// The map's traced boundaries (`kinds/boundaries.rs`; id 0: off).
+    /// The map's traced boundaries (`kinds/boundaries.rs`; empty when off).
     pub boundaries: BoundaryStore,
-    /// Each kind's job status, by [`JobKind::slot`].
+    /// Each kind's job status, by [`JobKind::slot`]: the one place a
+    /// job's id is kept (the stores hold data only).
     status: [JobStatus; JobKind::COUNT],
 }
 

@@ -43,8 +43,8 @@ fn sweep_point(index: u32) -> BifSample {
 /// A computation whose branch is job `hbm` and sweep job `bif` (2 points).
 fn computation(hbm: u64, bif: u64) -> Computation {
     let mut c = Computation {
-        hbm: HbmStore::new(hbm, 5),
-        bif: BifStore::new(bif, 2),
+        hbm: HbmStore::new(5),
+        bif: BifStore::new(2),
         ..Computation::default()
     };
     *c.status_mut(JobKind::HarmonicBalance) = JobStatus::start(hbm, 0.0, 100);

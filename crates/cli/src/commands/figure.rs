@@ -291,7 +291,6 @@ fn frf_panels(
             failures.push(format!("{}: {e}", m.query));
         }
         stores.push(figures::views::fr::HbmStore {
-            id: i as u64 + 1,
             harmonics: v.harmonics,
             points: branch.iter().map(worker::jobs::hbm::hbm_sample).collect(),
             progress: c.progress(),

@@ -446,7 +446,7 @@ mod tests {
             value_to: 60.0,
             value_points: 3,
         };
-        let mut store = MapStore::new(1, grid, String::new());
+        let mut store = MapStore::new(grid, String::new());
         store.add(vec![MapSample {
             row: 1,
             column: 2,
@@ -486,7 +486,6 @@ mod tests {
         assert!((om - 1.05).abs() < 1e-9);
 
         let lyap = LyapStore {
-            id: 1,
             linear: false,
             points: vec![
                 LyapSample {

@@ -470,7 +470,6 @@ fn every_key_is_under_its_chart_never_over_the_data() {
     );
 
     let lyap = crate::views::lyap::LyapStore {
-        id: 1,
         linear: false,
         points: [(0.5, -0.4), (1.0, 0.1), (1.5, 0.001)]
             .iter()

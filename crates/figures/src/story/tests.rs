@@ -33,7 +33,7 @@ fn verdicts() -> Vec<Motion> {
 /// Poincaré key, a family panel's title and the bifurcation diagram's
 /// text alternative.
 fn texts(r: &OmegaResult) -> Vec<String> {
-    let mut bif = crate::views::bif::BifStore::new(1, 1).view(
+    let mut bif = crate::views::bif::BifStore::new(1).view(
         Some(0),
         &[r.backlash_um],
         &crate::views::test_support::ctx(),

@@ -66,8 +66,6 @@ pub struct BifView {
 /// Bifurcation points as they arrive from both workers, for one job.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct BifStore {
-    /// The job.
-    pub id: u64,
     /// Samples in arrival order.
     pub samples: Vec<BifSample>,
     /// Swept points in all (both shards).
@@ -76,9 +74,8 @@ pub struct BifStore {
 
 impl BifStore {
     /// An empty store for a new job.
-    pub fn new(id: u64, total: usize) -> Self {
+    pub fn new(total: usize) -> Self {
         BifStore {
-            id,
             samples: Vec::new(),
             total,
         }
@@ -161,7 +158,7 @@ mod tests {
 
     #[test]
     fn bif_store_flattens_poincare_samples() {
-        let mut st = BifStore::new(3, 4);
+        let mut st = BifStore::new(4);
         st.samples.push(BifSample {
             index: 0,
             omega: 0.5,

@@ -37,8 +37,6 @@ pub const MARGIN: f64 = 0.5;
 /// The traced boundaries as they arrive, for one job.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct BoundaryStore {
-    /// The job (0: none).
-    pub id: u64,
     /// The curves, in the order they were finished.
     pub curves: Vec<BoundaryCurve>,
     /// The cusps: `(omega, value)`.
@@ -53,9 +51,8 @@ pub struct BoundaryStore {
 
 impl BoundaryStore {
     /// An empty store for a new job.
-    pub fn new(id: u64, signature: String) -> Self {
+    pub fn new(signature: String) -> Self {
         BoundaryStore {
-            id,
             signature,
             ..BoundaryStore::default()
         }

@@ -233,8 +233,6 @@ pub struct FrView {
 /// The harmonic-balance branch as it arrives, for one job.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct HbmStore {
-    /// The job these points belong to.
-    pub id: u64,
     /// Harmonics of the job.
     pub harmonics: u32,
     /// Points in continuation order.
@@ -251,9 +249,8 @@ pub struct HbmStore {
 
 impl HbmStore {
     /// An empty store for a new job.
-    pub fn new(id: u64, harmonics: u32) -> Self {
+    pub fn new(harmonics: u32) -> Self {
         HbmStore {
-            id,
             harmonics,
             ..HbmStore::default()
         }
@@ -316,8 +313,6 @@ impl HbmStore {
 /// Frequency-response points as they arrive, for one job.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct FrStore {
-    /// The job these points belong to.
-    pub id: u64,
     /// One slot per grid point.
     pub points: Vec<Option<FrSample>>,
     /// Periods used.
@@ -343,9 +338,8 @@ fn pick<T>(items: &[T], mesh: Option<usize>, size: impl Fn(&T) -> f64) -> Option
 
 impl FrStore {
     /// An empty store for a new job over `points` grid points.
-    pub fn new(id: u64, points: u32, transient_periods: u32, record_periods: u32) -> Self {
+    pub fn new(points: u32, transient_periods: u32, record_periods: u32) -> Self {
         FrStore {
-            id,
             points: vec![None; points as usize],
             transient_periods,
             record_periods,
@@ -382,7 +376,6 @@ impl FrStore {
             })
             .collect();
         FrStore {
-            id: 0,
             points,
             transient_periods,
             record_periods,

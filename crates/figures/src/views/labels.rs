@@ -318,7 +318,7 @@ mod tests {
     /// when the data does.
     #[test]
     fn the_frequency_response_label_says_what_the_plot_shows() {
-        let mut st = HbmStore::new(1, 5);
+        let mut st = HbmStore::new(5);
         st.add(
             vec![
                 point(0.1, 100.0, Regime::NoImpact, true),
@@ -346,7 +346,7 @@ mod tests {
         let v2 = fr_view(&more, None, None, Some(0), &[100.0], &ctx());
         assert_ne!(fr_label(&v2), text);
         assert!(fr_label(&v2).contains("peak 300 µm at Ω 2"));
-        let empty = fr_view(&HbmStore::new(2, 5), None, None, Some(0), &[], &ctx());
+        let empty = fr_view(&HbmStore::new(5), None, None, Some(0), &[], &ctx());
         assert_eq!(fr_label(&empty), "Frequency response of s1a1: computing.");
     }
 

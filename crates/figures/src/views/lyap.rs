@@ -7,8 +7,6 @@ use crate::protocol::LyapSample;
 /// Lyapunov points as they arrive from both chains, for one job.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct LyapStore {
-    /// The job (0: none, or the curve is off).
-    pub id: u64,
     /// Points in arrival order.
     pub points: Vec<LyapSample>,
     /// Points in all.
@@ -22,9 +20,8 @@ pub struct LyapStore {
 
 impl LyapStore {
     /// An empty store for a new job.
-    pub fn new(id: u64, total: usize, periods: u32) -> Self {
+    pub fn new(total: usize, periods: u32) -> Self {
         LyapStore {
-            id,
             points: Vec::new(),
             total,
             periods,
@@ -163,7 +160,7 @@ mod tests {
 
     #[test]
     fn exports_match_the_cli_formats() {
-        let mut l = LyapStore::new(3, 2, 100);
+        let mut l = LyapStore::new(2, 100);
         l.points.push(LyapSample {
             index: 0,
             omega: 0.5,

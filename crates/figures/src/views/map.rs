@@ -134,8 +134,6 @@ pub fn key_label(key: &str) -> &'static str {
 /// Map cells as they arrive, for one job.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct MapStore {
-    /// The job (0: none).
-    pub id: u64,
     /// Its grid.
     pub grid: Option<MapGrid>,
     /// Cells, row-major (`row * omega_points + column`).
@@ -148,10 +146,9 @@ pub struct MapStore {
 
 impl MapStore {
     /// An empty store for a new job.
-    pub fn new(id: u64, grid: MapGrid, signature: String) -> Self {
+    pub fn new(grid: MapGrid, signature: String) -> Self {
         let n = grid.cells();
         MapStore {
-            id,
             grid: Some(grid),
             cells: vec![None; n],
             done: 0,
@@ -348,7 +345,7 @@ mod tests {
 
     #[test]
     fn the_store_counts_regimes_once_per_cell() {
-        let mut s = MapStore::new(7, grid(), "sig".into());
+        let mut s = MapStore::new(grid(), "sig".into());
         let cell = crate::views::test_support::map_cell;
         s.add(vec![
             cell(0, 0, Regime::NoImpact, Some(1)),
@@ -365,7 +362,7 @@ mod tests {
 
     #[test]
     fn exports_match_the_cli_formats() {
-        let mut s = MapStore::new(7, grid(), "sig".into());
+        let mut s = MapStore::new(grid(), "sig".into());
         s.add(vec![
             MapSample {
                 row: 1,

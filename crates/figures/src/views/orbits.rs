@@ -10,8 +10,6 @@ use crate::protocol::OrbitSample;
 /// The continuation's points as they arrive, for one job.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct OrbitStore {
-    /// The job (0: off).
-    pub id: u64,
     /// Points in continuation order.
     pub points: Vec<OrbitSample>,
     /// Every branch has ended.
@@ -44,14 +42,6 @@ pub struct OrbitMarker {
 }
 
 impl OrbitStore {
-    /// An empty store for job `id`.
-    pub fn new(id: u64) -> Self {
-        OrbitStore {
-            id,
-            ..OrbitStore::default()
-        }
-    }
-
     /// The lines of mesh `mesh`: each branch (piece) cut where its
     /// stability changes, one line per sample index; a stretch shares its
     /// end point with the next, so the branch is drawn unbroken.
@@ -131,15 +121,17 @@ mod tests {
     /// two lines, and a change of stability leaves no gap.
     #[test]
     fn lines_follow_stability_and_branches() {
-        let mut st = OrbitStore::new(1);
-        st.points = vec![
-            sample(0.1, 1, true, 0),
-            sample(0.2, 1, true, 0),
-            sample(0.3, 1, false, 0),
-            sample(0.4, 1, false, 0),
-            sample(0.35, 2, true, 1),
-            sample(0.45, 2, true, 1),
-        ];
+        let mut st = OrbitStore {
+            points: vec![
+                sample(0.1, 1, true, 0),
+                sample(0.2, 1, true, 0),
+                sample(0.3, 1, false, 0),
+                sample(0.4, 1, false, 0),
+                sample(0.35, 2, true, 1),
+                sample(0.45, 2, true, 1),
+            ],
+            ..OrbitStore::default()
+        };
         st.points[2].bifurcation = Some(BranchBif::PeriodDoubling);
         let lines = st.lines(0);
         assert_eq!(lines.len(), 4, "{lines:?}");

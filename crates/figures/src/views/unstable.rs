@@ -291,7 +291,7 @@ mod tests {
     /// they are coming; a branch stable everywhere gets none.
     #[test]
     fn the_plot_says_where_no_periodic_motion_is_stable() {
-        let mut st = HbmStore::new(1, 5);
+        let mut st = HbmStore::new(5);
         st.add(
             vec![
                 hbm_point(0.1, &[(80.0, 120.0)], true),
@@ -309,7 +309,7 @@ mod tests {
             unstable_sentence(&v).as_deref(),
             Some("No stable orbit on the branch between Ω 0.45 and 1.7: the actual response (time integration) is being computed.")
         );
-        let mut ti = FrStore::new(2, 1, 300, 30);
+        let mut ti = FrStore::new(1, 300, 30);
         ti.add(vec![FrSample {
             index: 0,
             omega: 1.2,
@@ -322,7 +322,7 @@ mod tests {
             unstable_sentence(&v).as_deref(),
             Some("No stable orbit on the branch between Ω 0.45 and 1.7: the dots are the actual response.")
         );
-        let mut ok = HbmStore::new(1, 5);
+        let mut ok = HbmStore::new(5);
         ok.add(
             vec![
                 hbm_point(0.1, &[(1.0, 2.0)], true),

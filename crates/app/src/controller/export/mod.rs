@@ -103,7 +103,7 @@ impl Controller {
             ViewId::Map => {
                 let mut j = figures::views::map::map_json(&self.main.map);
                 // The traced boundaries, when they are on.
-                if self.main.boundaries.id != 0 {
+                if self.settings.view.boundaries {
                     let names = self.mesh_names();
                     if let Some(o) = j.as_object_mut() {
                         o.insert(
@@ -214,7 +214,7 @@ impl Controller {
             return Err(ExportError::SweepRunning);
         }
         let (mesh, _) = self.mesh_and_backlash();
-        let id = self.main.bif.id;
+        let id = self.main.bif_status().id;
         let chains = chain_count(self.settings.view.bif_points);
         let holders: Vec<usize> = (1..self.workers())
             .filter(|&w| self.chains_on(w, chains) > 0)

@@ -6,7 +6,7 @@
 use super::{chain_count, FeedCx, Kind, StartCx, StatusKey};
 use crate::store::status::{Dirty, JobStatus};
 use crate::store::{Computation, Fed};
-use figures::protocol::{FromWorker, JobId, JobKind, JobSpec, KindSet};
+use figures::protocol::{FromWorker, JobKind, JobSpec, KindSet};
 use figures::settings::ViewOptions;
 use figures::views::bif::BifStore;
 
@@ -47,8 +47,8 @@ impl Kind for Bif {
         bif_total(cx.view())
     }
 
-    fn begin(&self, c: &mut Computation, id: JobId, total: usize, _cx: &StartCx) {
-        c.bif = BifStore::new(id, total);
+    fn begin(&self, c: &mut Computation, total: usize, _cx: &StartCx) {
+        c.bif = BifStore::new(total);
     }
 
     fn spec(&self, cx: &StartCx, chains: u32, shard: u32) -> JobSpec {
@@ -78,7 +78,9 @@ impl Kind for Bif {
         fed: &mut Fed,
     ) -> bool {
         match msg {
-            FromWorker::Bands { id, bands, error } if super::ours(*id, c.bif.id) => {
+            FromWorker::Bands { id, bands, error }
+                if super::ours(*id, c.status(JobKind::Bif).id) =>
+            {
                 if *bands != c.bands {
                     c.bands = bands.clone();
                     dirty.data(JobKind::Bif);
@@ -90,7 +92,7 @@ impl Kind for Bif {
                 }
                 true
             }
-            FromWorker::BifPoints { id, points } if super::ours(*id, c.bif.id) => {
+            FromWorker::BifPoints { id, points } if super::ours(*id, c.status(JobKind::Bif).id) => {
                 let before = c.bif.samples.len();
                 c.bif.samples.extend(points.iter().cloned());
                 let after = c.bif.samples.len();
@@ -102,7 +104,7 @@ impl Kind for Bif {
                 // more than a sweep point's message).
                 let tenth = (c.bif.total / 10).max(1);
                 let batch = before / tenth != after / tenth || after >= c.bif.total;
-                if c.overlay.id == 0 && batch {
+                if c.status(JobKind::Overlay).id == 0 && batch {
                     dirty.data(self.also_shown_as());
                 }
                 true

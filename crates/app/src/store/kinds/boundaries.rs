@@ -6,7 +6,7 @@
 use super::{FeedCx, Kind, Pool, StartCx, StatusKey};
 use crate::store::status::{Dirty, JobStatus};
 use crate::store::{Computation, Fed};
-use figures::protocol::{FromWorker, JobId, JobKind, JobSpec, Target};
+use figures::protocol::{FromWorker, JobKind, JobSpec, Target};
 use figures::views::boundaries::{BoundaryStore, BOUNDARY_LEVELS, BOUNDARY_POINTS};
 
 pub(super) struct Boundaries;
@@ -43,8 +43,8 @@ impl Kind for Boundaries {
         1000
     }
 
-    fn begin(&self, c: &mut Computation, id: JobId, _total: usize, cx: &StartCx) {
-        c.boundaries = BoundaryStore::new(id, cx.boundaries_signature.clone());
+    fn begin(&self, c: &mut Computation, _total: usize, cx: &StartCx) {
+        c.boundaries = BoundaryStore::new(cx.boundaries_signature.clone());
     }
 
     fn clear(&self, c: &mut Computation) {
@@ -94,7 +94,7 @@ impl Kind for Boundaries {
         else {
             return false;
         };
-        if !super::ours(*id, c.boundaries.id) {
+        if !super::ours(*id, c.status(JobKind::Boundaries).id) {
             return false;
         }
         let b = &mut c.boundaries;

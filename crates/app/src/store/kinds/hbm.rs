@@ -6,7 +6,7 @@
 use super::{FeedCx, Kind, Pool, StartCx, StatusKey};
 use crate::store::status::{Dirty, JobStatus};
 use crate::store::{Computation, Fed};
-use figures::protocol::{FromWorker, JobId, JobKind, JobSpec, Target};
+use figures::protocol::{FromWorker, JobKind, JobSpec, Target};
 use figures::views::fr::HbmStore;
 
 pub(super) struct HarmonicBalance;
@@ -35,13 +35,13 @@ impl Kind for HarmonicBalance {
         100
     }
 
-    fn begin(&self, c: &mut Computation, id: JobId, _total: usize, cx: &StartCx) {
+    fn begin(&self, c: &mut Computation, _total: usize, cx: &StartCx) {
         // Keep the last complete branch (not a half-computed one) to fade
         // under the new one while it computes.
         if cx.main && c.hbm.is_complete() {
             c.hbm_previous = Some(std::mem::take(&mut c.hbm));
         }
-        c.hbm = HbmStore::new(id, cx.view().harmonics);
+        c.hbm = HbmStore::new(cx.view().harmonics);
     }
 
     fn spec(&self, cx: &StartCx, _chains: u32, _shard: u32) -> JobSpec {
@@ -84,7 +84,7 @@ impl Kind for HarmonicBalance {
         else {
             return false;
         };
-        if !super::ours(*id, c.hbm.id) {
+        if !super::ours(*id, c.status(JobKind::HarmonicBalance).id) {
             return false;
         }
         c.hbm

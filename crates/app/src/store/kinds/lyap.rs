@@ -4,7 +4,7 @@
 use super::{chain_count, FeedCx, Kind, StartCx, StatusKey};
 use crate::store::status::{Dirty, JobStatus};
 use crate::store::{Computation, Fed};
-use figures::protocol::{FromWorker, JobId, JobKind, JobSpec};
+use figures::protocol::{FromWorker, JobKind, JobSpec};
 use figures::views::lyap::LyapStore;
 
 pub(super) struct Lyap;
@@ -22,8 +22,8 @@ impl Kind for Lyap {
     }
 
     fn shards(&self, cx: &StartCx) -> Option<u32> {
-        let points = cx.view().lyap_points;
-        (points >= 2).then(|| chain_count(points))
+        let v = cx.view();
+        v.lyap_on().then(|| chain_count(v.lyap_points))
     }
 
     fn status_key(&self) -> StatusKey {
@@ -34,8 +34,8 @@ impl Kind for Lyap {
         cx.view().lyap_points as usize
     }
 
-    fn begin(&self, c: &mut Computation, id: JobId, total: usize, cx: &StartCx) {
-        c.lyap = LyapStore::new(id, total, cx.view().lyap_periods);
+    fn begin(&self, c: &mut Computation, total: usize, cx: &StartCx) {
+        c.lyap = LyapStore::new(total, cx.view().lyap_periods);
         c.lyap.linear = cx.model.is_linear();
     }
 
@@ -67,7 +67,7 @@ impl Kind for Lyap {
         let FromWorker::LyapPoints { id, points } = msg else {
             return false;
         };
-        if !super::ours(*id, c.lyap.id) {
+        if !super::ours(*id, c.status(JobKind::Lyap).id) {
             return false;
         }
         c.lyap.points.extend(points.iter().cloned());

@@ -5,7 +5,7 @@
 use super::{FeedCx, Kind, StartCx, StatusKey};
 use crate::store::status::{Dirty, JobStatus};
 use crate::store::{Computation, Fed};
-use figures::protocol::{FromWorker, JobId, JobKind, JobSpec, RunOptions};
+use figures::protocol::{FromWorker, JobKind, JobSpec, RunOptions};
 use figures::views::map::MapStore;
 
 pub(super) struct Map;
@@ -38,8 +38,8 @@ impl Kind for Map {
         cx.grid.cells()
     }
 
-    fn begin(&self, c: &mut Computation, id: JobId, _total: usize, cx: &StartCx) {
-        c.map = MapStore::new(id, cx.grid.clone(), cx.map_signature.clone());
+    fn begin(&self, c: &mut Computation, _total: usize, cx: &StartCx) {
+        c.map = MapStore::new(cx.grid.clone(), cx.map_signature.clone());
     }
 
     fn spec(&self, cx: &StartCx, chains: u32, shard: u32) -> JobSpec {
@@ -73,7 +73,7 @@ impl Kind for Map {
         let FromWorker::MapCells { id, cells } = msg else {
             return false;
         };
-        if !super::ours(*id, c.map.id) {
+        if !super::ours(*id, c.status(JobKind::Map).id) {
             return false;
         }
         c.map.add(cells.clone());

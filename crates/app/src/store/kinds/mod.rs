@@ -126,8 +126,8 @@ pub trait Kind: Sync {
     /// The units of the job's progress.
     fn total(&self, cx: &StartCx) -> usize;
 
-    /// Starts the kind's store in `c` for job `id` of `total` units.
-    fn begin(&self, c: &mut Computation, id: JobId, total: usize, cx: &StartCx);
+    /// Starts the kind's store in `c` for a new job of `total` units.
+    fn begin(&self, c: &mut Computation, total: usize, cx: &StartCx);
 
     /// Clears the kind's store when it is switched off.
     fn clear(&self, _c: &mut Computation) {}

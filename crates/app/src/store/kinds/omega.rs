@@ -5,7 +5,7 @@
 use super::{FeedCx, Kind, Pool, StartCx, StatusKey};
 use crate::store::status::{Dirty, JobStatus};
 use crate::store::{Computation, Fed};
-use figures::protocol::{FromWorker, JobId, JobKind, JobSpec, Target};
+use figures::protocol::{FromWorker, JobKind, JobSpec, Target};
 use worker::jobs::omega::selected_spec;
 
 pub(super) struct Omega;
@@ -34,7 +34,7 @@ impl Kind for Omega {
         1
     }
 
-    fn begin(&self, c: &mut Computation, _id: JobId, _total: usize, cx: &StartCx) {
+    fn begin(&self, c: &mut Computation, _total: usize, cx: &StartCx) {
         // A member's panel waits for its own result.
         if !cx.main {
             c.omega = None;

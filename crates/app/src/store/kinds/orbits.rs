@@ -5,7 +5,7 @@
 use super::{FeedCx, Kind, StartCx, StatusKey};
 use crate::store::status::Dirty;
 use crate::store::{Computation, Fed};
-use figures::protocol::{FromWorker, JobId, JobKind, JobSpec};
+use figures::protocol::{FromWorker, JobKind, JobSpec};
 use figures::views::orbits::OrbitStore;
 
 pub(super) struct Orbits;
@@ -27,8 +27,8 @@ impl Kind for Orbits {
         worker::jobs::orbits::MAX_ORBIT_POINTS
     }
 
-    fn begin(&self, c: &mut Computation, id: JobId, _total: usize, _cx: &StartCx) {
-        c.orbits = OrbitStore::new(id);
+    fn begin(&self, c: &mut Computation, _total: usize, _cx: &StartCx) {
+        c.orbits = OrbitStore::default();
     }
 
     fn clear(&self, c: &mut Computation) {
@@ -61,7 +61,7 @@ impl Kind for Orbits {
         else {
             return false;
         };
-        if !super::ours(*id, c.orbits.id) {
+        if !super::ours(*id, c.status(JobKind::Orbits).id) {
             return false;
         }
         c.orbits.points.extend(points.iter().cloned());

@@ -5,7 +5,7 @@
 use super::{chain_count, FeedCx, Kind, StartCx, StatusKey};
 use crate::store::status::Dirty;
 use crate::store::{Computation, Fed};
-use figures::protocol::{FromWorker, JobId, JobKind, JobSpec};
+use figures::protocol::{FromWorker, JobKind, JobSpec};
 use figures::views::fr::FrStore;
 
 pub(super) struct Overlay;
@@ -16,8 +16,8 @@ impl Kind for Overlay {
     }
 
     fn shards(&self, cx: &StartCx) -> Option<u32> {
-        let points = cx.view().fr_ti_points;
-        (points > 0).then(|| chain_count(points))
+        let v = cx.view();
+        v.overlay_on().then(|| chain_count(v.fr_ti_points))
     }
 
     fn status_key(&self) -> StatusKey {
@@ -28,9 +28,9 @@ impl Kind for Overlay {
         cx.view().fr_ti_points as usize
     }
 
-    fn begin(&self, c: &mut Computation, id: JobId, _total: usize, cx: &StartCx) {
+    fn begin(&self, c: &mut Computation, _total: usize, cx: &StartCx) {
         let v = cx.view();
-        c.overlay = FrStore::new(id, v.fr_ti_points, v.transient_periods, v.fr_record_periods);
+        c.overlay = FrStore::new(v.fr_ti_points, v.transient_periods, v.fr_record_periods);
     }
 
     fn clear(&self, c: &mut Computation) {
@@ -60,7 +60,7 @@ impl Kind for Overlay {
         let FromWorker::OverlayPoints { id, points } = msg else {
             return false;
         };
-        if !super::ours(*id, c.overlay.id) {
+        if !super::ours(*id, c.status(JobKind::Overlay).id) {
             return false;
         }
         c.overlay.add(points.clone());

@@ -151,7 +151,7 @@ pub(crate) fn run(args: &FigureArgs) -> Result<Value, Failure> {
         "cells and per mille of the boundaries",
         false,
     );
-    let mut store = MapStore::new(1, grid.clone(), String::new());
+    let mut store = MapStore::new(grid.clone(), String::new());
     while !map.is_finished() {
         let new: Vec<MapSample> = map.advance(1).into_iter().map(MapSample::from).collect();
         store.add(new);
@@ -168,7 +168,6 @@ pub(crate) fn run(args: &FigureArgs) -> Result<Value, Failure> {
             bar.update(store.done + (1000.0 * trace.progress()) as usize);
         }
         BoundaryStore {
-            id: 1,
             curves: trace.curves().iter().map(BoundaryCurve::from).collect(),
             cusps: trace.cusps().iter().map(|c| (c.omega, c.value)).collect(),
             notes: trace.notes().to_vec(),
@@ -177,7 +176,6 @@ pub(crate) fn run(args: &FigureArgs) -> Result<Value, Failure> {
         }
     } else {
         BoundaryStore {
-            id: 1,
             curves: Vec::new(),
             cusps: Vec::new(),
             notes: vec!["The link says boundaries=off: no boundary was traced.".to_string()],

@@ -32,7 +32,7 @@ fn vertical(kind: BoundaryKind, v0: f64, v1: f64) -> BoundaryCurve {
 /// Every cell computed: double-sided beyond Omega 1.0, single-sided below,
 /// except the cells listed as double-sided.
 fn store(g: &MapGrid, planted: &[(u32, u32)]) -> MapStore {
-    let mut s = MapStore::new(1, g.clone(), String::new());
+    let mut s = MapStore::new(g.clone(), String::new());
     let mut cells = Vec::new();
     for r in 0..g.value_points {
         for c in 0..g.omega_points {
@@ -115,7 +115,7 @@ fn a_click_picks_the_nearest_curve_point_within_the_tolerance() {
 
 #[test]
 fn the_map_of_one_mesh_shows_that_meshs_contact_curves_and_every_jump() {
-    let mut s = BoundaryStore::new(1, String::new());
+    let mut s = BoundaryStore::new(String::new());
     let mut other = vertical(BoundaryKind::DriveFlanksPart, 0.0, 1.0);
     other.mesh = Some(3);
     let mut fold = vertical(BoundaryKind::Fold, 0.0, 1.0);

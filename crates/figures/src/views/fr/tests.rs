@@ -7,7 +7,7 @@ use crate::views::test_support::{ctx, ext, hbm_point};
 fn a_restarted_branch_is_not_joined_across_its_pieces() {
     // Piece 0 runs up from 0.5 to 1.0; the restart (piece 1) comes down
     // from 2.0 to 1.5. Nothing lies between 1.0 and 1.5.
-    let mut st = HbmStore::new(1, 5);
+    let mut st = HbmStore::new(5);
     let mut pts: Vec<HbmSample> = [0.5, 1.0, 2.0, 1.5]
         .iter()
         .map(|&o| hbm_point(o, &[(80.0, 120.0)], true))
@@ -42,7 +42,7 @@ fn a_restarted_branch_is_not_joined_across_its_pieces() {
 
 #[test]
 fn fr_store_orders_by_grid_and_picks_meshes() {
-    let mut st = FrStore::new(1, 3, 300, 30);
+    let mut st = FrStore::new(3, 300, 30);
     st.add(vec![FrSample {
         index: 2,
         omega: 2.0,
@@ -74,7 +74,7 @@ fn fr_store_orders_by_grid_and_picks_meshes() {
 
 #[test]
 fn hbm_branch_with_markers_partial_failure_and_overlay() {
-    let mut st = HbmStore::new(4, 5);
+    let mut st = HbmStore::new(5);
     let mut p1 = hbm_point(0.5, &[(80.0, 120.0), (90.0, 100.0)], true);
     let mut p2 = hbm_point(1.0, &[(60.0, 140.0), (50.0, 200.0)], false);
     p2.bifurcation = Some(BranchBif::Fold);
@@ -83,7 +83,7 @@ fn hbm_branch_with_markers_partial_failure_and_overlay() {
     let tail = hbm_point(1.5, &[(80.0, 120.0), (90.0, 100.0)], true);
     st.add(vec![tail], 0.7, true, Some("did not converge".into()));
     assert!(st.finished && !st.is_complete());
-    let mut ti = FrStore::new(2, 2, 300, 30);
+    let mut ti = FrStore::new(2, 300, 30);
     ti.add(vec![
         FrSample {
             index: 0,
