@@ -150,7 +150,7 @@ impl SpeedAxis {
     /// A speed for the reader: "Ω = 0.350" or "1 234 rpm (Ω 0.350)".
     pub fn text(&self, omega: f64) -> String {
         match self.rpm_scale() {
-            Some(s) => format!("{} rpm (Ω {omega:.3})", rpm_text(s.rpm(omega))),
+            Some(s) => format!("{} rpm (Ω {omega:.3})", grouped(s.rpm(omega))),
             None => format!("Ω = {omega:.3}"),
         }
     }
@@ -162,8 +162,8 @@ impl SpeedAxis {
             Some(s) => format!(
                 "Ω {omega:.4}: {} at {} rpm, mesh frequency {} Hz",
                 s.input(),
-                rpm_text(s.rpm(omega)),
-                rpm_text(s.mesh_hz(omega))
+                grouped(s.rpm(omega)),
+                grouped(s.mesh_hz(omega))
             ),
             None => format!("Ω {omega:.4}"),
         }
@@ -179,33 +179,33 @@ impl SpeedAxis {
     }
 }
 
-fn capital(s: &str) -> String {
+/// `s` with its first letter in upper case ("Sun s1").
+pub fn capital(s: &str) -> String {
     let mut c = s.chars();
     c.next()
         .map_or(String::new(), |f| f.to_uppercase().chain(c).collect())
 }
 
-/// A speed or frequency in words: a whole number with its thousands set
-/// apart by a no-break space ("12 345"), one decimal under 100.
-pub fn rpm_text(x: f64) -> String {
-    if !x.is_finite() {
-        return "-".into();
+/// `x` rounded to a whole number, its thousands set apart by a no-break
+/// space as people write them ("1 257"): a speed in rpm, a frequency in Hz.
+pub fn grouped(x: f64) -> String {
+    let n = x.round();
+    if !n.is_finite() {
+        return format!("{x}");
     }
-    if x.abs() < 100.0 && (x - x.round()).abs() > 1e-6 {
-        return format!("{x:.1}");
-    }
-    let whole = format!("{:.0}", x.abs());
+    let digits = format!("{}", n.abs() as u64);
     let mut out = String::new();
-    for (i, ch) in whole.chars().enumerate() {
-        if i > 0 && (whole.len() - i) % 3 == 0 {
+    for (i, ch) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i) % 3 == 0 {
             out.push('\u{a0}');
         }
         out.push(ch);
     }
-    if x < 0.0 && whole != "0" {
-        out.insert(0, '−');
+    if n < 0.0 {
+        format!("-{out}")
+    } else {
+        out
     }
-    out
 }
 
 /// A CSV with an `omega` column as the rpm axis exports it: a column of
@@ -303,11 +303,10 @@ mod tests {
 
     #[test]
     fn speeds_are_written_with_their_thousands_apart() {
-        assert_eq!(rpm_text(12_345.4), "12\u{a0}345");
-        assert_eq!(rpm_text(999.6), "1\u{a0}000");
-        assert_eq!(rpm_text(3000.0), "3\u{a0}000");
-        assert_eq!(rpm_text(12.25), "12.2");
-        assert_eq!(rpm_text(0.0), "0");
+        assert_eq!(grouped(12_345.4), "12\u{a0}345");
+        assert_eq!(grouped(999.6), "1\u{a0}000");
+        assert_eq!(grouped(3000.0), "3\u{a0}000");
+        assert_eq!(grouped(0.0), "0");
     }
 
     /// The rpm column is Ω times rpm per Ω, computed here by hand from the

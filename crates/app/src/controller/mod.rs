@@ -296,8 +296,9 @@ impl Controller {
             // The sweeps' views share the mesh and the range: they are
             // redrawn even without new data; the axes of x are every view's.
             self.dirty.data(KindSet::ALL.without(JobKind::Omega.set()));
-            if key == "clearance" {
+            if key == "clearance" || key == "axis" {
                 self.dirty.data(JobKind::Omega);
+                self.dirty.controls |= key == "axis";
             }
             self.dirty.url = true;
             return Ok(self.restart(row.restarts, now_ms));
@@ -334,7 +335,7 @@ impl Controller {
 
     /// Moves the selected Omega (clicks and drags on the Omega axes).
     pub fn select_omega(&mut self, omega: f64, now_ms: f64) -> Vec<Effect> {
-        let omega = (omega * 1e4).round() / 1e4;
+        let omega = self.rounded_selection(omega);
         let text = figures::settings::fmt_exact(omega);
         match self.set_key("omega", &text, now_ms) {
             Ok(fx) => {
@@ -420,6 +421,7 @@ impl Controller {
             cusps: self.main.boundaries.cusps.clone(),
             disagree,
             picked,
+            speed: self.speed_axis(),
         }
     }
 
@@ -486,6 +488,7 @@ impl Controller {
                 .as_ref()
                 .map(|m| natural_in_range(m, v.omega_from, v.omega_to))
                 .unwrap_or_default(),
+            speed: self.speed_axis(),
         }
     }
 
@@ -607,14 +610,6 @@ impl Controller {
         self.pinned
             .as_ref()
             .map(|p| link::ab_difference(&p.settings, &self.settings, 3))
-    }
-
-    /// The method of `ViewId::Fr` in words.
-    pub fn fr_method(&self) -> String {
-        FrSource::Hbm {
-            harmonics: self.main.hbm.harmonics,
-        }
-        .label()
     }
 
     /// The bifurcation view.
@@ -780,6 +775,7 @@ impl Controller {
 mod boundaries;
 pub(crate) mod campbell;
 mod export;
+mod speed;
 mod text;
 pub use export::{ExportError, Format};
 mod members;

@@ -5,6 +5,14 @@
 use super::*;
 
 impl Controller {
+    /// The method of `ViewId::Fr` in words.
+    pub fn fr_method(&self) -> String {
+        FrSource::Hbm {
+            harmonics: self.main.hbm.harmonics,
+        }
+        .label()
+    }
+
     /// The status of the job whose data `view` shows.
     pub fn view_status(&self, view: figures::views::ViewId) -> &JobStatus {
         self.main.status(view.spec().data)
@@ -54,7 +62,7 @@ impl Controller {
         let text = match (&self.main.omega, &self.main.status(JobKind::Omega).error) {
             (_, Some(e)) => format!("Not computed: {e}"),
             (Some(r), None) => {
-                let mut s = figures::views::omega::student_summary(r);
+                let mut s = figures::views::omega::student_summary_at(r, &self.speed_axis());
                 if let Some(more) = self.branch_agreement() {
                     s.push(' ');
                     s.push_str(&more);

@@ -195,6 +195,8 @@ pub struct Page {
     /// The mesh the schematic last highlighted, and the plotted mesh's
     /// options last written (the drop-down is rebuilt only when they change).
     schematic: (String, Vec<(String, String)>),
+    /// The speed axes' choices last written (they name the input member).
+    axis_options: Vec<(String, String)>,
     /// When the last input arrived (ms).
     last_input_ms: f64,
     /// The longest handling of one worker message (ms).
@@ -255,6 +257,7 @@ impl Page {
             ),
             family_shown: String::new(),
             schematic: (String::new(), Vec::new()),
+            axis_options: Vec::new(),
             last_input_ms: 0.0,
             max_message_ms: 0.0,
             max_frame_ms: 0.0,
@@ -411,7 +414,7 @@ impl Page {
                 let old = self.refused.remove(i);
                 self.ctl.withdraw(&old.message);
             }
-            let ok = match self.ctl.set_key(&key, &value, now_ms) {
+            let ok = match self.ctl.set_control(&key, &value, now_ms) {
                 Ok(more) => {
                     fx.extend(more);
                     true
@@ -527,6 +530,7 @@ impl Page {
                 hidden: warning.is_none(),
             });
             w.push(Write::text("validity", warning.unwrap_or_default()));
+            w.extend(self.speed_writes());
         }
         if d.jobs.contains(JobKind::Omega) {
             w.push(Write::text("summary", self.ctl.student_summary()));

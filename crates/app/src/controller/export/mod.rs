@@ -144,7 +144,7 @@ impl Controller {
         Ok(Effect::Download {
             name: self.file_name(view, None, ext),
             mime: mime.into(),
-            text,
+            text: self.with_speed(text, csv),
         })
     }
 

@@ -137,6 +137,7 @@ impl Controller {
                     range,
                     &natural,
                     v.omega,
+                    &self.speed_axis(),
                     status,
                 )?);
             }
