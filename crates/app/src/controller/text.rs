@@ -32,8 +32,14 @@ impl Controller {
             }
             JobKind::HarmonicBalance | JobKind::Overlay => labels::fr_label(&self.fr_view()),
             JobKind::Bif | JobKind::Orbits => labels::bif_label(&self.bif_view()),
-            JobKind::Map | JobKind::Boundaries => labels::map_label(&self.main.map),
-            JobKind::Lyap => labels::lyap_label(&self.main.lyap.curve(), self.main.lyap.linear),
+            JobKind::Map | JobKind::Boundaries => {
+                labels::map_label(&self.main.map, &self.speed_axis())
+            }
+            JobKind::Lyap => labels::lyap_label(
+                &self.main.lyap.curve(),
+                self.main.lyap.linear,
+                &self.speed_axis(),
+            ),
             JobKind::Omega => match (&self.main.omega, &self.main.status(JobKind::Omega).error) {
                 (_, Some(e)) => format!("{title}: not computed: {e}"),
                 (Some(r), None) => labels::omega_label(title, r),
