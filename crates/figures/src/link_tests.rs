@@ -141,8 +141,10 @@ fn a_malformed_speed_axis_is_named_and_the_rest_kept() {
 fn rpm_and_omega_map_each_other_exactly_through_a_link() {
     use crate::speed::SpeedScale;
     for kind in [ModelKind::Ravigneaux, ModelKind::GearPair] {
-        let mut s = Settings::default();
-        s.params = ModelParams::defaults(kind);
+        let mut s = Settings {
+            params: ModelParams::defaults(kind),
+            ..Settings::default()
+        };
         s.view.mesh = MeshSel::Named(mesh_names(&s.params)[0].clone());
         s.view.axis = crate::speed::AxisUnit::Rpm;
         let model = Model::new(&s.params).unwrap();
