@@ -156,16 +156,17 @@ impl SpeedAxis {
     }
 
     /// The selected speed in both units with the mesh frequency, for the
-    /// readout: "Ω 0.3500: sun s1 at 1 234 rpm, mesh frequency 567 Hz".
+    /// readout: "Selected speed: Ω 0.3500, sun s1 at 1 807 rpm, mesh
+    /// frequency 1 898 Hz".
     pub fn readout(&self, omega: f64) -> String {
         match &self.scale {
             Some(s) => format!(
-                "Ω {omega:.4}: {} at {} rpm, mesh frequency {} Hz",
+                "Selected speed: Ω {omega:.4}, {} at {} rpm, mesh frequency {} Hz",
                 s.input(),
                 grouped(s.rpm(omega)),
                 grouped(s.mesh_hz(omega))
             ),
-            None => format!("Ω {omega:.4}"),
+            None => format!("Selected speed: Ω {omega:.4}"),
         }
     }
 

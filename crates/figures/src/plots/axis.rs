@@ -110,7 +110,9 @@ impl ValueFormatter<f64> for XCoord {
         let x = self.ticks.shown(*value);
         let snapped = (x * 1e9).round() / 1e9;
         match self.ticks {
-            Ticks::RpmOverOmega(_) if snapped.fract() == 0.0 => format!("{snapped:.0}"),
+            // Whole rpm with their thousands apart, as the Campbell
+            // diagram and the sentences write them ("10 000").
+            Ticks::RpmOverOmega(_) if snapped.fract() == 0.0 => crate::speed::grouped(snapped),
             _ => RangedCoordf64::format(&snapped),
         }
     }
@@ -123,7 +125,8 @@ mod tests {
     use solver::model::Model;
     use solver::params::{ModelKind, ModelParams};
 
-    /// Over Ω 0.1 to 2 in rpm the ticks are round rpm, written whole,
+    /// Over Ω 0.1 to 2 in rpm the ticks are round rpm, written whole
+    /// (thousands apart),
     /// each at the Ω of its rpm; over Ω they are plotters' own.
     #[test]
     fn rpm_ticks_are_round_numbers_at_their_omega() {
@@ -135,7 +138,7 @@ mod tests {
         assert!(ticks.len() >= 3, "{ticks:?}");
         for t in &ticks {
             let label = x.format_ext(t);
-            let rpm: f64 = label.parse().unwrap();
+            let rpm: f64 = label.replace('\u{a0}', "").parse().unwrap();
             assert_eq!(rpm.fract(), 0.0, "{label}");
             // Round: a multiple of 1, 2 or 5 times a power of ten.
             let p = 10f64.powf(rpm.abs().log10().floor());

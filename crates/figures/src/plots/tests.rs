@@ -764,7 +764,7 @@ fn the_rpm_axis_relabels_the_frequency_response_and_keeps_its_frame() {
     assert!(b.contains(&selected), "no {selected}");
     // A tick at a round thousand of rpm (Ω 0.1 to 2 spans thousands).
     let thousands = (1..40)
-        .filter(|k| b.lines().any(|l| l == format!("{k}000")))
+        .filter(|k| b.lines().any(|l| l == format!("{k}\u{a0}000")))
         .count();
     assert!(thousands >= 2, "{b}");
 }
