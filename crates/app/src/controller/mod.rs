@@ -467,7 +467,10 @@ impl Controller {
         if let Some(m) = p.meshes.filter(|m| m.len() > 1) {
             query.push_str(&format!("&{}={}", figures::panels::PANELS_KEY, m.join(",")));
         }
+        // The speed axes are how the reader reads, not the figure: kept.
+        let axis = self.settings.view.axis;
         let fx = self.load_query(&query, now_ms);
+        self.settings.view.axis = axis;
         self.preset_note = Some(presets::note(p));
         fx
     }

@@ -242,6 +242,17 @@ mod tests {
             .contains(&format!("{} rpm", figures::speed::grouped(rpm))));
     }
 
+    /// A preset keeps the speed axes the reader chose (its figure's
+    /// settings are its own).
+    #[test]
+    fn a_preset_keeps_the_speed_axes() {
+        let (mut c, _) = Controller::new("axis=rpm", 0.0);
+        let id = figures::presets::PRESETS[1].id;
+        c.apply_preset(id, 0.0);
+        assert_eq!(c.settings().view.axis, AxisUnit::Rpm);
+        assert!(c.query().contains("axis=rpm"), "{}", c.query());
+    }
+
     /// The exports say the axis: the CSV with the input speed beside Ω,
     /// the JSON with the axis it was read on; in Ω they are unchanged.
     #[test]
