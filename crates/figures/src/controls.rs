@@ -180,6 +180,8 @@ fn view_in(
                                 "te_um" => "TE amplitude (µm)",
                                 "fit" => "fit the data",
                                 "whole" => "show the whole clearance ±b",
+                                "omega" => "Ω (dimensionless)",
+                                "rpm" => "input speed, rpm",
                                 "on" if key == "boundaries" => "traced and drawn over the map",
                                 "on" => "shown: stable solid, unstable thin",
                                 "off" => "hidden",
@@ -313,6 +315,7 @@ pub fn controls() -> Vec<Control> {
         view("bif_points", "Bifurcation points", (2.0, 400.0, 1.0)),
         view("bif_dir", "Bifurcation sweep", (0.0, 0.0, 0.0)),
         view("clearance", "Axes of x", (0.0, 0.0, 0.0)),
+        view("axis", "Speed axes", (0.0, 0.0, 0.0)),
         view(
             "branches",
             "Branches of repeating motion (found by shooting)",

@@ -22,6 +22,7 @@ pub mod plots;
 pub mod presets;
 pub mod protocol;
 pub mod settings;
+pub mod speed;
 pub mod story;
 pub mod views;
 pub mod words;

@@ -21,7 +21,8 @@
 
 use crate::family_spec::{FamilySpec, FAMILY_KEY};
 use crate::panels::PANELS_KEY;
-use crate::settings::{fmt_exact, mesh_names, view_key, Settings};
+use crate::settings::{fmt_exact, mesh_names, view_key, Settings, AXIS_KEY};
+use crate::speed::AxisUnit;
 use solver::keys::{self, Value};
 use solver::model::Model;
 use solver::params::{ModelKind, ModelParams};
@@ -374,6 +375,11 @@ pub fn encode(settings: &Settings) -> String {
     }
     for key in crate::settings::VIEW_KEYS {
         if let Some(v) = settings.view.get(key.name) {
+            // The speed axes' unit only when it is not the default, so
+            // that a link of the default state is what it always was.
+            if key.name == AXIS_KEY && v == AxisUnit::default().name() {
+                continue;
+            }
             parts.push(format!("{}={}", key.name, percent_encode(&v)));
         }
     }
@@ -415,7 +421,11 @@ pub fn ab_difference(a: &Settings, b: &Settings, max: usize) -> (String, String)
     let pairs_of = |s: &Settings| -> Vec<(String, String)> {
         let mut v = vec![("model".to_string(), s.params.kind().name().to_string())];
         v.extend(param_diff(&s.params));
-        for key in crate::settings::VIEW_KEYS {
+        // The speed axes' unit is how a state is read, not the state.
+        for key in crate::settings::VIEW_KEYS
+            .iter()
+            .filter(|k| k.name != AXIS_KEY)
+        {
             if let Some(t) = s.view.get(key.name) {
                 v.push((key.name.to_string(), t));
             }

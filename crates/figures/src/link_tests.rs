@@ -96,6 +96,91 @@ fn a_key_given_twice_is_named() {
     );
 }
 
+/// The speed axes' unit rides in `axis=rpm`, and only then: a link of the
+/// default Ω axes is what it was before the key existed.
+#[test]
+fn the_speed_axis_rides_in_the_link_only_when_rpm() {
+    let s = Settings::default();
+    assert!(!encode(&s).contains("axis="), "{}", encode(&s));
+    let mut r = Settings::default();
+    r.view.axis = crate::speed::AxisUnit::Rpm;
+    let q = encode(&r);
+    assert!(q.contains("&axis=rpm"), "{q}");
+    let d = decode(&q);
+    assert!(d.issues.is_empty(), "{:?}", d.issues);
+    assert_eq!(d.settings, r);
+    // A link written with the default said aloud reads the same.
+    assert_eq!(decode(&format!("{}&axis=omega", encode(&s))).settings, s);
+    // The unit is how the state is read: A and B do not differ by it.
+    assert_eq!(ab_difference(&s, &r, 3).0, "same settings");
+}
+
+/// A malformed unit is named with what is allowed, in words, and the
+/// rest of the link applies with the Ω axes kept.
+#[test]
+fn a_malformed_speed_axis_is_named_and_the_rest_kept() {
+    let d = decode("model=ravigneaux&omega=0.9&axis=rmp");
+    assert_eq!(d.issues.len(), 1, "{:?}", d.issues);
+    let i = &d.issues[0];
+    assert!(
+        i.starts_with("From the link: Speed axes must be one of")
+            && i.contains("rpm")
+            && i.contains("(not rmp)"),
+        "{i}"
+    );
+    assert_eq!(d.settings.view.axis, crate::speed::AxisUnit::Omega);
+    assert_eq!(d.settings.view.omega, 0.9);
+}
+
+/// rpm and Ω map each other exactly (1e-12 relative) on both models and
+/// through a link: a speed typed in rpm is stored as its Ω, written in
+/// the link, and reads back as the same rpm. The factor is derived here
+/// by hand from the input member's teeth and its speed relative to the
+/// carrier: f_mesh = rpm / 60 z_in |n_in - n_c| / n_in, Ω = 2π f_mesh / ω_ref.
+#[test]
+fn rpm_and_omega_map_each_other_exactly_through_a_link() {
+    use crate::speed::SpeedScale;
+    for kind in [ModelKind::Ravigneaux, ModelKind::GearPair] {
+        let mut s = Settings {
+            params: ModelParams::defaults(kind),
+            ..Settings::default()
+        };
+        s.view.mesh = MeshSel::Named(mesh_names(&s.params)[0].clone());
+        s.view.axis = crate::speed::AxisUnit::Rpm;
+        let model = Model::new(&s.params).unwrap();
+        let scale = SpeedScale::of(&model);
+        let sp = model.system.speed;
+        let omega_per_rpm = f64::from(sp.input_teeth) * sp.relative_per_input.abs() / 60.0
+            * 2.0
+            * std::f64::consts::PI
+            / model.system.omega_ref_rad_s;
+        for rpm in [137.0, 1000.0, 2999.5, 3000.0, 4321.123456789] {
+            let omega = scale.omega(rpm);
+            assert!(
+                (omega - rpm * omega_per_rpm).abs() <= 1e-12 * omega,
+                "{kind:?} {rpm}"
+            );
+            assert!(
+                (scale.rpm(omega) - rpm).abs() <= 1e-12 * rpm,
+                "{kind:?} {rpm}"
+            );
+            if !(0.01..=20.0).contains(&omega) {
+                continue;
+            }
+            s.view.omega = omega;
+            let d = decode(&encode(&s));
+            assert!(d.issues.is_empty(), "{:?}", d.issues);
+            assert_eq!(d.settings, s);
+            let back = scale.rpm(d.settings.view.omega);
+            assert!((back - rpm).abs() <= 1e-12 * rpm, "{kind:?} {rpm} {back}");
+        }
+        for omega in [0.01, 0.35, 1.0, 1.7, 20.0] {
+            let back = scale.omega(scale.rpm(omega));
+            assert!((back - omega).abs() <= 1e-12 * omega, "{kind:?} {omega}");
+        }
+    }
+}
+
 #[test]
 fn bad_values_are_named_with_their_range_and_others_kept() {
     let d = decode(
@@ -316,6 +401,7 @@ proptest! {
                     Just("a".to_string()),
                     Just("family".to_string()),
                     Just("panels".to_string()),
+                    Just("axis".to_string()),
                     Just("teeth_r".to_string()),
                     "[a-z_%0-9]{0,12}",
                     "\\PC{0,8}",
@@ -331,6 +417,7 @@ proptest! {
                     Just("gear-pair".to_string()),
                     Just("%FF%FE".to_string()),
                     Just("worst".to_string()),
+                    Just("rpm".to_string()),
                     Just("te_um:0,20,30".to_string()),
                     Just("s1a1,rb1".to_string()),
                     Just("backlash_um:50,1e9".to_string()),

@@ -6,6 +6,7 @@
 //! that cap every job: no link can start an unbounded computation.
 
 use crate::protocol::{JobKind as K, KindSet};
+use crate::speed::AxisUnit;
 use solver::model::Model;
 use solver::params::ModelParams;
 use solver::sweep::Directions;
@@ -366,7 +367,23 @@ pub const VIEW_KEYS: &[ViewKey] = &[
         ty: ViewType::Choice(&["fit", "whole"]),
         description: "the axes of x: fit the data (the ±b lines drawn where they fall in range) or show the whole clearance from −b to +b",
     },
+    ViewKey {
+        name: AXIS_KEY,
+        field: Field::Word(|v| v.axis.name().to_string(), |v, t| v.axis = AxisUnit::from_name(t).unwrap_or(v.axis)),
+        restarts: KindSet::NONE,
+        unit: "-",
+        ty: ViewType::Choice(&["omega", "rpm"]),
+        description: "the speed axes, range fields and readouts: the dimensionless Ω or the input member's speed in rpm (the small sun s1, or the pinion); values are kept as Ω",
+    },
 ];
+
+/// The key of the speed axes' unit; a link carries it only when it is not
+/// the default Ω, so links made before it are unchanged.
+pub const AXIS_KEY: &str = "axis";
+
+/// The view keys whose values are speeds (Ω): their fields take rpm when
+/// the speed axes show rpm.
+pub const SPEED_KEYS: &[&str] = &["omega", "omega_from", "omega_to"];
 
 /// Looks up a view key.
 pub fn view_key(name: &str) -> Option<&'static ViewKey> {
@@ -445,6 +462,8 @@ pub struct ViewOptions {
     pub branches: bool,
     /// The traced boundaries over the map.
     pub boundaries: bool,
+    /// What the speed axes show.
+    pub axis: AxisUnit,
 }
 
 /// The selected Ω the page opens on: a periodic state (period 1, found
@@ -487,6 +506,7 @@ impl Default for ViewOptions {
             whole_clearance: false,
             branches: true,
             boundaries: false,
+            axis: AxisUnit::Omega,
         }
     }
 }
@@ -661,6 +681,7 @@ mod tests {
             ("clearance", "whole"),
             ("branches", "off"),
             ("boundaries", "on"),
+            ("axis", "rpm"),
         ] {
             v.set(k, t, &meshes).unwrap();
             assert_eq!(v.get(k).unwrap(), t, "{k}");

@@ -22,6 +22,7 @@ fn texts(r: &OmegaResult) -> Vec<String> {
         selected_omega: 0.5,
         mesh_label: "s1a1".into(),
         natural: vec![],
+        speed: Default::default(),
     };
     let mut bif = BifStore::new(1).view(Some(0), &[r.backlash_um], &ctx);
     bif.points.push(BifPoint {

@@ -12,7 +12,9 @@ impl Controller {
     pub fn campbell_view(&self) -> Result<CampbellView, String> {
         let model = self.model().map_err(str::to_string)?;
         let v = &self.settings.view;
-        CampbellView::new(model, v.omega_to, v.omega)
+        let mut c = CampbellView::new(model, v.omega_to, v.omega)?;
+        c.speed = self.speed_axis();
+        Ok(c)
     }
 
     /// The diagram's text alternative: the first critical speeds in words.
@@ -48,9 +50,9 @@ impl Controller {
     /// selected Omega `from`, if there is one.
     pub fn campbell_step(&self, from: f64, dir: f64) -> Option<f64> {
         let v = self.campbell_view().ok()?;
-        // The selected Omega is rounded to 1e-4 (`select_omega`): a
-        // crossing within that of it is the one selected.
-        let tol = 1e-4;
+        // The selected Omega is rounded (`select_omega`): a crossing
+        // within that of it is the one selected.
+        let tol = self.selection_tolerance();
         let next = |c: &&CampbellCrossing| {
             if dir > 0.0 {
                 c.omega > from + tol

@@ -281,8 +281,9 @@ impl Controller {
             // The sweeps' views share the mesh and the range: they are
             // redrawn even without new data; the axes of x are every view's.
             self.dirty.data(KindSet::ALL.without(KindSet::SELECTED));
-            if key == "clearance" {
+            if key == "clearance" || key == "axis" {
                 self.dirty.data(KindSet::SELECTED);
+                self.dirty.controls |= key == "axis";
             }
             self.dirty.url = true;
             return Ok(self.restart(row.restarts, now_ms));
@@ -319,7 +320,7 @@ impl Controller {
 
     /// Moves the selected Omega (clicks and drags on the Omega axes).
     pub fn select_omega(&mut self, omega: f64, now_ms: f64) -> Vec<Effect> {
-        let omega = (omega * 1e4).round() / 1e4;
+        let omega = self.rounded_selection(omega);
         let text = figures::settings::fmt_exact(omega);
         match self.set_key("omega", &text, now_ms) {
             Ok(fx) => {
@@ -405,6 +406,7 @@ impl Controller {
             cusps: self.main.boundaries.cusps.clone(),
             disagree,
             picked,
+            speed: self.speed_axis(),
         }
     }
 
@@ -450,7 +452,10 @@ impl Controller {
         if let Some(m) = p.meshes.filter(|m| m.len() > 1) {
             query.push_str(&format!("&{}={}", figures::panels::PANELS_KEY, m.join(",")));
         }
+        // The speed axes are how the reader reads, not the figure: kept.
+        let axis = self.settings.view.axis;
         let fx = self.load_query(&query, now_ms);
+        self.settings.view.axis = axis;
         self.preset_note = Some(presets::note(p));
         fx
     }
@@ -471,6 +476,7 @@ impl Controller {
                 .as_ref()
                 .map(|m| natural_in_range(m, v.omega_from, v.omega_to))
                 .unwrap_or_default(),
+            speed: self.speed_axis(),
         }
     }
 
@@ -592,14 +598,6 @@ impl Controller {
         self.pinned
             .as_ref()
             .map(|p| link::ab_difference(&p.settings, &self.settings, 3))
-    }
-
-    /// The method of `ViewId::Fr` in words.
-    pub fn fr_method(&self) -> String {
-        FrSource::Hbm {
-            harmonics: self.main.hbm.harmonics,
-        }
-        .label()
     }
 
     /// The bifurcation view.
@@ -754,6 +752,7 @@ impl Controller {
 mod boundaries;
 pub(crate) mod campbell;
 mod export;
+mod speed;
 mod text;
 pub use export::{ExportError, Format};
 mod members;

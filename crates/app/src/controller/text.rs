@@ -6,6 +6,14 @@ use super::*;
 use figures::views::ViewId;
 
 impl Controller {
+    /// The method of `ViewId::Fr` in words.
+    pub fn fr_method(&self) -> String {
+        FrSource::Hbm {
+            harmonics: self.main.hbm.harmonics,
+        }
+        .label()
+    }
+
     /// The status of the job whose data `view` shows.
     pub fn view_status(&self, view: figures::views::ViewId) -> &JobStatus {
         self.main.status(view.spec().data)
@@ -23,8 +31,12 @@ impl Controller {
             ViewId::Fr if self.panels.is_some() => labels::fr_panels_label(&self.fr_panels()),
             ViewId::Fr => labels::fr_label(&self.fr_view()),
             ViewId::Bif => labels::bif_label(&self.bif_view()),
-            ViewId::Map => labels::map_label(&self.main.map),
-            ViewId::Lyap => labels::lyap_label(&self.main.lyap.curve(), self.main.lyap.linear),
+            ViewId::Map => labels::map_label(&self.main.map, &self.speed_axis()),
+            ViewId::Lyap => labels::lyap_label(
+                &self.main.lyap.curve(),
+                self.main.lyap.linear,
+                &self.speed_axis(),
+            ),
             ViewId::Phase
             | ViewId::Poincare
             | ViewId::Time
@@ -57,7 +69,7 @@ impl Controller {
         let text = match (&self.main.omega, &self.main.omega_status().error) {
             (_, Some(e)) => format!("Not computed: {e}"),
             (Some(r), None) => {
-                let mut s = figures::views::omega::student_summary(r);
+                let mut s = figures::views::omega::student_summary_at(r, &self.speed_axis());
                 if let Some(more) = self.branch_agreement() {
                     s.push(' ');
                     s.push_str(&more);

@@ -237,23 +237,58 @@ impl Page {
                 options,
             });
         }
+        let axis_options = self.ctl.axis_options();
+        if axis_options != self.schematic.axis_options {
+            self.schematic.axis_options = axis_options.clone();
+            w.push(Write::Options {
+                id: "sel-axis".into(),
+                options: axis_options,
+            });
+        }
         w.push(Write::text("model-subtitle", model_subtitle(model)));
         for c in controls() {
             w.push(Write::Hidden {
                 id: format!("control-{}", c.key),
                 hidden: !shown_for(&c, model),
             });
+            let label = self.ctl.speed_label(c.key);
             w.push(Write::text(
                 &format!("label-{}", c.key),
-                label_for(&c, model),
+                label.unwrap_or_else(|| label_for(&c, model)),
             ));
+            if let Some(Widget::Slider {
+                min,
+                max,
+                step,
+                field_min,
+                field_max,
+            }) = self.ctl.speed_widget(c.key, &c.widget)
+            {
+                for (id, name, x) in [
+                    ("slider", "min", min),
+                    ("slider", "max", max),
+                    ("slider", "step", step),
+                    ("num", "min", field_min),
+                    ("num", "max", field_max),
+                ] {
+                    w.push(Write::Attr {
+                        id: format!("{id}-{}", c.key),
+                        name,
+                        value: x.to_string(),
+                    });
+                }
+            }
             let text = match c.target {
                 Target::Param => match solver::keys::get(params, c.key) {
                     Some(solver::keys::Value::Num(x)) => field_text(x),
                     Some(solver::keys::Value::Text(t)) => t,
                     None => continue,
                 },
-                Target::View => match self.ctl.settings().view.get(c.key) {
+                Target::View => match self
+                    .ctl
+                    .speed_field_text(c.key)
+                    .or_else(|| self.ctl.settings().view.get(c.key))
+                {
                     Some(t) => t,
                     None => continue,
                 },

@@ -255,12 +255,14 @@ struct FamilyBar {
     shown: String,
 }
 
-/// The mesh the schematic last highlighted and the plotted mesh's options
-/// last written (the drop-down is rebuilt only when they change).
+/// The mesh the schematic last highlighted and the drop-downs' options
+/// last written: the plotted mesh's and the speed axes' (which name the
+/// input member). A drop-down is rebuilt only when they change.
 #[derive(Debug, Default)]
 struct SchematicShown {
     mesh: String,
     options: Vec<(String, String)>,
+    axis_options: Vec<(String, String)>,
 }
 
 /// A value a control refused: its message and red border last while the
@@ -455,7 +457,7 @@ impl Page {
                 let old = self.refused.remove(i);
                 self.ctl.withdraw(&old.message);
             }
-            let ok = match self.ctl.set_key(&key, &value, now_ms) {
+            let ok = match self.ctl.set_control(&key, &value, now_ms) {
                 Ok(more) => {
                     fx.extend(more);
                     true
@@ -571,6 +573,7 @@ impl Page {
                 hidden: warning.is_none(),
             });
             w.push(Write::text("validity", warning.unwrap_or_default()));
+            w.extend(self.speed_writes());
         }
         if d.jobs.intersects(KindSet::SELECTED) {
             w.push(Write::text("summary", self.ctl.student_summary()));

@@ -175,8 +175,12 @@ impl Page {
     /// picked on a narrow screen.
     pub(super) fn see_orbit_writes(&self) -> Vec<Write> {
         let omega = self.ctl.settings().view.omega;
+        let at = match self.ctl.speed_axis().rpm_scale() {
+            Some(s) => format!("{} rpm", figures::speed::grouped(s.rpm(omega))),
+            None => format!("Ω = {omega:.2}"),
+        };
         vec![
-            Write::text("see-orbit", format!("See the motion at Ω = {omega:.2} ↓")),
+            Write::text("see-orbit", format!("See the motion at {at} ↓")),
             Write::Hidden {
                 id: "see-orbit".into(),
                 hidden: !self.notices.see_orbit,

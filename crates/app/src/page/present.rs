@@ -287,9 +287,10 @@ impl Page {
         w
     }
 
-    /// The selected Ω as the stage shows it.
+    /// The selected speed as the stage shows it ("Ω = 0.840", or in rpm
+    /// "4 452 rpm (Ω 0.840)").
     fn present_omega(&self) -> String {
-        format!("Ω = {:.3}", self.ctl.settings().view.omega)
+        self.ctl.speed_axis().text(self.ctl.settings().view.omega)
     }
 
     /// The stage's caption: the summary's first sentence.

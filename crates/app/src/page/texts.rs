@@ -233,6 +233,40 @@ impl Page {
         serde_json::json!({"label": v.label(), "crossings": crossings})
     }
 
+    /// The readout of the selected speed and the views' captions of their
+    /// speed axes, in the axes' unit.
+    pub(super) fn speed_writes(&self) -> Vec<Write> {
+        let axis = self.ctl.speed_axis();
+        let (omega, campbell) = match axis.rpm_scale() {
+            Some(s) => {
+                let rpm = format!("{} speed (rpm)", s.input());
+                (rpm.clone(), rpm)
+            }
+            None => ("Ω (dimensionless)".into(), "input speed, read as Ω".into()),
+        };
+        let mut w = vec![Write::text("speed-readout", self.ctl.speed_readout())];
+        for key in ["fr", "map", "bif"] {
+            w.push(Write::text(&format!("axes-speed-{key}"), omega.clone()));
+        }
+        w.push(Write::text("axes-speed-campbell", campbell));
+        w
+    }
+
+    /// The speed axes: their unit, the selected speed in Ω and in rpm of
+    /// the input member, the readout, and the factor between them.
+    fn speed_status(&self) -> serde_json::Value {
+        let axis = self.ctl.speed_axis();
+        let omega = self.ctl.settings().view.omega;
+        serde_json::json!({
+            "axis": axis.unit.name(),
+            "input": axis.scale.map(|s| s.input()),
+            "omega": omega,
+            "rpm": axis.scale.map(|s| s.rpm(omega)),
+            "mesh_hz": axis.scale.map(|s| s.mesh_hz(omega)),
+            "readout": self.ctl.speed_readout(),
+        })
+    }
+
     /// Everything the tests and the benchmark read: the controller's
     /// status, the draw counters, the frames, the timings, the preview
     /// marker, and the gear set's last frame under `anim`.
@@ -313,6 +347,7 @@ impl Page {
             o.insert("map_drawn".into(), self.telemetry.map_drawn.clone());
             o.insert("present".into(), self.present_status());
             o.insert("campbell".into(), self.campbell_status());
+            o.insert("speed".into(), self.speed_status());
             let boxes: serde_json::Map<String, serde_json::Value> = VIEWS
                 .iter()
                 .zip(&self.telemetry.text_boxes)

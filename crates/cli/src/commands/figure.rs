@@ -402,6 +402,7 @@ fn frf_view(
         selected_omega: v.omega,
         mesh_label: name.to_string(),
         natural: figures::views::natural_in_range(&first.model, v.omega_from, v.omega_to),
+        speed: figures::speed::SpeedAxis::new(v.axis, Some(&first.model)),
     };
     let b_um = |m: &Member, j: usize| (m.model.system.meshes[j].backlash_m * 1e9).round() / 1e3;
     let mut levels = Vec::new();
@@ -725,5 +726,6 @@ fn bif_view(m: &Member, spec: &SweepSpec, data: &Value) -> Result<BifView, solve
         done: pts.len(),
         total: pts.len(),
         whole_clearance: true,
+        speed: figures::speed::SpeedAxis::new(m.settings.view.axis, Some(&m.model)),
     })
 }

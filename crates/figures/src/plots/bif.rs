@@ -100,7 +100,7 @@ pub fn draw_bif<DB: DrawingBackend>(
     let caption = format!("Bifurcation diagram, mesh {}{status}", v.mesh_label);
     let axes = Axes {
         y_area_min: super::STACKED_Y_AREA,
-        ..Axes::new(OMEGA_AXIS, "Poincaré samples of x = δ − e (µm)")
+        ..Axes::over_omega(&v.speed, "Poincaré samples of x = δ − e (µm)")
     };
     let mut chart = linear_chart(&upper, &caption, (x, y), &axes)?;
     contact_lines(&mut chart, &v.backlash_um, x, true)?;
@@ -246,7 +246,7 @@ fn bif_key(v: &BifView, natural: &[NaturalFreq], y: (f64, f64)) -> KeyItems {
             "parametrically unstable with all teeth engaged".into(),
         ));
     }
-    items.extend(omega_items(natural, v.selected_omega));
+    items.extend(omega_items(natural, v.selected_omega, &v.speed));
     if v.branches.iter().any(|l| l.stable) {
         items.push((
             KeyIcon::Line(BRANCH, false),

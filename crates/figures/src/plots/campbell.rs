@@ -6,7 +6,8 @@
 //! inside the plot; the key is under the chart.
 
 use super::*;
-use crate::views::campbell::{grouped, CampbellCrossing, CampbellView, ORDERS};
+use crate::speed::{capital, grouped};
+use crate::views::campbell::{CampbellCrossing, CampbellView, ORDERS};
 
 /// How close (pixels) a click must come to a crossing to pick it.
 pub const PICK_PX: f64 = 12.0;
@@ -88,17 +89,27 @@ pub fn draw_campbell<DB: DrawingBackend>(
     let caption = format!("Campbell diagram: natural frequencies against input speed{status}");
     let mut b = chart_layout(&area, &caption)?;
     b.y_label_area_size(72);
-    let mut chart = b.build_cartesian_2d(x.0..x.1, y.0..y.1).map_err(err)?;
+    // The data are rpm; the ticks are the speed axes' unit.
+    let ticks = Ticks::over_rpm(&view.speed);
+    let x_desc = match view.speed.scale {
+        Some(s) if ticks == Ticks::Data => format!("{} speed (rpm)", capital(s.input())),
+        Some(_) => view.speed.label(),
+        None => "input member's speed (rpm)".into(),
+    };
+    let mut chart = b
+        .build_cartesian_2d(XCoord::new(x, ticks), y.0..y.1)
+        .map_err(err)?;
     let plot_w = chart.plotting_area().dim_in_pixel().0;
-    chart
-        .configure_mesh()
-        .x_labels((plot_w as usize / 80).clamp(3, 10))
+    let mut mesh = chart.configure_mesh();
+    if ticks == Ticks::Data {
+        mesh.x_label_formatter(&|v: &f64| grouped(*v));
+    }
+    mesh.x_labels((plot_w as usize / 80).clamp(3, 10))
         .y_labels(8)
         .light_line_style(GRID.mix(0.5))
         .bold_line_style(GRID)
-        .x_label_formatter(&|v: &f64| grouped(*v))
         .y_label_formatter(&|v: &f64| grouped(*v))
-        .x_desc("input member's speed (rpm)")
+        .x_desc(x_desc.as_str())
         .y_desc("frequency (Hz)")
         .label_style(small())
         .axis_desc_style(small())
@@ -176,7 +187,8 @@ mod tests {
             draw_campbell(&root, &view, "").unwrap()
         };
         for words in [
-            "input member",
+            // The speed axes show Ω by default, the data staying rpm.
+            "Ω = ω / ω_ref",
             "frequency (Hz)",
             "order 1 (mesh frequency)",
             "order 4",
@@ -193,6 +205,20 @@ mod tests {
             assert!(p.y >= frame.top_left.y - 1e-6 && p.y <= frame.bottom_right.y + 1e-6);
         }
         assert!(frame.bottom_right.y < f64::from(HEIGHT));
+        // In rpm, the axis names the input member and its unit; the frame
+        // is the same rpm.
+        let mut rpm = view.clone();
+        rpm.speed.unit = crate::speed::AxisUnit::Rpm;
+        let mut s = String::new();
+        let again = {
+            let root = SVGBackend::with_string(&mut s, (WIDTH, HEIGHT)).into_drawing_area();
+            draw_campbell(&root, &rpm, "").unwrap()
+        };
+        assert!(
+            s.contains("Sun s1 speed (rpm)") && !s.contains("ω_ref"),
+            "{s}"
+        );
+        assert_eq!(again, frame);
     }
 
     #[test]

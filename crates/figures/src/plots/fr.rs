@@ -142,7 +142,7 @@ pub fn draw_fr<DB: DrawingBackend>(
         // The method is in the note under the plot, not the title.
         format!("Frequency response, mesh {}{status}", v.mesh_label)
     };
-    let axes = Axes::new(OMEGA_AXIS, "x = δ − e (µm)");
+    let axes = Axes::over_omega(&v.speed, "x = δ − e (µm)");
     let mut chart = linear_chart(&upper, &caption, (x, y), &axes)?;
     contact_lines(&mut chart, &v.backlash_um, x, true)?;
     pinned_contact_lines(&mut chart, &v.pinned_backlash_um, &v.backlash_um, x)?;
@@ -301,7 +301,7 @@ pub(crate) fn fr_key(v: &FrView, y: (f64, f64)) -> KeyItems {
         ));
     }
     items.extend(contact_items(&v.backlash_um, &v.pinned_backlash_um, y));
-    items.extend(omega_items(&v.natural, v.selected_omega));
+    items.extend(omega_items(&v.natural, v.selected_omega, &v.speed));
     let any_unstable = v
         .branches
         .iter()

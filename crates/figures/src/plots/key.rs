@@ -121,7 +121,11 @@ pub(crate) fn draw_key<DB: DrawingBackend>(
 
 /// The key items of the Omega axes' decorations: the natural frequencies
 /// (if any) and the selected-Omega cursor.
-pub(crate) fn omega_items(natural: &[NaturalFreq], selected: f64) -> KeyItems {
+pub(crate) fn omega_items(
+    natural: &[NaturalFreq],
+    selected: f64,
+    speed: &crate::speed::SpeedAxis,
+) -> KeyItems {
     let mut items = Vec::new();
     if !natural.is_empty() {
         items.push((
@@ -131,7 +135,7 @@ pub(crate) fn omega_items(natural: &[NaturalFreq], selected: f64) -> KeyItems {
     }
     items.push((
         KeyIcon::Line(CURSOR, false),
-        format!("selected Ω = {selected:.3}"),
+        format!("selected {}", speed.text(selected)),
     ));
     items
 }

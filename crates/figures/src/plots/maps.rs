@@ -12,7 +12,7 @@ use super::boundaries::{curve_lines, draw_line_sample, mark_rects, OverlayLine, 
 use super::{
     chart_area, draw_key, err, frame_of, linear_chart, omega_decorations, omega_items,
     padded_range, plan_key, regime_color, small, Axes, DrawError, KeyIcon, KeyItems, PlotFrame,
-    Res, GRID, OMEGA_AXIS,
+    Res, GRID,
 };
 use crate::protocol::{BoundaryKind, Regime};
 use crate::views::lyap::{lyap_kind, LyapKind, LyapStore, LYAP_ZERO_BAND};
@@ -92,7 +92,7 @@ pub fn draw_map<DB: DrawingBackend>(
     let caption = format!("Impact-regime map, {}{status}", v.mesh_label);
     let axes = Axes {
         grid: false,
-        ..Axes::new(OMEGA_AXIS, g.key_label())
+        ..Axes::over_omega(&v.speed, g.key_label())
     };
     let chart = linear_chart(&plot_area, &caption, (x, y), &axes)?;
     let frame = frame_of(&chart, x, y);
@@ -334,6 +334,7 @@ pub fn draw_lyap<DB: DrawingBackend>(
     omega_range: (f64, f64),
     natural: &[NaturalFreq],
     selected: f64,
+    speed: &crate::speed::SpeedAxis,
     status: &str,
 ) -> Res<PlotFrame> {
     root.fill(&WHITE).map_err(err)?;
@@ -356,7 +357,7 @@ pub fn draw_lyap<DB: DrawingBackend>(
     for &kind in &kinds {
         items.push((KeyIcon::Dot(lyap_color(kind), 3), kind.label().into()));
     }
-    items.extend(omega_items(natural, selected));
+    items.extend(omega_items(natural, selected, speed));
     let failed = store.failed();
     let grey = RGBColor(90, 90, 90);
     if !failed.is_empty() {
@@ -373,7 +374,7 @@ pub fn draw_lyap<DB: DrawingBackend>(
         // Two decimals, and zero without a sign (plotters wrote "-0.0").
         y_format: Some(|v: &f64| format!("{:.2}", if v.abs() < 1e-9 { 0.0 } else { *v })),
         y_area_min: super::STACKED_Y_AREA,
-        ..Axes::new(OMEGA_AXIS, "λ per mesh period (−)")
+        ..Axes::over_omega(speed, "λ per mesh period (−)")
     };
     let mut chart = linear_chart(&area, &caption, (x, y), &axes)?;
     omega_decorations(&mut chart, natural, selected, y)?;
@@ -464,6 +465,7 @@ mod tests {
             cusps: Vec::new(),
             disagree: Vec::new(),
             picked: None,
+            speed: Default::default(),
         };
         let mut s = String::new();
         let frame = {
@@ -509,7 +511,7 @@ mod tests {
         let mut s = String::new();
         {
             let root = SVGBackend::with_string(&mut s, (WIDTH, LYAP_HEIGHT)).into_drawing_area();
-            draw_lyap(&root, &lyap, (0.1, 2.0), &[], 0.84, "").unwrap();
+            draw_lyap(&root, &lyap, (0.1, 2.0), &[], 0.84, &Default::default(), "").unwrap();
         }
         assert!(s.contains("λ per mesh period") && s.contains("chaotic") && s.contains("λ = 0"));
     }

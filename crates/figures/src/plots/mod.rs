@@ -15,6 +15,7 @@
 //! chart layout ([`linear_chart`], [`chart_layout`], [`draw_axes`]), the
 //! key (in `key`); each view kind's plot in its own module.
 
+mod axis;
 mod bif;
 pub mod boundaries;
 mod boxes;
@@ -38,8 +39,10 @@ pub use omega::{
 };
 
 use crate::protocol::Regime;
+use crate::speed::SpeedAxis;
 use crate::views::fr::{FrCurvePoint, FrMarkerKind};
 use crate::views::NaturalFreq;
+pub(crate) use axis::{Ticks, XCoord};
 use glam::DVec2;
 use plotters::coord::ranged1d::{Ranged, ValueFormatter};
 use plotters::coord::Shift;
@@ -57,11 +60,8 @@ pub const HEIGHT: u32 = 400;
 pub struct DrawError(pub String);
 
 pub(crate) type Res<T> = Result<T, DrawError>;
-pub(crate) type Chart<'a, DB> = ChartContext<
-    'a,
-    DB,
-    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
->;
+pub(crate) type Chart<'a, DB> =
+    ChartContext<'a, DB, Cartesian2d<axis::XCoord, plotters::coord::types::RangedCoordf64>>;
 
 /// Any drawing backend's error as a [`DrawError`].
 pub fn err<E: std::fmt::Display>(e: E) -> DrawError {
@@ -241,9 +241,6 @@ pub(crate) fn small() -> TextStyle<'static> {
     ("sans-serif", 13).into_font().color(&RGBColor(50, 50, 50))
 }
 
-/// The x axis of every plot over Omega.
-pub(crate) const OMEGA_AXIS: &str = "Ω = ω / ω_ref (dimensionless mesh frequency)";
-
 /// A chart's axes: their descriptions, the grid, the number of y labels.
 pub(crate) struct Axes {
     /// The x axis's description.
@@ -258,6 +255,8 @@ pub(crate) struct Axes {
     pub(crate) y_format: Option<fn(&f64) -> String>,
     /// The y label area's least width (pixels); wider if its labels need.
     pub(crate) y_area_min: u32,
+    /// How the x ticks are chosen and written (a speed axis in rpm).
+    pub(crate) x_ticks: Ticks,
 }
 
 /// The y label area's least width of the bifurcation diagram and the
@@ -275,6 +274,15 @@ impl Axes {
             y_labels: None,
             y_format: None,
             y_area_min: 64,
+            x_ticks: Ticks::Data,
+        }
+    }
+
+    /// Axes over Ω, shown as `speed` says (Ω or the input speed in rpm).
+    pub(crate) fn over_omega(speed: &SpeedAxis, y: impl Into<String>) -> Self {
+        Axes {
+            x_ticks: Ticks::over_omega(speed),
+            ..Axes::new(speed.label(), y)
         }
     }
 }
@@ -459,7 +467,9 @@ pub(crate) fn linear_chart<'a, DB: DrawingBackend>(
     let labels = y_tick_labels(y, axes.y_labels.unwrap_or(Y_LABELS), format);
     let mut b = chart_layout(area, caption)?;
     b.y_label_area_size(y_label_area(area, &labels, true).max(axes.y_area_min));
-    let mut chart = b.build_cartesian_2d(x.0..x.1, y.0..y.1).map_err(err)?;
+    let mut chart = b
+        .build_cartesian_2d(XCoord::new(x, axes.x_ticks), y.0..y.1)
+        .map_err(err)?;
     draw_axes(&mut chart, axes)?;
     Ok(chart)
 }

@@ -136,6 +136,7 @@ fn panel_chart<'a, DB: DrawingBackend>(
     (x, y): ((f64, f64), (f64, f64)),
     (x_desc, y_desc): (&str, &str),
     first: bool,
+    ticks: Ticks,
 ) -> Res<Chart<'a, DB>> {
     let under = super::draw_caption(area, title, super::Align::Centre, 15)?;
     let fmt = |span: f64| {
@@ -168,20 +169,21 @@ fn panel_chart<'a, DB: DrawingBackend>(
         .margin_right(16)
         .x_label_area_size(42)
         .y_label_area_size(y_area)
-        .build_cartesian_2d(x.0..x.1, y.0..y.1)
+        .build_cartesian_2d(XCoord::new(x, ticks), y.0..y.1)
         .map_err(err)?;
     let y_desc = super::fit_desc(
         chart.plotting_area(),
         y_desc,
         chart.plotting_area().dim_in_pixel().1,
     );
-    chart
-        .configure_mesh()
-        .light_line_style(GRID.mix(0.5))
+    let mut mesh = chart.configure_mesh();
+    if ticks == Ticks::Data {
+        mesh.x_label_formatter(&fx);
+    }
+    mesh.light_line_style(GRID.mix(0.5))
         .bold_line_style(GRID)
         .x_labels(4)
         .y_labels(6)
-        .x_label_formatter(&fx)
         .y_label_formatter(&fy)
         .x_desc(x_desc)
         .y_desc(if first { y_desc.as_str() } else { "" })
@@ -314,8 +316,9 @@ pub fn draw_bif_panels<DB: DrawingBackend>(
             area,
             &t,
             (x, y),
-            ("Ω", "Poincaré samples of x (µm)"),
+            (&v.speed.short_label(), "Poincaré samples of x (µm)"),
             k % cols == 0,
+            Ticks::over_omega(&v.speed),
         )?;
         omega_guides(
             &mut chart,
@@ -422,7 +425,14 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
         };
         let t = phase_panel_title(&p.title, r);
         let (x, _) = phase_ranges(std::slice::from_ref(p));
-        let mut chart = panel_chart(area, &t, (x, y), ("x (µm)", "ẋ (m/s)"), k % cols == 0)?;
+        let mut chart = panel_chart(
+            area,
+            &t,
+            (x, y),
+            ("x (µm)", "ẋ (m/s)"),
+            k % cols == 0,
+            Ticks::Data,
+        )?;
         let b = r.backlash_um;
         let color = family_color(k);
         // The contact lines where they fall in range (the axes fit the
@@ -515,8 +525,9 @@ pub fn draw_fr_panels<DB: DrawingBackend>(
             area,
             &p.title,
             (x, y),
-            ("Ω", "x = δ − e (µm)"),
+            (&v.speed.short_label(), "x = δ − e (µm)"),
             k % cols == 0,
+            Ticks::over_omega(&v.speed),
         )?;
         let levels: Vec<f64> = v
             .backlash_um

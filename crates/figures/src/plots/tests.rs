@@ -132,6 +132,7 @@ fn ab_fr() -> FrView {
         finished: true,
         branch_notes: Vec::new(),
         whole_clearance: true,
+        speed: Default::default(),
     }
 }
 
@@ -442,6 +443,7 @@ fn every_key_is_under_its_chart_never_over_the_data() {
         done: 19,
         total: 19,
         whole_clearance: true,
+        speed: Default::default(),
     };
     let natural = [NaturalFreq {
         omega: 0.5,
@@ -486,7 +488,15 @@ fn every_key_is_under_its_chart_never_over_the_data() {
         periods: 100,
     };
     let (s, frame) = framed((WIDTH, 300), |root| {
-        maps::draw_lyap(root, &lyap, (0.1, 2.0), &natural, 0.84, "")
+        maps::draw_lyap(
+            root,
+            &lyap,
+            (0.1, 2.0),
+            &natural,
+            0.84,
+            &Default::default(),
+            "",
+        )
     });
     let key = ["λ = 0", "λ < 0: periodic", "λ > 0: chaotic", "selected Ω"];
     assert_key_outside("Lyapunov", &s, &key, "dimensionless mesh frequency", frame);
@@ -728,5 +738,32 @@ fn fr_view(backlash_um: f64, branches: Vec<FrBranch>) -> FrView {
         finished: true,
         branch_notes: Vec::new(),
         whole_clearance: true,
+        speed: Default::default(),
     }
+}
+
+/// With the speed axes in rpm, the frequency response's axis names the
+/// input member and its unit, its ticks are whole rpm, the key states the
+/// selected speed in rpm and Ω, and the frame (what clicks map through)
+/// is the same Ω as before.
+#[test]
+fn the_rpm_axis_relabels_the_frequency_response_and_keeps_its_frame() {
+    use crate::speed::{grouped, AxisUnit, SpeedAxis};
+    let m = solver::model::Model::new(&solver::params::ModelParams::default()).unwrap();
+    let omega = fr_view(100.0, vec![]);
+    let mut rpm = omega.clone();
+    rpm.speed = SpeedAxis::new(AxisUnit::Rpm, Some(&m));
+    let (a, fa) = framed((WIDTH, HEIGHT), |root| draw_fr(root, &omega, ""));
+    let (b, fb) = framed((WIDTH, HEIGHT), |root| draw_fr(root, &rpm, ""));
+    assert_eq!(fa, fb);
+    assert!(a.contains("Ω = ω / ω_ref") && !a.contains("rpm"));
+    assert!(b.contains("Sun s1 speed (rpm)") && !b.contains("ω_ref"));
+    let s = rpm.speed.scale.unwrap();
+    let selected = format!("selected {} rpm (Ω 0.840)", grouped(s.rpm(0.84)));
+    assert!(b.contains(&selected), "no {selected}");
+    // A tick at a round thousand of rpm (Ω 0.1 to 2 spans thousands).
+    let thousands = (1..40)
+        .filter(|k| b.lines().any(|l| l == format!("{k}\u{a0}000")))
+        .count();
+    assert!(thousands >= 2, "{b}");
 }

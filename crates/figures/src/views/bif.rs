@@ -61,6 +61,9 @@ pub struct BifView {
     /// The axis of x shows the whole clearance ±b (else it fits the data).
     #[serde(skip)]
     pub whole_clearance: bool,
+    /// What the speed axis shows.
+    #[serde(skip)]
+    pub speed: crate::speed::SpeedAxis,
 }
 
 /// Bifurcation points as they arrive from both workers, for one job.
@@ -131,6 +134,7 @@ impl BifStore {
             done: self.samples.len(),
             total: self.total,
             whole_clearance: true,
+            speed: ctx.speed,
         }
     }
 }

@@ -11,6 +11,8 @@
 //! reaches the highest order's mesh frequency at the top speed, so every
 //! order line ends inside the plot, and only modes under it are drawn.
 
+pub use crate::speed::grouped;
+use crate::speed::{AxisUnit, SpeedAxis};
 use solver::campbell::{rpm_at, Campbell, CANCELLED};
 use solver::modal::ModeKind;
 use solver::model::Model;
@@ -66,6 +68,8 @@ pub struct CampbellView {
     pub selected_rpm: f64,
     /// The selected Omega.
     pub selected_omega: f64,
+    /// What its speed axis shows (Ω or rpm; the data are rpm).
+    pub speed: SpeedAxis,
 }
 
 impl CampbellView {
@@ -121,6 +125,7 @@ impl CampbellView {
             crossings,
             selected_rpm: rpm_at(model, selected_omega),
             selected_omega,
+            speed: SpeedAxis::new(AxisUnit::Omega, Some(model)),
         })
     }
 
@@ -194,28 +199,6 @@ pub fn ordinal(rank: usize) -> String {
     WORDS
         .get(rank)
         .map_or_else(|| format!("{}th", rank + 1), |w| (*w).to_string())
-}
-
-/// `x` rounded to a whole number, its thousands set apart by a no-break
-/// space as people write them ("1 257").
-pub fn grouped(x: f64) -> String {
-    let n = x.round();
-    if !n.is_finite() {
-        return format!("{x}");
-    }
-    let digits = format!("{}", n.abs() as u64);
-    let mut out = String::new();
-    for (i, ch) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i) % 3 == 0 {
-            out.push('\u{a0}');
-        }
-        out.push(ch);
-    }
-    if n < 0.0 {
-        format!("-{out}")
-    } else {
-        out
-    }
 }
 
 /// The critical speeds as CSV, one row per crossing.

@@ -228,6 +228,9 @@ pub struct FrView {
     /// The axis of x shows the whole clearance ±b (else it fits the data).
     #[serde(skip)]
     pub whole_clearance: bool,
+    /// What the speed axis shows.
+    #[serde(skip)]
+    pub speed: crate::speed::SpeedAxis,
 }
 
 /// The harmonic-balance branch as it arrives, for one job.
@@ -579,6 +582,7 @@ pub fn fr_view(
         finished: hbm.finished,
         branch_notes: hbm.notes.clone(),
         whole_clearance: true,
+        speed: ctx.speed,
     }
 }
 

@@ -8,12 +8,16 @@ use super::bif::BifView;
 use super::fr::FrView;
 use super::map::MapStore;
 use super::multiples::Panel;
-use super::unstable::{short, strip_from_overlay, unstable_ranges, unstable_sentence};
+use super::unstable::{
+    short, speed_at, speed_span, speed_values, strip_from_overlay, unstable_ranges,
+    unstable_sentence,
+};
 use crate::protocol::{OmegaResult, Regime};
+use crate::speed::SpeedAxis;
 
 /// Runs of one regime along Omega as "single-sided impact from Ω 0.45 to
 /// 2", joined by "; " (runs shorter than 2 % of the range are left out).
-fn regime_runs(mut runs: Vec<(Regime, f64, f64)>, span: f64) -> String {
+fn regime_runs(mut runs: Vec<(Regime, f64, f64)>, span: f64, speed: &SpeedAxis) -> String {
     runs.sort_by(|a, b| a.1.total_cmp(&b.1));
     let mut merged: Vec<(Regime, f64, f64)> = Vec::new();
     for (r, a, b) in runs {
@@ -25,7 +29,7 @@ fn regime_runs(mut runs: Vec<(Regime, f64, f64)>, span: f64) -> String {
     merged
         .into_iter()
         .filter(|(_, a, b)| b - a >= 0.02 * span)
-        .map(|(r, a, b)| format!("{} from Ω {} to {}", r.label(), short(a), short(b)))
+        .map(|(r, a, b)| format!("{} {}", r.label(), speed_span(speed, a, b, true)))
         .collect::<Vec<_>>()
         .join("; ")
 }
@@ -46,10 +50,10 @@ pub fn fr_panels_label(panels: &[Panel<FrView>]) -> String {
                     .max_by(|a, b| a.1.max_um.total_cmp(&b.1.max_um));
                 match peak {
                     Some((b, q)) => format!(
-                        "{}: highest peak {:.0} µm at Ω {} ({})",
+                        "{}: highest peak {:.0} µm at {} ({})",
                         p.title,
                         q.max_um,
-                        short(q.omega),
+                        speed_at(&v.speed, q.omega),
                         b.label
                     ),
                     None => format!("{}: computing", p.title),
@@ -89,12 +93,12 @@ pub fn fr_label(v: &FrView) -> String {
         })
         .collect();
     runs.extend(strip_from_overlay(&unstable_ranges(&br.points), &v.overlay));
-    let regimes = regime_runs(runs, v.omega_to - v.omega_from);
+    let regimes = regime_runs(runs, v.omega_to - v.omega_from, &v.speed);
     let mut s = format!(
-        "Frequency response of {}: peak {:.0} µm at Ω {}",
+        "Frequency response of {}: peak {:.0} µm at {}",
         v.mesh_label,
         peak.max_um,
-        short(peak.omega)
+        speed_at(&v.speed, peak.omega)
     );
     if !regimes.is_empty() {
         s.push_str("; ");
@@ -137,14 +141,14 @@ pub fn bif_label(v: &BifView) -> String {
         for p in pts {
             by.push((p.regime, p.omega - 0.5 * step, p.omega + 0.5 * step));
         }
-        regime_runs(by, v.omega_to - v.omega_from)
+        regime_runs(by, v.omega_to - v.omega_from, &v.speed)
     };
     let mut s = format!(
-        "Bifurcation diagram of {}: Poincaré samples at {} values of Ω from {} to {}, x from {:.0} to {:.0} µm",
+        "Bifurcation diagram of {}: Poincaré samples at {} {} {}, x from {:.0} to {:.0} µm",
         v.mesh_label,
         omegas.len(),
-        short(v.omega_from),
-        short(v.omega_to),
+        speed_values(&v.speed),
+        speed_span(&v.speed, v.omega_from, v.omega_to, false),
         lo,
         hi
     );
@@ -162,13 +166,13 @@ pub fn bif_label(v: &BifView) -> String {
             .branch_markers
             .iter()
             .take(6)
-            .map(|m| format!("{} at Ω {}", m.kind.label(), short(m.omega)))
+            .map(|m| format!("{} at {}", m.kind.label(), speed_at(&v.speed, m.omega)))
             .collect();
         if !marks.is_empty() {
             s.push_str(&format!(" ({})", marks.join(", ")));
         }
     }
-    let motions = motion_runs(&v.motions);
+    let motions = motion_runs(&v.motions, &v.speed);
     if !motions.is_empty() {
         s.push_str("; motion on the upward sweep: ");
         s.push_str(&motions);
@@ -180,7 +184,7 @@ pub fn bif_label(v: &BifView) -> String {
 /// Runs of one classification along the upward sweep, in the words of
 /// [`crate::story::motion_tag`]: "period 1 (exact) from Ω 0.1 to 0.9; not
 /// periodic at Ω 1".
-fn motion_runs(motions: &[(f64, bool, crate::protocol::Motion)]) -> String {
+fn motion_runs(motions: &[(f64, bool, crate::protocol::Motion)], speed: &SpeedAxis) -> String {
     let mut up: Vec<(f64, String)> = motions
         .iter()
         .filter(|m| m.1)
@@ -205,16 +209,16 @@ fn motion_runs(motions: &[(f64, bool, crate::protocol::Motion)]) -> String {
         counts.sort_by_key(|c| std::cmp::Reverse(c.1));
         return counts
             .into_iter()
-            .map(|(tag, k)| format!("{tag} at {k} of {n} values of Ω"))
+            .map(|(tag, k)| format!("{tag} at {k} of {n} {}", speed_values(speed)))
             .collect::<Vec<_>>()
             .join(", ");
     }
     runs.into_iter()
         .map(|(tag, a, b)| {
             if a == b {
-                format!("{tag} at Ω {}", short(a))
+                format!("{tag} at {}", speed_at(speed, a))
             } else {
-                format!("{tag} from Ω {} to {}", short(a), short(b))
+                format!("{tag} {}", speed_span(speed, a, b, true))
             }
         })
         .collect::<Vec<_>>()
@@ -223,7 +227,7 @@ fn motion_runs(motions: &[(f64, bool, crate::protocol::Motion)]) -> String {
 
 /// The impact-regime map: its axes, how many cells of each regime, and
 /// how many are not period 1.
-pub fn map_label(map: &MapStore) -> String {
+pub fn map_label(map: &MapStore, speed: &SpeedAxis) -> String {
     let Some(g) = &map.grid else {
         return "Impact-regime map: waiting for the workers.".into();
     };
@@ -235,9 +239,13 @@ pub fn map_label(map: &MapStore) -> String {
     };
     let parts = crate::views::map::regime_counts(&by);
     let mut s = format!(
-        "Impact-regime map over Ω {} to {} and {axis} {} to {} µm, {} of {} cells",
-        short(g.omega_from),
-        short(g.omega_to),
+        "Impact-regime map over {} and {axis} {} to {} µm, {} of {} cells",
+        match speed.rpm_scale() {
+            Some(_) => speed_span(speed, g.omega_from, g.omega_to, false)
+                .trim_start_matches("from ")
+                .to_string(),
+            None => format!("Ω {} to {}", short(g.omega_from), short(g.omega_to)),
+        },
         short(g.value_from),
         short(g.value_to),
         map.done,
@@ -259,7 +267,7 @@ pub fn map_label(map: &MapStore) -> String {
 
 /// The Lyapunov curve: its largest exponent and where the motion is
 /// chaotic (or, on a linear model, grows: a parametric instability).
-pub fn lyap_label(curve: &[(f64, f64)], linear: bool) -> String {
+pub fn lyap_label(curve: &[(f64, f64)], linear: bool, speed: &SpeedAxis) -> String {
     use super::lyap::{lyap_kind, LyapKind};
     let Some(&(om, top)) = curve.iter().max_by(|a, b| a.1.total_cmp(&b.1)) else {
         return "Largest Lyapunov exponent: computing or off.".into();
@@ -279,9 +287,10 @@ pub fn lyap_label(curve: &[(f64, f64)], linear: bool) -> String {
         "no chaos (no clearly positive exponent)".to_string()
     };
     format!(
-        "Largest Lyapunov exponent at {} values of Ω: highest {top:.3} per mesh period at Ω {}; {reading}.",
+        "Largest Lyapunov exponent at {} {}: highest {top:.3} per mesh period at {}; {reading}.",
         curve.len(),
-        short(om),
+        speed_values(speed),
+        speed_at(speed, om),
     )
 }
 
@@ -348,12 +357,26 @@ mod tests {
         assert!(fr_label(&v2).contains("peak 300 µm at Ω 2"));
         let empty = fr_view(&HbmStore::new(5), None, None, Some(0), &[], &ctx());
         assert_eq!(fr_label(&empty), "Frequency response of s1a1: computing.");
+        // With the speed axes in rpm the same sentence says rpm: each
+        // speed Ω times the scale's rpm per Ω.
+        let m = solver::model::Model::new(&solver::params::ModelParams::default()).unwrap();
+        let mut rpm = v.clone();
+        rpm.speed = SpeedAxis::new(crate::speed::AxisUnit::Rpm, Some(&m));
+        let g = |o: f64| crate::speed::grouped(crate::speed::SpeedScale::of(&m).rpm(o));
+        assert_eq!(
+            fr_label(&rpm),
+            format!(
+                "Frequency response of s1a1: peak 140 µm at {} rpm; no impact from {} to {} rpm; single-sided impact from {} to {} rpm.",
+                g(0.23), g(0.1), g(0.23), g(0.23), g(2.0)
+            )
+        );
     }
 
     #[test]
     fn the_lyapunov_label_counts_chaos() {
-        assert!(lyap_label(&[], false).contains("computing"));
-        let t = lyap_label(&[(0.5, -0.2), (1.0, 0.3), (1.5, 0.05)], false);
+        let omega = SpeedAxis::default();
+        assert!(lyap_label(&[], false, &omega).contains("computing"));
+        let t = lyap_label(&[(0.5, -0.2), (1.0, 0.3), (1.5, 0.05)], false, &omega);
         assert_eq!(
             t,
             "Largest Lyapunov exponent at 3 values of Ω: highest 0.300 per mesh period at Ω 1; positive (chaos) at 2 of them."

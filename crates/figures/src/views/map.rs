@@ -224,6 +224,8 @@ pub struct MapView<'a> {
     /// The clicked curve (its place in `boundaries`) and its picked point
     /// `(omega, value)`, marked on the map.
     pub picked: Option<(usize, (f64, f64))>,
+    /// What the speed axis shows.
+    pub speed: crate::speed::SpeedAxis,
 }
 
 /// The map's cells as CSV, row by row (the format of `gearshock map --format csv`).

@@ -80,6 +80,8 @@ pub struct ViewContext {
     pub mesh_label: String,
     /// Natural frequencies in range.
     pub natural: Vec<NaturalFreq>,
+    /// What the speed axes show (Ω or the input speed in rpm).
+    pub speed: crate::speed::SpeedAxis,
 }
 
 fn csv_num(x: f64) -> String {

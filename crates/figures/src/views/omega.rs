@@ -51,6 +51,12 @@ pub fn summary_line(r: &OmegaResult, natural: &[NaturalFreq]) -> String {
 /// the motion repeats (its classification), then the dynamic factor
 /// explained, then the mesh and the speed's figures.
 pub fn student_summary(r: &OmegaResult) -> String {
+    student_summary_at(r, &crate::speed::SpeedAxis::default())
+}
+
+/// [`student_summary`] stating the speed as `speed` shows it: with the
+/// speed axes in rpm, the input member's speed in rpm before Ω.
+pub fn student_summary_at(r: &OmegaResult, speed: &crate::speed::SpeedAxis) -> String {
     let what = crate::story::contact_sentence(r.regime, r.backlash_um);
     let repeats = crate::story::motion_sentence(r.motion, r.transient_periods_run);
     let preview = if r.preview { "Preview: " } else { "" };
@@ -63,11 +69,18 @@ pub fn student_summary(r: &OmegaResult) -> String {
         ),
         None => String::new(),
     };
+    let at = match speed.rpm_scale() {
+        Some(s) => format!(
+            "{} at {} rpm (Ω {})",
+            s.input(),
+            crate::speed::grouped(s.rpm(r.omega)),
+            crate::views::unstable::short(r.omega)
+        ),
+        None => format!("Ω {}", crate::views::unstable::short(r.omega)),
+    };
     let third = format!(
-        " Mesh {}, Ω {}: a mesh frequency of {:.0} Hz.",
-        r.mesh_name,
-        crate::views::unstable::short(r.omega),
-        r.mesh_freq_hz
+        " Mesh {}, {at}: a mesh frequency of {:.0} Hz.",
+        r.mesh_name, r.mesh_freq_hz
     );
     format!("{first}{second}{third}")
 }

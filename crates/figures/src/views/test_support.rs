@@ -14,6 +14,7 @@ pub fn ctx() -> ViewContext {
         selected_omega: 0.5,
         mesh_label: "s1a1".into(),
         natural: vec![],
+        speed: Default::default(),
     }
 }
 

@@ -5,6 +5,7 @@
 
 use super::fr::{FrCurvePoint, FrView};
 use crate::protocol::Regime;
+use crate::speed::SpeedAxis;
 use crate::story::BranchAt;
 
 /// What the branch `points` says at `omega`: stable if a stable stretch
@@ -89,14 +90,54 @@ const MERGE_FRACTION: f64 = 0.005;
 
 pub use crate::words::short;
 
-/// Ranges in words: "between Ω 0.45 and 1.7" (joined by "and" when several).
-fn ranges_text(ranges: &[(f64, f64)]) -> String {
+/// A speed in a sentence as the speed axes show it: "Ω 0.35", or
+/// "3 012 rpm".
+pub(crate) fn speed_at(speed: &SpeedAxis, omega: f64) -> String {
+    match speed.rpm_scale() {
+        Some(s) => format!("{} rpm", crate::speed::grouped(s.rpm(omega))),
+        None => format!("Ω {}", short(omega)),
+    }
+}
+
+/// A span of speeds in a sentence: "from Ω 0.45 to 2" ("from 0.45 to 2"
+/// unless `named`), or "from 2 400 to 10 600 rpm".
+pub(crate) fn speed_span(speed: &SpeedAxis, a: f64, b: f64, named: bool) -> String {
+    match speed.rpm_scale() {
+        Some(s) => format!(
+            "from {} to {} rpm",
+            crate::speed::grouped(s.rpm(a)),
+            crate::speed::grouped(s.rpm(b))
+        ),
+        None if named => format!("from Ω {} to {}", short(a), short(b)),
+        None => format!("from {} to {}", short(a), short(b)),
+    }
+}
+
+/// What the speeds are called in a count: "values of Ω" or "speeds".
+pub(crate) fn speed_values(speed: &SpeedAxis) -> &'static str {
+    if speed.rpm_scale().is_some() {
+        "speeds"
+    } else {
+        "values of Ω"
+    }
+}
+
+/// Ranges in words: "between Ω 0.45 and 1.7" (joined by "and" when
+/// several), or with the speed axes in rpm "between 2 400 and 9 000 rpm".
+fn ranges_text(ranges: &[(f64, f64)], speed: &crate::speed::SpeedAxis) -> String {
     let parts: Vec<String> = ranges
         .iter()
         .enumerate()
-        .map(|(i, &(a, b))| {
-            let omega = if i == 0 { "Ω " } else { "" };
-            format!("between {omega}{} and {}", short(a), short(b))
+        .map(|(i, &(a, b))| match speed.rpm_scale() {
+            Some(s) => format!(
+                "between {} and {} rpm",
+                crate::speed::grouped(s.rpm(a)),
+                crate::speed::grouped(s.rpm(b))
+            ),
+            None => {
+                let omega = if i == 0 { "Ω " } else { "" };
+                format!("between {omega}{} and {}", short(a), short(b))
+            }
         })
         .collect();
     parts.join(" and ")
@@ -123,7 +164,7 @@ pub fn unstable_sentence(v: &FrView) -> Option<String> {
     };
     let mut s = format!(
         "No stable orbit on the branch{on} {}: {tail}.",
-        ranges_text(&ranges)
+        ranges_text(&ranges, &v.speed)
     );
     if let Some(m) = v.selected_motion {
         let inside = ranges
@@ -132,8 +173,8 @@ pub fn unstable_sentence(v: &FrView) -> Option<String> {
         if inside {
             if let Some(more) = crate::story::branch_agreement(m, BranchAt::Unstable) {
                 s.push_str(&format!(
-                    " At the selected Ω {}: {}",
-                    short(v.selected_omega),
+                    " At the selected {}: {}",
+                    speed_at(&v.speed, v.selected_omega),
                     lower_first(&more)
                 ));
             }
@@ -321,6 +362,18 @@ mod tests {
         assert_eq!(
             unstable_sentence(&v).as_deref(),
             Some("No stable orbit on the branch between Ω 0.45 and 1.7: the dots are the actual response.")
+        );
+        // With the speed axes in rpm, the range is the input's rpm, each
+        // end Ω times rpm per Ω (the scale's, checked against the solver
+        // in crate::speed).
+        let m = solver::model::Model::new(&solver::params::ModelParams::default()).unwrap();
+        let mut rpm = v.clone();
+        rpm.speed = crate::speed::SpeedAxis::new(crate::speed::AxisUnit::Rpm, Some(&m));
+        let k = crate::speed::SpeedScale::of(&m).rpm(1.0);
+        let g = |o: f64| crate::speed::grouped(o * k);
+        assert_eq!(
+            unstable_sentence(&rpm),
+            Some(format!("No stable orbit on the branch between {} and {} rpm: the dots are the actual response.", g(0.45), g(1.7)))
         );
         let mut ok = HbmStore::new(5);
         ok.add(

@@ -139,7 +139,7 @@ impl Controller {
         Ok(Effect::Download {
             name: self.file_name(view, None, ext),
             mime: mime.into(),
-            text,
+            text: self.with_speed(text, csv),
         })
     }
 

@@ -136,6 +136,7 @@ impl Controller {
                     range,
                     &natural,
                     v.omega,
+                    &self.speed_axis(),
                     status,
                 )?);
             }

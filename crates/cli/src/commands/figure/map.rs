@@ -202,6 +202,7 @@ pub(crate) fn run(args: &FigureArgs) -> Result<Value, Failure> {
         cusps: boundaries.cusps.clone(),
         disagree: disagree.clone(),
         picked: None,
+        speed: figures::speed::SpeedAxis::new(v.axis, Some(&model)),
     };
     let svg = figures::plots::maps::map_svg(&view, SIZE).map_err(|e| Failure {
         code: 1,
