@@ -590,6 +590,40 @@ fn sampled_stability_gives_every_point_the_flags_and_labels_of_the_monodromy_at_
     .is_err());
 }
 
+#[test]
+fn sampled_stability_sees_the_one_point_window_between_period_doublings() {
+    // The compound set's default branch at H = 7 (Omega 0.1 to 0.5): next
+    // to Omega 0.214 the largest multiplier crosses -1 inward, a second
+    // one crosses out and back one point later (spectral radius 1.0046,
+    // 0.9936, 1.0074, 0.9920 at four consecutive points), a stable window
+    // one point wide. Sampling every fourth point missed it (two points'
+    // flags and labels differed); intervals whose ends lie within 1 % of
+    // the unit circle are now split, so every flag and label agrees with
+    // the monodromy at every point, at a third of the monodromies.
+    let m = model(&[]);
+    let run = |stride| {
+        let mut spec = FrfSpec::new(0.1, 0.5, 50);
+        spec.harmonics = 7;
+        spec.step_control = StepControl::Geometry;
+        spec.stability_stride = stride;
+        let mut c = FrfContinuation::new(&m, spec).unwrap();
+        let pts = branch(&mut c);
+        (pts, c.stats.monodromies)
+    };
+    let (every, n_every) = run(1);
+    let (sampled, n_sampled) = run(4);
+    assert!(3 * n_sampled < 2 * n_every, "{n_sampled} vs {n_every}");
+    assert_eq!(every.len(), sampled.len());
+    let window = every.windows(3).any(|w| {
+        w[0].stable == Some(false) && w[1].stable == Some(true) && w[2].stable == Some(false)
+    });
+    assert!(window, "the one-point stable window is on the branch");
+    for (a, b) in every.iter().zip(&sampled) {
+        assert_eq!(a.stable, b.stable, "Omega {}", a.omega);
+        assert_eq!(a.bifurcation, b.bifurcation, "Omega {}", a.omega);
+    }
+}
+
 /// The largest amplitude of mesh `j`'s x over the points of a branch in
 /// `(lo, hi)`.
 fn peak_in(points: &[BranchPoint], j: usize, lo: f64, hi: f64) -> f64 {

@@ -42,9 +42,13 @@ pub struct FrfSpec {
     pub step_control: StepControl,
 }
 
-/// The default [`FrfSpec::stability_stride`]: every point. The sampled
-/// route ([`SAMPLED_STABILITY_STRIDE`]) changed 2 of the default branch's
-/// 496 points' flags or labels, not yet explained, so it is not the default.
+/// The default [`FrfSpec::stability_stride`]: every point, so that every
+/// point carries its multipliers. The sampled route
+/// ([`SAMPLED_STABILITY_STRIDE`]) gives the default branch's 496 points the
+/// same flags and labels with a third of the monodromies (it once missed
+/// a stable window one point wide next to two period doublings, now seen
+/// by splitting intervals whose ends lie near the unit circle); its
+/// inferred points carry no multipliers.
 pub(crate) const DEFAULT_STABILITY_STRIDE: u32 = 1;
 
 /// The stride of the sampled stability route that `gearshock bench`

@@ -9,16 +9,30 @@
 //! points between take it; otherwise the change is located by bisection on
 //! the points between (each a monodromy), so that it is labelled between
 //! the same two neighbouring points as with a monodromy at every point.
-//! The first point of a piece and every fold are always computed. Points whose stability
-//! was inferred carry no multipliers. A stability window shorter than the
-//! stride (lost and regained between two samples) is not seen; a stride of
-//! 1 computes every point.
+//! The first point of a piece and every fold are always computed, and so
+//! is every point between two samples whose largest multiplier lies within
+//! 1 % of the unit circle (where a window of another stability can open
+//! and close between them). Points whose stability was inferred carry no
+//! multipliers. A stability window shorter than the stride between two
+//! samples both clear of the circle is not seen; a stride of 1 computes
+//! every point.
 
 use super::point::classify_crossing;
 use super::*;
 
 /// Stability and multipliers of one point.
 type Verdict = (Option<bool>, Vec<Complex<f64>>);
+
+/// How far from the unit circle (relative) a point's largest multiplier
+/// must lie for the points between it and a sample of the same stability
+/// to take that stability unseen.
+const CLEAR_OF_CIRCLE: f64 = 0.01;
+
+/// Whether `multipliers` (none: unknown) keep clear of the unit circle.
+fn clear_of(multipliers: &[Complex<f64>]) -> bool {
+    let radius = multipliers.iter().map(|m| m.norm()).fold(0.0, f64::max);
+    !multipliers.is_empty() && (radius - 1.0).abs() > CLEAR_OF_CIRCLE
+}
 
 impl FrfContinuation {
     /// The monodromy of the queued point `i`.
@@ -67,6 +81,19 @@ impl FrfContinuation {
                 known[i as usize].as_ref().and_then(|v| v.0)
             }
         };
+        // Whether a computed point's multipliers lie clearly off the unit
+        // circle: near it a second multiplier may cross out and back
+        // between two samples (a window one point wide, as next to the
+        // compound set's period doublings at Omega 0.214), so such an
+        // interval is split, not filled.
+        let prev_clear = clear_of(&self.stability.prev_multipliers);
+        let clear_at = |known: &[Option<Verdict>], i: isize| -> bool {
+            if i < 0 {
+                prev_clear
+            } else {
+                known[i as usize].as_ref().is_some_and(|v| clear_of(&v.1))
+            }
+        };
         // A fold (where the tangent's Omega component changes sign) is
         // where stability usually changes: always computed.
         let mut anchors = vec![left];
@@ -86,7 +113,7 @@ impl FrfContinuation {
                 continue;
             }
             let (sa, sb) = (stable_at(&known, a), stable_at(&known, b));
-            if !every && sa.is_some() && sa == sb {
+            if !every && sa.is_some() && sa == sb && clear_at(&known, a) && clear_at(&known, b) {
                 for v in &mut known[(a + 1) as usize..b as usize] {
                     *v = Some((sa, Vec::new()));
                 }
