@@ -402,10 +402,16 @@ impl MeshRating {
 
     /// K_v at resonance ratio `n` (>= 0).
     pub fn kv(&self, n: f64) -> f64 {
+        self.kv_in(self.range(n), n)
+    }
+
+    /// K_v by the formula of range `range` at `n` (a range's formula
+    /// continued past its ends: a curve's pieces end exactly there).
+    pub fn kv_in(&self, range: SpeedRange, n: f64) -> f64 {
         let [c1, c2, c3, c4, c5, c6, c7] = self.c_v;
         let main = c1 * self.b_p + c2 * self.b_f + c4 * self.b_k + 1.0;
         let supercritical = c5 * self.b_p + c6 * self.b_f + c7;
-        match self.range(n) {
+        match range {
             SpeedRange::Subcritical => n * (c1 * self.b_p + c2 * self.b_f + c3 * self.b_k) + 1.0,
             SpeedRange::MainResonance => main,
             SpeedRange::Intermediate => supercritical + (main - supercritical) * (1.5 - n) / 0.35,

@@ -410,6 +410,9 @@ pub struct BifMesh {
     pub rel_max_um: f64,
     /// Impact regime.
     pub regime: Regime,
+    /// max F / F_static over the recorded periods.
+    #[serde(default)]
+    pub dynamic_factor: Option<f64>,
 }
 
 /// One computed point of a bifurcation sweep.
@@ -493,6 +496,18 @@ pub struct MeshSummary {
     pub dynamic_factor: Option<f64>,
 }
 
+/// How the planets of one mesh kind share the load in a steady state
+/// (`solver::sharing`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct KindSharing {
+    /// The mesh kind's key (`s1a`, `s2b`, `ab`, `rb`).
+    pub kind: String,
+    /// Largest mesh force of each planet's mesh (N), by planet.
+    pub peak_force_n: Vec<f64>,
+    /// Largest peak over the mean peak (`None`: the kind carries no load).
+    pub factor: Option<f64>,
+}
+
 /// Every mesh's history over the window the time-history view shows, for
 /// the animated gear set.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
@@ -567,6 +582,10 @@ pub struct OmegaResult {
     /// Every mesh's history over the shown window (the animation).
     #[serde(default)]
     pub anim: AnimHistory,
+    /// How the planets share the load, per mesh kind (empty for the gear
+    /// pair).
+    #[serde(default)]
+    pub load_sharing: Vec<KindSharing>,
     /// Integrator steps taken.
     pub steps: u64,
     /// `gearshock simulate` JSON of this run (the CLI's format); empty for

@@ -5,8 +5,8 @@
 
 use super::{excitation_at, failed, Job, SLICE_STEPS};
 use figures::protocol::{
-    history_start, um, AnimHistory, FromWorker, JobId, MeshSummary, OmegaResult, OmegaSpec,
-    RunOptions,
+    history_start, um, AnimHistory, FromWorker, JobId, KindSharing, MeshSummary, OmegaResult,
+    OmegaSpec, RunOptions,
 };
 use figures::settings::Settings;
 use solver::model::Model;
@@ -272,6 +272,14 @@ fn omega_result_of(
             })
             .collect(),
         anim,
+        load_sharing: solver::sharing::load_sharing(&model.system, &ss.meshes)
+            .into_iter()
+            .map(|k| KindSharing {
+                kind: k.kind.key().to_string(),
+                peak_force_n: k.peak_force_n,
+                factor: k.factor,
+            })
+            .collect(),
         steps: ss.stats.integrator.steps,
         cli_json,
         preview,
