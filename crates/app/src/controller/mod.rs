@@ -779,6 +779,7 @@ impl Controller {
 
 mod boundaries;
 pub(crate) mod campbell;
+mod dynamic;
 mod export;
 mod text;
 pub use export::{ExportError, Format};

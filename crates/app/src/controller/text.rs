@@ -18,6 +18,9 @@ impl Controller {
         if view == figures::views::ViewId::Campbell {
             return self.campbell_label();
         }
+        if view == figures::views::ViewId::Dynamic {
+            return self.dynamic_label();
+        }
         match view.spec().data {
             JobKind::HarmonicBalance | JobKind::Overlay if self.panels.is_some() => {
                 labels::fr_panels_label(&self.fr_panels())
@@ -126,6 +129,9 @@ impl Controller {
         let not_computed = |e: &String| format!("Not computed: {e}");
         if view == figures::views::ViewId::Campbell {
             return self.campbell_view().err().map(|e| not_computed(&e));
+        }
+        if view == figures::views::ViewId::Dynamic {
+            return self.dynamic_view().err().map(|e| not_computed(&e));
         }
         match view.spec().data {
             JobKind::HarmonicBalance | JobKind::Overlay => {

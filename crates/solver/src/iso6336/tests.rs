@@ -19,7 +19,8 @@ fn worked() -> IsoMesh {
         pressure_angle_deg: 20.0,
         reduced_mass_kg: 1.045_360_921_321_656,
         stiffness_n_m: 1e9,
-        tangential_load_n: 8333.333_333_333_334,
+        // 500 N m on the 60 mm pitch radius.
+        tangential_load_n: 500.0 / 0.060,
     }
 }
 

@@ -57,6 +57,9 @@ pub enum ExportError {
     /// The model's natural frequencies cannot be computed.
     #[error("the natural frequencies cannot be computed: {0}")]
     Modes(String),
+    /// The standard cannot rate the mesh (or the model cannot be built).
+    #[error("the dynamic factor cannot be computed: {0}")]
+    Rating(String),
     /// The data could not be written as JSON.
     #[error("cannot write the JSON: {0}")]
     Json(String),
@@ -82,6 +85,9 @@ impl Controller {
         let text = match view.spec().data {
             _ if view == ViewId::Campbell => {
                 self.campbell_export(csv).map_err(ExportError::Modes)?
+            }
+            _ if view == ViewId::Dynamic => {
+                self.dynamic_export(csv).map_err(ExportError::Rating)?
             }
             JobKind::HarmonicBalance | JobKind::Overlay if self.panels.is_some() => {
                 self.fr_panels_export(csv)?

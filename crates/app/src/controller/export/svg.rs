@@ -94,6 +94,11 @@ impl Controller {
             d.frame = Some(plots::campbell::draw_campbell(root, &c, status)?);
             return Ok(d);
         }
+        if view == ViewId::Dynamic {
+            let v = self.dynamic_view().map_err(plots::DrawError)?;
+            d.frame = Some(plots::dynamic::draw_dynamic(root, &v, status)?);
+            return Ok(d);
+        }
         match view.spec().data {
             // Clicks pick Omega on the first panel's axis (all share it).
             JobKind::HarmonicBalance | JobKind::Overlay if self.panels.is_some() => {
