@@ -281,12 +281,13 @@ impl DynamicView {
         let (_, centre, _) = self.main_band();
         let why = match self.selected.as_ref().map(|s| s.regime) {
             Some(Regime::SingleSided | Regime::DoubleSided | Regime::NoContact) => {
-                " Here the teeth part and strike again (backlash), which the standard's linear pair never does."
+                " Here the teeth part and strike again (backlash), which the standard's linear pair never does.".to_string()
             }
-            Some(_) => {
-                " Here the teeth stay in contact: the difference is the model's transmission error, its mesh stiffness varying with the mesh cycle and the coupled bodies, against the standard's single pair excited by grade-6 deviations."
-            }
-            None => "",
+            Some(_) => format!(
+                " Here the teeth stay in contact: the difference is the model's transmission error, its mesh stiffness varying with the mesh cycle and the coupled bodies, against the standard's single pair excited by the deviations of grade {}.",
+                self.inputs.accuracy_grade
+            ),
+            None => String::new(),
         };
         format!(
             "At Ω {o:.3} ({} rpm), mesh {}: {model}; dynamic factor K_v (ISO 6336-1, method B) {kv:.2} ({}, N = {n:.2}). The standard puts this mesh's main resonance at Ω {centre:.2} ({} rpm).{why} {}",
