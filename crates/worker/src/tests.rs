@@ -505,7 +505,7 @@ fn steps_to_omega(core: &mut WorkerCore) -> (Vec<FromWorker>, usize) {
 
 #[test]
 fn a_new_omega_job_preempts_a_running_steady_state_within_one_slice() {
-    use crate::jobs::omega::{omega_result, OmegaJob};
+    use crate::jobs::omega::{omega_result, with_iso6336, OmegaJob};
     use crate::jobs::SLICE_STEPS;
     let mut core = WorkerCore::new();
     let p = ModelParams::default();
@@ -577,7 +577,9 @@ fn a_new_omega_job_preempts_a_running_steady_state_within_one_slice() {
         panic!("not an Omega job");
     };
     let job = OmegaJob { id: 2, model, spec };
-    let whole = omega_result(&job, None).expect("one-shot run");
+    let mut whole = omega_result(&job, None).expect("one-shot run");
+    // The worker's run adds ISO 6336-1's K_v to its CLI JSON.
+    with_iso6336(&mut whole, &p, &job.model);
     assert_eq!(*result.1.as_ref(), whole);
     // Then the sweep runs.
     assert!(drain(&mut core)

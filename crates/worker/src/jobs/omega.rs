@@ -127,8 +127,9 @@ impl OmegaRun {
 }
 
 /// `result`'s CLI JSON with ISO 6336-1's K_v added at the standard's
-/// default inputs, as `gearshock simulate` adds it (`report::add_iso6336`).
-fn with_iso6336(result: &mut OmegaResult, params: &ModelParams, model: &Model) {
+/// default inputs, as `gearshock simulate` adds it (`report::add_iso6336`):
+/// the worker's full run adds it, the page's preview has no CLI JSON.
+pub fn with_iso6336(result: &mut OmegaResult, params: &ModelParams, model: &Model) {
     let Ok(mut v) = serde_json::from_str::<serde_json::Value>(&result.cli_json) else {
         return;
     };
