@@ -73,9 +73,12 @@ test('a link opens a view on the whole projector screen, drawn for it, and the k
   await page.keyboard.press('ArrowRight');
   s = await waitStatus(page, (x) => x.omega > omega, 60000, 'a higher Ω');
   await waitText(page, '#present-omega', new RegExp(`^Ω = ${s.omega.toFixed(3)}$`));
-  // p twice: back past the first view to the last (the Campbell
-  // diagram), and once more to the spectrum.
+  // p twice: back past the first view to the last (the dynamic
+  // factor), then to the Campbell diagram and the spectrum.
   await page.keyboard.press('p');
+  await page.keyboard.press('p');
+  await waitStatus(page, (x) => x.present.shown === 'dynamic', 60000, 'the dynamic factor presented');
+  await waitText(page, '#present-title', /^11\. Dynamic factor$/);
   await page.keyboard.press('p');
   await waitStatus(page, (x) => x.present.shown === 'campbell', 60000, 'the Campbell diagram presented');
   await waitText(page, '#present-title', /^10\. Campbell diagram$/);

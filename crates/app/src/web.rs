@@ -419,7 +419,7 @@ fn build_canvas_events(page: &Shared) {
             }
         });
     }
-    for view in [ViewId::Fr, ViewId::Bif, ViewId::Lyap] {
+    for view in [ViewId::Fr, ViewId::Bif, ViewId::Lyap, ViewId::Dynamic] {
         let Some(cv) = canvas(&doc, view) else {
             continue;
         };

@@ -101,7 +101,7 @@ fn files(c: &mut Controller, cores: &mut [WorkerCore]) -> Vec<(String, String)> 
     };
     // The order the snapshot was written in: the sweeps, the map and the
     // Lyapunov curve, then the selected-Omega views, then the Campbell
-    // diagram's critical speeds.
+    // diagram's critical speeds, then the dynamic factor.
     let order = [ViewId::Fr, ViewId::Bif, ViewId::Map, ViewId::Lyap]
         .into_iter()
         .chain([
@@ -110,6 +110,7 @@ fn files(c: &mut Controller, cores: &mut [WorkerCore]) -> Vec<(String, String)> 
             ViewId::Time,
             ViewId::Spectrum,
             ViewId::Campbell,
+            ViewId::Dynamic,
         ]);
     assert_eq!(order.clone().count(), VIEWS.len());
     for view in order {

@@ -348,3 +348,38 @@ pub fn meshes(model: &Model, name: Option<&str>) -> Result<Vec<usize>, Failure> 
         other => vec![mesh_index(model, other)?],
     })
 }
+
+/// The inputs of ISO 6336-1's dynamic factor K_v (method B) that the model
+/// lacks; the model gives the geometry, stiffness, load and inertias.
+#[derive(Debug, Args)]
+pub struct IsoArgs {
+    /// Accuracy grade by ISO 1328-1 (1 to 11) for K_v.
+    #[arg(long, default_value_t = 6.0, allow_hyphen_values = true, value_parser = crate::flags::finite)]
+    pub accuracy_grade: f64,
+    /// Face width in mm for K_v (the model's mesh stiffness over it is the
+    /// standard's c_gamma_alpha: 1e9 N/m over 50 mm is 20 N/(mm um)).
+    #[arg(long, default_value_t = 50.0, allow_hyphen_values = true, value_parser = crate::flags::finite)]
+    pub face_width_mm: f64,
+    /// Application factor K_A for K_v's line load.
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true, value_parser = crate::flags::finite)]
+    pub application_factor: f64,
+    /// Tip relief C_a in um for K_v (default: the standard's running-in
+    /// amount C_ay of case-hardened steel, 2.0 um).
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::flags::finite)]
+    pub tip_relief_um: Option<f64>,
+}
+
+impl IsoArgs {
+    /// The solver's inputs, checked (a refusal names the flag's value).
+    pub fn inputs(&self) -> Result<solver::iso6336::IsoInputs, Failure> {
+        let inputs = solver::iso6336::IsoInputs {
+            accuracy_grade: self.accuracy_grade,
+            face_width_mm: self.face_width_mm,
+            application_factor: self.application_factor,
+            tip_relief_um: self.tip_relief_um,
+            ..solver::iso6336::IsoInputs::default()
+        };
+        inputs.validate()?;
+        Ok(inputs)
+    }
+}

@@ -12,8 +12,10 @@
 //! JSON values is pure computation; writing them out is the caller's job.
 
 mod boundaries;
+mod iso;
 mod orbits;
 pub use boundaries::boundaries_json;
+pub use iso::{add_iso6336, iso_inputs_json};
 pub use orbits::shooting_frf_json;
 
 use serde_json::{json, Map, Value};

@@ -21,6 +21,7 @@
 //! - [`steady`]: steady-state runs, Poincaré samples, impact regimes, spectra.
 //! - [`sweep`]: bifurcation sweeps with bounded work per call.
 //! - [`hbm`]: harmonic balance, continuation, Floquet stability.
+//! - [`iso6336`]: the dynamic factor K_v of ISO 6336-1 (method B) per mesh.
 //! - [`lyapunov`]: the largest Lyapunov exponent of the Poincaré map.
 //! - `separation`: mesh-space separations shared by it and the steady run's probe.
 //! - [`parametric`]: parametric instability of the fully engaged set over Omega.
@@ -38,6 +39,7 @@ pub mod dynamics;
 pub mod error;
 pub(crate) mod fastmath;
 pub mod hbm;
+pub mod iso6336;
 pub mod keys;
 pub mod lyapunov;
 pub mod map;

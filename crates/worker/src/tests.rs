@@ -194,6 +194,16 @@ fn omega_job_returns_history_poincare_and_cli_json() {
     assert!(!result.spectrum_order.is_empty());
     let cli: Value = serde_json::from_str(&result.cli_json).unwrap();
     assert_eq!(cli["mesh"], "pg");
+    // ISO 6336-1's K_v as `gearshock simulate` prints it: the gear pair's
+    // defaults are solver::iso6336's worked input, whose hand calculation
+    // gives K = C_v1 B_p + C_v2 B_f + C_v3 B_k = 0.65685; N = Omega = 0.8
+    // is subcritical, K_v = 0.8 K + 1 = 1.5255.
+    let kv = cli["kv_iso6336"].as_f64().unwrap();
+    assert!((kv - 1.5255).abs() < 1e-4, "{kv}");
+    assert_eq!(cli["all_meshes"]["pg"]["kv_iso6336"], cli["kv_iso6336"]);
+    assert_eq!(cli["iso6336"]["meshes"]["pg"]["range"], "subcritical");
+    // One mesh: nothing to share.
+    assert!(result.load_sharing.is_empty());
     assert_eq!(out[1], FromWorker::Done { id: 7 });
     // The animation's window is the time history's: the last 8 recorded
     // periods here, and the plotted mesh's samples are the same numbers.
@@ -495,7 +505,7 @@ fn steps_to_omega(core: &mut WorkerCore) -> (Vec<FromWorker>, usize) {
 
 #[test]
 fn a_new_omega_job_preempts_a_running_steady_state_within_one_slice() {
-    use crate::jobs::omega::{omega_result, OmegaJob};
+    use crate::jobs::omega::{omega_result, with_iso6336, OmegaJob};
     use crate::jobs::SLICE_STEPS;
     let mut core = WorkerCore::new();
     let p = ModelParams::default();
@@ -567,7 +577,9 @@ fn a_new_omega_job_preempts_a_running_steady_state_within_one_slice() {
         panic!("not an Omega job");
     };
     let job = OmegaJob { id: 2, model, spec };
-    let whole = omega_result(&job, None).expect("one-shot run");
+    let mut whole = omega_result(&job, None).expect("one-shot run");
+    // The worker's run adds ISO 6336-1's K_v to its CLI JSON.
+    with_iso6336(&mut whole, &p, &job.model);
     assert_eq!(*result.1.as_ref(), whole);
     // Then the sweep runs.
     assert!(drain(&mut core)

@@ -145,6 +145,7 @@ fn the_small_multiples_share_their_axes_and_letter_their_panels() {
             rel_min_um: x,
             rel_max_um: x,
             regime: Regime::SingleSided,
+            dynamic_factor: None,
         }],
         worst_mesh: 0,
         period: Some(1),

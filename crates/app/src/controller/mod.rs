@@ -751,6 +751,7 @@ impl Controller {
 
 mod boundaries;
 pub(crate) mod campbell;
+mod dynamic;
 mod export;
 mod speed;
 mod text;

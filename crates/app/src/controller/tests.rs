@@ -348,6 +348,7 @@ fn at_the_defaults_the_frequency_response_shows_the_sweeps_steady_states() {
             rel_min_um: lo,
             rel_max_um: hi,
             regime: Regime::SingleSided,
+            dynamic_factor: None,
         }],
         worst_mesh: 0,
         period: None,

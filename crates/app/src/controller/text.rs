@@ -28,6 +28,7 @@ impl Controller {
             return self.campbell_label();
         }
         match view {
+            ViewId::Dynamic => self.dynamic_label(),
             ViewId::Fr if self.panels.is_some() => labels::fr_panels_label(&self.fr_panels()),
             ViewId::Fr => labels::fr_label(&self.fr_view()),
             ViewId::Bif => labels::bif_label(&self.bif_view()),
@@ -140,6 +141,7 @@ impl Controller {
         let not_computed = |e: &String| format!("Not computed: {e}");
         match view {
             ViewId::Campbell => self.campbell_view().err().map(|e| not_computed(&e)),
+            ViewId::Dynamic => self.dynamic_view().err().map(|e| not_computed(&e)),
             ViewId::Fr => {
                 let e = st.error.as_ref()?;
                 let v = self.fr_view();

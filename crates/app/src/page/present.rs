@@ -397,13 +397,13 @@ mod tests {
         assert_eq!(p.present_key(), Some("map"));
         p.present_keydown("ArrowUp", false);
         p.present_keydown("PageUp", false);
-        // Wraps round to the page's last view (the Campbell diagram).
+        // Wraps round to the page's last view (the dynamic factor).
         assert_eq!(
             p.present_key(),
             PAGE.last().map(|part| part.key),
             "wraps round"
         );
-        assert_eq!(p.present_key(), Some("campbell"));
+        assert_eq!(p.present_key(), Some("dynamic"));
         p.present_keydown("PageDown", false);
         assert_eq!(p.present_key(), Some("fr"));
         // The left and right arrows step Ω, as on the page's plots.

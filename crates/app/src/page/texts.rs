@@ -166,6 +166,7 @@ impl Page {
             ViewId::Map => main.map_status().map_caption_suffix(),
             ViewId::Lyap => main.lyap_status().caption_suffix(),
             ViewId::Campbell => String::new(),
+            ViewId::Dynamic => main.bif_status().caption_suffix(),
             ViewId::Phase | ViewId::Poincare if family => computing(self.running(view)),
             ViewId::Phase | ViewId::Poincare | ViewId::Time | ViewId::Spectrum => {
                 let preview = main.omega.as_ref().is_some_and(|r| r.preview);
@@ -181,6 +182,7 @@ impl Page {
     pub fn note(&self, view: ViewId, fr: Option<&FrView>) -> Vec<Write> {
         match (view, fr) {
             (ViewId::Campbell, _) => vec![Write::text("note-campbell", self.ctl.campbell_note())],
+            (ViewId::Dynamic, _) => vec![Write::text("note-dynamic", self.ctl.dynamic_note())],
             (ViewId::Fr, Some(fr)) if self.ctl.panels().is_some() => {
                 let note = figures::views::fr::fr_panels_note(fr);
                 vec![
@@ -209,6 +211,34 @@ impl Page {
             }
             _ => Vec::new(),
         }
+    }
+
+    /// The dynamic factor at the selected Omega as the page shows it: the
+    /// model's, K_v by ISO 6336-1 and its range, the load sharing, and how
+    /// many steady states the model's curve has.
+    fn dynamic_status(&self) -> serde_json::Value {
+        let Ok(v) = self.ctl.dynamic_view() else {
+            return serde_json::Value::Null;
+        };
+        let o = v.selected_omega;
+        let selected = v.selected.as_ref();
+        serde_json::json!({
+            "mesh": v.mesh_name,
+            "omega": o,
+            "dynamic_factor": selected.and_then(|s| s.factor),
+            "preview": selected.is_some_and(|s| s.preview),
+            "kv": v.kv_at(o),
+            "iso_range": v.range_at(o).name(),
+            "resonance_ratio": v.n_at(o),
+            "phasing": v.phasing,
+            "planets": v.planets,
+            "load_sharing": v.sharing.iter().map(|k| serde_json::json!({
+                "kind": k.kind,
+                "factor": k.factor,
+            })).collect::<Vec<_>>(),
+            "points": v.nonlinear.len(),
+            "note": v.note(),
+        })
     }
 
     /// The Campbell diagram's critical speeds, each with its pixel on the
@@ -309,6 +339,7 @@ impl Page {
                 ViewId::Bif,
                 ViewId::Time,
                 ViewId::Campbell,
+                ViewId::Dynamic,
             ] {
                 o.insert(
                     format!("{}_frame", view.key()),
@@ -348,6 +379,7 @@ impl Page {
             o.insert("present".into(), self.present_status());
             o.insert("campbell".into(), self.campbell_status());
             o.insert("speed".into(), self.speed_status());
+            o.insert("dynamic".into(), self.dynamic_status());
             let boxes: serde_json::Map<String, serde_json::Value> = VIEWS
                 .iter()
                 .zip(&self.telemetry.text_boxes)

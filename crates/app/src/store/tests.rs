@@ -32,6 +32,7 @@ fn sweep_point(index: u32) -> BifSample {
             rel_min_um: 1.0,
             rel_max_um: 1.0,
             regime: Regime::NoImpact,
+            dynamic_factor: None,
         }],
         worst_mesh: 0,
         period: Some(1),

@@ -1,7 +1,8 @@
 //! `gearshock simulate`: the steady-state response at one Omega, with the
-//! chosen mesh's time history and spectrum.
+//! chosen mesh's time history and spectrum, and every mesh's dynamic
+//! factor beside ISO 6336-1's K_v (method B).
 
-use crate::args::{mesh_index, Format, ParamArgs, RunArgs};
+use crate::args::{mesh_index, Format, IsoArgs, ParamArgs, RunArgs};
 use crate::csv;
 use crate::failure::{usage, Failure};
 use crate::output::{emit_text, note, output};
@@ -25,12 +26,15 @@ pub struct SimulateArgs {
     /// Highest harmonic order in the spectrum.
     #[arg(long, default_value_t = 8.0, allow_hyphen_values = true, value_parser = crate::flags::finite)]
     max_order: f64,
+    #[command(flatten)]
+    iso: IsoArgs,
 }
 
 /// Runs one steady state and prints it.
 pub fn run(a: &SimulateArgs) -> Result<(), Failure> {
-    let (_, model) = a.p.load()?;
+    let (params, model) = a.p.load()?;
     let j = mesh_index(&model, a.mesh.as_deref())?;
+    let iso = a.iso.inputs()?;
     let mut opts = SteadyOptions::new(a.omega);
     a.run.apply(&mut opts);
     opts.history_meshes = vec![j];
@@ -43,6 +47,7 @@ pub fn run(a: &SimulateArgs) -> Result<(), Failure> {
     opts.validate()?;
     let ss = steady_state(&model, &opts, None)?;
     let mut value = report::simulate_json(&model, &ss, j, max_order);
+    report::add_iso6336(&mut value, &params, &model, j, ss.mesh_freq_hz, &iso);
     let mut verdict = ss.verdict();
     // Evidence for a motion that is not periodic where the run's own
     // Lyapunov probe did not find chaos: the largest exponent of the

@@ -23,6 +23,7 @@ pub mod campbell;
 mod clip;
 pub mod css;
 pub mod decimate;
+pub mod dynamic;
 mod fr;
 mod key;
 pub mod maps;

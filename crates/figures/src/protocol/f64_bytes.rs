@@ -59,3 +59,29 @@ pub(super) fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<f64>, D
     let s = std::borrow::Cow::<'de, str>::deserialize(d)?;
     decode(&s).map_err(D::Error::custom)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn long_number_lists_travel_as_their_exact_bytes() {
+        // Python: base64.b64encode(struct.pack('<2d', 1.0, -2.5)).
+        assert_eq!(encode(&[1.0, -2.5]), "AAAAAAAA8D8AAAAAAAAEwA==");
+        let tricky = [
+            0.1,
+            -0.0,
+            f64::MIN_POSITIVE / 3.0,
+            1.0 / 3.0,
+            -1e300,
+            123.456,
+        ];
+        for n in 0..=tricky.len() {
+            let back = decode(&encode(&tricky[..n])).unwrap();
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&back), bits(&tricky[..n]));
+        }
+        assert!(decode("AAAA*AAA").unwrap_err().contains("not base64"));
+        assert!(decode("AAAA").is_err(), "3 bytes are not a number");
+    }
+}

@@ -32,9 +32,11 @@ pub type JobId = u64;
 mod boundaries;
 mod kinds;
 mod orbits;
+mod sharing;
 pub use boundaries::{BoundaryCurve, BoundaryKind, BoundaryPoint};
 pub use kinds::{JobKind, KindSet, Target};
 pub use orbits::OrbitSample;
+pub use sharing::KindSharing;
 /// The solver's verdict on a steady state, sent as it is (one definition:
 /// the page's words about the motion are all built from it in `crate::story`).
 pub use solver::steady::Motion;
@@ -394,6 +396,9 @@ pub struct BifMesh {
     pub rel_max_um: f64,
     /// Impact regime.
     pub regime: Regime,
+    /// max F / F_static over the recorded periods.
+    #[serde(default)]
+    pub dynamic_factor: Option<f64>,
 }
 
 /// One computed point of a bifurcation sweep.
@@ -551,6 +556,9 @@ pub struct OmegaResult {
     /// Every mesh's history over the shown window (the animation).
     #[serde(default)]
     pub anim: AnimHistory,
+    /// How the planets share the load, per mesh kind (none: the gear pair).
+    #[serde(default)]
+    pub load_sharing: Vec<KindSharing>,
     /// Integrator steps taken.
     pub steps: u64,
     /// `gearshock simulate` JSON of this run (the CLI's format); empty for
@@ -746,32 +754,6 @@ mod tests {
             assert_eq!(back, m);
         }
         assert_eq!(encode(&FromWorker::Ready), r#"{"type":"ready"}"#);
-    }
-
-    #[test]
-    fn long_number_lists_travel_as_their_exact_bytes() {
-        // Python: base64.b64encode(struct.pack('<2d', 1.0, -2.5)).
-        assert_eq!(f64_bytes::encode(&[1.0, -2.5]), "AAAAAAAA8D8AAAAAAAAEwA==");
-        let tricky = [
-            0.1,
-            -0.0,
-            f64::MIN_POSITIVE / 3.0,
-            1.0 / 3.0,
-            -1e300,
-            123.456,
-        ];
-        for n in 0..=tricky.len() {
-            let back = f64_bytes::decode(&f64_bytes::encode(&tricky[..n])).unwrap();
-            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-            assert_eq!(bits(&back), bits(&tricky[..n]));
-        }
-        assert!(f64_bytes::decode("AAAA*AAA")
-            .unwrap_err()
-            .contains("not base64"));
-        assert!(
-            f64_bytes::decode("AAAA").is_err(),
-            "3 bytes are not a number"
-        );
     }
 
     #[test]

@@ -172,6 +172,7 @@ mod tests {
                 rel_min_um: 0.5,
                 rel_max_um: 2.5,
                 regime: Regime::DoubleSided,
+                dynamic_factor: None,
             }],
             worst_mesh: 0,
             period: Some(2),

@@ -370,7 +370,7 @@ impl FrStore {
                             rel_min_um: m.rel_min_um,
                             rel_max_um: m.rel_max_um,
                             regime: m.regime,
-                            dynamic_factor: None,
+                            dynamic_factor: m.dynamic_factor,
                         })
                         .collect(),
                     period: s.period,

@@ -9,6 +9,7 @@
 pub mod bif;
 pub mod boundaries;
 pub mod campbell;
+pub mod dynamic;
 pub mod fr;
 pub mod labels;
 pub mod lyap;

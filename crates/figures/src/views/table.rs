@@ -29,6 +29,10 @@ pub enum ViewId {
     /// mesh orders' crossings (drawn from the model, with the selected
     /// Omega's speed, so it follows the selected-Omega job).
     Campbell,
+    /// The selected mesh's dynamic factor over Omega beside K_v by ISO
+    /// 6336-1 method B, and the selected state's load sharing (drawn from
+    /// the sweep's or the overlay's steady states and the selected Omega's).
+    Dynamic,
 }
 
 /// What the page needs to know about a view.
@@ -50,7 +54,7 @@ pub struct ViewSpec {
 }
 
 /// Every view, in [`ViewId`] order.
-pub const VIEWS: [ViewSpec; 9] = [
+pub const VIEWS: [ViewSpec; 10] = [
     ViewSpec {
         id: ViewId::Fr,
         key: "fr",
@@ -123,6 +127,14 @@ pub const VIEWS: [ViewSpec; 9] = [
         shows: JobKind::Omega.set(),
         progressive: false,
     },
+    ViewSpec {
+        id: ViewId::Dynamic,
+        key: "dynamic",
+        title: "Dynamic factor",
+        data: JobKind::Bif,
+        shows: KindSet::of(&[JobKind::Bif, JobKind::Overlay, JobKind::Omega]),
+        progressive: true,
+    },
 ];
 
 /// One numbered part of the page, in page order: the views of [`VIEWS`]
@@ -140,7 +152,7 @@ pub struct PagePart {
 /// motion stops repeating), then the views of the motion at the selected
 /// Omega. A part's number is its place here; `index.html` is checked
 /// against it (order, headings and every "view N" in the help texts).
-pub const PAGE: [PagePart; 10] = [
+pub const PAGE: [PagePart; 11] = [
     PagePart {
         key: "fr",
         title: "Frequency response",
@@ -181,6 +193,10 @@ pub const PAGE: [PagePart; 10] = [
         key: "campbell",
         title: "Campbell diagram",
     },
+    PagePart {
+        key: "dynamic",
+        title: "Dynamic factor",
+    },
 ];
 
 /// The number of the page part with key `key` (1-based), if there is one.
@@ -190,7 +206,7 @@ pub fn part_number(key: &str) -> Option<usize> {
 
 /// The order in which dirty views are drawn: the views a slider drag
 /// watches first (the frequency response, then the phase portrait).
-pub const DRAW_ORDER: [ViewId; 9] = [
+pub const DRAW_ORDER: [ViewId; 10] = [
     ViewId::Fr,
     ViewId::Phase,
     ViewId::Bif,
@@ -200,11 +216,12 @@ pub const DRAW_ORDER: [ViewId; 9] = [
     ViewId::Lyap,
     ViewId::Map,
     ViewId::Campbell,
+    ViewId::Dynamic,
 ];
 
 impl ViewId {
     /// Every view, in slot order.
-    pub const ALL: [ViewId; 9] = [
+    pub const ALL: [ViewId; 10] = [
         ViewId::Fr,
         ViewId::Bif,
         ViewId::Phase,
@@ -214,6 +231,7 @@ impl ViewId {
         ViewId::Map,
         ViewId::Lyap,
         ViewId::Campbell,
+        ViewId::Dynamic,
     ];
 
     /// The view's slot in per-view arrays.
@@ -249,6 +267,9 @@ impl ViewId {
 
     /// The progress bar's label at `done` of `total`.
     pub fn progress_label(self, done: usize, total: usize) -> String {
+        if self == ViewId::Dynamic {
+            return format!("computing {done}/{total} steady states");
+        }
         match self.spec().data {
             JobKind::HarmonicBalance | JobKind::Overlay => {
                 format!("harmonic balance: {done}% of the Ω range")
@@ -276,7 +297,7 @@ impl ViewId {
 
     /// The CLI-format export's button title, for the views that have one.
     pub fn cli_export_title(self) -> Option<&'static str> {
-        if self == ViewId::Campbell {
+        if matches!(self, ViewId::Campbell | ViewId::Dynamic) {
             return None;
         }
         match self.spec().data {

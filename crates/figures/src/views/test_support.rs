@@ -105,6 +105,7 @@ pub fn omega_result() -> OmegaResult {
         spectrum_um: vec![110.0, 30.0, 0.1],
         all_meshes: vec![],
         anim: Default::default(),
+        load_sharing: Vec::new(),
         steps: 1,
         cli_json: "{}".into(),
         preview: false,

@@ -233,6 +233,7 @@ fn bif_sample(sweep: &BifurcationSweep, p: &SweepPoint) -> BifSample {
                     rel_min_um: um(m.rel_min_m),
                     rel_max_um: um(m.rel_max_m),
                     regime: m.impact.into(),
+                    dynamic_factor: m.dynamic_factor,
                 }
             })
             .collect(),

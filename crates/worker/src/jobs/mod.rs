@@ -102,7 +102,7 @@ pub(crate) fn start(
     match spec {
         JobSpec::Omega(spec) => {
             let job = OmegaJob { id, model, spec };
-            Ok((Box::new(OmegaRun::start(job)), Vec::new()))
+            Ok((Box::new(OmegaRun::start(job, params)), Vec::new()))
         }
         JobSpec::HarmonicBalance {
             omega_from,

@@ -5,11 +5,12 @@
 
 use super::{excitation_at, failed, Job, SLICE_STEPS};
 use figures::protocol::{
-    history_start, um, AnimHistory, FromWorker, JobId, MeshSummary, OmegaResult, OmegaSpec,
-    RunOptions,
+    history_start, um, AnimHistory, FromWorker, JobId, KindSharing, MeshSummary, OmegaResult,
+    OmegaSpec, RunOptions,
 };
 use figures::settings::Settings;
 use solver::model::Model;
+use solver::params::ModelParams;
 use solver::steady::{spectrum, steady_state, SteadyOptions, SteadyRun, SteadyState};
 
 /// Samples per mesh period of the selected-Omega history.
@@ -106,19 +107,42 @@ pub(crate) struct OmegaRun {
     /// The steady state in progress; `Err` holds a failure to report at
     /// the next step (bad options or mesh), `None` once finished.
     run: Option<Result<SteadyRun, OmegaError>>,
+    /// The parameters the model was built from: the CLI JSON gains ISO
+    /// 6336-1's K_v from them, as `gearshock simulate` prints it.
+    params: ModelParams,
 }
 
 impl OmegaRun {
-    /// Starts `job` (no integration yet).
-    pub(crate) fn start(job: OmegaJob) -> Self {
+    /// Starts `job` on the model built from `params` (no integration yet).
+    pub(crate) fn start(job: OmegaJob, params: ModelParams) -> Self {
         let run = omega_options(&job, false).and_then(|opts| {
             SteadyRun::new(&job.model, &opts, None).map_err(OmegaError::solver(&job))
         });
         OmegaRun {
             job,
             run: Some(run),
+            params,
         }
     }
+}
+
+/// `result`'s CLI JSON with ISO 6336-1's K_v added at the standard's
+/// default inputs, as `gearshock simulate` adds it (`report::add_iso6336`):
+/// the worker's full run adds it, the page's preview has no CLI JSON.
+pub fn with_iso6336(result: &mut OmegaResult, params: &ModelParams, model: &Model) {
+    let Ok(mut v) = serde_json::from_str::<serde_json::Value>(&result.cli_json) else {
+        return;
+    };
+    let inputs = solver::iso6336::IsoInputs::default();
+    report::add_iso6336(
+        &mut v,
+        params,
+        model,
+        result.mesh,
+        result.mesh_freq_hz,
+        &inputs,
+    );
+    result.cli_json = v.to_string();
 }
 
 impl Job for OmegaRun {
@@ -133,7 +157,10 @@ impl Job for OmegaRun {
             Some(Err(e)) => Err(e.clone()),
             Some(Ok(run)) => match run.advance(&self.job.model, SLICE_STEPS) {
                 Ok(None) => return Vec::new(),
-                Ok(Some(ss)) => omega_result_of(&self.job, ss, false),
+                Ok(Some(ss)) => omega_result_of(&self.job, ss, false).map(|mut r| {
+                    with_iso6336(&mut r, &self.params, &self.job.model);
+                    r
+                }),
                 Err(e) => Err(OmegaError::solver(&self.job)(e)),
             },
         };
@@ -272,6 +299,14 @@ fn omega_result_of(
             })
             .collect(),
         anim,
+        load_sharing: solver::sharing::load_sharing(&model.system, &ss.meshes)
+            .into_iter()
+            .map(|k| KindSharing {
+                kind: k.kind.key().to_string(),
+                peak_force_n: k.peak_force_n,
+                factor: k.factor,
+            })
+            .collect(),
         steps: ss.stats.integrator.steps,
         cli_json,
         preview,

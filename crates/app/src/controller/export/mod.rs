@@ -56,6 +56,9 @@ pub enum ExportError {
     /// The model's natural frequencies cannot be computed.
     #[error("the natural frequencies cannot be computed: {0}")]
     Modes(String),
+    /// The standard cannot rate the mesh (or the model cannot be built).
+    #[error("the dynamic factor cannot be computed: {0}")]
+    Rating(String),
     /// The data could not be written as JSON.
     #[error("cannot write the JSON: {0}")]
     Json(String),
@@ -80,6 +83,7 @@ impl Controller {
         let csv = format == Format::Csv;
         let text = match view {
             ViewId::Campbell => self.campbell_export(csv).map_err(ExportError::Modes)?,
+            ViewId::Dynamic => self.dynamic_export(csv).map_err(ExportError::Rating)?,
             ViewId::Fr if self.panels.is_some() => self.fr_panels_export(csv)?,
             ViewId::Fr => {
                 let v = self.fr_view();

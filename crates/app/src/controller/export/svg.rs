@@ -94,6 +94,15 @@ impl Controller {
                 let c = self.campbell_view().map_err(plots::DrawError)?;
                 d.frame = Some(plots::campbell::draw_campbell(root, &c, status)?);
             }
+            ViewId::Dynamic => {
+                let v = self.dynamic_view().map_err(plots::DrawError)?;
+                d.frame = Some(plots::dynamic::draw_dynamic(
+                    root,
+                    &v,
+                    status,
+                    &self.speed_axis(),
+                )?);
+            }
             // Clicks pick Omega on the first panel's axis (all share it).
             ViewId::Fr if self.panels.is_some() => {
                 d.frame = first(plots::multiples::draw_fr_panels(

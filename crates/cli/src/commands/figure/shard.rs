@@ -251,6 +251,7 @@ pub fn orbit_from_json(
         spectrum_um: Vec::new(),
         all_meshes: Vec::new(),
         anim: AnimHistory::default(),
+        load_sharing: Vec::new(),
         steps: 0,
         cli_json: String::new(),
         preview: false,
