@@ -54,6 +54,7 @@ pub mod steady;
 pub mod sweep;
 pub mod system;
 pub mod trig;
+pub mod waveform;
 
 pub use error::{Result, SolverError};
 pub use model::Model;

@@ -420,12 +420,7 @@ fn integrate_blocks(
                     0.0
                 } else {
                     match ch.law {
-                        Law::Mesh {
-                            k,
-                            variation,
-                            phase_rad,
-                            ..
-                        } => k * (1.0 + variation * (theta + phase_rad).cos()),
+                        Law::Mesh { .. } => ch.law.stiffness(theta),
                         Law::Cubic { .. } => ch.law.force(theta, u_at(j, theta)).1,
                     }
                 };

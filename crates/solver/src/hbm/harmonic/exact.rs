@@ -56,25 +56,41 @@ pub fn channel_exact(
             Complex::new(0.5 * coef[2 * ja - 1], 0.5 * coef[2 * ja])
         }
     };
-    let hk = h as isize + 1;
-    let kap = [
+    // The stiffness's exponential coefficients kap_d, d = -kk..=kk.
+    let kk = 1 + law.higher().len() as isize;
+    let hk = h as isize + kk;
+    scratch.kap.clear();
+    for &[a, _, _] in law.higher().iter().rev() {
+        let n = (scratch.kap.len() as isize - kk).unsigned_abs() as f64;
+        scratch
+            .kap
+            .push(Complex::from_polar(0.5 * k * a, -n * phase_rad));
+    }
+    scratch.kap.extend([
         Complex::from_polar(0.5 * k * variation, -phase_rad),
         Complex::new(k, 0.0),
         Complex::from_polar(0.5 * k * variation, phase_rad),
-    ];
+    ]);
+    for (i, &[a, _, _]) in law.higher().iter().enumerate() {
+        let n = (i + 2) as f64;
+        scratch
+            .kap
+            .push(Complex::from_polar(0.5 * k * a, n * phase_rad));
+    }
+    let kap = &scratch.kap;
     // w_pm = k(theta) (x -+ b): exponential coefficients, j = -(h+1)..=h+1.
     let nw = (2 * hk + 1) as usize;
     scratch.w_hi.clear();
     scratch.w_hi.resize(nw, Complex::new(0.0, 0.0));
     for j in -(h as isize)..=(h as isize) {
         let c = cx(&scratch.x, j);
-        for (d, kd) in (-1isize..=1).zip(kap) {
+        for (d, kd) in (-kk..=kk).zip(kap) {
             scratch.w_hi[(j + d + hk) as usize] += c * kd;
         }
     }
     scratch.w_lo.clear();
     scratch.w_lo.extend_from_slice(&scratch.w_hi);
-    for (d, kd) in (-1isize..=1).zip(kap) {
+    for (d, kd) in (-kk..=kk).zip(kap) {
         scratch.w_hi[(d + hk) as usize] -= kd * b;
         scratch.w_lo[(d + hk) as usize] += kd * b;
     }
@@ -93,7 +109,7 @@ pub fn channel_exact(
     scratch.cuts.push(2.0 * PI);
     scratch.cuts.sort_by(f64::total_cmp);
     // Integrate interval by interval.
-    let mmax = (2 * h + 2) as isize;
+    let mmax = 2 * h as isize + 1 + kk;
     let nf = (2 * mmax + 1) as usize;
     scratch.e_int.clear();
     scratch.e_int.resize(nf, Complex::new(0.0, 0.0));
@@ -140,7 +156,7 @@ pub fn channel_exact(
         // Slope: s_l = (1/2pi) sum_d kappa_d E_{d - l}, l = 0..=2h.
         for (l, sl) in slope.iter_mut().enumerate() {
             let mut acc = Complex::new(0.0, 0.0);
-            for (d, kd) in (-1isize..=1).zip(kap) {
+            for (d, kd) in (-kk..=kk).zip(kap) {
                 let m = d - l as isize;
                 acc += kd * scratch.e_int[(m + mmax) as usize];
             }
@@ -292,14 +308,19 @@ pub fn contact_switches(
     }
 }
 
-/// The TE of a mesh law as real coefficients `[mean, cos 1, sin 1]` in theta.
-pub fn te_real_coefficients(law: &Law) -> [f64; 3] {
-    law.te_terms()
+/// The TE of a mesh law as real coefficients `mean, cos 1, sin 1, cos 2,
+/// ...` in theta, up to its highest harmonic (zip it with a coefficient
+/// vector: a balance never keeps fewer harmonics than the excitation has,
+/// `HbmModel::check_harmonics`).
+pub fn te_real_coefficients(law: &Law) -> impl Iterator<Item = f64> + '_ {
+    let first = law
+        .te_terms()
         .map_or([0.0; 3], |(phase, [mean, cos, sin])| {
             // c cos(t + p) + s sin(t + p) = (c cos p + s sin p) cos t + (s cos p - c sin p) sin t
             let (sp, cp) = phase.sin_cos();
             [mean, cos * cp + sin * sp, sin * cp - cos * sp]
-        })
+        });
+    first.into_iter().chain(law.te_higher_theta().flatten())
 }
 
 /// A root of `g` in `[a, b]` where `g(a) = ga` and `g(b) = gb` differ in
@@ -347,4 +368,5 @@ pub struct ExactScratch {
     w_lo: Vec<Complex<f64>>,
     cuts: Vec<f64>,
     e_int: Vec<Complex<f64>>,
+    kap: Vec<Complex<f64>>,
 }
