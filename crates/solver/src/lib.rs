@@ -53,6 +53,7 @@ pub mod shooting;
 pub mod steady;
 pub mod sweep;
 pub mod system;
+pub mod te_file;
 pub mod trig;
 pub mod waveform;
 
