@@ -230,7 +230,7 @@ pub fn fit(table: &TeTable, period: f64, harmonics: usize) -> Result<TeFit> {
     let (first, last) = (table.x[0], table.x[n - 1]);
     // Points spread evenly over k periods span (k - 1/n) of them.
     let periods = (last - first) / period * n as f64 / (n as f64 - 1.0);
-    if !(periods >= 1.0 - 1e-9) {
+    if periods.is_nan() || periods < 1.0 - 1e-9 {
         return Err(refuse(
             0,
             format!(

@@ -297,17 +297,17 @@ fn the_balance_refuses_fewer_harmonics_than_the_excitation_has() {
     ]);
     let mut spec = FrfSpec::new(0.4, 0.6, 10);
     spec.harmonics = 4;
-    let e = FrfContinuation::new(&m, spec.clone())
-        .err()
-        .expect("refused");
+    let Err(e) = FrfContinuation::new(&m, spec.clone()) else {
+        panic!("refused")
+    };
     assert!(e.to_string().contains("at least 5"), "{e}");
     spec.harmonics = 5;
     assert!(FrfContinuation::new(&m, spec.clone()).is_ok());
     spec.method = Method::DescribingFunction;
     spec.harmonics = 1;
-    let e = FrfContinuation::new(&m, spec.clone())
-        .err()
-        .expect("refused");
+    let Err(e) = FrfContinuation::new(&m, spec.clone()) else {
+        panic!("refused")
+    };
     assert!(e.to_string().contains("describing function"), "{e}");
 }
 
