@@ -1,7 +1,9 @@
 //! The excitation's waveforms against closed forms: the rectangular and
 //! trapezoid stiffness's Fourier coefficients, a linear gear pair driven by
 //! a two-harmonic transmission error against its exact receptance at both
-//! orders (harmonic balance and time integration), and the rectangular
+//! orders (harmonic balance, time integration and shooting), the balance's
+//! refusal of fewer harmonics than the excitation has, the equations of
+//! motion against the series written out, and the rectangular
 //! stiffness's resonance at twice the mesh frequency, which the seed's
 //! cosine does not have.
 
@@ -353,5 +355,49 @@ fn the_equations_of_motion_see_the_series_at_every_instant() {
         );
         let (ks, es, _) = mesh.excitation(w, th.cos(), th.sin());
         assert!((ks - k).abs() < 1e-9 * k && (es - e).abs() < 1e-15, "t {t}");
+    }
+}
+
+#[test]
+fn shooting_finds_the_two_harmonic_linear_orbit_in_one_newton_step() {
+    // Linear: the orbit is the closed form at t = 0, delta = static +
+    // Re(x1 + x2), delta' = Re(i w x1 + 2 i w x2), and Newton on the
+    // period map (with its variational equations) reaches it at once.
+    let m = pair(&[
+        "backlash_um=0",
+        "stiffness_variation=0",
+        "te_um=20",
+        "te_cos2_um=8",
+        "te_sin2_um=-5",
+    ]);
+    let e1 = Complex::new(0.0, -20e-6);
+    let e2 = Complex::new(8e-6, 5e-6);
+    let mut opts = solver::shooting::ShootOptions::new(1);
+    opts.rtol = 1e-12;
+    opts.atol_m = 1e-15;
+    for omega in [0.45, 0.8] {
+        let out = solver::shooting::shoot(&m, omega, &m.static_state(), &opts).unwrap();
+        let solver::shooting::ShootOutcome::Converged(orbit) = out else {
+            panic!("shooting failed at Omega {omega}");
+        };
+        assert_eq!(orbit.iterations, 1, "Omega {omega}");
+        let w = omega * m.system.omega_ref_rad_s;
+        let x1 = receptance(&m, omega, 1.0) * e1;
+        let x2 = receptance(&m, omega, 2.0) * e2;
+        let mesh = &m.system.meshes[0];
+        let y = &orbit.start_state;
+        let d = mesh.dot(&y[..2]);
+        let v = mesh.dot(&y[2..]);
+        let d_exact = m.statics.mesh_deflection_m[0] + (x1 + x2).re;
+        let v_exact = (Complex::new(0.0, w) * (x1 + 2.0 * x2)).re;
+        let scale = x1.norm() + x2.norm();
+        assert!(
+            (d - d_exact).abs() < 1e-7 * scale,
+            "Omega {omega}: {d} vs {d_exact}"
+        );
+        assert!(
+            (v - v_exact).abs() < 1e-7 * w * scale,
+            "Omega {omega}: {v} vs {v_exact}"
+        );
     }
 }
