@@ -440,7 +440,7 @@ fn excitation_keys() -> Vec<KeySpec> {
             WAVE,
             GearPair,
             "mesh stiffness waveform: the seed's cosine, or single and double tooth contact \
-             (rectangular, or trapezoid with ramps stiffness_ramp wide) from the contact ratio"
+             (rectangular, or trapezoid with linear ramps) from the contact ratio"
         ),
         key!(
             "contact_ratio",
