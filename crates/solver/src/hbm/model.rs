@@ -129,6 +129,7 @@ impl Law {
     }
 
     /// The stiffness `k(theta)` (scaled); zero for non-mesh laws.
+    #[inline]
     pub fn stiffness(&self, theta: f64) -> f64 {
         match *self {
             Law::Mesh {
@@ -151,6 +152,7 @@ impl Law {
     }
 
     /// A mesh law's harmonics 2, 3, ... (`[stiffness, TE cos, TE sin]`).
+    #[inline]
     pub fn higher(&self) -> &[[f64; 3]] {
         match self {
             Law::Mesh { higher, .. } => higher,

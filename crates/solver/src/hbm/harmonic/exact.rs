@@ -56,28 +56,34 @@ pub fn channel_exact(
             Complex::new(0.5 * coef[2 * ja - 1], 0.5 * coef[2 * ja])
         }
     };
-    // The stiffness's exponential coefficients kap_d, d = -kk..=kk.
+    // The stiffness's exponential coefficients kap_d, d = -kk..=kk: on
+    // the stack for the seed's one harmonic.
     let kk = 1 + law.higher().len() as isize;
     let hk = h as isize + kk;
-    scratch.kap.clear();
-    for &[a, _, _] in law.higher().iter().rev() {
-        let n = (scratch.kap.len() as isize - kk).unsigned_abs() as f64;
-        scratch
-            .kap
-            .push(Complex::from_polar(0.5 * k * a, -n * phase_rad));
-    }
-    scratch.kap.extend([
+    let one = [
         Complex::from_polar(0.5 * k * variation, -phase_rad),
         Complex::new(k, 0.0),
         Complex::from_polar(0.5 * k * variation, phase_rad),
-    ]);
-    for (i, &[a, _, _]) in law.higher().iter().enumerate() {
-        let n = (i + 2) as f64;
-        scratch
-            .kap
-            .push(Complex::from_polar(0.5 * k * a, n * phase_rad));
-    }
-    let kap = &scratch.kap;
+    ];
+    let kap: &[Complex<f64>] = if kk == 1 {
+        &one
+    } else {
+        scratch.kap.clear();
+        for &[a, _, _] in law.higher().iter().rev() {
+            let n = (scratch.kap.len() as isize - kk).unsigned_abs() as f64;
+            scratch
+                .kap
+                .push(Complex::from_polar(0.5 * k * a, -n * phase_rad));
+        }
+        scratch.kap.extend(one);
+        for (i, &[a, _, _]) in law.higher().iter().enumerate() {
+            let n = (i + 2) as f64;
+            scratch
+                .kap
+                .push(Complex::from_polar(0.5 * k * a, n * phase_rad));
+        }
+        &scratch.kap
+    };
     // w_pm = k(theta) (x -+ b): exponential coefficients, j = -(h+1)..=h+1.
     let nw = (2 * hk + 1) as usize;
     scratch.w_hi.clear();
