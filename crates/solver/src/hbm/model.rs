@@ -78,14 +78,20 @@ impl Law {
                 ref higher,
             } => {
                 let (s, c) = crate::trig::phase_sin_cos(theta + phase_rad);
-                let mut kt = k * (1.0 + variation * c);
-                let mut x = u - (te_mean_um + te_cos_um * c + te_sin_um * s);
-                let (mut cn, mut sn) = (c, s);
-                for &[a, tc, ts] in higher {
-                    (cn, sn) = (cn * c - sn * s, sn * c + cn * s);
-                    kt += k * a * cn;
-                    x -= tc * cn + ts * sn;
-                }
+                let (kt, x) = if higher.is_empty() {
+                    let kt = k * (1.0 + variation * c);
+                    (kt, u - (te_mean_um + te_cos_um * c + te_sin_um * s))
+                } else {
+                    let mut kt = k * (1.0 + variation * c);
+                    let mut x = u - (te_mean_um + te_cos_um * c + te_sin_um * s);
+                    let (mut cn, mut sn) = (c, s);
+                    for &[a, tc, ts] in higher {
+                        (cn, sn) = (cn * c - sn * s, sn * c + cn * s);
+                        kt += k * a * cn;
+                        x -= tc * cn + ts * sn;
+                    }
+                    (kt, x)
+                };
                 if x > backlash_um {
                     (kt * (x - backlash_um), kt)
                 } else if x < -backlash_um {

@@ -39,11 +39,16 @@ pub fn channel_exact(
     };
     let nc = n_coef(h);
     // x = u - e as real coefficients.
-    let te = te_real_coefficients(law);
     scratch.x.clear();
     scratch.x.extend_from_slice(&u_coef[..nc]);
-    for (xi, t) in scratch.x.iter_mut().zip(te) {
+    for (xi, t) in scratch.x.iter_mut().zip(te_first_coefficients(law)) {
         *xi -= t;
+    }
+    for (i, [c, s]) in law.te_higher_theta().enumerate() {
+        if let Some(x) = scratch.x.get_mut(2 * i + 3..2 * i + 5) {
+            x[0] -= c;
+            x[1] -= s;
+        }
     }
     // Complex exponential coefficients of x (index j + h for j = -h..=h) and of k.
     let cx = |coef: &[f64], j: isize| -> Complex<f64> {
@@ -162,9 +167,17 @@ pub fn channel_exact(
         // Slope: s_l = (1/2pi) sum_d kappa_d E_{d - l}, l = 0..=2h.
         for (l, sl) in slope.iter_mut().enumerate() {
             let mut acc = Complex::new(0.0, 0.0);
-            for (d, kd) in (-kk..=kk).zip(kap) {
-                let m = d - l as isize;
-                acc += kd * scratch.e_int[(m + mmax) as usize];
+            if kk == 1 {
+                // The seed's one harmonic: a fixed range the loop unrolls.
+                for (d, kd) in (-1isize..=1).zip(kap) {
+                    let m = d - l as isize;
+                    acc += kd * scratch.e_int[(m + mmax) as usize];
+                }
+            } else {
+                for (d, kd) in (-kk..=kk).zip(kap) {
+                    let m = d - l as isize;
+                    acc += kd * scratch.e_int[(m + mmax) as usize];
+                }
             }
             *sl += acc;
         }
@@ -319,14 +332,19 @@ pub fn contact_switches(
 /// vector: a balance never keeps fewer harmonics than the excitation has,
 /// `HbmModel::check_harmonics`).
 pub fn te_real_coefficients(law: &Law) -> impl Iterator<Item = f64> + '_ {
-    let first = law
-        .te_terms()
+    te_first_coefficients(law)
+        .into_iter()
+        .chain(law.te_higher_theta().flatten())
+}
+
+/// The TE's `[mean, cos 1, sin 1]` in theta.
+fn te_first_coefficients(law: &Law) -> [f64; 3] {
+    law.te_terms()
         .map_or([0.0; 3], |(phase, [mean, cos, sin])| {
             // c cos(t + p) + s sin(t + p) = (c cos p + s sin p) cos t + (s cos p - c sin p) sin t
             let (sp, cp) = phase.sin_cos();
             [mean, cos * cp + sin * sp, sin * cp - cos * sp]
-        });
-    first.into_iter().chain(law.te_higher_theta().flatten())
+        })
 }
 
 /// A root of `g` in `[a, b]` where `g(a) = ga` and `g(b) = gb` differ in
