@@ -95,8 +95,14 @@ pub fn channel_exact(
     scratch.w_hi.resize(nw, Complex::new(0.0, 0.0));
     for j in -(h as isize)..=(h as isize) {
         let c = cx(&scratch.x, j);
-        for (d, kd) in (-kk..=kk).zip(kap) {
-            scratch.w_hi[(j + d + hk) as usize] += c * kd;
+        if kk == 1 {
+            for (d, kd) in (-1isize..=1).zip(one) {
+                scratch.w_hi[(j + d + hk) as usize] += c * kd;
+            }
+        } else {
+            for (d, kd) in (-kk..=kk).zip(kap) {
+                scratch.w_hi[(j + d + hk) as usize] += c * kd;
+            }
         }
     }
     scratch.w_lo.clear();
@@ -169,7 +175,7 @@ pub fn channel_exact(
             let mut acc = Complex::new(0.0, 0.0);
             if kk == 1 {
                 // The seed's one harmonic: a fixed range the loop unrolls.
-                for (d, kd) in (-1isize..=1).zip(kap) {
+                for (d, kd) in (-1isize..=1).zip(one) {
                     let m = d - l as isize;
                     acc += kd * scratch.e_int[(m + mmax) as usize];
                 }
