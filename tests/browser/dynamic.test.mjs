@@ -45,7 +45,7 @@ async function check(page, sets, phasing) {
   assert.deepEqual(d.load_sharing.map((k) => k.kind).sort(), kinds.sort());
   for (const k of d.load_sharing) close(`load sharing ${k.kind}`, k.factor, cli.load_sharing[k.kind].factor, 1e-6);
   // The words on the page say the same.
-  await waitText(page, '#note-dynamic', new RegExp(`dynamic factor K_v \\(ISO 6336-1, method B\\) ${d.kv.toFixed(2)}`));
+  await waitText(page, '#note-dynamic', new RegExp(`dynamic factor Kv \\(ISO 6336-1, method B\\) ${d.kv.toFixed(2)}`));
   await waitText(page, '#note-dynamic', new RegExp(`the model's dynamic factor ${d.dynamic_factor.toFixed(2)}`));
   await waitText(page, '#note-dynamic', new RegExp(`${phasing} phasing: small sun – short planet ${d.load_sharing[0].factor.toFixed(3)}`));
   return s;

@@ -291,6 +291,41 @@ pub fn controls() -> Vec<Control> {
     ] {
         c.push(param(key, label, Advanced, (-100.0, 100.0, 0.5)));
     }
+    // The excitation's waveforms (docs/excitation.md); the contact ratio
+    // is the geometry's here, a link may give it.
+    for (key, label) in [
+        ("stiffness_wave", "Stiffness waveform"),
+        ("stiffness_wave_s1a", "Stiffness waveform, s1a meshes"),
+        ("stiffness_wave_s2b", "Stiffness waveform, s2b meshes"),
+        ("stiffness_wave_ab", "Stiffness waveform, ab meshes"),
+        ("stiffness_wave_rb", "Stiffness waveform, rb meshes"),
+    ] {
+        c.push(param(key, label, Advanced, (0.0, 0.0, 0.0)));
+    }
+    c.push(param(
+        "stiffness_ramp",
+        "Trapezoid ramp (share of a mesh period)",
+        Advanced,
+        (0.0, 0.5, 0.01),
+    ));
+    c.push(param(
+        "stiffness_harmonics",
+        "Stiffness harmonics kept",
+        Advanced,
+        (1.0, 15.0, 1.0),
+    ));
+    for (key, label) in [
+        ("te_cos2_um", "TE second harmonic, cosine"),
+        ("te_sin2_um", "TE second harmonic, sine"),
+        ("te_cos3_um", "TE third harmonic, cosine"),
+        ("te_sin3_um", "TE third harmonic, sine"),
+        ("te_cos2_s1a_um", "TE second harmonic, cosine, s1a meshes"),
+        ("te_sin2_s1a_um", "TE second harmonic, sine, s1a meshes"),
+        ("te_cos3_s1a_um", "TE third harmonic, cosine, s1a meshes"),
+        ("te_sin3_s1a_um", "TE third harmonic, sine, s1a meshes"),
+    ] {
+        c.push(param(key, label, Advanced, (-50.0, 50.0, 0.5)));
+    }
     c.extend([
         view("mesh", "Mesh to plot", (0.0, 0.0, 0.0)),
         view("omega", "Selected Ω", (0.01, 3.0, 0.001)),

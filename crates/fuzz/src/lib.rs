@@ -189,13 +189,21 @@ fn value_text(r: &mut Rng) -> String {
 }
 
 /// Every key a link or parameter file may hold: both models' parameter
-/// keys (with the shortcuts), `model`, the view keys and `a`.
+/// keys (with the shortcuts), `model`, the view keys and `a`. Of the TE's
+/// harmonics only the second's keys: the others take the same path, and
+/// forty more keys would make a random parameter file that a model accepts
+/// rare.
 pub fn all_keys() -> Vec<String> {
     use solver::params::ModelKind;
     let mut keys: Vec<String> = vec!["model".into(), "backlash_um".into(), "te_um".into()];
+    let higher_harmonic = |name: &str| {
+        (3..=solver::params::TE_HARMONICS).any(|n| {
+            name.starts_with(&format!("te_cos{n}")) || name.starts_with(&format!("te_sin{n}"))
+        })
+    };
     for kind in [ModelKind::Ravigneaux, ModelKind::GearPair] {
         for k in solver::keys::primary_keys(kind) {
-            if !keys.iter().any(|x| x == k.name) {
+            if !higher_harmonic(k.name) && !keys.iter().any(|x| x == k.name) {
                 keys.push(k.name.to_string());
             }
         }

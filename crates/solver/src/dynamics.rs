@@ -39,6 +39,9 @@ struct HotMesh {
     damping: f64,
     cos_g: f64,
     sin_g: f64,
+    /// Harmonics 2, 3, ... of the excitation: `[k_m a_n, te cos, te sin]`
+    /// (empty for the seed's one-harmonic excitation, the fast path).
+    higher: Vec<[f64; 3]>,
 }
 
 impl HotMesh {
@@ -133,6 +136,13 @@ impl MeshOde {
                 damping: m.damping_n_s_m,
                 cos_g,
                 sin_g,
+                higher: (2..=m.excitation_harmonics())
+                    .map(|n| {
+                        let a = m.stiffness_harmonics.get(n - 2).copied().unwrap_or(0.0);
+                        let [tc, ts] = m.te_harmonics_m.get(n - 2).copied().unwrap_or([0.0; 2]);
+                        [m.stiffness_mean_n_m * a, tc, ts]
+                    })
+                    .collect(),
             });
             // With b = 0 the force law has no kink: no event needed.
             if m.backlash_m > 0.0 {
@@ -202,6 +212,30 @@ impl MeshOde {
         let k = m.k_mean * (1.0 + m.variation * cc);
         let e = m.te_mean + m.te_cos * cc + m.te_sin * ss;
         let de = self.omega_rad_s * (m.te_sin * cc - m.te_cos * ss);
+        if m.higher.is_empty() {
+            (k, e, de)
+        } else {
+            self.higher_harmonics(m, cc, ss, (k, e, de))
+        }
+    }
+
+    /// Adds harmonics 2, 3, ... of a mesh's excitation (the cosines and
+    /// sines of `n theta` by the angle-addition recurrence).
+    #[inline(never)]
+    fn higher_harmonics(
+        &self,
+        m: &HotMesh,
+        c: f64,
+        s: f64,
+        (mut k, mut e, mut de): (f64, f64, f64),
+    ) -> (f64, f64, f64) {
+        let (mut cn, mut sn) = (c, s);
+        for (i, &[ka, tc, ts]) in m.higher.iter().enumerate() {
+            (cn, sn) = (cn * c - sn * s, sn * c + cn * s);
+            k += ka * cn;
+            e += tc * cn + ts * sn;
+            de += self.omega_rad_s * (i + 2) as f64 * (ts * cn - tc * sn);
+        }
         (k, e, de)
     }
 

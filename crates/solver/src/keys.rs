@@ -11,6 +11,11 @@
 //! `te_sin_*_um` with `te_meshes=all`). When a JSON object holds both a
 //! shortcut and a per-kind key, the per-kind key wins whatever the order.
 //!
+//! The excitation's waveforms (`stiffness_wave*`, `contact_ratio*`,
+//! `stiffness_ramp`, `stiffness_harmonics`, and the TE's harmonics 2 to 6,
+//! `te_cos<n>_*um`, `te_sin<n>_*um`) are written by [`to_json`] only where
+//! they differ from the defaults: see [`crate::waveform`].
+//!
 //! Two keys are readings of the seed paper where it is ambiguous:
 //! `te_meshes` (its Fig. 2 varies a TE written `Ec_all`: on every mesh, or on
 //! the s1a meshes as its Table 1's sun-s1 error) and `ring_support_radius_mm`
@@ -125,6 +130,10 @@ pub struct KeySpec {
     pub applies: Applies,
     /// A shortcut or alias on the compound model (not written by [`to_json`] there).
     pub shortcut: bool,
+    /// A key of the excitation's waveforms, written by [`to_json`] only
+    /// where it differs from the model's default (so every output of the
+    /// seed's one-harmonic model stays as it was).
+    pub extension: bool,
     /// One line for docs and tooltips.
     pub description: &'static str,
 }
@@ -265,8 +274,12 @@ pub fn primary_keys(model: ModelKind) -> impl Iterator<Item = &'static KeySpec> 
 /// The whole parameter set as a flat JSON object (`model` first).
 pub fn to_json(params: &ModelParams) -> Map<String, Json> {
     let mut map = Map::new();
+    let defaults = ModelParams::defaults(params.kind());
     for spec in primary_keys(params.kind()) {
         if let Some(v) = get(params, spec.name) {
+            if spec.extension && get(&defaults, spec.name).as_ref() == Some(&v) {
+                continue;
+            }
             map.insert(spec.name.to_string(), value_to_json(&v));
         }
     }

@@ -55,7 +55,9 @@ pub mod shooting;
 pub mod steady;
 pub mod sweep;
 pub mod system;
+pub mod te_file;
 pub(crate) mod trig;
+pub mod waveform;
 
 pub use error::{Result, SolverError};
 pub use model::Model;

@@ -261,6 +261,18 @@ pub fn statics(sys: &MeshSystem, modes: &Modes) -> Result<StaticSolution> {
 /// `q_hat = (K - omega^2 M + i omega C)^-1 sum_l w_l (k_l + i omega c_l) E_l`.
 /// Backlash and stiffness fluctuation are ignored: the caller checks they are zero.
 pub fn linear_response(sys: &MeshSystem, omega_rad_s: f64) -> Result<Vec<Complex<f64>>> {
+    linear_response_harmonic(sys, omega_rad_s, 1)
+}
+
+/// The same at harmonic `n` of the mesh frequency: the response at
+/// `n omega` to the TE's harmonic `n` (`q_static` aside,
+/// `Re(q_hat e^{i n omega t})`), zero where no mesh's TE has that harmonic.
+pub fn linear_response_harmonic(
+    sys: &MeshSystem,
+    omega_rad_s: f64,
+    harmonic: usize,
+) -> Result<Vec<Complex<f64>>> {
+    let omega_rad_s = omega_rad_s * harmonic as f64;
     let n = sys.dof();
     let k = sys.mean_stiffness();
     let c = sys.damping_matrix();
@@ -275,9 +287,17 @@ pub fn linear_response(sys: &MeshSystem, omega_rad_s: f64) -> Result<Vec<Complex
     }
     let mut rhs = DVector::<Complex<f64>>::zeros(n);
     for mesh in &sys.meshes {
-        // e(t) = Ec cos(wt + g) + Es sin(wt + g) = Re((Ec - i Es) e^{i g} e^{i w t}).
-        let e_hat =
-            Complex::new(mesh.te_cos_m, -mesh.te_sin_m) * Complex::from_polar(1.0, mesh.phase_rad);
+        // e(t) = Ec cos(n (wt + g)) + Es sin(n (wt + g)) = Re((Ec - i Es) e^{i n g} e^{i n w t}).
+        let [te_cos_m, te_sin_m] = match harmonic {
+            1 => [mesh.te_cos_m, mesh.te_sin_m],
+            n => mesh
+                .te_harmonics_m
+                .get(n.wrapping_sub(2))
+                .copied()
+                .unwrap_or([0.0; 2]),
+        };
+        let e_hat = Complex::new(te_cos_m, -te_sin_m)
+            * Complex::from_polar(1.0, harmonic as f64 * mesh.phase_rad);
         let gain = Complex::new(mesh.stiffness_mean_n_m, omega_rad_s * mesh.damping_n_s_m) * e_hat;
         for &(i, wi) in &mesh.w {
             rhs[i] += gain * wi;

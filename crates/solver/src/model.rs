@@ -83,7 +83,10 @@ impl Model {
         let scale = meshes
             .iter()
             .zip(&self.statics.mesh_deflection_m)
-            .map(|(m, d)| d.abs() + m.backlash_m + m.te_mean_m.abs() + m.te_cos_m.hypot(m.te_sin_m))
+            .map(|(m, d)| {
+                let higher: f64 = m.te_harmonics_m.iter().map(|[c, s]| c.hypot(*s)).sum();
+                d.abs() + m.backlash_m + m.te_mean_m.abs() + m.te_cos_m.hypot(m.te_sin_m) + higher
+            })
             .fold(1e-6, f64::max);
         let zeta_min = meshes
             .iter()

@@ -155,8 +155,12 @@ impl MeshKind {
     }
 }
 
+/// The highest harmonic of the transmission error a key can set.
+pub const TE_HARMONICS: usize = 6;
+
 /// Transmission error components of one mesh kind, in micrometres:
-/// `e(t) = mean + cos * cos(omega t + gamma) + sin * sin(omega t + gamma)`.
+/// `e(t) = mean + cos * cos(theta) + sin * sin(theta) + sum_n (higher[n - 2][0] cos(n theta)
+/// + higher[n - 2][1] sin(n theta))` with `theta = omega t + gamma`, `n = 2 ..=` [`TE_HARMONICS`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TeUm {
     /// Mean (static) part.
@@ -165,6 +169,8 @@ pub struct TeUm {
     pub cos: f64,
     /// Sine amplitude.
     pub sin: f64,
+    /// Cosine and sine amplitudes of harmonics 2, 3, ...
+    pub higher: [[f64; 2]; TE_HARMONICS - 1],
 }
 
 impl TeUm {
@@ -173,8 +179,52 @@ impl TeUm {
         mean: 0.0,
         cos: 0.0,
         sin: 0.0,
+        higher: [[0.0; 2]; TE_HARMONICS - 1],
+    };
+
+    /// The `[cos, sin]` amplitudes of harmonics 2, 3, ... up to the last
+    /// non-zero one (empty for a one-harmonic TE).
+    pub fn higher_used(&self) -> &[[f64; 2]] {
+        let n = self
+            .higher
+            .iter()
+            .rposition(|h| h[0] != 0.0 || h[1] != 0.0)
+            .map_or(0, |i| i + 1);
+        &self.higher[..n]
+    }
+
+    /// [`TeUm::higher_used`] in metres.
+    pub fn higher_m(&self) -> Vec<[f64; 2]> {
+        self.higher_used()
+            .iter()
+            .map(|&[c, s]| [c * 1e-6, s * 1e-6])
+            .collect()
+    }
+}
+
+/// The stiffness waveform settings of one mesh kind.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StiffnessShape {
+    /// The waveform.
+    pub wave: crate::waveform::Wave,
+    /// The contact ratio; `None` = computed from the tooth counts, module
+    /// and pressure angle (full-depth standard teeth).
+    pub contact_ratio: Option<f64>,
+}
+
+impl StiffnessShape {
+    /// The seed's cosine.
+    pub const COSINE: StiffnessShape = StiffnessShape {
+        wave: crate::waveform::Wave::Cosine,
+        contact_ratio: None,
     };
 }
+
+/// Default trapezoid ramp width (mesh periods).
+pub const DEFAULT_RAMP: f64 = 0.1;
+
+/// Default number of harmonics of a rectangular or trapezoidal stiffness.
+pub const DEFAULT_STIFFNESS_HARMONICS: u32 = 5;
 
 /// Parameters of the Ravigneaux compound planetary gear set (`docs/model.md`).
 #[derive(Debug, Clone, PartialEq)]
@@ -219,8 +269,15 @@ pub struct RavigneauxParams {
     /// radius (`docs/model.md`). The seed prints 15.79 mm, read there as a
     /// slip.
     pub ring_support_radius_mm: Option<f64>,
-    /// Stiffness fluctuation coefficient v (all meshes).
+    /// Stiffness fluctuation coefficient v (all meshes): half the
+    /// peak-to-peak stiffness over its mean (`crate::waveform`).
     pub stiffness_variation: f64,
+    /// Stiffness waveform per kind (s1a, s2b, ab, rb).
+    pub stiffness_shape: [StiffnessShape; 4],
+    /// Trapezoid ramp width, as a fraction of the mesh period.
+    pub stiffness_ramp: f64,
+    /// Harmonics the rectangle and trapezoid are cut to.
+    pub stiffness_harmonics: u32,
     /// Mesh damping ratio xi (all meshes).
     pub damping_ratio: f64,
     /// Backlash half-width b per kind (micrometres).
@@ -263,6 +320,9 @@ impl Default for RavigneauxParams {
             ring_support_n_m: 1e9,
             ring_support_radius_mm: None,
             stiffness_variation: 0.3,
+            stiffness_shape: [StiffnessShape::COSINE; 4],
+            stiffness_ramp: DEFAULT_RAMP,
+            stiffness_harmonics: DEFAULT_STIFFNESS_HARMONICS,
             damping_ratio: 0.06,
             backlash_um: PerKind::all(100.0),
             te_um,
@@ -303,8 +363,15 @@ pub struct GearPairParams {
     pub inertia_gear_kg_m2: f64,
     /// Mean mesh stiffness (N/m).
     pub stiffness_n_m: f64,
-    /// Stiffness fluctuation coefficient v.
+    /// Stiffness fluctuation coefficient v: half the peak-to-peak
+    /// stiffness over its mean (`crate::waveform`).
     pub stiffness_variation: f64,
+    /// Stiffness waveform.
+    pub stiffness_shape: StiffnessShape,
+    /// Trapezoid ramp width, as a fraction of the mesh period.
+    pub stiffness_ramp: f64,
+    /// Harmonics the rectangle and trapezoid are cut to.
+    pub stiffness_harmonics: u32,
     /// Mesh damping ratio xi.
     pub damping_ratio: f64,
     /// Backlash half-width b (micrometres).
@@ -329,12 +396,14 @@ impl Default for GearPairParams {
             inertia_gear_kg_m2: 0.0243,
             stiffness_n_m: 1e9,
             stiffness_variation: 0.2,
+            stiffness_shape: StiffnessShape::COSINE,
+            stiffness_ramp: DEFAULT_RAMP,
+            stiffness_harmonics: DEFAULT_STIFFNESS_HARMONICS,
             damping_ratio: 0.06,
             backlash_um: 100.0,
             te_um: TeUm {
-                mean: 0.0,
-                cos: 0.0,
                 sin: 20.0,
+                ..TeUm::ZERO
             },
             torque_pinion_nm: 500.0,
         }

@@ -27,6 +27,7 @@
 
 use crate::error::{Result, SolverError};
 use crate::params::{GearPairParams, MeshKind, ModelKind, ModelParams, Phasing, RavigneauxParams};
+use crate::waveform;
 use nalgebra::{DMatrix, DVector};
 use std::f64::consts::PI;
 
@@ -46,8 +47,12 @@ pub struct Mesh {
     pub w: Vec<(usize, f64)>,
     /// Mean mesh stiffness k_m (N/m).
     pub stiffness_mean_n_m: f64,
-    /// Stiffness fluctuation v.
+    /// The stiffness's first harmonic relative to the mean: `v` for the
+    /// seed's cosine, `v a_1` for the other waveforms (`crate::waveform`).
     pub stiffness_variation: f64,
+    /// The stiffness's harmonics 2, 3, ... relative to the mean (cosines
+    /// in `theta = omega t + gamma`); empty for the seed's cosine.
+    pub stiffness_harmonics: Vec<f64>,
     /// Mesh phase gamma (rad).
     pub phase_rad: f64,
     /// Backlash half-width b (m).
@@ -58,6 +63,9 @@ pub struct Mesh {
     pub te_cos_m: f64,
     /// TE sine amplitude (m).
     pub te_sin_m: f64,
+    /// The TE's `[cos, sin]` amplitudes (m) of harmonics 2, 3, ... (in
+    /// `n theta`); empty for a one-harmonic TE.
+    pub te_harmonics_m: Vec<[f64; 2]>,
     /// Equivalent mass 1 / (w^T M^-1 w) (kg).
     pub equivalent_mass_kg: f64,
     /// Viscous damping coefficient c (N s/m).
@@ -80,7 +88,31 @@ impl Mesh {
         let k = self.stiffness_mean_n_m * (1.0 + self.stiffness_variation * c);
         let e = self.te_mean_m + self.te_cos_m * c + self.te_sin_m * s;
         let de = omega_rad_s * (-self.te_cos_m * s + self.te_sin_m * c);
+        if self.stiffness_harmonics.is_empty() && self.te_harmonics_m.is_empty() {
+            return (k, e, de);
+        }
+        let (mut k, mut e, mut de) = (k, e, de);
+        let (mut cn, mut sn) = (c, s);
+        let top = self.excitation_harmonics();
+        for n in 2..=top {
+            (cn, sn) = (cn * c - sn * s, sn * c + cn * s);
+            if let Some(a) = self.stiffness_harmonics.get(n - 2) {
+                k += self.stiffness_mean_n_m * a * cn;
+            }
+            if let Some(&[tc, ts]) = self.te_harmonics_m.get(n - 2) {
+                e += tc * cn + ts * sn;
+                de += omega_rad_s * n as f64 * (ts * cn - tc * sn);
+            }
+        }
         (k, e, de)
+    }
+
+    /// The highest harmonic of the mesh's excitation (stiffness or TE), at least 1.
+    pub fn excitation_harmonics(&self) -> usize {
+        1 + self
+            .stiffness_harmonics
+            .len()
+            .max(self.te_harmonics_m.len())
     }
 
     /// The mesh force for deflection `delta`, rate `delta_dot` at the given excitation.
@@ -565,6 +597,28 @@ fn build_ravigneaux(p: &RavigneauxParams) -> Result<MeshSystem> {
         (seq + p.phase_deg.get(kind).to_radians()).rem_euclid(2.0 * PI)
     };
 
+    let series = MeshKind::COMPOUND
+        .iter()
+        .map(|&kind| {
+            let shape = p.stiffness_shape[RavigneauxParams::kind_index(kind)];
+            let (z1, z2, internal) = match kind {
+                MeshKind::S1A => (p.teeth_s1, p.teeth_a, false),
+                MeshKind::S2B => (p.teeth_s2, g.teeth_b, false),
+                MeshKind::AB => (p.teeth_a, g.teeth_b, false),
+                MeshKind::RB | MeshKind::Pair => (g.teeth_b, p.teeth_r, true),
+            };
+            let auto =
+                || waveform::contact_ratio(z1, z2, internal, p.module_mm, p.pressure_angle_deg);
+            waveform::stiffness_series(
+                kind.key(),
+                shape.wave,
+                p.stiffness_variation,
+                shape.contact_ratio.unwrap_or_else(auto),
+                p.stiffness_ramp,
+                p.stiffness_harmonics as usize,
+            )
+        })
+        .collect::<Result<Vec<_>>>()?;
     let mut meshes = Vec::with_capacity(4 * n_pl);
     for kind in MeshKind::COMPOUND {
         for i in 0..n_pl {
@@ -587,18 +641,21 @@ fn build_ravigneaux(p: &RavigneauxParams) -> Result<MeshSystem> {
                 ),
             };
             let te = p.te_um[RavigneauxParams::kind_index(kind)];
+            let series = &series[RavigneauxParams::kind_index(kind)];
             meshes.push(Mesh {
                 name,
                 kind,
                 planet: i,
                 w,
                 stiffness_mean_n_m: p.stiffness_n_m.get(kind),
-                stiffness_variation: p.stiffness_variation,
+                stiffness_variation: series[0],
+                stiffness_harmonics: series[1..].to_vec(),
                 phase_rad: phase(kind, i),
                 backlash_m: p.backlash_um.get(kind) * 1e-6,
                 te_mean_m: te.mean * 1e-6,
                 te_cos_m: te.cos * 1e-6,
                 te_sin_m: te.sin * 1e-6,
+                te_harmonics_m: te.higher_m(),
                 equivalent_mass_kg: 0.0,
                 damping_n_s_m: 0.0,
             });
@@ -677,18 +734,31 @@ fn build_gear_pair(p: &GearPairParams) -> Result<MeshSystem> {
         p.inertia_pinion_kg_m2,
         p.inertia_gear_kg_m2,
     ]));
+    let series = waveform::stiffness_series(
+        "gear pair",
+        p.stiffness_shape.wave,
+        p.stiffness_variation,
+        p.stiffness_shape.contact_ratio.unwrap_or_else(|| {
+            let (z1, z2) = (p.teeth_pinion, p.teeth_gear);
+            waveform::contact_ratio(z1, z2, false, p.module_mm, p.pressure_angle_deg)
+        }),
+        p.stiffness_ramp,
+        p.stiffness_harmonics as usize,
+    )?;
     let mut meshes = vec![Mesh {
         name: "pg".into(),
         kind: MeshKind::Pair,
         planet: 0,
         w: vec![(0, rho_p), (1, rho_g)],
         stiffness_mean_n_m: p.stiffness_n_m,
-        stiffness_variation: p.stiffness_variation,
+        stiffness_variation: series[0],
+        stiffness_harmonics: series[1..].to_vec(),
         phase_rad: 0.0,
         backlash_m: p.backlash_um * 1e-6,
         te_mean_m: p.te_um.mean * 1e-6,
         te_cos_m: p.te_um.cos * 1e-6,
         te_sin_m: p.te_um.sin * 1e-6,
+        te_harmonics_m: p.te_um.higher_m(),
         equivalent_mass_kg: 0.0,
         damping_n_s_m: 0.0,
     }];

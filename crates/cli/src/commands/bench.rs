@@ -132,6 +132,8 @@ fn hbm_problem(model: &Model, hbm: &HbmModel) -> Value {
                     te_mean_um,
                     te_cos_um,
                     te_sin_um,
+                    // The default model's excitation has one harmonic.
+                    ..
                 } => json!({
                     "k": k, "variation": variation, "phase_rad": phase_rad,
                     "backlash_um": backlash_um, "te_mean_um": te_mean_um,

@@ -42,7 +42,7 @@ pub fn draw_dynamic<DB: DrawingBackend>(
         (
             KeyIcon::Line(ISO_COLOR, false),
             format!(
-                "dynamic factor K_v (ISO 6336-1, method B): grade {}, face width {} mm",
+                "dynamic factor Kv (ISO 6336-1, method B): grade {}, face width {} mm",
                 i.accuracy_grade, i.face_width_mm
             ),
         ),
@@ -138,7 +138,7 @@ mod tests {
             "Dynamic factor of mesh pg",
             "dynamic factor (−)",
             "dynamic factor (largest mesh force / static)",
-            "dynamic factor K_v (ISO 6336-1, method B): grade 6, face width 50 mm",
+            "dynamic factor Kv (ISO 6336-1, method B): grade 6, face width 50 mm",
             "main resonance range",
             "selected Ω = 0.500",
         ] {

@@ -290,7 +290,7 @@ impl DynamicView {
             None => String::new(),
         };
         format!(
-            "At Ω {o:.3} ({} rpm), mesh {}: {model}; dynamic factor K_v (ISO 6336-1, method B) {kv:.2} ({} range, resonance ratio N = {n:.2}). The standard puts this mesh's main resonance at Ω {centre:.2} ({} rpm).{why} {}",
+            "At Ω {o:.3} ({} rpm), mesh {}: {model}; dynamic factor Kv (ISO 6336-1, method B) {kv:.2} ({} range, resonance ratio N = {n:.2}). The standard puts this mesh's main resonance at Ω {centre:.2} ({} rpm).{why} {}",
             grouped(self.rpm_at(o)),
             self.mesh_name,
             self.range_at(o).name(),
@@ -302,7 +302,7 @@ impl DynamicView {
     /// The text alternative of the plot.
     pub fn label(&self) -> String {
         format!(
-            "Dynamic factor of mesh {} over Ω {} to {}: the model's from {} steady states beside K_v by ISO 6336-1 method B. {}",
+            "Dynamic factor of mesh {} over Ω {} to {}: the model's from {} steady states beside Kv by ISO 6336-1 method B. {}",
             self.mesh_name,
             self.omega_from,
             self.omega_to,

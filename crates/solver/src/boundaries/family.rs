@@ -65,6 +65,7 @@ impl Family {
             }
         };
         let hbm = HbmModel::from_system(&MeshSystem::build(base)?, symmetric)?;
+        Assembly::check_harmonics(&hbm, h, method)?;
         Ok(Family {
             cost: HbmCost::of(&hbm, Assembly::harmonics(h, method)),
             work: 0.0,

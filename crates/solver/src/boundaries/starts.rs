@@ -70,7 +70,7 @@ pub(crate) fn find(
             continue;
         }
         let b = ch.law.backlash_um();
-        let te = te_real_coefficients(&ch.law);
+        let te: Vec<f64> = te_real_coefficients(&ch.law).collect();
         for kind in [
             CurveKind::DriveFlanksPart,
             CurveKind::BackFlanksTouch,
@@ -106,7 +106,7 @@ pub(crate) fn find(
                 let mut rel: Vec<f64> = (0..nc)
                     .map(|k| (0..m).map(|i| ch.d[i] * x[k * m + i]).sum())
                     .collect();
-                for (r, e) in rel.iter_mut().zip(te) {
+                for (r, e) in rel.iter_mut().zip(&te) {
                     *r -= e;
                 }
                 let sample =

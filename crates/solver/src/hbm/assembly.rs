@@ -11,6 +11,7 @@ use super::harmonic::{
     Grid, Scratch, SwitchTable,
 };
 use super::model::HbmModel;
+use crate::error::{Result, SolverError};
 use nalgebra::Complex;
 use nalgebra::DMatrix;
 
@@ -63,6 +64,9 @@ pub struct Assembly {
     tables: Vec<ChannelTables>,
     te_rate_cos: Vec<f64>,
     te_rate_sin: Vec<f64>,
+    /// The TE-rate forcing of harmonics 2, 3, ... up to the excitation's
+    /// highest and `h` (empty for a one-harmonic TE).
+    te_rate_higher: Vec<(Vec<f64>, Vec<f64>)>,
     scratch: Scratch,
     exact_scratch: ExactScratch,
     u_coef: Vec<f64>,
@@ -88,6 +92,28 @@ impl Assembly {
         } else {
             h
         }
+    }
+
+    /// Refuses a balance of `h` harmonics by `method` that would drop
+    /// harmonics of the excitation (the describing function keeps one).
+    pub fn check_harmonics(model: &HbmModel, h: usize, method: Method) -> Result<()> {
+        let need = model.excitation_harmonics();
+        let kept = Self::harmonics(h, method);
+        if kept >= need {
+            return Ok(());
+        }
+        let allowed = if method == Method::DescribingFunction {
+            format!(
+                "the excitation has {need} harmonics (stiffness waveform or TE) and the describing \
+                 function keeps one: use the exact or AFT balance with at least {need} harmonics"
+            )
+        } else {
+            format!(
+                "at least {need}: the excitation has {need} harmonics (stiffness waveform or TE), \
+                 and a balance of fewer would drop some"
+            )
+        };
+        SolverError::bad_option("harmonics", kept, &allowed)
     }
 
     /// The same on a grid built before, whose harmonics are the
@@ -132,6 +158,9 @@ impl Assembly {
             })
             .collect();
         let (te_rate_cos, te_rate_sin) = model.te_rate_forcing();
+        let te_rate_higher = (2..=h.min(model.excitation_harmonics()))
+            .map(|n| model.te_rate_forcing_harmonic(n))
+            .collect();
         let nc = n_coef(h);
         Assembly {
             h,
@@ -139,6 +168,7 @@ impl Assembly {
             tables,
             te_rate_cos,
             te_rate_sin,
+            te_rate_higher,
             scratch: Scratch::default(),
             exact_scratch: ExactScratch::default(),
             // The switch table depends on `h` alone: a donor's is the same
@@ -213,6 +243,11 @@ impl Assembly {
                     rs -= self.model.force_sin[i] + omega * self.te_rate_sin[i];
                     dc -= self.te_rate_cos[i];
                     ds -= self.te_rate_sin[i];
+                } else if let Some((fc, fs)) = self.te_rate_higher.get(hk - 2) {
+                    rc -= omega * fc[i];
+                    rs -= omega * fs[i];
+                    dc -= fc[i];
+                    ds -= fs[i];
                 }
                 r[ic + i] = rc;
                 r[is + i] = rs;

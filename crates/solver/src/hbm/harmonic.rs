@@ -145,17 +145,8 @@ impl ChannelTables {
     /// Tables of `law` on `grid`.
     pub fn new(law: &Law, grid: &Grid) -> Self {
         match *law {
-            Law::Mesh {
-                k,
-                variation,
-                phase_rad,
-                ..
-            } => ChannelTables {
-                k: grid
-                    .theta
-                    .iter()
-                    .map(|&t| k * (1.0 + variation * (t + phase_rad).cos()))
-                    .collect(),
+            Law::Mesh { .. } => ChannelTables {
+                k: grid.theta.iter().map(|&t| law.stiffness(t)).collect(),
                 e: grid.theta.iter().map(|&t| law.te(t)).collect(),
             },
             Law::Cubic { .. } => ChannelTables {
@@ -319,6 +310,7 @@ pub(crate) fn channel_df(law: &Law, u_coef: &[f64], force: &mut [f64], slope: &m
         te_mean_um,
         te_cos_um,
         te_sin_um,
+        ..
     } = *law
     else {
         // The describing function is defined for mesh laws only.
@@ -543,6 +535,7 @@ mod tests {
             te_mean_um: 2.0,
             te_cos_um: 5.0,
             te_sin_um: 20.0,
+            higher: Vec::new(),
         }
     }
 
@@ -569,7 +562,40 @@ mod tests {
 
     #[test]
     fn exact_integration_equals_fine_quadrature_at_four_harmonics() {
-        let law = test_law();
+        exact_equals_quadrature(test_law());
+    }
+
+    /// The same with an excitation of three harmonics (a stiffness with a
+    /// second and third harmonic, a TE with a second): the closed-form
+    /// integration against a plain quadrature of the force law on a fine grid.
+    #[test]
+    fn exact_integration_equals_fine_quadrature_with_a_three_harmonic_excitation() {
+        let Law::Mesh {
+            k,
+            variation,
+            phase_rad,
+            backlash_um,
+            te_mean_um,
+            te_cos_um,
+            te_sin_um,
+            ..
+        } = test_law()
+        else {
+            unreachable!()
+        };
+        exact_equals_quadrature(Law::Mesh {
+            k,
+            variation,
+            phase_rad,
+            backlash_um,
+            te_mean_um,
+            te_cos_um,
+            te_sin_um,
+            higher: vec![[-0.12, 8.0, -3.0], [0.07, 0.0, 0.0]],
+        });
+    }
+
+    fn exact_equals_quadrature(law: Law) {
         let h = 4;
         let fine = Grid::new(h, 1 << 16);
         let tables = ChannelTables::new(&law, &fine);

@@ -50,6 +50,10 @@ pub enum Law {
         te_cos_um: f64,
         /// TE sine amplitude (um).
         te_sin_um: f64,
+        /// Harmonics 2, 3, ... of the excitation in `n (theta + phase)`:
+        /// `[stiffness cosine relative to k, TE cosine (um), TE sine (um)]`;
+        /// empty for the seed's one-harmonic excitation.
+        higher: Vec<[f64; 3]>,
     },
     /// A cubic spring `alpha u^3` (the Duffing test model).
     Cubic {
@@ -71,10 +75,23 @@ impl Law {
                 te_mean_um,
                 te_cos_um,
                 te_sin_um,
+                ref higher,
             } => {
                 let (s, c) = crate::trig::phase_sin_cos(theta + phase_rad);
-                let kt = k * (1.0 + variation * c);
-                let x = u - (te_mean_um + te_cos_um * c + te_sin_um * s);
+                let (kt, x) = if higher.is_empty() {
+                    let kt = k * (1.0 + variation * c);
+                    (kt, u - (te_mean_um + te_cos_um * c + te_sin_um * s))
+                } else {
+                    let mut kt = k * (1.0 + variation * c);
+                    let mut x = u - (te_mean_um + te_cos_um * c + te_sin_um * s);
+                    let (mut cn, mut sn) = (c, s);
+                    for &[a, tc, ts] in higher {
+                        (cn, sn) = (cn * c - sn * s, sn * c + cn * s);
+                        kt += k * a * cn;
+                        x -= tc * cn + ts * sn;
+                    }
+                    (kt, x)
+                };
                 if x > backlash_um {
                     (kt * (x - backlash_um), kt)
                 } else if x < -backlash_um {
@@ -107,8 +124,62 @@ impl Law {
     pub fn te(&self, theta: f64) -> f64 {
         self.te_terms().map_or(0.0, |(phase, [mean, cos, sin])| {
             let (s, c) = crate::trig::phase_sin_cos(theta + phase);
-            mean + cos * c + sin * s
+            let mut e = mean + cos * c + sin * s;
+            let (mut cn, mut sn) = (c, s);
+            for &[_, tc, ts] in self.higher() {
+                (cn, sn) = (cn * c - sn * s, sn * c + cn * s);
+                e += tc * cn + ts * sn;
+            }
+            e
         })
+    }
+
+    /// The stiffness `k(theta)` (scaled); zero for non-mesh laws.
+    #[inline]
+    pub fn stiffness(&self, theta: f64) -> f64 {
+        match *self {
+            Law::Mesh {
+                k,
+                variation,
+                phase_rad,
+                ref higher,
+                ..
+            } => {
+                let kt = k * (1.0 + variation * (theta + phase_rad).cos());
+                if higher.is_empty() {
+                    return kt;
+                }
+                higher.iter().enumerate().fold(kt, |kt, (i, &[a, _, _])| {
+                    kt + k * a * ((i + 2) as f64 * (theta + phase_rad)).cos()
+                })
+            }
+            Law::Cubic { .. } => 0.0,
+        }
+    }
+
+    /// A mesh law's harmonics 2, 3, ... (`[stiffness, TE cos, TE sin]`).
+    #[inline]
+    pub fn higher(&self) -> &[[f64; 3]] {
+        match self {
+            Law::Mesh { higher, .. } => higher,
+            Law::Cubic { .. } => &[],
+        }
+    }
+
+    /// The TE's real coefficients in `theta` (mean, cos 1, sin 1, cos 2,
+    /// ...) of harmonics 2, 3, ...: `[cos n, sin n]` for each.
+    pub fn te_higher_theta(&self) -> impl Iterator<Item = [f64; 2]> + '_ {
+        let phase = match *self {
+            Law::Mesh { phase_rad, .. } => phase_rad,
+            Law::Cubic { .. } => 0.0,
+        };
+        self.higher()
+            .iter()
+            .enumerate()
+            .map(move |(i, &[_, c, s])| {
+                let (sp, cp) = ((i + 2) as f64 * phase).sin_cos();
+                [c * cp + s * sp, s * cp - c * sp]
+            })
     }
 
     /// Whether `other` has the same stiffness and TE (so the same tables
@@ -122,10 +193,15 @@ impl Law {
                 te_mean_um,
                 te_cos_um,
                 te_sin_um,
+                ref higher,
                 ..
-            } => {
-                Some([k, variation, phase_rad, te_mean_um, te_cos_um, te_sin_um].map(f64::to_bits))
-            }
+            } => Some((
+                [k, variation, phase_rad, te_mean_um, te_cos_um, te_sin_um].map(f64::to_bits),
+                higher
+                    .iter()
+                    .map(|h| h.map(f64::to_bits))
+                    .collect::<Vec<_>>(),
+            )),
             // A cubic law has no tables.
             Law::Cubic { .. } => None,
         };
@@ -312,6 +388,14 @@ impl HbmModel {
                         te_mean_um: mesh.te_mean_m * 1e6,
                         te_cos_um: mesh.te_cos_m * 1e6,
                         te_sin_um: mesh.te_sin_m * 1e6,
+                        higher: (2..=mesh.excitation_harmonics())
+                            .map(|n| {
+                                let a = mesh.stiffness_harmonics.get(n - 2).copied().unwrap_or(0.0);
+                                let [c, s] =
+                                    mesh.te_harmonics_m.get(n - 2).copied().unwrap_or([0.0; 2]);
+                                [a, c * 1e6, s * 1e6]
+                            })
+                            .collect(),
                     },
                     damping: mesh.damping_n_s_m / wr,
                     meshes: g.clone(),
@@ -345,6 +429,42 @@ impl HbmModel {
             mesh_backlash_um: sys.meshes.iter().map(|m| m.backlash_m * 1e6).collect(),
             transform: Some(t),
         })
+    }
+
+    /// The highest harmonic of any channel's excitation (stiffness or TE), at least 1.
+    pub fn excitation_harmonics(&self) -> usize {
+        1 + self
+            .channels
+            .iter()
+            .map(|c| c.law.higher().len())
+            .max()
+            .unwrap_or(0)
+    }
+
+    /// The TE-rate excitation's harmonic `n >= 2` per unit Omega, as
+    /// [`HbmModel::te_rate_forcing`] for the first.
+    pub fn te_rate_forcing_harmonic(&self, n: usize) -> (Vec<f64>, Vec<f64>) {
+        let mut fc = vec![0.0; self.m];
+        let mut fs = vec![0.0; self.m];
+        for ch in &self.channels {
+            let Some([c, s]) = ch.law.higher().get(n.wrapping_sub(2)).map(|h| [h[1], h[2]]) else {
+                continue;
+            };
+            let Law::Mesh { phase_rad, .. } = ch.law else {
+                continue;
+            };
+            // d/dtheta of c cos(n (theta + g)) + s sin(n (theta + g)), as in the first harmonic.
+            let nf = n as f64;
+            let (sg, cg) = (nf * phase_rad).sin_cos();
+            let a = nf * (s * cg - c * sg);
+            let b = -nf * (c * cg + s * sg);
+            let scale = ch.multiplicity * ch.damping;
+            for i in 0..self.m {
+                fc[i] += scale * ch.d[i] * a;
+                fs[i] += scale * ch.d[i] * b;
+            }
+        }
+        (fc, fs)
     }
 
     /// The TE-rate excitation's first harmonic per unit Omega: `f_e = Omega (a cos + b sin)`.
@@ -385,6 +505,8 @@ fn planets_identical(sys: &MeshSystem) -> bool {
                 && o.te_mean_m == m.te_mean_m
                 && o.te_cos_m == m.te_cos_m
                 && o.te_sin_m == m.te_sin_m
+                && o.stiffness_harmonics == m.stiffness_harmonics
+                && o.te_harmonics_m == m.te_harmonics_m
         })
     })
 }

@@ -420,12 +420,15 @@ fn integrate_blocks(
                     0.0
                 } else {
                     match ch.law {
+                        // The seed's one harmonic, as written before the waveforms.
                         Law::Mesh {
                             k,
                             variation,
                             phase_rad,
+                            ref higher,
                             ..
-                        } => k * (1.0 + variation * (theta + phase_rad).cos()),
+                        } if higher.is_empty() => k * (1.0 + variation * (theta + phase_rad).cos()),
+                        Law::Mesh { .. } => ch.law.stiffness(theta),
                         Law::Cubic { .. } => ch.law.force(theta, u_at(j, theta)).1,
                     }
                 };

@@ -3,10 +3,53 @@
 //! compound model included).
 
 use super::*;
+use crate::params::TE_HARMONICS;
+use crate::waveform::Wave;
 
 fn kind_of(name: &str, prefix: &str, suffix: &str) -> Option<MeshKind> {
     let mid = name.strip_prefix(prefix)?.strip_suffix(suffix)?;
     MeshKind::COMPOUND.into_iter().find(|k| k.key() == mid)
+}
+
+/// `te_cos<n>_<kind>_um` / `te_sin<n>_um`: harmonic `n` (2 ..= TE_HARMONICS),
+/// 0 for the cosine or 1 for the sine, and the kind's part of the name
+/// (empty on the gear pair).
+fn te_harmonic(name: &str) -> Option<(usize, usize, &str)> {
+    let rest = name.strip_prefix("te_")?.strip_suffix("_um")?;
+    let (part, rest) = if let Some(r) = rest.strip_prefix("cos") {
+        (0, r)
+    } else {
+        (1, rest.strip_prefix("sin")?)
+    };
+    let digit = rest.chars().next()?.to_digit(10)? as usize;
+    if !(2..=TE_HARMONICS).contains(&digit) {
+        return None;
+    }
+    let kind = &rest[1..];
+    let kind = if kind.is_empty() {
+        kind
+    } else {
+        kind.strip_prefix('_')?
+    };
+    Some((digit, part, kind))
+}
+
+fn wave_value(w: Wave) -> Option<Value> {
+    Some(Value::Text(w.name().into()))
+}
+
+fn ratio_value(r: Option<f64>) -> Option<Value> {
+    Some(match r {
+        Some(x) => Value::Num(x),
+        None => Value::Text("auto".into()),
+    })
+}
+
+fn ratio_of(value: &Value) -> Option<f64> {
+    match value {
+        Value::Num(x) => Some(*x),
+        Value::Text(_) => None,
+    }
 }
 
 fn num(v: &Value) -> f64 {
@@ -25,28 +68,40 @@ fn text(v: &Value) -> &str {
 
 /// Reads a key's value. `None` if the key is unknown or does not apply to the model.
 pub fn get(params: &ModelParams, name: &str) -> Option<Value> {
-    let n = Value::Num;
     match (params, name) {
         (_, "model") => Some(Value::Text(params.kind().name().to_string())),
         (ModelParams::Ravigneaux(p), _) => get_ravigneaux(p, name),
-        (ModelParams::GearPair(p), _) => Some(n(match name {
-            "backlash_um" => p.backlash_um,
-            "te_um" => p.te_um.sin,
-            "te_cos_um" => p.te_um.cos,
-            "te_mean_um" => p.te_um.mean,
-            "stiffness_variation" => p.stiffness_variation,
-            "damping_ratio" => p.damping_ratio,
-            "module_mm" => p.module_mm,
-            "pressure_angle_deg" => p.pressure_angle_deg,
-            "teeth_pinion" => f64::from(p.teeth_pinion),
-            "teeth_gear" => f64::from(p.teeth_gear),
-            "inertia_pinion_kg_m2" => p.inertia_pinion_kg_m2,
-            "inertia_gear_kg_m2" => p.inertia_gear_kg_m2,
-            "stiffness_n_m" => p.stiffness_n_m,
-            "torque_pinion_nm" => p.torque_pinion_nm,
-            _ => return None,
-        })),
+        (ModelParams::GearPair(p), _) => match name {
+            "stiffness_wave" => wave_value(p.stiffness_shape.wave),
+            "contact_ratio" => ratio_value(p.stiffness_shape.contact_ratio),
+            _ => get_gear_pair(p, name),
+        },
     }
+}
+
+fn get_gear_pair(p: &GearPairParams, name: &str) -> Option<Value> {
+    if let Some((h, part, "")) = te_harmonic(name) {
+        return Some(Value::Num(p.te_um.higher[h - 2][part]));
+    }
+    Some(Value::Num(match name {
+        "stiffness_ramp" => p.stiffness_ramp,
+        "stiffness_harmonics" => f64::from(p.stiffness_harmonics),
+        "backlash_um" => p.backlash_um,
+        "te_um" => p.te_um.sin,
+        "te_cos_um" => p.te_um.cos,
+        "te_mean_um" => p.te_um.mean,
+        "stiffness_variation" => p.stiffness_variation,
+        "damping_ratio" => p.damping_ratio,
+        "module_mm" => p.module_mm,
+        "pressure_angle_deg" => p.pressure_angle_deg,
+        "teeth_pinion" => f64::from(p.teeth_pinion),
+        "teeth_gear" => f64::from(p.teeth_gear),
+        "inertia_pinion_kg_m2" => p.inertia_pinion_kg_m2,
+        "inertia_gear_kg_m2" => p.inertia_gear_kg_m2,
+        "stiffness_n_m" => p.stiffness_n_m,
+        "torque_pinion_nm" => p.torque_pinion_nm,
+        _ => return None,
+    }))
 }
 
 fn get_ravigneaux(p: &RavigneauxParams, name: &str) -> Option<Value> {
@@ -68,6 +123,8 @@ fn get_ravigneaux(p: &RavigneauxParams, name: &str) -> Option<Value> {
             None => Value::Text("auto".into()),
         }),
         "stiffness_variation" => n(p.stiffness_variation),
+        "stiffness_ramp" => n(p.stiffness_ramp),
+        "stiffness_harmonics" => n(f64::from(p.stiffness_harmonics)),
         "damping_ratio" => n(p.damping_ratio),
         "torque_s1_nm" => n(p.torque_s1_nm),
         "torque_s2_nm" => Some(match p.torque_s2_nm {
@@ -104,6 +161,13 @@ fn get_ravigneaux(p: &RavigneauxParams, name: &str) -> Option<Value> {
                 n(te(k).mean)
             } else if let Some(k) = kind_of(name, "phase_", "_deg") {
                 n(p.phase_deg.get(k))
+            } else if let Some(k) = kind_of(name, "stiffness_wave_", "") {
+                wave_value(p.stiffness_shape[RavigneauxParams::kind_index(k)].wave)
+            } else if let Some(k) = kind_of(name, "contact_ratio_", "") {
+                ratio_value(p.stiffness_shape[RavigneauxParams::kind_index(k)].contact_ratio)
+            } else if let Some((h, part, kind)) = te_harmonic(name) {
+                let k = MeshKind::COMPOUND.into_iter().find(|k| k.key() == kind)?;
+                n(te(k).higher[h - 2][part])
             } else {
                 None
             }
@@ -142,13 +206,23 @@ pub fn set(params: &mut ModelParams, name: &str, value: Value) -> Result<()> {
     let int = x as u32;
     match params {
         ModelParams::Ravigneaux(p) => set_ravigneaux(p, name, &value, x, int),
-        ModelParams::GearPair(p) => set_gear_pair(p, name, x, int),
+        ModelParams::GearPair(p) => match name {
+            "stiffness_wave" => p.stiffness_shape.wave = Wave::from_name(text(&value)),
+            "contact_ratio" => p.stiffness_shape.contact_ratio = ratio_of(&value),
+            _ => set_gear_pair(p, name, x, int),
+        },
     }
     Ok(())
 }
 
 fn set_gear_pair(p: &mut GearPairParams, name: &str, x: f64, int: u32) {
+    if let Some((h, part, "")) = te_harmonic(name) {
+        p.te_um.higher[h - 2][part] = x;
+        return;
+    }
     match name {
+        "stiffness_ramp" => p.stiffness_ramp = x,
+        "stiffness_harmonics" => p.stiffness_harmonics = int,
         "backlash_um" => p.backlash_um = x,
         "te_um" => p.te_um.sin = x,
         "te_cos_um" => p.te_um.cos = x,
@@ -197,6 +271,8 @@ fn set_ravigneaux(p: &mut RavigneauxParams, name: &str, value: &Value, x: f64, i
             }
         }
         "stiffness_variation" => p.stiffness_variation = x,
+        "stiffness_ramp" => p.stiffness_ramp = x,
+        "stiffness_harmonics" => p.stiffness_harmonics = int,
         "damping_ratio" => p.damping_ratio = x,
         "torque_s1_nm" => p.torque_s1_nm = x,
         "torque_s2_nm" => {
@@ -242,6 +318,14 @@ fn set_ravigneaux(p: &mut RavigneauxParams, name: &str, value: &Value, x: f64, i
                 p.te_um[te(k)].mean = x;
             } else if let Some(k) = kind_of(name, "phase_", "_deg") {
                 *p.phase_deg.get_mut(k) = x;
+            } else if let Some(k) = kind_of(name, "stiffness_wave_", "") {
+                p.stiffness_shape[te(k)].wave = Wave::from_name(text(value));
+            } else if let Some(k) = kind_of(name, "contact_ratio_", "") {
+                p.stiffness_shape[te(k)].contact_ratio = ratio_of(value);
+            } else if let Some((h, part, kind)) = te_harmonic(name) {
+                if let Some(k) = MeshKind::COMPOUND.into_iter().find(|k| k.key() == kind) {
+                    p.te_um[te(k)].higher[h - 2][part] = x;
+                }
             }
         }
     }

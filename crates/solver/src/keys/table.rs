@@ -33,6 +33,7 @@ macro_rules! key {
             ty: $ty,
             applies: Applies::$applies,
             shortcut: false,
+            extension: false,
             description: $desc,
         }
     };
@@ -43,13 +44,14 @@ macro_rules! key {
             ty: $ty,
             applies: Applies::$applies,
             shortcut: true,
+            extension: false,
             description: $desc,
         }
     };
 }
 
 macro_rules! per_kind_keys {
-    ($prefix:literal, $suffix:literal, $unit:expr, $ty:expr, $what:literal) => {
+    ($prefix:expr, $suffix:expr, $unit:expr, $ty:expr, $what:expr) => {
         [
             key!(
                 concat!($prefix, "s1a", $suffix),
@@ -125,7 +127,8 @@ fn build_keys() -> Vec<KeySpec> {
                 max: 0.95
             },
             Both,
-            "mesh stiffness fluctuation v: k(t) = k_m (1 + v cos(omega t + gamma))"
+            "mesh stiffness fluctuation v: half the peak-to-peak stiffness over its mean; \
+             k(t) = k_m (1 + v cos(omega t + gamma)) for the cosine waveform"
         ),
         key!(
             "damping_ratio",
@@ -382,5 +385,107 @@ fn build_keys() -> Vec<KeySpec> {
             "torque on the pinion (the gear carries the balancing torque)"
         ),
     ]);
+    let mut extension = excitation_keys();
+    extension.iter_mut().for_each(|k| k.extension = true);
+    keys.extend(extension);
+    keys
+}
+
+const CONTACT_RATIO: KeyType = KeyType::FloatOrAuto {
+    min: crate::waveform::CONTACT_RATIO_RANGE.0,
+    max: crate::waveform::CONTACT_RATIO_RANGE.1,
+};
+const WAVE: KeyType = KeyType::Choice(&crate::waveform::Wave::NAMES);
+
+macro_rules! te_harmonic_keys {
+    ($keys:ident, $n:literal) => {
+        $keys.extend(per_kind_keys!(
+            concat!("te_cos", $n, "_"),
+            "_um",
+            "um",
+            TE,
+            concat!("TE cosine amplitude of harmonic ", $n)
+        ));
+        $keys.extend(per_kind_keys!(
+            concat!("te_sin", $n, "_"),
+            "_um",
+            "um",
+            TE,
+            concat!("TE sine amplitude of harmonic ", $n)
+        ));
+        $keys.push(key!(
+            concat!("te_cos", $n, "_um"),
+            "um",
+            TE,
+            GearPair,
+            concat!("TE cosine amplitude of harmonic ", $n)
+        ));
+        $keys.push(key!(
+            concat!("te_sin", $n, "_um"),
+            "um",
+            TE,
+            GearPair,
+            concat!("TE sine amplitude of harmonic ", $n)
+        ));
+    };
+}
+
+/// The excitation's waveforms (after the seed's single harmonic): written
+/// by `to_json` only where they differ from the defaults.
+fn excitation_keys() -> Vec<KeySpec> {
+    let mut keys = vec![
+        key!(
+            "stiffness_wave",
+            "-",
+            WAVE,
+            GearPair,
+            "mesh stiffness waveform: the seed's cosine, or single and double tooth contact \
+             (rectangular, or trapezoid with linear ramps) from the contact ratio"
+        ),
+        key!(
+            "contact_ratio",
+            "-",
+            CONTACT_RATIO,
+            GearPair,
+            "contact ratio of the rectangular and trapezoid stiffness (double contact for its \
+             fractional part of each mesh period); auto = from teeth, module and pressure angle"
+        ),
+    ];
+    keys.extend(per_kind_keys!(
+        "stiffness_wave_",
+        "",
+        "-",
+        WAVE,
+        "stiffness waveform (cosine, rectangular, trapezoid)"
+    ));
+    keys.extend(per_kind_keys!(
+        "contact_ratio_",
+        "",
+        "-",
+        CONTACT_RATIO,
+        "contact ratio of the rectangular and trapezoid stiffness (auto = from the geometry)"
+    ));
+    keys.extend([
+        key!(
+            "stiffness_ramp",
+            "-",
+            KeyType::Float { min: 0.0, max: 0.5 },
+            Both,
+            "width of each ramp of the trapezoid stiffness, as a fraction of the mesh period"
+        ),
+        key!(
+            "stiffness_harmonics",
+            "-",
+            KeyType::Int { min: 1, max: 15 },
+            Both,
+            "harmonics the rectangular and trapezoid stiffness are cut to (the solver sees \
+             this Fourier series; the harmonic balance needs at least as many)"
+        ),
+    ]);
+    te_harmonic_keys!(keys, "2");
+    te_harmonic_keys!(keys, "3");
+    te_harmonic_keys!(keys, "4");
+    te_harmonic_keys!(keys, "5");
+    te_harmonic_keys!(keys, "6");
     keys
 }

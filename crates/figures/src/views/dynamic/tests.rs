@@ -151,7 +151,7 @@ fn the_note_gives_both_factors_and_the_sharing_with_its_phasing() {
     for words in [
         "At Ω 0.350",
         "the model's dynamic factor 2.50",
-        "dynamic factor K_v (ISO 6336-1, method B)",
+        "dynamic factor Kv (ISO 6336-1, method B)",
         "subcritical",
         "the teeth part and strike again",
         "5 planets, sequential phasing: large sun – long planet 1.200",

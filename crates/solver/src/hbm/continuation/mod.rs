@@ -263,6 +263,7 @@ impl FrfContinuation {
         } else {
             spec.harmonics
         };
+        Assembly::check_harmonics(&hbm, spec.harmonics, spec.method)?;
         let grid = spec.grid.unwrap_or_else(|| harmonic::Grid::default_size(h));
         let asm = Assembly::new(hbm, h, spec.method, grid);
         // Arclength is measured with Omega in units of the range.

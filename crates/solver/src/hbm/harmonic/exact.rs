@@ -39,11 +39,16 @@ pub(crate) fn channel_exact(
     };
     let nc = n_coef(h);
     // x = u - e as real coefficients.
-    let te = te_real_coefficients(law);
     scratch.x.clear();
     scratch.x.extend_from_slice(&u_coef[..nc]);
-    for (xi, t) in scratch.x.iter_mut().zip(te) {
+    for (xi, t) in scratch.x.iter_mut().zip(te_first_coefficients(law)) {
         *xi -= t;
+    }
+    for (i, [c, s]) in law.te_higher_theta().enumerate() {
+        if let Some(x) = scratch.x.get_mut(2 * i + 3..2 * i + 5) {
+            x[0] -= c;
+            x[1] -= s;
+        }
     }
     // Complex exponential coefficients of x (index j + h for j = -h..=h) and of k.
     let cx = |coef: &[f64], j: isize| -> Complex<f64> {
@@ -56,25 +61,53 @@ pub(crate) fn channel_exact(
             Complex::new(0.5 * coef[2 * ja - 1], 0.5 * coef[2 * ja])
         }
     };
-    let hk = h as isize + 1;
-    let kap = [
+    // The stiffness's exponential coefficients kap_d, d = -kk..=kk: on
+    // the stack for the seed's one harmonic.
+    let kk = 1 + law.higher().len() as isize;
+    let hk = h as isize + kk;
+    let one = [
         Complex::from_polar(0.5 * k * variation, -phase_rad),
         Complex::new(k, 0.0),
         Complex::from_polar(0.5 * k * variation, phase_rad),
     ];
+    let kap: &[Complex<f64>] = if kk == 1 {
+        &one
+    } else {
+        scratch.kap.clear();
+        for &[a, _, _] in law.higher().iter().rev() {
+            let n = (scratch.kap.len() as isize - kk).unsigned_abs() as f64;
+            scratch
+                .kap
+                .push(Complex::from_polar(0.5 * k * a, -n * phase_rad));
+        }
+        scratch.kap.extend(one);
+        for (i, &[a, _, _]) in law.higher().iter().enumerate() {
+            let n = (i + 2) as f64;
+            scratch
+                .kap
+                .push(Complex::from_polar(0.5 * k * a, n * phase_rad));
+        }
+        &scratch.kap
+    };
     // w_pm = k(theta) (x -+ b): exponential coefficients, j = -(h+1)..=h+1.
     let nw = (2 * hk + 1) as usize;
     scratch.w_hi.clear();
     scratch.w_hi.resize(nw, Complex::new(0.0, 0.0));
     for j in -(h as isize)..=(h as isize) {
         let c = cx(&scratch.x, j);
-        for (d, kd) in (-1isize..=1).zip(kap) {
-            scratch.w_hi[(j + d + hk) as usize] += c * kd;
+        if kk == 1 {
+            for (d, kd) in (-1isize..=1).zip(one) {
+                scratch.w_hi[(j + d + hk) as usize] += c * kd;
+            }
+        } else {
+            for (d, kd) in (-kk..=kk).zip(kap) {
+                scratch.w_hi[(j + d + hk) as usize] += c * kd;
+            }
         }
     }
     scratch.w_lo.clear();
     scratch.w_lo.extend_from_slice(&scratch.w_hi);
-    for (d, kd) in (-1isize..=1).zip(kap) {
+    for (d, kd) in (-kk..=kk).zip(kap) {
         scratch.w_hi[(d + hk) as usize] -= kd * b;
         scratch.w_lo[(d + hk) as usize] += kd * b;
     }
@@ -93,7 +126,7 @@ pub(crate) fn channel_exact(
     scratch.cuts.push(2.0 * PI);
     scratch.cuts.sort_by(f64::total_cmp);
     // Integrate interval by interval.
-    let mmax = (2 * h + 2) as isize;
+    let mmax = 2 * h as isize + 1 + kk;
     let nf = (2 * mmax + 1) as usize;
     scratch.e_int.clear();
     scratch.e_int.resize(nf, Complex::new(0.0, 0.0));
@@ -140,9 +173,17 @@ pub(crate) fn channel_exact(
         // Slope: s_l = (1/2pi) sum_d kappa_d E_{d - l}, l = 0..=2h.
         for (l, sl) in slope.iter_mut().enumerate() {
             let mut acc = Complex::new(0.0, 0.0);
-            for (d, kd) in (-1isize..=1).zip(kap) {
-                let m = d - l as isize;
-                acc += kd * scratch.e_int[(m + mmax) as usize];
+            if kk == 1 {
+                // The seed's one harmonic: a fixed range the loop unrolls.
+                for (d, kd) in (-1isize..=1).zip(one) {
+                    let m = d - l as isize;
+                    acc += kd * scratch.e_int[(m + mmax) as usize];
+                }
+            } else {
+                for (d, kd) in (-kk..=kk).zip(kap) {
+                    let m = d - l as isize;
+                    acc += kd * scratch.e_int[(m + mmax) as usize];
+                }
             }
             *sl += acc;
         }
@@ -292,8 +333,18 @@ pub fn contact_switches(
     }
 }
 
-/// The TE of a mesh law as real coefficients `[mean, cos 1, sin 1]` in theta.
-pub(crate) fn te_real_coefficients(law: &Law) -> [f64; 3] {
+/// The TE of a mesh law as real coefficients `mean, cos 1, sin 1, cos 2,
+/// ...` in theta, up to its highest harmonic (zip it with a coefficient
+/// vector: a balance never keeps fewer harmonics than the excitation has,
+/// `HbmModel::check_harmonics`).
+pub(crate) fn te_real_coefficients(law: &Law) -> impl Iterator<Item = f64> + '_ {
+    te_first_coefficients(law)
+        .into_iter()
+        .chain(law.te_higher_theta().flatten())
+}
+
+/// The TE's `[mean, cos 1, sin 1]` in theta.
+fn te_first_coefficients(law: &Law) -> [f64; 3] {
     law.te_terms()
         .map_or([0.0; 3], |(phase, [mean, cos, sin])| {
             // c cos(t + p) + s sin(t + p) = (c cos p + s sin p) cos t + (s cos p - c sin p) sin t
@@ -347,4 +398,5 @@ pub(crate) struct ExactScratch {
     w_lo: Vec<Complex<f64>>,
     cuts: Vec<f64>,
     e_int: Vec<Complex<f64>>,
+    kap: Vec<Complex<f64>>,
 }

@@ -1,0 +1,347 @@
+//! A measured or computed transmission error read from a table and fitted
+//! to the model's harmonics of the mesh frequency.
+//!
+//! The text is CSV: an optional header of comment lines (`#`), then a
+//! header row naming the two columns with their units, then one row per
+//! point. The first column is the abscissa, one of
+//!
+//! - `fraction` (or `mesh_cycle`): the mesh-cycle fraction, one mesh period is 1;
+//! - `roll_deg` (or `roll_angle_deg`, `Roll angle (deg)`): the roll angle of
+//!   the mesh's driving member, one mesh period is `360 / z` degrees;
+//! - `time_s` (or `Time (s)`): seconds, with the mesh period given in a
+//!   comment line `# mesh_period_s = 0.00125`;
+//!
+//! the second the TE: `te_um` (`TE (um)`, `te_µm`), `te_nm`, `te_mm` or `te_m`.
+//! The abscissa must increase strictly and span at least one mesh period.
+//!
+//! The fit is linear least squares (nalgebra's SVD) on `mean + sum_n (c_n
+//! cos(n theta) + s_n sin(n theta))`, `theta = 2 pi x / period`, so the
+//! coefficients are the model's `te_mean`, `te_cos<n>`, `te_sin<n>` keys
+//! directly. Each is rounded to the resolution the fit supports: the RMS
+//! residual, at least 1e-6 um, as a power of ten; a file holding an exact
+//! few-harmonic curve so gives back its coefficients as typed.
+
+use crate::error::{Result, SolverError};
+use nalgebra::{DMatrix, DVector};
+use std::f64::consts::PI;
+
+/// The largest TE file a reader should accept (bytes).
+pub const MAX_TE_FILE_BYTES: u64 = 10 << 20;
+
+/// The abscissa of a TE table.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Abscissa {
+    /// Mesh-cycle fraction (period 1).
+    Fraction,
+    /// Roll angle in degrees (period `360 / z`).
+    RollDeg,
+    /// Time in seconds (period from the file's `mesh_period_s` comment).
+    TimeS,
+}
+
+/// A TE table as read: the abscissa's kind, its points and the TE in um.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TeTable {
+    /// What the first column holds.
+    pub abscissa: Abscissa,
+    /// The first column.
+    pub x: Vec<f64>,
+    /// The TE (um).
+    pub te_um: Vec<f64>,
+    /// The mesh period from a `# mesh_period_s = ...` comment, if any.
+    pub mesh_period_s: Option<f64>,
+}
+
+/// The fit of a TE table.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TeFit {
+    /// Mean (um).
+    pub mean_um: f64,
+    /// `[cos, sin]` (um) of harmonics 1, 2, ...
+    pub harmonics_um: Vec<[f64; 2]>,
+    /// RMS of the residual of the unrounded fit (um).
+    pub rms_residual_um: f64,
+    /// RMS of the TE about its mean (um).
+    pub rms_um: f64,
+    /// Decimal places the coefficients were rounded to.
+    pub decimals: u32,
+    /// Points fitted.
+    pub points: usize,
+    /// Mesh periods the table spans.
+    pub periods: f64,
+}
+
+fn refuse(line: usize, reason: impl Into<String>) -> SolverError {
+    SolverError::Parse(if line == 0 {
+        reason.into()
+    } else {
+        format!("line {line}: {}", reason.into())
+    })
+}
+
+/// A header cell in a canonical form: `Roll angle (deg)` -> `roll_angle_deg`.
+fn canonical(cell: &str) -> String {
+    cell.trim()
+        .trim_matches('"')
+        .to_lowercase()
+        .replace('µ', "u")
+        .replace(['(', ')'], " ")
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join("_")
+}
+
+/// Reads a TE table (see the module doc), refusing with the line and reason.
+pub fn parse(text: &str) -> Result<TeTable> {
+    let mut header: Option<(Abscissa, f64)> = None;
+    let mut mesh_period_s = None;
+    let (mut x, mut te_um) = (Vec::new(), Vec::new());
+    for (i, raw) in text.lines().enumerate() {
+        let line = i + 1;
+        let l = raw.trim();
+        if l.is_empty() {
+            continue;
+        }
+        if let Some(comment) = l.strip_prefix('#') {
+            if let Some((k, v)) = comment.split_once('=') {
+                if canonical(k) == "mesh_period_s" {
+                    let p: f64 = v.trim().parse().map_err(|_| {
+                        refuse(
+                            line,
+                            format!("mesh_period_s `{}` is not a number", v.trim()),
+                        )
+                    })?;
+                    if !(p.is_finite() && p > 0.0) {
+                        return Err(refuse(line, format!("mesh_period_s {p} must be above 0")));
+                    }
+                    mesh_period_s = Some(p);
+                }
+            }
+            continue;
+        }
+        let cells: Vec<&str> = l.split([',', ';', '\t']).map(str::trim).collect();
+        if cells.len() < 2 {
+            return Err(refuse(
+                line,
+                "one column; two are needed (the abscissa and the TE, comma separated)",
+            ));
+        }
+        let Some((_, scale)) = header else {
+            header = Some(read_header(line, cells[0], cells[1])?);
+            continue;
+        };
+        let number = |cell: &str, what: &str| -> Result<f64> {
+            let v: f64 = cell.parse().map_err(|_| {
+                refuse(
+                    line,
+                    format!(
+                        "{what} `{}` is not a number",
+                        crate::keys::truncate(cell, 20)
+                    ),
+                )
+            })?;
+            if v.is_finite() {
+                Ok(v)
+            } else {
+                Err(refuse(line, format!("{what} is {v}; only finite numbers")))
+            }
+        };
+        let xi = number(cells[0], "the abscissa")?;
+        let ti = number(cells[1], "the TE")?;
+        if let Some(&prev) = x.last() {
+            if xi <= prev {
+                return Err(refuse(
+                    line,
+                    format!("the abscissa {xi} does not increase (the line before has {prev})"),
+                ));
+            }
+        }
+        x.push(xi);
+        te_um.push(ti * scale);
+    }
+    let Some((abscissa, _)) = header else {
+        return Err(refuse(0, "the file is empty: no header row and no points"));
+    };
+    if x.is_empty() {
+        return Err(refuse(0, "the file has a header but no points"));
+    }
+    if abscissa == Abscissa::TimeS && mesh_period_s.is_none() {
+        return Err(refuse(
+            0,
+            "a table against time needs its mesh period: add a line `# mesh_period_s = ...`",
+        ));
+    }
+    Ok(TeTable {
+        abscissa,
+        x,
+        te_um,
+        mesh_period_s,
+    })
+}
+
+fn read_header(line: usize, first: &str, second: &str) -> Result<(Abscissa, f64)> {
+    let abscissa = match canonical(first).as_str() {
+        "fraction" | "mesh_cycle" | "mesh_cycle_fraction" => Abscissa::Fraction,
+        "roll_deg" | "roll_angle_deg" | "angle_deg" => Abscissa::RollDeg,
+        "time_s" | "t_s" => Abscissa::TimeS,
+        other => {
+            return Err(refuse(
+                line,
+                format!(
+                    "the first column `{}` is not one of fraction, roll_deg, time_s \
+                     (a header row naming the columns with their units comes first)",
+                    crate::keys::truncate(other, 30)
+                ),
+            ))
+        }
+    };
+    let scale = match canonical(second).as_str() {
+        "te_um" => 1.0,
+        "te_nm" => 1e-3,
+        "te_mm" => 1e3,
+        "te_m" => 1e6,
+        other => {
+            return Err(refuse(
+                line,
+                format!(
+                    "the second column `{}` is not one of te_um, te_nm, te_mm, te_m",
+                    crate::keys::truncate(other, 30)
+                ),
+            ))
+        }
+    };
+    Ok((abscissa, scale))
+}
+
+/// Fits `harmonics` harmonics of the mesh period `period` (in the
+/// abscissa's unit) to a table, coefficients rounded (see the module doc).
+pub fn fit(table: &TeTable, period: f64, harmonics: usize) -> Result<TeFit> {
+    let n = table.x.len();
+    let nc = 2 * harmonics + 1;
+    if n < nc + 1 {
+        return Err(refuse(
+            0,
+            format!(
+                "{n} points cannot fit {harmonics} harmonics: at least {} are needed",
+                nc + 1
+            ),
+        ));
+    }
+    let (first, last) = (table.x[0], table.x[n - 1]);
+    // Points spread evenly over k periods span (k - 1/n) of them.
+    let periods = (last - first) / period * n as f64 / (n as f64 - 1.0);
+    if periods.is_nan() || periods < 1.0 - 1e-9 {
+        return Err(refuse(
+            0,
+            format!(
+                "the table spans {periods:.3} mesh periods; at least one is needed to fit its harmonics"
+            ),
+        ));
+    }
+    let a = DMatrix::from_fn(n, nc, |i, c| {
+        let theta = 2.0 * PI * table.x[i] / period;
+        match c {
+            0 => 1.0,
+            c if c % 2 == 1 => (c.div_ceil(2) as f64 * theta).cos(),
+            c => ((c / 2) as f64 * theta).sin(),
+        }
+    });
+    let b = DVector::from_column_slice(&table.te_um);
+    let coef = a
+        .clone()
+        .svd(true, true)
+        .solve(&b, 1e-12)
+        .map_err(|e| refuse(0, format!("the fit failed: {e}")))?;
+    let residual = &a * &coef - &b;
+    let rms_residual_um = (residual.norm_squared() / n as f64).sqrt();
+    let mean = b.mean();
+    let rms_um = (b.iter().map(|t| (t - mean).powi(2)).sum::<f64>() / n as f64).sqrt();
+    let step = rms_residual_um.max(1e-6);
+    let decimals = (-step.log10()).ceil().clamp(0.0, 9.0) as u32;
+    let round = |v: f64| -> f64 {
+        let s = format!("{v:.*}", decimals as usize);
+        s.parse::<f64>().map_or(v, |r| r + 0.0)
+    };
+    Ok(TeFit {
+        mean_um: round(coef[0]),
+        harmonics_um: (1..=harmonics)
+            .map(|k| [round(coef[2 * k - 1]), round(coef[2 * k])])
+            .collect(),
+        rms_residual_um,
+        rms_um,
+        decimals,
+        points: n,
+        periods,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_exact_three_harmonic_curve_is_fitted_back_to_its_coefficients() {
+        let mut text = String::from("# a test\nRoll angle (deg),TE (µm)\n");
+        let z = 30.0;
+        for i in 0..240 {
+            // Two mesh periods of 12 degrees.
+            let x = 24.0 * f64::from(i) / 240.0;
+            let t = 2.0 * PI * x * z / 360.0;
+            let e = 1.5 + 4.0 * t.sin() - 2.25 * t.cos() + 0.5 * (2.0 * t).cos()
+                - 0.75 * (3.0 * t).sin();
+            text.push_str(&format!("{x:.9},{e:.9}\n"));
+        }
+        let table = parse(&text).unwrap();
+        assert_eq!(table.abscissa, Abscissa::RollDeg);
+        let f = fit(&table, 360.0 / z, 6).unwrap();
+        assert_eq!(f.mean_um, 1.5);
+        assert_eq!(
+            f.harmonics_um,
+            vec![
+                [-2.25, 4.0],
+                [0.5, 0.0],
+                [0.0, -0.75],
+                [0.0, 0.0],
+                [0.0, 0.0],
+                [0.0, 0.0]
+            ]
+        );
+        assert!(f.rms_residual_um < 1e-8, "{}", f.rms_residual_um);
+        assert!((f.periods - 2.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn bad_tables_are_refused_with_the_line_and_the_reason() {
+        let cases = [
+            ("", "empty"),
+            ("fraction,te_um\n", "no points"),
+            ("fraction,te_um\n0,1\n0.5\n", "line 3: one column"),
+            (
+                "fraction,te_um\n0,1\n0.5,abc\n",
+                "line 3: the TE `abc` is not a number",
+            ),
+            ("fraction,te_um\n0,1\n0.5,NaN\n", "line 3: the TE is NaN"),
+            (
+                "fraction,te_um\n0,1\n0.5,2\n0.4,3\n",
+                "line 4: the abscissa 0.4 does not increase",
+            ),
+            ("speed,te_um\n0,1\n", "line 1: the first column `speed`"),
+            ("time_s,te_um\n0,1\n", "mesh_period_s"),
+        ];
+        for (text, want) in cases {
+            let e = parse(text).unwrap_err().to_string();
+            assert!(e.contains(want), "{text:?}: {e}");
+        }
+        let short = parse("fraction,te_um\n0,1\n0.25,2\n0.5,3\n0.75,4\n").unwrap();
+        assert!(fit(&short, 1.0, 2)
+            .unwrap_err()
+            .to_string()
+            .contains("at least 6"));
+        let part = "fraction,te_um\n".to_string()
+            + &(0..20)
+                .map(|i| format!("{},1\n", f64::from(i) * 0.01))
+                .collect::<String>();
+        let e = fit(&parse(&part).unwrap(), 1.0, 1).unwrap_err().to_string();
+        assert!(e.contains("spans 0.200 mesh periods"), "{e}");
+    }
+}
