@@ -439,7 +439,7 @@ fn excitation_keys() -> Vec<KeySpec> {
             "-",
             WAVE,
             GearPair,
-            "mesh stiffness waveform: the seed's cosine, or single and double tooth contact \
+            "mesh stiffness waveform: the paper's cosine, or single and double tooth contact \
              (rectangular, or trapezoid with linear ramps) from the contact ratio"
         ),
         key!(
