@@ -229,7 +229,7 @@ impl Page {
         let names = self.ctl.mesh_names();
         let mut options: Vec<(String, String)> =
             names.iter().map(|n| (n.clone(), n.clone())).collect();
-        options.push(("worst".into(), "worst mesh at each Ω".into()));
+        options.push(("worst".into(), "worst mesh at each speed".into()));
         if options != self.schematic.options {
             self.schematic.options = options.clone();
             w.push(Write::Options {
