@@ -5,16 +5,15 @@
 //! conversion ([`SpeedScale`]) that every axis, range field, readout and
 //! export uses, and the words and tick labels of an axis in rpm.
 //!
-//! The conversion is `solver::campbell`'s: the mesh frequency is
-//! `Ω ω_ref / 2π` and the input speed that mesh frequency over
-//! [`solver::system::SpeedInfo::mesh_hz_per_rpm`]. Both directions are a
-//! product of the same two factors, so rpm to Ω and back gives the value
-//! to a few ulps (the link tests check 1e-12).
+//! The conversion is the solver's ([`solver::system::RpmScale`], also
+//! behind `solver::campbell`): the mesh frequency is `Ω ω_ref / 2π` and
+//! the input speed that mesh frequency over the mesh frequency per rpm.
+//! Both directions are a product of the same two factors, so rpm to Ω and
+//! back gives the value to a few ulps (the link tests check 1e-12).
 
 use solver::model::Model;
 use solver::params::MeshKind;
-use solver::system::SpeedInfo;
-use std::f64::consts::PI;
+use solver::system::RpmScale;
 
 /// What the speed axes show.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -48,10 +47,8 @@ impl AxisUnit {
 /// The conversion between Ω and the input member's speed of one model.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SpeedScale {
-    /// ω_ref of the model (rad/s): Ω 1 is this mesh frequency.
-    omega_ref_rad_s: f64,
-    /// The input member's teeth and speed relative to the carrier.
-    speed: SpeedInfo,
+    /// The model's conversion.
+    scale: RpmScale,
     /// Whether the model is the gear pair (its input is the pinion).
     pair: bool,
 }
@@ -60,8 +57,7 @@ impl SpeedScale {
     /// The scale of `model`.
     pub fn of(model: &Model) -> Self {
         SpeedScale {
-            omega_ref_rad_s: model.system.omega_ref_rad_s,
-            speed: model.system.speed,
+            scale: model.system.rpm_scale(),
             pair: model
                 .system
                 .meshes
@@ -72,17 +68,17 @@ impl SpeedScale {
 
     /// The mesh frequency (Hz) at `omega`.
     pub fn mesh_hz(&self, omega: f64) -> f64 {
-        omega * self.omega_ref_rad_s / (2.0 * PI)
+        self.scale.mesh_hz(omega)
     }
 
     /// The input member's speed (rpm) at `omega`.
     pub fn rpm(&self, omega: f64) -> f64 {
-        self.speed.input_speed_rpm(self.mesh_hz(omega))
+        self.scale.rpm(omega)
     }
 
     /// Ω at the input member's speed `rpm` (the inverse of [`Self::rpm`]).
     pub fn omega(&self, rpm: f64) -> f64 {
-        rpm * self.speed.mesh_hz_per_rpm() * 2.0 * PI / self.omega_ref_rad_s
+        self.scale.omega(rpm)
     }
 
     /// The input member in words: "sun s1" or "pinion".
@@ -264,6 +260,7 @@ pub fn axis_json(axis: &SpeedAxis) -> serde_json::Value {
 mod tests {
     use super::*;
     use solver::params::{ModelKind, ModelParams};
+    use std::f64::consts::PI;
 
     fn model(kind: ModelKind) -> Model {
         Model::new(&ModelParams::defaults(kind)).unwrap()

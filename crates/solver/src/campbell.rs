@@ -31,7 +31,6 @@ use crate::error::{Result, SolverError};
 use crate::modal::ModeKind;
 use crate::Model;
 use nalgebra::Complex;
-use std::f64::consts::PI;
 
 /// Largest order a diagram draws.
 pub const MAX_ORDER: u32 = 12;
@@ -131,15 +130,12 @@ impl Campbell {
 /// Input speed (rpm) at `omega` on `model`: `omega omega_ref / (2 pi)` is
 /// the mesh frequency.
 pub fn rpm_at(model: &Model, omega: f64) -> f64 {
-    model
-        .system
-        .speed
-        .input_speed_rpm(omega * model.system.omega_ref_rad_s / (2.0 * PI))
+    model.system.rpm_scale().rpm(omega)
 }
 
 /// Omega at input speed `rpm` on `model` (the inverse of [`rpm_at`]).
 pub fn omega_at(model: &Model, rpm: f64) -> f64 {
-    rpm * model.system.speed.mesh_hz_per_rpm() * 2.0 * PI / model.system.omega_ref_rad_s
+    model.system.rpm_scale().omega(rpm)
 }
 
 fn check_range(rpm_from: f64, rpm_to: f64) -> Result<()> {

@@ -272,6 +272,35 @@ impl SpeedInfo {
     }
 }
 
+/// The conversion between the dimensionless Omega and the input member's
+/// speed (rpm) of one system: Omega 1 is the mesh frequency
+/// `omega_ref / 2 pi`, and the input speed is a mesh frequency over
+/// [`SpeedInfo::mesh_hz_per_rpm`]. The one place the two are related.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RpmScale {
+    /// omega_ref (rad/s).
+    pub omega_ref_rad_s: f64,
+    /// The input member's teeth and speed relative to the carrier.
+    pub speed: SpeedInfo,
+}
+
+impl RpmScale {
+    /// The mesh frequency (Hz) at `omega`.
+    pub fn mesh_hz(&self, omega: f64) -> f64 {
+        omega * self.omega_ref_rad_s / (2.0 * PI)
+    }
+
+    /// The input member's speed (rpm) at `omega`.
+    pub fn rpm(&self, omega: f64) -> f64 {
+        self.speed.input_speed_rpm(self.mesh_hz(omega))
+    }
+
+    /// Omega at the input member's speed `rpm` (the inverse of [`Self::rpm`]).
+    pub fn omega(&self, rpm: f64) -> f64 {
+        rpm * self.speed.mesh_hz_per_rpm() * 2.0 * PI / self.omega_ref_rad_s
+    }
+}
+
 /// Derived geometry of the compound set, in metres and radians.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RavigneauxGeometry {
@@ -388,6 +417,14 @@ impl RavigneauxGeometry {
 }
 
 impl MeshSystem {
+    /// The conversion between Omega and the input member's speed.
+    pub fn rpm_scale(&self) -> RpmScale {
+        RpmScale {
+            omega_ref_rad_s: self.omega_ref_rad_s,
+            speed: self.speed,
+        }
+    }
+
     /// How much of the in-phase excitation of a mesh kind survives the sum
     /// over its `N` planet meshes at mesh order `k`: `|sum_n exp(i k
     /// gamma_n)| / N` with the meshes' phases `gamma_n`, for `k = 1 ..=
@@ -494,7 +531,7 @@ impl MeshSystem {
 
     /// Mesh frequency (Hz) at dimensionless frequency `omega`.
     pub fn mesh_freq_hz(&self, omega: f64) -> f64 {
-        omega * self.omega_ref_rad_s / (2.0 * PI)
+        self.rpm_scale().mesh_hz(omega)
     }
 }
 

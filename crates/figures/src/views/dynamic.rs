@@ -168,7 +168,7 @@ impl DynamicView {
             omega_from: from,
             omega_to: to,
             selected_omega: ctx.selected_omega,
-            rpm_per_omega: model.system.speed.input_speed_rpm(hz_per_omega),
+            rpm_per_omega: model.system.rpm_scale().rpm(1.0),
             nonlinear,
             states: computed.len(),
             kv: Vec::new(),
