@@ -78,9 +78,7 @@ impl Kind for Bif {
         fed: &mut Fed,
     ) -> bool {
         match msg {
-            FromWorker::Bands { id, bands, error }
-                if super::ours(*id, c.status(JobKind::Bif).id) =>
-            {
+            FromWorker::Bands { id, bands, error } if self.answers(c, *id) => {
                 if *bands != c.bands {
                     c.bands = bands.clone();
                     dirty.data(JobKind::Bif);
@@ -92,7 +90,7 @@ impl Kind for Bif {
                 }
                 true
             }
-            FromWorker::BifPoints { id, points } if super::ours(*id, c.status(JobKind::Bif).id) => {
+            FromWorker::BifPoints { id, points } if self.answers(c, *id) => {
                 let before = c.bif.samples.len();
                 c.bif.samples.extend(points.iter().cloned());
                 let after = c.bif.samples.len();

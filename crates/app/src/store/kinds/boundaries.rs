@@ -94,7 +94,7 @@ impl Kind for Boundaries {
         else {
             return false;
         };
-        if !super::ours(*id, c.status(JobKind::Boundaries).id) {
+        if !self.answers(c, *id) {
             return false;
         }
         let b = &mut c.boundaries;

@@ -84,7 +84,7 @@ impl Kind for HarmonicBalance {
         else {
             return false;
         };
-        if !super::ours(*id, c.status(JobKind::HarmonicBalance).id) {
+        if !self.answers(c, *id) {
             return false;
         }
         c.hbm

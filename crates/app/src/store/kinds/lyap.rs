@@ -67,7 +67,7 @@ impl Kind for Lyap {
         let FromWorker::LyapPoints { id, points } = msg else {
             return false;
         };
-        if !super::ours(*id, c.status(JobKind::Lyap).id) {
+        if !self.answers(c, *id) {
             return false;
         }
         c.lyap.points.extend(points.iter().cloned());

@@ -73,7 +73,7 @@ impl Kind for Map {
         let FromWorker::MapCells { id, cells } = msg else {
             return false;
         };
-        if !super::ours(*id, c.status(JobKind::Map).id) {
+        if !self.answers(c, *id) {
             return false;
         }
         c.map.add(cells.clone());

@@ -157,6 +157,12 @@ pub trait Kind: Sync {
         false
     }
 
+    /// Whether a reply's `id` answers this kind's current job in `c` (a
+    /// kind switched off or failed has id 0: nothing answers it).
+    fn answers(&self, c: &Computation, id: JobId) -> bool {
+        id != 0 && id == c.status(self.kind()).id
+    }
+
     /// Feeds `msg` to the kind's store in `c` if it answers the kind's
     /// current job; marks the data changed in `dirty`, adds messages for
     /// the user to `fed`. Whether it did.
@@ -168,11 +174,6 @@ pub trait Kind: Sync {
         dirty: &mut Dirty,
         fed: &mut Fed,
     ) -> bool;
-}
-
-/// Whether a reply's `id` answers the job `mine` (id 0: none).
-fn ours(id: JobId, mine: JobId) -> bool {
-    id == mine && id != 0
 }
 
 /// Every kind's page side, by [`JobKind::slot`]: the one table.

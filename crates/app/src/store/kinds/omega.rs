@@ -71,7 +71,7 @@ impl Kind for Omega {
         let FromWorker::Omega { id, result } = msg else {
             return false;
         };
-        if !super::ours(*id, c.status(JobKind::Omega).id) {
+        if !self.answers(c, *id) {
             return false;
         }
         c.omega = Some((**result).clone());

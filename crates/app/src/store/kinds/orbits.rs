@@ -61,7 +61,7 @@ impl Kind for Orbits {
         else {
             return false;
         };
-        if !super::ours(*id, c.status(JobKind::Orbits).id) {
+        if !self.answers(c, *id) {
             return false;
         }
         c.orbits.points.extend(points.iter().cloned());

@@ -60,7 +60,7 @@ impl Kind for Overlay {
         let FromWorker::OverlayPoints { id, points } = msg else {
             return false;
         };
-        if !super::ours(*id, c.status(JobKind::Overlay).id) {
+        if !self.answers(c, *id) {
             return false;
         }
         c.overlay.add(points.clone());
