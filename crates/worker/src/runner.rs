@@ -11,9 +11,6 @@ use solver::keys;
 use solver::model::Model;
 use solver::params::ModelParams;
 
-/// The kinds taking turns (see [`JobKind::TAKING_TURNS`]).
-const TAKING_TURNS: [JobKind; 2] = JobKind::TAKING_TURNS;
-
 /// One computation's jobs.
 #[derive(Default)]
 pub(super) struct Runner {
@@ -23,7 +20,7 @@ pub(super) struct Runner {
     next_shard: [usize; JobKind::COUNT],
     /// The finished shards of the last bifurcation sweep (kept for its export).
     finished: Vec<Box<dyn Job>>,
-    /// Which of [`TAKING_TURNS`] steps next.
+    /// Which of [`JobKind::TAKING_TURNS`] steps next.
     turn: usize,
 }
 
@@ -115,10 +112,11 @@ impl Runner {
                 return out;
             }
         }
-        for k in 0..TAKING_TURNS.len() {
-            let i = (self.turn + k) % TAKING_TURNS.len();
-            if let Some(out) = self.step_kind(TAKING_TURNS[i]) {
-                self.turn = (i + 1) % TAKING_TURNS.len();
+        let turns = JobKind::TAKING_TURNS;
+        for k in 0..turns.len() {
+            let i = (self.turn + k) % turns.len();
+            if let Some(out) = self.step_kind(turns[i]) {
+                self.turn = (i + 1) % turns.len();
                 return out;
             }
         }
