@@ -238,28 +238,6 @@ impl IsoInputs {
     }
 }
 
-/// Transverse contact ratio of a standard spur pair (addendum m, no
-/// profile shift, standard centre distance).
-pub fn contact_ratio(
-    teeth_1: u32,
-    teeth_2: u32,
-    internal: bool,
-    module_mm: f64,
-    alpha_rad: f64,
-) -> f64 {
-    let m = module_mm;
-    let (r1, r2) = (m * f64::from(teeth_1) / 2.0, m * f64::from(teeth_2) / 2.0);
-    let (rb1, rb2) = (r1 * alpha_rad.cos(), r2 * alpha_rad.cos());
-    let path = |ra: f64, rb: f64| (ra * ra - rb * rb).max(0.0).sqrt();
-    let base_pitch = PI * m * alpha_rad.cos();
-    let g = if internal {
-        path(r1 + m, rb1) - path(r2 - m, rb2) + (r2 - r1) * alpha_rad.sin()
-    } else {
-        path(r1 + m, rb1) + path(r2 + m, rb2) - (r1 + r2) * alpha_rad.sin()
-    };
-    g / base_pitch
-}
-
 /// ISO 1328-1:2013's single pitch tolerance f_pT (um) at reference
 /// diameter `d_mm`, module `m_mm` and grade `grade`.
 pub fn single_pitch_tolerance_um(d_mm: f64, m_mm: f64, grade: f64) -> f64 {
@@ -329,12 +307,14 @@ impl MeshRating {
         positive("mesh stiffness (N/m)", mesh.stiffness_n_m)?;
         positive("tangential load (N)", mesh.tangential_load_n)?;
         let alpha = mesh.pressure_angle_deg.to_radians();
-        let eps = contact_ratio(
+        // The transverse contact ratio of standard teeth, as the
+        // rectangular stiffness takes it.
+        let eps = crate::waveform::contact_ratio(
             mesh.teeth_1,
             mesh.teeth_2,
             mesh.internal,
             mesh.module_mm,
-            alpha,
+            mesh.pressure_angle_deg,
         );
         if !(eps.is_finite() && eps > 1.0) {
             return Err(out_of_range(

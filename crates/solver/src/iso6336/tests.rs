@@ -175,7 +175,7 @@ fn the_contact_ratio_of_an_internal_pair_is_the_hand_calculation() {
         + 132.0 * a.sin();
     close(
         "eps internal",
-        contact_ratio(18, 84, true, 4.0, a),
+        crate::waveform::contact_ratio(18, 84, true, 4.0, 20.0),
         g / (PI * 4.0 * a.cos()),
         1e-12,
     );
