@@ -5,7 +5,7 @@
 //! conversion ([`SpeedScale`]) that every axis, range field, readout and
 //! export uses, and the words and tick labels of an axis in rpm.
 //!
-//! The conversion is the solver's ([`solver::system::RpmScale`], also
+//! The conversion is the solver's ([`solver::rpm::RpmScale`], also
 //! behind `solver::campbell`): the mesh frequency is `Ω ω_ref / 2π` and
 //! the input speed that mesh frequency over the mesh frequency per rpm.
 //! Both directions are a product of the same two factors, so rpm to Ω and
@@ -13,7 +13,7 @@
 
 use solver::model::Model;
 use solver::params::MeshKind;
-use solver::system::RpmScale;
+use solver::rpm::RpmScale;
 
 /// What the speed axes show.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

@@ -8,7 +8,7 @@
 //! horizontal line, and order `k` crosses it where `k f_mesh(rpm) = f_n`,
 //! with `f_mesh = rpm / 60 z_in |n_in - n_c| / n_in` (the input member's
 //! teeth and its speed relative to the carrier,
-//! [`crate::system::SpeedInfo::mesh_hz_per_rpm`]). At that
+//! [`crate::rpm::SpeedInfo::mesh_hz_per_rpm`]). At that
 //! speed `Omega = omega_n / (k omega_ref)`.
 //!
 //! Which crossings the meshes can excite follows from the planets' mesh

@@ -49,6 +49,7 @@ pub mod ode;
 pub mod orbits;
 pub mod parametric;
 pub mod params;
+pub mod rpm;
 pub(crate) mod separation;
 pub mod sharing;
 pub mod shooting;

@@ -27,6 +27,7 @@
 
 use crate::error::{Result, SolverError};
 use crate::params::{GearPairParams, MeshKind, ModelKind, ModelParams, Phasing, RavigneauxParams};
+use crate::rpm::SpeedInfo;
 use crate::waveform;
 use nalgebra::{DMatrix, DVector};
 use std::f64::consts::PI;
@@ -251,56 +252,6 @@ pub struct MeshSystem {
     pub warnings: Vec<String>,
 }
 
-/// How mesh frequency relates to shaft speed.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SpeedInfo {
-    /// Teeth of the input member (s1 or the pinion).
-    pub input_teeth: u32,
-    /// Input member speed relative to the carrier per unit input speed (1 for the pair).
-    pub relative_per_input: f64,
-}
-
-impl SpeedInfo {
-    /// Mesh frequency (Hz) per input shaft rpm: `z_in |n_in - n_c| / n_in / 60`.
-    pub fn mesh_hz_per_rpm(&self) -> f64 {
-        f64::from(self.input_teeth) * self.relative_per_input.abs() / 60.0
-    }
-
-    /// Input shaft speed (rpm) that gives mesh frequency `mesh_freq_hz`.
-    pub fn input_speed_rpm(&self, mesh_freq_hz: f64) -> f64 {
-        mesh_freq_hz / self.mesh_hz_per_rpm()
-    }
-}
-
-/// The conversion between the dimensionless Omega and the input member's
-/// speed (rpm) of one system: Omega 1 is the mesh frequency
-/// `omega_ref / 2 pi`, and the input speed is a mesh frequency over
-/// [`SpeedInfo::mesh_hz_per_rpm`]. The one place the two are related.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RpmScale {
-    /// omega_ref (rad/s).
-    pub omega_ref_rad_s: f64,
-    /// The input member's teeth and speed relative to the carrier.
-    pub speed: SpeedInfo,
-}
-
-impl RpmScale {
-    /// The mesh frequency (Hz) at `omega`.
-    pub fn mesh_hz(&self, omega: f64) -> f64 {
-        omega * self.omega_ref_rad_s / (2.0 * PI)
-    }
-
-    /// The input member's speed (rpm) at `omega`.
-    pub fn rpm(&self, omega: f64) -> f64 {
-        self.speed.input_speed_rpm(self.mesh_hz(omega))
-    }
-
-    /// Omega at the input member's speed `rpm` (the inverse of [`Self::rpm`]).
-    pub fn omega(&self, rpm: f64) -> f64 {
-        rpm * self.speed.mesh_hz_per_rpm() * 2.0 * PI / self.omega_ref_rad_s
-    }
-}
-
 /// Derived geometry of the compound set, in metres and radians.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RavigneauxGeometry {
@@ -418,8 +369,8 @@ impl RavigneauxGeometry {
 
 impl MeshSystem {
     /// The conversion between Omega and the input member's speed.
-    pub fn rpm_scale(&self) -> RpmScale {
-        RpmScale {
+    pub fn rpm_scale(&self) -> crate::rpm::RpmScale {
+        crate::rpm::RpmScale {
             omega_ref_rad_s: self.omega_ref_rad_s,
             speed: self.speed,
         }
