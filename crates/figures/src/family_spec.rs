@@ -121,10 +121,14 @@ impl FamilySpec {
     }
 
     /// Member `i`'s parameters: `base` with the key set to its value.
-    pub fn member_params(&self, base: &ModelParams, i: usize) -> Result<ModelParams, String> {
+    pub fn member_params(
+        &self,
+        base: &ModelParams,
+        i: usize,
+    ) -> Result<ModelParams, solver::SolverError> {
         let mut p = base.clone();
         let x = self.values.get(i).copied().unwrap_or(f64::NAN);
-        keys::set(&mut p, self.key.key, Value::Num(x)).map_err(|e| e.to_string())?;
+        keys::set(&mut p, self.key.key, Value::Num(x))?;
         Ok(p)
     }
 }
@@ -133,17 +137,16 @@ impl FamilySpec {
 /// 30" or "0,20,30"), checking each value against `base` (the model every
 /// member shares). The message names the offending value and what is
 /// allowed, in words.
-pub fn parse_parts(key: &str, values: &str, base: &ModelParams) -> Result<FamilySpec, String> {
+pub fn parse_parts(key: &str, values: &str, base: &ModelParams) -> Result<FamilySpec, FamilyError> {
     let Some(fk) = family_key(key.trim()) else {
         let allowed: Vec<String> = FAMILY_KEYS
             .iter()
             .map(|k| format!("{} ({})", k.words, k.key))
             .collect();
-        return Err(format!(
-            "A family cannot vary `{}`; it can vary {}.",
-            keys::truncate(key.trim(), 30),
-            allowed.join(", ")
-        ));
+        return Err(FamilyError::NotAFamilyKey {
+            key: keys::truncate(key.trim(), 30),
+            allowed: allowed.join(", "),
+        });
     };
     let texts: Vec<&str> = values
         .split([',', ';', ' '])
@@ -151,21 +154,17 @@ pub fn parse_parts(key: &str, values: &str, base: &ModelParams) -> Result<Family
         .filter(|t| !t.is_empty())
         .collect();
     if texts.len() < MIN_MEMBERS || texts.len() > MAX_MEMBERS {
-        return Err(format!(
-            "A family of {} needs {MIN_MEMBERS} to {MAX_MEMBERS} values; {} were given.",
-            fk.words,
-            texts.len().min(1000)
-        ));
+        return Err(FamilyError::Count {
+            words: fk.words,
+            given: texts.len().min(1000),
+        });
     }
     let mut out = Vec::with_capacity(texts.len());
     for t in texts {
-        let shown = keys::truncate(t, 20);
-        let bad = || {
-            format!(
-                "{} {shown} is not allowed in a family: allowed {}.",
-                fk.words,
-                fk.allowed()
-            )
+        let bad = || FamilyError::NotAllowed {
+            words: fk.words,
+            value: keys::truncate(t, 20),
+            allowed: fk.allowed(),
         };
         let x: f64 = t.parse().map_err(|_| bad())?;
         if !x.is_finite() {
@@ -174,14 +173,16 @@ pub fn parse_parts(key: &str, values: &str, base: &ModelParams) -> Result<Family
         let x = if x == 0.0 { 0.0 } else { x };
         let mut p = base.clone();
         keys::set(&mut p, fk.key, Value::Num(x)).map_err(|_| bad())?;
-        if let Err(e) = Model::new(&p) {
-            return Err(format!(
-                "{} cannot be computed with these settings: {e}",
-                fk.label(x)
-            ));
+        if let Err(source) = Model::new(&p) {
+            return Err(FamilyError::CannotCompute {
+                member: fk.label(x),
+                source,
+            });
         }
         if out.contains(&x) {
-            return Err(format!("{} appears twice in the family.", fk.label(x)));
+            return Err(FamilyError::Twice {
+                member: fk.label(x),
+            });
         }
         out.push(x);
     }
@@ -192,14 +193,67 @@ pub fn parse_parts(key: &str, values: &str, base: &ModelParams) -> Result<Family
 }
 
 /// Parses a link's family value, `KEY:V1,V2,...`.
-pub fn parse(text: &str, base: &ModelParams) -> Result<FamilySpec, String> {
+pub fn parse(text: &str, base: &ModelParams) -> Result<FamilySpec, FamilyError> {
     match text.split_once(':') {
         Some((k, v)) => parse_parts(k, v, base),
-        None => Err(format!(
-            "family = {} is not of the form parameter:values (e.g. te_um:0,20,30); ignored.",
-            keys::truncate(text, 40)
-        )),
+        None => Err(FamilyError::NotKeyValues {
+            text: keys::truncate(text, 40),
+        }),
     }
+}
+
+/// Why a family typed on the page or carried by a link was refused: the
+/// value and what is allowed, in words.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum FamilyError {
+    /// A key no family varies.
+    #[error("A family cannot vary `{key}`; it can vary {allowed}.")]
+    NotAFamilyKey {
+        /// The key as given (shortened).
+        key: String,
+        /// The keys a family varies, in words with their keys.
+        allowed: String,
+    },
+    /// Too few or too many values.
+    #[error(
+        "A family of {words} needs {MIN_MEMBERS} to {MAX_MEMBERS} values; {given} were given."
+    )]
+    Count {
+        /// The varied parameter in words.
+        words: &'static str,
+        /// How many values were given (at most 1000 said).
+        given: usize,
+    },
+    /// A value that is not a number in the key's range.
+    #[error("{words} {value} is not allowed in a family: allowed {allowed}.")]
+    NotAllowed {
+        /// The varied parameter in words.
+        words: &'static str,
+        /// The value as given (shortened).
+        value: String,
+        /// The allowed range in words.
+        allowed: String,
+    },
+    /// A member whose model cannot be built.
+    #[error("{member} cannot be computed with these settings: {source}")]
+    CannotCompute {
+        /// The member in words ("TE 20 µm").
+        member: String,
+        /// The solver's reason.
+        source: solver::SolverError,
+    },
+    /// A value given twice.
+    #[error("{member} appears twice in the family.")]
+    Twice {
+        /// The member in words.
+        member: String,
+    },
+    /// A link's family value without its colon.
+    #[error("family = {text} is not of the form parameter:values (e.g. te_um:0,20,30); ignored.")]
+    NotKeyValues {
+        /// The value as given (shortened).
+        text: String,
+    },
 }
 
 #[cfg(test)]
@@ -230,26 +284,26 @@ mod tests {
     #[test]
     fn bad_families_are_named_with_the_value_and_the_range() {
         let b = base();
-        let e = parse("foo_um:1,2", &b).unwrap_err();
+        let e = parse("foo_um:1,2", &b).unwrap_err().to_string();
         assert!(e.contains("foo_um") && e.contains("TE (te_um)"), "{e}");
-        let e = parse("te_um:1,2,3,4,5,6,7", &b).unwrap_err();
+        let e = parse("te_um:1,2,3,4,5,6,7", &b).unwrap_err().to_string();
         assert!(e.contains("2 to 6") && e.contains('7'), "{e}");
-        let e = parse("te_um:20", &b).unwrap_err();
+        let e = parse("te_um:20", &b).unwrap_err().to_string();
         assert!(e.contains("2 to 6"), "{e}");
-        let e = parse("te_um:0,NaN", &b).unwrap_err();
+        let e = parse("te_um:0,NaN", &b).unwrap_err().to_string();
         assert!(e.contains("TE NaN") && e.contains("µm"), "{e}");
-        let e = parse("backlash_um:50,5000", &b).unwrap_err();
+        let e = parse("backlash_um:50,5000", &b).unwrap_err().to_string();
         assert!(
             e.contains("backlash 5000") && e.contains("0 to 1000 µm"),
             "{e}"
         );
-        let e = parse("te_um:0,abc", &b).unwrap_err();
+        let e = parse("te_um:0,abc", &b).unwrap_err().to_string();
         assert!(e.contains("TE abc"), "{e}");
-        let e = parse("te_um:inf,1", &b).unwrap_err();
+        let e = parse("te_um:inf,1", &b).unwrap_err().to_string();
         assert!(e.contains("TE inf"), "{e}");
-        let e = parse("te_um:10,10", &b).unwrap_err();
+        let e = parse("te_um:10,10", &b).unwrap_err().to_string();
         assert!(e.contains("twice"), "{e}");
-        let e = parse("te_um", &b).unwrap_err();
+        let e = parse("te_um", &b).unwrap_err().to_string();
         assert!(e.contains("parameter:values"), "{e}");
         // Words only in the allowed range, no key syntax there.
         assert_eq!(family_key("te_um").unwrap().allowed(), "-1000 to 1000 µm");

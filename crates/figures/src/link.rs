@@ -147,9 +147,8 @@ pub fn value_text(v: &Value) -> String {
 }
 
 /// Applies one parameter key; the error names the key and the allowed range.
-fn apply_param(params: &mut ModelParams, key: &str, text: &str) -> Result<(), String> {
-    let value = keys::parse_value(key, text).map_err(|e| e.to_string())?;
-    keys::set(params, key, value).map_err(|e| e.to_string())
+fn apply_param(params: &mut ModelParams, key: &str, text: &str) -> Result<(), solver::SolverError> {
+    keys::set(params, key, keys::parse_value(key, text)?)
 }
 
 /// Decodes a query string into settings plus messages (and the pinned
@@ -195,19 +194,19 @@ pub fn decode(query: &str) -> Decoded {
                     Some(f)
                 }
                 Err(e) => {
-                    issues.push(e);
+                    issues.push(e.to_string());
                     None
                 }
             }
         }
         Err(e) => {
-            issues.push(e);
+            issues.push(e.to_string());
             None
         }
     });
     let panels = panels_text.and_then(|t| {
         crate::panels::parse(&t, &mesh_names(&settings.params))
-            .map_err(|e| issues.push(e))
+            .map_err(|e| issues.push(e.to_string()))
             .ok()
     });
     Decoded {
@@ -245,7 +244,7 @@ fn decode_one(query: &str) -> (Settings, Vec<String>) {
 /// A link's bad value in a sentence ("From the link: Backlash must be
 /// between 0 and 1000 µm (not 5000); the default was kept."); other
 /// problems (a key the model does not take, an unknown key) as they are.
-fn plain_issue(k: &str, v: &str, e: String) -> String {
+fn plain_issue(k: &str, v: &str, e: impl std::fmt::Display) -> String {
     let out_of_range = match keys::spec(k) {
         Some(_) => keys::parse_value(k, v).is_err(),
         None => view_key(k).is_some_and(|vk| !matches!(vk.ty, crate::settings::ViewType::Mesh)),
@@ -257,7 +256,7 @@ fn plain_issue(k: &str, v: &str, e: String) -> String {
             m.trim_end_matches('.')
         )
     } else {
-        e
+        e.to_string()
     }
 }
 
@@ -268,7 +267,7 @@ fn decode_one_pairs(all: Vec<(String, String)>) -> (Settings, Vec<String>) {
     // The model first: it resets the parameters to that model's defaults.
     if let Some((_, v)) = all.iter().rev().find(|(k, _)| k == "model") {
         if let Err(e) = apply_param(&mut settings.params, "model", v) {
-            issues.push(e);
+            issues.push(e.to_string());
         }
     }
     let model = settings.params.kind();

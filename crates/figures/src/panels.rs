@@ -38,35 +38,58 @@ pub fn mesh_words(name: &str) -> String {
 }
 
 /// Parses a link's panels value against the model's mesh names.
-pub fn parse(text: &str, meshes: &[String]) -> Result<Vec<String>, String> {
+pub fn parse(text: &str, meshes: &[String]) -> Result<Vec<String>, PanelsError> {
     let names: Vec<&str> = text
         .split([',', ';', ' '])
         .map(str::trim)
         .filter(|t| !t.is_empty())
         .collect();
     if names.len() < MIN_PANELS || names.len() > MAX_PANELS {
-        return Err(format!(
-            "From the link: side-by-side panels need {MIN_PANELS} to {MAX_PANELS} meshes; {} were given, so one mesh is shown.",
-            names.len().min(1000)
-        ));
+        return Err(PanelsError::Count {
+            given: names.len().min(1000),
+        });
     }
     let mut out: Vec<String> = Vec::with_capacity(names.len());
     for n in names {
         if !meshes.iter().any(|m| m == n) {
-            return Err(format!(
-                "From the link: there is no mesh {} in this model (it has {}), so one mesh is shown.",
-                keys::truncate(n, 20),
-                meshes.join(", ")
-            ));
+            return Err(PanelsError::NoMesh {
+                name: keys::truncate(n, 20),
+                meshes: meshes.join(", "),
+            });
         }
         if out.iter().any(|m| m == n) {
-            return Err(format!(
-                "From the link: mesh {n} appears twice in the panels, so one mesh is shown."
-            ));
+            return Err(PanelsError::Twice {
+                name: n.to_string(),
+            });
         }
         out.push(n.to_string());
     }
     Ok(out)
+}
+
+/// Why a link's panels were refused (one mesh is shown instead).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum PanelsError {
+    /// Too few or too many meshes.
+    #[error("From the link: side-by-side panels need {MIN_PANELS} to {MAX_PANELS} meshes; {given} were given, so one mesh is shown.")]
+    Count {
+        /// How many were given (at most 1000 said).
+        given: usize,
+    },
+    /// A mesh the model does not have.
+    #[error("From the link: there is no mesh {name} in this model (it has {meshes}), so one mesh is shown.")]
+    NoMesh {
+        /// The name as given (shortened).
+        name: String,
+        /// The model's meshes, comma separated.
+        meshes: String,
+    },
+    /// A mesh named twice.
+    #[error("From the link: mesh {name} appears twice in the panels, so one mesh is shown.")]
+    Twice {
+        /// The mesh.
+        name: String,
+    },
 }
 
 /// The link value, e.g. `s1a1,s2b1,a1b1,rb1`.
@@ -90,11 +113,11 @@ mod tests {
         let p = parse("s1a1,s2b1,a1b1,rb1", &meshes()).unwrap();
         assert_eq!(p.len(), 4);
         assert_eq!(parse(&encode(&p), &meshes()).unwrap(), p);
-        let e = parse("s1a1", &meshes()).unwrap_err();
+        let e = parse("s1a1", &meshes()).unwrap_err().to_string();
         assert!(e.contains("2 to 6") && e.contains("1 were"), "{e}");
-        let e = parse("s1a1,zz9", &meshes()).unwrap_err();
+        let e = parse("s1a1,zz9", &meshes()).unwrap_err().to_string();
         assert!(e.contains("no mesh zz9") && e.contains("s2b1"), "{e}");
-        let e = parse("s1a1,s1a1", &meshes()).unwrap_err();
+        let e = parse("s1a1,s1a1", &meshes()).unwrap_err().to_string();
         assert!(e.contains("twice"), "{e}");
     }
 

@@ -11,6 +11,36 @@ use solver::model::Model;
 use solver::params::ModelParams;
 use solver::sweep::Directions;
 
+/// Why a view key's text was refused, in the link's terms (the page says
+/// it in words with [`crate::words::must_be`]).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum ViewKeyError {
+    /// No view key has this name.
+    #[error("unknown key `{key}`")]
+    Unknown {
+        /// The name as given (shortened).
+        key: String,
+    },
+    /// Not a value of the key's type, or outside its range.
+    #[error("{key} = {value} is out of range: allowed {allowed}")]
+    OutOfRange {
+        /// The key.
+        key: String,
+        /// The text as given (shortened).
+        value: String,
+        /// The allowed range or words.
+        allowed: String,
+    },
+    /// A mesh the model does not have.
+    #[error("mesh = {value} is not a mesh of this model: allowed {meshes}, worst")]
+    NotAMesh {
+        /// The text as given (shortened).
+        value: String,
+        /// The model's meshes, comma separated.
+        meshes: String,
+    },
+}
+
 /// The type and range of a view option.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum ViewType {
@@ -541,16 +571,15 @@ impl ViewOptions {
     /// Sets a view key from text, checking its type and range. `meshes`
     /// lists the mesh names of the current model. The error names the key,
     /// the value and the allowed range.
-    pub fn set(&mut self, name: &str, text: &str, meshes: &[String]) -> Result<(), String> {
-        let key = view_key(name)
-            .ok_or_else(|| format!("unknown key `{}`", solver::keys::truncate(name, 40)))?;
+    pub fn set(&mut self, name: &str, text: &str, meshes: &[String]) -> Result<(), ViewKeyError> {
+        let key = view_key(name).ok_or_else(|| ViewKeyError::Unknown {
+            key: solver::keys::truncate(name, 40),
+        })?;
         let text = text.trim();
-        let shown = solver::keys::truncate(text, 40);
-        let bad = || {
-            format!(
-                "{name} = {shown} is out of range: allowed {}",
-                key.ty.allowed()
-            )
+        let bad = || ViewKeyError::OutOfRange {
+            key: name.to_string(),
+            value: solver::keys::truncate(text, 40),
+            allowed: key.ty.allowed(),
         };
         match (key.ty, key.field) {
             (ViewType::Float { min, max }, Field::Num(_, set)) => {
@@ -580,10 +609,10 @@ impl ViewOptions {
             }
             (ViewType::Mesh, Field::Word(_, set)) => {
                 if text != "worst" && !meshes.iter().any(|m| m == text) {
-                    return Err(format!(
-                        "mesh = {shown} is not a mesh of this model: allowed {}, worst",
-                        meshes.join(", ")
-                    ));
+                    return Err(ViewKeyError::NotAMesh {
+                        value: solver::keys::truncate(text, 40),
+                        meshes: meshes.join(", "),
+                    });
                 }
                 set(self, text);
             }
@@ -692,9 +721,9 @@ mod tests {
     #[test]
     fn out_of_range_values_name_key_and_range() {
         let mut v = ViewOptions::default();
-        let e = v.set("bif_points", "1e9", &[]).unwrap_err();
+        let e = v.set("bif_points", "1e9", &[]).unwrap_err().to_string();
         assert!(e.contains("bif_points") && e.contains("1000"), "{e}");
-        let e = v.set("omega", "NaN", &[]).unwrap_err();
+        let e = v.set("omega", "NaN", &[]).unwrap_err().to_string();
         assert!(e.contains("omega") && e.contains("0.01 ..= 20"), "{e}");
         assert!(v.set("fr_points", "2.5", &[]).is_err());
         assert!(v.set("mesh", "rb9", &["s1a1".into()]).is_err());

@@ -30,7 +30,7 @@ impl Controller {
         (omega, value): (f64, f64),
         px: (f64, f64),
         now_ms: f64,
-    ) -> Option<Result<Vec<Effect>, String>> {
+    ) -> Option<Result<Vec<Effect>, InputError>> {
         let (shown, _, _) = self.map_boundaries();
         let picked = pick(&shown, (omega, value), px, PICK_PX)?;
         let names = self.mesh_names();

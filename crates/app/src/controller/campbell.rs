@@ -10,7 +10,7 @@ impl Controller {
     /// speed of the top of the Omega range, the selected Omega marked; the
     /// model's refusal as its reason.
     pub fn campbell_view(&self) -> Result<CampbellView, String> {
-        let model = self.model().map_err(str::to_string)?;
+        let model = self.model().map_err(ToString::to_string)?;
         let v = &self.settings.view;
         let mut c = CampbellView::new(model, v.omega_to, v.omega)?;
         c.speed = self.speed_axis();

@@ -11,7 +11,7 @@ impl Controller {
     /// worst mesh: the one the selected state resolved, else the first);
     /// the model's or the standard's refusal as its reason.
     pub fn dynamic_view(&self) -> Result<DynamicView, String> {
-        let model = self.model().map_err(str::to_string)?;
+        let model = self.model().map_err(ToString::to_string)?;
         let main = &self.main;
         let mesh = self
             .settings

@@ -5,6 +5,7 @@
 
 use super::*;
 use crate::store::kinds::{self, Pool, StartCx};
+use solver::SolverError;
 use worker::jobs::omega::{selected_spec, OmegaJob, PREVIEW_RUN};
 
 /// A job's parameters as the worker messages carry them.
@@ -141,17 +142,20 @@ impl Controller {
     }
 
     /// The inputs of `target`'s jobs, or why it has none (its model
-    /// cannot be built).
-    pub(super) fn inputs(&self, target: Target) -> Result<Inputs, String> {
+    /// cannot be built); `None` if there is no such target.
+    pub(super) fn inputs(&self, target: Target) -> Option<Result<Inputs, SolverError>> {
         let settings = match target {
             Target::Main => {
-                let model = self.model.clone()?;
+                let model = match self.model.clone() {
+                    Ok(m) => m,
+                    Err(e) => return Some(Err(e)),
+                };
                 let params = keys::to_json(&self.settings.params);
-                return Ok(Inputs {
+                return Some(Ok(Inputs {
                     settings: self.settings.clone(),
                     model,
                     params,
-                });
+                }));
             }
             Target::A => self.pinned.as_ref().map(|p| p.settings.clone()),
             Target::Member(m) => {
@@ -164,19 +168,16 @@ impl Controller {
                         params,
                         view: self.settings.view.clone(),
                     }),
-                    Some(Err(e)) => return Err(e),
+                    Some(Err(e)) => return Some(Err(e)),
                     None => None,
                 }
             }
-        }
-        .ok_or_else(|| "no such computation".to_string())?;
-        let model = Model::new(&settings.params).map_err(|e| e.to_string())?;
-        let params = keys::to_json(&settings.params);
-        Ok(Inputs {
+        }?;
+        Some(Model::new(&settings.params).map(|model| Inputs {
+            params: keys::to_json(&settings.params),
             settings,
             model,
-            params,
-        })
+        }))
     }
 
     /// Restarts `target`'s jobs of `kinds`: each kind's store and status
@@ -184,13 +185,14 @@ impl Controller {
     /// be built says why on every one of those kinds.
     pub(super) fn start(&mut self, target: Target, kinds: KindSet, now_ms: f64) -> Vec<Effect> {
         let input = match self.inputs(target) {
-            Ok(i) => i,
-            Err(e) => {
+            Some(Ok(i)) => i,
+            Some(Err(e)) => {
                 if let Some(c) = self.computation_mut(target) {
-                    c.fail_all(kinds, &e);
+                    c.fail_all(kinds, &e.to_string());
                 }
                 return Vec::new();
             }
+            None => return Vec::new(),
         };
         let mut fx = Vec::new();
         for kind in kinds.iter() {
@@ -283,7 +285,7 @@ impl Controller {
         let mut fx = Vec::new();
         if let Err(e) = &self.model {
             // No jobs on an invalid model: say why on every view.
-            let e = e.clone();
+            let e = e.to_string();
             self.main.fail_all(kinds, &e);
             for kind in JobKind::ALL {
                 fx.extend(self.cancel(Target::Main, Some(kind)));

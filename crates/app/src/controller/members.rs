@@ -16,7 +16,7 @@ pub struct Member {
     pub value: f64,
     /// Its parameters (the current state's with the key set), or why they
     /// cannot be built.
-    pub params: Result<solver::params::ModelParams, String>,
+    pub params: Result<solver::params::ModelParams, solver::SolverError>,
     /// Its results.
     pub comp: Computation,
 }
@@ -35,9 +35,9 @@ impl Controller {
     /// Shows a family (replacing any other): the current state takes the
     /// first value, the others compute in the workers. Nothing changes if
     /// the family cannot be built.
-    pub fn set_family(&mut self, spec: FamilySpec, now_ms: f64) -> Result<Vec<Effect>, String> {
+    pub fn set_family(&mut self, spec: FamilySpec, now_ms: f64) -> Result<Vec<Effect>, InputError> {
         let first = spec.member_params(&self.settings.params, 0)?;
-        Model::new(&first).map_err(|e| e.to_string())?;
+        Model::new(&first)?;
         let mut fx = self.cancel_members();
         let changed = first != self.settings.params;
         self.family = Some(Family {
@@ -64,7 +64,7 @@ impl Controller {
         key: &str,
         values: &str,
         now_ms: f64,
-    ) -> Result<Vec<Effect>, String> {
+    ) -> Result<Vec<Effect>, InputError> {
         let spec = figures::family_spec::parse_parts(key, values, &self.settings.params)?;
         self.set_family(spec, now_ms)
     }

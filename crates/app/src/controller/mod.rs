@@ -21,6 +21,7 @@
 use crate::store::kinds::{self, chain_count};
 use crate::store::status::{Dirty, JobStatus};
 use crate::store::Computation;
+pub use error::InputError;
 use figures::link;
 use figures::presets;
 use figures::protocol::{
@@ -91,7 +92,7 @@ pub struct Controller {
     /// What a link restores.
     settings: Settings,
     /// The model built from the parameters, or why it cannot be.
-    model: Result<Model, String>,
+    model: Result<Model, solver::SolverError>,
     /// Messages for the user (link problems, rejected input, job failures).
     pub issues: Vec<String>,
     /// The note of the preset last loaded.
@@ -139,7 +140,7 @@ impl Controller {
             members: Vec::new(),
         });
         let mut c = Controller {
-            model: Err("not built yet".into()),
+            model: Model::new(&decoded.settings.params),
             settings: decoded.settings,
             issues: decoded.issues,
             preset_note: None,
@@ -154,7 +155,6 @@ impl Controller {
             tour,
             picked_boundary: None,
         };
-        c.rebuild_model();
         let mut fx = c.restart(KindSet::ALL, now_ms);
         if let Some(a) = pinned {
             fx.extend(c.start_pinned(a, now_ms));
@@ -164,7 +164,7 @@ impl Controller {
     }
 
     fn rebuild_model(&mut self) {
-        self.model = Model::new(&self.settings.params).map_err(|e| e.to_string());
+        self.model = Model::new(&self.settings.params);
     }
 
     /// The current link query (without `?`), with the pinned state A if any.
@@ -195,7 +195,7 @@ impl Controller {
                 }
                 match self.set_key(k, v, now_ms) {
                     Ok(more) => fx.extend(more),
-                    Err(e) => self.issue(e),
+                    Err(e) => self.issue(e.to_string()),
                 }
                 self.dirty.controls = true;
             }
@@ -255,14 +255,19 @@ impl Controller {
 
     /// Sets a control's key from its text. Out-of-range or impossible values
     /// are refused with a message naming the key and its allowed range.
-    pub fn set_key(&mut self, key: &str, text: &str, now_ms: f64) -> Result<Vec<Effect>, String> {
+    pub fn set_key(
+        &mut self,
+        key: &str,
+        text: &str,
+        now_ms: f64,
+    ) -> Result<Vec<Effect>, InputError> {
         if let Some(row) = view_key(key) {
             let before = self.settings.view.clone();
             let meshes = self.mesh_names();
             self.settings
                 .view
                 .set(key, text, &meshes)
-                .map_err(|_| figures::words::must_be(key, text))?;
+                .map_err(|_| InputError::refused(key, text))?;
             if key == "map_key" && self.settings.view.map_key != before.map_key {
                 // A new axis gets that key's own default range.
                 let (lo, hi) = figures::settings::map_default_range(&self.settings.view.map_key);
@@ -272,7 +277,7 @@ impl Controller {
             }
             if let Some(msg) = self.settings.view.check_range() {
                 self.settings.view = before;
-                return Err(msg);
+                return Err(InputError::RangeReset(msg));
             }
             if key == "mesh" && self.panels.take().is_some() {
                 // Choosing a mesh shows that mesh alone.
@@ -290,14 +295,14 @@ impl Controller {
         }
         // The message in a sentence with the allowed range ("Backlash b must be
         // between 0 and 1000 µm"), not the CLI's key syntax.
-        let plain = |_| figures::words::must_be(key, text);
+        let plain = |_| InputError::refused(key, text);
         let value = keys::parse_value(key, text).map_err(plain)?;
         let mut params = self.settings.params.clone();
         keys::set(&mut params, key, value).map_err(plain)?;
         if params == self.settings.params {
             return Ok(Vec::new());
         }
-        let model = Model::new(&params).map_err(|e| e.to_string())?;
+        let model = Model::new(&params)?;
         let model_changed = params.kind() != self.settings.params.kind();
         self.settings.params = params;
         self.model = Ok(model);
@@ -328,7 +333,7 @@ impl Controller {
                 fx
             }
             Err(e) => {
-                self.issue(e);
+                self.issue(e.to_string());
                 Vec::new()
             }
         }
@@ -369,16 +374,14 @@ impl Controller {
         omega: f64,
         value: f64,
         now_ms: f64,
-    ) -> Result<Vec<Effect>, String> {
+    ) -> Result<Vec<Effect>, InputError> {
         let grid = self
             .main
             .map
             .grid
             .clone()
             .unwrap_or_else(|| self.map_grid());
-        let (row, column) = grid
-            .cell_at(omega, value)
-            .ok_or_else(|| "the click is outside the map".to_string())?;
+        let (row, column) = grid.cell_at(omega, value).ok_or(InputError::OutsideMap)?;
         let v = (grid.value(row) * 1e3).round() / 1e3;
         let mut fx = self.set_key(&grid.key, &figures::settings::fmt_exact(v), now_ms)?;
         self.dirty.controls = true;
@@ -697,8 +700,8 @@ impl Controller {
     }
 
     /// The model of the current parameters, or why it cannot be built.
-    pub fn model(&self) -> Result<&Model, &str> {
-        self.model.as_ref().map_err(String::as_str)
+    pub fn model(&self) -> Result<&Model, &solver::SolverError> {
+        self.model.as_ref()
     }
 
     /// The current state's results.
@@ -752,6 +755,7 @@ impl Controller {
 mod boundaries;
 pub(crate) mod campbell;
 mod dynamic;
+mod error;
 mod export;
 mod speed;
 mod text;

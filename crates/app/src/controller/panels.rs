@@ -46,7 +46,7 @@ impl Controller {
                         Some(j) => Ok(self.fr_view_on(Some(j), Some(name))),
                         None => Err(format!("There is no mesh {name} in this model.")),
                     },
-                    Err(e) => Err(e.clone()),
+                    Err(e) => Err(e.to_string()),
                 };
                 Panel { title, data }
             })

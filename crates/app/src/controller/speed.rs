@@ -4,7 +4,7 @@
 //! rounded, the readout of the selected speed in both units and the rpm
 //! beside Ω in the exports.
 
-use super::{Controller, Effect};
+use super::{Controller, Effect, InputError};
 use figures::controls::Widget;
 use figures::settings::{fmt_exact, view_key, ViewType, SPEED_KEYS};
 use figures::speed::{axis_json, csv_with_rpm, SpeedAxis};
@@ -23,7 +23,7 @@ impl Controller {
         key: &str,
         text: &str,
         now_ms: f64,
-    ) -> Result<Vec<Effect>, String> {
+    ) -> Result<Vec<Effect>, InputError> {
         let axis = self.speed_axis();
         let (Some(s), true) = (axis.rpm_scale(), SPEED_KEYS.contains(&key)) else {
             return self.set_key(key, text, now_ms);
@@ -39,14 +39,13 @@ impl Controller {
                 let omega = s.omega(r).clamp(min, max);
                 self.set_key(key, &fmt_exact(omega), now_ms)
             }
-            _ => Err(format!(
-                "{} must be between {} and {} rpm of the {} (not {}).",
-                speed_label(key),
-                fmt_exact(lo),
-                fmt_exact(hi),
-                s.input(),
-                solver::keys::truncate(text.trim(), 40)
-            )),
+            _ => Err(InputError::Rpm {
+                what: speed_label(key).to_string(),
+                lo: fmt_exact(lo),
+                hi: fmt_exact(hi),
+                input: s.input().to_string(),
+                text: solver::keys::truncate(text.trim(), 40),
+            }),
         }
     }
 
@@ -203,7 +202,10 @@ mod tests {
         assert_eq!(c.speed_field_text("omega_from").as_deref(), Some("1000"));
         assert_eq!(c.speed_field_text("omega_to").as_deref(), Some("9000"));
         assert!(c.query().contains("&axis=rpm"), "{}", c.query());
-        let e = c.set_control("omega_to", "1e9", 0.0).unwrap_err();
+        let e = c
+            .set_control("omega_to", "1e9", 0.0)
+            .unwrap_err()
+            .to_string();
         assert!(
             e.contains("rpm") && e.contains("(not 1e9)") && e.contains("sun s1"),
             "{e}"

@@ -122,7 +122,10 @@ fn slider_change_restarts_and_stale_replies_are_ignored() {
     c.worker_message(1, &hbm_points(old, &[0.1], false, None), 11.0);
     assert!(c.main.hbm.points.is_empty());
     // Out of range: refused in a sentence naming the setting and its range; nothing restarts.
-    let e = c.set_key("backlash_um", "5000", 12.0).unwrap_err();
+    let e = c
+        .set_key("backlash_um", "5000", 12.0)
+        .unwrap_err()
+        .to_string();
     assert_eq!(e, "Backlash must be between 0 and 1000 µm (not 5000).");
     // The selected Omega restarts only the Omega job.
     let fx = c.select_omega(1.23456, 13.0);

@@ -138,7 +138,11 @@ impl Page {
             Action::FamilyApply => {
                 let (key, values) = (self.family_bar.key.clone(), self.family_bar.values.clone());
                 let r = self.ctl.set_family_text(&key, &values, now_ms);
-                let error = r.as_ref().err().cloned().unwrap_or_default();
+                let error = r
+                    .as_ref()
+                    .err()
+                    .map(ToString::to_string)
+                    .unwrap_or_default();
                 out.writes.push(Write::text("family-error", error));
                 r.unwrap_or_default()
             }

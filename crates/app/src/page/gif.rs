@@ -96,6 +96,16 @@ pub enum GifError {
     /// The encoder refused (a size over 65 535 pixels).
     #[error("the GIF could not be encoded: {0}")]
     Encode(String),
+    /// The selected state's motion is not there yet.
+    #[error("The GIF is made from the motion at the selected Ω, which is still being computed; try again once it shows.")]
+    NotReady,
+    /// The model's gear set has no drawing.
+    #[error("the gear set of this model cannot be drawn")]
+    NoScene,
+    /// The browser refused a part the GIF needs (a canvas, a frame's
+    /// pixels, the file): the message names it.
+    #[error("the browser {0}")]
+    Browser(&'static str),
 }
 
 /// A palette (at most 256 colours) for RGBA `frames`: the colours most

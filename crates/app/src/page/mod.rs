@@ -417,7 +417,7 @@ impl Page {
         );
         if let Some(r) = self.ctl.pick_map_boundary((at.x, at.y), px, now_ms) {
             return r.unwrap_or_else(|e| {
-                self.issue(e);
+                self.issue(e.to_string());
                 Vec::new()
             });
         }
@@ -425,7 +425,7 @@ impl Page {
         match self.ctl.pick_map_point(at.x, at.y, now_ms) {
             Ok(fx) => fx,
             Err(e) => {
-                self.issue(e);
+                self.issue(e.to_string());
                 Vec::new()
             }
         }
@@ -462,7 +462,8 @@ impl Page {
                     fx.extend(more);
                     true
                 }
-                Err(msg) => {
+                Err(e) => {
+                    let msg = e.to_string();
                     self.refused.push(Refusal {
                         key: key.clone(),
                         message: msg.clone(),

@@ -10,7 +10,7 @@
 //! [`Page::gif_plan`]: crate::page::Page::gif_plan
 
 use super::*;
-use crate::page::gif::{GifPlan, GifWriter, GIF_SIZE};
+use crate::page::gif::{GifError, GifPlan, GifWriter, GIF_SIZE};
 use web_sys::{Blob, BlobPropertyBag};
 
 /// Main-thread time after which a tick starts no further frame (ms).
@@ -35,7 +35,7 @@ pub(super) fn export(page: &Shared) {
         match start(&mut p) {
             Ok(job) => Some(job),
             Err(why) => {
-                p.core.issue(why);
+                p.core.issue(why.to_string());
                 None
             }
         }
@@ -49,14 +49,11 @@ pub(super) fn export(page: &Shared) {
     }
 }
 
-fn start(p: &mut Shell) -> Result<Job, String> {
+fn start(p: &mut Shell) -> Result<Job, GifError> {
     let Some((plan, name)) = p.core.gif_plan() else {
-        return Err(
-            "The GIF is made from the motion at the selected Ω, which is still being computed; try again once it shows."
-                .into(),
-        );
+        return Err(GifError::NotReady);
     };
-    let no_canvas = || "the browser gave no canvas to draw the GIF's frames on".to_string();
+    let no_canvas = || GifError::Browser("gave no canvas to draw the GIF's frames on");
     let cv = p
         .doc
         .create_element("canvas")
@@ -66,7 +63,7 @@ fn start(p: &mut Shell) -> Result<Job, String> {
     cv.set_width(GIF_SIZE.0);
     cv.set_height(GIF_SIZE.1);
     let ctx = ctx2d(&cv).ok_or_else(no_canvas)?;
-    let writer = GifWriter::new(GIF_SIZE, plan.delay_cs).map_err(|e| e.to_string())?;
+    let writer = GifWriter::new(GIF_SIZE, plan.delay_cs)?;
     Ok(Job {
         plan,
         name,
@@ -106,13 +103,13 @@ fn tick(page: &Shared, mut job: Job) {
         Ok(true) => {
             let r = offer(&mut page.borrow_mut(), job);
             if let Err(why) = r {
-                page.borrow_mut().core.issue(why);
+                page.borrow_mut().core.issue(why.to_string());
             }
             button_busy(page, false);
             request_frame(page);
         }
         Err(why) => {
-            page.borrow_mut().core.issue(why);
+            page.borrow_mut().core.issue(why.to_string());
             button_busy(page, false);
             request_frame(page);
         }
@@ -120,35 +117,30 @@ fn tick(page: &Shared, mut job: Job) {
 }
 
 /// Draws and encodes the next frame; whether it was the last.
-fn step(p: &mut Shell, job: &mut Job) -> Result<bool, String> {
+fn step(p: &mut Shell, job: &mut Job) -> Result<bool, GifError> {
     let Some(&pos) = job.plan.positions.get(job.next) else {
         return Ok(true);
     };
     let size = (f64::from(GIF_SIZE.0), f64::from(GIF_SIZE.1));
-    let scene = p
-        .core
-        .gif_scene(pos, size)
-        .ok_or("the gear set of this model cannot be drawn")?;
+    let scene = p.core.gif_scene(pos, size).ok_or(GifError::NoScene)?;
     anim::paint_items(&job.ctx, &scene.items, size);
     let pixels = job
         .ctx
         .get_image_data(0.0, 0.0, size.0, size.1)
-        .map_err(|_| "the browser did not give the frame's pixels".to_string())?;
-    job.writer
-        .push(&pixels.data().0)
-        .map_err(|e| e.to_string())?;
+        .map_err(|_| GifError::Browser("did not give the frame's pixels"))?;
+    job.writer.push(&pixels.data().0)?;
     job.next += 1;
     Ok(job.next == job.plan.positions.len())
 }
 
 /// The finished GIF offered as a file.
-fn offer(p: &mut Shell, job: Job) -> Result<(), String> {
-    let bytes = job.writer.finish().map_err(|e| e.to_string())?;
+fn offer(p: &mut Shell, job: Job) -> Result<(), GifError> {
+    let bytes = job.writer.finish()?;
     let parts = js_sys::Array::of1(&js_sys::Uint8Array::from(bytes.as_slice()));
     let opts = BlobPropertyBag::new();
     opts.set_type("image/gif");
     let blob = Blob::new_with_u8_array_sequence_and_options(&parts, &opts)
-        .map_err(|_| "the browser could not hold the GIF as a file".to_string())?;
+        .map_err(|_| GifError::Browser("could not hold the GIF as a file"))?;
     panel::download_blob(&p.doc, &job.name, &blob);
     p.core.gif_made(&job.plan, bytes.len());
     Ok(())

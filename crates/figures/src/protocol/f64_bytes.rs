@@ -24,7 +24,18 @@ pub(super) fn encode(v: &[f64]) -> String {
     out
 }
 
-pub(super) fn decode(s: &str) -> Result<Vec<f64>, String> {
+/// Why a message's numbers could not be read back.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub(super) enum Base64Error {
+    /// A character outside the alphabet.
+    #[error("not base64: {0:?}")]
+    NotBase64(char),
+    /// A byte count that is not a whole number of f64s.
+    #[error("{0} bytes are not whole numbers")]
+    NotWhole(usize),
+}
+
+pub(super) fn decode(s: &str) -> Result<Vec<f64>, Base64Error> {
     let mut value = [255u8; 256];
     for (i, &c) in ALPHABET.iter().enumerate() {
         value[usize::from(c)] = i as u8;
@@ -36,14 +47,14 @@ pub(super) fn decode(s: &str) -> Result<Vec<f64>, String> {
         for (k, &ch) in c.iter().enumerate() {
             let d = value[usize::from(ch)];
             if d == 255 {
-                return Err(format!("not base64: {:?}", char::from(ch)));
+                return Err(Base64Error::NotBase64(char::from(ch)));
             }
             n |= u32::from(d) << (18 - 6 * k);
         }
         bytes.extend_from_slice(&n.to_be_bytes()[1..c.len()]);
     }
     if bytes.len() % 8 != 0 {
-        return Err(format!("{} bytes are not whole numbers", bytes.len()));
+        return Err(Base64Error::NotWhole(bytes.len()));
     }
     Ok(bytes
         .chunks_exact(8)
@@ -81,7 +92,10 @@ mod tests {
             let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
             assert_eq!(bits(&back), bits(&tricky[..n]));
         }
-        assert!(decode("AAAA*AAA").unwrap_err().contains("not base64"));
+        assert!(decode("AAAA*AAA")
+            .unwrap_err()
+            .to_string()
+            .contains("not base64"));
         assert!(decode("AAAA").is_err(), "3 bytes are not a number");
     }
 }

@@ -49,13 +49,13 @@ type CachedBands = (ModelParams, (f64, f64), Vec<(f64, f64)>);
 
 impl BandsCache {
     /// The instability bands of `model` over `range`, from the cache when
-    /// only the backlash or the TE changed; the solver's failure as text.
+    /// only the backlash or the TE changed.
     fn bands(
         &mut self,
         params: &ModelParams,
         model: &Model,
         range: (f64, f64),
-    ) -> Result<Vec<(f64, f64)>, String> {
+    ) -> Result<Vec<(f64, f64)>, solver::SolverError> {
         let mut key = params.clone();
         // Both models have these keys; should one ever be refused, the key
         // keeps its value and the cache only hits less often.
@@ -67,9 +67,7 @@ impl BandsCache {
                 return Ok(bands.clone());
             }
         }
-        let bands = Parametric::new(model)
-            .and_then(|p| p.unstable_bands(range, BAND_SAMPLES))
-            .map_err(|e| e.to_string())?;
+        let bands = Parametric::new(model).and_then(|p| p.unstable_bands(range, BAND_SAMPLES))?;
         self.last = Some((key, range, bands.clone()));
         Ok(bands)
     }
@@ -112,7 +110,7 @@ impl BifJob {
                     Err(e) => FromWorker::Bands {
                         id,
                         bands: Vec::new(),
-                        error: Some(e),
+                        error: Some(e.to_string()),
                     },
                 },
             );
