@@ -62,6 +62,18 @@ fn frf_bad_options_exit_2_naming_them() {
             vec!["frf", "--omega-from", "NaN", "--omega-to", "1"],
             "omega-from",
         ),
+        (
+            words("frf --omega-from 0.1 --omega-to 1 --stability-stride 0"),
+            "stability-stride",
+        ),
+        (
+            words("frf --omega-from 0.1 --omega-to 1 --no-stability --stability-stride 2"),
+            "--stability-stride",
+        ),
+        (
+            words("frf --omega-from 0.4 --omega-to 1 --method shooting --stability-stride 2"),
+            "--stability-stride",
+        ),
     ] {
         let out = gearshock(&args);
         assert_eq!(out.status.code(), Some(2), "{args:?}");
@@ -276,4 +288,54 @@ fn frf_by_shooting_reports_periodic_branches_with_their_period() {
     assert!(folds.iter().any(|f| (0.59..0.62).contains(f)), "{folds:?}");
     assert!(!of("period-doubling", 1).is_empty());
     assert!(branch.iter().any(|p| p["period"] == 2));
+}
+
+/// Sampled stability (a monodromy on every fourth point) gives each point
+/// of the compound set's first resonance, with its folds, its period
+/// doublings and its Neimark-Sacker pair, the flag and the label of a
+/// monodromy at every point (the default); the points it inferred say so
+/// and carry no multipliers. At Omega 0.2405 a stable point lies between
+/// two unstable samples, one with a complex pair outside the circle, the
+/// other with a real multiplier beyond -1: the interval is split because
+/// they are unstable in different ways.
+#[test]
+fn sampled_stability_keeps_every_flag_and_label_of_every_point() {
+    let base = "frf --omega-from 0.19 --omega-to 0.25 --points 60 --harmonics 7 --mesh s2b1";
+    let sampled = json(&words(&format!("{base} --stability-stride 4")));
+    let every = json(&words(base));
+    assert_eq!(sampled["spec"]["stability_stride"], 4);
+    assert_eq!(every["spec"]["stability_stride"], 1);
+    let (a, b) = (
+        sampled["branch"].as_array().unwrap(),
+        every["branch"].as_array().unwrap(),
+    );
+    assert_eq!(a.len(), b.len());
+    let labels = b.iter().filter(|p| !p["bifurcation"].is_null()).count();
+    assert!(labels >= 4, "{labels} labels: a fold pair and more");
+    let mut inferred = 0;
+    for (p, q) in a.iter().zip(b) {
+        assert_eq!(p["omega"], q["omega"], "the same points");
+        assert_eq!(p["stable"], q["stable"], "at Omega {}", p["omega"]);
+        assert_eq!(
+            p["bifurcation"], q["bifurcation"],
+            "at Omega {}",
+            p["omega"]
+        );
+        assert_eq!(q["stability_from"], "monodromy");
+        match p["stability_from"].as_str() {
+            Some("monodromy") => {
+                assert_eq!(p["max_multiplier_modulus"], q["max_multiplier_modulus"])
+            }
+            Some("neighbours") => {
+                assert!(p["max_multiplier_modulus"].is_null());
+                inferred += 1;
+            }
+            other => panic!("stability_from {other:?}"),
+        }
+    }
+    assert!(
+        inferred * 3 >= a.len(),
+        "{inferred} of {} inferred",
+        a.len()
+    );
 }

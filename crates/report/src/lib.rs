@@ -443,6 +443,7 @@ pub fn frf_spec_json(spec: &solver::hbm::FrfSpec, grid: usize) -> Value {
         "method": spec.method.name(),
         "grid": grid,
         "stability": spec.stability,
+        "stability_stride": spec.stability_stride,
         "symmetric": spec.symmetric,
     })
 }
@@ -484,6 +485,14 @@ pub fn branch_point_json(model: &Model, p: &solver::hbm::BranchPoint, meshes: &[
         o.insert("meshes".into(), Value::Object(all));
     }
     o.insert("stable".into(), p.stable.map_or(Value::Null, Value::from));
+    // A sampled stability route leaves some points without a monodromy:
+    // their flag is their neighbours'.
+    let from = match (p.stable, p.multipliers.is_empty()) {
+        (None, _) => Value::Null,
+        (Some(_), false) => Value::from("monodromy"),
+        (Some(_), true) => Value::from("neighbours"),
+    };
+    o.insert("stability_from".into(), from);
     o.insert(
         "bifurcation".into(),
         p.bifurcation.map_or(Value::Null, |b| Value::from(b.name())),

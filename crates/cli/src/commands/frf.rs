@@ -52,6 +52,16 @@ pub struct FrfArgs {
     /// shooting, whose corrector needs each point's monodromy.
     #[arg(long)]
     no_stability: bool,
+    /// Floquet stability from a monodromy at every Nth point only (1 ..=
+    /// 64, default 1: every point), at each piece's first point and at
+    /// every fold; the points between two samples of the same stability,
+    /// both clear of the unit circle, take it (`stability_from:
+    /// neighbours`, no multipliers), and a change is located by
+    /// monodromies between. Faster, but blind to a window shorter than N
+    /// points (docs/performance.md). Not with --method shooting or
+    /// --no-stability.
+    #[arg(long)]
+    stability_stride: Option<u32>,
     /// Mesh to report, or `all`.
     #[arg(long)]
     mesh: Option<String>,
@@ -98,10 +108,16 @@ const DEFAULT_HARMONICS: usize = 7;
 /// with shooting, shooting's (`--period`, `--no-switch`) with the others.
 fn refuse_ignored(a: &FrfArgs) -> Result<(), Failure> {
     let shooting = a.method == "shooting";
-    let given: [(&str, bool, bool); 5] = [
+    if a.no_stability && a.stability_stride.is_some() {
+        return Err(usage(
+            "--stability-stride: --no-stability computes no stability to sample".to_string(),
+        ));
+    }
+    let given: [(&str, bool, bool); 6] = [
         ("--harmonics", a.harmonics.is_some(), false),
         ("--grid", a.grid.is_some(), false),
         ("--no-stability", a.no_stability, false),
+        ("--stability-stride", a.stability_stride.is_some(), false),
         ("--period", a.period.is_some(), true),
         ("--no-switch", a.no_switch, true),
     ];
@@ -144,6 +160,9 @@ pub fn run(a: &FrfArgs) -> Result<(), Failure> {
     })?;
     spec.grid = a.grid;
     spec.stability = !a.no_stability;
+    if let Some(n) = a.stability_stride {
+        spec.stability_stride = n;
+    }
     let meshes = meshes(&model, a.mesh.as_deref())?;
     // Larger H is refused by the solver's own check, naming it.
     let (points, harmonics) = (a.points, spec.harmonics);

@@ -43,12 +43,13 @@ pub struct FrfSpec {
 }
 
 /// The default [`FrfSpec::stability_stride`]: every point, so that every
-/// point carries its multipliers. The sampled route
-/// ([`SAMPLED_STABILITY_STRIDE`]) gives the default branch's 496 points the
-/// same flags and labels with a third of the monodromies (it once missed
-/// a stable window one point wide next to two period doublings, now seen
-/// by splitting intervals whose ends lie near the unit circle); its
-/// inferred points carry no multipliers.
+/// point's flag is its own monodromy's. The sampled route
+/// ([`SAMPLED_STABILITY_STRIDE`], `gearshock frf --stability-stride`)
+/// gives the benchmark branch (Omega 0.1..0.5, H = 7, 732 points) the same
+/// flags and labels with a third of the monodromies, but over Omega
+/// 0.1..2 it misses a Neimark-Sacker window two points wide at Omega
+/// 0.240 (both samples stable and clear of the unit circle): not a
+/// default.
 pub(crate) const DEFAULT_STABILITY_STRIDE: u32 = 1;
 
 /// The stride of the sampled stability route that `gearshock bench`

@@ -12,10 +12,12 @@
 //! The first point of a piece and every fold are always computed, and so
 //! is every point between two samples whose largest multiplier lies within
 //! 1 % of the unit circle (where a window of another stability can open
-//! and close between them). Points whose stability was inferred carry no
-//! multipliers. A stability window shorter than the stride between two
-//! samples both clear of the circle is not seen; a stride of 1 computes
-//! every point.
+//! and close between them), and between two unstable samples whose
+//! multipliers leave the circle differently (a complex pair outside at one
+//! end, a real one beyond -1 at the other). Points whose stability was
+//! inferred carry no multipliers. A window shorter than the stride
+//! between two samples both clear of the circle and unstable the same way
+//! (or both stable) is not seen; a stride of 1 computes every point.
 
 use super::point::classify_crossing;
 use super::*;
@@ -32,6 +34,27 @@ const CLEAR_OF_CIRCLE: f64 = 0.01;
 fn clear_of(multipliers: &[Complex<f64>]) -> bool {
     let radius = multipliers.iter().map(|m| m.norm()).fold(0.0, f64::max);
     !multipliers.is_empty() && (radius - 1.0).abs() > CLEAR_OF_CIRCLE
+}
+
+/// How the multipliers leave the unit circle: how many real ones lie
+/// beyond +1, how many beyond -1, how many complex ones outside. Two
+/// unstable points with different counts are unstable for different
+/// reasons, so multipliers crossed between them, and a stable window may
+/// lie there (next to the compound set's Neimark-Sacker point at Omega
+/// 0.2405 a pair goes in one point before a real one goes out at -1).
+fn outside_counts(multipliers: &[Complex<f64>]) -> [usize; 3] {
+    let mut counts = [0; 3];
+    for z in multipliers.iter().filter(|z| z.norm() > 1.0) {
+        let slot = if z.im.abs() > 1e-6 * z.norm() {
+            2
+        } else if z.re < 0.0 {
+            1
+        } else {
+            0
+        };
+        counts[slot] += 1;
+    }
+    counts
 }
 
 impl FrfContinuation {
@@ -94,6 +117,14 @@ impl FrfContinuation {
                 known[i as usize].as_ref().is_some_and(|v| clear_of(&v.1))
             }
         };
+        let prev_counts = outside_counts(&self.stability.prev_multipliers);
+        let counts_at = |known: &[Option<Verdict>], i: isize| -> Option<[usize; 3]> {
+            if i < 0 {
+                Some(prev_counts)
+            } else {
+                known[i as usize].as_ref().map(|v| outside_counts(&v.1))
+            }
+        };
         // A fold (where the tangent's Omega component changes sign) is
         // where stability usually changes: always computed.
         let mut anchors = vec![left];
@@ -113,7 +144,13 @@ impl FrfContinuation {
                 continue;
             }
             let (sa, sb) = (stable_at(&known, a), stable_at(&known, b));
-            if !every && sa.is_some() && sa == sb && clear_at(&known, a) && clear_at(&known, b) {
+            if !every
+                && sa.is_some()
+                && sa == sb
+                && clear_at(&known, a)
+                && clear_at(&known, b)
+                && counts_at(&known, a) == counts_at(&known, b)
+            {
                 for v in &mut known[(a + 1) as usize..b as usize] {
                     *v = Some((sa, Vec::new()));
                 }
