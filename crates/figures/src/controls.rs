@@ -352,6 +352,12 @@ pub fn controls() -> Vec<Control> {
         view("clearance", "Axes of x", (0.0, 0.0, 0.0)),
         view("axis", "Speed axes", (0.0, 0.0, 0.0)),
         view(
+            "accuracy_grade",
+            "Accuracy grade for Kv (ISO 1328-1)",
+            (1.0, 11.0, 1.0),
+        ),
+        view("face_width_mm", "Face width for Kv", (5.0, 200.0, 1.0)),
+        view(
             "branches",
             "Branches of repeating motion (found by shooting)",
             (0.0, 0.0, 0.0),

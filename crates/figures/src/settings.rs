@@ -7,6 +7,7 @@
 
 use crate::protocol::{JobKind as K, KindSet};
 use crate::speed::AxisUnit;
+use solver::iso6336::IsoInputs;
 use solver::model::Model;
 use solver::params::ModelParams;
 use solver::sweep::Directions;
@@ -375,7 +376,31 @@ pub const VIEW_KEYS: &[ViewKey] = &[
         ty: ViewType::Choice(&["omega", "rpm"]),
         description: "the speed axes, range fields and readouts: the dimensionless Ω or the input member's speed in rpm (the small sun s1, or the pinion); values are kept as Ω",
     },
+    ViewKey {
+        name: "accuracy_grade",
+        field: Field::Count(|v| v.accuracy_grade, |v, n| v.accuracy_grade = n),
+        restarts: KindSet::NONE,
+        unit: "-",
+        ty: ViewType::Int { min: 1, max: 11 },
+        description: "accuracy grade by ISO 1328-1 of the dynamic factor Kv by ISO 6336-1 (view 11): it sets the pitch and profile deviations that excite the standard's mesh",
+    },
+    ViewKey {
+        name: "face_width_mm",
+        field: Field::Num(|v| v.face_width_mm, |v, x| v.face_width_mm = x),
+        restarts: KindSet::NONE,
+        unit: "mm",
+        ty: ViewType::Float {
+            min: 1.0,
+            max: 2000.0,
+        },
+        description: "face width of every mesh for the dynamic factor Kv by ISO 6336-1 (view 11): the model's mesh stiffness and load are spread over it",
+    },
 ];
+
+/// The view keys a link carries only when they differ from their
+/// defaults, so that a link of the default state is what it was before
+/// they existed: the speed axes' unit and the inputs of Kv.
+pub const SPARSE_KEYS: &[&str] = &[AXIS_KEY, "accuracy_grade", "face_width_mm"];
 
 /// The key of the speed axes' unit; a link carries it only when it is not
 /// the default Ω, so links made before it are unchanged.
@@ -464,6 +489,10 @@ pub struct ViewOptions {
     pub boundaries: bool,
     /// What the speed axes show.
     pub axis: AxisUnit,
+    /// The accuracy grade of the dynamic factor Kv (ISO 1328-1, 1 ..= 11).
+    pub accuracy_grade: u32,
+    /// The face width of the dynamic factor Kv (mm).
+    pub face_width_mm: f64,
 }
 
 /// The selected Ω the page opens on: a periodic state (period 1, found
@@ -507,6 +536,9 @@ impl Default for ViewOptions {
             branches: true,
             boundaries: false,
             axis: AxisUnit::Omega,
+            // The standard's inputs as `gearshock simulate` defaults them.
+            accuracy_grade: IsoInputs::default().accuracy_grade as u32,
+            face_width_mm: IsoInputs::default().face_width_mm,
         }
     }
 }
@@ -522,6 +554,17 @@ impl ViewOptions {
     /// of its own (otherwise its dots are the sweep's steady states).
     pub fn overlay_on(&self) -> bool {
         self.fr_ti_points > 0
+    }
+
+    /// The inputs of ISO 6336-1's K_v: the grade and face width set here,
+    /// the rest the standard's defaults (as `gearshock simulate` takes
+    /// them without flags).
+    pub fn iso_inputs(&self) -> IsoInputs {
+        IsoInputs {
+            accuracy_grade: f64::from(self.accuracy_grade),
+            face_width_mm: self.face_width_mm,
+            ..IsoInputs::default()
+        }
     }
 
     /// Whether the Lyapunov curve is computed (two points at least).
@@ -682,6 +725,8 @@ mod tests {
             ("branches", "off"),
             ("boundaries", "on"),
             ("axis", "rpm"),
+            ("accuracy_grade", "9"),
+            ("face_width_mm", "37.5"),
         ] {
             v.set(k, t, &meshes).unwrap();
             assert_eq!(v.get(k).unwrap(), t, "{k}");

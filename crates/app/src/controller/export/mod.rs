@@ -6,6 +6,7 @@
 
 use super::*;
 use figures::views::{omega::OmegaView, ViewId};
+use worker::jobs::omega::with_iso6336;
 
 /// A data export's format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -190,11 +191,17 @@ impl Controller {
         match view {
             ViewId::Bif => self.request_bif_export(),
             _ if view.at_selected_omega() => {
-                let r = self.exportable_omega()?;
+                let mut r = self.exportable_omega()?.clone();
+                // K_v at the page's grade and face width, as `gearshock
+                // simulate --accuracy-grade .. --face-width-mm ..` writes it.
+                if let Ok(model) = self.model() {
+                    let inputs = self.settings.view.iso_inputs();
+                    with_iso6336(&mut r, &self.settings.params, model, &inputs);
+                }
                 Ok(vec![Effect::Download {
                     name: self.file_name(view, Some("simulate"), "json"),
                     mime: "application/json".into(),
-                    text: r.cli_json.clone(),
+                    text: r.cli_json,
                 }])
             }
             _ => Err(ExportError::NoCliFormat),
