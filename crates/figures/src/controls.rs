@@ -380,7 +380,7 @@ pub fn controls() -> Vec<Control> {
         view_in(
             Maps,
             "map_omega_points",
-            "Map: Ω columns",
+            "Map: speed columns",
             (2.0, 200.0, 1.0),
         ),
         view_in(Maps, "map_value_points", "Map: rows", (1.0, 100.0, 1.0)),
@@ -399,7 +399,7 @@ pub fn controls() -> Vec<Control> {
         view_in(
             Maps,
             "lyap_points",
-            "Lyapunov: Ω points (0 = off)",
+            "Lyapunov: speed points (0 = off)",
             (0.0, 200.0, 1.0),
         ),
         view_in(

@@ -159,7 +159,7 @@ impl SpeedAxis {
             Some(s) => format!(
                 "Selected speed: Ω {omega:.4}, {} at {} rpm, mesh frequency {} Hz",
                 s.input(),
-                grouped(s.rpm(omega)),
+                grouped_fine(s.rpm(omega)),
                 grouped(s.mesh_hz(omega))
             ),
             None => format!("Selected speed: Ω {omega:.4}"),
@@ -203,6 +203,24 @@ pub fn grouped(x: f64) -> String {
     } else {
         out
     }
+}
+
+/// `x` as [`grouped`], with up to three decimals where it has them (a
+/// speed selected on a narrow range: "3 004.37"); a whole number to
+/// 1e-6 (an rpm converted to Ω and back) is written whole.
+pub fn grouped_fine(x: f64) -> String {
+    let thousandths = (x * 1000.0).round();
+    if (x - x.round()).abs() <= 1e-6 * x.abs().max(1.0) || !thousandths.is_finite() {
+        return grouped(x);
+    }
+    let whole = (thousandths / 1000.0).trunc();
+    let frac = format!("{:03}", (thousandths - whole * 1000.0).abs() as u64);
+    let frac = frac.trim_end_matches('0');
+    if frac.is_empty() {
+        return grouped(whole);
+    }
+    let sign = if x < 0.0 && whole == 0.0 { "-" } else { "" };
+    format!("{sign}{}.{frac}", grouped(whole))
 }
 
 /// A CSV with an `omega` column as the rpm axis exports it: a column of
@@ -305,6 +323,11 @@ mod tests {
         assert_eq!(grouped(999.6), "1\u{a0}000");
         assert_eq!(grouped(3000.0), "3\u{a0}000");
         assert_eq!(grouped(0.0), "0");
+        assert_eq!(grouped_fine(3004.37), "3\u{a0}004.37");
+        assert_eq!(grouped_fine(2999.9999999), "3\u{a0}000");
+        assert_eq!(grouped_fine(12.0005), "12.001");
+        assert_eq!(grouped_fine(0.25), "0.25");
+        assert_eq!(grouped_fine(12.9996), "13");
     }
 
     /// The rpm column is Ω times rpm per Ω, computed here by hand from the

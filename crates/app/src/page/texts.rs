@@ -275,7 +275,7 @@ impl Page {
             None => ("Ω (dimensionless)".into(), "input speed, read as Ω".into()),
         };
         let mut w = vec![Write::text("speed-readout", self.ctl.speed_readout())];
-        for key in ["fr", "map", "bif"] {
+        for key in ["fr", "map", "bif", "dynamic"] {
             w.push(Write::text(&format!("axes-speed-{key}"), omega.clone()));
         }
         w.push(Write::text("axes-speed-campbell", campbell));

@@ -52,7 +52,7 @@ pub(super) fn export(page: &Shared) {
 fn start(p: &mut Shell) -> Result<Job, String> {
     let Some((plan, name)) = p.core.gif_plan() else {
         return Err(
-            "The GIF is made from the motion at the selected Ω, which is still being computed; try again once it shows."
+            "The GIF is made from the motion at the selected speed, which is still being computed; try again once it shows."
                 .into(),
         );
     };

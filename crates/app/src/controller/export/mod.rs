@@ -42,11 +42,13 @@ impl Format {
 pub enum ExportError {
     /// The selected-Omega views show the page's preview, not a result.
     #[error(
-        "The views at the selected Ω show a preview; export once the full steady state has arrived."
+        "The views at the selected speed show a preview; export once the full steady state has arrived."
     )]
     Preview,
     /// The selected-Omega steady state has not arrived yet.
-    #[error("The steady state at the selected Ω is still computing; export once it has arrived.")]
+    #[error(
+        "The steady state at the selected speed is still computing; export once it has arrived."
+    )]
     NotComputed,
     /// The bifurcation sweep is still running.
     #[error("the bifurcation sweep has not finished yet")]
