@@ -228,6 +228,8 @@ impl Page {
             "dynamic_factor": selected.and_then(|s| s.factor),
             "preview": selected.is_some_and(|s| s.preview),
             "kv": v.kv_at(o),
+            "accuracy_grade": v.inputs.accuracy_grade,
+            "face_width_mm": v.inputs.face_width_mm,
             "iso_range": v.range_at(o).name(),
             "resonance_ratio": v.n_at(o),
             "phasing": v.phasing,
