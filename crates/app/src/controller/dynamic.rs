@@ -137,6 +137,12 @@ mod tests {
         );
         let (d, _) = Controller::new(&q, 0.0);
         assert_eq!(d.settings(), c.settings());
+        // The commands that reproduce the page rate K_v alike.
+        let cli = c.cli_commands();
+        let flags = format!(" --accuracy-grade 9 --face-width-mm {width}");
+        assert_eq!(cli.matches(&flags).count(), 2, "{cli}");
+        let (plain, _) = Controller::new("", 0.0);
+        assert!(!plain.cli_commands().contains("--accuracy-grade"));
         assert_eq!(d.settings().view.face_width_mm.to_bits(), width.to_bits());
         let (a, b) = (c.dynamic_view().unwrap(), d.dynamic_view().unwrap());
         assert_eq!(a.inputs, b.inputs);

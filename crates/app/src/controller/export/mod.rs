@@ -333,9 +333,19 @@ impl Controller {
             MeshSel::Named(n) => n.as_str(),
             MeshSel::Worst => "all",
         };
+        // K_v's inputs where the page's differ from the defaults (which
+        // are the command line's).
+        let d = figures::settings::ViewOptions::default();
+        let mut iso = String::new();
+        if v.accuracy_grade != d.accuracy_grade {
+            iso.push_str(&format!(" --accuracy-grade {}", v.accuracy_grade));
+        }
+        if v.face_width_mm != d.face_width_mm {
+            iso.push_str(&format!(" --face-width-mm {}", v.face_width_mm));
+        }
         format!(
-            "gearshock frf --params gearshock-params.json --omega-from {} --omega-to {} --points {} --harmonics {} --mesh {frf_mesh}\n\
-             gearshock simulate --params gearshock-params.json --omega {} --mesh {mesh} --transient-periods {} --record-periods {}\n\
+            "gearshock frf --params gearshock-params.json --omega-from {} --omega-to {} --points {} --harmonics {} --mesh {frf_mesh}{iso}\n\
+             gearshock simulate --params gearshock-params.json --omega {} --mesh {mesh} --transient-periods {} --record-periods {}{iso}\n\
              gearshock bifurcation --params gearshock-params.json --omega-from {} --omega-to {} --points {} --direction {} --transient-periods {} --record-periods {} --mesh {} --chains {chains}",
             v.omega_from,
             v.omega_to,
