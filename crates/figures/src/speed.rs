@@ -146,7 +146,7 @@ impl SpeedAxis {
     /// A speed for the reader: "Ω = 0.350" or "1 234 rpm (Ω 0.350)".
     pub fn text(&self, omega: f64) -> String {
         match self.rpm_scale() {
-            Some(s) => format!("{} rpm (Ω {omega:.3})", grouped(s.rpm(omega))),
+            Some(s) => format!("{} rpm (Ω {omega:.3})", grouped_fine(s.rpm(omega))),
             None => format!("Ω = {omega:.3}"),
         }
     }
@@ -205,21 +205,30 @@ pub fn grouped(x: f64) -> String {
     }
 }
 
-/// `x` as [`grouped`], with up to three decimals where it has them (a
-/// speed selected on a narrow range: "3 004.37"); a whole number to
-/// 1e-6 (an rpm converted to Ω and back) is written whole.
+/// `x` as [`grouped`], with the decimals of a speed selected to a decimal
+/// step (a click on a narrow range: "3 004.37"): the fewest decimals, up
+/// to three, that give `x` to 1e-9 of itself. Any other value (an rpm
+/// converted from an Ω such as 0.35) is written whole, as [`grouped`].
 pub fn grouped_fine(x: f64) -> String {
-    let thousandths = (x * 1000.0).round();
-    if (x - x.round()).abs() <= 1e-6 * x.abs().max(1.0) || !thousandths.is_finite() {
+    let close = |y: f64| (x - y).abs() <= 1e-9 * x.abs().max(1.0);
+    let Some(places) = (0..=3).find(|&k| {
+        let p = 10f64.powi(k);
+        close((x * p).round() / p)
+    }) else {
+        return grouped(x);
+    };
+    let p = 10f64.powi(places);
+    let units = (x.abs() * p).round();
+    let whole = (units / p).trunc();
+    if places == 0 || !units.is_finite() {
         return grouped(x);
     }
-    let whole = (thousandths / 1000.0).trunc();
-    let frac = format!("{:03}", (thousandths - whole * 1000.0).abs() as u64);
-    let frac = frac.trim_end_matches('0');
-    if frac.is_empty() {
-        return grouped(whole);
-    }
-    let sign = if x < 0.0 && whole == 0.0 { "-" } else { "" };
+    let frac = format!(
+        "{:0width$}",
+        (units - whole * p) as u64,
+        width = places as usize
+    );
+    let sign = if x < 0.0 { "-" } else { "" };
     format!("{sign}{}.{frac}", grouped(whole))
 }
 
@@ -325,9 +334,10 @@ mod tests {
         assert_eq!(grouped(0.0), "0");
         assert_eq!(grouped_fine(3004.37), "3\u{a0}004.37");
         assert_eq!(grouped_fine(2999.9999999), "3\u{a0}000");
-        assert_eq!(grouped_fine(12.0005), "12.001");
+        assert_eq!(grouped_fine(12.0005), "12");
         assert_eq!(grouped_fine(0.25), "0.25");
-        assert_eq!(grouped_fine(12.9996), "13");
+        assert_eq!(grouped_fine(-1234.5), "-1\u{a0}234.5");
+        assert_eq!(grouped_fine(1806.934_567), "1\u{a0}807");
     }
 
     /// The rpm column is Ω times rpm per Ω, computed here by hand from the

@@ -293,7 +293,7 @@ impl DynamicView {
         };
         format!(
             "At Ω {o:.3} ({} rpm), mesh {}: {model}; dynamic factor Kv (ISO 6336-1, method B) {kv:.2} ({} range, resonance ratio N = {n:.2}). The standard puts this mesh's main resonance at Ω {centre:.2} ({} rpm).{why} {}",
-            grouped(self.rpm_at(o)),
+            crate::speed::grouped_fine(self.rpm_at(o)),
             self.mesh_name,
             self.range_at(o).name(),
             grouped(self.rpm_at(centre)),
