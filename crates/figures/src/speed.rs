@@ -337,7 +337,7 @@ mod tests {
         assert_eq!(grouped_fine(12.0005), "12");
         assert_eq!(grouped_fine(0.25), "0.25");
         assert_eq!(grouped_fine(-1234.5), "-1\u{a0}234.5");
-        assert_eq!(grouped_fine(1806.934_567), "1\u{a0}807");
+        assert_eq!(grouped_fine(1_806.934_567), "1\u{a0}807");
     }
 
     /// The rpm column is Ω times rpm per Ω, computed here by hand from the
