@@ -3,8 +3,11 @@
 // dynamic factor, K_v by ISO 6336-1 method B and the planets'
 // load-sharing factor; each is checked against what `gearshock simulate`
 // prints for the same settings, with in-phase planets and with five
-// sequential ones. A click on the plot selects Ω. Every wait is for the
-// page's reported state, never for a time.
+// sequential ones. A click on the plot selects Ω. The accuracy grade and
+// face width of K_v are page controls: a change redraws K_v as `gearshock
+// simulate --accuracy-grade --face-width-mm` rates it, a value out of
+// range is named with the allowed range, and the link restores both.
+// Every wait is for the page's reported state, never for a time.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import path from 'node:path';
@@ -16,9 +19,9 @@ const QUICK = `bif_points=24&transient_periods=${RUN.transient}&record_periods=$
 
 /** `gearshock simulate` at the page's selected Ω with the page's run
  * lengths and `sets` (KEY=VALUE), through cargo (built if stale). */
-function simulate(omega, sets) {
+function simulate(omega, sets, flags = []) {
   const args = ['run', '-q', '--release', '-p', 'cli', '--', 'simulate', '--omega', String(omega), '--mesh', 's1a1',
-    '--transient-periods', String(RUN.transient), '--record-periods', String(RUN.record)];
+    '--transient-periods', String(RUN.transient), '--record-periods', String(RUN.record), ...flags];
   for (const s of sets) args.push('--set', s);
   return JSON.parse(execFileSync('cargo', args, { cwd: ROOT, encoding: 'utf8', maxBuffer: 1 << 26 }));
 }
@@ -77,6 +80,54 @@ test('the dynamic factor, K_v and the load sharing agree with gearshock simulate
     assert.equal(s2.dynamic.planets, 5);
     assert.ok(s2.dynamic.load_sharing.some((k) => k.factor > 1.001), JSON.stringify(s2.dynamic.load_sharing));
     await waitText(page, '#note-dynamic', /5 planets, sequential phasing/);
+    assert.deepEqual(errors, []);
+  } finally {
+    await h.close();
+  }
+});
+
+test('the grade and face width of K_v: set on the page, as gearshock simulate rates them, kept by the link', async () => {
+  const h = await start({ viewport: { width: 1366, height: 768 } });
+  try {
+    await h.browser.grantPermissions(['clipboard-read', 'clipboard-write'], { origin: new URL(h.url).origin });
+    const { page, errors } = await open(h.browser, h.url, QUICK);
+    await waitStatus(page, (s) => s.workers_ready > 0, 60000, 'workers');
+    const s0 = await waitStatus(page, (s) => s.dynamic?.kv > 1, 60000, 'K_v at the defaults');
+    assert.equal(s0.dynamic.accuracy_grade, 6);
+    assert.equal(s0.dynamic.face_width_mm, 50);
+    assert.match(await page.textContent('#label-accuracy_grade'), /Accuracy grade for Kv/);
+    // Out of range: named in words with the allowed range, nothing changed.
+    await page.fill('#num-accuracy_grade', '12');
+    await page.press('#num-accuracy_grade', 'Enter');
+    await waitText(page, '#messages', /Accuracy grade for Kv must be a whole number between 1 and 11 \(not 12\)/);
+    assert.equal((await waitStatus(page, (s) => s.dynamic, 1000, 'status')).dynamic.accuracy_grade, 6);
+    // Grade 9 over 30 mm: K_v redrawn, as the command line rates it.
+    await page.fill('#num-accuracy_grade', '9');
+    await page.press('#num-accuracy_grade', 'Enter');
+    await page.fill('#num-face_width_mm', '30');
+    await page.press('#num-face_width_mm', 'Enter');
+    const s1 = await waitStatus(page, (s) => s.dynamic?.accuracy_grade === 9 && s.dynamic.face_width_mm === 30
+      && s.query.includes('accuracy_grade=9') && s.query.includes('face_width_mm=30'), 60000, 'grade 9 over 30 mm');
+    assert.ok(s1.dynamic.kv > s0.dynamic.kv, `${s1.dynamic.kv} vs ${s0.dynamic.kv}`);
+    const cli = simulate(s1.dynamic.omega, [], ['--accuracy-grade', '9', '--face-width-mm', '30']);
+    close('K_v at grade 9', s1.dynamic.kv, cli.kv_iso6336, 1e-12);
+    await waitText(page, '#note-dynamic', new RegExp(`dynamic factor Kv \\(ISO 6336-1, method B\\) ${s1.dynamic.kv.toFixed(2)}`));
+    await waitText(page, '#canvas-dynamic', new RegExp(`Kv by ISO 6336-1 method B`), { attr: 'aria-label' });
+    await waitStatus(page, (s) => s.dynamic_frame, 60000, 'view 11 drawn');
+    await page.locator('#view-dynamic').scrollIntoViewIfNeeded();
+    await page.locator('#view-dynamic').screenshot({ path: path.join(SHOTS, 'dynamic-grade9-1366x768.png') });
+    await page.locator('#control-accuracy_grade').scrollIntoViewIfNeeded();
+    await page.locator('#control-accuracy_grade').screenshot({ path: path.join(SHOTS, 'dynamic-grade-control-1366x768.png') });
+    // The link restores both exactly.
+    await page.click('#copy-link');
+    const link = await page.evaluate(() => navigator.clipboard.readText());
+    const fresh = await open(h.browser, h.url, new URL(link).search.slice(1));
+    const s2 = await waitStatus(fresh.page, (s) => s.dynamic?.accuracy_grade === 9, 60000, 'the link restored');
+    assert.equal(s2.dynamic.face_width_mm, 30);
+    assert.equal(s2.dynamic.kv, s1.dynamic.kv);
+    assert.equal(await fresh.page.inputValue('#num-accuracy_grade'), '9');
+    assert.equal(await fresh.page.inputValue('#num-face_width_mm'), '30');
+    assert.deepEqual(fresh.errors, []);
     assert.deepEqual(errors, []);
   } finally {
     await h.close();

@@ -94,7 +94,7 @@ pub const TOUR: [TourStep; 5] = [
     },
     TourStep {
         title: "Backlash and the frequency response",
-        text: "The tour has moved the backlash from 100 to 150 µm: the grey ±b lines, where the teeth meet, moved with it, and the curve was computed again. For each Ω (mesh frequency) the curve gives the largest and smallest tooth deflection x (TE included); below +b the teeth have separated. Where the curve is dashed no periodic motion is stable: the dots are what the gears actually do.",
+        text: "The tour has moved the backlash from 100 to 150 µm: the grey ±b lines, where the teeth meet, moved with it, and the curve was computed again. For each speed (mesh frequency) the curve gives the largest and smallest tooth deflection x (TE included); below +b the teeth have separated. Where the curve is dashed no periodic motion is stable: the dots are what the gears actually do.",
         target: "view-fr",
         keep_clear: &["canvas-fr", "control-backlash_um"],
         control: Some("backlash_um"),
@@ -116,18 +116,18 @@ pub const TOUR: [TourStep; 5] = [
     },
     TourStep {
         title: "From periodic to chaotic motion",
-        text: "The tour has set the backlash back to 100 µm and selected Ω 1.2 (the red line). The bifurcation diagram samples x once per mesh period after the transient: one dot per Ω means the motion repeats every period, a cloud means it never repeats. At Ω 1.2 it is a cloud, and the Lyapunov exponent under it is positive: the motion is chaotic.",
+        text: "The tour has set the backlash back to 100 µm and selected Ω 1.2: the red line. The bifurcation diagram samples x once per mesh period after the transient: one dot per speed means the motion repeats every period, a cloud means it never repeats. At Ω 1.2 it is a cloud, and the Lyapunov exponent under it is positive: the motion is chaotic.",
         target: "view-bif",
         keep_clear: &["canvas-bif"],
         control: None,
         set: &[("backlash_um", "100"), ("omega", "1.2")],
-        action: "Now click the diagram at an Ω below 0.5, where one dot per Ω shows a motion that repeats.",
+        action: "Now click the diagram at a speed below Ω 0.5, where one dot per speed shows a motion that repeats.",
         goal: Goal::Below { key: "omega", to: 0.5 },
-        done: "Ω is below 0.5, where the motion repeats.",
+        done: "the selected speed is below Ω 0.5, where the motion repeats.",
     },
     TourStep {
         title: "Share what you found",
-        text: "Copy link makes a link that restores every setting, the selected Ω and this tour step. Every plot exports its data (CSV, JSON) and its picture (PNG, SVG).",
+        text: "Copy link makes a link that restores every setting, the selected speed and this tour step. Every plot exports its data (CSV, JSON) and its picture (PNG, SVG).",
         target: "copy-link",
         keep_clear: &["copy-link", "summary"],
         control: None,
@@ -137,6 +137,42 @@ pub const TOUR: [TourStep; 5] = [
         done: "the link is copied; paste it anywhere to come back here.",
     },
 ];
+
+/// A step's words as the speed axes read them: with the axes in rpm each
+/// speed "Ω 1.4" becomes "7 228 rpm (Ω 1.4)", the input member's speed
+/// first; in Ω the words are as written. The steps' settings stay in Ω.
+pub fn in_speed(text: &str, axis: &figures::speed::SpeedAxis) -> String {
+    let Some(scale) = axis.rpm_scale() else {
+        return text.to_string();
+    };
+    let mut out = String::new();
+    let mut rest = text;
+    while let Some(at) = rest.find("Ω ") {
+        out.push_str(&rest[..at]);
+        let after = &rest[at + "Ω ".len()..];
+        let len = after
+            .char_indices()
+            .take_while(|(_, c)| c.is_ascii_digit() || *c == '.')
+            .map(|(i, c)| i + c.len_utf8())
+            .last()
+            .unwrap_or(0);
+        // A sentence's full stop is not the number's.
+        let number = after[..len].trim_end_matches('.');
+        match number.parse::<f64>() {
+            Ok(omega) => {
+                let rpm = figures::speed::grouped(scale.rpm(omega));
+                out.push_str(&format!("{rpm} rpm (Ω {number})"));
+                rest = &after[number.len()..];
+            }
+            Err(_) => {
+                out.push_str("Ω ");
+                rest = after;
+            }
+        }
+    }
+    out.push_str(rest);
+    out
+}
 
 /// Splits `tour=N` off a link's query: the step (0-based, if valid) and the
 /// rest of the query for the link decoder.
@@ -637,5 +673,41 @@ mod tests {
                 && summary.contains("repeats exactly every mesh period"),
             "{summary}"
         );
+    }
+
+    /// Every step keeps the speed axes the reader chose, and with the
+    /// axes in rpm its words give each speed in rpm first, the input's
+    /// rpm at that Ω (Ω times the model's rpm per Ω), the Ω beside it.
+    #[test]
+    fn the_steps_keep_the_rpm_axes_and_say_their_speeds_in_rpm() {
+        use crate::controller::Controller;
+        let (mut c, _) = Controller::new("axis=rpm", 0.0);
+        for step in 0..TOUR.len() {
+            c.tour_go(Some(step), 0.0);
+            assert_eq!(c.settings().view.axis, figures::speed::AxisUnit::Rpm);
+            assert!(c.query().contains("axis=rpm"), "{}", c.query());
+        }
+        let axis = c.speed_axis();
+        let per_omega = axis.rpm_scale().expect("rpm").rpm(1.0);
+        let text = in_speed(TOUR[2].text, &axis);
+        let rpm = figures::speed::grouped(1.4 * per_omega);
+        assert!(
+            text.contains(&format!("backlash 20 µm and {rpm} rpm (Ω 1.4)."))
+                && !text.contains("and Ω"),
+            "{text}"
+        );
+        let done = in_speed(TOUR[3].done, &axis);
+        let rpm = figures::speed::grouped(0.5 * per_omega);
+        assert_eq!(
+            done,
+            format!("the selected speed is below {rpm} rpm (Ω 0.5), where the motion repeats.")
+        );
+        // In Ω the words are as written.
+        let omega = figures::speed::SpeedAxis::default();
+        for s in &TOUR {
+            assert_eq!(in_speed(s.text, &omega), s.text);
+        }
+        // A Ω without a number is left as it is.
+        assert_eq!(in_speed("one dot per Ω here", &axis), "one dot per Ω here");
     }
 }

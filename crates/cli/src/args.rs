@@ -7,6 +7,7 @@ use crate::failure::{usage, Failure};
 use crate::input::{bytes_text, read_json, MAX_PARAMS_BYTES};
 use clap::{Args, ValueEnum};
 use serde_json::Value;
+use solver::iso6336::IsoInputs;
 use solver::keys;
 use solver::params::{ModelKind, ModelParams};
 use solver::steady::{Model, SteadyOptions};
@@ -455,14 +456,14 @@ pub fn meshes(model: &Model, name: Option<&str>) -> Result<Vec<usize>, Failure> 
 #[derive(Debug, Args)]
 pub struct IsoArgs {
     /// Accuracy grade by ISO 1328-1 (1 to 11) for K_v.
-    #[arg(long, default_value_t = 6.0, allow_hyphen_values = true, value_parser = crate::flags::finite)]
+    #[arg(long, default_value_t = IsoInputs::default().accuracy_grade, allow_hyphen_values = true, value_parser = crate::flags::finite)]
     pub accuracy_grade: f64,
     /// Face width in mm for K_v (the model's mesh stiffness over it is the
     /// standard's c_gamma_alpha: 1e9 N/m over 50 mm is 20 N/(mm um)).
-    #[arg(long, default_value_t = 50.0, allow_hyphen_values = true, value_parser = crate::flags::finite)]
+    #[arg(long, default_value_t = IsoInputs::default().face_width_mm, allow_hyphen_values = true, value_parser = crate::flags::finite)]
     pub face_width_mm: f64,
     /// Application factor K_A for K_v's line load.
-    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true, value_parser = crate::flags::finite)]
+    #[arg(long, default_value_t = IsoInputs::default().application_factor, allow_hyphen_values = true, value_parser = crate::flags::finite)]
     pub application_factor: f64,
     /// Tip relief C_a in um for K_v (default: the standard's running-in
     /// amount C_ay of case-hardened steel, 2.0 um).
@@ -472,13 +473,13 @@ pub struct IsoArgs {
 
 impl IsoArgs {
     /// The solver's inputs, checked (a refusal names the flag's value).
-    pub fn inputs(&self) -> Result<solver::iso6336::IsoInputs, Failure> {
-        let inputs = solver::iso6336::IsoInputs {
+    pub fn inputs(&self) -> Result<IsoInputs, Failure> {
+        let inputs = IsoInputs {
             accuracy_grade: self.accuracy_grade,
             face_width_mm: self.face_width_mm,
             application_factor: self.application_factor,
             tip_relief_um: self.tip_relief_um,
-            ..solver::iso6336::IsoInputs::default()
+            ..IsoInputs::default()
         };
         inputs.validate()?;
         Ok(inputs)

@@ -173,7 +173,7 @@ pub fn shooting_frf(v: &Value) -> String {
 }
 
 /// A branch's rows: `index`, the point's fields `extra`, then Omega, the
-/// mesh's extremes, stability and bifurcation.
+/// mesh's extremes, stability, bifurcation and ISO 6336-1's K_v.
 fn branch_rows(v: &Value, extra: &[&str]) -> String {
     let mut s = String::from("index,");
     for e in extra {
@@ -181,7 +181,7 @@ fn branch_rows(v: &Value, extra: &[&str]) -> String {
         s.push(',');
     }
     s.push_str(
-        "omega,mesh,delta_max_m,delta_min_m,delta_amplitude_m,x_max_m,x_min_m,impact,stable,bifurcation\n",
+        "omega,mesh,delta_max_m,delta_min_m,delta_amplitude_m,x_max_m,x_min_m,impact,stable,bifurcation,kv_iso6336\n",
     );
     let mesh_names: Vec<String> = v["meshes"]
         .as_array()
@@ -194,7 +194,7 @@ fn branch_rows(v: &Value, extra: &[&str]) -> String {
         let head: String = extra.iter().map(|e| format!("{},", cell(&p[*e]))).collect();
         for (name, m) in mesh_rows(&mesh_names, p) {
             s.push_str(&format!(
-                "{i},{head}{},{name},{},{},{},{},{},{},{},{}\n",
+                "{i},{head}{},{name},{},{},{},{},{},{},{},{},{}\n",
                 cell(&p["omega"]),
                 cell(&m["delta_max_m"]),
                 cell(&m["delta_min_m"]),
@@ -204,6 +204,7 @@ fn branch_rows(v: &Value, extra: &[&str]) -> String {
                 cell(&m["impact"]),
                 cell(&p["stable"]),
                 cell(&p["bifurcation"]),
+                cell(&m["kv_iso6336"]),
             ));
         }
     }

@@ -339,3 +339,90 @@ fn sampled_stability_keeps_every_flag_and_label_of_every_point() {
         a.len()
     );
 }
+
+/// `kv_iso6336` beside each branch point's extremes: ISO 6336-1's K_v
+/// (method B) at the point's mesh frequency, the flags of `simulate`
+/// setting its inputs. On the gear pair N is Omega (its reduced mass is
+/// the model's equivalent mass), and `solver::iso6336`'s hand calculation
+/// of the defaults gives K_v 1.3284 at N 0.5, so 1 + 0.6568 N below N_S
+/// (0.85 at this line load), and 2.2214 in the main resonance range.
+/// Every point's K_v is the solver's rating called here directly.
+#[test]
+fn frf_reports_iso_kv_at_each_point_with_simulates_flags() {
+    let v = json(&words(
+        "frf --model gear-pair --omega-from 0.3 --omega-to 1.1 --points 40 --harmonics 3",
+    ));
+    assert_eq!(v["iso6336"]["inputs"]["accuracy_grade"], 6.0);
+    assert_eq!(v["iso6336"]["meshes"]["pg"]["n_s"], 0.85);
+    let branch = v["branch"].as_array().expect("branch");
+    let (mut below, mut main) = (0, 0);
+    for p in branch {
+        let n = p["omega"].as_f64().unwrap();
+        let kv = p["kv_iso6336"].as_f64().expect("kv");
+        if n <= 0.8 {
+            assert!((kv - (1.0 + 0.6568 * n)).abs() < 1e-4, "N {n}: {kv}");
+            below += 1;
+        } else if (0.9..=1.1).contains(&n) {
+            assert!((kv - 2.2214).abs() < 1e-4, "N {n}: {kv}");
+            main += 1;
+        }
+    }
+    assert!(below > 5 && main > 3, "{below} {main}");
+
+    // The compound set, every mesh, grade 8 over 30 mm: the solver's own
+    // rating at each point, and the CSV's last column is the JSON's.
+    let args = "frf --omega-from 0.2 --omega-to 0.6 --points 12 --harmonics 2 --mesh all --accuracy-grade 8 --face-width-mm 30";
+    let v = json(&words(args));
+    let params = solver::params::ModelParams::defaults(solver::params::ModelKind::Ravigneaux);
+    let model = solver::model::Model::new(&params).unwrap();
+    let inputs = solver::iso6336::IsoInputs {
+        accuracy_grade: 8.0,
+        face_width_mm: 30.0,
+        ..Default::default()
+    };
+    let rated = solver::iso6336::rate_model(&params, &model, &inputs).unwrap();
+    let names = v["meshes"].as_array().unwrap();
+    assert_eq!(names.len(), 12);
+    let branch = v["branch"].as_array().unwrap();
+    for p in branch {
+        let hz = model.system.mesh_freq_hz(p["omega"].as_f64().unwrap());
+        for (j, m) in model.system.meshes.iter().enumerate() {
+            let r = &rated[j].rating;
+            let want = r.kv(r.resonance_ratio(hz));
+            assert_eq!(p["meshes"][&m.name]["kv_iso6336"].as_f64(), Some(want));
+        }
+    }
+    assert_eq!(v["iso6336"]["meshes"].as_object().unwrap().len(), 12);
+    let csv = gearshock(&words(&format!("{args} --format csv")));
+    assert!(csv.status.success());
+    let text = String::from_utf8(csv.stdout).unwrap();
+    let mut lines = text.lines();
+    assert!(lines.next().unwrap().ends_with(",bifurcation,kv_iso6336"));
+    let first: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let kv: f64 = first.last().unwrap().parse().unwrap();
+    assert_eq!(
+        Some(kv),
+        branch[0]["meshes"][first[2]]["kv_iso6336"].as_f64()
+    );
+    // Refused as simulate refuses them.
+    let out = gearshock(&words(
+        "frf --model gear-pair --omega-from 0.4 --omega-to 0.5 --accuracy-grade 0",
+    ));
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        err.contains("accuracy grade = 0") && err.contains("1 ..= 11"),
+        "{err}"
+    );
+}
+
+/// The page's Kv inputs default to the command line's: the page's
+/// defaults are what `gearshock frf` and `simulate` echo without flags.
+#[test]
+fn the_pages_kv_defaults_are_the_command_lines() {
+    let v = json(&words(
+        "frf --model gear-pair --omega-from 0.4 --omega-to 0.5 --points 4 --harmonics 1",
+    ));
+    let page = figures::settings::ViewOptions::default().iso_inputs();
+    assert_eq!(v["iso6336"]["inputs"], report::iso_inputs_json(&page));
+}

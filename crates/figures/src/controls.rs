@@ -352,6 +352,12 @@ pub fn controls() -> Vec<Control> {
         view("clearance", "Axes of x", (0.0, 0.0, 0.0)),
         view("axis", "Speed axes", (0.0, 0.0, 0.0)),
         view(
+            "accuracy_grade",
+            "Accuracy grade for Kv (ISO 1328-1)",
+            (1.0, 11.0, 1.0),
+        ),
+        view("face_width_mm", "Face width for Kv", (5.0, 200.0, 1.0)),
+        view(
             "branches",
             "Branches of repeating motion (found by shooting)",
             (0.0, 0.0, 0.0),
@@ -374,7 +380,7 @@ pub fn controls() -> Vec<Control> {
         view_in(
             Maps,
             "map_omega_points",
-            "Map: Ω columns",
+            "Map: speed columns",
             (2.0, 200.0, 1.0),
         ),
         view_in(Maps, "map_value_points", "Map: rows", (1.0, 100.0, 1.0)),
@@ -393,7 +399,7 @@ pub fn controls() -> Vec<Control> {
         view_in(
             Maps,
             "lyap_points",
-            "Lyapunov: Ω points (0 = off)",
+            "Lyapunov: speed points (0 = off)",
             (0.0, 200.0, 1.0),
         ),
         view_in(

@@ -21,8 +21,7 @@
 
 use crate::family_spec::{FamilySpec, FAMILY_KEY};
 use crate::panels::PANELS_KEY;
-use crate::settings::{fmt_exact, mesh_names, view_key, Settings, AXIS_KEY};
-use crate::speed::AxisUnit;
+use crate::settings::{fmt_exact, mesh_names, view_key, Settings, ViewOptions, AXIS_KEY};
 use solver::keys::{self, Value};
 use solver::model::Model;
 use solver::params::{ModelKind, ModelParams};
@@ -374,9 +373,12 @@ pub fn encode(settings: &Settings) -> String {
     }
     for key in crate::settings::VIEW_KEYS {
         if let Some(v) = settings.view.get(key.name) {
-            // The speed axes' unit only when it is not the default, so
-            // that a link of the default state is what it always was.
-            if key.name == AXIS_KEY && v == AxisUnit::default().name() {
+            // The speed axes' unit and Kv's inputs only when they are
+            // not the defaults, so that a link of the default state is
+            // what it always was.
+            if crate::settings::SPARSE_KEYS.contains(&key.name)
+                && ViewOptions::default().get(key.name).as_deref() == Some(v.as_str())
+            {
                 continue;
             }
             parts.push(format!("{}={}", key.name, percent_encode(&v)));

@@ -146,7 +146,7 @@ impl SpeedAxis {
     /// A speed for the reader: "Ω = 0.350" or "1 234 rpm (Ω 0.350)".
     pub fn text(&self, omega: f64) -> String {
         match self.rpm_scale() {
-            Some(s) => format!("{} rpm (Ω {omega:.3})", grouped(s.rpm(omega))),
+            Some(s) => format!("{} rpm (Ω {omega:.3})", grouped_fine(s.rpm(omega))),
             None => format!("Ω = {omega:.3}"),
         }
     }
@@ -159,7 +159,7 @@ impl SpeedAxis {
             Some(s) => format!(
                 "Selected speed: Ω {omega:.4}, {} at {} rpm, mesh frequency {} Hz",
                 s.input(),
-                grouped(s.rpm(omega)),
+                grouped_fine(s.rpm(omega)),
                 grouped(s.mesh_hz(omega))
             ),
             None => format!("Selected speed: Ω {omega:.4}"),
@@ -203,6 +203,33 @@ pub fn grouped(x: f64) -> String {
     } else {
         out
     }
+}
+
+/// `x` as [`grouped`], with the decimals of a speed selected to a decimal
+/// step (a click on a narrow range: "3 004.37"): the fewest decimals, up
+/// to three, that give `x` to 1e-9 of itself. Any other value (an rpm
+/// converted from an Ω such as 0.35) is written whole, as [`grouped`].
+pub fn grouped_fine(x: f64) -> String {
+    let close = |y: f64| (x - y).abs() <= 1e-9 * x.abs().max(1.0);
+    let Some(places) = (0..=3).find(|&k| {
+        let p = 10f64.powi(k);
+        close((x * p).round() / p)
+    }) else {
+        return grouped(x);
+    };
+    let p = 10f64.powi(places);
+    let units = (x.abs() * p).round();
+    let whole = (units / p).trunc();
+    if places == 0 || !units.is_finite() {
+        return grouped(x);
+    }
+    let frac = format!(
+        "{:0width$}",
+        (units - whole * p) as u64,
+        width = places as usize
+    );
+    let sign = if x < 0.0 { "-" } else { "" };
+    format!("{sign}{}.{frac}", grouped(whole))
 }
 
 /// A CSV with an `omega` column as the rpm axis exports it: a column of
@@ -305,6 +332,12 @@ mod tests {
         assert_eq!(grouped(999.6), "1\u{a0}000");
         assert_eq!(grouped(3000.0), "3\u{a0}000");
         assert_eq!(grouped(0.0), "0");
+        assert_eq!(grouped_fine(3004.37), "3\u{a0}004.37");
+        assert_eq!(grouped_fine(2999.9999999), "3\u{a0}000");
+        assert_eq!(grouped_fine(12.0005), "12");
+        assert_eq!(grouped_fine(0.25), "0.25");
+        assert_eq!(grouped_fine(-1234.5), "-1\u{a0}234.5");
+        assert_eq!(grouped_fine(1_806.934_567), "1\u{a0}807");
     }
 
     /// The rpm column is Ω times rpm per Ω, computed here by hand from the

@@ -261,7 +261,13 @@ pub fn link_input(r: &mut Rng, keys: &[String]) -> String {
         0..=5 => {
             let mut parts = Vec::new();
             for _ in 0..r.below(30) {
-                let k = key_text(r, keys);
+                // The pinned state's key as often whatever the number of
+                // keys (each view key the page gains would make it rarer).
+                let k = if r.chance(2) {
+                    figures::link::PINNED_KEY.to_string()
+                } else {
+                    key_text(r, keys)
+                };
                 let v = if k == figures::link::PINNED_KEY && r.chance(70) {
                     let inner = link_input(&mut r.clone(), keys);
                     r.bits();

@@ -30,10 +30,20 @@ pub fn iso_inputs_json(i: &IsoInputs) -> Value {
 fn mesh_json(model: &Model, r: &ModelMeshRating, mesh_freq_hz: f64) -> Value {
     let g = &r.rating;
     let n = g.resonance_ratio(mesh_freq_hz);
+    let mut o = Map::new();
+    o.insert("kv".into(), num(g.kv(n)));
+    o.insert("resonance_ratio".into(), num(n));
+    o.insert("range".into(), json!(g.range(n).name()));
+    if let Value::Object(rest) = rating_json(model, r) {
+        o.extend(rest);
+    }
+    Value::Object(o)
+}
+
+/// What the standard rates of one mesh whatever the speed.
+fn rating_json(model: &Model, r: &ModelMeshRating) -> Value {
+    let g = &r.rating;
     json!({
-        "kv": num(g.kv(n)),
-        "resonance_ratio": num(n),
-        "range": g.range(n).name(),
         "resonance_mesh_freq_hz": num(g.resonance_mesh_freq_hz),
         "resonance_input_speed_rpm": num(model.system.speed.input_speed_rpm(g.resonance_mesh_freq_hz)),
         "teeth": [r.mesh.teeth_1, r.mesh.teeth_2],
@@ -56,6 +66,86 @@ fn mesh_json(model: &Model, r: &ModelMeshRating, mesh_freq_hz: f64) -> Value {
     })
 }
 
+/// The method, the inputs and the planetary rule, as every K_v block
+/// starts.
+fn iso_head(inputs: &IsoInputs) -> Map<String, Value> {
+    let mut iso = Map::new();
+    iso.insert("method".into(), json!("ISO 6336-1, method B"));
+    iso.insert("inputs".into(), iso_inputs_json(inputs));
+    iso.insert(
+        "planetary_rule".into(),
+        json!(
+            "sun-planet: m_red = m_P m_S / (m_S + p m_P); planet-ring: m_red = m_P (ring \
+             infinitely heavy); planet-planet: a plain pair; m = J / r_b^2"
+        ),
+    );
+    iso
+}
+
+/// Adds K_v to a frequency response's JSON (`frf_json` or
+/// `shooting_frf_json`): `kv_iso6336` beside each branch point's
+/// extremes, per reported mesh (inlined with one mesh, under `meshes`
+/// with several), at the point's mesh frequency; and `iso6336` with the
+/// inputs and each reported mesh's speed-independent quantities. Where
+/// the standard cannot rate the model, every `kv_iso6336` is `null` and
+/// `iso6336.error` says why.
+pub fn add_branch_iso6336(
+    value: &mut Value,
+    params: &ModelParams,
+    model: &Model,
+    inputs: &IsoInputs,
+) {
+    let mut iso = iso_head(inputs);
+    let names: Vec<String> = value["meshes"]
+        .as_array()
+        .map(|a| {
+            a.iter()
+                .filter_map(|n| n.as_str().map(str::to_string))
+                .collect()
+        })
+        .unwrap_or_default();
+    let ratings = match rate_model(params, model, inputs) {
+        Ok(rs) => rs,
+        Err(e) => {
+            iso.insert("error".into(), json!(e.to_string()));
+            Vec::new()
+        }
+    };
+    let rated: Vec<(String, Option<&ModelMeshRating>)> = names
+        .iter()
+        .map(|n| {
+            let r = model.system.mesh_index(n).and_then(|j| ratings.get(j));
+            (n.clone(), r)
+        })
+        .collect();
+    if !ratings.is_empty() {
+        let meshes: Map<String, Value> = rated
+            .iter()
+            .filter_map(|(n, r)| Some((n.clone(), rating_json(model, (*r)?))))
+            .collect();
+        iso.insert("meshes".into(), Value::Object(meshes));
+    }
+    let one = rated.len() == 1;
+    if let Some(points) = value["branch"].as_array_mut() {
+        for p in points {
+            let Some(omega) = p["omega"].as_f64() else {
+                continue;
+            };
+            let hz = model.system.mesh_freq_hz(omega);
+            for (name, r) in &rated {
+                let kv = r.map_or(Value::Null, |r| {
+                    num(r.rating.kv(r.rating.resonance_ratio(hz)))
+                });
+                let at = if one { &mut *p } else { &mut p["meshes"][name] };
+                if let Some(o) = at.as_object_mut() {
+                    o.insert("kv_iso6336".into(), kv);
+                }
+            }
+        }
+    }
+    value["iso6336"] = Value::Object(iso);
+}
+
 /// Adds K_v to a `simulate_json` value at `mesh_freq_hz`: `kv_iso6336`
 /// beside `dynamic_factor` (for the reported mesh `mesh` and under each
 /// of `all_meshes`), and `iso6336` with the inputs and each mesh's
@@ -69,16 +159,7 @@ pub fn add_iso6336(
     mesh_freq_hz: f64,
     inputs: &IsoInputs,
 ) {
-    let mut iso = Map::new();
-    iso.insert("method".into(), json!("ISO 6336-1, method B"));
-    iso.insert("inputs".into(), iso_inputs_json(inputs));
-    iso.insert(
-        "planetary_rule".into(),
-        json!(
-            "sun-planet: m_red = m_P m_S / (m_S + p m_P); planet-ring: m_red = m_P (ring \
-             infinitely heavy); planet-planet: a plain pair; m = J / r_b^2"
-        ),
-    );
+    let mut iso = iso_head(inputs);
     let ratings = rate_model(params, model, inputs);
     let kvs: Vec<Value> = match &ratings {
         Ok(rs) => {

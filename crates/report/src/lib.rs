@@ -15,7 +15,7 @@ mod boundaries;
 mod iso;
 mod orbits;
 pub use boundaries::boundaries_json;
-pub use iso::{add_iso6336, iso_inputs_json};
+pub use iso::{add_branch_iso6336, add_iso6336, iso_inputs_json};
 pub use orbits::shooting_frf_json;
 
 use serde_json::{json, Map, Value};

@@ -579,7 +579,12 @@ fn a_new_omega_job_preempts_a_running_steady_state_within_one_slice() {
     let job = OmegaJob { id: 2, model, spec };
     let mut whole = omega_result(&job, None).expect("one-shot run");
     // The worker's run adds ISO 6336-1's K_v to its CLI JSON.
-    with_iso6336(&mut whole, &p, &job.model);
+    with_iso6336(
+        &mut whole,
+        &p,
+        &job.model,
+        &solver::iso6336::IsoInputs::default(),
+    );
     assert_eq!(*result.1.as_ref(), whole);
     // Then the sweep runs.
     assert!(drain(&mut core)

@@ -1,8 +1,8 @@
 //! The speed axes on the page: what they show for the current model
 //! (`figures::speed`), the speed fields in the chosen unit (a typed rpm is
 //! stored as its exact Ω, so nothing else changes), how a click's speed is
-//! rounded, the readout of the selected speed in both units and the rpm
-//! beside Ω in the exports.
+//! rounded (to a step under a pixel, in the axes' unit), the readout of
+//! the selected speed in both units and the rpm beside Ω in the exports.
 
 use super::{Controller, Effect, InputError};
 use figures::controls::Widget;
@@ -59,21 +59,47 @@ impl Controller {
         Some(fmt_exact(self.speed_axis().field_value(omega)))
     }
 
-    /// A clicked or stepped speed as it is selected: Ω rounded to 1e-4,
-    /// or with the axes in rpm the Ω of the whole rpm nearest it.
+    /// The decimal step a clicked or stepped speed is rounded to, as a
+    /// power of ten in the unit the axes show: 1e-4 in Ω, a whole rpm in
+    /// rpm, or finer where the frequency range is narrow, so that the step
+    /// is never more than a thousandth of the range (under a pixel of any
+    /// plot: the widest is 760 pixels). The rounding keeps links short and
+    /// the fields' numbers round; the Ω it gives is written exactly, so a
+    /// link restores the selected speed bit for bit.
+    fn selection_exponent(&self) -> i32 {
+        let v = &self.settings.view;
+        let axis = self.speed_axis();
+        let (span, coarsest) = match axis.rpm_scale() {
+            Some(s) => (s.rpm(v.omega_to) - s.rpm(v.omega_from), 0),
+            None => (v.omega_to - v.omega_from, -4),
+        };
+        let fine = (span.abs() / 1000.0).log10().floor();
+        if fine.is_finite() {
+            (fine.max(-12.0) as i32).min(coarsest)
+        } else {
+            coarsest
+        }
+    }
+
+    /// A clicked or stepped speed as it is selected: its value in the
+    /// axes' unit rounded to the step of [`Self::selection_exponent`]
+    /// (Ω to 1e-4, rpm to a whole rpm on the default range), then as Ω.
     pub(super) fn rounded_selection(&self, omega: f64) -> f64 {
+        let per = 10f64.powi(-self.selection_exponent());
+        let round = |x: f64| (x * per).round() / per;
         match self.speed_axis().rpm_scale() {
-            Some(s) => s.omega(s.rpm(omega).round()),
-            None => (omega * 1e4).round() / 1e4,
+            Some(s) => s.omega(round(s.rpm(omega))),
+            None => round(omega),
         }
     }
 
     /// How far a selected speed can lie from the one clicked
     /// ([`Self::rounded_selection`]), in Ω, with a little room.
     pub(super) fn selection_tolerance(&self) -> f64 {
+        let step = 10f64.powi(self.selection_exponent());
         match self.speed_axis().rpm_scale() {
-            Some(s) => s.omega(0.5) * 1.001,
-            None => 1e-4,
+            Some(s) => s.omega(0.5 * step) * 1.001,
+            None => step,
         }
     }
 
@@ -242,6 +268,46 @@ mod tests {
         assert!(c
             .speed_readout()
             .contains(&format!("{} rpm", figures::speed::grouped(rpm))));
+    }
+
+    /// On a narrow range a click selects a speed finer than a whole rpm
+    /// (the step at most a thousandth of the range: 0.01 rpm over 20
+    /// rpm), in Ω a finer step than 1e-4 too; the link restores the
+    /// selected Ω bit for bit, and the field and readout say the rpm.
+    #[test]
+    fn a_click_on_a_narrow_range_selects_the_rpm_it_points_at() {
+        let (mut c, _) = Controller::new("axis=rpm", 0.0);
+        let k = rpm_per_omega(&c);
+        c.set_control("omega_from", "3000", 0.0).unwrap();
+        c.set_control("omega_to", "3020", 0.0).unwrap();
+        // A pixel's Ω: 3004.3712 rpm, selected as 3004.37.
+        c.select_omega(3004.3712 / k, 0.0);
+        let rpm = c
+            .speed_axis()
+            .rpm_scale()
+            .unwrap()
+            .rpm(c.settings().view.omega);
+        assert!((rpm - 3004.37).abs() <= 1e-9, "{rpm}");
+        assert_eq!(c.speed_field_text("omega").as_deref(), Some("3004.37"));
+        assert!(
+            c.speed_readout().contains("sun s1 at 3\u{a0}004.37 rpm"),
+            "{}",
+            c.speed_readout()
+        );
+        let (d, _) = Controller::new(&c.query(), 0.0);
+        assert_eq!(
+            d.settings().view.omega.to_bits(),
+            c.settings().view.omega.to_bits()
+        );
+        assert_eq!(d.speed_field_text("omega").as_deref(), Some("3004.37"));
+        // In Ω over a range of 0.004: steps of 1e-6.
+        let (mut c, _) = Controller::new("omega_from=0.5&omega_to=0.504", 0.0);
+        c.select_omega(0.501_234_567, 0.0);
+        assert_eq!(c.settings().view.omega, 0.501235);
+        // The default range keeps Ω to 1e-4.
+        let (mut c, _) = Controller::new("", 0.0);
+        c.select_omega(0.501_234_567, 0.0);
+        assert_eq!(c.settings().view.omega, 0.5012);
     }
 
     /// A preset keeps the speed axes the reader chose (its figure's

@@ -77,7 +77,7 @@ impl Controller {
                 }
                 s
             }
-            (None, None) => "Computing the motion at the selected Ω…".into(),
+            (None, None) => "Computing the motion at the selected speed…".into(),
         };
         match &self.family {
             Some(f) => format!(
@@ -123,7 +123,7 @@ impl Controller {
                 }
                 s
             }
-            (None, None) => "Computing the steady state at the selected Ω…".into(),
+            (None, None) => "Computing the steady state at the selected speed…".into(),
         };
         match &self.model {
             Ok(m) if !m.system.warnings.is_empty() => {
@@ -162,7 +162,7 @@ impl Controller {
                     .map_or_else(|| "Waiting for the Web Workers…".to_string(), not_computed)
             }),
             ViewId::Lyap if !self.settings.view.lyap_on() => Some(
-                "Off: set Lyapunov Ω points above 0 (Regime map and Lyapunov exponent).".into(),
+                "Off: set Lyapunov speed points above 0 (Regime map and Lyapunov exponent).".into(),
             ),
             ViewId::Lyap => st
                 .error

@@ -6,7 +6,7 @@
 use super::dom::{Action, TourMove};
 use super::{Page, Write};
 use crate::controller::Effect;
-use crate::tour::{counter, TOUR};
+use crate::tour::{counter, in_speed, TOUR};
 use figures::controls::{
     controls, field_text, label_for, model_subtitle, shown_for, Target, Widget,
 };
@@ -387,6 +387,7 @@ impl Page {
             return w;
         };
         let s = &TOUR[step];
+        let axis = self.ctl.speed_axis();
         let last = step + 1 == TOUR.len();
         let done = self.tour_done() == Some(true);
         w.extend([
@@ -397,9 +398,10 @@ impl Page {
             },
             Write::text("tour-count", counter(step)),
             Write::text("tour-title", s.title),
-            Write::text("tour-text", s.text),
-            Write::text("tour-action", s.action),
-            Write::text("tour-done", format!("✓ Done: {}", s.done)),
+            // The speeds in the unit the reader chose for the axes.
+            Write::text("tour-text", in_speed(s.text, &axis)),
+            Write::text("tour-action", in_speed(s.action, &axis)),
+            Write::text("tour-done", format!("✓ Done: {}", in_speed(s.done, &axis))),
             Write::Hidden {
                 id: "tour-done".into(),
                 hidden: !done,

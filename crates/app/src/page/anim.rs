@@ -199,7 +199,7 @@ impl Page {
     /// Draws on the gear set's canvas a frame and a line saying the
     /// motion is on its way (before any motion: never a blank canvas).
     pub fn draw_anim_placeholder<DB: DrawingBackend>(&mut self, root: &DrawingArea<DB, Shift>) {
-        let why = "The gear set and its meshes appear here once the motion at the selected Ω is computed.";
+        let why = "The gear set and its meshes appear here once the motion at the selected speed is computed.";
         if let Err(e) = figures::plots::draw_message(root, "The gear set", why) {
             self.issue(e.to_string());
         }

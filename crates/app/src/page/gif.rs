@@ -97,7 +97,7 @@ pub enum GifError {
     #[error("the GIF could not be encoded: {0}")]
     Encode(String),
     /// The selected state's motion is not there yet.
-    #[error("The GIF is made from the motion at the selected Ω, which is still being computed; try again once it shows.")]
+    #[error("The GIF is made from the motion at the selected speed, which is still being computed; try again once it shows.")]
     NotReady,
     /// The model's gear set has no drawing.
     #[error("the gear set of this model cannot be drawn")]

@@ -176,7 +176,7 @@ impl Page {
     pub(super) fn see_orbit_writes(&self) -> Vec<Write> {
         let omega = self.ctl.settings().view.omega;
         let at = match self.ctl.speed_axis().rpm_scale() {
-            Some(s) => format!("{} rpm", figures::speed::grouped(s.rpm(omega))),
+            Some(s) => format!("{} rpm", figures::speed::grouped_fine(s.rpm(omega))),
             None => format!("Ω = {omega:.2}"),
         };
         vec![

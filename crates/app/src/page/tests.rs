@@ -188,7 +188,7 @@ fn a_frame_draws_the_changed_views_in_order_and_writes_the_texts() {
         .any(|w| matches!(w, Write::Url(q) if q.contains("bif_points=8"))));
     assert!(w.contains(&Write::Text {
         id: "summary".into(),
-        text: "Computing the motion at the selected Ω…".into()
+        text: "Computing the motion at the selected speed…".into()
     }));
     // The gear set waits for a frame the views drew in.
     assert!(!p.anim_draws(16.0, false));

@@ -228,6 +228,8 @@ impl Page {
             "dynamic_factor": selected.and_then(|s| s.factor),
             "preview": selected.is_some_and(|s| s.preview),
             "kv": v.kv_at(o),
+            "accuracy_grade": v.inputs.accuracy_grade,
+            "face_width_mm": v.inputs.face_width_mm,
             "iso_range": v.range_at(o).name(),
             "resonance_ratio": v.n_at(o),
             "phasing": v.phasing,
@@ -275,7 +277,7 @@ impl Page {
             None => ("Ω (dimensionless)".into(), "input speed, read as Ω".into()),
         };
         let mut w = vec![Write::text("speed-readout", self.ctl.speed_readout())];
-        for key in ["fr", "map", "bif"] {
+        for key in ["fr", "map", "bif", "dynamic"] {
             w.push(Write::text(&format!("axes-speed-{key}"), omega.clone()));
         }
         w.push(Write::text("axes-speed-campbell", campbell));

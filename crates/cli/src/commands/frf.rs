@@ -2,7 +2,7 @@
 //! arclength continuation. A solver failure still writes the branch up to
 //! there, marked incomplete, and exits with code 1.
 
-use crate::args::{meshes, OmegaRange, ParamArgs};
+use crate::args::{meshes, IsoArgs, OmegaRange, ParamArgs};
 use crate::budget::{largest_within, MAX_FRF_WORK, MAX_STEPS};
 use crate::csv;
 use crate::failure::{usage, Failure};
@@ -65,6 +65,8 @@ pub struct FrfArgs {
     /// Mesh to report, or `all`.
     #[arg(long)]
     mesh: Option<String>,
+    #[command(flatten)]
+    iso: IsoArgs,
 }
 
 /// The continuation as a sweep of per mille of the Omega range; a failure
@@ -142,6 +144,7 @@ pub fn run(a: &FrfArgs) -> Result<(), Failure> {
     if a.method == "shooting" {
         return run_shooting(a);
     }
+    let iso = a.iso.inputs()?;
     let (params, model) = a.p.load()?;
     let (omega_from, omega_to) = a.range.omegas(&model)?;
     let mut spec = FrfSpec::new(omega_from, omega_to, a.points);
@@ -183,7 +186,8 @@ pub fn run(a: &FrfArgs) -> Result<(), Failure> {
     };
     let points = sweep::run(&mut branch, &a.p, "per mille of the range", None)?.unwrap_or_default();
     let Branch { c, failure, .. } = branch;
-    let value = report::frf_json(&model, &params, &c, &points, &meshes, failure.as_ref());
+    let mut value = report::frf_json(&model, &params, &c, &points, &meshes, failure.as_ref());
+    report::add_branch_iso6336(&mut value, &params, &model, &iso);
     output(a.p.format, &value, csv::frf)?;
     // Restarts and left-out gaps are in the JSON; say them here too.
     for n in c.notes() {
@@ -236,6 +240,7 @@ fn check_shooting(model: &solver::steady::Model, spec: &ShootFrfSpec) -> Result<
 
 /// `--method shooting`: the periodic branches by shooting continuation.
 fn run_shooting(a: &FrfArgs) -> Result<(), Failure> {
+    let iso = a.iso.inputs()?;
     let (params, model) = a.p.load()?;
     let (omega_from, omega_to) = a.range.omegas(&model)?;
     let mut spec = ShootFrfSpec::new(omega_from, omega_to, a.points);
@@ -270,7 +275,9 @@ fn run_shooting(a: &FrfArgs) -> Result<(), Failure> {
             }
         }
     }
-    let value = report::shooting_frf_json(&model, &params, &c, &points, &meshes, failure.as_ref());
+    let mut value =
+        report::shooting_frf_json(&model, &params, &c, &points, &meshes, failure.as_ref());
+    report::add_branch_iso6336(&mut value, &params, &model, &iso);
     output(a.p.format, &value, csv::shooting_frf)?;
     for n in c.notes() {
         note(&format!("note: {n}"));

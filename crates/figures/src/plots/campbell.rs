@@ -80,7 +80,7 @@ pub fn draw_campbell<DB: DrawingBackend>(
         KeyIcon::Line(CURSOR, false),
         format!(
             "selected speed {} rpm (Ω {:.3})",
-            grouped(view.selected_rpm),
+            crate::speed::grouped_fine(view.selected_rpm),
             view.selected_omega
         ),
     ));

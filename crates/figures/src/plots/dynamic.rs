@@ -115,6 +115,7 @@ pub fn draw_dynamic<DB: DrawingBackend>(
 mod tests {
     use super::*;
     use crate::views::ViewContext;
+    use solver::iso6336::IsoInputs;
     use solver::model::Model;
 
     #[test]
@@ -128,7 +129,7 @@ mod tests {
             selected_omega: 0.5,
             ..ViewContext::default()
         };
-        let view = DynamicView::new(p, &model, &ctx, 0, None, None).unwrap();
+        let view = DynamicView::new(p, &model, &ctx, 0, None, None, &IsoInputs::default()).unwrap();
         let mut s = String::new();
         let frame = {
             let root = SVGBackend::with_string(&mut s, (WIDTH, HEIGHT)).into_drawing_area();

@@ -297,7 +297,7 @@ pub fn draw_bif_panels<DB: DrawingBackend>(
         .map(|r| r.label())
         .collect();
     let key = format!(
-        "Dots: Poincaré samples coloured by regime ({}); filled: upward sweep, open: downward. Dotted: ±b, in the panel's colour; dashed red: selected Ω.",
+        "Dots: Poincaré samples coloured by regime ({}); filled: upward sweep, open: downward. Dotted: ±b, in the panel's colour; dashed red: selected speed.",
         if regimes.is_empty() { "none yet".to_string() } else { regimes.join(", ") }
     );
     let (areas, cols) = layout(root, &title, &key, panels.len())?;
@@ -498,7 +498,7 @@ pub fn draw_fr_panels<DB: DrawingBackend>(
             KeyIcon::Dotted(GUIDE),
             "±b (contact), grey, where in range".into(),
         ),
-        (KeyIcon::Line(CURSOR, true), "selected Ω".into()),
+        (KeyIcon::Line(CURSOR, true), "selected speed".into()),
     ]);
     let lines = vec![KeyLine::Sentence(format!(
         "Solid: stable; {}.",

@@ -100,8 +100,9 @@ pub fn kind_words(kind: &str) -> &'static str {
 impl DynamicView {
     /// The view of mesh `mesh` of `model` (built from `params`) over the
     /// range of `ctx`, with the frequency response's steady states
-    /// `states` and the selected state `omega`; the standard's refusal
-    /// (a mesh without load) as the reason.
+    /// `states` and the selected state `omega`, K_v rated with `inputs`;
+    /// the standard's refusal (a mesh without load, an input out of its
+    /// range) as the reason.
     pub fn new(
         params: &ModelParams,
         model: &Model,
@@ -109,8 +110,9 @@ impl DynamicView {
         mesh: usize,
         states: Option<&FrStore>,
         omega: Option<&OmegaResult>,
+        inputs: &IsoInputs,
     ) -> Result<Self, String> {
-        let inputs = IsoInputs::default();
+        let inputs = *inputs;
         let name = model
             .system
             .meshes
@@ -291,7 +293,7 @@ impl DynamicView {
         };
         format!(
             "At Ω {o:.3} ({} rpm), mesh {}: {model}; dynamic factor Kv (ISO 6336-1, method B) {kv:.2} ({} range, resonance ratio N = {n:.2}). The standard puts this mesh's main resonance at Ω {centre:.2} ({} rpm).{why} {}",
-            grouped(self.rpm_at(o)),
+            crate::speed::grouped_fine(self.rpm_at(o)),
             self.mesh_name,
             self.range_at(o).name(),
             grouped(self.rpm_at(centre)),

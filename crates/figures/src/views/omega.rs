@@ -73,7 +73,7 @@ pub fn student_summary_at(r: &OmegaResult, speed: &crate::speed::SpeedAxis) -> S
         Some(s) => format!(
             "{} at {} rpm (Ω {})",
             s.input(),
-            crate::speed::grouped(s.rpm(r.omega)),
+            crate::speed::grouped_fine(s.rpm(r.omega)),
             crate::views::unstable::short(r.omega)
         ),
         None => format!("Ω {}", crate::views::unstable::short(r.omega)),

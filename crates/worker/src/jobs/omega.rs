@@ -126,21 +126,27 @@ impl OmegaRun {
     }
 }
 
-/// `result`'s CLI JSON with ISO 6336-1's K_v added at the standard's
-/// default inputs, as `gearshock simulate` adds it (`report::add_iso6336`):
-/// the worker's full run adds it, the page's preview has no CLI JSON.
-pub fn with_iso6336(result: &mut OmegaResult, params: &ModelParams, model: &Model) {
+/// `result`'s CLI JSON with ISO 6336-1's K_v added at `inputs`, as
+/// `gearshock simulate` adds it (`report::add_iso6336`): the worker's
+/// full run adds it at the standard's defaults, the page's export again
+/// at the page's grade and face width (the K_v it had is replaced); the
+/// page's preview has no CLI JSON.
+pub fn with_iso6336(
+    result: &mut OmegaResult,
+    params: &ModelParams,
+    model: &Model,
+    inputs: &solver::iso6336::IsoInputs,
+) {
     let Ok(mut v) = serde_json::from_str::<serde_json::Value>(&result.cli_json) else {
         return;
     };
-    let inputs = solver::iso6336::IsoInputs::default();
     report::add_iso6336(
         &mut v,
         params,
         model,
         result.mesh,
         result.mesh_freq_hz,
-        &inputs,
+        inputs,
     );
     result.cli_json = v.to_string();
 }
@@ -158,7 +164,8 @@ impl Job for OmegaRun {
             Some(Ok(run)) => match run.advance(&self.job.model, SLICE_STEPS) {
                 Ok(None) => return Vec::new(),
                 Ok(Some(ss)) => omega_result_of(&self.job, ss, false).map(|mut r| {
-                    with_iso6336(&mut r, &self.params, &self.job.model);
+                    let inputs = solver::iso6336::IsoInputs::default();
+                    with_iso6336(&mut r, &self.params, &self.job.model, &inputs);
                     r
                 }),
                 Err(e) => Err(OmegaError::solver(&self.job)(e)),

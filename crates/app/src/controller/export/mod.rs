@@ -6,6 +6,7 @@
 
 use super::*;
 use figures::views::{omega::OmegaView, ViewId};
+use worker::jobs::omega::with_iso6336;
 
 /// A data export's format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -41,11 +42,13 @@ impl Format {
 pub enum ExportError {
     /// The selected-Omega views show the page's preview, not a result.
     #[error(
-        "The views at the selected Ω show a preview; export once the full steady state has arrived."
+        "The views at the selected speed show a preview; export once the full steady state has arrived."
     )]
     Preview,
     /// The selected-Omega steady state has not arrived yet.
-    #[error("The steady state at the selected Ω is still computing; export once it has arrived.")]
+    #[error(
+        "The steady state at the selected speed is still computing; export once it has arrived."
+    )]
     NotComputed,
     /// The bifurcation sweep is still running.
     #[error("the bifurcation sweep has not finished yet")]
@@ -190,11 +193,17 @@ impl Controller {
         match view {
             ViewId::Bif => self.request_bif_export(),
             _ if view.at_selected_omega() => {
-                let r = self.exportable_omega()?;
+                let mut r = self.exportable_omega()?.clone();
+                // K_v at the page's grade and face width, as `gearshock
+                // simulate --accuracy-grade .. --face-width-mm ..` writes it.
+                if let Ok(model) = self.model() {
+                    let inputs = self.settings.view.iso_inputs();
+                    with_iso6336(&mut r, &self.settings.params, model, &inputs);
+                }
                 Ok(vec![Effect::Download {
                     name: self.file_name(view, Some("simulate"), "json"),
                     mime: "application/json".into(),
-                    text: r.cli_json.clone(),
+                    text: r.cli_json,
                 }])
             }
             _ => Err(ExportError::NoCliFormat),
@@ -324,9 +333,19 @@ impl Controller {
             MeshSel::Named(n) => n.as_str(),
             MeshSel::Worst => "all",
         };
+        // K_v's inputs where the page's differ from the defaults (which
+        // are the command line's).
+        let d = figures::settings::ViewOptions::default();
+        let mut iso = String::new();
+        if v.accuracy_grade != d.accuracy_grade {
+            iso.push_str(&format!(" --accuracy-grade {}", v.accuracy_grade));
+        }
+        if v.face_width_mm != d.face_width_mm {
+            iso.push_str(&format!(" --face-width-mm {}", v.face_width_mm));
+        }
         format!(
-            "gearshock frf --params gearshock-params.json --omega-from {} --omega-to {} --points {} --harmonics {} --mesh {frf_mesh}\n\
-             gearshock simulate --params gearshock-params.json --omega {} --mesh {mesh} --transient-periods {} --record-periods {}\n\
+            "gearshock frf --params gearshock-params.json --omega-from {} --omega-to {} --points {} --harmonics {} --mesh {frf_mesh}{iso}\n\
+             gearshock simulate --params gearshock-params.json --omega {} --mesh {mesh} --transient-periods {} --record-periods {}{iso}\n\
              gearshock bifurcation --params gearshock-params.json --omega-from {} --omega-to {} --points {} --direction {} --transient-periods {} --record-periods {} --mesh {} --chains {chains}",
             v.omega_from,
             v.omega_to,

@@ -66,7 +66,16 @@ fn states(meshes: usize) -> FrStore {
 #[test]
 fn the_standards_curve_follows_its_ranges_on_the_gear_pair() {
     let (p, m) = model(&["model=gear-pair"]);
-    let v = DynamicView::new(&p, &m, &ctx(0.1, 2.0, 0.5), 0, None, None).unwrap();
+    let v = DynamicView::new(
+        &p,
+        &m,
+        &ctx(0.1, 2.0, 0.5),
+        0,
+        None,
+        None,
+        &IsoInputs::default(),
+    )
+    .unwrap();
     assert!((v.omega_per_n - 1.0).abs() < 1e-12, "{}", v.omega_per_n);
     let r = &v.rating;
     assert_eq!(r.n_s, 0.85);
@@ -98,7 +107,16 @@ fn the_standards_curve_follows_its_ranges_on_the_gear_pair() {
 fn the_models_curve_comes_from_the_steady_states() {
     let (p, m) = model(&["model=gear-pair"]);
     let s = states(1);
-    let v = DynamicView::new(&p, &m, &ctx(0.1, 2.0, 0.5), 0, Some(&s), None).unwrap();
+    let v = DynamicView::new(
+        &p,
+        &m,
+        &ctx(0.1, 2.0, 0.5),
+        0,
+        Some(&s),
+        None,
+        &IsoInputs::default(),
+    )
+    .unwrap();
     let omegas: Vec<f64> = v.nonlinear.iter().map(|p| p.0).collect();
     assert_eq!(omegas.len(), 4, "{omegas:?}");
     assert!(omegas.windows(2).all(|w| w[0] < w[1]));
@@ -146,7 +164,16 @@ fn the_note_gives_both_factors_and_the_sharing_with_its_phasing() {
         peak_force_n: vec![1.0, 1.2, 1.0, 1.0, 0.8],
         factor: Some(1.2),
     }];
-    let v = DynamicView::new(&p, &m, &ctx(0.1, 2.0, 0.35), 0, None, Some(&r)).unwrap();
+    let v = DynamicView::new(
+        &p,
+        &m,
+        &ctx(0.1, 2.0, 0.35),
+        0,
+        None,
+        Some(&r),
+        &IsoInputs::default(),
+    )
+    .unwrap();
     let note = v.note();
     for words in [
         "At Ω 0.350",
@@ -161,7 +188,16 @@ fn the_note_gives_both_factors_and_the_sharing_with_its_phasing() {
     assert_eq!(dynamic_json(&v)["load_sharing"]["phasing"], "sequential");
     // A state at another Omega is not the selected one's.
     r.omega = 0.5;
-    let v = DynamicView::new(&p, &m, &ctx(0.1, 2.0, 0.35), 0, None, Some(&r)).unwrap();
+    let v = DynamicView::new(
+        &p,
+        &m,
+        &ctx(0.1, 2.0, 0.35),
+        0,
+        None,
+        Some(&r),
+        &IsoInputs::default(),
+    )
+    .unwrap();
     assert!(v.selected.is_none() && v.sharing.is_empty());
     assert!(v.note().contains("computing"), "{}", v.note());
 }
@@ -170,7 +206,16 @@ fn the_note_gives_both_factors_and_the_sharing_with_its_phasing() {
 #[test]
 fn an_unloaded_mesh_gives_the_reason() {
     let (p, m) = model(&["model=gear-pair", "torque_pinion_nm=0"]);
-    let e = DynamicView::new(&p, &m, &ctx(0.1, 2.0, 0.5), 0, None, None).unwrap_err();
+    let e = DynamicView::new(
+        &p,
+        &m,
+        &ctx(0.1, 2.0, 0.5),
+        0,
+        None,
+        None,
+        &IsoInputs::default(),
+    )
+    .unwrap_err();
     assert!(
         e.contains("mesh pg") && e.contains("tangential load"),
         "{e}"
