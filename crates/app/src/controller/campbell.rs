@@ -4,13 +4,14 @@
 
 use super::Controller;
 use figures::views::campbell::{campbell_csv, CampbellCrossing, CampbellView};
+use figures::views::ViewError;
 
 impl Controller {
     /// The Campbell diagram of the current model, from standstill to the
     /// speed of the top of the Omega range, the selected Omega marked; the
     /// model's refusal as its reason.
-    pub fn campbell_view(&self) -> Result<CampbellView, String> {
-        let model = self.model().map_err(ToString::to_string)?;
+    pub fn campbell_view(&self) -> Result<CampbellView, ViewError> {
+        let model = self.model().map_err(|e| ViewError::Solver(e.clone()))?;
         let v = &self.settings.view;
         let mut c = CampbellView::new(model, v.omega_to, v.omega)?;
         c.speed = self.speed_axis();
@@ -31,7 +32,7 @@ impl Controller {
     }
 
     /// The diagram's critical speeds as CSV, or as JSON.
-    pub fn campbell_export(&self, csv: bool) -> Result<String, String> {
+    pub fn campbell_export(&self, csv: bool) -> Result<String, ViewError> {
         let v = self.campbell_view()?;
         if csv {
             return Ok(campbell_csv(&v));

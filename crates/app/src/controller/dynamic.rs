@@ -5,13 +5,14 @@
 use super::Controller;
 use figures::views::dynamic::{dynamic_csv, dynamic_json, DynamicView};
 use figures::views::fr::FrStore;
+use figures::views::ViewError;
 
 impl Controller {
     /// The selected mesh's dynamic factor beside ISO 6336-1's K_v (the
     /// worst mesh: the one the selected state resolved, else the first);
     /// the model's or the standard's refusal as its reason.
-    pub fn dynamic_view(&self) -> Result<DynamicView, String> {
-        let model = self.model().map_err(ToString::to_string)?;
+    pub fn dynamic_view(&self) -> Result<DynamicView, ViewError> {
+        let model = self.model().map_err(|e| ViewError::Solver(e.clone()))?;
         let main = &self.main;
         let mesh = self
             .settings
@@ -54,7 +55,7 @@ impl Controller {
     }
 
     /// The curves as CSV, or the view as JSON.
-    pub fn dynamic_export(&self, csv: bool) -> Result<String, String> {
+    pub fn dynamic_export(&self, csv: bool) -> Result<String, ViewError> {
         let v = self.dynamic_view()?;
         Ok(if csv {
             dynamic_csv(&v)
@@ -89,7 +90,7 @@ mod tests {
             .starts_with("omega,input_speed_rpm,"));
         // Without load the standard cannot rate the mesh: the reason shows.
         let (c, _) = Controller::new("model=gear-pair&torque_pinion_nm=0", 0.0);
-        let e = c.dynamic_view().unwrap_err();
+        let e = c.dynamic_view().unwrap_err().to_string();
         assert!(
             e.contains("mesh pg") && e.contains("tangential load"),
             "{e}"

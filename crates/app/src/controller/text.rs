@@ -140,8 +140,14 @@ impl Controller {
         let st = self.view_status(view);
         let not_computed = |e: &String| format!("Not computed: {e}");
         match view {
-            ViewId::Campbell => self.campbell_view().err().map(|e| not_computed(&e)),
-            ViewId::Dynamic => self.dynamic_view().err().map(|e| not_computed(&e)),
+            ViewId::Campbell => self
+                .campbell_view()
+                .err()
+                .map(|e| not_computed(&e.to_string())),
+            ViewId::Dynamic => self
+                .dynamic_view()
+                .err()
+                .map(|e| not_computed(&e.to_string())),
             ViewId::Fr => {
                 let e = st.error.as_ref()?;
                 let v = self.fr_view();

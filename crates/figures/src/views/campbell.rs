@@ -76,9 +76,13 @@ impl CampbellView {
     /// The diagram of `model` from standstill to the speed of `omega_max`,
     /// with `selected_omega` marked; a model the modal analysis refuses is
     /// the solver's reason.
-    pub fn new(model: &Model, omega_max: f64, selected_omega: f64) -> Result<Self, String> {
+    pub fn new(
+        model: &Model,
+        omega_max: f64,
+        selected_omega: f64,
+    ) -> Result<Self, super::ViewError> {
         let rpm_max = rpm_at(model, omega_max);
-        let c = Campbell::new(model, 0.0, rpm_max, ORDERS).map_err(|e| e.to_string())?;
+        let c = Campbell::new(model, 0.0, rpm_max, ORDERS)?;
         // Up to the highest mode an order can reach, so that the crossings
         // spread over the plot; the order lines are cut where they leave it.
         let reach = f64::from(ORDERS) * c.mesh_hz_per_rpm * rpm_max;

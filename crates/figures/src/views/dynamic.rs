@@ -111,17 +111,20 @@ impl DynamicView {
         states: Option<&FrStore>,
         omega: Option<&OmegaResult>,
         inputs: &IsoInputs,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, super::ViewError> {
         let inputs = *inputs;
         let name = model
             .system
             .meshes
             .get(mesh)
             .map(|m| m.name.clone())
-            .ok_or_else(|| format!("the model has no mesh {mesh}"))?;
+            .ok_or(super::ViewError::NoMesh(mesh))?;
         let iso = iso_mesh(params, model, mesh)
-            .ok_or_else(|| format!("mesh {name} has no geometry for ISO 6336-1"))?;
-        let rating = MeshRating::new(&iso, &inputs).map_err(|e| format!("mesh {name}: {e}"))?;
+            .ok_or_else(|| super::ViewError::NoIsoGeometry(name.clone()))?;
+        let rating = MeshRating::new(&iso, &inputs).map_err(|source| super::ViewError::Rating {
+            mesh: name.clone(),
+            source,
+        })?;
         let hz_per_omega = model.system.mesh_freq_hz(1.0);
         let omega_per_n = rating.resonance_mesh_freq_hz / hz_per_omega;
         let (from, to) = (ctx.omega_from, ctx.omega_to);

@@ -107,3 +107,27 @@ pub fn distinct(backlash_um: &[f64], mesh: Option<usize>) -> Vec<f64> {
     out.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
     out
 }
+
+/// Why a view computed on the page's side (the Campbell diagram, the
+/// dynamic factor) cannot be drawn: the page writes it after "not
+/// computed:".
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ViewError {
+    /// The model cannot be built, or its modal analysis failed.
+    #[error(transparent)]
+    Solver(#[from] solver::SolverError),
+    /// A mesh index past the model's meshes.
+    #[error("the model has no mesh {0}")]
+    NoMesh(usize),
+    /// A mesh the standard has no geometry for.
+    #[error("mesh {0} has no geometry for ISO 6336-1")]
+    NoIsoGeometry(String),
+    /// The standard refuses to rate the mesh (a mesh without load).
+    #[error("mesh {mesh}: {source}")]
+    Rating {
+        /// The mesh's name.
+        mesh: String,
+        /// The standard's reason.
+        source: solver::SolverError,
+    },
+}

@@ -58,10 +58,10 @@ pub enum ExportError {
     NoCliFormat,
     /// The model's natural frequencies cannot be computed.
     #[error("the natural frequencies cannot be computed: {0}")]
-    Modes(String),
+    Modes(figures::views::ViewError),
     /// The standard cannot rate the mesh (or the model cannot be built).
     #[error("the dynamic factor cannot be computed: {0}")]
-    Rating(String),
+    Rating(figures::views::ViewError),
     /// The data could not be written as JSON.
     #[error("cannot write the JSON: {0}")]
     Json(String),

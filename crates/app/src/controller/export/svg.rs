@@ -91,11 +91,11 @@ impl Controller {
         let mut d = Drawn::default();
         match view {
             ViewId::Campbell => {
-                let c = self.campbell_view().map_err(plots::DrawError)?;
+                let c = self.campbell_view().map_err(plots::err)?;
                 d.frame = Some(plots::campbell::draw_campbell(root, &c, status)?);
             }
             ViewId::Dynamic => {
-                let v = self.dynamic_view().map_err(plots::DrawError)?;
+                let v = self.dynamic_view().map_err(plots::err)?;
                 d.frame = Some(plots::dynamic::draw_dynamic(
                     root,
                     &v,

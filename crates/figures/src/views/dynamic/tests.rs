@@ -215,7 +215,8 @@ fn an_unloaded_mesh_gives_the_reason() {
         None,
         &IsoInputs::default(),
     )
-    .unwrap_err();
+    .unwrap_err()
+    .to_string();
     assert!(
         e.contains("mesh pg") && e.contains("tangential load"),
         "{e}"
