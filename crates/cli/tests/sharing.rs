@@ -122,7 +122,7 @@ fn simulate_prints_the_mesh_force_by_order() {
     for p in peaks {
         let k = (f(&p["order"]) * 20.0).round() as usize;
         assert_eq!(f(&p["amplitude_n"]), amp[k]);
-        assert_eq!(p["whole"], k % 20 == 0);
+        assert_eq!(p["whole"], k.is_multiple_of(20));
     }
     let sum = &fo["planet_sum"];
     assert_eq!(sum["kind"], "s1a");

@@ -16,18 +16,19 @@
 //! sidebands), anything else its decimal ("0.37×", a component of motion
 //! that does not repeat within the record).
 //!
-//! Phasing. With sequential phasing planet `n` (position `psi_n = 2 pi (n -
-//! 1) / N`) has mesh phase `gamma_n = z psi_n` on a kind whose central
-//! member has `z` teeth (`crate::system`; `-z_r` for the ring). If every
-//! planet's force is the first planet's shifted by its phase, `F_n(t) =
-//! F_1(t + gamma_n / omega)`, harmonic `k` of the sum over the planets is
-//! harmonic `k` of one planet times `sum_n exp(i k gamma_n) = sum_n exp(2
-//! pi i k z (n - 1) / N)`, a geometric sum: `N` when `k z / N` is a whole
-//! number and 0 otherwise. That is the classic rule (Parker & Lin 2004),
-//! here for every kind with its own `z`; [`MeshSystem::phasing_factors`]
-//! gives `|sum| / N`. The shift holds exactly when one relabelling of the
-//! planets moves every kind's phases by the same angle (`z_s1`, `z_s2` and
-//! `-z_r` equal modulo `N`) and the steady state is the symmetric one.
+//! Phasing. With sequential phasing planet `n` (position
+//! `psi_n = 2 pi (n - 1) / N`) has mesh phase `gamma_n = z psi_n` on a
+//! kind whose central member has `z` teeth (`crate::system`; `-z_r` for
+//! the ring). If every planet's force is the first planet's shifted by its
+//! phase, `F_n(t) = F_1(t + gamma_n / omega)`, harmonic `k` of the sum
+//! over the planets is harmonic `k` of one planet times
+//! `sum_n exp(i k gamma_n) = sum_n exp(2 pi i k z (n - 1) / N)`, a
+//! geometric sum: `N` when `k z / N` is a whole number and 0 otherwise.
+//! That is the classic rule (Parker & Lin 2004), here for every kind with
+//! its own `z`; [`MeshSystem::phasing_factors`] gives `|sum| / N`. The
+//! shift holds exactly when one relabelling of the planets moves every
+//! kind's phases by the same angle (`z_s1`, `z_s2` and `-z_r` equal modulo
+//! `N`) and the steady state is the symmetric one.
 
 use crate::params::MeshKind;
 use crate::steady::{spectrum, SteadyState};

@@ -753,6 +753,7 @@ mod boundaries;
 pub(crate) mod campbell;
 mod dynamic;
 mod export;
+mod orders;
 mod speed;
 mod text;
 pub use export::{ExportError, Format};

@@ -17,6 +17,7 @@ pub mod map;
 pub mod multiples;
 pub mod omega;
 pub mod orbits;
+pub mod orders;
 mod table;
 #[cfg(any(test, feature = "test-support"))]
 pub mod test_support;
