@@ -236,6 +236,11 @@ impl Page {
             "load_sharing": v.sharing.iter().map(|k| serde_json::json!({
                 "kind": k.kind,
                 "factor": k.factor,
+                "peak_force_n": k.peak_force_n,
+            })).collect::<Vec<_>>(),
+            "sharing_over_speed": v.sharing_over_speed.iter().map(|s| serde_json::json!({
+                "omega": s.omega,
+                "worst": s.worst(),
             })).collect::<Vec<_>>(),
             "points": v.nonlinear.len(),
             "note": v.note(),

@@ -2,8 +2,8 @@
 //! the mesh orders as lines through the origin, the critical speeds where
 //! they cross (filled where the meshes excite them, hollow and grey where
 //! the planets' phasing cancels them), and the selected speed as a vertical
-//! line; with sequential phasing the planet-pass orders dashed, their
-//! crossings as triangles. Its frequency axis is the view model's, so every
+//! line; with sequential phasing the planet-pass orders as thin brown
+//! lines, their crossings as triangles. Its frequency axis is the view model's, so every
 //! order line ends inside the plot; the key is under the chart.
 
 use super::*;
@@ -70,7 +70,7 @@ pub fn draw_campbell<DB: DrawingBackend>(
         .collect();
     if let Some(pp) = &view.planet_pass {
         items.push((
-            KeyIcon::Line(PASS, true),
+            KeyIcon::Line(PASS, false),
             format!(
                 "planet-pass orders 1 to {ORDERS} ({} planets × carrier speed; not excited by the model)",
                 pp.planets
@@ -159,12 +159,10 @@ pub fn draw_campbell<DB: DrawingBackend>(
                 (y.1 / slope, y.1)
             };
             chart
-                .draw_series(DashedLineSeries::new(
-                    [(0.0, 0.0), end],
-                    6,
-                    4,
-                    ShapeStyle::from(&PASS).stroke_width(1),
-                ))
+                .draw_series(std::iter::once(PathElement::new(
+                    vec![(0.0, 0.0), end],
+                    ShapeStyle::from(&PASS.mix(0.8)).stroke_width(1),
+                )))
                 .map_err(err)?;
         }
         chart

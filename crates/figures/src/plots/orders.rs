@@ -46,14 +46,16 @@ pub fn draw_orders<DB: DrawingBackend>(
         view.omega,
         crate::speed::grouped(view.rpm)
     );
-    let mut chart = chart_layout(&area, &caption)?
-        .build_cartesian_2d(0.0..omax * 1.02, 0.0..top)
-        .map_err(err)?;
-    let axes = Axes::new(
-        "order of the mesh frequency (1× = mesh frequency)",
-        "force amplitude (N)",
-    );
-    draw_axes(&mut chart, &axes)?;
+    // Linear in N, the ticks grouped like the other force figures
+    // ("3 500"), the label area as wide as they need.
+    let axes = Axes {
+        y_format: Some(|v: &f64| crate::speed::grouped(*v)),
+        ..Axes::new(
+            "order of the mesh frequency (1× = mesh frequency)",
+            "force amplitude (N)",
+        )
+    };
+    let mut chart = linear_chart(&area, &caption, ((0.0, omax * 1.02), (0.0, top)), &axes)?;
     let stems = |lines: &[(f64, f64)], color: RGBColor, width: u32| {
         let style = ShapeStyle::from(&color).stroke_width(width);
         lines
