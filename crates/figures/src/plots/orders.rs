@@ -12,6 +12,9 @@ pub const MESH_COLOR: RGBColor = RGBColor(31, 119, 180);
 /// The planets' sum per planet.
 pub const SUM_COLOR: RGBColor = RGBColor(230, 120, 0);
 
+/// The least distance (pixels) between two peak labels.
+const LABEL_PX: i32 = 34;
+
 /// Draws `view` on `root` with `status` after the caption.
 pub fn draw_orders<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
@@ -64,17 +67,32 @@ pub fn draw_orders<DB: DrawingBackend>(
             .map(move |&(o, a)| PathElement::new(vec![(o, 0.0), (o, a)], style))
             .collect::<Vec<_>>()
     };
-    chart
-        .draw_series(stems(&view.lines, MESH_COLOR, 5))
-        .map_err(err)?;
-    if let Some(s) = &view.sum {
-        chart
-            .draw_series(stems(&s.lines, SUM_COLOR, 2))
-            .map_err(err)?;
+    // A stem per pixel column, the tallest (8 000 lines over 1 000
+    // recorded periods would otherwise be drawn one on another).
+    let column = |o: f64| chart.backend_coord(&(o, 0.0)).0;
+    let own = decimate::tallest_per_column(&view.lines, column);
+    let sum = view
+        .sum
+        .as_ref()
+        .map(|s| decimate::tallest_per_column(&s.lines, column));
+    // Labels from the largest peak down, none within a label's width of
+    // a larger one's (a motion that does not repeat has many close lines).
+    let mut by_size: Vec<&crate::protocol::OrderPeak> = view.peaks.iter().collect();
+    by_size.sort_by(|a, b| b.amplitude_n.total_cmp(&a.amplitude_n));
+    let mut kept: Vec<(i32, &crate::protocol::OrderPeak)> = Vec::new();
+    for p in by_size {
+        let x = column(p.order);
+        if kept.iter().all(|(k, _)| (k - x).abs() >= LABEL_PX) {
+            kept.push((x, p));
+        }
+    }
+    chart.draw_series(stems(&own, MESH_COLOR, 5)).map_err(err)?;
+    if let Some(sum) = &sum {
+        chart.draw_series(stems(sum, SUM_COLOR, 2)).map_err(err)?;
     }
     let font = small();
     chart
-        .draw_series(view.peaks.iter().map(|p| {
+        .draw_series(kept.iter().map(|(_, p)| {
             Text::new(
                 p.label.clone(),
                 (p.order, p.amplitude_n + top * 0.02),
@@ -138,5 +156,41 @@ mod tests {
         ] {
             assert!(s.contains(words), "no {words}");
         }
+    }
+
+    /// Of two peaks closer than a label's width, only the larger is named.
+    #[test]
+    fn close_peaks_keep_the_larger_label() {
+        let mut r = crate::views::test_support::omega_result();
+        let peak = |order: f64, label: &str, amplitude_n: f64| OrderPeak {
+            order,
+            label: label.into(),
+            whole: false,
+            amplitude_n,
+        };
+        r.force_orders = Some(ForceByOrder {
+            record_periods: 20,
+            order: (0..=40).map(|k| f64::from(k) / 20.0).collect(),
+            amplitude_n: (0..=40)
+                .map(|k| match k {
+                    20 => 3000.0,
+                    21 => 900.0,
+                    _ => 0.0,
+                })
+                .collect(),
+            peaks: vec![peak(1.0, "1×", 3000.0), peak(1.05, "1.05×", 900.0)],
+            sum: None,
+        });
+        let p = crate::link::decode("").settings.params;
+        let v = OrdersView::new(&r, &p, 5000.0).unwrap();
+        let mut s = String::new();
+        {
+            let root = SVGBackend::with_string(&mut s, (WIDTH, HEIGHT)).into_drawing_area();
+            draw_orders(&root, &v, "").unwrap();
+        }
+        assert!(
+            s.lines().any(|l| l.trim() == "1×") && !s.contains("1.05×"),
+            "{s}"
+        );
     }
 }
