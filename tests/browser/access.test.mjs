@@ -154,7 +154,7 @@ test('every export button of every view gives its file', async () => {
   await waitStatus(page, allDone, 120000, 'all jobs');
   const bars = await page.$$eval('[id^="exports-"]', (xs) => xs.map((x) => x.id));
   // Every view but the gear set's animation.
-  assert.equal(bars.length, 10, bars.join());
+  assert.equal(bars.length, 11, bars.join());
   // Each file the page offers is recorded as it is offered (the anchor with
   // a download name it clicks), and read back from its object URL. Chromium
   // may hold back a download that arrives without a fresh user gesture (a
@@ -218,8 +218,9 @@ test('every export button of every view gives its file', async () => {
       n++;
     }
   }
-  // Four per view, and the command-line JSON of the sweep and of the four views of the motion.
-  assert.equal(n, 10 * 4 + 5, `${n} exports`);
+  // Four per view, and the command-line JSON of the sweep and of the five
+  // views of the motion (the four and the mesh force by order).
+  assert.equal(n, 11 * 4 + 6, `${n} exports`);
   assert.deepEqual(errors, []);
   await page.close();
 });

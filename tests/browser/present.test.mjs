@@ -73,9 +73,13 @@ test('a link opens a view on the whole projector screen, drawn for it, and the k
   await page.keyboard.press('ArrowRight');
   s = await waitStatus(page, (x) => x.omega > omega, 60000, 'a higher Ω');
   await waitText(page, '#present-omega', new RegExp(`^Ω = ${s.omega.toFixed(3)}$`));
-  // p twice: back past the first view to the last (the dynamic
-  // factor), then to the Campbell diagram and the spectrum.
+  // p twice: back past the first view to the last (the mesh force by
+  // order), then to the dynamic factor, the Campbell diagram and the
+  // spectrum.
   await page.keyboard.press('p');
+  await page.keyboard.press('p');
+  await waitStatus(page, (x) => x.present.shown === 'orders', 60000, 'the mesh force by order presented');
+  await waitText(page, '#present-title', /^12\. Mesh force by order$/);
   await page.keyboard.press('p');
   await waitStatus(page, (x) => x.present.shown === 'dynamic', 60000, 'the dynamic factor presented');
   await waitText(page, '#present-title', /^11\. Dynamic factor$/);

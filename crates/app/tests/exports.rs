@@ -101,7 +101,8 @@ fn files(c: &mut Controller, cores: &mut [WorkerCore]) -> Vec<(String, String)> 
     };
     // The order the snapshot was written in: the sweeps, the map and the
     // Lyapunov curve, then the selected-Omega views, then the Campbell
-    // diagram's critical speeds, then the dynamic factor.
+    // diagram's critical speeds, then the dynamic factor, then the mesh
+    // force by order.
     let order = [ViewId::Fr, ViewId::Bif, ViewId::Map, ViewId::Lyap]
         .into_iter()
         .chain([
@@ -111,6 +112,7 @@ fn files(c: &mut Controller, cores: &mut [WorkerCore]) -> Vec<(String, String)> 
             ViewId::Spectrum,
             ViewId::Campbell,
             ViewId::Dynamic,
+            ViewId::Orders,
         ]);
     assert_eq!(order.clone().count(), VIEWS.len());
     for view in order {

@@ -15,7 +15,7 @@ use clap::{Arg, ArgAction, Command, CommandFactory};
 const OVERVIEW: &str = include_str!("../reference/overview.md");
 
 /// Each subcommand's worked examples and output, by name.
-const NOTES: [(&str, &str); 16] = [
+const NOTES: [(&str, &str); 17] = [
     ("params", include_str!("../reference/params.md")),
     ("keys", include_str!("../reference/keys.md")),
     ("modes", include_str!("../reference/modes.md")),
@@ -25,6 +25,7 @@ const NOTES: [(&str, &str); 16] = [
     ("map", include_str!("../reference/map.md")),
     ("boundaries", include_str!("../reference/boundaries.md")),
     ("campbell", include_str!("../reference/campbell.md")),
+    ("sharing", include_str!("../reference/sharing.md")),
     ("lyapunov", include_str!("../reference/lyapunov.md")),
     ("instability", include_str!("../reference/instability.md")),
     ("merge", include_str!("../reference/merge.md")),

@@ -89,7 +89,7 @@ fn crossings_are_the_models_natural_frequencies_over_their_orders() {
 
 /// The CSV holds the same rows as the JSON: in-phase planets' crossings
 /// with planet modes among them, marked not excited, the rotational ones
-/// excited.
+/// excited; each row says its line (a mesh order here).
 #[test]
 fn the_csv_holds_every_crossing() {
     let c = json(&["campbell", "--rpm-to", "6000", "--orders", "6"]);
@@ -103,12 +103,12 @@ fn the_csv_holds_every_crossing() {
     assert_eq!(rows.len() - 1, c["crossings"].as_array().unwrap().len());
     assert!(
         rows.iter()
-            .any(|r| r.contains(",planet,") && r.ends_with(",false")),
+            .any(|r| r.contains(",planet,") && r.ends_with(",false,mesh order")),
         "{text}"
     );
     assert!(
         rows.iter()
-            .all(|r| !(r.contains(",rotational,") && r.ends_with(",false"))),
+            .all(|r| !(r.contains(",rotational,") && r.ends_with(",false,mesh order"))),
         "{text}"
     );
 }
@@ -216,4 +216,61 @@ fn a_range_given_both_ways_or_below_zero_rpm_is_refused() {
         assert!(err.contains(says), "{args:?}: {err}");
         assert!(out.stdout.is_empty(), "{args:?}");
     }
+}
+
+/// With five sequential planets the planet-pass orders join the mesh
+/// orders: order m crosses mode f_n at 60 f_n / (m N |n_c / n_s1|) rpm,
+/// the carrier turning z_s1 / (z_s1 - z_r) = 36 / (36 - 84) times the
+/// small sun, so m N 3/4 / 60 Hz per rpm; in phase there are none.
+#[test]
+fn sequential_planets_add_the_planet_pass_orders() {
+    let c = json(&[
+        "campbell",
+        "--set",
+        "planets=5",
+        "--set",
+        "phasing=sequential",
+        "--rpm-to",
+        "200000",
+    ]);
+    let pp = &c["planet_pass"];
+    let per_rpm = 5.0 * 0.75 / 60.0;
+    assert!((pp["hz_per_rpm"].as_f64().unwrap() - per_rpm).abs() <= 1e-15);
+    let crossings = pp["crossings"].as_array().unwrap();
+    assert!(!crossings.is_empty());
+    for x in crossings {
+        let f_n = x["mode_frequency_hz"].as_f64().unwrap();
+        let m = x["order"].as_f64().unwrap();
+        let rpm = f_n / (m * per_rpm);
+        assert!(
+            (x["rpm"].as_f64().unwrap() - rpm).abs() <= 1e-9 * rpm,
+            "{x}"
+        );
+        assert!((x["mesh_order"].as_f64().unwrap() - m * 5.0 / 84.0).abs() <= 1e-12);
+    }
+    let csv = String::from_utf8(test_support::cli::ok(&[
+        "campbell",
+        "--set",
+        "planets=5",
+        "--set",
+        "phasing=sequential",
+        "--rpm-to",
+        "200000",
+        "--format",
+        "csv",
+    ]))
+    .unwrap();
+    let passes = csv
+        .lines()
+        .filter(|l| l.ends_with(",planet-pass order"))
+        .count();
+    assert_eq!(passes, crossings.len(), "{csv}");
+    let c = json(&[
+        "campbell",
+        "--set",
+        "planets=5",
+        "--set",
+        "phasing=in-phase",
+    ]);
+    assert!(c["planet_pass"].is_null());
 }

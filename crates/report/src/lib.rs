@@ -14,9 +14,11 @@
 mod boundaries;
 mod iso;
 mod orbits;
+mod orders;
 pub use boundaries::boundaries_json;
 pub use iso::{add_branch_iso6336, add_iso6336, iso_inputs_json};
 pub use orbits::shooting_frf_json;
+pub use orders::force_orders_json;
 
 use serde_json::{json, Map, Value};
 use solver::error::SolverError;
@@ -213,6 +215,7 @@ pub fn simulate_json(model: &Model, ss: &SteadyState, mesh: usize, max_order: f6
         })),
         "all_meshes": Value::Object(all),
         "load_sharing": load_sharing_json(sys, &ss.meshes),
+        "force_by_order": force_orders_json(model, ss, mesh, max_order),
         "warnings": sys.warnings,
         "stats": stats_json(&ss.stats),
     })

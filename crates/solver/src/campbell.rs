@@ -26,6 +26,16 @@
 //! phase pattern's, not a predicted amplitude: the seed's stiffness and TE
 //! are single harmonics, so orders above 1 are reached only through the
 //! backlash and the stiffness's products (superharmonic resonances).
+//!
+//! Planet-pass orders ([`Campbell::with_planet_pass`]): the planets pass a
+//! point of the held ring `N |n_c|` times a second, `N |n_c / n_in|` per
+//! unit input speed (the carrier's speed per input speed,
+//! [`crate::rpm::SpeedInfo::carrier_per_input`]); planet-pass order `m`
+//! crosses a natural frequency at `rpm = 60 f_n / (m N |n_c / n_in|)`, mesh
+//! order `m N / z_r`. The model has no carrier or planet position errors,
+//! and every excitation repeats with the mesh period, so nothing in it
+//! excites these lines below the mesh orders: they mark where a real
+//! gearbox's planet-pass excitation would meet a mode.
 
 use crate::error::{Result, SolverError};
 use crate::modal::ModeKind;
@@ -83,6 +93,36 @@ pub struct Campbell {
     pub modes: Vec<ModeLine>,
     /// The crossings inside the range, ascending in speed.
     pub crossings: Vec<Crossing>,
+    /// The planet-pass orders, where asked for ([`Campbell::with_planet_pass`]).
+    pub planet_pass: Option<PlanetPass>,
+}
+
+/// The planet-pass orders of a diagram (see the module's doc).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlanetPass {
+    /// Planets N.
+    pub planets: u32,
+    /// Planet-pass frequency (order 1) per input rpm (Hz / rpm).
+    pub hz_per_rpm: f64,
+    /// Orders drawn, 1 ..= this.
+    pub orders: u32,
+    /// The crossings inside the diagram's range, ascending in speed.
+    pub crossings: Vec<PassCrossing>,
+}
+
+/// Planet-pass order `order` crossing mode line `mode`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PassCrossing {
+    /// Index into [`Campbell::modes`].
+    pub mode: usize,
+    /// The planet-pass order.
+    pub order: u32,
+    /// Input member speed (rpm).
+    pub rpm: f64,
+    /// Omega at that speed.
+    pub omega: f64,
+    /// The same frequency in mesh orders.
+    pub mesh_order: f64,
 }
 
 impl Campbell {
@@ -123,7 +163,63 @@ impl Campbell {
             orders,
             modes,
             crossings,
+            planet_pass: None,
         })
+    }
+
+    /// The diagram with the planet-pass orders `1 ..= orders` of `planets`
+    /// planets on a carrier turning `carrier_per_input` times the input
+    /// member ([`crate::rpm::SpeedInfo::carrier_per_input`]), and their
+    /// crossings in the diagram's range. Refused for a carrier that does not
+    /// turn (the gear pair) or an order count outside `1 ..= MAX_ORDER`.
+    pub fn with_planet_pass(
+        mut self,
+        planets: u32,
+        carrier_per_input: f64,
+        orders: u32,
+    ) -> Result<Self> {
+        let hz_per_rpm = f64::from(planets) * carrier_per_input.abs() / 60.0;
+        if !(hz_per_rpm > 0.0 && hz_per_rpm.is_finite()) {
+            return Err(SolverError::OutOfRange {
+                key: "planets".into(),
+                value: format!(
+                    "{planets} on a carrier at {carrier_per_input} times the input speed"
+                ),
+                allowed: "at least one planet on a turning carrier".into(),
+            });
+        }
+        if !(1..=MAX_ORDER).contains(&orders) {
+            return Err(SolverError::OutOfRange {
+                key: "planet_pass_orders".into(),
+                value: orders.to_string(),
+                allowed: format!("1 ..= {MAX_ORDER}"),
+            });
+        }
+        let (from, to) = self.rpm_range;
+        let mut crossings = Vec::new();
+        for (i, line) in self.modes.iter().enumerate() {
+            for order in 1..=orders {
+                let rpm = line.frequency_hz / (f64::from(order) * hz_per_rpm);
+                if rpm >= from && rpm <= to {
+                    let mesh_order = f64::from(order) * hz_per_rpm / self.mesh_hz_per_rpm;
+                    crossings.push(PassCrossing {
+                        mode: i,
+                        order,
+                        rpm,
+                        omega: line.omega / mesh_order,
+                        mesh_order,
+                    });
+                }
+            }
+        }
+        crossings.sort_by(|a, b| a.rpm.total_cmp(&b.rpm));
+        self.planet_pass = Some(PlanetPass {
+            planets,
+            hz_per_rpm,
+            orders,
+            crossings,
+        });
+        Ok(self)
     }
 }
 
@@ -301,6 +397,49 @@ mod tests {
             .filter(|l| l.kind == ModeKind::Planet)
             .any(|l| l.participation[..4].iter().any(|p| *p > 1e-6));
         assert!(planet_excited, "{:?}", c.modes);
+    }
+
+    /// Planet-pass order m of N planets crosses a mode where m N n_c / 60
+    /// equals f_n, the carrier turning z_s1 / (z_s1 - z_r) times the small
+    /// sun (36 / (36 - 84) = -3/4 on the defaults, with the ring held); in
+    /// mesh orders that is m N / z_r.
+    #[test]
+    fn planet_pass_crossings_are_natural_frequencies_over_their_orders() {
+        let m = model(&["planets=5", "phasing=sequential"]);
+        let carrier = 36.0 / (36.0 - 84.0);
+        assert!((m.system.speed.carrier_per_input() - carrier).abs() <= 1e-15);
+        let c = Campbell::new(&m, 0.0, 1e6, 4)
+            .unwrap()
+            .with_planet_pass(5, carrier, 6)
+            .unwrap();
+        let pass = c.planet_pass.as_ref().unwrap();
+        assert!(!pass.crossings.is_empty());
+        for x in &pass.crossings {
+            let f_n = c.modes[x.mode].frequency_hz;
+            let rpm = 60.0 * f_n / (f64::from(x.order) * 5.0 * carrier.abs());
+            assert!((x.rpm - rpm).abs() <= 1e-9 * rpm, "{x:?}");
+            let mesh_order = f64::from(x.order) * 5.0 / 84.0;
+            assert!((x.mesh_order - mesh_order).abs() <= 1e-12, "{x:?}");
+            assert!(
+                (omega_at(&m, x.rpm) - x.omega).abs() <= 1e-9 * x.omega,
+                "{x:?}"
+            );
+        }
+        // Every line below 1e6 rpm: the first mode crosses order 1 at
+        // 60 f_1 / (5 * 3/4) rpm.
+        let first = 60.0 * c.modes[0].frequency_hz / (5.0 * 0.75);
+        assert_eq!(
+            first < 1e6,
+            pass.crossings.iter().any(|x| x.mode == 0 && x.order == 1)
+        );
+        assert!(Campbell::new(&m, 0.0, 1e6, 4)
+            .unwrap()
+            .with_planet_pass(5, 0.0, 4)
+            .is_err());
+        assert!(Campbell::new(&m, 0.0, 1e6, 4)
+            .unwrap()
+            .with_planet_pass(5, carrier, 0)
+            .is_err());
     }
 
     #[test]

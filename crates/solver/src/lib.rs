@@ -47,6 +47,7 @@ pub mod modal;
 pub mod model;
 pub mod ode;
 pub mod orbits;
+pub mod orders;
 pub mod parametric;
 pub mod params;
 pub mod rpm;

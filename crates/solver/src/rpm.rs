@@ -21,6 +21,12 @@ impl SpeedInfo {
         f64::from(self.input_teeth) * self.relative_per_input.abs() / 60.0
     }
 
+    /// The carrier's speed per unit input speed, `n_c / n_in` (0 for the
+    /// gear pair, whose "carrier" is the frame).
+    pub fn carrier_per_input(&self) -> f64 {
+        1.0 - self.relative_per_input
+    }
+
     /// Input shaft speed (rpm) that gives mesh frequency `mesh_freq_hz`.
     pub fn input_speed_rpm(&self, mesh_freq_hz: f64) -> f64 {
         mesh_freq_hz / self.mesh_hz_per_rpm()

@@ -28,15 +28,28 @@ pub struct KindSharing {
 /// The sharing of every mesh kind with more than one planet mesh, in the
 /// order of [`MeshKind::COMPOUND`]; empty for the gear pair.
 pub fn load_sharing(sys: &MeshSystem, meshes: &[MeshSteady]) -> Vec<KindSharing> {
+    let peaks: Vec<f64> = meshes.iter().map(|m| m.force_max_n).collect();
+    sharing_of_peaks(sys, &peaks)
+}
+
+/// The sharing of every mesh kind with more than one planet mesh, from
+/// each mesh's largest force `peak_force_n` (N, in the system's mesh
+/// order; a sweep's point gives it as its dynamic factor times the static
+/// force), in the order of [`MeshKind::COMPOUND`]; empty for the gear pair
+/// or when a mesh's force is missing.
+pub fn sharing_of_peaks(sys: &MeshSystem, peak_force_n: &[f64]) -> Vec<KindSharing> {
+    if peak_force_n.len() != sys.meshes.len() {
+        return Vec::new();
+    }
     MeshKind::COMPOUND
         .iter()
         .filter_map(|&kind| {
             let mut by_planet: Vec<(usize, f64)> = sys
                 .meshes
                 .iter()
-                .zip(meshes)
+                .zip(peak_force_n)
                 .filter(|(m, _)| m.kind == kind)
-                .map(|(m, s)| (m.planet, s.force_max_n))
+                .map(|(m, f)| (m.planet, *f))
                 .collect();
             if by_planet.len() < 2 {
                 return None;

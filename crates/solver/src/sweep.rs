@@ -220,6 +220,8 @@ pub struct PointMesh {
     pub impact: Impact,
     /// max F / F_static.
     pub dynamic_factor: Option<f64>,
+    /// The largest mesh force over the recorded periods (N).
+    pub force_max_n: f64,
 }
 
 /// One computed point of a sweep.
@@ -432,6 +434,7 @@ impl BifurcationSweep {
                                 rel_max_m: m.rel_max_m,
                                 impact: m.impact,
                                 dynamic_factor: m.dynamic_factor,
+                                force_max_n: m.force_max_n,
                             }
                         })
                         .collect(),

@@ -13,7 +13,8 @@ impl Controller {
     pub fn campbell_view(&self) -> Result<CampbellView, ViewError> {
         let model = self.model().map_err(|e| ViewError::Solver(e.clone()))?;
         let v = &self.settings.view;
-        let mut c = CampbellView::new(model, v.omega_to, v.omega)?;
+        let mut c = CampbellView::new(model, v.omega_to, v.omega)?
+            .with_planet_pass(model, &self.settings.params)?;
         c.speed = self.speed_axis();
         Ok(c)
     }
@@ -43,6 +44,17 @@ impl Controller {
             "mesh_hz_per_rpm": v.mesh_hz_per_rpm,
             "natural_frequencies_hz": v.modes.iter().map(|m| m.frequency_hz).collect::<Vec<f64>>(),
             "crossings": crossings,
+            "planet_pass": v.planet_pass.as_ref().map(|p| serde_json::json!({
+                "planets": p.planets,
+                "hz_per_rpm": p.hz_per_rpm,
+                "crossings": p.crossings.iter().map(|c| serde_json::json!({
+                    "order": c.order,
+                    "mode": c.rank + 1,
+                    "natural_frequency_hz": c.frequency_hz,
+                    "rpm": c.rpm,
+                    "omega": c.omega,
+                })).collect::<Vec<_>>(),
+            })),
         })
         .to_string())
     }

@@ -757,6 +757,7 @@ pub(crate) mod campbell;
 mod dynamic;
 mod error;
 mod export;
+mod orders;
 mod speed;
 mod text;
 pub use export::{ExportError, Format};

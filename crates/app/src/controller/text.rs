@@ -29,6 +29,7 @@ impl Controller {
         }
         match view {
             ViewId::Dynamic => self.dynamic_label(),
+            ViewId::Orders => self.orders_label(),
             ViewId::Fr if self.panels.is_some() => labels::fr_panels_label(&self.fr_panels()),
             ViewId::Fr => labels::fr_label(&self.fr_view()),
             ViewId::Bif => labels::bif_label(&self.bif_view()),
@@ -175,7 +176,7 @@ impl Controller {
                 .as_ref()
                 .filter(|_| self.main.lyap.points.is_empty())
                 .map(not_computed),
-            ViewId::Phase | ViewId::Poincare | ViewId::Time | ViewId::Spectrum => {
+            ViewId::Phase | ViewId::Poincare | ViewId::Time | ViewId::Spectrum | ViewId::Orders => {
                 match (&self.main.omega, &st.error) {
                     (_, Some(e)) => Some(not_computed(e)),
                     (None, None) => Some(figures::views::omega::computing_message(

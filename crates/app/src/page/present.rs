@@ -397,13 +397,13 @@ mod tests {
         assert_eq!(p.present_key(), Some("map"));
         p.present_keydown("ArrowUp", false);
         p.present_keydown("PageUp", false);
-        // Wraps round to the page's last view (the dynamic factor).
+        // Wraps round to the page's last view (the mesh force by order).
         assert_eq!(
             p.present_key(),
             PAGE.last().map(|part| part.key),
             "wraps round"
         );
-        assert_eq!(p.present_key(), Some("dynamic"));
+        assert_eq!(p.present_key(), Some("orders"));
         p.present_keydown("PageDown", false);
         assert_eq!(p.present_key(), Some("fr"));
         // The left and right arrows step Ω, as on the page's plots.

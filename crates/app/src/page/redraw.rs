@@ -216,9 +216,9 @@ mod tests {
         let third = plan(&mut r, 300.0, 3.0, |_| None);
         assert_eq!(third, vec![ViewId::Lyap, ViewId::Map, ViewId::Campbell]);
         let fourth = plan(&mut r, 400.0, 3.0, |_| None);
-        assert_eq!(fourth, vec![ViewId::Dynamic]);
+        assert_eq!(fourth, vec![ViewId::Dynamic, ViewId::Orders]);
         assert!(!r.pending());
-        assert_eq!(r.draws, [1; 10]);
+        assert_eq!(r.draws, [1; 11]);
         assert_eq!(r.first_draw_ms[ViewId::Fr.slot()], 103.0);
         assert_eq!(r.max_draw_ms[ViewId::Map.slot()], 3.0);
         // Nothing marked: nothing drawn.

@@ -168,7 +168,7 @@ impl Page {
             ViewId::Campbell => String::new(),
             ViewId::Dynamic => main.bif_status().caption_suffix(),
             ViewId::Phase | ViewId::Poincare if family => computing(self.running(view)),
-            ViewId::Phase | ViewId::Poincare | ViewId::Time | ViewId::Spectrum => {
+            ViewId::Phase | ViewId::Poincare | ViewId::Time | ViewId::Spectrum | ViewId::Orders => {
                 let preview = main.omega.as_ref().is_some_and(|r| r.preview);
                 let running = main.omega_status().running();
                 figures::views::omega::caption_suffix(preview, running).to_string()
@@ -183,6 +183,7 @@ impl Page {
         match (view, fr) {
             (ViewId::Campbell, _) => vec![Write::text("note-campbell", self.ctl.campbell_note())],
             (ViewId::Dynamic, _) => vec![Write::text("note-dynamic", self.ctl.dynamic_note())],
+            (ViewId::Orders, _) => vec![Write::text("note-orders", self.ctl.orders_note())],
             (ViewId::Fr, Some(fr)) if self.ctl.panels().is_some() => {
                 let note = figures::views::fr::fr_panels_note(fr);
                 vec![
@@ -237,6 +238,11 @@ impl Page {
             "load_sharing": v.sharing.iter().map(|k| serde_json::json!({
                 "kind": k.kind,
                 "factor": k.factor,
+                "peak_force_n": k.peak_force_n,
+            })).collect::<Vec<_>>(),
+            "sharing_over_speed": v.sharing_over_speed.iter().map(|s| serde_json::json!({
+                "omega": s.omega,
+                "worst": s.worst(),
             })).collect::<Vec<_>>(),
             "points": v.nonlinear.len(),
             "note": v.note(),
@@ -380,6 +386,14 @@ impl Page {
             o.insert("map_drawn".into(), self.telemetry.map_drawn.clone());
             o.insert("present".into(), self.present_status());
             o.insert("campbell".into(), self.campbell_status());
+            // The mesh force by order as its export says it, with its text.
+            let orders = self.ctl.orders_view().ok().map(|v| {
+                let mut j = figures::views::orders::orders_json(&v);
+                j["label"] = serde_json::json!(v.label());
+                j["preview"] = serde_json::json!(v.preview);
+                j
+            });
+            o.insert("orders".into(), serde_json::json!(orders));
             o.insert("speed".into(), self.speed_status());
             o.insert("dynamic".into(), self.dynamic_status());
             let boxes: serde_json::Map<String, serde_json::Value> = VIEWS

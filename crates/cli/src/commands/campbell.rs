@@ -1,7 +1,8 @@
 //! `gearshock campbell`: the natural frequencies against the input
 //! member's speed, the mesh-frequency orders, and their crossings (the
 //! critical speeds) with the mode and how much the planets' phasing lets
-//! the meshes excite it (`solver::campbell`).
+//! the meshes excite it (`solver::campbell`); with sequentially phased
+//! planets also the planet-pass orders and their crossings.
 
 use crate::args::{stream_header, ParamArgs};
 use crate::failure::Failure;
@@ -9,7 +10,8 @@ use crate::output::output;
 use clap::Args;
 use serde_json::{json, Value};
 use solver::campbell::{rpm_at, Campbell, CANCELLED, MAX_ORDER};
-use solver::ModelKind;
+use solver::params::Phasing;
+use solver::{ModelKind, ModelParams};
 
 /// Options of `gearshock campbell`.
 #[derive(Debug, Args)]
@@ -32,7 +34,13 @@ pub fn run(a: &CampbellArgs) -> Result<(), Failure> {
     let (params, model) = a.p.load()?;
     let rpm_to = a.rpm_to.unwrap_or_else(|| rpm_at(&model, 2.0));
     check(a.rpm_from, rpm_to, a.orders)?;
-    let c = Campbell::new(&model, a.rpm_from, rpm_to, a.orders)?;
+    let mut c = Campbell::new(&model, a.rpm_from, rpm_to, a.orders)?;
+    if let ModelParams::Ravigneaux(p) = &params {
+        if p.phasing == Phasing::Sequential {
+            let carrier = model.system.speed.carrier_per_input();
+            c = c.with_planet_pass(p.planets, carrier, a.orders)?;
+        }
+    }
     let input = match model.system.model {
         ModelKind::GearPair => "pinion",
         ModelKind::Ravigneaux => "s1",
@@ -76,6 +84,25 @@ pub fn run(a: &CampbellArgs) -> Result<(), Failure> {
             })
         })
         .collect();
+    value["planet_pass"] = c.planet_pass.as_ref().map_or(Value::Null, |pp| {
+        json!({
+            "planets": pp.planets,
+            "hz_per_rpm": pp.hz_per_rpm,
+            "orders": pp.orders,
+            "crossings": pp.crossings.iter().map(|x| {
+                let m = &c.modes[x.mode];
+                json!({
+                    "rpm": x.rpm,
+                    "order": x.order,
+                    "omega": x.omega,
+                    "mesh_order": x.mesh_order,
+                    "mode": x.mode,
+                    "mode_kind": m.kind.name(),
+                    "mode_frequency_hz": m.frequency_hz,
+                })
+            }).collect::<Vec<_>>(),
+        })
+    });
     output(a.p.format, &value, csv)
 }
 
@@ -101,14 +128,16 @@ fn check(rpm_from: f64, rpm_to: f64, orders: u32) -> Result<(), Failure> {
     Ok(())
 }
 
-/// The crossings as one CSV table.
+/// The crossings as one CSV table: the mesh orders', then the planet-pass
+/// orders' (`line` says which; their mesh frequency, multiplicity,
+/// participation and excitation are left blank).
 fn csv(v: &Value) -> String {
     let mut out = String::from(
-        "rpm,order,omega,mesh_frequency_hz,mode,mode_kind,mode_frequency_hz,multiplicity,participation,excited\n",
+        "rpm,order,omega,mesh_frequency_hz,mode,mode_kind,mode_frequency_hz,multiplicity,participation,excited,line\n",
     );
     for x in v["crossings"].as_array().into_iter().flatten() {
         out.push_str(&format!(
-            "{},{},{},{},{},{},{},{},{},{}\n",
+            "{},{},{},{},{},{},{},{},{},{}",
             x["rpm"],
             x["order"],
             x["omega"],
@@ -119,6 +148,22 @@ fn csv(v: &Value) -> String {
             x["multiplicity"],
             x["participation"],
             x["excited"]
+        ));
+        out.push_str(",mesh order\n");
+    }
+    for x in v["planet_pass"]["crossings"]
+        .as_array()
+        .into_iter()
+        .flatten()
+    {
+        out.push_str(&format!(
+            "{},{},{},,{},{},{},,,,planet-pass order\n",
+            x["rpm"],
+            x["order"],
+            x["omega"],
+            x["mode"],
+            x["mode_kind"].as_str().unwrap_or(""),
+            x["mode_frequency_hz"],
         ));
     }
     out

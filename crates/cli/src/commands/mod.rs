@@ -17,6 +17,7 @@ mod modes;
 mod paper;
 mod params;
 mod presets;
+mod sharing;
 mod simulate;
 
 use crate::args::ParamArgs;
@@ -63,6 +64,11 @@ pub enum Command {
     /// mode's excitation by the planets' phasing.
     #[command(allow_negative_numbers = true)]
     Campbell(campbell::CampbellArgs),
+    /// How the planets share the load over a sweep of speed: each planet's
+    /// largest mesh force and the load-sharing factor (largest over mean)
+    /// per mesh kind, in-phase against sequential phasing.
+    #[command(allow_negative_numbers = true)]
+    Sharing(sharing::SharingArgs),
     /// Largest Lyapunov exponent of the Poincaré map over a sweep of Omega.
     #[command(allow_negative_numbers = true)]
     Lyapunov(lyapunov::LyapunovArgs),
@@ -106,6 +112,7 @@ pub fn run(command: Command) -> Result<(), Failure> {
         Command::Map(a) => map::run(&a),
         Command::Boundaries(a) => boundaries::run(&a),
         Command::Campbell(a) => campbell::run(&a),
+        Command::Sharing(a) => sharing::run(&a),
         Command::Lyapunov(a) => lyapunov::run(&a),
         Command::Instability(a) => instability::run(&a),
         Command::Merge(a) => merge::run(&a),

@@ -37,7 +37,15 @@ pub fn run(a: &SimulateArgs) -> Result<(), Failure> {
     let iso = a.iso.inputs()?;
     let mut opts = SteadyOptions::new(a.omega);
     a.run.apply(&mut opts);
-    opts.history_meshes = vec![j];
+    // The reported mesh first, then the other planets' meshes of its kind:
+    // the force by order sums them.
+    let kind = model.system.meshes[j].kind;
+    opts.history_meshes = std::iter::once(j)
+        .chain(
+            (0..model.system.meshes.len())
+                .filter(|&i| i != j && model.system.meshes[i].kind == kind),
+        )
+        .collect();
     let max_order = a.max_order;
     if !(max_order.is_finite() && max_order > 0.0) {
         return Err(usage(format!(

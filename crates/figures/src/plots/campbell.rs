@@ -2,8 +2,9 @@
 //! the mesh orders as lines through the origin, the critical speeds where
 //! they cross (filled where the meshes excite them, hollow and grey where
 //! the planets' phasing cancels them), and the selected speed as a vertical
-//! line. Its frequency axis is the view model's, so every order line ends
-//! inside the plot; the key is under the chart.
+//! line; with sequential phasing the planet-pass orders as thin brown
+//! lines, their crossings as triangles. Its frequency axis is the view model's, so every
+//! order line ends inside the plot; the key is under the chart.
 
 use super::*;
 use crate::speed::{capital, grouped};
@@ -37,6 +38,8 @@ pub fn pick<'a>(
 
 /// The colour of the hollow, cancelled crossings.
 const CANCELLED: RGBColor = RGBColor(120, 120, 120);
+/// The planet-pass orders' dashed lines and triangles.
+const PASS: RGBColor = RGBColor(140, 86, 75);
 
 /// Colour of mesh order `k` (1-based).
 pub fn order_color(k: u32) -> RGBColor {
@@ -65,6 +68,15 @@ pub fn draw_campbell<DB: DrawingBackend>(
             )
         })
         .collect();
+    if let Some(pp) = &view.planet_pass {
+        items.push((
+            KeyIcon::Line(PASS, false),
+            format!(
+                "planet-pass orders 1 to {ORDERS} ({} planets × carrier speed; not excited by the model)",
+                pp.planets
+            ),
+        ));
+    }
     items.push((KeyIcon::Line(NATURAL, false), "natural frequency".into()));
     items.push((
         KeyIcon::Dot(BLACK, 4),
@@ -136,6 +148,29 @@ pub fn draw_campbell<DB: DrawingBackend>(
                 vec![(0.0, 0.0), end],
                 ShapeStyle::from(&order_color(k)).stroke_width(2),
             )))
+            .map_err(err)?;
+    }
+    if let Some(pp) = &view.planet_pass {
+        for k in 1..=ORDERS {
+            let slope = f64::from(k) * pp.hz_per_rpm;
+            let end = if slope * x.1 <= y.1 {
+                (x.1, slope * x.1)
+            } else {
+                (y.1 / slope, y.1)
+            };
+            chart
+                .draw_series(std::iter::once(PathElement::new(
+                    vec![(0.0, 0.0), end],
+                    ShapeStyle::from(&PASS.mix(0.8)).stroke_width(1),
+                )))
+                .map_err(err)?;
+        }
+        chart
+            .draw_series(
+                pp.crossings
+                    .iter()
+                    .map(|c| TriangleMarker::new((c.rpm, c.frequency_hz), 5, PASS.stroke_width(2))),
+            )
             .map_err(err)?;
     }
     if view.selected_rpm >= x.0 && view.selected_rpm <= x.1 {

@@ -11,6 +11,8 @@ use crate::views::dynamic::DynamicView;
 pub const MODEL_COLOR: RGBColor = RGBColor(230, 120, 0);
 /// The standard's K_v.
 pub const ISO_COLOR: RGBColor = RGBColor(31, 119, 180);
+/// The planets' load-sharing factor.
+pub const SHARING_COLOR: RGBColor = RGBColor(44, 160, 44);
 
 /// Draws `view` on `root` with `status` after the caption, its speed
 /// axis as `speed` says (Omega or the input's rpm); returns the frame its
@@ -23,11 +25,17 @@ pub fn draw_dynamic<DB: DrawingBackend>(
 ) -> Res<PlotFrame> {
     root.fill(&WHITE).map_err(err)?;
     let x = (view.omega_from, view.omega_to.max(view.omega_from + 1e-9));
+    let sharing: Vec<(f64, f64)> = view
+        .sharing_over_speed
+        .iter()
+        .filter_map(|s| Some((s.omega, s.worst()?)))
+        .collect();
     let values = view
         .nonlinear
         .iter()
         .map(|p| p.1)
-        .chain(view.kv.iter().flatten().map(|p| p.1));
+        .chain(view.kv.iter().flatten().map(|p| p.1))
+        .chain(sharing.iter().map(|p| p.1));
     let y = padded_range(values, &[1.0], 0.5);
     let y = (y.0.min(1.0), y.1);
     let (start, _, end) = view.main_band();
@@ -47,6 +55,15 @@ pub fn draw_dynamic<DB: DrawingBackend>(
             ),
         ),
     ];
+    if let (false, Some(phasing)) = (sharing.is_empty(), view.phasing) {
+        items.push((
+            KeyIcon::Line(SHARING_COLOR, true),
+            format!(
+                "load-sharing factor of the {} planets (largest planet force / mean, worst mesh kind; {phasing} phasing)",
+                view.planets
+            ),
+        ));
+    }
     if band.0 < band.1 {
         items.push((
             KeyIcon::Shade(ISO_COLOR, 0.12),
@@ -83,6 +100,14 @@ pub fn draw_dynamic<DB: DrawingBackend>(
             ))
             .map_err(err)?;
     }
+    chart
+        .draw_series(DashedLineSeries::new(
+            sharing.iter().copied(),
+            6,
+            4,
+            ShapeStyle::from(&SHARING_COLOR).stroke_width(2),
+        ))
+        .map_err(err)?;
     chart
         .draw_series(LineSeries::new(
             view.nonlinear.iter().copied(),

@@ -32,10 +32,12 @@ pub type JobId = u64;
 mod boundaries;
 mod kinds;
 mod orbits;
+mod orders;
 mod sharing;
 pub use boundaries::{BoundaryCurve, BoundaryKind, BoundaryPoint};
 pub use kinds::{JobKind, KindSet, Target};
 pub use orbits::OrbitSample;
+pub use orders::{ForceByOrder, OrderPeak, PlanetSumOrders};
 pub use sharing::KindSharing;
 /// The solver's verdict on a steady state, sent as it is (one definition:
 /// the page's words about the motion are all built from it in `crate::story`).
@@ -559,6 +561,10 @@ pub struct OmegaResult {
     /// How the planets share the load, per mesh kind (none: the gear pair).
     #[serde(default)]
     pub load_sharing: Vec<KindSharing>,
+    /// The plotted mesh's force by order (none where the run kept no
+    /// history of it).
+    #[serde(default)]
+    pub force_orders: Option<ForceByOrder>,
     /// Integrator steps taken.
     pub steps: u64,
     /// `gearshock simulate` JSON of this run (the CLI's format); empty for

@@ -16,6 +16,7 @@ use crate::speed::{AxisUnit, SpeedAxis};
 use solver::campbell::{rpm_at, Campbell, CANCELLED};
 use solver::modal::ModeKind;
 use solver::model::Model;
+use solver::params::{ModelParams, Phasing};
 
 /// The mesh orders the diagram draws, 1 ..= this.
 pub const ORDERS: u32 = 4;
@@ -51,6 +52,32 @@ pub struct CampbellCrossing {
     pub excited: bool,
 }
 
+/// A planet-pass order crossing a natural frequency.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PassCrossing {
+    /// The planet-pass order.
+    pub order: u32,
+    /// The mode's place among the elastic frequencies (0 is the first).
+    pub rank: usize,
+    /// The mode's natural frequency (Hz).
+    pub frequency_hz: f64,
+    /// Input member speed (rpm).
+    pub rpm: f64,
+    /// Omega at that speed.
+    pub omega: f64,
+}
+
+/// The planet-pass orders, drawn with sequentially phased planets.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlanetPassLines {
+    /// Planets N.
+    pub planets: u32,
+    /// Planet-pass frequency (order 1) per input rpm (Hz / rpm).
+    pub hz_per_rpm: f64,
+    /// Its crossings of the drawn modes, ascending in speed.
+    pub crossings: Vec<PassCrossing>,
+}
+
 /// What the Campbell plot draws.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CampbellView {
@@ -70,6 +97,8 @@ pub struct CampbellView {
     pub selected_omega: f64,
     /// What its speed axis shows (Ω or rpm; the data are rpm).
     pub speed: SpeedAxis,
+    /// The planet-pass orders 1 ..= [`ORDERS`], with sequential phasing.
+    pub planet_pass: Option<PlanetPassLines>,
 }
 
 impl CampbellView {
@@ -130,7 +159,80 @@ impl CampbellView {
             selected_rpm: rpm_at(model, selected_omega),
             selected_omega,
             speed: SpeedAxis::new(AxisUnit::Omega, Some(model)),
+            planet_pass: None,
         })
+    }
+
+    /// The diagram with the planet-pass orders of the set `params` when its
+    /// planets are sequentially phased (`solver::campbell`: `N` planets on
+    /// the carrier, the ring held); unchanged otherwise.
+    pub fn with_planet_pass(
+        mut self,
+        model: &Model,
+        params: &ModelParams,
+    ) -> Result<Self, super::ViewError> {
+        let ModelParams::Ravigneaux(p) = params else {
+            return Ok(self);
+        };
+        if p.phasing != Phasing::Sequential {
+            return Ok(self);
+        }
+        let carrier = model.system.speed.carrier_per_input();
+        let c = Campbell::new(model, 0.0, self.rpm_max, ORDERS)
+            .and_then(|c| c.with_planet_pass(p.planets, carrier, ORDERS))?;
+        let Some(pp) = &c.planet_pass else {
+            return Ok(self);
+        };
+        let crossings = pp
+            .crossings
+            .iter()
+            .filter(|x| x.rpm > 0.0 && c.modes[x.mode].frequency_hz <= self.hz_max)
+            .map(|x| PassCrossing {
+                order: x.order,
+                rank: x.mode,
+                frequency_hz: c.modes[x.mode].frequency_hz,
+                rpm: x.rpm,
+                omega: x.omega,
+            })
+            .collect();
+        self.planet_pass = Some(PlanetPassLines {
+            planets: pp.planets,
+            hz_per_rpm: pp.hz_per_rpm,
+            crossings,
+        });
+        Ok(self)
+    }
+
+    /// The planet-pass crossings in words, if the diagram has the orders.
+    pub fn pass_words(&self) -> Option<String> {
+        let pp = self.planet_pass.as_ref()?;
+        let head = format!(
+            "Planet-pass orders ({} planets passing the ring, {} Hz per 1 000 rpm at order 1):",
+            pp.planets,
+            crate::words::short(pp.hz_per_rpm * 1000.0)
+        );
+        let body = if pp.crossings.is_empty() {
+            " none meets a drawn mode in this speed range.".to_string()
+        } else {
+            let named: Vec<String> = pp
+                .crossings
+                .iter()
+                .take(NAMED)
+                .map(|c| {
+                    format!(
+                        " planet-pass order {} meets the {} mode ({} Hz) at {} rpm",
+                        c.order,
+                        ordinal(c.rank),
+                        grouped(c.frequency_hz),
+                        grouped(c.rpm)
+                    )
+                })
+                .collect();
+            format!("{}.", named.join(";"))
+        };
+        Some(format!(
+            "{head}{body} Nothing in the model excites them (it has no carrier or planet position errors); they mark where a real gearbox's would meet a mode."
+        ))
     }
 
     /// The excited critical speeds in the order the label names them:
@@ -170,13 +272,17 @@ impl CampbellView {
     }
 
     fn note_with(&self, excited: &[String]) -> String {
-        if excited.is_empty() {
+        let mesh = if excited.is_empty() {
             "No mesh order meets a natural frequency the meshes excite in this speed range.".into()
         } else {
             format!(
                 "Critical speeds, lowest order first: {}.",
                 excited.join("; ")
             )
+        };
+        match self.pass_words() {
+            Some(p) => format!("{mesh} {p}"),
+            None => mesh,
         }
     }
 }
@@ -205,18 +311,30 @@ pub fn ordinal(rank: usize) -> String {
         .map_or_else(|| format!("{}th", rank + 1), |w| (*w).to_string())
 }
 
-/// The critical speeds as CSV, one row per crossing.
+/// The critical speeds as CSV, one row per crossing: the mesh orders',
+/// then the planet-pass orders' (`line` says which; never excited by the
+/// model).
 pub fn campbell_csv(v: &CampbellView) -> String {
-    let mut s = String::from("order,mode,natural_frequency_hz,rpm,omega,excited\n");
+    let mut s = String::from("order,mode,natural_frequency_hz,rpm,omega,excited,line\n");
     for c in &v.crossings {
         s.push_str(&format!(
-            "{},{},{},{},{},{}\n",
+            "{},{},{},{},{},{},mesh order\n",
             c.order,
             c.rank + 1,
             c.frequency_hz,
             c.rpm,
             c.omega,
             c.excited
+        ));
+    }
+    for c in v.planet_pass.iter().flat_map(|p| &p.crossings) {
+        s.push_str(&format!(
+            "{},{},{},{},{},false,planet-pass order\n",
+            c.order,
+            c.rank + 1,
+            c.frequency_hz,
+            c.rpm,
+            c.omega
         ));
     }
     s
@@ -300,5 +418,37 @@ mod tests {
         assert!(label.contains(&crossing_words(first)), "{label}");
         assert!(label.matches(" meets ").count() <= NAMED);
         assert_eq!(campbell_csv(&v).lines().count(), v.crossings.len() + 1);
+    }
+
+    /// Sequentially phased planets add the planet-pass orders: order m at
+    /// m N 3/4 / 60 Hz per rpm (the carrier turning 36 / (36 - 84) times
+    /// the small sun), each crossing at f_n over that; in phase, none.
+    #[test]
+    fn sequential_planets_draw_the_planet_pass_orders() {
+        let q = "planets=5&phasing=sequential";
+        let m = model(q);
+        let p = crate::link::decode(q).settings.params;
+        let v = CampbellView::new(&m, 2.0, 0.5)
+            .unwrap()
+            .with_planet_pass(&m, &p)
+            .unwrap();
+        let pp = v.planet_pass.as_ref().unwrap();
+        assert!((pp.hz_per_rpm - 5.0 * 0.75 / 60.0).abs() <= 1e-15);
+        assert!(!pp.crossings.is_empty());
+        for c in &pp.crossings {
+            let rpm = c.frequency_hz / (f64::from(c.order) * pp.hz_per_rpm);
+            assert!((c.rpm - rpm).abs() <= 1e-9 * rpm, "{c:?}");
+            assert!(c.rpm <= v.rpm_max && c.frequency_hz <= v.hz_max);
+        }
+        assert!(v.note().contains("planet-pass order"), "{}", v.note());
+        assert!(campbell_csv(&v).contains(",planet-pass order\n"));
+        let q = "planets=5&phasing=in-phase";
+        let p = crate::link::decode(q).settings.params;
+        let m = model(q);
+        let v = CampbellView::new(&m, 2.0, 0.5)
+            .unwrap()
+            .with_planet_pass(&m, &p)
+            .unwrap();
+        assert!(v.planet_pass.is_none() && !v.note().contains("planet-pass"));
     }
 }

@@ -4,8 +4,11 @@
 //! time-integration points or the bifurcation sweep's) beside K_v by
 //! ISO 6336-1 method B over the same range (`solver::iso6336`, closed
 //! form, computed here on the main thread), and for the selected state
-//! how the planets share the load. Its words (the note over the plot and
-//! its text alternative), CSV and JSON.
+//! how the planets share the load, and over Omega the planets' load-sharing
+//! factor at each steady state (each mesh's largest force is its dynamic
+//! factor times its static force; `solver::sharing::sharing_of_peaks`).
+//! Its words (the note over the plot and its text alternative), CSV and
+//! JSON.
 //!
 //! K_v is piecewise linear in the resonance ratio N, which is
 //! proportional to Omega: its curve is the four ranges' end points,
@@ -84,6 +87,28 @@ pub struct DynamicView {
     pub planets: u32,
     /// Natural frequencies in range.
     pub natural: Vec<NaturalFreq>,
+    /// The load sharing at each computed steady state, by rising Omega
+    /// (empty for the gear pair).
+    pub sharing_over_speed: Vec<SharingAt>,
+}
+
+/// How the planets share the load at one steady state of the sweep.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SharingAt {
+    /// Omega.
+    pub omega: f64,
+    /// Each mesh kind's sharing (`solver::sharing`'s order).
+    pub kinds: Vec<SharingRow>,
+}
+
+impl SharingAt {
+    /// The largest factor over the kinds.
+    pub fn worst(&self) -> Option<f64> {
+        self.kinds
+            .iter()
+            .filter_map(|k| k.factor)
+            .fold(None, |m: Option<f64>, f| Some(m.map_or(f, |m| m.max(f))))
+    }
 }
 
 /// A mesh kind in plain words.
@@ -139,6 +164,33 @@ impl DynamicView {
             })
             .collect();
         nonlinear.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let statics = &model.statics.mesh_force_n;
+        let mut sharing_over_speed: Vec<SharingAt> = computed
+            .iter()
+            .filter_map(|p| {
+                let peaks: Option<Vec<f64>> = p
+                    .meshes
+                    .iter()
+                    .zip(statics)
+                    .map(|(m, s)| m.dynamic_factor.map(|f| f * s))
+                    .collect();
+                let kinds: Vec<SharingRow> =
+                    solver::sharing::sharing_of_peaks(&model.system, &peaks?)
+                        .into_iter()
+                        .map(|k| SharingRow {
+                            kind: k.kind.key().to_string(),
+                            words: kind_words(k.kind.key()),
+                            peak_force_n: k.peak_force_n,
+                            factor: k.factor,
+                        })
+                        .collect();
+                (!kinds.is_empty()).then_some(SharingAt {
+                    omega: p.omega,
+                    kinds,
+                })
+            })
+            .collect();
+        sharing_over_speed.sort_by(|a, b| a.omega.total_cmp(&b.omega));
         let selected = omega
             .filter(|r| (r.omega - ctx.selected_omega).abs() < 1e-12)
             .and_then(|r| {
@@ -185,6 +237,7 @@ impl DynamicView {
             phasing,
             planets,
             natural: ctx.natural.clone(),
+            sharing_over_speed,
         };
         v.kv = v.kv_curve();
         Ok(v)
@@ -248,8 +301,19 @@ impl DynamicView {
         let Some(phasing) = self.phasing else {
             return "The gear pair has one mesh: no load to share.".into();
         };
+        let over = self.sharing_range().map_or(String::new(), |(lo, hi)| {
+            format!(
+                " Over the {} steady states the largest factor of any kind runs from {lo:.3} to {hi:.3}{}.",
+                self.sharing_over_speed.len(),
+                if phasing == "in-phase" {
+                    " (in phase, equal planets move alike, giving 1, unless their motion loses its symmetry)"
+                } else {
+                    ""
+                }
+            )
+        });
         if self.sharing.is_empty() {
-            return "Load sharing: waiting for the selected state.".into();
+            return format!("Load sharing: waiting for the selected state.{over}");
         }
         let parts: Vec<String> = self
             .sharing
@@ -260,10 +324,23 @@ impl DynamicView {
             })
             .collect();
         format!(
-            "Load-sharing factor (largest planet mesh force over the mean), {} planets, {phasing} phasing: {}.",
+            "Load-sharing factor (largest planet mesh force over the mean), {} planets, {phasing} phasing: {}.{over}",
             self.planets,
             parts.join(", ")
         )
+    }
+
+    /// The smallest and largest of the worst kind's factor over the
+    /// steady states, if any.
+    pub fn sharing_range(&self) -> Option<(f64, f64)> {
+        let w: Vec<f64> = self
+            .sharing_over_speed
+            .iter()
+            .filter_map(SharingAt::worst)
+            .collect();
+        let lo = w.iter().copied().reduce(f64::min)?;
+        let hi = w.iter().copied().reduce(f64::max)?;
+        Some((lo, hi))
     }
 
     /// The note over the plot: the two factors at the selected speed, where
@@ -399,6 +476,15 @@ pub fn dynamic_json(v: &DynamicView) -> serde_json::Value {
                 "kind": k.kind,
                 "peak_force_n": k.peak_force_n,
                 "factor": k.factor,
+            })).collect::<Vec<_>>(),
+            "over_speed": v.sharing_over_speed.iter().map(|s| json!({
+                "omega": s.omega,
+                "input_speed_rpm": v.rpm_at(s.omega),
+                "kinds": s.kinds.iter().map(|k| json!({
+                    "kind": k.kind,
+                    "peak_force_n": k.peak_force_n,
+                    "factor": k.factor,
+                })).collect::<Vec<_>>(),
             })).collect::<Vec<_>>(),
         },
     })

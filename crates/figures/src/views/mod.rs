@@ -17,6 +17,7 @@ pub mod map;
 pub mod multiples;
 pub mod omega;
 pub mod orbits;
+pub mod orders;
 mod table;
 #[cfg(any(test, feature = "test-support"))]
 pub mod test_support;
@@ -119,6 +120,12 @@ pub enum ViewError {
     /// A mesh index past the model's meshes.
     #[error("the model has no mesh {0}")]
     NoMesh(usize),
+    /// The selected speed's steady state has not arrived.
+    #[error("the steady state at the selected speed is computing")]
+    Computing,
+    /// The run kept no history of the mesh's force.
+    #[error("the run kept no history of the mesh's force")]
+    NoForceHistory,
     /// A mesh the standard has no geometry for.
     #[error("mesh {0} has no geometry for ISO 6336-1")]
     NoIsoGeometry(String),

@@ -33,6 +33,9 @@ pub enum ViewId {
     /// 6336-1 method B, and the selected state's load sharing (drawn from
     /// the sweep's or the overlay's steady states and the selected Omega's).
     Dynamic,
+    /// The plotted mesh's force at the selected Omega by order of the mesh
+    /// frequency, with the planets' sum.
+    Orders,
 }
 
 /// What the page needs to know about a view.
@@ -54,7 +57,7 @@ pub struct ViewSpec {
 }
 
 /// Every view, in [`ViewId`] order.
-pub const VIEWS: [ViewSpec; 10] = [
+pub const VIEWS: [ViewSpec; 11] = [
     ViewSpec {
         id: ViewId::Fr,
         key: "fr",
@@ -135,6 +138,14 @@ pub const VIEWS: [ViewSpec; 10] = [
         shows: KindSet::of(&[JobKind::Bif, JobKind::Overlay, JobKind::Omega]),
         progressive: true,
     },
+    ViewSpec {
+        id: ViewId::Orders,
+        key: "orders",
+        title: "Mesh force by order",
+        data: JobKind::Omega,
+        shows: JobKind::Omega.set(),
+        progressive: false,
+    },
 ];
 
 /// One numbered part of the page, in page order: the views of [`VIEWS`]
@@ -152,7 +163,7 @@ pub struct PagePart {
 /// motion stops repeating), then the views of the motion at the selected
 /// Omega. A part's number is its place here; `index.html` is checked
 /// against it (order, headings and every "view N" in the help texts).
-pub const PAGE: [PagePart; 11] = [
+pub const PAGE: [PagePart; 12] = [
     PagePart {
         key: "fr",
         title: "Frequency response",
@@ -197,6 +208,10 @@ pub const PAGE: [PagePart; 11] = [
         key: "dynamic",
         title: "Dynamic factor",
     },
+    PagePart {
+        key: "orders",
+        title: "Mesh force by order",
+    },
 ];
 
 /// The number of the page part with key `key` (1-based), if there is one.
@@ -206,7 +221,7 @@ pub fn part_number(key: &str) -> Option<usize> {
 
 /// The order in which dirty views are drawn: the views a slider drag
 /// watches first (the frequency response, then the phase portrait).
-pub const DRAW_ORDER: [ViewId; 10] = [
+pub const DRAW_ORDER: [ViewId; 11] = [
     ViewId::Fr,
     ViewId::Phase,
     ViewId::Bif,
@@ -217,11 +232,12 @@ pub const DRAW_ORDER: [ViewId; 10] = [
     ViewId::Map,
     ViewId::Campbell,
     ViewId::Dynamic,
+    ViewId::Orders,
 ];
 
 impl ViewId {
     /// Every view, in slot order.
-    pub const ALL: [ViewId; 10] = [
+    pub const ALL: [ViewId; 11] = [
         ViewId::Fr,
         ViewId::Bif,
         ViewId::Phase,
@@ -232,6 +248,7 @@ impl ViewId {
         ViewId::Lyap,
         ViewId::Campbell,
         ViewId::Dynamic,
+        ViewId::Orders,
     ];
 
     /// The view's slot in per-view arrays.

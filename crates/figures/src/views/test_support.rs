@@ -106,6 +106,7 @@ pub fn omega_result() -> OmegaResult {
         all_meshes: vec![],
         anim: Default::default(),
         load_sharing: Vec::new(),
+        force_orders: None,
         steps: 1,
         cli_json: "{}".into(),
         preview: false,

@@ -5,8 +5,8 @@
 
 use super::{excitation_at, failed, Job, SLICE_STEPS};
 use figures::protocol::{
-    history_start, um, AnimHistory, FromWorker, JobId, KindSharing, MeshSummary, OmegaResult,
-    OmegaSpec, RunOptions,
+    history_start, um, AnimHistory, ForceByOrder, FromWorker, JobId, KindSharing, MeshSummary,
+    OmegaResult, OmegaSpec, RunOptions,
 };
 use figures::settings::Settings;
 use solver::model::Model;
@@ -314,6 +314,8 @@ fn omega_result_of(
                 factor: k.factor,
             })
             .collect(),
+        force_orders: solver::orders::force_orders(&model.system, &ss, j, max_order)
+            .map(|f| ForceByOrder::of(&f)),
         steps: ss.stats.integrator.steps,
         cli_json,
         preview,

@@ -87,6 +87,11 @@ impl Controller {
         let text = match view {
             ViewId::Campbell => self.campbell_export(csv).map_err(ExportError::Modes)?,
             ViewId::Dynamic => self.dynamic_export(csv).map_err(ExportError::Rating)?,
+            ViewId::Orders => {
+                self.exportable_omega()?;
+                self.orders_export(csv)
+                    .map_err(|_| ExportError::NotComputed)?
+            }
             ViewId::Fr if self.panels.is_some() => self.fr_panels_export(csv)?,
             ViewId::Fr => {
                 let v = self.fr_view();

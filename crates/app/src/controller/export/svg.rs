@@ -94,6 +94,10 @@ impl Controller {
                 let c = self.campbell_view().map_err(plots::err)?;
                 d.frame = Some(plots::campbell::draw_campbell(root, &c, status)?);
             }
+            ViewId::Orders => {
+                let v = self.orders_view().map_err(plots::err)?;
+                plots::orders::draw_orders(root, &v, status)?;
+            }
             ViewId::Dynamic => {
                 let v = self.dynamic_view().map_err(plots::err)?;
                 d.frame = Some(plots::dynamic::draw_dynamic(

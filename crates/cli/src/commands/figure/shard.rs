@@ -252,6 +252,7 @@ pub fn orbit_from_json(
         all_meshes: Vec::new(),
         anim: AnimHistory::default(),
         load_sharing: Vec::new(),
+        force_orders: None,
         steps: 0,
         cli_json: String::new(),
         preview: false,

@@ -222,3 +222,72 @@ fn an_unloaded_mesh_gives_the_reason() {
         "{e}"
     );
 }
+
+/// Over speed, each planet mesh's largest force is its dynamic factor
+/// times its static force. With every mesh at the same factor (equal
+/// planets) every kind shares exactly (1, to round-off); raising one
+/// planet's s1a factor by 30 % (statics equal across the planets) makes
+/// that kind's factor 1.3 / (1 + 0.3 / 3) = 1.3 / 1.1, its peak force 1.3
+/// times the static force.
+#[test]
+fn the_load_sharing_over_speed_is_the_planets_largest_over_mean() {
+    let (p, m) = model(&["planets=3", "phasing=in-phase"]);
+    let n = m.system.meshes.len();
+    let mut s = states(n);
+    let v = DynamicView::new(
+        &p,
+        &m,
+        &ctx(0.1, 2.0, 0.5),
+        0,
+        Some(&s),
+        None,
+        &IsoInputs::default(),
+    )
+    .unwrap();
+    // Omega 0.8 has no factor, 1.2 failed: four states remain.
+    let omegas: Vec<f64> = v.sharing_over_speed.iter().map(|x| x.omega).collect();
+    assert_eq!(omegas.len(), 4, "{omegas:?}");
+    for at in &v.sharing_over_speed {
+        assert_eq!(at.kinds.len(), 4);
+        assert!((at.worst().unwrap() - 1.0).abs() <= 1e-12, "{at:?}");
+    }
+    let s1a2 = m
+        .system
+        .meshes
+        .iter()
+        .position(|x| x.name == "s1a2")
+        .unwrap();
+    let fs = m.statics.mesh_force_n[s1a2];
+    let mut pts: Vec<FrSample> = s.points.iter().flatten().cloned().collect();
+    for pt in &mut pts {
+        if let Some(e) = pt.meshes.get_mut(s1a2) {
+            e.dynamic_factor = e.dynamic_factor.map(|f| f * 1.3);
+        }
+    }
+    s = FrStore::new(6, 10, 10);
+    s.add(pts);
+    let v = DynamicView::new(
+        &p,
+        &m,
+        &ctx(0.1, 2.0, 0.5),
+        0,
+        Some(&s),
+        None,
+        &IsoInputs::default(),
+    )
+    .unwrap();
+    let first = &v.sharing_over_speed[0];
+    let s1a = first.kinds.iter().find(|k| k.kind == "s1a").unwrap();
+    assert!((s1a.factor.unwrap() - 1.3 / 1.1).abs() <= 1e-12, "{s1a:?}");
+    assert!((s1a.peak_force_n[1] - 1.3 * (1.0 + first.omega) * fs).abs() <= 1e-9 * fs);
+    assert!((first.worst().unwrap() - 1.3 / 1.1).abs() <= 1e-12);
+    let (lo, hi) = v.sharing_range().unwrap();
+    assert!((lo - 1.3 / 1.1).abs() <= 1e-12 && (hi - lo).abs() <= 1e-12);
+    assert!(
+        v.note().contains("runs from 1.182 to 1.182"),
+        "{}",
+        v.note()
+    );
+    let j = dynamic_json(&v);
+    assert_eq!(j["load_sharing"]["over_speed"].as_array().unwrap().len(), 4);
+}
