@@ -752,6 +752,7 @@ impl Controller {
 mod boundaries;
 pub(crate) mod campbell;
 mod dynamic;
+mod excitation;
 mod export;
 mod speed;
 mod text;

@@ -231,7 +231,12 @@ pub fn control_panel() -> Vec<Node> {
                                     .attr("step", "any")
                                     .on("change", Action::Set(key)),
                             )
-                            .child(Node::new("span").attr("class", "unit").text(c.unit.clone())),
+                            .child(Node::new("span").attr("class", "unit").text(c.unit.clone()))
+                            .children(key.starts_with("contact_ratio").then(|| {
+                                Node::new("p")
+                                    .attr("class", "hint")
+                                    .attr("id", format!("hint-{key}"))
+                            })),
                         Widget::Select(options) => {
                             div.child(label.attr("for", format!("sel-{key}"))).child(
                                 Node::new("select")
@@ -247,6 +252,7 @@ pub fn control_panel() -> Vec<Node> {
                     .attr("class", "advanced")
                     .child(Node::new("summary").text(group.title()))
                     .child(Node::new("fieldset").children(rows))
+                    .child(super::tefile::te_file_panel())
             } else {
                 Node::new("fieldset")
                     .child(Node::new("legend").text(group.title()))
