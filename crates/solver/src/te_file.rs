@@ -165,6 +165,15 @@ pub fn parse(text: &str) -> Result<TeTable> {
                 ));
             }
         }
+        if !(ti * scale).is_finite() {
+            return Err(refuse(
+                line,
+                format!(
+                    "the TE {} is too large in µm; only finite numbers",
+                    crate::keys::truncate(cells[1], 20)
+                ),
+            ));
+        }
         x.push(xi);
         te_um.push(ti * scale);
     }
@@ -239,7 +248,19 @@ pub fn fit(table: &TeTable, period: f64, harmonics: usize) -> Result<TeFit> {
     let (first, last) = (table.x[0], table.x[n - 1]);
     // Points spread evenly over k periods span (k - 1/n) of them.
     let periods = (last - first) / period * n as f64 / (n as f64 - 1.0);
-    if periods.is_nan() || periods < 1.0 - 1e-9 {
+    // Phases beyond 1e9 periods lose their digits (and beyond the range
+    // of numbers the fit would not end).
+    let reach = last / period;
+    if !(periods.is_finite() && reach.is_finite() && periods <= 1e6 && reach <= 1e9) {
+        return Err(refuse(
+            0,
+            format!(
+                "the table spans {periods:.3e} mesh periods and reaches {reach:.3e}; \
+                 allowed 1 to 1e6 periods, reaching at most 1e9"
+            ),
+        ));
+    }
+    if periods < 1.0 - 1e-9 {
         return Err(refuse(
             0,
             format!(
@@ -507,5 +528,16 @@ mod tests {
                 .collect::<String>();
         let e = fit(&parse(&part).unwrap(), 1.0, 1).unwrap_err().to_string();
         assert!(e.contains("spans 0.200 mesh periods"), "{e}");
+        // A period so short that the phases are not numbers any more.
+        let tiny = "time_s,te_um\n# mesh_period_s = 1e-320\n".to_string()
+            + &(0..20)
+                .map(|i| format!("{},1\n", f64::from(i) * 0.01))
+                .collect::<String>();
+        let e = fit(&parse(&tiny).unwrap(), 1e-320, 1)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("allowed 1 to 1e6 periods"), "{e}");
+        let e = parse("fraction,te_m\n0,1e305\n").unwrap_err().to_string();
+        assert!(e.contains("line 2: the TE 1e305 is too large in µm"), "{e}");
     }
 }
