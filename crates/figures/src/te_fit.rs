@@ -6,8 +6,8 @@
 use solver::te_file::{TeFit, TeTable};
 use std::f64::consts::PI;
 
-/// The most points the plot draws (every k-th beyond).
-pub const MAX_DRAWN_POINTS: usize = 600;
+/// The most points the plot draws, each a ring (every k-th beyond).
+pub const MAX_DRAWN_POINTS: usize = 72;
 
 /// A fitted TE table.
 #[derive(Debug, Clone, PartialEq)]
@@ -76,14 +76,16 @@ impl TeFitView {
                 um_text(f.rms_um)
             )
         };
+        let periods = um_text(f.periods);
+        let plural = |n: &str| if n == "1" { "" } else { "s" };
         format!(
-            "{}: {} points over {} mesh periods, fitted with {h} harmonic{} of the mesh \
+            "{}: {} points over {periods} mesh period{}, fitted with {h} harmonic{} of the mesh \
              frequency for {}. The fitted curve misses the points {misses}; the harmonics \
              are kept to {} µm and are in the fields above and in the link.",
             self.file,
             f.points,
-            um_text(f.periods),
-            if h == 1 { "" } else { "s" },
+            plural(&periods),
+            plural(&h.to_string()),
             kind_words(&self.kind),
             um_text(10f64.powi(-(f.decimals as i32))),
         )

@@ -79,22 +79,25 @@ impl Controller {
         let kind = ratio_kind(key)?;
         let params = &self.settings.params;
         let teeth = waveform::auto_contact_ratio(params, kind);
-        let (e, from) = match (keys::get(params, key), teeth) {
-            (Some(keys::Value::Num(e)), Some(t)) => (e, format!("given (the teeth give {t:.3})")),
-            (Some(keys::Value::Num(e)), None) => (e, "given".to_string()),
+        let (e, said) = match (keys::get(params, key), teeth) {
+            (Some(keys::Value::Num(e)), Some(t)) => {
+                (e, format!("{e} as typed (the teeth give {t:.3})"))
+            }
+            (Some(keys::Value::Num(e)), None) => (e, format!("{e} as typed")),
             (_, Some(t)) => (
                 t,
-                "left empty: computed from the tooth counts, module and pressure angle \
-                 of standard teeth"
-                    .to_string(),
+                format!(
+                    "Left empty: {t:.3}, computed from the tooth counts, module and pressure \
+                     angle of standard teeth"
+                ),
             ),
             (_, None) => return None,
         };
         let pairs = e.floor();
         let share = 100.0 * (e - pairs);
         Some(format!(
-            "{e:.3}, {from}: {} pairs of teeth in contact for {share:.0} % of each mesh \
-             period, {pairs} for the rest.",
+            "{said}; {} pairs of teeth in contact for {share:.0} % of each mesh period, \
+             {pairs} for the rest.",
             pairs + 1.0
         ))
     }
@@ -147,10 +150,7 @@ mod tests {
             Some("1.695")
         );
         let words = c.contact_ratio_words("contact_ratio").unwrap();
-        assert!(
-            words.contains("1.695, left empty") && words.contains("2 pairs"),
-            "{words}"
-        );
+        assert!(words.starts_with("Left empty: 1.695, computed"), "{words}");
         // 1.6945 (the hand calculation to four digits): 0.6945 of each period in double contact.
         assert!(
             words.contains("for 69 % of each mesh period, 1 for the rest"),
@@ -160,7 +160,7 @@ mod tests {
         assert_eq!(c.contact_ratio_hint("contact_ratio"), None);
         let words = c.contact_ratio_words("contact_ratio").unwrap();
         assert!(
-            words.starts_with("1.600, given (the teeth give 1.695)"),
+            words.starts_with("1.6 as typed (the teeth give 1.695); 2 pairs"),
             "{words}"
         );
         assert!(c.query().contains("contact_ratio=1.6"), "{}", c.query());

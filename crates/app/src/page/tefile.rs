@@ -40,12 +40,16 @@ pub fn te_file_panel() -> Node {
     Node::new("div")
         .attr("class", "te-file")
         .attr("id", DROP)
-        .child(Node::new("h4").text("Transmission error from a file"))
+        .child(
+            Node::new("p")
+                .attr("class", "te-file-title")
+                .text("Transmission error from a file"),
+        )
         .child(Node::new("p").text(
-            "A table of TE over one or more mesh periods (CSV: a header row naming the \
-             columns, the first fraction, roll_deg or time_s, the second te_um, te_nm, te_mm \
-             or te_m), fitted to the harmonics of the mesh frequency. Drop the file here or \
-             choose it.",
+            "A table of TE over one or more mesh periods, fitted to the harmonics of the \
+             mesh frequency: a CSV file whose heading row names its two columns with their \
+             units, Fraction (of a mesh period), Roll angle (deg) or Time (s), then TE (µm), \
+             TE (nm), TE (mm) or TE (m). Drop the file here or choose it.",
         ))
         .child(
             Node::new("div")
@@ -95,6 +99,26 @@ pub fn te_file_panel() -> Node {
         )
 }
 
+/// The solver's message with its code quotes (`abc`) as quotation
+/// marks (“abc”).
+fn quoted(message: &str) -> String {
+    let mut open = false;
+    message
+        .chars()
+        .map(|c| match c {
+            '`' => {
+                open = !open;
+                if open {
+                    '“'
+                } else {
+                    '”'
+                }
+            }
+            c => c,
+        })
+        .collect()
+}
+
 impl Page {
     /// Whether a file of `bytes` bytes may be read; if not, the messages
     /// say why (its size and the limit) and the web layer reads nothing.
@@ -140,8 +164,9 @@ impl Page {
                 out.effects = fx;
             }
             Err(why) => self.ctl.issue(format!(
-                "The TE file {} was not used: {why}. Nothing was changed.",
-                solver::keys::truncate(name, 60)
+                "The TE file {} was not used: {}. Nothing was changed.",
+                solver::keys::truncate(name, 60),
+                quoted(&why)
             )),
         }
         out
@@ -214,7 +239,9 @@ mod tests {
     #[test]
     fn a_file_sets_its_harmonics_and_a_bad_one_keeps_the_last_good_state() {
         let mut p = page();
-        p.te_file("pair", "6", "te.csv", FILE, 0.0);
+        // The page's own words for the columns are headings the file may have.
+        let plain = FILE.replace("fraction,te_um", "Fraction,TE (µm)");
+        p.te_file("pair", "6", "te.csv", &plain, 0.0);
         // The harmonics the file's comment names (the curve it was made from).
         let q = p.ctl().query();
         for k in [
@@ -229,11 +256,16 @@ mod tests {
         }
         let good = p.te_view().cloned();
         assert_eq!(good.as_ref().map(|v| v.fit.points), Some(360));
+        let said = good.as_ref().map(TeFitView::sentence).unwrap_or_default();
+        assert!(
+            said.starts_with("te.csv: 360 points over 1 mesh period, fitted with 6 harmonics"),
+            "{said}"
+        );
         let bad = [
             ("", "empty"),
             (
                 "fraction,te_um\n0,1\n0.5,abc\n",
-                "line 3: the TE `abc` is not a number",
+                "line 3: the TE “abc” is not a number",
             ),
             ("fraction,te_um\n0,1\n0.5,NaN\n", "line 3: the TE is NaN"),
             (

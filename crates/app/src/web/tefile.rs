@@ -21,6 +21,11 @@ pub(super) fn build(page: &Shared) {
             i2.set_value("");
         });
     }
+    // A file dropped beside the box is ignored, not opened in the tab in
+    // place of the page (the browser's own default).
+    for kind in ["dragover", "drop"] {
+        listen(&doc, kind, |e: DragEvent| e.prevent_default());
+    }
     if let Some(zone) = doc.get_element_by_id(DROP) {
         let z2 = zone.clone();
         listen(&zone, "dragover", move |e: DragEvent| {

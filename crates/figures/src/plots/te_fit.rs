@@ -5,9 +5,9 @@ use super::*;
 use crate::te_fit::{kind_words, TeFitView};
 
 /// The plot's size (pixels): small, in the Advanced group.
-pub const SIZE: (u32, u32) = (520, 300);
+pub const SIZE: (u32, u32) = (380, 280);
 /// The table's points.
-pub const POINTS: RGBColor = RGBColor(120, 120, 130);
+pub const POINTS: RGBColor = RGBColor(0, 114, 178);
 /// The fitted curve.
 pub const CURVE: RGBColor = RGBColor(213, 94, 0);
 
@@ -24,7 +24,7 @@ pub fn draw_te_fit<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, view: &TeF
     let y = padded_range(points.iter().chain(&curve).map(|p| p.1), &[], 1e-3);
     let h = view.fit.harmonics_um.len();
     let items: KeyItems = vec![
-        (KeyIcon::Dot(POINTS, 2), "the file's points".into()),
+        (KeyIcon::Ring(POINTS, 3), "the file's points".into()),
         (
             KeyIcon::Line(CURVE, false),
             format!("the fit: {h} harmonic{}", if h == 1 { "" } else { "s" }),
@@ -35,14 +35,20 @@ pub fn draw_te_fit<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, view: &TeF
     let caption = format!("TE from a file, {}", kind_words(&view.kind));
     let axes = Axes::new("mesh periods", "TE (µm)");
     let mut chart = linear_chart(&area, &caption, (x, y), &axes)?;
-    chart
-        .draw_series(points.iter().map(|&p| Circle::new(p, 2, POINTS.filled())))
-        .map_err(err)?;
+    // The curve first, the points over it as rings: where the fit is
+    // exact each ring sits on the line.
     chart
         .draw_series(LineSeries::new(
             curve,
             ShapeStyle::from(&CURVE).stroke_width(2),
         ))
+        .map_err(err)?;
+    chart
+        .draw_series(
+            points
+                .iter()
+                .map(|&p| Circle::new(p, 3, POINTS.stroke_width(1))),
+        )
         .map_err(err)?;
     draw_key(root, &items, &plan)?;
     root.present().map_err(err)?;
