@@ -54,7 +54,7 @@ pub fn te_input(r: &mut Rng) -> String {
     let mut rows: Vec<String> = (0..n)
         .map(|i| {
             let x = span * i as f64 / n.max(1) as f64;
-            let e = (6.28 * i as f64 / n.max(1) as f64).sin() * 10.0;
+            let e = (std::f64::consts::TAU * i as f64 / n.max(1) as f64).sin() * 10.0;
             let (mut xs, mut es) = (format!("{x}"), format!("{e}"));
             match bad {
                 Some((b, 0)) if b == i => xs = r.pick(HOSTILE, &"").to_string(),
