@@ -1,12 +1,11 @@
-//! A TE table from a file, in the page core: the Advanced group's file
-//! field and drop zone (as [`Node`]s), the file's text fitted to the
+//! A TE table from a file, in the page core: the ids of the Advanced
+//! group's file field and drop zone (`dom::te_file_panel`), the file's text fitted to the
 //! chosen mesh kind (`solver::te_file`, the command line's `--te-file`)
 //! and applied through the controller, and what the page then shows: the
 //! fit in plain words and, for the web layer to draw, its points beside
 //! the fitted curve. A refused file is said in the messages with its line
 //! and reason, and nothing changes. The web layer only reads the file.
 
-use super::dom::{option, Node};
 use super::{Acted, Page, Write};
 use crate::controller::Effect;
 use figures::te_fit::TeFitView;
@@ -24,80 +23,7 @@ pub const HARMONICS: &str = "te-file-harmonics";
 /// The plot's canvas.
 pub const PLOT: &str = "te-file-plot";
 /// The sentence under it.
-const NOTE: &str = "te-file-note";
-
-/// The TE file's part of the Advanced group.
-pub fn te_file_panel() -> Node {
-    let (w, h) = figures::plots::te_fit::SIZE;
-    let harmonics = (1..=TE_HARMONICS).rev().map(|n| {
-        let words = if n == 1 {
-            "1 harmonic".to_string()
-        } else {
-            format!("{n} harmonics")
-        };
-        option(&n.to_string(), &words)
-    });
-    Node::new("div")
-        .attr("class", "te-file")
-        .attr("id", DROP)
-        .child(
-            Node::new("p")
-                .attr("class", "te-file-title")
-                .text("Transmission error from a file"),
-        )
-        .child(Node::new("p").text(
-            "A table of TE over one or more mesh periods, fitted to the harmonics of the \
-             mesh frequency: a CSV file whose heading row names its two columns with their \
-             units, Fraction (of a mesh period), Roll angle (deg) or Time (s), then TE (µm), \
-             TE (nm), TE (mm) or TE (m). Drop the file here or choose it.",
-        ))
-        .child(
-            Node::new("div")
-                .attr("class", "control")
-                .child(Node::new("label").attr("for", KIND).text("Mesh kind"))
-                .child(Node::new("select").attr("id", KIND)),
-        )
-        .child(
-            Node::new("div")
-                .attr("class", "control")
-                .child(
-                    Node::new("label")
-                        .attr("for", HARMONICS)
-                        .text("Harmonics fitted"),
-                )
-                .child(
-                    Node::new("select")
-                        .attr("id", HARMONICS)
-                        .children(harmonics),
-                ),
-        )
-        .child(
-            Node::new("div")
-                .attr("class", "control")
-                .child(Node::new("label").attr("for", INPUT).text("TE file"))
-                .child(
-                    Node::new("input")
-                        .attr("type", "file")
-                        .attr("id", INPUT)
-                        .attr("accept", ".csv,.txt,.tsv,text/csv,text/plain"),
-                ),
-        )
-        .child(
-            Node::new("canvas")
-                .attr("id", PLOT)
-                .attr("width", w.to_string())
-                .attr("height", h.to_string())
-                .attr("role", "img")
-                .attr("aria-label", "The TE file's points beside the fitted curve")
-                .attr("hidden", ""),
-        )
-        .child(
-            Node::new("p")
-                .attr("id", NOTE)
-                .attr("class", "note")
-                .attr("aria-live", "polite"),
-        )
-}
+pub const NOTE: &str = "te-file-note";
 
 /// The solver's message with its code quotes (`abc`) as quotation
 /// marks (“abc”).
