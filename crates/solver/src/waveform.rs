@@ -25,7 +25,6 @@
 //! stiffness ratio of 1.94.
 
 use crate::error::{Result, SolverError};
-use crate::params::ModelParams;
 use std::f64::consts::PI;
 
 /// The shape of a mesh's stiffness over one mesh period.
@@ -101,35 +100,6 @@ pub fn contact_ratio(z1: u32, z2: u32, internal: bool, module_mm: f64, alpha_deg
     } else {
         contact_ratio_external(z1, z2, module_mm, alpha_deg)
     }
-}
-
-/// The contact ratio the teeth of a mesh kind give (`"pair"` on the gear
-/// pair, `"s1a"`, `"s2b"`, `"ab"`, `"rb"` on the compound set): what a
-/// rectangular or trapezoid stiffness uses when no contact ratio is given.
-/// `None` for a kind the model has not, or a ring too small for its sun.
-pub fn auto_contact_ratio(params: &ModelParams, kind: &str) -> Option<f64> {
-    let (z1, z2, internal, m, alpha) = match params {
-        ModelParams::GearPair(p) if kind == "pair" => (
-            p.teeth_pinion,
-            p.teeth_gear,
-            false,
-            p.module_mm,
-            p.pressure_angle_deg,
-        ),
-        ModelParams::Ravigneaux(p) => {
-            let teeth_b = p.teeth_r.checked_sub(p.teeth_s2)? / 2;
-            let (z1, z2, internal) = match kind {
-                "s1a" => (p.teeth_s1, p.teeth_a, false),
-                "s2b" => (p.teeth_s2, teeth_b, false),
-                "ab" => (p.teeth_a, teeth_b, false),
-                "rb" => (teeth_b, p.teeth_r, true),
-                _ => return None,
-            };
-            (z1, z2, internal, p.module_mm, p.pressure_angle_deg)
-        }
-        ModelParams::GearPair(_) => return None,
-    };
-    Some(contact_ratio(z1, z2, internal, m, alpha)).filter(|e| e.is_finite())
 }
 
 /// Smallest and largest contact ratio a waveform accepts.
@@ -259,13 +229,14 @@ mod tests {
         let i = contact_ratio_internal(18, 84, 4.0, 20.0);
         assert!(i > e && i < 2.2, "{i}");
         // The page's automatic value is that of the model's teeth.
-        let pair = ModelParams::defaults(crate::params::ModelKind::GearPair);
-        let auto = auto_contact_ratio(&pair, "pair").unwrap();
+        use crate::params::{ModelKind, ModelParams};
+        let pair = ModelParams::defaults(ModelKind::GearPair);
+        let auto = pair.auto_contact_ratio("pair").unwrap();
         assert!((auto - 1.695).abs() < 2e-3, "{auto}");
-        assert_eq!(auto_contact_ratio(&pair, "s1a"), None);
+        assert_eq!(pair.auto_contact_ratio("s1a"), None);
         // The compound set's ring mesh: the long planet has (84 - 48) / 2 = 18 teeth.
-        let set = ModelParams::defaults(crate::params::ModelKind::Ravigneaux);
-        let ring = auto_contact_ratio(&set, "rb").unwrap();
+        let set = ModelParams::defaults(ModelKind::Ravigneaux);
+        let ring = set.auto_contact_ratio("rb").unwrap();
         assert!((ring - contact_ratio_internal(18, 84, 4.0, 20.0)).abs() < 1e-12);
     }
 }

@@ -8,7 +8,7 @@ use figures::protocol::KindSet;
 use solver::keys;
 use solver::model::Model;
 use solver::te_file::{self, TeFit, TeTable};
-use solver::waveform::{self, Wave};
+use solver::waveform::Wave;
 
 /// The mesh kind a contact-ratio or waveform key names (`pair` for the
 /// gear pair's own keys), if it is one.
@@ -68,7 +68,7 @@ impl Controller {
         if !matches!(keys::get(params, key), Some(keys::Value::Text(_))) {
             return None;
         }
-        let e = waveform::auto_contact_ratio(params, kind)?;
+        let e = params.auto_contact_ratio(kind)?;
         Some(format!("{e:.3}"))
     }
 
@@ -78,7 +78,7 @@ impl Controller {
     pub fn contact_ratio_words(&self, key: &str) -> Option<String> {
         let kind = ratio_kind(key)?;
         let params = &self.settings.params;
-        let teeth = waveform::auto_contact_ratio(params, kind);
+        let teeth = params.auto_contact_ratio(kind);
         let (e, said) = match (keys::get(params, key), teeth) {
             (Some(keys::Value::Num(e)), Some(t)) => {
                 (e, format!("{e} as typed (the teeth give {t:.3})"))
