@@ -30,6 +30,7 @@ mod canvas;
 mod gif;
 mod panel;
 mod present;
+mod tefile;
 mod worker;
 
 pub use worker::start_worker;
@@ -124,6 +125,7 @@ pub fn start_app() {
     let w = page.borrow_mut().core.first_present_writes();
     paint(&page.borrow(), w);
     present::build(&page);
+    tefile::build(&page);
     build_canvas_events(&page);
     start_workers(&page);
     run_effects(&page, effects);

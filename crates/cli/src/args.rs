@@ -295,19 +295,14 @@ pub fn load_params(p: &ParamArgs) -> Result<ModelParams, Failure> {
 /// Fits one `--te-file KIND=FILE` table (`solver::te_file`) and sets the
 /// kind's TE keys to the fit, its residual said on stderr.
 fn apply_te_file(params: &mut ModelParams, given: &str, harmonics: usize) -> Result<(), Failure> {
-    use solver::te_file::{self, Abscissa, MAX_TE_FILE_BYTES};
+    use solver::te_file::{self, MAX_TE_FILE_BYTES};
     let max = solver::params::TE_HARMONICS;
     if !(1..=max).contains(&harmonics) {
         return Err(usage(format!(
             "--te-harmonics {harmonics} is out of range: allowed 1 ..= {max}"
         )));
     }
-    let pair = params.kind() == ModelKind::GearPair;
-    let kinds: &[&str] = if pair {
-        &["pair"]
-    } else {
-        &["s1a", "s2b", "ab", "rb"]
-    };
+    let kinds = te_file::kinds(params);
     let (kind, path) = given
         .split_once('=')
         .filter(|(k, _)| kinds.contains(k))
@@ -339,40 +334,7 @@ fn apply_te_file(params: &mut ModelParams, given: &str, harmonics: usize) -> Res
     })?;
     let refused = |e: solver::error::SolverError| usage(format!("{what}{path}: {e}"));
     let table = te_file::parse(&text).map_err(refused)?;
-    // The driving member's teeth: one mesh period of roll angle is 360 / z.
-    let teeth_key = match kind {
-        "pair" => "teeth_pinion",
-        "s1a" => "teeth_s1",
-        "s2b" => "teeth_s2",
-        "ab" => "teeth_a",
-        _ => "teeth_r",
-    };
-    let period = match table.abscissa {
-        Abscissa::Fraction => 1.0,
-        Abscissa::RollDeg => match keys::get(params, teeth_key) {
-            Some(keys::Value::Num(z)) => 360.0 / z,
-            _ => 1.0,
-        },
-        Abscissa::TimeS => table.mesh_period_s.unwrap_or(1.0),
-    };
-    let fit = te_file::fit(&table, period, harmonics).map_err(refused)?;
-    let key = |part: &str, n: usize| -> String {
-        let n = if n < 2 { String::new() } else { n.to_string() };
-        match (pair, part, n.is_empty()) {
-            (true, "sin", true) => "te_um".into(),
-            (true, _, _) => format!("te_{part}{n}_um"),
-            (false, _, _) => format!("te_{part}{n}_{kind}_um"),
-        }
-    };
-    let mut assignments = vec![(key("mean", 0), fit.mean_um)];
-    for n in 1..=max {
-        let [c, s] = fit.harmonics_um.get(n - 1).copied().unwrap_or([0.0; 2]);
-        assignments.push((key("cos", n), c));
-        assignments.push((key("sin", n), s));
-    }
-    for (k, v) in assignments {
-        keys::set(params, &k, keys::Value::Num(v)).map_err(refused)?;
-    }
+    let fit = te_file::fit_into(params, kind, &table, harmonics).map_err(refused)?;
     crate::output::note(&format!(
         "{what}{path}: {harmonics} harmonics fitted to {} points over {:.3} mesh periods; \
          RMS residual {:.3e} µm against an RMS TE of {:.3e} µm; coefficients rounded to {} decimals of a µm",

@@ -291,8 +291,7 @@ pub fn controls() -> Vec<Control> {
     ] {
         c.push(param(key, label, Advanced, (-100.0, 100.0, 0.5)));
     }
-    // The excitation's waveforms (docs/excitation.md); the contact ratio
-    // is the geometry's here, a link may give it.
+    // The excitation's waveforms (docs/excitation.md).
     for (key, label) in [
         ("stiffness_wave", "Stiffness waveform"),
         ("stiffness_wave_s1a", "Stiffness waveform, s1a meshes"),
@@ -301,6 +300,20 @@ pub fn controls() -> Vec<Control> {
         ("stiffness_wave_rb", "Stiffness waveform, rb meshes"),
     ] {
         c.push(param(key, label, Advanced, (0.0, 0.0, 0.0)));
+    }
+    // The contact ratio the rectangle and the trapezoid read: empty for
+    // the teeth's (the page's placeholder says it), or given.
+    for (key, label) in [
+        (
+            "contact_ratio",
+            "Contact ratio (rectangular and trapezoid stiffness)",
+        ),
+        ("contact_ratio_s1a", "Contact ratio, s1a meshes"),
+        ("contact_ratio_s2b", "Contact ratio, s2b meshes"),
+        ("contact_ratio_ab", "Contact ratio, ab meshes"),
+        ("contact_ratio_rb", "Contact ratio, rb meshes"),
+    ] {
+        c.push(param(key, label, Advanced, (1.0, 2.95, 0.01)));
     }
     c.push(param(
         "stiffness_ramp",

@@ -24,5 +24,6 @@ pub mod protocol;
 pub mod settings;
 pub mod speed;
 pub mod story;
+pub mod te_fit;
 pub mod views;
 pub mod words;

@@ -124,9 +124,11 @@ pub fn allowed(key: &str) -> String {
             }
             KeyType::Int { min, max } => format!("a whole number between {min} and {max}"),
             KeyType::Choice(w) => format!("one of {}", w.join(", ")),
-            KeyType::FloatOrAuto { min, max } => {
-                with_unit(format!("auto or between {} and {}", num(min), num(max)))
-            }
+            KeyType::FloatOrAuto { min, max } => with_unit(format!(
+                "empty (computed) or between {} and {}",
+                num(min),
+                num(max)
+            )),
         };
     }
     match view_key(key).map(|v| v.ty) {
@@ -156,7 +158,7 @@ pub fn tooltip(key: &str, description: &str) -> String {
 
 /// The symbols and key names of the settings' descriptions (written for
 /// the command line) in words and symbols as people write them.
-const PLAIN: [(&str, &str); 12] = [
+const PLAIN: [(&str, &str); 14] = [
     ("te_meshes", "the TE meshes setting"),
     ("torque_s1_nm", "the torque on s1"),
     (
@@ -177,6 +179,14 @@ const PLAIN: [(&str, &str); 12] = [
     (
         "adds m r_cb^2 to the carrier",
         "adds its mass times its orbit radius squared to the carrier",
+    ),
+    (
+        "auto = from teeth, module and pressure angle",
+        "left empty, it is computed from the tooth counts, module and pressure angle",
+    ),
+    (
+        "(auto = from the geometry)",
+        "(left empty: computed from the teeth)",
     ),
     ("stiffness k_m", "stiffness kₘ"),
     ("backlash_um", "backlash b"),

@@ -1,5 +1,5 @@
 //! gearshock's fuzz harness, on stable Rust (cargo-fuzz needs nightly):
-//! deterministic pseudo-random and mutated inputs for the three readers of
+//! deterministic pseudo-random and mutated inputs for the readers of
 //! untrusted text, each checked for panics and for the invariants its
 //! output promises.
 //!
@@ -18,6 +18,8 @@
 //!   and regime gearshock writes), dropped, doubled or swapped shards and
 //!   mutated text. A merge it accepts must hold every grid point exactly
 //!   once, each one of its inputs' items verbatim.
+//! - `te_file`: the TE table reader and its fit (`te_file.rs`) on real
+//!   tables with hostile cells, headers and rows, and raw text.
 //! - figure shards: forged shard sets of a real figure
 //!   ([`figure_shards_input`]: members, smuggled file text, forged data and
 //!   options) checked by [`check_figure_merge`]; the figure merge draws
@@ -31,12 +33,14 @@ use serde_json::{json, Map, Value};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 mod shards;
+mod te_file;
 pub use shards::{
     base_shards, check_figure_merge, check_shards, figure_shards_input, shards_input,
 };
+pub use te_file::{check_te, te_input};
 
 /// The targets, in run order.
-pub const TARGETS: &[&str] = &["link", "params", "shards"];
+pub const TARGETS: &[&str] = &["link", "params", "shards", "te_file"];
 
 /// The outcome of a run.
 #[derive(Debug, Default)]
@@ -439,6 +443,12 @@ pub fn run(target: &str, seed: u64, inputs: u64) -> Report {
             "params" => {
                 let t = params_input(&mut r, &keys);
                 let out = catch_unwind(AssertUnwindSafe(|| check_params(&t)));
+                (t, out)
+            }
+            "te_file" => {
+                let t = te_input(&mut r);
+                let (h, pair) = (1 + r.below(7), r.chance(50));
+                let out = catch_unwind(AssertUnwindSafe(|| check_te(&t, h, pair)));
                 (t, out)
             }
             "shards" => {

@@ -34,6 +34,11 @@ fn shard_merger_survives_forged_shards() {
 }
 
 #[test]
+fn te_file_reader_survives_hostile_tables() {
+    check("te_file");
+}
+
+#[test]
 fn the_generators_reach_what_they_target() {
     // A harness whose inputs never get past the first check tests nothing:
     // some links must carry a pinned state, some parameter files must be
@@ -60,6 +65,16 @@ fn the_generators_reach_what_they_target() {
             refused += 1;
         }
     }
+    // Some hostile tables must still be read and fitted.
+    let fitted = (0..400)
+        .filter(|&n| {
+            let t = fuzz::te_input(&mut fuzz::Rng::new(9, n));
+            solver::te_file::parse(&t)
+                .and_then(|tb| solver::te_file::fit(&tb, 1.0, 1))
+                .is_ok()
+        })
+        .count();
+    assert!(fitted > 10, "{fitted}");
     assert!(pinned > 10, "{pinned}");
     assert!(params_ok > 10, "{params_ok}");
     assert!(

@@ -428,6 +428,35 @@ impl Default for ModelParams {
 }
 
 impl ModelParams {
+    /// The contact ratio the teeth of a mesh kind give (`"pair"` on the gear
+    /// pair, `"s1a"`, `"s2b"`, `"ab"`, `"rb"` on the compound set): what a
+    /// rectangular or trapezoid stiffness uses when no contact ratio is given.
+    /// `None` for a kind the model has not, or a ring too small for its sun.
+    pub fn auto_contact_ratio(&self, kind: &str) -> Option<f64> {
+        let (z1, z2, internal, m, alpha) = match self {
+            ModelParams::GearPair(p) if kind == "pair" => (
+                p.teeth_pinion,
+                p.teeth_gear,
+                false,
+                p.module_mm,
+                p.pressure_angle_deg,
+            ),
+            ModelParams::Ravigneaux(p) => {
+                let teeth_b = p.teeth_r.checked_sub(p.teeth_s2)? / 2;
+                let (z1, z2, internal) = match kind {
+                    "s1a" => (p.teeth_s1, p.teeth_a, false),
+                    "s2b" => (p.teeth_s2, teeth_b, false),
+                    "ab" => (p.teeth_a, teeth_b, false),
+                    "rb" => (teeth_b, p.teeth_r, true),
+                    _ => return None,
+                };
+                (z1, z2, internal, p.module_mm, p.pressure_angle_deg)
+            }
+            ModelParams::GearPair(_) => return None,
+        };
+        Some(crate::waveform::contact_ratio(z1, z2, internal, m, alpha)).filter(|e| e.is_finite())
+    }
+
     /// The defaults of a model.
     pub fn defaults(kind: ModelKind) -> Self {
         match kind {

@@ -12,7 +12,8 @@
 //!   comment line `# mesh_period_s = 0.00125`;
 //!
 //! the second the TE: `te_um` (`TE (um)`, `te_µm`), `te_nm`, `te_mm` or `te_m`.
-//! The abscissa must increase strictly and span at least one mesh period.
+//! The abscissa must start at 0 or above, increase strictly and span at
+//! least one mesh period.
 //!
 //! The fit is linear least squares (nalgebra's SVD) on `mean + sum_n (c_n
 //! cos(n theta) + s_n sin(n theta))`, `theta = 2 pi x / period`, so the
@@ -22,6 +23,8 @@
 //! few-harmonic curve so gives back its coefficients as typed.
 
 use crate::error::{Result, SolverError};
+use crate::keys;
+use crate::params::{ModelKind, ModelParams, TE_HARMONICS};
 use nalgebra::{DMatrix, DVector};
 use std::f64::consts::PI;
 
@@ -148,6 +151,12 @@ pub fn parse(text: &str) -> Result<TeTable> {
         };
         let xi = number(cells[0], "the abscissa")?;
         let ti = number(cells[1], "the TE")?;
+        if xi < 0.0 {
+            return Err(refuse(
+                line,
+                format!("the abscissa {xi} is negative; allowed 0 and above"),
+            ));
+        }
         if let Some(&prev) = x.last() {
             if xi <= prev {
                 return Err(refuse(
@@ -155,6 +164,15 @@ pub fn parse(text: &str) -> Result<TeTable> {
                     format!("the abscissa {xi} does not increase (the line before has {prev})"),
                 ));
             }
+        }
+        if !(ti * scale).is_finite() {
+            return Err(refuse(
+                line,
+                format!(
+                    "the TE {} is too large in µm; only finite numbers",
+                    crate::keys::truncate(cells[1], 20)
+                ),
+            ));
         }
         x.push(xi);
         te_um.push(ti * scale);
@@ -230,7 +248,19 @@ pub fn fit(table: &TeTable, period: f64, harmonics: usize) -> Result<TeFit> {
     let (first, last) = (table.x[0], table.x[n - 1]);
     // Points spread evenly over k periods span (k - 1/n) of them.
     let periods = (last - first) / period * n as f64 / (n as f64 - 1.0);
-    if periods.is_nan() || periods < 1.0 - 1e-9 {
+    // Phases beyond 1e9 periods lose their digits (and beyond the range
+    // of numbers the fit would not end).
+    let reach = last / period;
+    if !(periods.is_finite() && reach.is_finite() && periods <= 1e6 && reach <= 1e9) {
+        return Err(refuse(
+            0,
+            format!(
+                "the table spans {periods:.3e} mesh periods and reaches {reach:.3e}; \
+                 allowed 1 to 1e6 periods, reaching at most 1e9"
+            ),
+        ));
+    }
+    if periods < 1.0 - 1e-9 {
         return Err(refuse(
             0,
             format!(
@@ -275,6 +305,109 @@ pub fn fit(table: &TeTable, period: f64, harmonics: usize) -> Result<TeFit> {
     })
 }
 
+impl TeFit {
+    /// The fitted TE (um) at the mesh phase `theta` (rad).
+    pub fn value_um(&self, theta: f64) -> f64 {
+        self.harmonics_um
+            .iter()
+            .enumerate()
+            .fold(self.mean_um, |e, (i, [c, s])| {
+                let n = (i + 1) as f64;
+                e + c * (n * theta).cos() + s * (n * theta).sin()
+            })
+    }
+}
+
+/// The mesh kinds a model's TE can be fitted to: `pair` on the gear
+/// pair, the four kinds on the compound set.
+pub fn kinds(params: &ModelParams) -> &'static [&'static str] {
+    match params.kind() {
+        ModelKind::GearPair => &["pair"],
+        ModelKind::Ravigneaux => &["s1a", "s2b", "ab", "rb"],
+    }
+}
+
+/// The key of a TE coefficient: `part` `mean`, `cos` or `sin`, harmonic
+/// `n` (1 ..= [`TE_HARMONICS`]; ignored for the mean), of mesh kind `kind`
+/// (`pair`: the gear pair's keys, where the first sine is `te_um`).
+pub fn te_key(kind: &str, part: &str, n: usize) -> String {
+    let n = if n < 2 || part == "mean" {
+        String::new()
+    } else {
+        n.to_string()
+    };
+    match (kind, part, n.is_empty()) {
+        ("pair", "sin", true) => "te_um".into(),
+        ("pair", _, _) => format!("te_{part}{n}_um"),
+        _ => format!("te_{part}{n}_{kind}_um"),
+    }
+}
+
+/// One mesh period in the table's abscissa: 1 for a fraction, `360 / z`
+/// degrees of roll of the mesh kind's driving member (the pinion; s1, s2,
+/// a, or the ring), the file's period for time.
+pub fn mesh_period(params: &ModelParams, kind: &str, table: &TeTable) -> f64 {
+    let teeth_key = match kind {
+        "pair" => "teeth_pinion",
+        "s1a" => "teeth_s1",
+        "s2b" => "teeth_s2",
+        "ab" => "teeth_a",
+        _ => "teeth_r",
+    };
+    match table.abscissa {
+        Abscissa::Fraction => 1.0,
+        Abscissa::RollDeg => match keys::get(params, teeth_key) {
+            Some(keys::Value::Num(z)) if z > 0.0 => 360.0 / z,
+            _ => 1.0,
+        },
+        Abscissa::TimeS => table.mesh_period_s.unwrap_or(1.0),
+    }
+}
+
+/// Fits `harmonics` harmonics to `table` for the mesh kind `kind` and sets
+/// that kind's TE mean and every harmonic's keys to the fit (zero above
+/// `harmonics`): what `--te-file KIND=FILE` and the page's TE file do.
+/// Refused, `params` unchanged: a kind the model has not, `harmonics`
+/// outside 1 ..= [`TE_HARMONICS`], a table the fit cannot take.
+pub fn fit_into(
+    params: &mut ModelParams,
+    kind: &str,
+    table: &TeTable,
+    harmonics: usize,
+) -> Result<TeFit> {
+    let known = kinds(params);
+    if !known.contains(&kind) {
+        return Err(refuse(
+            0,
+            format!(
+                "the mesh kind `{}` is not one of {}",
+                keys::truncate(kind, 20),
+                known.join(", ")
+            ),
+        ));
+    }
+    if !(1..=TE_HARMONICS).contains(&harmonics) {
+        return Err(refuse(
+            0,
+            format!("{harmonics} harmonics is out of range: allowed 1 to {TE_HARMONICS}"),
+        ));
+    }
+    let fit = fit(table, mesh_period(params, kind, table), harmonics)?;
+    let mut next = params.clone();
+    keys::set(
+        &mut next,
+        &te_key(kind, "mean", 0),
+        keys::Value::Num(fit.mean_um),
+    )?;
+    for n in 1..=TE_HARMONICS {
+        let [c, s] = fit.harmonics_um.get(n - 1).copied().unwrap_or([0.0; 2]);
+        keys::set(&mut next, &te_key(kind, "cos", n), keys::Value::Num(c))?;
+        keys::set(&mut next, &te_key(kind, "sin", n), keys::Value::Num(s))?;
+    }
+    *params = next;
+    Ok(fit)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -311,6 +444,54 @@ mod tests {
     }
 
     #[test]
+    fn a_fit_sets_the_kinds_keys_and_a_refusal_changes_nothing() {
+        // 1 + 3 cos(2 theta) - 2 sin(theta) against roll angle of a 30-tooth
+        // sun s1: one mesh period is 12 degrees.
+        let mut text = String::from("roll_deg,te_um\n");
+        for i in 0..48 {
+            let x = 12.0 * f64::from(i) / 48.0;
+            let t = 2.0 * PI * x / 12.0;
+            let e = 1.0 + 3.0 * (2.0 * t).cos() - 2.0 * t.sin();
+            text.push_str(&format!("{x:.9},{e:.12}\n"));
+        }
+        let table = parse(&text).unwrap();
+        let mut p = ModelParams::defaults(ModelKind::Ravigneaux);
+        keys::set(&mut p, "teeth_s1", keys::Value::Num(30.0)).unwrap();
+        keys::set(&mut p, "te_sin5_s2b_um", keys::Value::Num(4.0)).unwrap();
+        let before = p.clone();
+        let num = |p: &ModelParams, k: &str| match keys::get(p, k) {
+            Some(keys::Value::Num(x)) => x,
+            other => panic!("{k}: {other:?}"),
+        };
+        let f = fit_into(&mut p, "s1a", &table, 3).unwrap();
+        assert!((f.value_um(0.0) - 4.0).abs() < 1e-6, "{f:?}");
+        assert_eq!(num(&p, "te_mean_s1a_um"), 1.0);
+        assert_eq!(num(&p, "te_sin_s1a_um"), -2.0);
+        assert_eq!(num(&p, "te_cos2_s1a_um"), 3.0);
+        assert_eq!(num(&p, "te_cos_s1a_um"), 0.0);
+        // Another kind's TE is not touched.
+        assert_eq!(num(&p, "te_sin5_s2b_um"), 4.0);
+        let mut q = before.clone();
+        for (kind, h) in [("pair", 3), ("s1a", 0), ("s1a", 7), ("s1a", 6)] {
+            assert!(fit_into(&mut q, kind, &table, h).is_ok() == (h == 6 && kind == "s1a"));
+            if h != 6 {
+                assert_eq!(q, before, "{kind} {h}");
+            }
+        }
+        let mut pair = ModelParams::defaults(ModelKind::GearPair);
+        fit_into(
+            &mut pair,
+            "pair",
+            &parse("fraction,te_um\n0,1\n0.25,3\n0.5,1\n0.75,-1\n").unwrap(),
+            1,
+        )
+        .unwrap();
+        // 1 + 2 sin(theta) through the four points: the pair's sine is te_um.
+        assert_eq!(num(&pair, "te_um"), 2.0);
+        assert_eq!(num(&pair, "te_mean_um"), 1.0);
+    }
+
+    #[test]
     fn bad_tables_are_refused_with_the_line_and_the_reason() {
         let cases = [
             ("", "empty"),
@@ -326,6 +507,10 @@ mod tests {
                 "line 4: the abscissa 0.4 does not increase",
             ),
             ("speed,te_um\n0,1\n", "line 1: the first column `speed`"),
+            (
+                "fraction,te_um\n-0.1,1\n0.5,2\n",
+                "line 2: the abscissa -0.1 is negative; allowed 0 and above",
+            ),
             ("time_s,te_um\n0,1\n", "mesh_period_s"),
         ];
         for (text, want) in cases {
@@ -343,5 +528,16 @@ mod tests {
                 .collect::<String>();
         let e = fit(&parse(&part).unwrap(), 1.0, 1).unwrap_err().to_string();
         assert!(e.contains("spans 0.200 mesh periods"), "{e}");
+        // A period so short that the phases are not numbers any more.
+        let tiny = "time_s,te_um\n# mesh_period_s = 1e-320\n".to_string()
+            + &(0..20)
+                .map(|i| format!("{},1\n", f64::from(i) * 0.01))
+                .collect::<String>();
+        let e = fit(&parse(&tiny).unwrap(), 1e-320, 1)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("allowed 1 to 1e6 periods"), "{e}");
+        let e = parse("fraction,te_m\n0,1e305\n").unwrap_err().to_string();
+        assert!(e.contains("line 2: the TE 1e305 is too large in µm"), "{e}");
     }
 }

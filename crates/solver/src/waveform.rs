@@ -228,5 +228,15 @@ mod tests {
         assert!((e - 1.695).abs() < 2e-3, "{e}");
         let i = contact_ratio_internal(18, 84, 4.0, 20.0);
         assert!(i > e && i < 2.2, "{i}");
+        // The page's automatic value is that of the model's teeth.
+        use crate::params::{ModelKind, ModelParams};
+        let pair = ModelParams::defaults(ModelKind::GearPair);
+        let auto = pair.auto_contact_ratio("pair").unwrap();
+        assert!((auto - 1.695).abs() < 2e-3, "{auto}");
+        assert_eq!(pair.auto_contact_ratio("s1a"), None);
+        // The compound set's ring mesh: the long planet has (84 - 48) / 2 = 18 teeth.
+        let set = ModelParams::defaults(ModelKind::Ravigneaux);
+        let ring = set.auto_contact_ratio("rb").unwrap();
+        assert!((ring - contact_ratio_internal(18, 84, 4.0, 20.0)).abs() < 1e-12);
     }
 }

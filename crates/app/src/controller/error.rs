@@ -21,9 +21,18 @@ pub enum InputError {
     /// range was reset to what.
     #[error("{0}")]
     RangeReset(String),
-    /// Parameters the model cannot be built from (tooth counts, torques).
+    /// Parameters the model cannot be built from (tooth counts, torques),
+    /// or a TE table the solver cannot read or fit (its line and reason).
     #[error(transparent)]
     Model(#[from] SolverError),
+    /// A count of TE harmonics to fit outside what the fit takes.
+    #[error("the harmonics fitted must be 1 to {most} (not {given})")]
+    TeHarmonics {
+        /// The most the fit takes.
+        most: usize,
+        /// The text as given.
+        given: String,
+    },
     /// A family that cannot be shown.
     #[error(transparent)]
     Family(#[from] FamilyError),

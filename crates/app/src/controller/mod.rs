@@ -756,6 +756,7 @@ mod boundaries;
 pub(crate) mod campbell;
 mod dynamic;
 mod error;
+mod excitation;
 mod export;
 mod orders;
 mod speed;

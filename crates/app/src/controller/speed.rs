@@ -24,6 +24,8 @@ impl Controller {
         text: &str,
         now_ms: f64,
     ) -> Result<Vec<Effect>, InputError> {
+        let typed = super::excitation::typed_text(key, text);
+        let text = typed.as_str();
         let axis = self.speed_axis();
         let (Some(s), true) = (axis.rpm_scale(), SPEED_KEYS.contains(&key)) else {
             return self.set_key(key, text, now_ms);

@@ -253,7 +253,7 @@ impl Page {
         for c in controls() {
             w.push(Write::Hidden {
                 id: format!("control-{}", c.key),
-                hidden: !shown_for(&c, model),
+                hidden: !shown_for(&c, model) || self.ctl.control_unused(c.key),
             });
             let label = self.ctl.speed_label(c.key);
             w.push(Write::text(
@@ -282,9 +282,16 @@ impl Page {
                     });
                 }
             }
+            let hint = self.ctl.contact_ratio_hint(c.key);
+            if let Some(words) = self.ctl.contact_ratio_words(c.key) {
+                w.push(Write::text(&format!("hint-{}", c.key), words));
+            }
             let text = match c.target {
                 Target::Param => match solver::keys::get(params, c.key) {
                     Some(solver::keys::Value::Num(x)) => field_text(x),
+                    // An automatic value: the field empty, its placeholder
+                    // the value computed.
+                    Some(solver::keys::Value::Text(_)) if hint.is_some() => String::new(),
                     Some(solver::keys::Value::Text(t)) => t,
                     None => continue,
                 },
@@ -303,7 +310,7 @@ impl Page {
                     w.push(Write::Attr {
                         id: format!("num-{}", c.key),
                         name: "placeholder",
-                        value: mixed.into(),
+                        value: hint.unwrap_or_else(|| mixed.into()),
                     });
                     if !text.is_empty() {
                         w.push(Write::Value {

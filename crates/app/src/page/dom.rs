@@ -5,12 +5,14 @@
 //! (and tested) here; the web layer only creates what it is given.
 
 use super::present::PresentMove;
+use super::tefile::{DROP, HARMONICS, INPUT, KIND, NOTE, PLOT};
 use crate::claims::{claims, heading};
 use crate::controller::Format;
 use figures::controls::{controls, Group, Widget};
 use figures::family_spec::FAMILY_KEYS;
 use figures::presets::{preset, PRESETS};
 use figures::views::{ViewId, PAGE};
+use solver::params::TE_HARMONICS;
 
 /// What a user's event on an element asks of the page.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -231,7 +233,12 @@ pub fn control_panel() -> Vec<Node> {
                                     .attr("step", "any")
                                     .on("change", Action::Set(key)),
                             )
-                            .child(Node::new("span").attr("class", "unit").text(c.unit.clone())),
+                            .child(Node::new("span").attr("class", "unit").text(c.unit.clone()))
+                            .children(key.starts_with("contact_ratio").then(|| {
+                                Node::new("p")
+                                    .attr("class", "hint")
+                                    .attr("id", format!("hint-{key}"))
+                            })),
                         Widget::Select(options) => {
                             div.child(label.attr("for", format!("sel-{key}"))).child(
                                 Node::new("select")
@@ -247,6 +254,7 @@ pub fn control_panel() -> Vec<Node> {
                     .attr("class", "advanced")
                     .child(Node::new("summary").text(group.title()))
                     .child(Node::new("fieldset").children(rows))
+                    .child(te_file_panel())
             } else {
                 Node::new("fieldset")
                     .child(Node::new("legend").text(group.title()))
@@ -254,6 +262,79 @@ pub fn control_panel() -> Vec<Node> {
             }
         })
         .collect()
+}
+
+/// The TE file's part of the Advanced group.
+pub fn te_file_panel() -> Node {
+    let (w, h) = figures::plots::te_fit::SIZE;
+    let harmonics = (1..=TE_HARMONICS).rev().map(|n| {
+        let words = if n == 1 {
+            "1 harmonic".to_string()
+        } else {
+            format!("{n} harmonics")
+        };
+        option(&n.to_string(), &words)
+    });
+    Node::new("div")
+        .attr("class", "te-file")
+        .attr("id", DROP)
+        .child(
+            Node::new("p")
+                .attr("class", "te-file-title")
+                .text("Transmission error from a file"),
+        )
+        .child(Node::new("p").text(
+            "A table of TE over one or more mesh periods, fitted to the harmonics of the \
+             mesh frequency: a CSV file whose heading row names its two columns with their \
+             units, Fraction (of a mesh period), Roll angle (deg) or Time (s), then TE (µm), \
+             TE (nm), TE (mm) or TE (m). Drop the file here or choose it.",
+        ))
+        .child(
+            Node::new("div")
+                .attr("class", "control")
+                .child(Node::new("label").attr("for", KIND).text("Mesh kind"))
+                .child(Node::new("select").attr("id", KIND)),
+        )
+        .child(
+            Node::new("div")
+                .attr("class", "control")
+                .child(
+                    Node::new("label")
+                        .attr("for", HARMONICS)
+                        .text("Harmonics fitted"),
+                )
+                .child(
+                    Node::new("select")
+                        .attr("id", HARMONICS)
+                        .children(harmonics),
+                ),
+        )
+        .child(
+            Node::new("div")
+                .attr("class", "control")
+                .child(Node::new("label").attr("for", INPUT).text("TE file"))
+                .child(
+                    Node::new("input")
+                        .attr("type", "file")
+                        .attr("id", INPUT)
+                        .attr("accept", ".csv,.txt,.tsv,text/csv,text/plain"),
+                ),
+        )
+        .child(
+            Node::new("canvas")
+                .attr("id", PLOT)
+                .attr("width", w.to_string())
+                .attr("height", h.to_string())
+                .attr("role", "img")
+                .attr("aria-label", "The TE file's points beside the fitted curve")
+                .attr("hidden", ""),
+        )
+        .child(
+            Node::new("p")
+                .attr("id", NOTE)
+                .attr("class", "note")
+                .attr("aria-live", "polite"),
+        )
 }
 
 /// A view's export bar: PNG, SVG, CSV, JSON and, for the views that have

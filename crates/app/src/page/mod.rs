@@ -20,6 +20,7 @@ pub mod gif;
 mod paint;
 pub mod present;
 pub mod redraw;
+pub mod tefile;
 mod texts;
 
 use crate::controller::{Controller, Effect};
@@ -175,6 +176,8 @@ pub struct Page {
     refused: Vec<Refusal>,
     /// Present mode: one part of the page on the whole screen.
     present: present::Present,
+    /// The last TE file fitted ([`tefile`]).
+    te: Option<figures::te_fit::TeFitView>,
 }
 
 /// Input waiting for the next frame.
@@ -307,6 +310,7 @@ impl Page {
             schematic: SchematicShown::default(),
             refused: Vec::new(),
             present: present::Present::default(),
+            te: None,
         }
     }
 
@@ -601,6 +605,7 @@ impl Page {
         }
         if d.controls {
             w.extend(self.control_writes());
+            w.push(self.te_kind_writes());
         }
         w.extend(self.schematic_writes());
         w

@@ -53,6 +53,11 @@ pub struct BenchArgs {
     /// can solve the same equations (scripts/bench-pyharm.sh).
     #[arg(long)]
     hbm_problem: bool,
+    /// A key of the model every figure but the branches' runs on, e.g.
+    /// `--set stiffness_wave_s1a=rectangular` (repeatable; the default
+    /// model otherwise). A figure the model refuses is reported, not run.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    set: Vec<String>,
 }
 
 /// Checks the options, runs every benchmark and prints the figures.
@@ -63,6 +68,12 @@ pub fn run_command(a: &BenchArgs) -> Result<(), crate::failure::Failure> {
             a.repeats
         )));
     }
+    let mut base = ModelParams::default();
+    for given in &a.set {
+        solver::keys::set_assignment(&mut base, given)
+            .map_err(|e| crate::failure::usage(format!("--set {e}")))?;
+    }
+    let base = &base;
     if a.hbm_problem {
         let model = Model::new(&ModelParams::default()).map_err(crate::failure::Failure::from)?;
         let hbm =
@@ -70,13 +81,13 @@ pub fn run_command(a: &BenchArgs) -> Result<(), crate::failure::Failure> {
         return crate::output::emit(&hbm_problem(&model, &hbm));
     }
     if a.classification {
-        let model = Model::new(&ModelParams::default()).map_err(crate::failure::Failure::from)?;
+        let model = Model::new(base).map_err(crate::failure::Failure::from)?;
         let long = if a.quick { 600 } else { 20_000 };
         let v = classification_check(&model, long).map_err(crate::failure::Failure::from)?;
         return crate::output::emit(&json!({ "classification": v }));
     }
     if a.hbm_only {
-        let model = Model::new(&ModelParams::default()).map_err(crate::failure::Failure::from)?;
+        let model = Model::new(base).map_err(crate::failure::Failure::from)?;
         let v = hbm_branch_bench(&model, if a.quick { 1 } else { a.repeats })
             .map_err(crate::failure::Failure::from)?;
         return crate::output::emit(&json!({ "hbm_branch": v }));
@@ -87,7 +98,7 @@ pub fn run_command(a: &BenchArgs) -> Result<(), crate::failure::Failure> {
         return crate::output::emit(&json!({ "shooting_branches": v }));
     }
     if a.pipeline_only {
-        let model = Model::new(&ModelParams::default()).map_err(crate::failure::Failure::from)?;
+        let model = Model::new(base).map_err(crate::failure::Failure::from)?;
         let (points, transient, record) = if a.quick {
             (4, 30, 10)
         } else {
@@ -97,7 +108,7 @@ pub fn run_command(a: &BenchArgs) -> Result<(), crate::failure::Failure> {
             .map_err(crate::failure::Failure::from)?;
         return crate::output::emit(&json!({ "bifurcation_pipeline": v }));
     }
-    crate::output::emit(&run(a.repeats, a.quick)?)
+    crate::output::emit(&run(base, a.repeats, a.quick)?)
 }
 
 /// The harmonic-balance problem of `model` as JSON (see `docs/model.md`
@@ -177,8 +188,8 @@ fn median(mut xs: Vec<f64>) -> f64 {
 }
 
 /// Runs every benchmark and returns the figures.
-pub fn run(repeats: u32, quick: bool) -> Result<Value, SolverError> {
-    let model = Model::new(&ModelParams::default())?;
+pub fn run(base: &ModelParams, repeats: u32, quick: bool) -> Result<Value, SolverError> {
+    let model = Model::new(base)?;
     let omega = 0.5;
 
     // Right-hand side evaluations per second, on states along a real orbit.
@@ -260,7 +271,7 @@ pub fn run(repeats: u32, quick: bool) -> Result<Value, SolverError> {
         let mut spec = MapSpec::new((0.1, 2.0, columns), "backlash_um", (10.0, 200.0, rows));
         spec.steady.transient_periods = transient;
         spec.steady.record_periods = record;
-        let mut map = RegimeMap::new(&ModelParams::default(), spec)?;
+        let mut map = RegimeMap::new(base, spec)?;
         let start = Instant::now();
         while !map.is_finished() {
             map.advance(64);
@@ -281,13 +292,21 @@ pub fn run(repeats: u32, quick: bool) -> Result<Value, SolverError> {
         let mut secs = Vec::new();
         let mut secs_no_stability = Vec::new();
         let mut branch_points = 0;
-        for stability in [true, false] {
+        let mut refused = None;
+        'runs: for stability in [true, false] {
             for _ in 0..runs {
                 let mut spec = FrfSpec::new(0.1, 2.0, nominal);
                 spec.harmonics = h;
                 spec.stability = stability;
                 let start = Instant::now();
-                let mut c = FrfContinuation::new(&model, spec)?;
+                // A balance of fewer harmonics than the excitation's is refused.
+                let mut c = match FrfContinuation::new(&model, spec) {
+                    Ok(c) => c,
+                    Err(e) => {
+                        refused = Some(e.to_string());
+                        break 'runs;
+                    }
+                };
                 let mut n = 0;
                 while !c.is_finished() {
                     n += c.advance(64)?.len();
@@ -300,6 +319,10 @@ pub fn run(repeats: u32, quick: bool) -> Result<Value, SolverError> {
                 }
                 branch_points = n;
             }
+        }
+        if let Some(why) = refused {
+            hbm.insert(format!("h{h}"), json!({ "refused": why }));
+            continue;
         }
         let med = median(secs);
         hbm.insert(
@@ -325,7 +348,7 @@ pub fn run(repeats: u32, quick: bool) -> Result<Value, SolverError> {
         for zeta in [0.02, 0.06] {
             for b in [0.0, 20.0, 50.0, 100.0, 200.0] {
                 for te in [0.0, 20.0, 60.0] {
-                    let mut p = ModelParams::default();
+                    let mut p = base.clone();
                     for a in [
                         format!("backlash_um={b}"),
                         format!("te_um={te}"),

@@ -30,6 +30,7 @@ pub mod maps;
 pub mod multiples;
 mod omega;
 pub mod orders;
+pub mod te_fit;
 
 pub use bif::{draw_bif, draw_groups, failed_label, svg_with, svg_with_dots};
 pub use boxes::{text_box, Boxed, TextBox};
