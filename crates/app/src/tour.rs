@@ -246,10 +246,11 @@ pub struct Geometry {
     pub prefer_clear: Vec<Rect>,
     /// The card's box now, if it shows.
     pub card_now: Option<Rect>,
-    /// Where the target was on the page (its left and top) when the card
-    /// was last placed: the card keeps its place beside the target as the
-    /// page's layout shifts (a plot above grows).
-    pub anchor: Option<(f64, f64)>,
+    /// Where the target was when the card was last placed: its left and
+    /// top on the page, and its top on the screen after that placement's
+    /// scroll. The card keeps its place beside the target as the page's
+    /// layout shifts (a plot above grows).
+    pub anchor: Option<(f64, f64, f64)>,
     /// The page's scroll (x, y).
     pub scroll: (f64, f64),
     /// The viewport's width and height.
@@ -266,9 +267,9 @@ pub struct Placement {
     pub at: Option<(f64, f64)>,
     /// How far to scroll the page down (negative: up), if at all.
     pub scroll_by: Option<f64>,
-    /// Where the target is on the page now ([`Geometry::anchor`] for the
-    /// next placement).
-    pub anchor: Option<(f64, f64)>,
+    /// Where the target is on the page now, and on the screen after this
+    /// placement's scroll ([`Geometry::anchor`] for the next placement).
+    pub anchor: Option<(f64, f64, f64)>,
 }
 
 /// The card's spot in the viewport: within the screen, over none of the
@@ -326,29 +327,33 @@ pub fn placement(g: &Geometry, new_step: bool, docked: bool) -> Placement {
             anchor: None,
         };
     };
-    let anchor = Some((target[0] + sx, target[1] + sy));
+    let page = (target[0] + sx, target[1] + sy);
+    let anchor = Some((page.0, page.1, target[1]));
     if docked {
-        // A new step: its target to the top. Later: the page scrolls with
-        // the target as the layout above it shifts (a note grows), so it
-        // stays where it was, above the card; a reader's own scroll moves
-        // nothing on the page and is left alone.
+        // A new step: its target to the top. Later: when the layout above
+        // the target shifts (a note grows), the target goes back to its
+        // place on the screen, above the card. The browser's own scroll
+        // anchoring may have done so already: then nothing is left to
+        // scroll. A reader's own scroll moves nothing on the page and is
+        // left alone.
         let by = match (new_step, g.anchor) {
             (true, _) => target[1] - GAP,
-            (false, Some(then)) => target[1] + sy - then.1,
-            (false, None) => 0.0,
+            (false, Some(then)) if (page.1 - then.1).abs() > 1.0 => target[1] - then.2,
+            (false, _) => 0.0,
         };
+        let scroll_by = (by.abs() > 1.0).then_some(by);
         return Placement {
             at: None,
-            scroll_by: (by.abs() > 1.0).then_some(by),
-            anchor,
+            scroll_by,
+            anchor: Some((page.0, page.1, target[1] - scroll_by.unwrap_or(0.0))),
         };
     }
     let clear = |c: Rect| !g.keep_clear.iter().any(|r| overlaps(c, *r));
     if let (false, Some(now)) = (new_step, g.card_now) {
         // The target moved on the page by (dx, dy): the card with it.
-        let (dx, dy) = match (g.anchor, anchor) {
-            (Some(then), Some(now)) => (now.0 - then.0, now.1 - then.1),
-            _ => (0.0, 0.0),
+        let (dx, dy) = match g.anchor {
+            Some(then) => (page.0 - then.0, page.1 - then.1),
+            None => (0.0, 0.0),
         };
         let moved = [now[0] + dx, now[1] + dy, now[2] + dx, now[3] + dy];
         if clear(moved) {
@@ -462,10 +467,11 @@ mod tests {
         assert_eq!(placement(&g, false, true).scroll_by, None);
         // The target at the top (page y 1300): a note above it grows by
         // 105 px, and the page scrolls on with it.
+        assert_eq!(p.anchor, Some((8.0, 1300.0, 12.0)));
         let placed = Geometry {
             keep_clear: vec![[8.0, 12.0, 382.0, 512.0]],
             scroll: (0.0, 1288.0),
-            anchor: Some((8.0, 1300.0)),
+            anchor: p.anchor,
             ..g.clone()
         };
         assert_eq!(placement(&placed, false, true).scroll_by, None);
@@ -474,6 +480,22 @@ mod tests {
             ..placed.clone()
         };
         assert_eq!(placement(&shifted, false, true).scroll_by, Some(105.0));
+        // The browser's scroll anchoring kept the target in place on the
+        // screen by scrolling the 105 px itself: nothing more to scroll
+        // (scrolling again put the gear set's picture off the phone's
+        // screen once view 12 made the page longer).
+        let anchored = Geometry {
+            scroll: (0.0, 1393.0),
+            ..placed.clone()
+        };
+        assert_eq!(placement(&anchored, false, true).scroll_by, None);
+        // A reader's scroll moves nothing on the page: left alone.
+        let read = Geometry {
+            keep_clear: vec![[8.0, 212.0, 382.0, 712.0]],
+            scroll: (0.0, 1088.0),
+            ..placed.clone()
+        };
+        assert_eq!(placement(&read, false, true).scroll_by, None);
     }
 
     /// With no free spot on the screen the card goes under its target and

@@ -323,8 +323,8 @@ fn place_card(
     let shown = !card.hidden() && card.offset_width() > 0;
     // Where the target was when the card was last placed ("x y").
     let anchor = card.get_attribute("data-anchor").and_then(|a| {
-        let (x, y) = a.split_once(' ')?;
-        Some((x.parse().ok()?, y.parse().ok()?))
+        let mut v = a.split(' ').map(str::parse::<f64>);
+        Some((v.next()?.ok()?, v.next()?.ok()?, v.next()?.ok()?))
     });
     let g = crate::tour::Geometry {
         keep_clear: keep.into_iter().flatten().collect(),
@@ -350,9 +350,10 @@ fn place_card(
     if let Some(by) = placed.scroll_by {
         p.window.scroll_by_with_x_and_y(0.0, by);
     }
-    if let Some((x, y)) = placed.anchor {
-        // The target's place on the page (a scroll does not move it).
-        check(card.set_attribute("data-anchor", &format!("{x:.1} {y:.1}")));
+    if let Some((x, y, top)) = placed.anchor {
+        // The target's place on the page (a scroll does not move it) and
+        // on the screen.
+        check(card.set_attribute("data-anchor", &format!("{x:.1} {y:.1} {top:.1}")));
     }
 }
 
