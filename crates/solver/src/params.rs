@@ -427,6 +427,23 @@ impl Default for ModelParams {
     }
 }
 
+impl RavigneauxParams {
+    /// The teeth of a mesh kind's two gears and whether the mesh is
+    /// internal: (z1, z2, internal), the long planet having (z_r - z_s2) / 2
+    /// teeth. `None` for the gear pair's kind or a ring smaller than the
+    /// large sun.
+    pub fn mesh_teeth(&self, kind: MeshKind) -> Option<(u32, u32, bool)> {
+        let teeth_b = self.teeth_r.checked_sub(self.teeth_s2)? / 2;
+        Some(match kind {
+            MeshKind::S1A => (self.teeth_s1, self.teeth_a, false),
+            MeshKind::S2B => (self.teeth_s2, teeth_b, false),
+            MeshKind::AB => (self.teeth_a, teeth_b, false),
+            MeshKind::RB => (teeth_b, self.teeth_r, true),
+            MeshKind::Pair => return None,
+        })
+    }
+}
+
 impl ModelParams {
     /// The contact ratio the teeth of a mesh kind give (`"pair"` on the gear
     /// pair, `"s1a"`, `"s2b"`, `"ab"`, `"rb"` on the compound set): what a
@@ -442,14 +459,8 @@ impl ModelParams {
                 p.pressure_angle_deg,
             ),
             ModelParams::Ravigneaux(p) => {
-                let teeth_b = p.teeth_r.checked_sub(p.teeth_s2)? / 2;
-                let (z1, z2, internal) = match kind {
-                    "s1a" => (p.teeth_s1, p.teeth_a, false),
-                    "s2b" => (p.teeth_s2, teeth_b, false),
-                    "ab" => (p.teeth_a, teeth_b, false),
-                    "rb" => (teeth_b, p.teeth_r, true),
-                    _ => return None,
-                };
+                let kind = MeshKind::COMPOUND.into_iter().find(|k| k.key() == kind)?;
+                let (z1, z2, internal) = p.mesh_teeth(kind)?;
                 (z1, z2, internal, p.module_mm, p.pressure_angle_deg)
             }
             ModelParams::GearPair(_) => return None,

@@ -589,19 +589,21 @@ fn build_ravigneaux(p: &RavigneauxParams) -> Result<MeshSystem> {
         .iter()
         .map(|&kind| {
             let shape = p.stiffness_shape[RavigneauxParams::kind_index(kind)];
-            let (z1, z2, internal) = match kind {
-                MeshKind::S1A => (p.teeth_s1, p.teeth_a, false),
-                MeshKind::S2B => (p.teeth_s2, g.teeth_b, false),
-                MeshKind::AB => (p.teeth_a, g.teeth_b, false),
-                MeshKind::RB | MeshKind::Pair => (g.teeth_b, p.teeth_r, true),
+            let contact_ratio = match shape.contact_ratio {
+                Some(e) => e,
+                None => {
+                    let (z1, z2, internal) =
+                        p.mesh_teeth(kind).ok_or_else(|| SolverError::Geometry {
+                            message: format!("mesh kind {} has no teeth", kind.key()),
+                        })?;
+                    waveform::contact_ratio(z1, z2, internal, p.module_mm, p.pressure_angle_deg)
+                }
             };
-            let auto =
-                || waveform::contact_ratio(z1, z2, internal, p.module_mm, p.pressure_angle_deg);
             waveform::stiffness_series(
                 kind.key(),
                 shape.wave,
                 p.stiffness_variation,
-                shape.contact_ratio.unwrap_or_else(auto),
+                contact_ratio,
                 p.stiffness_ramp,
                 p.stiffness_harmonics as usize,
             )
