@@ -49,6 +49,7 @@ after(async () => {
 
 test('a TE file is fitted as the command line fits it, drawn, linked and restored; a bad one is refused', async () => {
   const cli = cliParams();
+  await h.browser.grantPermissions(['clipboard-read', 'clipboard-write'], { origin: new URL(h.url).origin });
   const { page, errors } = await open(h.browser, h.url, `model=gear-pair&${QUICK}`);
   await waitStatus(page, (s) => s.workers_ready > 0, 60000, 'workers');
   await page.evaluate(() => {
@@ -106,8 +107,13 @@ test('a TE file is fitted as the command line fits it, drawn, linked and restore
   assert.equal(short.query, before.query);
   await shot(page.locator('#messages'), 'tefile-refused');
 
-  // A fresh page from the link restores the fitted excitation exactly.
-  const fresh = await open(h.browser, h.url, linked.query);
+  // The link the Copy link button gives (after both refusals: the
+  // fitted state kept) restores the fitted excitation exactly in a fresh
+  // page.
+  await page.click('#copy-link');
+  const link = await page.evaluate(() => navigator.clipboard.readText());
+  assert.equal(new URL(link).search.slice(1), linked.query);
+  const fresh = await open(h.browser, h.url, new URL(link).search.slice(1));
   const r = await waitStatus(fresh.page, (st) => st.workers_ready > 0, 60000, 'workers of the fresh page');
   assert.deepEqual(linkTe(r.query), te);
   assert.equal(await fresh.page.inputValue('#num-te_cos2_um'), '2.5');
