@@ -11,7 +11,7 @@ impl Controller {
     /// speed of the top of the Omega range, the selected Omega marked; the
     /// model's refusal as its reason.
     pub fn campbell_view(&self) -> Result<CampbellView, ViewError> {
-        let model = self.model().map_err(|e| ViewError::Solver(e.clone()))?;
+        let model = self.model().map_err(Clone::clone)?;
         let v = &self.settings.view;
         let mut c = CampbellView::new(model, v.omega_to, v.omega)?
             .with_planet_pass(model, &self.settings.params)?;

@@ -12,7 +12,7 @@ impl Controller {
     /// worst mesh: the one the selected state resolved, else the first);
     /// the model's or the standard's refusal as its reason.
     pub fn dynamic_view(&self) -> Result<DynamicView, ViewError> {
-        let model = self.model().map_err(|e| ViewError::Solver(e.clone()))?;
+        let model = self.model().map_err(Clone::clone)?;
         let main = &self.main;
         let mesh = self
             .settings

@@ -10,7 +10,7 @@ impl Controller {
     /// The selected state's mesh force by order; why not, as its reason
     /// (no model, no state yet, or a state without the mesh's history).
     pub fn orders_view(&self) -> Result<OrdersView, ViewError> {
-        let model = self.model().map_err(|e| ViewError::Solver(e.clone()))?;
+        let model = self.model().map_err(Clone::clone)?;
         let r = self.main.omega.as_ref().ok_or(ViewError::Computing)?;
         let rpm_per_omega = model.system.rpm_scale().rpm(1.0);
         OrdersView::new(r, &self.settings.params, rpm_per_omega).ok_or(ViewError::NoForceHistory)
