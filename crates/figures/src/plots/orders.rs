@@ -12,8 +12,8 @@ pub const MESH_COLOR: RGBColor = RGBColor(31, 119, 180);
 /// The planets' sum per planet.
 pub const SUM_COLOR: RGBColor = RGBColor(230, 120, 0);
 
-/// The least distance (pixels) between two peak labels.
-const LABEL_PX: i32 = 34;
+/// The least gap (pixels) between two peak labels.
+const LABEL_GAP_PX: i32 = 6;
 
 /// Draws `view` on `root` with `status` after the caption.
 pub fn draw_orders<DB: DrawingBackend>(
@@ -75,24 +75,31 @@ pub fn draw_orders<DB: DrawingBackend>(
         .sum
         .as_ref()
         .map(|s| decimate::tallest_per_column(&s.lines, column));
-    // Labels from the largest peak down, none within a label's width of
-    // a larger one's (a motion that does not repeat has many close lines).
+    // Labels from the largest peak down, each centred on its line and
+    // clear of a larger one's by the two labels' half widths as drawn (a
+    // motion that does not repeat has many close lines, and "2.43×" is
+    // wider than "2×").
+    let font = small();
     let mut by_size: Vec<&crate::protocol::OrderPeak> = view.peaks.iter().collect();
     by_size.sort_by(|a, b| b.amplitude_n.total_cmp(&a.amplitude_n));
-    let mut kept: Vec<(i32, &crate::protocol::OrderPeak)> = Vec::new();
+    let mut kept: Vec<(i32, i32, &crate::protocol::OrderPeak)> = Vec::new();
     for p in by_size {
         let x = column(p.order);
-        if kept.iter().all(|(k, _)| (k - x).abs() >= LABEL_PX) {
-            kept.push((x, p));
+        let (w, _) = root.estimate_text_size(&p.label, &font).map_err(err)?;
+        let half = i32::try_from(w / 2).unwrap_or(i32::MAX / 4);
+        if kept
+            .iter()
+            .all(|(k, kh, _)| (k - x).abs() >= kh + half + LABEL_GAP_PX)
+        {
+            kept.push((x, half, p));
         }
     }
     chart.draw_series(stems(&own, MESH_COLOR, 5)).map_err(err)?;
     if let Some(sum) = &sum {
         chart.draw_series(stems(sum, SUM_COLOR, 2)).map_err(err)?;
     }
-    let font = small();
     chart
-        .draw_series(kept.iter().map(|(_, p)| {
+        .draw_series(kept.iter().map(|(_, _, p)| {
             Text::new(
                 p.label.clone(),
                 (p.order, p.amplitude_n + top * 0.02),
