@@ -45,6 +45,10 @@ pub fn eigenvalues_with(
         .then_some(values)
 }
 
+/// Columns factored together before their steps are applied to the
+/// columns right of them ([`Lu::new`]).
+const PANEL: usize = 16;
+
 /// QR sweeps [`eigenvalues`] allows before it gives up.
 pub(crate) const SCHUR_ITERATIONS: usize = 100_000;
 
@@ -76,58 +80,108 @@ impl Lu {
         }
         let mut lu: Vec<f64> = a.data.into();
         let mut swaps = Vec::with_capacity(n);
-        for i in 0..n {
-            // The first entry of largest modulus on or below the diagonal.
-            let col = &lu[i * n..(i + 1) * n];
-            let mut piv = i;
-            let mut max = col[i].abs();
-            for (r, v) in col.iter().enumerate().skip(i + 1) {
-                if v.abs() > max {
-                    max = v.abs();
-                    piv = r;
+        // Whether step `i` found a pivot (a column of zeros is skipped).
+        let mut pivoted = Vec::with_capacity(n);
+        // Panels of `PANEL` columns: a panel is factored step by step
+        // (right-looking inside it), then its steps are applied to each
+        // column right of it in turn, so that a column stays in the cache
+        // through all of a panel's steps instead of the whole trailing
+        // matrix being streamed at every step. Every entry still receives
+        // its swaps and updates in the order of the steps, each update one
+        // product and one sum as before: the same bits.
+        for p0 in (0..n).step_by(PANEL) {
+            let p1 = (p0 + PANEL).min(n);
+            for i in p0..p1 {
+                // The first entry of largest modulus on or below the diagonal.
+                let col = &lu[i * n..(i + 1) * n];
+                let mut piv = i;
+                let mut max = col[i].abs();
+                for (r, v) in col.iter().enumerate().skip(i + 1) {
+                    if v.abs() > max {
+                        max = v.abs();
+                        piv = r;
+                    }
+                }
+                let diag = col[piv];
+                if diag == 0.0 {
+                    swaps.push(i);
+                    pivoted.push(false);
+                    continue;
+                }
+                swaps.push(piv);
+                pivoted.push(true);
+                if piv != i {
+                    for c in 0..p1 {
+                        lu.swap(c * n + i, c * n + piv);
+                    }
+                }
+                let inv_diag = 1.0 / diag;
+                for v in &mut lu[i * n + i + 1..(i + 1) * n] {
+                    *v *= inv_diag;
+                }
+                let (left, right) = lu.split_at_mut((i + 1) * n);
+                let coeffs = &left[i * n + i + 1..];
+                for column in right[..(p1 - i - 1) * n].chunks_exact_mut(n) {
+                    let p = -column[i];
+                    for (y, &x) in column[i + 1..].iter_mut().zip(coeffs) {
+                        *y += p * x;
+                    }
                 }
             }
-            let diag = col[piv];
-            if diag == 0.0 {
-                swaps.push(i);
-                continue;
+            if p1 == n {
+                break;
             }
-            swaps.push(piv);
-            if piv != i {
-                for c in 0..n {
-                    lu.swap(c * n + i, c * n + piv);
-                }
-            }
-            let inv_diag = 1.0 / diag;
-            for v in &mut lu[i * n + i + 1..(i + 1) * n] {
-                *v *= inv_diag;
-            }
-            let (left, right) = lu.split_at_mut((i + 1) * n);
-            let coeffs = &left[i * n + i + 1..];
-            // Four columns at a time share each load of the pivot column.
+            // The panel's steps on the columns right of it, four columns
+            // at a time sharing each load of a step's multipliers: first
+            // its row swaps, then its updates with the multipliers as the
+            // later swaps left them (a swap at step `k` moves rows `k` and
+            // below only, and moves a column's rows with the multipliers'
+            // rows, so every product pairs the same two numbers).
+            let (left, right) = lu.split_at_mut(p1 * n);
             let mut quads = right.chunks_exact_mut(4 * n);
             for quad in &mut quads {
                 let (c0, rest) = quad.split_at_mut(n);
                 let (c1, rest) = rest.split_at_mut(n);
                 let (c2, c3) = rest.split_at_mut(n);
-                let p = [-c0[i], -c1[i], -c2[i], -c3[i]];
-                let rows = c0[i + 1..]
-                    .iter_mut()
-                    .zip(&mut c1[i + 1..])
-                    .zip(&mut c2[i + 1..])
-                    .zip(&mut c3[i + 1..])
-                    .zip(coeffs);
-                for ((((y0, y1), y2), y3), &x) in rows {
-                    *y0 += p[0] * x;
-                    *y1 += p[1] * x;
-                    *y2 += p[2] * x;
-                    *y3 += p[3] * x;
+                for (i, &piv) in swaps.iter().enumerate().skip(p0) {
+                    c0.swap(i, piv);
+                    c1.swap(i, piv);
+                    c2.swap(i, piv);
+                    c3.swap(i, piv);
+                }
+                for i in p0..p1 {
+                    if !pivoted[i] {
+                        continue;
+                    }
+                    let coeffs = &left[i * n + i + 1..(i + 1) * n];
+                    let p = [-c0[i], -c1[i], -c2[i], -c3[i]];
+                    let rows = c0[i + 1..]
+                        .iter_mut()
+                        .zip(&mut c1[i + 1..])
+                        .zip(&mut c2[i + 1..])
+                        .zip(&mut c3[i + 1..])
+                        .zip(coeffs);
+                    for ((((y0, y1), y2), y3), &x) in rows {
+                        *y0 += p[0] * x;
+                        *y1 += p[1] * x;
+                        *y2 += p[2] * x;
+                        *y3 += p[3] * x;
+                    }
                 }
             }
             for column in quads.into_remainder().chunks_exact_mut(n) {
-                let p = -column[i];
-                for (y, &x) in column[i + 1..].iter_mut().zip(coeffs) {
-                    *y += p * x;
+                for (i, &piv) in swaps.iter().enumerate().skip(p0) {
+                    column.swap(i, piv);
+                }
+                for i in p0..p1 {
+                    if !pivoted[i] {
+                        continue;
+                    }
+                    let coeffs = &left[i * n + i + 1..(i + 1) * n];
+                    let p = -column[i];
+                    for (y, &x) in column[i + 1..].iter_mut().zip(coeffs) {
+                        *y += p * x;
+                    }
                 }
             }
         }
