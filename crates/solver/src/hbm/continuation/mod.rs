@@ -11,14 +11,20 @@
 //! LU; the last factorization also gives the new tangent, and on a smooth
 //! residual (not AFT's) once a step is below `1e-5` of the solution's scale
 //! it is kept for the next (chord) step, which then costs a residual and a
-//! solve instead of a Jacobian and an LU. The fixed-
+//! solve instead of a Jacobian and an LU. It starts on the parabola through
+//! the last two points (tangent at the last), about ten times closer to the
+//! branch than the tangent's predictor where the branch bends smoothly, so
+//! that most points need one factorization; the hyperplane it solves on and
+//! the step control's distance stay the tangent predictor's. The fixed-
 //! Omega Newton of the first and last points halves a step that does not
 //! reduce the residual (down to 1/128). The corrector has converged when
-//! the last step is below `1e-9` of the solution's scale (micrometres) and
-//! the residual below `1e-6` of it (at the iterate before that last tiny
-//! step, which only reduces it, or else at the result), and fails with
-//! [`SolverError::NotConverged`] carrying Omega and the residual otherwise —
-//! never a silent last iterate.
+//! the error left after the last step is below `1e-9` of the solution's
+//! scale (micrometres): the step itself is, or the contraction `theta` of
+//! the last two steps bounds what is left by `theta / (1 - theta)` times
+//! the step (Deuflhard's estimate); and the residual is below `1e-6` of it
+//! (at the iterate before that last step, which only reduces it, or else
+//! at the result). It fails with [`SolverError::NotConverged`] carrying
+//! Omega and the residual otherwise — never a silent last iterate.
 //!
 //! First point. Newton at the start frequency, continued in the number of
 //! harmonics (1, 2, ..., H) from the static equilibrium; if that fails (a
@@ -58,11 +64,11 @@
 //! its corrector fails at the smallest step. While part of the range is
 //! not covered, the continuation restarts: first from the other end in the
 //! other direction, then inside the first gap (at its middle, upward, and
-//! from there downward; if Newton finds no first point there, at a quarter
-//! and three quarters). A restarted piece ends where the range is covered.
-//! A gap whose start lies beyond the divergence bound is a pole; a gap in
-//! which a restarted piece did not get across either (or three starts
-//! failed) is a tangle. Both are left out and reported
+//! from there downward; if Newton finds no first point there, at a quarter,
+//! three quarters, an eighth and three eighths of it). A restarted piece
+//! ends where the range is covered. A gap whose start lies beyond the
+//! divergence bound is a pole; a gap in which a restarted piece did not get
+//! across either (or five starts failed) is a tangle. Both are left out and reported
 //! ([`FrfContinuation::left_out`]), every restart too
 //! ([`FrfContinuation::restarts`]), each with a plain note
 //! ([`FrfContinuation::notes`]); every point carries its piece number, so
@@ -119,6 +125,9 @@ pub struct FrfContinuation {
 struct Cursor {
     y: Vec<f64>,
     tangent: Vec<f64>,
+    /// The point before `y` on the same piece (none at a piece's start):
+    /// with `y` and its tangent it gives the corrector's starting guess.
+    prev_y: Option<Vec<f64>>,
     ds: f64,
     ds_max: f64,
     scale: f64,
@@ -205,7 +214,7 @@ const FOLD_TOL: f64 = 1e-10;
 const STALL_WINDOW: u64 = 300;
 /// Where in a gap (as a fraction of it) restarts try to start, in turn,
 /// while Newton fails to find a first point.
-const GAP_STARTS: [f64; 3] = [0.5, 0.25, 0.75];
+const GAP_STARTS: [f64; 5] = [0.5, 0.25, 0.75, 0.125, 0.375];
 /// Restarts of a branch that ends early.
 const MAX_RESTARTS: usize = 6;
 /// A piece has diverged when its largest coefficient exceeds this multiple
@@ -275,6 +284,7 @@ impl FrfContinuation {
             cursor: Cursor {
                 y: Vec::new(),
                 tangent: Vec::new(),
+                prev_y: None,
                 ds: ds_max,
                 ds_max,
                 scale: 1.0,
@@ -633,6 +643,7 @@ impl FrfContinuation {
         self.stability.since_fold = u32::MAX;
         self.stability.pending_fold = false;
         self.cursor.ds = self.cursor.ds_max;
+        self.cursor.prev_y = None;
         self.piece.frontier = f64::NAN;
         self.piece.since_progress = 0;
         Ok(())

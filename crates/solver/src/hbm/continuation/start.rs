@@ -65,6 +65,7 @@ impl FrfContinuation {
         }
         self.cursor.scale = (3.0 * rms(&x[self.asm.model.m..])).max(1.0);
         self.cursor.y = x;
+        self.cursor.prev_y = None;
         self.cursor.y.push(omega);
         // First tangent: [R_X R_Omega] t = 0 with t_Omega = +-1.
         self.asm

@@ -56,6 +56,7 @@ impl FrfContinuation {
         let n = nx + 1;
         let omega_now = self.cursor.y[nx];
         let ds_min = 1e-5 * self.cursor.ds_max;
+        let bend = self.bend();
         loop {
             let t_om = self.cursor.tangent[nx];
             let end = match self.piece.dir {
@@ -83,10 +84,17 @@ impl FrfContinuation {
             let pred: Vec<f64> = (0..n)
                 .map(|i| self.cursor.y[i] + ds * self.cursor.tangent[i])
                 .collect();
+            // Newton starts on the parabola through the last two points
+            // (tangent at the last); the hyperplane it solves on, and the
+            // distance the step control measures, stay the tangent's.
+            let guess: Vec<f64> = match &bend {
+                Some(c) => pred.iter().zip(c).map(|(p, c)| p + ds * ds * c).collect(),
+                None => pred.clone(),
+            };
             if landing {
                 // The last point sits exactly on the end of the range: a
-                // natural-parameter Newton at Omega = end from the predictor.
-                let mut x = pred[..nx].to_vec();
+                // natural-parameter Newton at Omega = end from the guess.
+                let mut x = guess[..nx].to_vec();
                 let mut stats = self.stats;
                 if let Ok(iterations) = newton_fixed(&mut self.asm, &mut x, end, &mut stats) {
                     self.stats = stats;
@@ -95,7 +103,7 @@ impl FrfContinuation {
                     return self.finish_piece(iterations, None, PieceEnd::Reached);
                 }
             }
-            match self.correct(&pred) {
+            match self.correct(&pred, &guess) {
                 Ok((y_new, t_new, iterations)) => {
                     let cos: f64 = (0..n)
                         .map(|i| self.metric(i) * t_new[i] * self.cursor.tangent[i])
@@ -152,7 +160,7 @@ impl FrfContinuation {
                             self.stability.pending_fold = true;
                         }
                     }
-                    self.cursor.y = y_new;
+                    self.cursor.prev_y = Some(std::mem::replace(&mut self.cursor.y, y_new));
                     self.cursor.tangent = t_new;
                     self.update_scale();
                     let omega = self.cursor.y[nx];
@@ -213,7 +221,7 @@ impl FrfContinuation {
             let pred: Vec<f64> = (0..n)
                 .map(|i| self.cursor.y[i] + s * self.cursor.tangent[i])
                 .collect();
-            let (y, t, it) = self.correct(&pred).ok()?;
+            let (y, t, it) = self.correct(&pred, &pred).ok()?;
             let fs = t[nx];
             let omega = y[nx];
             let converged = (omega - omega_prev).abs() <= FOLD_TOL * (1.0 + omega.abs());
@@ -232,12 +240,40 @@ impl FrfContinuation {
         best
     }
 
-    /// Newton on the bordered system from the predictor `pred`; returns the
-    /// solution, its tangent and the iterations.
-    pub(super) fn correct(&mut self, pred: &[f64]) -> Result<(Vec<f64>, Vec<f64>, usize)> {
+    /// The second-order term `c` of the parabola `y + s t + s^2 c` (in the
+    /// arclength `s` of the metric) through the last point `y` with its
+    /// tangent `t` and the point before it; `None` at a piece's start.
+    /// A predictor `pred` a step `ds` along the tangent then starts Newton
+    /// at `pred + ds^2 c`, about `ds` times closer to the branch than
+    /// `pred` where the branch bends smoothly.
+    pub(super) fn bend(&self) -> Option<Vec<f64>> {
+        let prev = self.cursor.prev_y.as_ref()?;
+        let (y, t) = (&self.cursor.y, &self.cursor.tangent);
+        let h2: f64 = (0..y.len())
+            .map(|i| self.metric(i) * (y[i] - prev[i]).powi(2))
+            .sum();
+        let h = h2.sqrt();
+        if !(h > 0.0 && h.is_finite()) {
+            return None;
+        }
+        let c: Vec<f64> = (0..y.len())
+            .map(|i| (prev[i] - y[i] + h * t[i]) / h2)
+            .collect();
+        c.iter().all(|v| v.is_finite()).then_some(c)
+    }
+
+    /// Newton on the bordered system whose arclength row keeps the solution
+    /// on the hyperplane through the predictor `pred` normal to the
+    /// tangent, started at `guess`; returns the solution, its tangent and
+    /// the iterations.
+    pub(super) fn correct(
+        &mut self,
+        pred: &[f64],
+        guess: &[f64],
+    ) -> Result<(Vec<f64>, Vec<f64>, usize)> {
         let nx = self.n_x();
         let n = nx + 1;
-        let mut y = pred.to_vec();
+        let mut y = guess.to_vec();
         let mut r = vec![0.0; nx];
         // The bordered Jacobian: the residual's rows from `evaluate`, the
         // arclength row below them. A factorization takes it over, and the
@@ -301,8 +337,20 @@ impl FrfContinuation {
                 let scale = 1.0 + inf_norm(&y[..nx]);
                 step = inf_norm(&dy.as_slice()[..nx]).max(dy[nx].abs() * scale) / scale;
             }
+            // The error left after this step, from how the last two steps
+            // contracted (`theta`; a chord step contracts linearly, Newton
+            // faster): `theta / (1 - theta)` times the step bounds it. Within
+            // the tolerance, with the residual before the step within its
+            // bound too, the iterate is converged without one more
+            // evaluation to confirm a step it would find below the tolerance.
+            let theta = step / step_prev;
+            let contracted = !at_floor
+                && step_prev.is_finite()
+                && theta < 0.5
+                && theta / (1.0 - theta) * step <= NEWTON_TOL
+                && res <= 1e-6 * (1.0 + inf_norm(&y[..nx]));
             step_prev = step;
-            if at_floor || step <= NEWTON_TOL {
+            if at_floor || step <= NEWTON_TOL || contracted {
                 let scale = 1.0 + inf_norm(&y[..nx]);
                 // The residual before this last (tiny) step is already
                 // within the bound: the step only reduces it, and a second
