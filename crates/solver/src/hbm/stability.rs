@@ -402,6 +402,16 @@ fn integrate_blocks(
             pb.p.iter().map(|p| (1.0, p.to_vec())).collect(),
         )
     });
+    // Each channel's phase as its cosine and sine: the seed's one-harmonic
+    // stiffness at `theta` is then one `sin_cos` of `theta` for all channels.
+    let phases: Vec<(f64, f64)> = model
+        .channels
+        .iter()
+        .map(|ch| match ch.law {
+            Law::Mesh { phase_rad, .. } => (phase_rad.cos(), phase_rad.sin()),
+            Law::Cubic { .. } => (1.0, 0.0),
+        })
+        .collect();
     let mut active = vec![false; model.channels.len()];
     let mut slopes = vec![0.0; model.channels.len()];
     for w in cuts.windows(2) {
@@ -415,6 +425,7 @@ fn integrate_blocks(
             active[j] = coefs.is_none() || ch.law.force(mid, u_at(j, mid)).1 != 0.0;
         }
         let slopes_at = |theta: f64, out: &mut [f64]| {
+            let (sin_t, cos_t) = theta.sin_cos();
             for (j, (ch, o)) in model.channels.iter().zip(out.iter_mut()).enumerate() {
                 *o = if !active[j] {
                     0.0
@@ -424,10 +435,13 @@ fn integrate_blocks(
                         Law::Mesh {
                             k,
                             variation,
-                            phase_rad,
                             ref higher,
                             ..
-                        } if higher.is_empty() => k * (1.0 + variation * (theta + phase_rad).cos()),
+                        } if higher.is_empty() => {
+                            // cos(theta + phase), from the angle-sum formula.
+                            let (cos_p, sin_p) = phases[j];
+                            k * (1.0 + variation * (cos_t * cos_p - sin_t * sin_p))
+                        }
                         Law::Mesh { .. } => ch.law.stiffness(theta),
                         Law::Cubic { .. } => ch.law.force(theta, u_at(j, theta)).1,
                     }
