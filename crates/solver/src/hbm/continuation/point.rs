@@ -55,11 +55,18 @@ impl FrfContinuation {
                 // harmonic subtracted.
                 let mut rel_coef = coef.clone();
                 let te = harmonic::te_real_coefficients(&ch.law);
+                let mut te_free = true;
                 for (r, t) in rel_coef.iter_mut().zip(te) {
                     *r -= t;
+                    te_free &= t == 0.0;
                 }
                 let (dmin, dmax) = extremes(&self.recon.grid, &coef, h);
-                let (xmin, xmax) = extremes(&self.recon.grid, &rel_coef, h);
+                // Without TE on this mesh the two series are one.
+                let (xmin, xmax) = if te_free {
+                    (dmin, dmax)
+                } else {
+                    extremes(&self.recon.grid, &rel_coef, h)
+                };
                 let mut harmonics_m = vec![coef[0] * 1e-6];
                 for k in 1..=h {
                     harmonics_m.push(coef[2 * k - 1].hypot(coef[2 * k]) * 1e-6);
