@@ -771,6 +771,7 @@ fn a_failure_leaves_the_messages_with_its_job() {
 }
 
 mod pool;
+mod redraw;
 
 /// The two long jobs, the shooting branches and the map's boundaries, run
 /// on different workers of a pool of two, so neither waits for the other.
