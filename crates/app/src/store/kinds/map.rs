@@ -1,11 +1,11 @@
 //! The impact-regime map ([`JobKind::Map`]): its rows shared among the
-//! workers; it restarts only when what it depends on changed (a click on
+//! workers no long job holds; it restarts only when what it depends on changed (a click on
 //! a cell sets the key its rows vary, which does not).
 
-use super::{FeedCx, Kind, StartCx, StatusKey};
+use super::{FeedCx, Kind, Pool, StartCx, StatusKey};
 use crate::store::status::{Dirty, JobStatus};
 use crate::store::{Computation, Fed};
-use figures::protocol::{FromWorker, JobKind, JobSpec, RunOptions};
+use figures::protocol::{FromWorker, JobKind, JobSpec, RunOptions, Target};
 use figures::views::map::MapStore;
 
 pub(super) struct Map;
@@ -23,7 +23,16 @@ impl Kind for Map {
     }
 
     fn shards(&self, cx: &StartCx) -> Option<u32> {
-        Some((cx.workers as u32).min(cx.view().map_value_points))
+        let free = u32::try_from(cx.pool.free_workers().len()).unwrap_or(1);
+        Some(free.min(cx.view().map_value_points))
+    }
+
+    /// The rows go to the workers no long job holds ([`Pool::free_workers`]).
+    fn worker(&self, _target: Target, shard: u32, pool: Pool) -> usize {
+        let free = pool.free_workers();
+        free.get(shard as usize % free.len().max(1))
+            .copied()
+            .unwrap_or(0)
     }
 
     fn unchanged(&self, cx: &StartCx, main: &Computation) -> bool {
