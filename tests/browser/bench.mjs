@@ -53,6 +53,11 @@ for (const f of fs.readdirSync(dist).filter((f) => f.endsWith('.wasm'))) {
   console.error(`${f}: ${Math.round(buf.length / 1024)} KiB (gzip ${Math.round(gz / 1024)} KiB)`);
 }
 
+// The machine's load average (1 min) at the start and the end: the
+// figures scale with it on a shared machine, so the tables state it.
+const loadavg = () => (fs.existsSync('/proc/loadavg') ? fs.readFileSync('/proc/loadavg', 'utf8').split(' ')[0] : 'n/a');
+const loadAtStart = loadavg();
+
 const h = await start();
 try {
   // First paint from a cold load: navigation start to the first drawn frame
@@ -251,6 +256,8 @@ try {
   await h.close();
 }
 
+console.log(`Load average (1 min): ${loadAtStart} at the start, ${loadavg()} at the end.`);
+console.log('');
 console.log('| measurement | median | unit | range (n) | note |');
 console.log('|---|---:|---|---|---|');
 for (const r of results) {
