@@ -130,7 +130,7 @@ impl Controller {
         let mut fx = Vec::new();
         for shard in 0..chains {
             let job = job(shard);
-            let worker = kinds::of(job.kind()).worker(target, shard, pool);
+            let worker = kinds::of(job.kind()).worker(target, (shard, chains), pool);
             let msg = ToWorker::Run {
                 target,
                 id,

@@ -106,8 +106,9 @@ fn a_larger_pool_deals_the_fixed_chains_round_robin_and_shares_the_map_rows() {
 
 /// The map's rows go to the workers the long jobs (the shooting branches on
 /// the first, the boundaries on the last) leave free, to all of them when
-/// each holds one or none runs; a map restarted after the branches ended
-/// takes every worker again.
+/// each holds one or none runs or the map is much larger than the
+/// default; a map restarted after the branches ended takes every worker
+/// again.
 #[test]
 fn the_map_rows_go_to_the_workers_the_long_jobs_leave_free() {
     let map_workers = |p: &[(usize, ToWorker)]| -> Vec<(usize, u32)> {
@@ -137,6 +138,12 @@ fn the_map_rows_go_to_the_workers_the_long_jobs_leave_free() {
     assert_eq!(
         map_workers(&start("boundaries=on&branches=off").1),
         vec![(0, 1)]
+    );
+    // A map ten times the default's cells shares both workers: the
+    // branches would end long before it.
+    assert_eq!(
+        map_workers(&start("map_omega_points=100&map_value_points=64").1),
+        vec![(0, 2), (1, 2)]
     );
     // The branches ended: a change of the map alone takes both workers.
     c.main.status_mut(JobKind::Orbits).finished_ms = Some(5.0);

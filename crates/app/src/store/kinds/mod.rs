@@ -115,7 +115,7 @@ impl Pool {
         let held: Vec<usize> = self
             .long
             .iter()
-            .map(|k| of(k).worker(Target::Main, 0, alone))
+            .map(|k| of(k).worker(Target::Main, (0, 1), alone))
             .collect();
         let free: Vec<usize> = (0..self.size).filter(|w| !held.contains(w)).collect();
         if free.is_empty() {
@@ -162,9 +162,9 @@ pub trait Kind: Sync {
     /// The job of shard `shard` of `chains`.
     fn spec(&self, cx: &StartCx, chains: u32, shard: u32) -> JobSpec;
 
-    /// The worker that runs `target`'s shard `shard`: round robin unless
-    /// the kind says otherwise.
-    fn worker(&self, _target: Target, shard: u32, pool: Pool) -> usize {
+    /// The worker that runs `target`'s shard `shard` of `chains`: round
+    /// robin unless the kind says otherwise.
+    fn worker(&self, _target: Target, (shard, _chains): (u32, u32), pool: Pool) -> usize {
         pool.shard_worker(shard)
     }
 
