@@ -27,6 +27,10 @@ const FAMILY_ONLY = args.includes('--family-only');
 const BRANCHES_ONLY = args.includes('--branches-only');
 const ONLY = MAP_ONLY || POOL_ONLY || FAMILY_ONLY || BRANCHES_ONLY;
 
+// The views' slots in the status's per-view arrays (`last_draw_ms`, ...):
+// their order in figures::views::VIEWS.
+const VIEW_SLOTS = { fr: 0, bif: 1, phase: 2, poincare: 3, time: 4, spectrum: 5, map: 6, lyap: 7, campbell: 8, dynamic: 9, orders: 10 };
+
 const median = (xs) => {
   const s = [...xs].sort((a, b) => a - b);
   const n = s.length;
@@ -48,6 +52,11 @@ for (const f of fs.readdirSync(dist).filter((f) => f.endsWith('.wasm'))) {
   results.push({ what: `bundle ${f.replace(/-[0-9a-f]{16}/, '')}`, median: buf.length / 1024, unit: 'KiB', note: `gzip -9: ${Math.round(gz / 1024)} KiB`, n: 1 });
   console.error(`${f}: ${Math.round(buf.length / 1024)} KiB (gzip ${Math.round(gz / 1024)} KiB)`);
 }
+
+// The machine's load average (1 min) at the start and the end: the
+// figures scale with it on a shared machine, so the tables state it.
+const loadavg = () => (fs.existsSync('/proc/loadavg') ? fs.readFileSync('/proc/loadavg', 'utf8').split(' ')[0] : 'n/a');
+const loadAtStart = loadavg();
 
 const h = await start();
 try {
@@ -156,12 +165,29 @@ try {
       const last = Math.max(...jobs.map((j) => j.finished_ms || 0));
       return Math.max(...s.last_draw_ms) >= last && s.first_draw_ms.every((t) => t > 0);
     };
+    // The first screen: the frequency response (its branch and, when on,
+    // its dots) and the four views of the selected Omega (phase portrait,
+    // Poincaré section, time history, spectrum) each drawn after its job
+    // ended; the summary is written at the end of the frame that takes the
+    // selected Omega's result, so with its views. Read at the first state
+    // where it holds: the latest of those five draws.
+    const FIRST = ['fr', 'phase', 'poincare', 'time', 'spectrum'].map((k) => VIEW_SLOTS[k]);
+    const firstScreen = (s) => {
+      const frJobs = [s.fr, s.fr_overlay].filter((j) => j.id !== 0);
+      if (!frJobs.every((j) => j.finished_ms || j.error) || !s.omega_job.finished_ms) return false;
+      const frEnd = Math.max(...frJobs.map((j) => j.finished_ms || 0));
+      const [fr, ...omega] = FIRST.map((k) => s.last_draw_ms[k]);
+      return fr >= frEnd && omega.every((t) => t >= s.omega_job.finished_ms);
+    };
     const all = { on: [], off: [] };
+    const first = { on: [], off: [] };
     const bif = { on: [], off: [] };
     const orbits = [];
     for (let i = 0; i < (QUICK ? 1 : REPEATS); i++) {
       for (const branches of ['on', 'off']) {
         const { page } = await open(h.browser, h.url, branches === 'on' ? '' : 'branches=off');
+        const s0 = await waitStatus(page, firstScreen, 900000, 'the first screen drawn');
+        first[branches].push(Math.max(...FIRST.map((k) => s0.last_draw_ms[k])));
         const s = await waitStatus(page, allDrawn, 900000, 'every view drawn');
         const job = s.bif_branches.job;
         if ((branches === 'on') !== (job.id !== 0)) throw new Error(`branches=${branches}, yet the shooting branches' job is ${JSON.stringify(job)}`);
@@ -171,6 +197,8 @@ try {
         await page.close();
       }
     }
+    row('page defaults, shooting branches on (the default): first screen drawn', first.on, 'ms', 'from navigation start; summary, frequency response, selected Omega');
+    row('page defaults, shooting branches off: first screen drawn', first.off, 'ms', 'from navigation start; link key branches=off');
     row('page defaults, shooting branches on (the default): every view drawn', all.on, 'ms', 'from navigation start; bifurcation 100 points up and down');
     row('page defaults, shooting branches off: every view drawn', all.off, 'ms', 'from navigation start; link key branches=off');
     row('page defaults: bifurcation sweep, branches on', bif.on, 'ms', 'from job start to its end');
@@ -228,6 +256,8 @@ try {
   await h.close();
 }
 
+console.log(`Load average (1 min): ${loadAtStart} at the start, ${loadavg()} at the end.`);
+console.log('');
 console.log('| measurement | median | unit | range (n) | note |');
 console.log('|---|---:|---|---|---|');
 for (const r of results) {

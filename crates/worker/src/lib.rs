@@ -22,7 +22,7 @@
 //! then the shooting branches run when those are idle.
 
 use figures::protocol::{encode, FromWorker, JobId, KindSet, Target, ToWorker};
-use jobs::bif::BandsCache;
+use jobs::bif::SharedBands;
 use jobs::{failed, Job};
 use runner::Runner;
 use serde_json::Value;
@@ -42,7 +42,7 @@ pub struct WorkerCore {
     /// Which computation takes the next turn (after every selected-Omega run).
     turn: usize,
     /// The last parametric-instability bands and their inputs.
-    bands: BandsCache,
+    bands: SharedBands,
 }
 
 impl WorkerCore {
@@ -91,7 +91,7 @@ impl WorkerCore {
                     };
                     self.computations.insert(at, (target, Runner::default()));
                 }
-                let bands = &mut self.bands;
+                let bands = &self.bands;
                 match self.computations.iter_mut().find(|(t, _)| *t == target) {
                     Some((_, r)) => r.start(id, &params, job, bands),
                     None => Vec::new(),

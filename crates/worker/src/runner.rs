@@ -3,7 +3,7 @@
 //! ([`JobKind::URGENT`], then [`JobKind::TAKING_TURNS`], then
 //! [`JobKind::WHEN_IDLE`]).
 
-use super::jobs::bif::BandsCache;
+use super::jobs::bif::SharedBands;
 use super::jobs::{self, failed, Job};
 use figures::protocol::{FromWorker, JobId, JobKind, JobSpec};
 use serde_json::{Map, Value};
@@ -58,7 +58,7 @@ impl Runner {
         id: JobId,
         params: &Map<String, Value>,
         spec: JobSpec,
-        bands: &mut BandsCache,
+        bands: &SharedBands,
     ) -> Vec<FromWorker> {
         // A new job replaces the old one of its kind, even if it fails; a
         // further shard of the running job joins it.

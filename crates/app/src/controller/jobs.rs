@@ -41,6 +41,7 @@ impl Controller {
     pub(super) fn pool(&self) -> Pool {
         Pool {
             size: self.workers.len(),
+            long: KindSet::NONE,
         }
     }
 
@@ -123,13 +124,13 @@ impl Controller {
     fn post_shards(
         &mut self,
         (target, id, params): (Target, JobId, &Params),
-        chains: u32,
+        (chains, pool): (u32, Pool),
         job: impl Fn(u32) -> JobSpec,
     ) -> Vec<Effect> {
         let mut fx = Vec::new();
         for shard in 0..chains {
             let job = job(shard);
-            let worker = kinds::of(job.kind()).worker(target, shard, self.pool());
+            let worker = kinds::of(job.kind()).worker(target, (shard, chains), pool);
             let msg = ToWorker::Run {
                 target,
                 id,
@@ -194,11 +195,49 @@ impl Controller {
             }
             None => return Vec::new(),
         };
+        let long = self.long_beside(target, kinds, &input);
         let mut fx = Vec::new();
         for kind in kinds.iter() {
-            fx.extend(self.start_kind(target, kind, &input, now_ms));
+            fx.extend(self.start_kind(target, kind, (&input, long), now_ms));
         }
         fx
+    }
+
+    /// The current state's long jobs ([`KindSet::LONG`]) that run beside
+    /// `target`'s jobs of `kinds` started from `input`: those the current
+    /// state restarts and has switched on, and those running and not
+    /// restarted.
+    fn long_beside(&self, target: Target, kinds: KindSet, input: &Inputs) -> KindSet {
+        let cx = self.start_cx(target, input, KindSet::NONE);
+        let mut long = KindSet::NONE;
+        for kind in KindSet::LONG.iter() {
+            let on = if target == Target::Main && kinds.contains(kind) {
+                kinds::of(kind).shards(&cx).is_some()
+            } else {
+                self.main.status(kind).running()
+            };
+            if on {
+                long.insert(kind);
+            }
+        }
+        long
+    }
+
+    /// What `target`'s jobs start with from `input`, `long` running beside.
+    fn start_cx<'a>(&self, target: Target, input: &'a Inputs, long: KindSet) -> StartCx<'a> {
+        StartCx {
+            settings: &input.settings,
+            model: &input.model,
+            main: target == Target::Main,
+            grid: self.map_grid(),
+            mesh: input.settings.mesh_index(&input.model),
+            map_signature: self.map_signature(&input.model, &input.params),
+            boundaries_signature: self.boundaries_signature(&input.model, &input.params),
+            pool: Pool {
+                long,
+                ..self.pool()
+            },
+        }
     }
 
     /// Starts `target`'s job of `kind` with `input`: the kind's shards
@@ -207,21 +246,12 @@ impl Controller {
         &mut self,
         target: Target,
         kind: JobKind,
-        input: &Inputs,
+        (input, long): (&Inputs, KindSet),
         now_ms: f64,
     ) -> Vec<Effect> {
         let main = target == Target::Main;
         let k = kinds::of(kind);
-        let cx = StartCx {
-            settings: &input.settings,
-            model: &input.model,
-            main,
-            grid: self.map_grid(),
-            mesh: input.settings.mesh_index(&input.model),
-            map_signature: self.map_signature(&input.model, &input.params),
-            boundaries_signature: self.boundaries_signature(&input.model, &input.params),
-            workers: self.workers.len(),
-        };
+        let cx = self.start_cx(target, input, long);
         if k.unchanged(&cx, &self.main) {
             return Vec::new();
         }
@@ -249,7 +279,7 @@ impl Controller {
             self.dirty.data(kind);
             self.dirty.data(k.also_shown_as());
         }
-        let fx = self.post_shards((target, id, &input.params), chains, |shard| {
+        let fx = self.post_shards((target, id, &input.params), (chains, cx.pool), |shard| {
             k.spec(&cx, chains, shard)
         });
         if main && k.previews() {

@@ -73,9 +73,9 @@ fn jobs_queue_until_ready_then_split_over_two_workers() {
     let p = ready(&mut c);
     // Omega on worker 0, the HBM branch on worker 1, bifurcation shards on
     // both; no time-integration overlay by default.
-    // Map rows and Lyapunov chains are shared by both workers too; the
-    // shooting branches go to one.
-    assert_eq!(p.iter().filter(|(w, _)| *w == 0).count(), 5);
+    // Lyapunov chains are shared by both workers too; the shooting
+    // branches go to the first, the map's rows to the other.
+    assert_eq!(p.iter().filter(|(w, _)| *w == 0).count(), 4);
     assert_eq!(p.iter().filter(|(w, _)| *w == 1).count(), 4);
     assert!(p.iter().any(|(w, m)| *w == c.hbm_worker()
         && matches!(
@@ -437,8 +437,9 @@ fn map_cells(id: JobId, cells: &[(u32, u32, figures::protocol::Regime, Option<u3
 #[test]
 fn the_map_shards_rows_and_a_cell_click_sets_both_parameters() {
     use figures::protocol::Regime;
+    // Without the shooting branches, whose worker the rows leave free.
     let (mut c, _) = Controller::new(
-        "map_omega_points=20&map_value_points=4&map_from=40&map_to=160",
+        "map_omega_points=20&map_value_points=4&map_from=40&map_to=160&branches=off",
         0.0,
     );
     let p = ready(&mut c);
@@ -771,6 +772,7 @@ fn a_failure_leaves_the_messages_with_its_job() {
 }
 
 mod pool;
+mod redraw;
 
 /// The two long jobs, the shooting branches and the map's boundaries, run
 /// on different workers of a pool of two, so neither waits for the other.

@@ -19,6 +19,25 @@ impl Controller {
         self.main.status(view.spec().data)
     }
 
+    /// The status that paces `view`'s redraws: its data's job while that
+    /// runs, else the first running job among the others it draws (the
+    /// shooting branches over a finished bifurcation diagram, the
+    /// boundaries over a finished map), so that their points, which
+    /// arrive every few tens of milliseconds, redraw it at most every
+    /// [`crate::page::redraw::RUNNING_REDRAW_MS`] as the data's own points do.
+    pub fn redraw_status(&self, view: figures::views::ViewId) -> &JobStatus {
+        let data = self.view_status(view);
+        if data.running() {
+            return data;
+        }
+        view.spec()
+            .shows
+            .iter()
+            .map(|k| self.main.status(k))
+            .find(|s| s.running())
+            .unwrap_or(data)
+    }
+
     /// The text alternative of a view's canvas (its `aria-label`), from
     /// the data it draws.
     pub fn canvas_label(&self, view: figures::views::ViewId) -> String {

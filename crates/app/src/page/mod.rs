@@ -507,7 +507,7 @@ impl Page {
 
     /// Whether to draw `view` now (`now_ms`) in a frame begun at `frame_ms`.
     pub fn decide(&mut self, view: ViewId, frame_ms: f64, now_ms: f64) -> Decision {
-        let status = self.ctl.view_status(view).clone();
+        let status = self.ctl.redraw_status(view).clone();
         self.redraw.decide(view, frame_ms, now_ms, Some(&status))
     }
 

@@ -92,6 +92,10 @@ impl KindSet {
     pub const PINNED: KindSet = KindSet::of(&[JobKind::HarmonicBalance, JobKind::Bif]);
     /// The selected Omega's kind: the summary and the views at that Omega.
     pub const SELECTED: KindSet = KindSet::of(&[JobKind::Omega]);
+    /// The long jobs, each held by one worker of the pool (the shooting
+    /// branches by the first, the map's boundaries by the last): the
+    /// map's rows go to the other workers while they run.
+    pub const LONG: KindSet = KindSet::of(&[JobKind::Orbits, JobKind::Boundaries]);
     /// The kinds a family member computes (its curve, its panel, its orbit).
     pub const MEMBER: KindSet =
         KindSet::of(&[JobKind::Omega, JobKind::HarmonicBalance, JobKind::Bif]);

@@ -1,6 +1,8 @@
 //! The bifurcation sweep (`ViewId::Bif`): one worker's shard of the sweep's
 //! chains, a slice of a steady state per step, kept when finished for the CLI JSON
-//! export; shard 0 first sends the parametric-instability bands of the range.
+//! export; shard 0 first sends the parametric-instability bands of the range,
+//! in its first step unless the last ones stand (not at its start, so the
+//! worker's selected-Omega job, served first, is not kept waiting for them).
 
 use super::{excitation_at, failed, Job, SLICE_STEPS};
 use figures::protocol::um;
@@ -11,6 +13,8 @@ use solver::model::Model;
 use solver::parametric::Parametric;
 use solver::params::ModelParams;
 use solver::sweep::{canonical_order, BifurcationSweep, Directions, SweepPoint, SweepSpec};
+use std::cell::RefCell;
+use std::rc::Rc;
 
 /// Omega samples of the parametric-instability scan over the sweep's range
 /// (a band narrower than the spacing can slip between them).
@@ -22,7 +26,13 @@ pub(crate) struct BifJob {
     params: ModelParams,
     sweep: BifurcationSweep,
     points: Vec<SweepPoint>,
+    /// Shard 0's instability bands still to compute, the worker's cache
+    /// and the range, in its first step.
+    bands_due: Option<(SharedBands, (f64, f64))>,
 }
+
+/// The worker's bands cache, shared with the shard that computes them.
+pub(crate) type SharedBands = Rc<RefCell<BandsCache>>;
 
 /// What a bifurcation job's sweep covers.
 pub(crate) struct BifSpec<'a> {
@@ -48,6 +58,27 @@ pub(crate) struct BandsCache {
 type CachedBands = (ModelParams, (f64, f64), Vec<(f64, f64)>);
 
 impl BandsCache {
+    /// The cached bands of `params` over `range`, if only the backlash or
+    /// the TE changed since they were computed; the cache's key.
+    fn cached(
+        &self,
+        params: &ModelParams,
+        range: (f64, f64),
+    ) -> (Option<Vec<(f64, f64)>>, ModelParams) {
+        let mut key = params.clone();
+        // Both models have these keys; should one ever be refused, the key
+        // keeps its value and the cache only hits less often.
+        let neutral = keys::set(&mut key, "backlash_um", keys::Value::Num(0.0))
+            .and_then(|()| keys::set(&mut key, "te_um", keys::Value::Num(0.0)))
+            .is_ok();
+        let hit = self
+            .last
+            .as_ref()
+            .filter(|(p, r, _)| neutral && *p == key && *r == range)
+            .map(|(_, _, bands)| bands.clone());
+        (hit, key)
+    }
+
     /// The instability bands of `model` over `range`, from the cache when
     /// only the backlash or the TE changed.
     fn bands(
@@ -56,16 +87,9 @@ impl BandsCache {
         model: &Model,
         range: (f64, f64),
     ) -> Result<Vec<(f64, f64)>, solver::SolverError> {
-        let mut key = params.clone();
-        // Both models have these keys; should one ever be refused, the key
-        // keeps its value and the cache only hits less often.
-        let neutral = keys::set(&mut key, "backlash_um", keys::Value::Num(0.0))
-            .and_then(|()| keys::set(&mut key, "te_um", keys::Value::Num(0.0)))
-            .is_ok();
-        if let Some((p, r, bands)) = &self.last {
-            if neutral && *p == key && *r == range {
-                return Ok(bands.clone());
-            }
+        let (hit, key) = self.cached(params, range);
+        if let Some(bands) = hit {
+            return Ok(bands);
         }
         let bands = Parametric::new(model).and_then(|p| p.unstable_bands(range, BAND_SAMPLES))?;
         self.last = Some((key, range, bands.clone()));
@@ -80,7 +104,7 @@ impl BifJob {
         params: ModelParams,
         model: Model,
         spec: BifSpec<'_>,
-        bands: &mut BandsCache,
+        bands: &SharedBands,
     ) -> Result<(Self, Vec<FromWorker>), FromWorker> {
         let BifSpec {
             grid: (omega_from, omega_to, points),
@@ -98,22 +122,15 @@ impl BifJob {
         spec.steady.transient_periods = run.transient_periods;
         spec.steady.record_periods = run.record_periods;
         spec.meshes = (0..model.system.meshes.len()).collect();
-        // Shard 0 also sends the instability bands of the range.
-        let bands =
-            (shard == 0).then(
-                || match bands.bands(&params, &model, (omega_from, omega_to)) {
-                    Ok(bands) => FromWorker::Bands {
-                        id,
-                        bands,
-                        error: None,
-                    },
-                    Err(e) => FromWorker::Bands {
-                        id,
-                        bands: Vec::new(),
-                        error: Some(e.to_string()),
-                    },
-                },
-            );
+        // Shard 0 also sends the instability bands of the range: at once
+        // if they stand, else in its first step.
+        let range = (omega_from, omega_to);
+        let (hit, _) = bands.borrow().cached(&params, range);
+        let (ready, bands_due) = match (shard, hit) {
+            (0, Some(b)) => (Some(bands_message(id, Ok(b))), None),
+            (0, None) => (None, Some((Rc::clone(bands), range))),
+            _ => (None, None),
+        };
         match BifurcationSweep::new(model, spec) {
             Ok(sweep) => {
                 let job = BifJob {
@@ -121,8 +138,9 @@ impl BifJob {
                     params,
                     sweep,
                     points: Vec::new(),
+                    bands_due,
                 };
-                let out = bands.into_iter().chain([job.progress_message()]).collect();
+                let out = ready.into_iter().chain([job.progress_message()]).collect();
                 Ok((job, out))
             }
             Err(e) => Err(failed(id, e.to_string())),
@@ -176,6 +194,12 @@ impl Job for BifJob {
     }
 
     fn step(&mut self) -> Vec<FromWorker> {
+        if let Some((cache, range)) = self.bands_due.take() {
+            let bands = cache
+                .borrow_mut()
+                .bands(&self.params, self.sweep.model(), range);
+            return vec![bands_message(self.id, bands)];
+        }
         let mut out = Vec::new();
         // A slice of the next point's steady state: a newer job waits at
         // most SLICE_STEPS integrator steps.
@@ -239,5 +263,21 @@ fn bif_sample(sweep: &BifurcationSweep, p: &SweepPoint) -> BifSample {
         period: p.period,
         motion: p.motion,
         error: p.error.clone(),
+    }
+}
+
+/// The bands' message: the bands, or why they could not be computed.
+fn bands_message(id: JobId, bands: Result<Vec<(f64, f64)>, solver::SolverError>) -> FromWorker {
+    match bands {
+        Ok(bands) => FromWorker::Bands {
+            id,
+            bands,
+            error: None,
+        },
+        Err(e) => FromWorker::Bands {
+            id,
+            bands: Vec::new(),
+            error: Some(e.to_string()),
+        },
     }
 }

@@ -29,7 +29,7 @@ pub mod omega;
 pub mod orbits;
 pub mod overlay;
 
-use bif::{BandsCache, BifJob, BifSpec};
+use bif::{BifJob, BifSpec, SharedBands};
 use figures::protocol::{FromWorker, JobId, JobSpec};
 use hbm::HbmJob;
 use map::MapJob;
@@ -97,7 +97,7 @@ pub(crate) fn start(
     params: ModelParams,
     model: Model,
     spec: JobSpec,
-    bands: &mut BandsCache,
+    bands: &SharedBands,
 ) -> Started {
     match spec {
         JobSpec::Omega(spec) => {

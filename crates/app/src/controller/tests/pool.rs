@@ -72,13 +72,14 @@ fn a_larger_pool_deals_the_fixed_chains_round_robin_and_shares_the_map_rows() {
     }
     // 3 Lyapunov chains (150 points), on workers 0, 1, 2.
     assert_eq!(shards(JobKind::Lyap), vec![(0, 3, 0), (1, 3, 1), (2, 3, 2)]);
-    // Map rows are independent: one share per worker.
+    // Map rows are independent: one share per worker but the first, which
+    // holds the shooting branches.
     let map = shards(JobKind::Map);
     assert_eq!(
         map.iter().map(|s| s.0).collect::<Vec<_>>(),
-        vec![0, 1, 2, 3, 4]
+        vec![1, 2, 3, 4]
     );
-    assert!(map.iter().all(|s| s.1 == 5));
+    assert!(map.iter().all(|s| s.1 == 4));
     // The selected Omega on worker 0, the branch on the last worker.
     assert_eq!(shards(JobKind::Omega), vec![(0, 0, 0)]);
     assert_eq!(shards(JobKind::HarmonicBalance), vec![(4, 0, 0)]);
@@ -101,4 +102,55 @@ fn a_larger_pool_deals_the_fixed_chains_round_robin_and_shares_the_map_rows() {
         .map(|(w, _)| *w)
         .collect();
     assert_eq!(cancelled, vec![0, 1, 2, 3, 4]);
+}
+
+/// The map's rows go to the workers the long jobs (the shooting branches on
+/// the first, the boundaries on the last) leave free, to all of them when
+/// each holds one or none runs or the map is much larger than the
+/// default; a map restarted after the branches ended takes every worker
+/// again.
+#[test]
+fn the_map_rows_go_to_the_workers_the_long_jobs_leave_free() {
+    let map_workers = |p: &[(usize, ToWorker)]| -> Vec<(usize, u32)> {
+        let mut v: Vec<(usize, u32)> = p
+            .iter()
+            .filter_map(|(w, m)| match m {
+                ToWorker::Run {
+                    job: JobSpec::Map { shards, .. },
+                    ..
+                } => Some((*w, *shards)),
+                _ => None,
+            })
+            .collect();
+        v.sort_unstable();
+        v
+    };
+    let start = |query: &str| {
+        let (mut c, _) = Controller::new(query, 0.0);
+        let p = super::ready(&mut c);
+        (c, p)
+    };
+    // Two workers: the branches on the first, the rows on the second.
+    let (mut c, p) = start("");
+    assert_eq!(map_workers(&p), vec![(1, 1)]);
+    assert_eq!(map_workers(&start("branches=off").1), vec![(0, 2), (1, 2)]);
+    assert_eq!(map_workers(&start("boundaries=on").1), vec![(0, 2), (1, 2)]);
+    assert_eq!(
+        map_workers(&start("boundaries=on&branches=off").1),
+        vec![(0, 1)]
+    );
+    // A map ten times the default's cells shares both workers: the
+    // branches would end long before it.
+    assert_eq!(
+        map_workers(&start("map_omega_points=100&map_value_points=64").1),
+        vec![(0, 2), (1, 2)]
+    );
+    // The branches ended: a change of the map alone takes both workers.
+    c.main.status_mut(JobKind::Orbits).finished_ms = Some(5.0);
+    let p = posts(&c.set_key("map_to", "150", 6.0).unwrap());
+    assert_eq!(map_workers(&p), vec![(0, 2), (1, 2)]);
+    // Still running: the second worker alone.
+    c.main.status_mut(JobKind::Orbits).finished_ms = None;
+    let p = posts(&c.set_key("map_to", "120", 7.0).unwrap());
+    assert_eq!(map_workers(&p), vec![(1, 1)]);
 }

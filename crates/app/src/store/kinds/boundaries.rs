@@ -71,7 +71,7 @@ impl Kind for Boundaries {
     /// On one worker the trace, served after the branches, waited for all
     /// of them: with the compound set's default map the page's trace had
     /// not begun after 13 minutes, while alone it takes about a minute.
-    fn worker(&self, _target: Target, _shard: u32, pool: Pool) -> usize {
+    fn worker(&self, _target: Target, _shard: (u32, u32), pool: Pool) -> usize {
         pool.size - 1
     }
 

@@ -57,7 +57,7 @@ impl Kind for HarmonicBalance {
 
     /// The current state's branch on the last worker, A's beside it, the
     /// members' spread from there.
-    fn worker(&self, target: Target, _shard: u32, pool: Pool) -> usize {
+    fn worker(&self, target: Target, _shard: (u32, u32), pool: Pool) -> usize {
         match target {
             Target::Main => pool.hbm_worker(),
             Target::A => pool.pinned_hbm_worker(),

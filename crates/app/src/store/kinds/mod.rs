@@ -25,7 +25,7 @@ use figures::views::map::MapGrid;
 use solver::model::Model;
 
 /// What a job starts with: the target's settings and model, the map's
-/// grid and what the map and its boundaries depend on, the pool's size.
+/// grid and what the map and its boundaries depend on, the pool.
 pub struct StartCx<'a> {
     /// The target's settings (a member's: the current view, its parameters).
     pub settings: &'a Settings,
@@ -41,8 +41,8 @@ pub struct StartCx<'a> {
     pub map_signature: String,
     /// Everything the map's boundaries depend on, as text.
     pub boundaries_signature: String,
-    /// Workers in the pool.
-    pub workers: usize,
+    /// The pool (its size), with the long jobs that run beside this one.
+    pub pool: Pool,
 }
 
 impl StartCx<'_> {
@@ -74,6 +74,9 @@ pub struct FeedCx {
 pub struct Pool {
     /// Workers in the pool (at least 1).
     pub size: usize,
+    /// The long jobs ([`KindSet::LONG`]) of the current state that run, or
+    /// start, beside the jobs being placed.
+    pub long: KindSet,
 }
 
 impl Pool {
@@ -96,6 +99,30 @@ impl Pool {
     /// The worker of chain (or share) `shard`: chains are dealt round robin.
     pub fn shard_worker(self, shard: u32) -> usize {
         shard as usize % self.size
+    }
+
+    /// The workers no long job of [`Pool::long`] holds, in order; every
+    /// worker when each holds one. The map's rows go to these: on two
+    /// cores the shooting branches of the compound set (about 4 s of a
+    /// worker) and its map (about 4 s of CPU in all) then end together,
+    /// where with the rows on both workers the branches began only after
+    /// the first worker's rows and the other worker sat idle for the rest.
+    pub fn free_workers(self) -> Vec<usize> {
+        let alone = Pool {
+            long: KindSet::NONE,
+            ..self
+        };
+        let held: Vec<usize> = self
+            .long
+            .iter()
+            .map(|k| of(k).worker(Target::Main, (0, 1), alone))
+            .collect();
+        let free: Vec<usize> = (0..self.size).filter(|w| !held.contains(w)).collect();
+        if free.is_empty() {
+            (0..self.size).collect()
+        } else {
+            free
+        }
     }
 }
 
@@ -135,9 +162,9 @@ pub trait Kind: Sync {
     /// The job of shard `shard` of `chains`.
     fn spec(&self, cx: &StartCx, chains: u32, shard: u32) -> JobSpec;
 
-    /// The worker that runs `target`'s shard `shard`: round robin unless
-    /// the kind says otherwise.
-    fn worker(&self, _target: Target, shard: u32, pool: Pool) -> usize {
+    /// The worker that runs `target`'s shard `shard` of `chains`: round
+    /// robin unless the kind says otherwise.
+    fn worker(&self, _target: Target, (shard, _chains): (u32, u32), pool: Pool) -> usize {
         pool.shard_worker(shard)
     }
 

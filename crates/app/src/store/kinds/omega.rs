@@ -49,7 +49,7 @@ impl Kind for Omega {
         ))
     }
 
-    fn worker(&self, target: Target, shard: u32, pool: Pool) -> usize {
+    fn worker(&self, target: Target, (shard, _): (u32, u32), pool: Pool) -> usize {
         match target {
             Target::Member(m) => m as usize % pool.size,
             _ => pool.shard_worker(shard),
