@@ -580,7 +580,7 @@ impl Page {
             w.push(Write::text("validity", warning.unwrap_or_default()));
             w.extend(self.speed_writes());
         }
-        if d.jobs.intersects(KindSet::SELECTED) {
+        if d.jobs.intersects(KindSet::SUMMARY) {
             w.push(Write::text("summary", self.ctl.student_summary()));
             w.push(Write::text("summary-expert", self.ctl.summary_text()));
             w.push(Write::Attr {

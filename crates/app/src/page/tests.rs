@@ -264,3 +264,32 @@ fn a_plot_failure_and_a_map_click_outside_speak_through_the_messages() {
     // No map drawn yet: a click there does nothing.
     assert!(p.map_click(10.0, 10.0, 1.0).is_empty());
 }
+
+/// The summary compares the selected Omega's state with the frequency
+/// response's branch there, and either job may end last: the branch's end
+/// alone (no new state) rewrites it, so its sentence is never left out.
+#[test]
+fn the_branch_ending_after_the_state_rewrites_the_summary() {
+    let (mut p, _) = page("");
+    let d = Dirty {
+        jobs: KindSet::of(&[JobKind::HarmonicBalance]),
+        controls: false,
+        url: false,
+        messages: false,
+    };
+    let w = p.end_frame(&d);
+    assert!(
+        w.iter()
+            .any(|w| matches!(w, Write::Text { id, .. } if id == "summary")),
+        "{w:?}"
+    );
+    // A job the summary does not read leaves it alone.
+    let d = Dirty {
+        jobs: KindSet::of(&[JobKind::Bif]),
+        ..d
+    };
+    assert!(!p
+        .end_frame(&d)
+        .iter()
+        .any(|w| matches!(w, Write::Text { id, .. } if id == "summary")));
+}

@@ -92,6 +92,10 @@ impl KindSet {
     pub const PINNED: KindSet = KindSet::of(&[JobKind::HarmonicBalance, JobKind::Bif]);
     /// The selected Omega's kind: the summary and the views at that Omega.
     pub const SELECTED: KindSet = KindSet::of(&[JobKind::Omega]);
+    /// The kinds the selected Omega's summary reads: its steady state and
+    /// the frequency response's branch, whose stability there it compares
+    /// with the state found. Either may finish last, so either rewrites it.
+    pub const SUMMARY: KindSet = KindSet::of(&[JobKind::Omega, JobKind::HarmonicBalance]);
     /// The long jobs, each held by one worker of the pool (the shooting
     /// branches by the first, the map's boundaries by the last): the
     /// map's rows go to the other workers while they run.
