@@ -1,6 +1,6 @@
 //! The impact-regime map ([`JobKind::Map`]): its rows shared among the
-//! workers no long job holds; it restarts only when what it depends on changed (a click on
-//! a cell sets the key its rows vary, which does not).
+//! workers no long job holds; it restarts only when what it depends on
+//! changed (a click on a cell sets the key its rows vary, which does not).
 
 use super::{FeedCx, Kind, Pool, StartCx, StatusKey};
 use crate::store::status::{Dirty, JobStatus};
