@@ -29,6 +29,32 @@ fn bench_branches_reports_both_figures() {
     assert!(reach > 1.49 && reach <= 1.5, "{pair}");
 }
 
+/// `bench --multipliers --quick`: both groups compared at three step
+/// counts, every monodromy computed, and the error shrinking as the step
+/// does (RK4's fourth order; the solver's floquet test checks the order).
+#[test]
+fn bench_multipliers_reports_the_accuracy_by_step() {
+    let v = json(&["bench", "--multipliers", "--quick"]);
+    let a = &v["multiplier_accuracy"];
+    assert_eq!(a["monodromies_failed"].as_u64(), Some(0), "{a}");
+    let mut points = 0;
+    for group in ["constant_contact", "impacting"] {
+        let g = &a[group];
+        points += g["points"].as_u64().expect("points");
+        let rows = g["against_reference"].as_array().expect("rows");
+        let largest: Vec<f64> = rows
+            .iter()
+            .map(|r| r["largest_difference"].as_f64().expect("difference"))
+            .collect();
+        assert_eq!(largest.len(), 3, "{g}");
+        assert!(
+            largest.windows(2).all(|w| w[1] < w[0] || w[0] == 0.0),
+            "{g}"
+        );
+    }
+    assert_eq!(Some(points), a["sweep"]["branch_points"].as_u64(), "{a}");
+}
+
 /// `bench --hbm-problem` prints the harmonic-balance problem `frf` solves
 /// (the peer benchmark, scripts/bench-pyharm.sh, solves it in pyHarm).
 /// Checked against the physical model as `modes` reports it, computed

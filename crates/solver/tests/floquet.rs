@@ -203,3 +203,67 @@ fn an_orbit_shot_at_a_multiple_of_its_period_has_its_own_multipliers() {
         );
     }
 }
+
+/// The orbits' multipliers converge at RK4's fourth order in the step:
+/// on the compound set's impacting harmonic-balance orbits (where the
+/// contact switches cut the period into pieces), the largest modulus at
+/// 8, 16 and 32 steps a period of the fastest mode against 256. Halving
+/// the step divides the error by at least 2^3.5 (more where the leading
+/// term happens to be small), by 2^4 within half an order on the orbit
+/// with the largest error, and at the default 16 steps the error stays
+/// within the 1e-3 that docs/model.md states for the benchmark sweep
+/// (`gearshock bench --multipliers`: 5.1e-4 at most).
+#[test]
+fn orbit_multipliers_converge_at_rk4s_fourth_order() {
+    use solver::hbm::stability::{floquet_with_steps, ORBIT_STEPS_PER_FASTEST};
+    let m = model(&[]);
+    // (error at 8, at 16, at 32 steps) of each impacting orbit.
+    let mut errors = Vec::new();
+    for omega in [0.21, 0.22, 0.3, 0.4, 0.45] {
+        let mut spec = FrfSpec::new(omega, omega + 0.01, 10);
+        spec.harmonics = 7;
+        let mut c = FrfContinuation::new(&m, spec).expect("spec");
+        let p = c.advance(1).expect("Newton").remove(0);
+        let impacting = p
+            .meshes
+            .iter()
+            .any(|ms| matches!(ms.impact, Impact::SingleSided | Impact::DoubleSided));
+        if !impacting {
+            continue;
+        }
+        let radius = |steps: f64| {
+            floquet_with_steps(c.assembly(), &p.coefficients, p.omega, steps)
+                .expect("multipliers")
+                .spectral_radius()
+        };
+        let reference = radius(256.0);
+        let err = |steps| (radius(steps) - reference).abs();
+        let e = (err(8.0), err(ORBIT_STEPS_PER_FASTEST), err(32.0));
+        assert!(
+            e.1 <= 1e-3,
+            "Omega {omega}: 16 steps {:e} from the reference",
+            e.1
+        );
+        // Below 1e-8 the reference's own error and rounding take over.
+        for (coarse, fine) in [(e.0, e.1), (e.1, e.2)] {
+            let order = (coarse / fine).log2();
+            assert!(
+                coarse < 1e-8 || order >= 3.5,
+                "Omega {omega}: observed order {order:.2} ({coarse:e} -> {fine:e})"
+            );
+        }
+        errors.push(e);
+    }
+    assert!(errors.len() >= 3, "only {} impacting orbits", errors.len());
+    let worst = errors
+        .iter()
+        .copied()
+        .fold((0.0, 1.0, 1.0), |a, b| if b.0 > a.0 { b } else { a });
+    for (coarse, fine) in [(worst.0, worst.1), (worst.1, worst.2)] {
+        let order = (coarse / fine).log2();
+        assert!(
+            (3.5..=4.5).contains(&order),
+            "the largest error's observed order {order:.2} ({coarse:e} -> {fine:e})"
+        );
+    }
+}

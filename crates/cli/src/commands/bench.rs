@@ -18,6 +18,8 @@ use solver::sweep::{BifurcationSweep, SweepSpec};
 use solver::SolverError;
 use std::time::Instant;
 
+mod multipliers;
+
 /// Options of `gearshock bench`.
 #[derive(Debug, clap::Args)]
 pub struct BenchArgs {
@@ -42,6 +44,11 @@ pub struct BenchArgs {
     /// The same sweep beside pyHarm, both run: scripts/bench-pyharm.sh.
     #[arg(long)]
     hbm_only: bool,
+    /// Only the accuracy of the harmonic balance's Floquet multipliers: on
+    /// the same sweep, each point's monodromy at 8, 16 (the default) and 32
+    /// RK4 steps a period of the fastest mode against 128.
+    #[arg(long)]
+    multipliers: bool,
     /// Only the shooting branches' figure: the page's branch job natively
     /// (the compound set's first 300 points at 100 nominal points) and the
     /// gear pair's whole branch.
@@ -91,6 +98,12 @@ pub fn run_command(a: &BenchArgs) -> Result<(), crate::failure::Failure> {
         let v = hbm_branch_bench(&model, if a.quick { 1 } else { a.repeats })
             .map_err(crate::failure::Failure::from)?;
         return crate::output::emit(&json!({ "hbm_branch": v }));
+    }
+    if a.multipliers {
+        let model = Model::new(base).map_err(crate::failure::Failure::from)?;
+        let v = multipliers::multiplier_accuracy(&model, a.quick)
+            .map_err(crate::failure::Failure::from)?;
+        return crate::output::emit(&json!({ "multiplier_accuracy": v }));
     }
     if a.branches_only {
         let v = branches_bench(if a.quick { 1 } else { a.repeats }, a.quick)

@@ -33,7 +33,8 @@ use std::f64::consts::PI;
 /// set at Omega 1.875 was 3.7e-4 off the shooting monodromy's (at rtol
 /// 1e-13), at 16 it is 2.2e-5, within the 1e-4 at which the branch's
 /// stability is compared with shooting (`crates/solver/tests/floquet.rs`).
-pub(crate) const ORBIT_STEPS_PER_FASTEST: f64 = 16.0;
+/// `gearshock bench --multipliers` measures it on the benchmark sweep.
+pub const ORBIT_STEPS_PER_FASTEST: f64 = 16.0;
 
 /// The same for the engaged system's spectral radius (`gearshock
 /// instability`, the page's grey bands), held to 1e-6 of the shooting
@@ -266,8 +267,20 @@ fn deriv_fixed<const M: usize, const N2: usize>(
 /// Computes the Floquet multipliers of the orbit `x` at frequency `omega`.
 /// `None` if the eigenvalue iteration did not converge.
 pub fn floquet(asm: &Assembly, x: &[f64], omega: f64) -> Option<Floquet> {
+    floquet_with_steps(asm, x, omega, ORBIT_STEPS_PER_FASTEST)
+}
+
+/// [`floquet`] with `steps_per_fastest` RK4 steps per period of the
+/// fastest mode instead of [`ORBIT_STEPS_PER_FASTEST`]: the multipliers'
+/// accuracy measured against a finer integration of the same monodromy.
+pub fn floquet_with_steps(
+    asm: &Assembly,
+    x: &[f64],
+    omega: f64,
+    steps_per_fastest: f64,
+) -> Option<Floquet> {
     let (coefs, cuts) = orbit_pieces(asm, x);
-    monodromy(asm, omega, &cuts, Some(&coefs), ORBIT_STEPS_PER_FASTEST)
+    monodromy(asm, omega, &cuts, Some(&coefs), steps_per_fastest)
 }
 
 /// The orbit `x`'s channel coefficients (each channel's relative
