@@ -5,9 +5,11 @@
 # Installs pyHarm into target/peer/venv if it is not there at the pinned
 # version, builds the release binary, writes the harmonic-balance problem
 # (gearshock bench --hbm-problem) and runs scripts/peer/pyharm_frf.py, which
-# prints one JSON line per run (both CPU times, their ratio, the branches'
-# distance) and the medians. Usage: scripts/bench-pyharm.sh [RUNS] [more
-# options of pyharm_frf.py, e.g. --nti 256 or --gearshock-args "--points 50"]
+# prints one JSON line per run (the CPU times, gearshock at its defaults
+# and with the branch alone, --no-stability, as pyHarm computes no
+# stability; both ratios; the branches' distance) and the medians. Usage:
+# scripts/bench-pyharm.sh [RUNS] [more options of pyharm_frf.py, e.g.
+# --nti 256 or --gearshock-args="--points 50"]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 runs=${1:-3}

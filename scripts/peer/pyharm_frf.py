@@ -13,11 +13,14 @@ solver (all its defaults), with the meshes as one pyHarm element evaluated
 by the alternating frequency-time scheme on `--nti` samples a period.
 
 Each run times `gearshock frf` on the same sweep (a child process: its CPU
-and wall time, start-up included) and then pyHarm's continuation (its
-`operate()` alone), and prints one JSON line: both times, their CPU
-ratio, the points, and the largest distance of pyHarm's branch from
-gearshock's in peak-to-peak deflection x = delta - e of the chosen mesh,
-relative to the branch's largest. A last line gives the medians.
+and wall time, start-up included) twice, at its defaults (with the Floquet
+stability of every point) and with `--no-stability` (the branch alone:
+the same work as pyHarm, which computes no stability), and then pyHarm's
+continuation (its `operate()` alone), and prints one JSON line: the
+times, both CPU ratios, the points, and the largest distance of pyHarm's
+branch from gearshock's in peak-to-peak deflection x = delta - e of the
+chosen mesh, relative to the branch's largest. A last line gives the
+medians.
 
 Run by scripts/bench-pyharm.sh; see docs/performance.md.
 """
@@ -268,6 +271,11 @@ def main():
     rows = []
     for k in range(a.runs):
         ref, g_cpu, g_wall, cmd = run_gearshock(a.gearshock_bin, a)
+        # The branch alone: what pyHarm computes (it has no stability).
+        alone = argparse.Namespace(**{**vars(a), "gearshock_args": a.gearshock_args + " --no-stability"})
+        if "--no-stability" in a.gearshock_args.split():
+            alone = a
+        _, b_cpu, _, _ = run_gearshock(a.gearshock_bin, alone)
         pts, p_cpu, p_wall = run_pyharm(problem, channel, a)
         peak = max(p[1] for p in ref)
         # pyHarm's last step ends past the range; gearshock's at its end.
@@ -286,6 +294,8 @@ def main():
             "pyharm_points": len(pts),
             "pyharm_omega_reached": round(max(p[0] for p in pts), 5),
             "cpu_ratio": round(p_cpu / g_cpu, 1),
+            "gearshock_branch_alone_cpu_s": round(b_cpu, 4),
+            "cpu_ratio_branch_alone": round(p_cpu / b_cpu, 1),
             "distance_rel": float(f"{worst / peak:.3g}"),
             "farthest_at_omega": round(at[0], 5),
             "distance_back_rel": float(f"{back / peak:.3g}"),
@@ -303,6 +313,9 @@ def main():
         "median_pyharm_cpu_s": med("pyharm_cpu_s"),
         "median_cpu_ratio": med("cpu_ratio"),
         "ratios": [r["cpu_ratio"] for r in rows],
+        "median_gearshock_branch_alone_cpu_s": med("gearshock_branch_alone_cpu_s"),
+        "median_cpu_ratio_branch_alone": med("cpu_ratio_branch_alone"),
+        "ratios_branch_alone": [r["cpu_ratio_branch_alone"] for r in rows],
         "largest_distance_rel": max(max(r["distance_rel"], r["distance_back_rel"]) for r in rows),
     }))
     return 0
