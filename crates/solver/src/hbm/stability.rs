@@ -102,6 +102,10 @@ struct LtpBlock {
     /// `k1 + 2 k2 + 2 k3 + k4`, accumulated stage by stage.
     acc: Vec<f64>,
     tmp: Vec<f64>,
+    /// Over a piece whose meshes' stiffness is a trigonometric polynomial
+    /// in theta, `K_eff(theta) = trig[0] + sum_n (cos(n theta) trig[2n - 1]
+    /// - sin(n theta) trig[2n])`, each `m x m` row-major ([`Self::set_piece`]).
+    trig: Vec<Vec<f64>>,
 }
 
 impl LtpBlock {
@@ -121,6 +125,52 @@ impl LtpBlock {
             stage: vec![0.0; n2 * n2],
             acc: vec![0.0; n2 * n2],
             tmp: vec![0.0; n2 * n2],
+            trig: Vec::new(),
+        }
+    }
+
+    /// Prepares [`Self::trig`] for a piece: every channel `j` with
+    /// `active[j]` adds `w_j k_j (1 + sum_n a_jn cos(n (theta + phase_j)))
+    /// v_j v_j^T`, split by the angle-sum formula into its constant part and
+    /// the coefficients of `cos(n theta)` and `sin(n theta)`.
+    fn set_piece(&mut self, active: &[bool], terms: &[MeshTerms]) {
+        let m = self.m;
+        let harmonics = terms.iter().map(|t| t.a.len()).max().unwrap_or(0);
+        self.trig.resize_with(1 + 2 * harmonics, Vec::new);
+        for (i, t) in self.trig.iter_mut().enumerate() {
+            t.clear();
+            if i == 0 {
+                t.extend_from_slice(&self.k0);
+            } else {
+                t.resize(m * m, 0.0);
+            }
+        }
+        for (((w, v), t), _) in self
+            .channels
+            .iter()
+            .zip(terms)
+            .zip(active)
+            .filter(|(_, &on)| on)
+        {
+            let wk = w * t.k;
+            add_outer(&mut self.trig[0], wk, v);
+            for (n, &a) in t.a.iter().enumerate() {
+                let (sin_p, cos_p) = ((n + 1) as f64 * t.phase_rad).sin_cos();
+                add_outer(&mut self.trig[2 * n + 1], wk * a * cos_p, v);
+                add_outer(&mut self.trig[2 * n + 2], wk * a * sin_p, v);
+            }
+        }
+    }
+
+    /// `K_eff` at theta into slot `slot` from [`Self::trig`], given
+    /// `(cos(n theta), sin(n theta))` for `n = 1, 2, ...`.
+    fn set_stiffness_trig(&mut self, slot: usize, cos_sin: &[(f64, f64)]) {
+        let k_eff = &mut self.k_eff[slot];
+        k_eff.copy_from_slice(&self.trig[0]);
+        for (pair, &(c, s)) in self.trig[1..].chunks_exact(2).zip(cos_sin) {
+            for ((k, pc), ps) in k_eff.iter_mut().zip(&pair[0]).zip(&pair[1]) {
+                *k += c * pc - s * ps;
+            }
         }
     }
 
@@ -146,45 +196,44 @@ impl LtpBlock {
         }
     }
 
-    /// `stage = A(theta) z / omega` with `K_eff` from `slot`; `z` is the
-    /// monodromy or the stage point `tmp`.
-    fn deriv(&mut self, slot: usize, inv: f64, z_is_tmp: bool) {
+    /// `stage = A(theta) z` (the derivative in tau) with `K_eff` from
+    /// `slot`; `z` is the monodromy or the stage point `tmp`.
+    fn deriv(&mut self, slot: usize, z_is_tmp: bool) {
         let z = if z_is_tmp { &self.tmp } else { &self.phi };
         let (k_eff, c, out) = (&self.k_eff[slot], &self.c, &mut self.stage);
         // The usual block sizes (the symmetric set and its planet block) with
         // the row length known to the compiler, which keeps a row in registers.
         match self.m {
-            5 => deriv_fixed::<5, 10>(k_eff, c, z, out, inv),
-            2 => deriv_fixed::<2, 4>(k_eff, c, z, out, inv),
-            1 => deriv_fixed::<1, 2>(k_eff, c, z, out, inv),
-            m => deriv_any(m, k_eff, c, z, out, inv),
+            5 => deriv_fixed::<5, 10>(k_eff, c, z, out),
+            2 => deriv_fixed::<2, 4>(k_eff, c, z, out),
+            1 => deriv_fixed::<1, 2>(k_eff, c, z, out),
+            m => deriv_any(m, k_eff, c, z, out),
         }
     }
 
-    /// One classical Runge–Kutta step of size `ht` in theta with the
-    /// stiffness slots 0, 1 and 2 set for its start, middle and end.
-    fn rk4(&mut self, ht: f64, omega: f64) {
-        let inv = 1.0 / omega;
-        self.deriv(0, inv, false);
+    /// One classical Runge–Kutta step of size `ht` in tau (`theta / omega`)
+    /// with the stiffness slots 0, 1 and 2 set for its start, middle and end.
+    fn rk4(&mut self, ht: f64) {
+        self.deriv(0, false);
         self.acc.copy_from_slice(&self.stage);
         for (t, (p, k)) in self.tmp.iter_mut().zip(self.phi.iter().zip(&self.stage)) {
             *t = p + 0.5 * ht * k;
         }
-        self.deriv(1, inv, true);
+        self.deriv(1, true);
         for (a, k) in self.acc.iter_mut().zip(&self.stage) {
             *a += 2.0 * k;
         }
         for (t, (p, k)) in self.tmp.iter_mut().zip(self.phi.iter().zip(&self.stage)) {
             *t = p + 0.5 * ht * k;
         }
-        self.deriv(1, inv, true);
+        self.deriv(1, true);
         for (a, k) in self.acc.iter_mut().zip(&self.stage) {
             *a += 2.0 * k;
         }
         for (t, (p, k)) in self.tmp.iter_mut().zip(self.phi.iter().zip(&self.stage)) {
             *t = p + ht * k;
         }
-        self.deriv(2, inv, true);
+        self.deriv(2, true);
         for ((p, a), k) in self.phi.iter_mut().zip(&self.acc).zip(&self.stage) {
             *p += ht / 6.0 * (a + k);
         }
@@ -197,14 +246,59 @@ impl LtpBlock {
     }
 }
 
-/// `out = A z / omega` for `A = [[0, I], [-K_eff, -C]]` (`m x m` blocks,
+/// A mesh channel's stiffness `k (1 + sum_n a[n-1] cos(n (theta + phase_rad)))`
+/// (`a[0]` the variation, then the higher harmonics' amplitudes).
+struct MeshTerms {
+    k: f64,
+    a: Vec<f64>,
+    phase_rad: f64,
+}
+
+impl MeshTerms {
+    /// Every channel's terms, or `None` if one is not a mesh (its slope
+    /// then depends on the orbit, not on theta alone).
+    fn of(channels: &[super::model::Channel]) -> Option<Vec<MeshTerms>> {
+        channels
+            .iter()
+            .map(|ch| match ch.law {
+                Law::Mesh {
+                    k,
+                    variation,
+                    phase_rad,
+                    ref higher,
+                    ..
+                } => Some(MeshTerms {
+                    k,
+                    a: std::iter::once(variation)
+                        .chain(higher.iter().map(|h| h[0]))
+                        .collect(),
+                    phase_rad,
+                }),
+                Law::Cubic { .. } => None,
+            })
+            .collect()
+    }
+}
+
+/// `mat += coef v v^T` (`mat` row-major, `v.len()` square).
+fn add_outer(mat: &mut [f64], coef: f64, v: &[f64]) {
+    if coef == 0.0 {
+        return;
+    }
+    for (row, &vr) in mat.chunks_exact_mut(v.len()).zip(v) {
+        let a = coef * vr;
+        for (x, &vc) in row.iter_mut().zip(v) {
+            *x += a * vc;
+        }
+    }
+}
+
+/// `out = A z` for `A = [[0, I], [-K_eff, -C]]` (`m x m` blocks,
 /// row-major `2m x 2m` matrices), any `m`.
-fn deriv_any(m: usize, k_eff: &[f64], c: &[f64], z: &[f64], out: &mut [f64], inv: f64) {
+fn deriv_any(m: usize, k_eff: &[f64], c: &[f64], z: &[f64], out: &mut [f64]) {
     let n2 = 2 * m;
     // Position rows: the velocity rows.
-    for (o, &v) in out[..m * n2].iter_mut().zip(&z[m * n2..]) {
-        *o = v * inv;
-    }
+    out[..m * n2].copy_from_slice(&z[m * n2..]);
     // Velocity rows: -(K_eff z_x + C z_v).
     for r in 0..m {
         let row = &mut out[(m + r) * n2..(m + r + 1) * n2];
@@ -222,9 +316,6 @@ fn deriv_any(m: usize, k_eff: &[f64], c: &[f64], z: &[f64], out: &mut [f64], inv
                 }
             }
         }
-        for x in row.iter_mut() {
-            *x *= inv;
-        }
     }
 }
 
@@ -234,15 +325,10 @@ fn deriv_fixed<const M: usize, const N2: usize>(
     c: &[f64],
     z: &[f64],
     out: &mut [f64],
-    inv: f64,
 ) {
     let (z, _) = z.as_chunks::<N2>();
     let (out, _) = out.as_chunks_mut::<N2>();
-    for r in 0..M {
-        for (o, &v) in out[r].iter_mut().zip(&z[M + r]) {
-            *o = v * inv;
-        }
-    }
+    out[..M].copy_from_slice(&z[M..]);
     for r in 0..M {
         let mut row = [0.0; N2];
         for l in 0..M {
@@ -258,9 +344,7 @@ fn deriv_fixed<const M: usize, const N2: usize>(
                 }
             }
         }
-        for (o, &v) in out[M + r].iter_mut().zip(&row) {
-            *o = v * inv;
-        }
+        out[M + r] = row;
     }
 }
 
@@ -417,14 +501,13 @@ fn integrate_blocks(
     });
     // Each channel's phase as its cosine and sine: the seed's one-harmonic
     // stiffness at `theta` is then one `sin_cos` of `theta` for all channels.
-    let phases: Vec<(f64, f64)> = model
-        .channels
-        .iter()
-        .map(|ch| match ch.law {
-            Law::Mesh { phase_rad, .. } => (phase_rad.cos(), phase_rad.sin()),
-            Law::Cubic { .. } => (1.0, 0.0),
-        })
-        .collect();
+    // Every law a mesh's (the default): the stiffness over a piece is a
+    // trigonometric polynomial in theta, assembled per piece.
+    let terms = MeshTerms::of(&model.channels);
+    let harmonics = terms
+        .as_ref()
+        .map_or(0, |t| t.iter().map(|t| t.a.len()).max().unwrap_or(0));
+    let mut cos_sin = vec![(0.0, 0.0); harmonics];
     let mut active = vec![false; model.channels.len()];
     let mut slopes = vec![0.0; model.channels.len()];
     for w in cuts.windows(2) {
@@ -437,24 +520,19 @@ fn integrate_blocks(
         for (j, ch) in model.channels.iter().enumerate() {
             active[j] = coefs.is_none() || ch.law.force(mid, u_at(j, mid)).1 != 0.0;
         }
+        if let Some(terms) = &terms {
+            main.set_piece(&active, terms);
+            if let Some(pb) = planet.as_mut() {
+                pb.set_piece(&active, terms);
+            }
+        }
+        // A law that is not a mesh's: each channel's slope at theta.
         let slopes_at = |theta: f64, out: &mut [f64]| {
-            let (sin_t, cos_t) = theta.sin_cos();
             for (j, (ch, o)) in model.channels.iter().zip(out.iter_mut()).enumerate() {
                 *o = if !active[j] {
                     0.0
                 } else {
                     match ch.law {
-                        // The seed's one harmonic, as written before the waveforms.
-                        Law::Mesh {
-                            k,
-                            variation,
-                            ref higher,
-                            ..
-                        } if higher.is_empty() => {
-                            // cos(theta + phase), from the angle-sum formula.
-                            let (cos_p, sin_p) = phases[j];
-                            k * (1.0 + variation * (cos_t * cos_p - sin_t * sin_p))
-                        }
                         Law::Mesh { .. } => ch.law.stiffness(theta),
                         Law::Cubic { .. } => ch.law.force(theta, u_at(j, theta)).1,
                     }
@@ -481,17 +559,111 @@ fn integrate_blocks(
                 .enumerate()
                 .skip(first)
             {
-                slopes_at(theta, &mut slopes);
-                main.set_stiffness(slot, &slopes);
-                if let Some(pb) = planet.as_mut() {
-                    pb.set_stiffness(slot, &slopes);
+                if terms.is_some() {
+                    // cos(n theta) and sin(n theta) by the angle-sum formula.
+                    let (s1, c1) = theta.sin_cos();
+                    let (mut c, mut s) = (1.0, 0.0);
+                    for cs in cos_sin.iter_mut() {
+                        (c, s) = (c * c1 - s * s1, s * c1 + c * s1);
+                        *cs = (c, s);
+                    }
+                    main.set_stiffness_trig(slot, &cos_sin);
+                    if let Some(pb) = planet.as_mut() {
+                        pb.set_stiffness_trig(slot, &cos_sin);
+                    }
+                } else {
+                    slopes_at(theta, &mut slopes);
+                    main.set_stiffness(slot, &slopes);
+                    if let Some(pb) = planet.as_mut() {
+                        pb.set_stiffness(slot, &slopes);
+                    }
                 }
             }
-            main.rk4(ht, omega);
+            // The step in tau.
+            let h_tau = ht / omega;
+            main.rk4(h_tau);
             if let Some(pb) = planet.as_mut() {
-                pb.rk4(ht, omega);
+                pb.rk4(h_tau);
             }
         }
     }
     Some((main, planet))
+}
+
+#[cfg(test)]
+mod tests {
+    // Tests may panic: that is how they fail.
+    #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+    use super::*;
+
+    /// A mesh law with `variation` and the higher stiffness harmonics `a`.
+    fn mesh(k: f64, variation: f64, phase_rad: f64, a: &[f64]) -> Law {
+        Law::Mesh {
+            k,
+            variation,
+            phase_rad,
+            backlash_um: 1.0,
+            te_mean_um: 0.0,
+            te_cos_um: 0.0,
+            te_sin_um: 0.0,
+            higher: a.iter().map(|&a| [a, 0.0, 0.0]).collect(),
+        }
+    }
+
+    /// The stiffness assembled per piece from the angle-sum formula equals
+    /// the one summed channel by channel from each law's own stiffness at
+    /// theta (one and five harmonics, one channel out of contact).
+    #[test]
+    fn the_pieces_trigonometric_stiffness_is_the_laws() {
+        let channels = [
+            (mesh(2.0, 0.3, 0.4, &[]), 3.0, vec![1.0, -0.5, 0.2]),
+            (
+                mesh(1.5, 0.2, -1.1, &[0.1, -0.05, 0.02, 0.01]),
+                1.0,
+                vec![0.3, 0.8, -0.4],
+            ),
+            (mesh(0.7, 0.25, 2.0, &[0.05]), 2.0, vec![-0.6, 0.1, 0.9]),
+        ];
+        let k0 = vec![1.0, 0.1, 0.0, 0.1, 2.0, 0.3, 0.0, 0.3, 3.0];
+        let mut block = LtpBlock::new(
+            3,
+            k0,
+            vec![0.0; 9],
+            channels.iter().map(|(_, w, v)| (*w, v.clone())).collect(),
+        );
+        let terms = MeshTerms::of(
+            &channels
+                .iter()
+                .map(|(law, w, v)| super::super::model::Channel {
+                    d: v.clone(),
+                    multiplicity: *w,
+                    law: law.clone(),
+                    damping: 0.0,
+                    meshes: Vec::new(),
+                })
+                .collect::<Vec<_>>(),
+        )
+        .expect("meshes");
+        let active = [true, true, false];
+        block.set_piece(&active, &terms);
+        for theta in [0.0, 0.7, 2.5, 4.0, 6.1] {
+            let cos_sin: Vec<(f64, f64)> = (1..=5)
+                .map(|n| ((n as f64 * theta).cos(), (n as f64 * theta).sin()))
+                .collect();
+            block.set_stiffness_trig(0, &cos_sin);
+            let slopes: Vec<f64> = channels
+                .iter()
+                .zip(active)
+                .map(|((law, _, _), on)| if on { law.stiffness(theta) } else { 0.0 })
+                .collect();
+            block.set_stiffness(1, &slopes);
+            for (a, b) in block.k_eff[0].iter().zip(&block.k_eff[1]) {
+                assert!(
+                    (a - b).abs() <= 1e-13 * (1.0 + b.abs()),
+                    "theta {theta}: {a} vs {b}"
+                );
+            }
+        }
+    }
 }
