@@ -109,6 +109,11 @@ pub struct Controller {
     /// What changed since the page last drew.
     dirty: Dirty,
     workers: Vec<WorkerSlot>,
+    /// At the page's start ([`Controller::hold_off_screen`]), the messages
+    /// of the jobs off the first screen ([`KindSet::FIRST_SCREEN`]), held
+    /// back with their workers until the first screen's jobs have ended;
+    /// `None` when nothing is held.
+    held: Option<Vec<(usize, String)>>,
     next_id: JobId,
     export: Option<PendingExport>,
     /// The "Start here" tour's step (0-based), if it is running.
@@ -150,6 +155,7 @@ impl Controller {
             panels: decoded.panels,
             dirty: Dirty::default(),
             workers: vec![WorkerSlot::default(); workers],
+            held: None,
             next_id: 0,
             export: None,
             tour,
