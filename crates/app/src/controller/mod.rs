@@ -2,7 +2,9 @@
 //! state machine that the web layer drives and the native tests exercise.
 //!
 //! Every user action returns the messages to post to the workers; the
-//! controller queues messages for a worker until it has said "ready".
+//! controller queues messages for a worker until it has said "ready",
+//! and at the page's start holds the jobs off the first screen until the
+//! first screen's have ended ([`Controller::hold_off_screen`]).
 //! Jobs are restarted by what a change affects: a model parameter restarts
 //! everything, a view option the kinds its row of
 //! [`figures::settings::VIEW_KEYS`] names. The current state, the pinned A
