@@ -94,7 +94,7 @@ fn media(window: &Window, q: &str) -> bool {
         .is_some_and(|m| m.matches())
 }
 
-/// Starts the page: elements, workers, events, first frame.
+/// Starts the page: workers, elements, events, first frame.
 pub fn start_app() {
     let Some(window) = web_sys::window() else {
         return;
@@ -120,6 +120,10 @@ pub fn start_app() {
         doc: doc.clone(),
         workers: Vec::new(),
     }));
+    // The workers first: the jobs on screen are posted as soon as a worker
+    // is ready, while the page builds its elements.
+    start_workers(&page);
+    run_effects(&page, effects);
     panel::build(&page);
     paint(&page.borrow(), page.borrow().core.first_writes());
     let w = page.borrow_mut().core.first_present_writes();
@@ -127,8 +131,6 @@ pub fn start_app() {
     present::build(&page);
     tefile::build(&page);
     build_canvas_events(&page);
-    start_workers(&page);
-    run_effects(&page, effects);
     expose_status(&page);
     anim::observe_anim_visibility(&page);
     anim::start_anim_loop(&page);
@@ -152,22 +154,75 @@ pub fn start_app() {
     request_frame(&page);
 }
 
+/// A worker `index.html` started before the page's WebAssembly loaded,
+/// with the messages it sent meanwhile and whether it failed.
+struct Early {
+    worker: Worker,
+    messages: Vec<String>,
+    failed: bool,
+}
+
+/// Takes the workers `index.html` started (`window.gearshockEarlyWorkers`):
+/// their queueing handlers are removed, so every later message reaches
+/// the page's listener; this runs in one task, so none is lost between.
+fn early_workers(window: &Window) -> Vec<Early> {
+    let key = JsValue::from_str("gearshockEarlyWorkers");
+    let list = js_sys::Reflect::get(window, &key).unwrap_or(JsValue::UNDEFINED);
+    check(js_sys::Reflect::delete_property(window, &key).map(drop));
+    let Ok(list) = list.dyn_into::<js_sys::Array>() else {
+        return Vec::new();
+    };
+    let field = |e: &JsValue, name: &str| js_sys::Reflect::get(e, &JsValue::from_str(name)).ok();
+    list.iter()
+        .filter_map(|e| {
+            let worker = field(&e, "worker")?.dyn_into::<Worker>().ok()?;
+            worker.set_onmessage(None);
+            worker.set_onerror(None);
+            let messages = field(&e, "messages")
+                .and_then(|m| m.dyn_into::<js_sys::Array>().ok())
+                .map(|m| m.iter().filter_map(|t| t.as_string()).collect())
+                .unwrap_or_default();
+            let failed = field(&e, "failed").is_some_and(|f| f.is_truthy());
+            Some(Early {
+                worker,
+                messages,
+                failed,
+            })
+        })
+        .collect()
+}
+
+/// Starts the pool: the workers `index.html` started, adopted with the
+/// messages they sent meanwhile, then any missing; extra ones end.
 fn start_workers(page: &Shared) {
     let workers = page.borrow().core.ctl().workers();
+    let window = page.borrow().window.clone();
+    let mut early = early_workers(&window).into_iter();
     for w in 0..workers {
-        let Ok(worker) = Worker::new("./worker_loader.js") else {
-            page.borrow_mut().core.worker_missing();
-            continue;
+        let (worker, messages, failed) = match early.next() {
+            Some(e) => (e.worker, e.messages, e.failed),
+            None => {
+                let Ok(worker) = Worker::new("./worker_loader.js") else {
+                    page.borrow_mut().core.worker_missing();
+                    continue;
+                };
+                (worker, Vec::new(), false)
+            }
         };
-        let p2 = page.clone();
-        listen(&worker, "message", move |e: MessageEvent| {
-            let text = e.data().as_string().unwrap_or_default();
-            let fx = {
-                let p = &mut *p2.borrow_mut();
-                p.core.worker_said(w, &text, || now(&p.window))
-            };
-            run_effects(&p2, fx);
-            request_frame(&p2);
+        let said = {
+            let page = page.clone();
+            move |text: &str| {
+                let fx = {
+                    let p = &mut *page.borrow_mut();
+                    p.core.worker_said(w, text, || now(&p.window))
+                };
+                run_effects(&page, fx);
+                request_frame(&page);
+            }
+        };
+        listen(&worker, "message", {
+            let said = said.clone();
+            move |e: MessageEvent| said(&e.data().as_string().unwrap_or_default())
         });
         let p2 = page.clone();
         listen(&worker, "error", move |_e: Event| {
@@ -175,6 +230,15 @@ fn start_workers(page: &Shared) {
             request_frame(&p2);
         });
         page.borrow_mut().workers.push(worker);
+        for text in &messages {
+            said(text);
+        }
+        if failed {
+            page.borrow_mut().core.worker_failed(w);
+        }
+    }
+    for extra in early {
+        extra.worker.terminate();
     }
 }
 

@@ -22,6 +22,68 @@ pub(super) struct Inputs {
 impl Controller {
     pub(super) fn post(&mut self, worker: usize, msg: &ToWorker) -> Vec<Effect> {
         let text = encode(msg);
+        let mut fx = Vec::new();
+        if let Some(held) = &mut self.held {
+            match msg {
+                ToWorker::Run { job, .. } if !KindSet::FIRST_SCREEN.contains(job.kind()) => {
+                    held.push((worker, text));
+                    return fx;
+                }
+                ToWorker::Run { .. } => {}
+                // A cancel or an export speaks of the jobs held: they go first.
+                _ => fx = self.release(),
+            }
+        }
+        fx.extend(self.post_text(worker, text));
+        fx
+    }
+
+    /// Holds back the jobs off the first screen ([`KindSet::FIRST_SCREEN`])
+    /// until the first screen's jobs have ended: at the page's start, before
+    /// a worker is ready, so that the frequency response and the selected
+    /// Omega have the cores to themselves (on two cores the first worker
+    /// would otherwise run the bifurcation sweep beside the branch). The
+    /// jobs queued so far and those started meanwhile wait, in order; a
+    /// cancel or an export posts them first.
+    pub fn hold_off_screen(&mut self) {
+        let mut held = self.held.take().unwrap_or_default();
+        for (worker, slot) in self.workers.iter_mut().enumerate() {
+            let (keep, hold): (Vec<String>, Vec<String>) = std::mem::take(&mut slot.queue)
+                .into_iter()
+                .partition(|text| match serde_json::from_str::<ToWorker>(text) {
+                    Ok(ToWorker::Run { job, .. }) => KindSet::FIRST_SCREEN.contains(job.kind()),
+                    _ => true,
+                });
+            slot.queue = keep;
+            held.extend(hold.into_iter().map(|text| (worker, text)));
+        }
+        self.held = Some(held);
+    }
+
+    /// Posts the messages held back at the page's start ([`Self::hold_off_screen`]),
+    /// in their order, and holds no more.
+    pub(super) fn release(&mut self) -> Vec<Effect> {
+        let held = self.held.take().unwrap_or_default();
+        held.into_iter()
+            .flat_map(|(worker, text)| self.post_text(worker, text))
+            .collect()
+    }
+
+    /// Releases the held messages once none of the current state's
+    /// first-screen jobs runs.
+    pub(super) fn release_if_first_screen_ended(&mut self) -> Vec<Effect> {
+        let running = KindSet::FIRST_SCREEN
+            .iter()
+            .any(|k| self.main.status(k).running());
+        if self.held.is_some() && !running {
+            self.release()
+        } else {
+            Vec::new()
+        }
+    }
+
+    /// Posts `text` to `worker`, or queues it until the worker is ready.
+    fn post_text(&mut self, worker: usize, text: String) -> Vec<Effect> {
         match self.workers.get_mut(worker) {
             Some(slot) if slot.ready => vec![Effect::Post { worker, text }],
             Some(slot) => {

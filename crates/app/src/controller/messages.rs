@@ -1,7 +1,8 @@
 //! The workers' replies: a worker's readiness, then every reply fed to
 //! every computation ([`Computation::feed`]: only the one whose job id it
 //! carries takes it), failures into the messages, export shards to the
-//! export being assembled.
+//! export being assembled; the jobs held at the page's start posted once
+//! the first screen's have ended.
 
 use super::*;
 
@@ -15,7 +16,7 @@ impl Controller {
                 return Vec::new();
             }
         };
-        match msg {
+        let mut fx = match msg {
             FromWorker::Ready => {
                 let Some(slot) = self.workers.get_mut(worker) else {
                     return Vec::new();
@@ -41,7 +42,9 @@ impl Controller {
                 }
                 Vec::new()
             }
-        }
+        };
+        fx.extend(self.release_if_first_screen_ended());
+        fx
     }
 
     /// Feeds a reply to every computation; the current state's messages

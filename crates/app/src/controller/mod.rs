@@ -2,7 +2,9 @@
 //! state machine that the web layer drives and the native tests exercise.
 //!
 //! Every user action returns the messages to post to the workers; the
-//! controller queues messages for a worker until it has said "ready".
+//! controller queues messages for a worker until it has said "ready",
+//! and at the page's start holds the jobs off the first screen until the
+//! first screen's have ended ([`Controller::hold_off_screen`]).
 //! Jobs are restarted by what a change affects: a model parameter restarts
 //! everything, a view option the kinds its row of
 //! [`figures::settings::VIEW_KEYS`] names. The current state, the pinned A
@@ -109,6 +111,11 @@ pub struct Controller {
     /// What changed since the page last drew.
     dirty: Dirty,
     workers: Vec<WorkerSlot>,
+    /// At the page's start ([`Controller::hold_off_screen`]), the messages
+    /// of the jobs off the first screen ([`KindSet::FIRST_SCREEN`]), held
+    /// back with their workers until the first screen's jobs have ended;
+    /// `None` when nothing is held.
+    held: Option<Vec<(usize, String)>>,
     next_id: JobId,
     export: Option<PendingExport>,
     /// The "Start here" tour's step (0-based), if it is running.
@@ -150,6 +157,7 @@ impl Controller {
             panels: decoded.panels,
             dirty: Dirty::default(),
             workers: vec![WorkerSlot::default(); workers],
+            held: None,
             next_id: 0,
             export: None,
             tour,

@@ -771,6 +771,7 @@ fn a_failure_leaves_the_messages_with_its_job() {
     assert!(c.issues.is_empty(), "{:?}", c.issues);
 }
 
+mod hold;
 mod pool;
 mod redraw;
 

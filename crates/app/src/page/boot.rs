@@ -75,6 +75,7 @@ impl Page {
         let workers = worker_count(b.cores, b.forced_workers);
         let (shown, query, issue) = super::present::split_present(&b.query);
         let (mut ctl, effects) = Controller::with_workers(&query, b.now_ms, workers);
+        ctl.hold_off_screen();
         if let Some(issue) = issue {
             ctl.issue(issue);
         }

@@ -96,6 +96,11 @@ impl KindSet {
     /// the frequency response's branch, whose stability there it compares
     /// with the state found. Either may finish last, so either rewrites it.
     pub const SUMMARY: KindSet = KindSet::of(&[JobKind::Omega, JobKind::HarmonicBalance]);
+    /// The kinds the page's first screen shows (the frequency response,
+    /// its dots, the selected Omega): at the page's start the others wait
+    /// until these have ended, so that they get the cores.
+    pub const FIRST_SCREEN: KindSet =
+        KindSet::of(&[JobKind::Omega, JobKind::HarmonicBalance, JobKind::Overlay]);
     /// The long jobs, each held by one worker of the pool (the shooting
     /// branches by the first, the map's boundaries by the last): the
     /// map's rows go to the other workers while they run.
