@@ -4,7 +4,7 @@
 // docs/browser-bench.md. Needs a release build in dist/:
 //
 //   scripts/setup.sh && source scripts/env.sh && trunk build --release --offline
-//   node tests/browser/bench.mjs [--repeats N] [--quick] [--map] [--pool-only] [--family-only] [--branches-only]
+//   node tests/browser/bench.mjs [--repeats N] [--quick] [--map] [--pool-only] [--family-only] [--branches-only] [--boundaries-only]
 import fs from 'node:fs';
 import path from 'node:path';
 import zlib from 'node:zlib';
@@ -25,7 +25,10 @@ const FAMILY_ONLY = args.includes('--family-only');
 // --branches-only measures only the page at its defaults with the shooting
 // branches on the bifurcation diagram (the default) and off.
 const BRANCHES_ONLY = args.includes('--branches-only');
-const ONLY = MAP_ONLY || POOL_ONLY || FAMILY_ONLY || BRANCHES_ONLY;
+// --boundaries-only measures only the page at its defaults until the
+// map's traced boundaries are drawn (on by default).
+const BOUNDARIES_ONLY = args.includes('--boundaries-only');
+const ONLY = MAP_ONLY || POOL_ONLY || FAMILY_ONLY || BRANCHES_ONLY || BOUNDARIES_ONLY;
 
 // The views' slots in the status's per-view arrays (`last_draw_ms`, ...):
 // their order in figures::views::VIEWS.
@@ -204,6 +207,38 @@ try {
     row('page defaults: bifurcation sweep, branches on', bif.on, 'ms', 'from job start to its end');
     row('page defaults: bifurcation sweep, branches off', bif.off, 'ms', 'from job start to its end');
     row('page defaults: shooting branches job', orbits, 'ms', 'from job start to its end');
+  }
+
+  // The page at its defaults: from navigation start until the map's traced
+  // boundaries are drawn (the trace ended and the map drawn after it, with
+  // its curves), and the trace's own time on its worker.
+  if (!ONLY || BOUNDARIES_ONLY) {
+    const drawn = [];
+    const trace = [];
+    let traced = '';
+    for (let i = 0; i < (QUICK ? 1 : REPEATS); i++) {
+      // The link says boundaries=on: the same page as the default, also
+      // measurable where they were off by default.
+      const { page } = await open(h.browser, h.url, 'boundaries=on');
+      const s = await waitStatus(
+        page,
+        (x) => {
+          const j = x.map_boundaries.job;
+          return x.map_boundaries.finished && j.finished_ms && x.map_drawn?.curve_paths > 0 && x.last_draw_ms[VIEW_SLOTS.map] >= j.finished_ms;
+        },
+        900000,
+        'the boundaries drawn',
+      );
+      const b = s.map_boundaries;
+      if (b.job.error) throw new Error(`the trace failed: ${b.job.error}`);
+      drawn.push(s.last_draw_ms[VIEW_SLOTS.map]);
+      trace.push(b.job.finished_ms - b.job.started_ms);
+      traced = `${b.curves} curves (${JSON.stringify(b.kinds)})`;
+      console.error(`run ${i + 1}: drawn at ${fmt(drawn.at(-1))} ms, trace ${fmt(trace.at(-1))} ms, load average ${loadavg()}`);
+      await page.close();
+    }
+    row('page defaults: the map\'s boundaries drawn', drawn, 'ms', `from navigation start; ${traced}`);
+    row('page defaults: the boundaries job', trace, 'ms', 'from job start to its end, on its worker');
   }
 
   // A family of six at 1000 recorded periods, Fig. 6's Omega 0.84 (most

@@ -409,6 +409,15 @@ impl MeshSystem {
     /// Validates the parameters and builds the system.
     pub fn build(params: &ModelParams) -> Result<Self> {
         validate_keys(params)?;
+        Self::build_validated(params)
+    }
+
+    /// Builds the system of parameters already validated: a set that
+    /// [`MeshSystem::build`] accepted with one key then changed through
+    /// [`crate::keys::set`], which checks that key's range (a boundary
+    /// trace builds one per value of its key: validating every key again
+    /// took a seventh of the trace).
+    pub(crate) fn build_validated(params: &ModelParams) -> Result<Self> {
         match params {
             ModelParams::Ravigneaux(p) => build_ravigneaux(p),
             ModelParams::GearPair(p) => build_gear_pair(p),

@@ -29,7 +29,7 @@ use super::bordered::{
 use super::family::Family;
 use crate::dense::eigenvalues;
 use crate::error::{Result, SolverError};
-use crate::hbm::stability::monodromy_matrices;
+use crate::hbm::stability::{monodromy_block, monodromy_matrices};
 use nalgebra::{DMatrix, DVector};
 
 /// The main and planet blocks' monodromy matrices at `(x, omega, p)`.
@@ -81,11 +81,6 @@ fn shifted_of((main, planet): &Monodromies, block: usize, omega: f64) -> Result<
     Ok(mat)
 }
 
-/// `M + I` of block `block` at `(x, omega, p)`.
-fn shifted(fam: &mut Family, x: &[f64], omega: f64, p: f64, block: usize) -> Result<DMatrix<f64>> {
-    shifted_of(&monodromies(fam, x, omega, p)?, block, omega)
-}
-
 /// The real part of the eigenvalue of `M + I` nearest zero: the real
 /// multiplier closest to -1, plus one.
 /// NaN if the eigenvalues do not converge (the corrector then fails).
@@ -99,7 +94,7 @@ fn critical_of(shifted: &DMatrix<f64>) -> f64 {
 
 /// The real multiplier closest to -1 of block `block`, plus one.
 fn critical(fam: &mut Family, x: &[f64], omega: f64, p: f64, block: usize) -> Result<f64> {
-    Ok(critical_of(&shifted(fam, x, omega, p, block)?))
+    Ok(critical_of(&shifted_block(fam, x, omega, p, block)?))
 }
 
 /// The block whose multiplier is closest to -1 at `(x, omega, p)`, and the
@@ -163,6 +158,26 @@ impl Frozen {
     }
 }
 
+/// `M + I` of block `block` at `(x, omega, p)`, that block alone
+/// integrated (the same matrix as [`shifted_of`] gives from both).
+fn shifted_block(
+    fam: &mut Family,
+    x: &[f64],
+    omega: f64,
+    p: f64,
+    block: usize,
+) -> Result<DMatrix<f64>> {
+    fam.integrated_monodromy(omega);
+    let asm = fam.assembly(p)?;
+    let mut mat = monodromy_block(asm, x, omega, block).ok_or_else(|| SolverError::Singular {
+        what: format!("monodromy at Omega = {omega}"),
+    })?;
+    for i in 0..mat.nrows() {
+        mat[(i, i)] += 1.0;
+    }
+    Ok(mat)
+}
+
 /// `g` and the right null vector `v` at `(x, omega, p)`.
 fn test(
     fam: &mut Family,
@@ -172,7 +187,7 @@ fn test(
     c: &DVector<f64>,
 ) -> Result<(f64, DVector<f64>)> {
     let nx = z.len() - 2;
-    let a = shifted(fam, &z[..nx], z[nx], z[nx + 1], block)?;
+    let a = shifted_block(fam, &z[..nx], z[nx], z[nx + 1], block)?;
     bordered_solve(&a, b, c, z[nx])
 }
 

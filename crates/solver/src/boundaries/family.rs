@@ -98,7 +98,11 @@ impl Family {
     /// static equilibrium, which the harmonic balance does not read, are
     /// not computed).
     pub(crate) fn hbm_at(&self, p: f64) -> Result<HbmModel> {
-        HbmModel::from_system(&MeshSystem::build(&self.params_at(p)?)?, self.symmetric)
+        // `base` was validated by `new`, the key's value by `params_at`.
+        HbmModel::from_system(
+            &MeshSystem::build_validated(&self.params_at(p)?)?,
+            self.symmetric,
+        )
     }
 
     /// The evaluator at `p`, built once per value.
@@ -109,11 +113,16 @@ impl Family {
             None => {
                 self.work += self.cost.assembly();
                 let hbm = self.hbm_at(p)?;
-                if self.cache.len() >= CACHE {
-                    self.cache.remove(0);
-                }
+                // The evicted assembly's grid is the family's: moved, not
+                // copied again (a copy per new value of the key was a
+                // twentieth of the trace).
+                let grid = if self.cache.len() >= CACHE {
+                    self.cache.remove(0).1.grid
+                } else {
+                    self.grid.clone()
+                };
                 let donor = self.cache.last().map(|(_, a)| a);
-                let asm = Assembly::with_grid_from(hbm, self.method, self.grid.clone(), donor);
+                let asm = Assembly::with_grid_from(hbm, self.method, grid, donor);
                 self.cache.push((bits, asm));
                 self.cache.len() - 1
             }

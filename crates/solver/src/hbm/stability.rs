@@ -424,7 +424,7 @@ fn monodromy(
     coefs: Option<&[Vec<f64>]>,
     steps_per_fastest: f64,
 ) -> Option<Floquet> {
-    let (main, planet) = integrate_blocks(asm, omega, cuts, coefs, steps_per_fastest)?;
+    let (main, planet) = integrate_blocks(asm, omega, cuts, coefs, steps_per_fastest, BOTH)?;
     let multipliers = main.multipliers()?;
     let planet_multipliers = match &planet {
         Some(pb) => pb.multipliers()?,
@@ -446,8 +446,14 @@ pub(crate) fn monodromy_matrices(
     omega: f64,
 ) -> Option<(DMatrix<f64>, Option<DMatrix<f64>>)> {
     let (coefs, cuts) = orbit_pieces(asm, x);
-    let (main, planet) =
-        integrate_blocks(asm, omega, &cuts, Some(&coefs), ORBIT_STEPS_PER_FASTEST)?;
+    let (main, planet) = integrate_blocks(
+        asm,
+        omega,
+        &cuts,
+        Some(&coefs),
+        ORBIT_STEPS_PER_FASTEST,
+        BOTH,
+    )?;
     let finite = |b: &LtpBlock| b.phi.iter().all(|v| v.is_finite());
     if !finite(&main) || planet.as_ref().is_some_and(|p| !finite(p)) {
         return None;
@@ -456,13 +462,49 @@ pub(crate) fn monodromy_matrices(
     Some((mat(&main), planet.as_ref().map(mat)))
 }
 
-/// Integrates the main and planet blocks over the period split at `cuts`.
+/// The monodromy matrix of one block of the orbit `x` at `omega` (0: the
+/// main block, 1: the planet block), the same as
+/// [`monodromy_matrices`]'s: the blocks are integrated over the same
+/// steps, each on its own, so the other is not integrated (a boundary
+/// trace's differenced test function needs one block, on the planet
+/// block a fraction of the main block's work). `None` if there is no such
+/// block or the matrix is not finite.
+pub(crate) fn monodromy_block(
+    asm: &Assembly,
+    x: &[f64],
+    omega: f64,
+    block: usize,
+) -> Option<DMatrix<f64>> {
+    let (coefs, cuts) = orbit_pieces(asm, x);
+    let only = [block == 0, block == 1];
+    let (main, planet) = integrate_blocks(
+        asm,
+        omega,
+        &cuts,
+        Some(&coefs),
+        ORBIT_STEPS_PER_FASTEST,
+        only,
+    )?;
+    let b = if block == 0 { main } else { planet? };
+    b.phi
+        .iter()
+        .all(|v| v.is_finite())
+        .then(|| DMatrix::from_row_slice(2 * b.m, 2 * b.m, &b.phi))
+}
+
+/// Both blocks integrated ([`integrate_blocks`]'s `blocks`).
+const BOTH: [bool; 2] = [true, true];
+
+/// Integrates the main and planet blocks over the period split at `cuts`;
+/// a block whose entry of `blocks` (main, planet) is false is left at the
+/// identity.
 fn integrate_blocks(
     asm: &Assembly,
     omega: f64,
     cuts: &[f64],
     coefs: Option<&[Vec<f64>]>,
     steps_per_fastest: f64,
+    blocks: [bool; 2],
 ) -> Option<(LtpBlock, Option<LtpBlock>)> {
     let model = &asm.model;
     let m = model.m;
@@ -486,7 +528,7 @@ fn integrate_blocks(
             .map(|ch| (ch.multiplicity, ch.d.clone()))
             .collect(),
     );
-    let mut planet = model.planet_block.as_ref().map(|pb| {
+    let mut planet = model.planet_block.as_ref().filter(|_| blocks[1]).map(|pb| {
         LtpBlock::new(
             2,
             vec![0.0; 4],
@@ -521,7 +563,9 @@ fn integrate_blocks(
             active[j] = coefs.is_none() || ch.law.force(mid, u_at(j, mid)).1 != 0.0;
         }
         if let Some(terms) = &terms {
-            main.set_piece(&active, terms);
+            if blocks[0] {
+                main.set_piece(&active, terms);
+            }
             if let Some(pb) = planet.as_mut() {
                 pb.set_piece(&active, terms);
             }
@@ -567,13 +611,17 @@ fn integrate_blocks(
                         (c, s) = (c * c1 - s * s1, s * c1 + c * s1);
                         *cs = (c, s);
                     }
-                    main.set_stiffness_trig(slot, &cos_sin);
+                    if blocks[0] {
+                        main.set_stiffness_trig(slot, &cos_sin);
+                    }
                     if let Some(pb) = planet.as_mut() {
                         pb.set_stiffness_trig(slot, &cos_sin);
                     }
                 } else {
                     slopes_at(theta, &mut slopes);
-                    main.set_stiffness(slot, &slopes);
+                    if blocks[0] {
+                        main.set_stiffness(slot, &slopes);
+                    }
                     if let Some(pb) = planet.as_mut() {
                         pb.set_stiffness(slot, &slopes);
                     }
@@ -581,7 +629,9 @@ fn integrate_blocks(
             }
             // The step in tau.
             let h_tau = ht / omega;
-            main.rk4(h_tau);
+            if blocks[0] {
+                main.rk4(h_tau);
+            }
             if let Some(pb) = planet.as_mut() {
                 pb.rk4(h_tau);
             }

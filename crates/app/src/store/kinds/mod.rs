@@ -101,27 +101,35 @@ impl Pool {
         shard as usize % self.size
     }
 
-    /// The workers no long job of [`Pool::long`] holds, in order; every
-    /// worker when each holds one. The map's rows go to these: on two
-    /// cores the shooting branches of the compound set (about 4 s of a
-    /// worker) and its map (about 4 s of CPU in all) then end together,
-    /// where with the rows on both workers the branches began only after
-    /// the first worker's rows and the other worker sat idle for the rest.
+    /// The workers no long job of [`Pool::long`] holds, in order. The
+    /// map's rows go to these: on two cores the shooting branches of the
+    /// compound set (about 4 s of a worker) and its map (about 4 s of CPU
+    /// in all) then end together, where with the rows on both workers the
+    /// branches began only after the first worker's rows and the other
+    /// worker sat idle for the rest. When each holds one, every worker but
+    /// the boundaries' (the longest job: on the compound set's default map
+    /// two to three times the branches', begun only after its worker's
+    /// other jobs), or every worker if that leaves none.
     pub fn free_workers(self) -> Vec<usize> {
         let alone = Pool {
             long: KindSet::NONE,
             ..self
         };
-        let held: Vec<usize> = self
-            .long
-            .iter()
-            .map(|k| of(k).worker(Target::Main, (0, 1), alone))
-            .collect();
+        let worker_of = |k: JobKind| of(k).worker(Target::Main, (0, 1), alone);
+        let held: Vec<usize> = self.long.iter().map(worker_of).collect();
         let free: Vec<usize> = (0..self.size).filter(|w| !held.contains(w)).collect();
-        if free.is_empty() {
+        if !free.is_empty() {
+            return free;
+        }
+        let trace = self
+            .long
+            .contains(JobKind::Boundaries)
+            .then(|| worker_of(JobKind::Boundaries));
+        let rest: Vec<usize> = (0..self.size).filter(|w| Some(*w) != trace).collect();
+        if rest.is_empty() {
             (0..self.size).collect()
         } else {
-            free
+            rest
         }
     }
 }
