@@ -226,7 +226,8 @@ fn start_workers(page: &Shared) {
         });
         let p2 = page.clone();
         listen(&worker, "error", move |_e: Event| {
-            p2.borrow_mut().core.worker_failed(w);
+            let fx = p2.borrow_mut().core.worker_failed(w);
+            run_effects(&p2, fx);
             request_frame(&p2);
         });
         page.borrow_mut().workers.push(worker);
@@ -234,7 +235,8 @@ fn start_workers(page: &Shared) {
             said(text);
         }
         if failed {
-            page.borrow_mut().core.worker_failed(w);
+            let fx = page.borrow_mut().core.worker_failed(w);
+            run_effects(page, fx);
         }
     }
     for extra in early {

@@ -69,6 +69,13 @@ impl Controller {
             .collect()
     }
 
+    /// A worker failed to load or crashed: the jobs held at the page's
+    /// start ([`Self::hold_off_screen`]) go out now, so that the other
+    /// workers' jobs do not wait for a first screen that may never end.
+    pub fn stop_holding(&mut self) -> Vec<Effect> {
+        self.release()
+    }
+
     /// Releases the held messages once none of the current state's
     /// first-screen jobs runs.
     pub(super) fn release_if_first_screen_ended(&mut self) -> Vec<Effect> {

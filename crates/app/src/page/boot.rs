@@ -136,9 +136,11 @@ impl Page {
         self.issue("could not start a Web Worker; the views cannot be computed".into());
     }
 
-    /// Web Worker `w` failed to load or crashed: said in the messages.
-    pub fn worker_failed(&mut self, w: usize) {
+    /// Web Worker `w` failed to load or crashed: said in the messages, and
+    /// the jobs held for the first screen are posted (the messages to post).
+    pub fn worker_failed(&mut self, w: usize) -> Vec<Effect> {
         self.issue(format!("Web Worker {w} failed to load or crashed"));
+        self.ctl.stop_holding()
     }
 
     /// The clipboard took the link (`copied`) or refused it: the

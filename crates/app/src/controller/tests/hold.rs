@@ -82,3 +82,15 @@ fn a_cancel_while_jobs_wait_posts_them_first() {
         .expect("the held shooting branches");
     assert!(orbits < cancel, "{fx:?}");
 }
+
+#[test]
+fn a_failed_worker_ends_the_wait() {
+    let (mut c, _) = Controller::new("", 0.0);
+    c.hold_off_screen();
+    ready(&mut c);
+    // The selected Omega's worker crashes mid-job: its job never ends, so
+    // the held jobs go out now, once, to the workers they were meant for.
+    let fx = posts(&c.stop_holding());
+    assert!(runs(&fx).iter().any(|(_, k)| *k == JobKind::Map), "{fx:?}");
+    assert!(c.stop_holding().is_empty());
+}
