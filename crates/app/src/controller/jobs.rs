@@ -79,10 +79,12 @@ impl Controller {
     /// Releases the held messages once none of the current state's
     /// first-screen jobs runs.
     pub(super) fn release_if_first_screen_ended(&mut self) -> Vec<Effect> {
-        let running = KindSet::FIRST_SCREEN
-            .iter()
-            .any(|k| self.main.status(k).running());
-        if self.held.is_some() && !running {
+        let running = |c: &Self| {
+            KindSet::FIRST_SCREEN
+                .iter()
+                .any(|k| c.main.status(k).running())
+        };
+        if self.held.is_some() && !running(self) {
             self.release()
         } else {
             Vec::new()

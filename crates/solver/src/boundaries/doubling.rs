@@ -39,9 +39,7 @@ type Monodromies = (DMatrix<f64>, Option<DMatrix<f64>>);
 fn monodromies(fam: &mut Family, x: &[f64], omega: f64, p: f64) -> Result<Monodromies> {
     fam.integrated_monodromy(omega);
     let asm = fam.assembly(p)?;
-    monodromy_matrices(asm, x, omega).ok_or_else(|| SolverError::Singular {
-        what: format!("monodromy at Omega = {omega}"),
-    })
+    monodromy_matrices(asm, x, omega).ok_or_else(|| no_monodromy(omega))
 }
 
 /// Whether every multiplier but the one closest to -1 (of `block`) is
@@ -68,17 +66,28 @@ fn others_stable((main, planet): &Monodromies, block: usize) -> Option<bool> {
 
 /// `M + I` of block `block` (0: the main block, 1: the planet block).
 fn shifted_of((main, planet): &Monodromies, block: usize, omega: f64) -> Result<DMatrix<f64>> {
-    let mut mat = if block == 0 {
-        main.clone()
+    let mat = if block == 0 {
+        Some(main.clone())
     } else {
-        planet.clone().ok_or_else(|| SolverError::Singular {
-            what: format!("monodromy at Omega = {omega}"),
-        })?
+        planet.clone()
     };
+    plus_identity(mat, omega)
+}
+
+/// `M + I`, or the failure of a monodromy that could not be had.
+fn plus_identity(mat: Option<DMatrix<f64>>, omega: f64) -> Result<DMatrix<f64>> {
+    let mut mat = mat.ok_or_else(|| no_monodromy(omega))?;
     for i in 0..mat.nrows() {
         mat[(i, i)] += 1.0;
     }
     Ok(mat)
+}
+
+/// A monodromy that is not finite (or a block that does not exist).
+fn no_monodromy(omega: f64) -> SolverError {
+    SolverError::Singular {
+        what: format!("monodromy at Omega = {omega}"),
+    }
 }
 
 /// The real part of the eigenvalue of `M + I` nearest zero: the real
@@ -169,13 +178,7 @@ fn shifted_block(
 ) -> Result<DMatrix<f64>> {
     fam.integrated_monodromy(omega);
     let asm = fam.assembly(p)?;
-    let mut mat = monodromy_block(asm, x, omega, block).ok_or_else(|| SolverError::Singular {
-        what: format!("monodromy at Omega = {omega}"),
-    })?;
-    for i in 0..mat.nrows() {
-        mat[(i, i)] += 1.0;
-    }
-    Ok(mat)
+    plus_identity(monodromy_block(asm, x, omega, block), omega)
 }
 
 /// `g` and the right null vector `v` at `(x, omega, p)`.

@@ -445,21 +445,12 @@ pub(crate) fn monodromy_matrices(
     x: &[f64],
     omega: f64,
 ) -> Option<(DMatrix<f64>, Option<DMatrix<f64>>)> {
-    let (coefs, cuts) = orbit_pieces(asm, x);
-    let (main, planet) = integrate_blocks(
-        asm,
-        omega,
-        &cuts,
-        Some(&coefs),
-        ORBIT_STEPS_PER_FASTEST,
-        BOTH,
-    )?;
-    let finite = |b: &LtpBlock| b.phi.iter().all(|v| v.is_finite());
-    if !finite(&main) || planet.as_ref().is_some_and(|p| !finite(p)) {
-        return None;
-    }
-    let mat = |b: &LtpBlock| DMatrix::from_row_slice(2 * b.m, 2 * b.m, &b.phi);
-    Some((mat(&main), planet.as_ref().map(mat)))
+    let (main, planet) = orbit_blocks(asm, x, omega, BOTH)?;
+    let planet = match planet {
+        Some(pb) => Some(finite_matrix(&pb)?),
+        None => None,
+    };
+    Some((finite_matrix(&main)?, planet))
 }
 
 /// The monodromy matrix of one block of the orbit `x` at `omega` (0: the
@@ -475,17 +466,31 @@ pub(crate) fn monodromy_block(
     omega: f64,
     block: usize,
 ) -> Option<DMatrix<f64>> {
+    let (main, planet) = orbit_blocks(asm, x, omega, [block == 0, block == 1])?;
+    finite_matrix(&if block == 0 { main } else { planet? })
+}
+
+/// The blocks `blocks` of the orbit `x`'s monodromy at `omega`, integrated
+/// as [`floquet`] integrates them.
+fn orbit_blocks(
+    asm: &Assembly,
+    x: &[f64],
+    omega: f64,
+    blocks: [bool; 2],
+) -> Option<(LtpBlock, Option<LtpBlock>)> {
     let (coefs, cuts) = orbit_pieces(asm, x);
-    let only = [block == 0, block == 1];
-    let (main, planet) = integrate_blocks(
+    integrate_blocks(
         asm,
         omega,
         &cuts,
         Some(&coefs),
         ORBIT_STEPS_PER_FASTEST,
-        only,
-    )?;
-    let b = if block == 0 { main } else { planet? };
+        blocks,
+    )
+}
+
+/// A block's monodromy as a matrix; `None` if it is not finite.
+fn finite_matrix(b: &LtpBlock) -> Option<DMatrix<f64>> {
     b.phi
         .iter()
         .all(|v| v.is_finite())
