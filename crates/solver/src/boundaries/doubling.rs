@@ -1,31 +1,19 @@
 //! The period-doubling test function on the harmonic-balance branch: the
 //! monodromy matrix `M` of the orbit (as [`crate::hbm::stability`] computes
 //! its Floquet multipliers) has a multiplier at -1 where the bordered
-//! `[M + I b; c^T 0] [v; g] = [0; 1]` gives `g = 0`. `g`'s gradient is
-//! differenced (one monodromy per unknown): the monodromy is integrated
-//! piecewise between the contact switches, so its derivatives have no
-//! closed form here.
-//!
-//! The gradient costs `n + 2` monodromies against one for the test
-//! itself, so it is differenced once and kept ([`Frozen`]) through the
-//! corrector and the next ones along the curve, up to [`GRADIENT_STEPS`]
-//! accepted steps: the test row's Newton is a chord method (the branch
-//! rows and `g` itself stay exact, so the points are on the same curve),
-//! at one monodromy an iteration. A corrector that fails or needs many
-//! iterations forgets it, and the retry differences it afresh. It is kept
-//! only where it costs at least [`KEEP_FROM`] monodromies: on a small
-//! system (the gear pair's 15 unknowns at H = 7) the kept gradient's extra
-//! iterations and shorter steps cost more than differencing it (the gear
-//! pair's TE box 1.15 s with every corrector differencing, 1.23 s keeping;
-//! the compound set's page box 27.6 s against 20.3 s).
+//! `[M + I b; c^T 0] [v; g] = [0; 1]` gives `g = 0`. The monodromy is
+//! integrated piecewise between the contact switches, so `g`'s derivatives
+//! are differenced, and only along the three directions the Newton steps
+//! and tangents can take ([`reduced_gradient`]): the branch rows pin every
+//! other. That is three monodromies an evaluation against `n + 2` for the
+//! whole gradient, and the Newton is exact (the gradient kept through a
+//! chord corrector before it needed more iterations and shorter steps).
 //!
 //! Stable side: the side where the critical multiplier is inside the unit
 //! circle (`lambda > -1`), read from how `g` and `lambda + 1` move together
 //! along the branch.
 
-use super::bordered::{
-    bordered_solve, branch_motion, branch_rows, inf_norm, residual_at, residual_p, Eval,
-};
+use super::bordered::{bordered_solve, branch_rows, inf_norm, residual_at, residual_p, Eval};
 use super::family::Family;
 use crate::dense::eigenvalues;
 use crate::error::{Result, SolverError};
@@ -141,32 +129,6 @@ pub(crate) fn start(
     Ok((block, u.column(k).into_owned(), vt.row(k).transpose()))
 }
 
-/// Accepted steps a differenced gradient is kept for (see the module's doc).
-pub(crate) const GRADIENT_STEPS: u32 = 4;
-
-/// The fewest monodromies (unknowns plus two) a gradient must cost to be
-/// kept beyond its corrector (see the module's doc).
-pub(crate) const KEEP_FROM: usize = 32;
-
-/// What the correctors keep of the evaluation that differenced the test
-/// function's gradient in `(X, Omega, p)`: the gradient, whether `g` grows
-/// with `lambda + 1`, and the accepted steps since.
-#[derive(Debug, Clone)]
-pub(crate) struct Frozen {
-    grad: Vec<f64>,
-    orient: f64,
-    /// Accepted steps since it was differenced.
-    pub(crate) steps: u32,
-}
-
-impl Frozen {
-    /// Whether it may outlive its corrector: it cost at least
-    /// [`KEEP_FROM`] monodromies, one per entry.
-    pub(crate) fn keep(&self) -> bool {
-        self.grad.len() >= KEEP_FROM
-    }
-}
-
 /// `M + I` of block `block` at `(x, omega, p)`, that block alone
 /// integrated (the same matrix as [`shifted_of`] gives from both).
 fn shifted_block(
@@ -195,17 +157,15 @@ fn test(
 }
 
 /// The period-doubling system at `z = (X, Omega, p)`, with bordering
-/// `(b, c)`; `frozen` is the gradient kept from an earlier evaluation
-/// (computed and stored when `None`). Without `full` (a corrector's
-/// iterate), the side and the other multipliers' stability, which only an
-/// accepted point reports, are not computed.
+/// `(b, c)`. Without `full` (a corrector's iterate), the side and the
+/// other multipliers' stability, which only an accepted point reports, are
+/// not computed.
 pub(crate) fn eval(
     fam: &mut Family,
     z: &[f64],
     block: usize,
     (b, c): (&DVector<f64>, &DVector<f64>),
     v_out: &mut DVector<f64>,
-    frozen: &mut Option<Frozen>,
     full: bool,
 ) -> Result<Eval> {
     let nx = z.len() - 2;
@@ -218,66 +178,33 @@ pub(crate) fn eval(
     let a = shifted_of(&mono, block, omega)?;
     let (g, v) = bordered_solve(&a, b, c, omega)?;
     let scale = 1.0 + inf_norm(x);
-    let (dx_om, dx_p) = if full || frozen.is_none() {
-        fam.factored(nx);
-        branch_motion(&j, &r_p)
-    } else {
-        (DVector::zeros(nx), DVector::zeros(nx))
+    fam.factored(nx);
+    let Some(dirs) = branch_directions(&j, &r, &r_p) else {
+        return Err(SolverError::Singular {
+            what: format!("harmonic-balance Jacobian at Omega = {omega}"),
+        });
     };
-    let kept = match frozen.take() {
-        Some(f) => f,
-        None => {
-            let mut grad = vec![0.0; nx + 2];
-            let mut zz = z.to_vec();
-            // Forward in p inside the key's range, backward at its upper
-            // limit (a start at backlash_um = 1000 was otherwise refused
-            // as out of range).
-            let (p_lo, p_hi) = fam.neighbours(p);
-            let h_p = if p_hi > p { p_hi - p } else { p_lo - p };
-            for (i, gi) in grad.iter_mut().enumerate() {
-                let h = if i < nx {
-                    1e-6 * scale
-                } else if i == nx {
-                    1e-7 * (1.0 + omega.abs())
-                } else {
-                    h_p
-                };
-                let keep = zz[i];
-                zz[i] = keep + h;
-                let (gh, _) = test(fam, &zz, block, b, c)?;
-                zz[i] = keep;
-                *gi = (gh - g) / h;
-            }
-            // Whether g grows with lambda + 1: a small step along the branch in Omega.
-            let g_om = DVector::from_column_slice(&grad[..nx]).dot(&dx_om) + grad[nx];
-            let step = 1e-4 * (1.0 + omega.abs());
-            let moved: Vec<f64> = (0..nx).map(|i| x[i] + step * dx_om[i]).collect();
-            let mu0 = critical_of(&a);
-            let mu1 = critical(fam, &moved, omega + step, p, block)?;
-            let orient = if (mu1 - mu0) * g_om >= 0.0 { 1.0 } else { -1.0 };
-            Frozen {
-                grad,
-                orient,
-                steps: 0,
-            }
-        }
-    };
-    let grad = &kept.grad;
+    let grad = reduced_gradient(fam, z, block, (b, c), g, &dirs, scale)?;
     let (mut res, mut jac) = branch_rows(&r, &j, &r_p);
     res[nx] = g;
     for (k, &gk) in grad.iter().enumerate() {
         jac[(nx, k)] = gk;
     }
-    // g along the branch: dX = -J^-1 (R_Omega dOmega + R_p dp).
+    // g along the branch: the reduced gradient holds it exactly.
     let side = if full {
         let g_x = DVector::from_column_slice(&grad[..nx]);
-        let g_om = g_x.dot(&dx_om) + grad[nx];
-        let g_p = g_x.dot(&dx_p) + grad[nx + 1];
-        (kept.orient * g_om, kept.orient * g_p)
+        let g_om = g_x.dot(&dirs.omega) + grad[nx];
+        let g_p = g_x.dot(&dirs.p) + grad[nx + 1];
+        // Whether g grows with lambda + 1: a small step along the branch in Omega.
+        let step = 1e-4 * (1.0 + omega.abs());
+        let moved: Vec<f64> = (0..nx).map(|i| x[i] + step * dirs.omega[i]).collect();
+        let mu0 = critical_of(&a);
+        let mu1 = critical(fam, &moved, omega + step, p, block)?;
+        let orient = if (mu1 - mu0) * g_om >= 0.0 { 1.0 } else { -1.0 };
+        (orient * g_om, orient * g_p)
     } else {
         (0.0, 0.0)
     };
-    *frozen = Some(kept);
     *v_out = v;
     Ok(Eval {
         res,
@@ -291,4 +218,169 @@ pub(crate) fn eval(
             None
         },
     })
+}
+
+/// The directions in `X` that the branch rows leave open at an iterate:
+/// the Newton step's part at fixed `(Omega, p)` (`J^-1 R`) and how `X`
+/// moves along the branch per unit `Omega` and per unit `p`.
+struct Directions {
+    newton: DVector<f64>,
+    omega: DVector<f64>,
+    p: DVector<f64>,
+}
+
+/// [`Directions`] from one factorization of `dR/dX`; `None` where it is
+/// singular.
+fn branch_directions(j: &DMatrix<f64>, r: &[f64], r_p: &[f64]) -> Option<Directions> {
+    let nx = j.nrows();
+    let lu = crate::dense::Lu::new(j.columns(0, nx).into_owned());
+    Some(Directions {
+        newton: lu.solve(&DVector::from_column_slice(r))?,
+        omega: -lu.solve(&j.column(nx).into_owned())?,
+        p: -lu.solve(&DVector::from_column_slice(r_p))?,
+    })
+}
+
+/// A gradient of `g` in `(X, Omega, p)` that is exact where the system's
+/// Newton steps and tangents use it. Every such vector `dz` solves the
+/// branch rows' `J_R dz = R` (or `= 0`), so it lies in the span of
+/// `(J^-1 R, 0, 0)`, `(dX/dOmega, 1, 0)` and `(dX/dp, 0, 1)`: `g`'s three
+/// directional derivatives along them (one monodromy each, differenced)
+/// fix the row, in place of `n + 2` monodromies for the whole gradient.
+fn reduced_gradient(
+    fam: &mut Family,
+    z: &[f64],
+    block: usize,
+    (b, c): (&DVector<f64>, &DVector<f64>),
+    g: f64,
+    dirs: &Directions,
+    scale: f64,
+) -> Result<Vec<f64>> {
+    let nx = z.len() - 2;
+    let (omega, p) = (z[nx], z[nx + 1]);
+    let along = |fam: &mut Family, dx: &DVector<f64>, d_om: f64, d_p: f64, h: f64| {
+        let mut zz = z.to_vec();
+        for i in 0..nx {
+            zz[i] += h * dx[i];
+        }
+        zz[nx] += h * d_om;
+        zz[nx + 1] += h * d_p;
+        test(fam, &zz, block, b, c).map(|(gh, _)| (gh - g) / h)
+    };
+    // Forward in p inside the key's range, backward at its upper limit (a
+    // start at backlash_um = 1000 was otherwise refused as out of range).
+    let (p_lo, p_hi) = fam.neighbours(p);
+    let h_p = if p_hi > p { p_hi - p } else { p_lo - p };
+    let d_om = along(fam, &dirs.omega, 1.0, 0.0, 1e-7 * (1.0 + omega.abs()))?;
+    let d_p = along(fam, &dirs.p, 0.0, 1.0, h_p)?;
+    let norm = dirs.newton.norm();
+    let d_newton = if norm > 0.0 && norm.is_finite() {
+        let u = &dirs.newton / norm;
+        let d_u = along(fam, &u, 0.0, 0.0, 1e-6 * scale)?;
+        Some((u, d_u))
+    } else {
+        None
+    };
+    Ok(reduced_row(dirs, d_newton, d_om, d_p))
+}
+
+/// The row `G` with `G . (u, 0, 0) = d_u` (for the Newton direction's unit
+/// vector `u`, when there is one), `G . (dX/dOmega, 1, 0) = d_om` and
+/// `G . (dX/dp, 0, 1) = d_p`: `G = (d_u u, beta, gamma)`.
+fn reduced_row(
+    dirs: &Directions,
+    newton: Option<(DVector<f64>, f64)>,
+    d_om: f64,
+    d_p: f64,
+) -> Vec<f64> {
+    let nx = dirs.omega.len();
+    let mut grad = vec![0.0; nx + 2];
+    grad[nx] = d_om;
+    grad[nx + 1] = d_p;
+    if let Some((u, d_u)) = newton {
+        for i in 0..nx {
+            grad[i] = d_u * u[i];
+        }
+        grad[nx] -= d_u * u.dot(&dirs.omega);
+        grad[nx + 1] -= d_u * u.dot(&dirs.p);
+    }
+    grad
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Entries in [-1, 1) from a fixed linear congruential sequence.
+    fn filled(rows: usize, cols: usize, seed: &mut u64) -> DMatrix<f64> {
+        DMatrix::from_fn(rows, cols, |_, _| {
+            *seed = seed
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (*seed >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+        })
+    }
+
+    /// The Newton step of `[J_R; G; row] dz = [R; g; s]`.
+    fn newton_step(
+        jr: &DMatrix<f64>,
+        g_row: &[f64],
+        row: &[f64],
+        rhs: &DVector<f64>,
+    ) -> DVector<f64> {
+        let (nx, n) = (jr.nrows(), jr.ncols());
+        let mut a = DMatrix::zeros(n, n);
+        a.view_mut((0, 0), (nx, n)).copy_from(jr);
+        for k in 0..n {
+            a[(nx, k)] = g_row[k];
+            a[(nx + 1, k)] = row[k];
+        }
+        a.lu().solve(rhs).unwrap()
+    }
+
+    #[test]
+    fn the_reduced_row_gives_the_full_gradients_newton_steps_and_tangents() {
+        let mut seed = 7;
+        for nx in [3, 8, 15] {
+            // The branch rows `[dR/dX dR/dOmega dR/dp]`, a residual, the
+            // full gradient of g and an arclength row, all arbitrary.
+            let jr = filled(nx, nx + 2, &mut seed) + DMatrix::identity(nx, nx + 2) * 3.0;
+            let r: Vec<f64> = filled(nx, 1, &mut seed).iter().copied().collect();
+            let full: Vec<f64> = filled(1, nx + 2, &mut seed).iter().copied().collect();
+            let row: Vec<f64> = filled(1, nx + 2, &mut seed).iter().copied().collect();
+            let r_p: Vec<f64> = jr.column(nx + 1).iter().copied().collect();
+            let dirs = branch_directions(&jr.columns(0, nx + 1).into_owned(), &r, &r_p).unwrap();
+            // The three directional derivatives the trace differences.
+            let along = |dx: &DVector<f64>, d_om: f64, d_p: f64| {
+                (0..nx).map(|i| full[i] * dx[i]).sum::<f64>() + full[nx] * d_om + full[nx + 1] * d_p
+            };
+            let u = &dirs.newton / dirs.newton.norm();
+            let d_u = along(&u, 0.0, 0.0);
+            let reduced = reduced_row(
+                &dirs,
+                Some((u, d_u)),
+                along(&dirs.omega, 1.0, 0.0),
+                along(&dirs.p, 0.0, 1.0),
+            );
+            let mut rhs = DVector::zeros(nx + 2);
+            rhs.rows_mut(0, nx).copy_from_slice(&r);
+            rhs[nx] = 0.3;
+            rhs[nx + 1] = -0.2;
+            let exact = newton_step(&jr, &full, &row, &rhs);
+            let ours = newton_step(&jr, &reduced, &row, &rhs);
+            assert!(
+                (&exact - &ours).amax() <= 1e-10 * exact.amax(),
+                "Newton step, nx = {nx}"
+            );
+            // The tangent: the same right-hand side without the residuals.
+            rhs.rows_mut(0, nx + 1).fill(0.0);
+            rhs[nx + 1] = 1.0;
+            let exact = newton_step(&jr, &full, &row, &rhs);
+            let ours = newton_step(&jr, &reduced, &row, &rhs);
+            assert!(
+                (&exact - &ours).amax() <= 1e-10 * exact.amax(),
+                "tangent, nx = {nx}"
+            );
+        }
+    }
 }

@@ -15,8 +15,8 @@
 //! costs some three corrector iterations, each an evaluation with its
 //! Jacobian, two residuals and three assemblies (the point and its two
 //! neighbours in the key), a fold's two more Jacobians either side and a
-//! period doubling's monodromies (its gradient differenced every few
-//! iterations); six points in ten lie on contact curves, three on folds,
+//! period doubling's four monodromies (the test and its three directional
+//! differences); six points in ten lie on contact curves, three on folds,
 //! one on a period doubling. The seeding branches add `levels` branches
 //! of `points + 60 R` points.
 //!
@@ -64,7 +64,7 @@ impl BoundarySpec {
             + 3.0 * cost.assembly()
             + HbmCost::factor(n + 3);
         let fold = contact + 4.0 * cost.jacobian() + 2.0 * HbmCost::factor(n + 1);
-        let doubling = contact + monodromy + (n + 2) as f64 * monodromy / 3.0;
+        let doubling = contact + 4.0 * monodromy;
         // A map's trace of one mesh keeps that mesh's contact curves only.
         let contact_share = match self.contact_mesh {
             Some(_) => 0.6 / hbm.channels.len().max(1) as f64,

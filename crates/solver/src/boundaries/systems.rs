@@ -53,9 +53,6 @@ pub(crate) enum System {
         b: DVector<f64>,
         c: DVector<f64>,
         v: DVector<f64>,
-        /// The test function's differenced gradient and its orientation,
-        /// kept through a few steps (see [`super::doubling::Frozen`]).
-        frozen: Option<super::doubling::Frozen>,
     },
     /// A channel's extremum at `+-b`.
     Contact {
@@ -66,9 +63,6 @@ pub(crate) enum System {
     },
 }
 
-/// Iterations beyond which a corrector's kept gradient is not kept further.
-const SLOW_CORRECTOR: usize = 4;
-
 impl System {
     /// The period-doubling system at `(x, omega, p)`.
     pub(crate) fn doubling(fam: &mut Family, x: &[f64], omega: f64, p: f64) -> Result<Self> {
@@ -78,7 +72,6 @@ impl System {
             v: c.clone(),
             b,
             c,
-            frozen: None,
         })
     }
 
@@ -121,46 +114,15 @@ impl System {
         }
     }
 
-    /// Takes the last evaluation's null vectors as the next bordering, after
-    /// a corrector that converged in `iterations`.
-    pub(crate) fn accept(&mut self, iterations: usize) {
+    /// Takes the last evaluation's null vectors as the next bordering.
+    pub(crate) fn accept(&mut self) {
         match self {
             System::Fold { b, c, w, v } => {
                 *b = w.normalize();
                 *c = v.normalize();
             }
-            System::Doubling { c, v, frozen, .. } => {
-                *c = v.normalize();
-                // A slow corrector's gradient has drifted too far to keep.
-                let keep = frozen.take().and_then(|mut f| {
-                    f.steps += 1;
-                    (f.keep()
-                        && f.steps < super::doubling::GRADIENT_STEPS
-                        && iterations <= SLOW_CORRECTOR)
-                        .then_some(f)
-                });
-                *frozen = keep;
-            }
+            System::Doubling { c, v, .. } => *c = v.normalize(),
             System::Contact { .. } => {}
-        }
-    }
-
-    /// Before a retry of a step that overshot (it turned or moved too far):
-    /// a gradient that may not outlive its corrector is differenced afresh
-    /// at the new predictor.
-    pub(crate) fn retry(&mut self) {
-        if let System::Doubling { frozen, .. } = self {
-            if frozen.as_ref().is_some_and(|f| !f.keep()) {
-                *frozen = None;
-            }
-        }
-    }
-
-    /// Forgets what the correctors keep (the period doubling's differenced
-    /// gradient): the next evaluation differences it afresh.
-    pub(crate) fn forget(&mut self) {
-        if let System::Doubling { frozen, .. } = self {
-            *frozen = None;
         }
     }
 
@@ -170,13 +132,9 @@ impl System {
     pub(crate) fn eval(&mut self, fam: &mut Family, z: &[f64], full: bool) -> Result<Eval> {
         match self {
             System::Fold { b, c, w, v } => fold_eval(fam, z, b, c, w, v),
-            System::Doubling {
-                block,
-                b,
-                c,
-                v,
-                frozen,
-            } => super::doubling::eval(fam, z, *block, (b, c), v, frozen, full),
+            System::Doubling { block, b, c, v } => {
+                super::doubling::eval(fam, z, *block, (b, c), v, full)
+            }
             System::Contact { channel, kind } => contact_eval(fam, z, *channel, *kind, full),
         }
     }

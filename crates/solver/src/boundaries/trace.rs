@@ -169,12 +169,8 @@ impl Tracer {
         // At fixed p: the arclength row is the unit vector of p.
         let mut row = vec![0.0; n];
         row[n - 1] = 1.0;
-        // A start may lie far from the curve: its gradient is fresh at every
-        // iterate (a gradient kept from the guess lost 4 of the compound
-        // set's period-doubling starts).
-        let (z, ev, _) = tracer.correct(fam, &z0, &row, false)?;
-        // Its last gradient, differenced at the start's last iterate, goes on.
-        tracer.system.accept(1);
+        let (z, ev) = tracer.correct(fam, &z0, &row)?;
+        tracer.system.accept();
         system = tracer.system.clone();
         // The tangent: the null vector of the system's Jacobian.
         let mut sq = DMatrix::zeros(n, n);
@@ -268,25 +264,12 @@ impl Tracer {
         Some(((edge - p) / tp, edge))
     }
 
-    /// Newton on the system bordered by `row . (z - pred) = 0`; with
-    /// `chord`, a period doubling's test gradient is the one kept from an
-    /// earlier corrector or differenced at the predictor, and kept through
-    /// the iterations (a chord method on that row), otherwise it is
-    /// differenced at every iterate.
-    fn correct(
-        &mut self,
-        fam: &mut Family,
-        pred: &[f64],
-        row: &[f64],
-        chord: bool,
-    ) -> Result<(Vec<f64>, Eval, usize)> {
+    /// Newton on the system bordered by `row . (z - pred) = 0`.
+    fn correct(&mut self, fam: &mut Family, pred: &[f64], row: &[f64]) -> Result<(Vec<f64>, Eval)> {
         let n = pred.len();
         let mut z = pred.to_vec();
         let mut last_res = f64::NAN;
-        for iteration in 1..=NEWTON_MAX {
-            if !chord {
-                self.system.forget();
-            }
+        for _ in 1..=NEWTON_MAX {
             let ev = self.system.eval(fam, &z, false)?;
             self.newton_iterations += 1;
             let mut a = DMatrix::zeros(n, n);
@@ -316,7 +299,7 @@ impl Tracer {
             if step <= STEP_TOL {
                 let ev = self.system.eval(fam, &z, true)?;
                 if ev.res.amax() <= 1e-6 * ev.scale {
-                    return Ok((z, ev, iteration));
+                    return Ok((z, ev));
                 }
                 last_res = ev.res.amax();
                 break;
@@ -388,19 +371,17 @@ impl Tracer {
                 }
                 None => {}
             }
-            let outcome = self
-                .correct(fam, &pred, &row, true)
-                .and_then(|(z, ev, it)| {
-                    fam.factored(n);
-                    let t = self
-                        .tangent(&ev, &row)
-                        .ok_or_else(|| SolverError::Singular {
-                            what: "boundary tangent".into(),
-                        })?;
-                    Ok((z, ev, it, t))
-                });
+            let outcome = self.correct(fam, &pred, &row).and_then(|(z, ev)| {
+                fam.factored(n);
+                let t = self
+                    .tangent(&ev, &row)
+                    .ok_or_else(|| SolverError::Singular {
+                        what: "boundary tangent".into(),
+                    })?;
+                Ok((z, ev, t))
+            });
             match outcome {
-                Ok((z, ev, iterations, t)) => {
+                Ok((z, ev, t)) => {
                     let cos: f64 = (0..n).map(|i| self.metric[i] * t[i] * self.t[i]).sum();
                     let alpha = cos.clamp(-1.0, 1.0).acos();
                     let dist = (0..n)
@@ -409,7 +390,6 @@ impl Tracer {
                         .sqrt();
                     let f = overshoot(dist, alpha);
                     if f > 2.0 && ds > ds_min {
-                        self.system.retry();
                         self.ds = (ds / f.min(4.0)).max(ds_min);
                         continue;
                     }
@@ -423,7 +403,7 @@ impl Tracer {
                         self.crawl = 0;
                     }
                     self.steps += 1;
-                    self.system.accept(iterations);
+                    self.system.accept();
                     self.z = z;
                     self.t = t;
                     let point = self.traced(&ev);
@@ -444,8 +424,6 @@ impl Tracer {
                     return Stepped::Point(point);
                 }
                 Err(_) if ds > ds_min => {
-                    // A kept gradient may be what failed: the retry differences it afresh.
-                    self.system.forget();
                     self.ds = (ds * 0.5).max(ds_min);
                 }
                 Err(_) => return Stepped::End(TraceEnd::Failed, None),
