@@ -564,7 +564,7 @@ impl Default for ViewOptions {
             lyap_periods: 100,
             whole_clearance: false,
             branches: true,
-            boundaries: false,
+            boundaries: true,
             axis: AxisUnit::Omega,
             // The standard's inputs as `gearshock simulate` defaults them.
             accuracy_grade: IsoInputs::default().accuracy_grade as u32,

@@ -74,8 +74,9 @@ fn jobs_queue_until_ready_then_split_over_two_workers() {
     // Omega on worker 0, the HBM branch on worker 1, bifurcation shards on
     // both; no time-integration overlay by default.
     // Lyapunov chains are shared by both workers too; the shooting
-    // branches go to the first, the map's rows to the other.
-    assert_eq!(p.iter().filter(|(w, _)| *w == 0).count(), 4);
+    // branches go to the first, the map's boundaries to the other, so the
+    // map's rows to the first.
+    assert_eq!(p.iter().filter(|(w, _)| *w == 0).count(), 5);
     assert_eq!(p.iter().filter(|(w, _)| *w == 1).count(), 4);
     assert!(p.iter().any(|(w, m)| *w == c.hbm_worker()
         && matches!(
@@ -135,17 +136,25 @@ fn slider_change_restarts_and_stale_replies_are_ignored() {
         matches!(&p[0].1, ToWorker::Run { job: JobSpec::Omega(OmegaSpec { omega, .. }), .. } if (*omega - 1.2346).abs() < 1e-12)
     );
     assert!(c.query().contains("omega=1.2346"));
-    // The harmonics restart only the branch, on its worker.
+    // The harmonics restart only the branch, on its worker, and the map's
+    // boundaries, traced at the same harmonics.
     let p = posts(&c.set_key("harmonics", "3", 14.0).unwrap());
-    assert_eq!(p.len(), 1);
-    assert_eq!(p[0].0, c.hbm_worker());
-    assert!(matches!(
-        &p[0].1,
+    assert_eq!(p.len(), 2);
+    assert!(p.iter().any(|(w, m)| *w == c.hbm_worker()
+        && matches!(
+            m,
+            ToWorker::Run {
+                job: JobSpec::HarmonicBalance { harmonics: 3, .. },
+                ..
+            }
+        )));
+    assert!(p.iter().any(|(_, m)| matches!(
+        m,
         ToWorker::Run {
-            job: JobSpec::HarmonicBalance { harmonics: 3, .. },
+            job: JobSpec::Boundaries { harmonics: 3, .. },
             ..
         }
-    ));
+    )));
     assert!(c.set_key("harmonics", "16", 15.0).is_err());
 }
 
@@ -437,9 +446,10 @@ fn map_cells(id: JobId, cells: &[(u32, u32, figures::protocol::Regime, Option<u3
 #[test]
 fn the_map_shards_rows_and_a_cell_click_sets_both_parameters() {
     use figures::protocol::Regime;
-    // Without the shooting branches, whose worker the rows leave free.
+    // Without the shooting branches and the boundaries, whose workers the
+    // rows leave free.
     let (mut c, _) = Controller::new(
-        "map_omega_points=20&map_value_points=4&map_from=40&map_to=160&branches=off",
+        "map_omega_points=20&map_value_points=4&map_from=40&map_to=160&branches=off&boundaries=off",
         0.0,
     );
     let p = ready(&mut c);
@@ -774,22 +784,3 @@ fn a_failure_leaves_the_messages_with_its_job() {
 mod hold;
 mod pool;
 mod redraw;
-
-/// The two long jobs, the shooting branches and the map's boundaries, run
-/// on different workers of a pool of two, so neither waits for the other.
-#[test]
-fn the_boundaries_and_the_shooting_branches_run_side_by_side() {
-    let (mut c, _) = Controller::new("boundaries=on", 0.0);
-    assert!(c.issues.is_empty(), "{:?}", c.issues);
-    let p = ready(&mut c);
-    let workers = |kind: JobKind| -> Vec<usize> {
-        p.iter()
-            .filter_map(|(w, m)| match m {
-                ToWorker::Run { job, .. } if job.kind() == kind => Some(*w),
-                _ => None,
-            })
-            .collect()
-    };
-    assert_eq!(workers(JobKind::Orbits), vec![0]);
-    assert_eq!(workers(JobKind::Boundaries), vec![1]);
-}

@@ -73,13 +73,10 @@ fn a_larger_pool_deals_the_fixed_chains_round_robin_and_shares_the_map_rows() {
     // 3 Lyapunov chains (150 points), on workers 0, 1, 2.
     assert_eq!(shards(JobKind::Lyap), vec![(0, 3, 0), (1, 3, 1), (2, 3, 2)]);
     // Map rows are independent: one share per worker but the first, which
-    // holds the shooting branches.
+    // holds the shooting branches, and the last, the boundaries.
     let map = shards(JobKind::Map);
-    assert_eq!(
-        map.iter().map(|s| s.0).collect::<Vec<_>>(),
-        vec![1, 2, 3, 4]
-    );
-    assert!(map.iter().all(|s| s.1 == 4));
+    assert_eq!(map.iter().map(|s| s.0).collect::<Vec<_>>(), vec![1, 2, 3]);
+    assert!(map.iter().all(|s| s.1 == 3));
     // The selected Omega on worker 0, the branch on the last worker.
     assert_eq!(shards(JobKind::Omega), vec![(0, 0, 0)]);
     assert_eq!(shards(JobKind::HarmonicBalance), vec![(4, 0, 0)]);
@@ -130,16 +127,19 @@ fn the_map_rows_go_to_the_workers_the_long_jobs_leave_free() {
         let p = super::ready(&mut c);
         (c, p)
     };
-    // Two workers: the branches on the first, the rows on the second.
-    let (mut c, p) = start("");
-    assert_eq!(map_workers(&p), vec![(1, 1)]);
-    assert_eq!(map_workers(&start("branches=off").1), vec![(0, 2), (1, 2)]);
-    // Both long jobs, each on a worker: the rows go where the boundaries,
-    // the longer, do not run.
+    // Two workers, at the defaults: the branches on the first, the
+    // boundaries on the last; each holds one, so the rows go where the
+    // boundaries, the longer, do not run.
+    assert_eq!(map_workers(&start("").1), vec![(0, 1)]);
     assert_eq!(map_workers(&start("boundaries=on").1), vec![(0, 1)]);
+    // The boundaries alone: the rows on the first.
+    assert_eq!(map_workers(&start("branches=off").1), vec![(0, 1)]);
+    // The branches alone: the rows on the second.
+    let (mut c, p) = start("boundaries=off");
+    assert_eq!(map_workers(&p), vec![(1, 1)]);
     assert_eq!(
-        map_workers(&start("boundaries=on&branches=off").1),
-        vec![(0, 1)]
+        map_workers(&start("boundaries=off&branches=off").1),
+        vec![(0, 2), (1, 2)]
     );
     // A map ten times the default's cells shares both workers: the
     // branches would end long before it.
@@ -155,4 +155,23 @@ fn the_map_rows_go_to_the_workers_the_long_jobs_leave_free() {
     c.main.status_mut(JobKind::Orbits).finished_ms = None;
     let p = posts(&c.set_key("map_to", "120", 7.0).unwrap());
     assert_eq!(map_workers(&p), vec![(1, 1)]);
+}
+
+/// The two long jobs, the shooting branches and the map's boundaries, run
+/// on different workers of a pool of two, so neither waits for the other.
+#[test]
+fn the_boundaries_and_the_shooting_branches_run_side_by_side() {
+    let (mut c, _) = Controller::new("boundaries=on", 0.0);
+    assert!(c.issues.is_empty(), "{:?}", c.issues);
+    let p = super::ready(&mut c);
+    let workers = |kind: JobKind| -> Vec<usize> {
+        p.iter()
+            .filter_map(|(w, m)| match m {
+                ToWorker::Run { job, .. } if job.kind() == kind => Some(*w),
+                _ => None,
+            })
+            .collect()
+    };
+    assert_eq!(workers(JobKind::Orbits), vec![0]);
+    assert_eq!(workers(JobKind::Boundaries), vec![1]);
 }

@@ -6,8 +6,8 @@
 //! disagree with the curves). The map and the trace are the page's: the
 //! link's grid, mesh, periods and harmonics, 5 levels and 50 points. A
 //! link that says `boundaries=off` gets the map alone (and its note says
-//! so); one that does not say, the boundaries too (the page's default is
-//! off, the figure's purpose the curves).
+//! so); one that does not say, the boundaries too (as the page, where they
+//! are on by default).
 
 use super::{write_all, FigureArgs, Files};
 use crate::budget::{largest_within, StepCost, MAX_BOUNDARY_WORK, MAX_STEPS};
@@ -79,14 +79,6 @@ fn check_trace(params: &ModelParams, bs: &BoundarySpec) -> Result<(), Failure> {
     )))
 }
 
-/// Whether the link's query names `key` (a setting the link gives, not
-/// the page's default).
-fn link_sets(query: &str, key: &str) -> bool {
-    query
-        .split('&')
-        .any(|pair| pair.split_once('=').map_or(pair, |(k, _)| k) == key)
-}
-
 /// Runs the map figure.
 pub(crate) fn run(args: &FigureArgs) -> Result<Value, Failure> {
     if args.shard.is_some() {
@@ -139,9 +131,8 @@ pub(crate) fn run(args: &FigureArgs) -> Result<Value, Failure> {
     bs.levels = BOUNDARY_LEVELS;
     bs.points = BOUNDARY_POINTS;
     bs.harmonics = v.harmonics as usize;
-    // The page traces the boundaries only when asked (its default is
-    // off); the figure draws them unless the link says boundaries=off.
-    let traced = !link_sets(query, "boundaries") || v.boundaries;
+    // As the page: traced unless the link says boundaries=off.
+    let traced = v.boundaries;
     if traced {
         check_trace(params, &bs)?;
     }
