@@ -19,22 +19,56 @@ pub(super) struct Inputs {
     pub(super) params: Params,
 }
 
+/// A message on its way to a worker, with the kind of the job it runs
+/// noted when it is made: the page's start sorts the queued messages by
+/// it without decoding the JSON again.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct Outgoing {
+    /// The message's JSON text.
+    pub(super) text: String,
+    /// The kind of the job it runs, if it runs one (not a cancel or an
+    /// export).
+    pub(super) kind: Option<JobKind>,
+}
+
+impl Outgoing {
+    pub(super) fn of(msg: &ToWorker) -> Self {
+        let kind = match msg {
+            ToWorker::Run { job, .. } => Some(job.kind()),
+            _ => None,
+        };
+        Outgoing {
+            text: encode(msg),
+            kind,
+        }
+    }
+
+    /// Whether it runs a job off the first screen ([`KindSet::FIRST_SCREEN`]):
+    /// one the page's start holds.
+    pub(super) fn off_screen(&self) -> bool {
+        self.kind
+            .is_some_and(|k| !KindSet::FIRST_SCREEN.contains(k))
+    }
+}
+
 impl Controller {
+    /// Posts `msg` to `worker`, or queues it until the worker is ready; at
+    /// the page's start, holds it if it runs a job off the first screen
+    /// ([`Self::hold_off_screen`]).
     pub(super) fn post(&mut self, worker: usize, msg: &ToWorker) -> Vec<Effect> {
-        let text = encode(msg);
+        let out = Outgoing::of(msg);
         let mut fx = Vec::new();
         if let Some(held) = &mut self.held {
-            match msg {
-                ToWorker::Run { job, .. } if !KindSet::FIRST_SCREEN.contains(job.kind()) => {
-                    held.push((worker, text));
-                    return fx;
-                }
-                ToWorker::Run { .. } => {}
-                // A cancel or an export speaks of the jobs held: they go first.
-                _ => fx = self.release(),
+            if out.off_screen() {
+                held.push((worker, out));
+                return fx;
+            }
+            // A cancel or an export speaks of the jobs held: they go first.
+            if out.kind.is_none() {
+                fx = self.release();
             }
         }
-        fx.extend(self.post_text(worker, text));
+        fx.extend(self.post_out(worker, out));
         fx
     }
 
@@ -48,14 +82,11 @@ impl Controller {
     pub fn hold_off_screen(&mut self) {
         let mut held = self.held.take().unwrap_or_default();
         for (worker, slot) in self.workers.iter_mut().enumerate() {
-            let (keep, hold): (Vec<String>, Vec<String>) = std::mem::take(&mut slot.queue)
+            let (hold, keep): (Vec<Outgoing>, Vec<Outgoing>) = std::mem::take(&mut slot.queue)
                 .into_iter()
-                .partition(|text| match serde_json::from_str::<ToWorker>(text) {
-                    Ok(ToWorker::Run { job, .. }) => KindSet::FIRST_SCREEN.contains(job.kind()),
-                    _ => true,
-                });
+                .partition(Outgoing::off_screen);
             slot.queue = keep;
-            held.extend(hold.into_iter().map(|text| (worker, text)));
+            held.extend(hold.into_iter().map(|out| (worker, out)));
         }
         self.held = Some(held);
     }
@@ -65,7 +96,7 @@ impl Controller {
     pub(super) fn release(&mut self) -> Vec<Effect> {
         let held = self.held.take().unwrap_or_default();
         held.into_iter()
-            .flat_map(|(worker, text)| self.post_text(worker, text))
+            .flat_map(|(worker, out)| self.post_out(worker, out))
             .collect()
     }
 
@@ -91,12 +122,15 @@ impl Controller {
         }
     }
 
-    /// Posts `text` to `worker`, or queues it until the worker is ready.
-    fn post_text(&mut self, worker: usize, text: String) -> Vec<Effect> {
+    /// Posts `out` to `worker`, or queues it until the worker is ready.
+    fn post_out(&mut self, worker: usize, out: Outgoing) -> Vec<Effect> {
         match self.workers.get_mut(worker) {
-            Some(slot) if slot.ready => vec![Effect::Post { worker, text }],
+            Some(slot) if slot.ready => vec![Effect::Post {
+                worker,
+                text: out.text,
+            }],
             Some(slot) => {
-                slot.queue.push(text);
+                slot.queue.push(out);
                 Vec::new()
             }
             None => Vec::new(),

@@ -24,7 +24,10 @@ impl Controller {
                 slot.ready = true;
                 std::mem::take(&mut slot.queue)
                     .into_iter()
-                    .map(|text| Effect::Post { worker, text })
+                    .map(|out| Effect::Post {
+                        worker,
+                        text: out.text,
+                    })
                     .collect()
             }
             FromWorker::Export { id, text } => self.export_reply(worker, id, text),

@@ -94,3 +94,32 @@ fn a_failed_worker_ends_the_wait() {
     assert!(runs(&fx).iter().any(|(_, k)| *k == JobKind::Map), "{fx:?}");
     assert!(c.stop_holding().is_empty());
 }
+
+#[test]
+fn a_held_message_keeps_the_kind_it_was_queued_with() {
+    let (mut c, _) = Controller::new("", 0.0);
+    c.hold_off_screen();
+    ready(&mut c);
+    // A new map job while the first screen computes: held beside those
+    // queued before the workers were ready.
+    assert!(c.set_key("map_value_points", "10", 2.0).unwrap().is_empty());
+    let held = c
+        .held
+        .clone()
+        .expect("the jobs off the first screen are held");
+    let mut kinds = Vec::new();
+    for (_, out) in &held {
+        // What was noted beside the message is what its JSON says.
+        let ToWorker::Run { job, .. } = serde_json::from_str(&out.text).unwrap() else {
+            panic!("only jobs are held: {}", out.text)
+        };
+        assert_eq!(out.kind, Some(job.kind()));
+        kinds.push(job.kind());
+    }
+    // The defaults' jobs off the first screen, and the new map's.
+    for kind in [JobKind::Bif, JobKind::Map, JobKind::Lyap, JobKind::Orbits] {
+        assert!(kinds.contains(&kind), "{kind:?} in {kinds:?}");
+    }
+    assert!(kinds.iter().all(|&k| !KindSet::FIRST_SCREEN.contains(k)));
+    assert!(kinds.iter().filter(|&&k| k == JobKind::Map).count() >= 2);
+}
