@@ -226,7 +226,11 @@ fn start_workers(page: &Shared) {
         });
         let p2 = page.clone();
         listen(&worker, "error", move |_e: Event| {
-            let fx = p2.borrow_mut().core.worker_failed(w);
+            let fx = {
+                let p = &mut *p2.borrow_mut();
+                let t = now(&p.window);
+                p.core.worker_failed(w, t)
+            };
             run_effects(&p2, fx);
             request_frame(&p2);
         });
@@ -235,7 +239,11 @@ fn start_workers(page: &Shared) {
             said(text);
         }
         if failed {
-            let fx = page.borrow_mut().core.worker_failed(w);
+            let fx = {
+                let p = &mut *page.borrow_mut();
+                let t = now(&p.window);
+                p.core.worker_failed(w, t)
+            };
             run_effects(page, fx);
         }
     }

@@ -30,7 +30,7 @@ impl Controller {
                     })
                     .collect()
             }
-            FromWorker::Export { id, text } => self.export_reply(worker, id, text),
+            FromWorker::Export { id, text } => self.export_reply(worker, id, text, now_ms),
             msg => {
                 let current = self.feed(&msg, now_ms);
                 if let FromWorker::Failed { id, message } = msg {
@@ -46,7 +46,7 @@ impl Controller {
                 Vec::new()
             }
         };
-        fx.extend(self.release_if_first_screen_ended());
+        fx.extend(self.release_if_first_screen_ended(now_ms));
         fx
     }
 

@@ -359,8 +359,8 @@ impl Controller {
         self.preset_note = None;
         self.rebuild_model();
         self.main.hbm_previous = None;
-        let mut fx = self.clear_a();
-        fx.extend(self.clear_family());
+        let mut fx = self.clear_a(now_ms);
+        fx.extend(self.clear_family(now_ms));
         self.family = d.family.map(|spec| Family {
             spec,
             members: Vec::new(),

@@ -136,11 +136,12 @@ impl Page {
         self.issue("could not start a Web Worker; the views cannot be computed".into());
     }
 
-    /// Web Worker `w` failed to load or crashed: said in the messages, and
-    /// the jobs held for the first screen are posted (the messages to post).
-    pub fn worker_failed(&mut self, w: usize) -> Vec<Effect> {
+    /// Web Worker `w` failed to load or crashed (at `now_ms`): said in the
+    /// messages, and the jobs held for the first screen are posted (the
+    /// messages to post).
+    pub fn worker_failed(&mut self, w: usize, now_ms: f64) -> Vec<Effect> {
         self.issue(format!("Web Worker {w} failed to load or crashed"));
-        self.ctl.stop_holding()
+        self.ctl.stop_holding(now_ms)
     }
 
     /// The clipboard took the link (`copied`) or refused it: the
@@ -224,7 +225,7 @@ mod tests {
     fn worker_failures_and_the_copy_outcome_are_said_to_the_user() {
         let (mut p, _) = Page::boot(&Browser::default());
         p.worker_missing();
-        p.worker_failed(2);
+        p.worker_failed(2, 1.0);
         let issues = &p.ctl().issues;
         assert!(issues
             .iter()
