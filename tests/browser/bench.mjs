@@ -40,6 +40,12 @@ const median = (xs) => {
   return n === 0 ? NaN : n % 2 ? s[(n - 1) / 2] : (s[n / 2 - 1] + s[n / 2]) / 2;
 };
 const fmt = (x) => (Number.isFinite(x) ? Math.round(x).toString() : 'n/a');
+// "From job start" counts from when a job's messages were posted to the
+// workers (the status's posted_ms): its start, or, for the jobs the page's
+// start holds until the first screen's have ended (the sweep, the map,
+// the Lyapunov curve, the branches, the boundaries), their release.
+const ran = (j) => j.finished_ms - j.posted_ms;
+const firstAfter = (j) => j.first_data_ms - j.posted_ms;
 
 const results = [];
 const row = (what, values, unit, note = '') => {
@@ -138,8 +144,8 @@ try {
         const { page } = await open(h.browser, h.url, `bif_points=${points}&bif_dir=up&fr_points=2&transient_periods=300&record_periods=100&omega_from=0.1&omega_to=2&lyap_points=0`, workers);
         const s = await waitStatus(page, (s) => s.bif.finished_ms, 900000, 'bifurcation');
         if (s.workers !== workers) throw new Error(`asked for ${workers} workers, the page runs ${s.workers}`);
-        total[workers].push(s.bif.finished_ms - s.bif.started_ms);
-        first[workers].push(s.bif.first_data_ms - s.bif.started_ms);
+        total[workers].push(ran(s.bif));
+        first[workers].push(firstAfter(s.bif));
         await page.close();
       }
     }
@@ -195,8 +201,8 @@ try {
         const job = s.bif_branches.job;
         if ((branches === 'on') !== (job.id !== 0)) throw new Error(`branches=${branches}, yet the shooting branches' job is ${JSON.stringify(job)}`);
         all[branches].push(Math.max(...s.last_draw_ms));
-        bif[branches].push(s.bif.finished_ms - s.bif.started_ms);
-        if (branches === 'on') orbits.push(job.finished_ms - job.started_ms);
+        bif[branches].push(ran(s.bif));
+        if (branches === 'on') orbits.push(ran(job));
         await page.close();
       }
     }
@@ -232,7 +238,7 @@ try {
       const b = s.map_boundaries;
       if (b.job.error) throw new Error(`the trace failed: ${b.job.error}`);
       drawn.push(s.last_draw_ms[VIEW_SLOTS.map]);
-      trace.push(b.job.finished_ms - b.job.started_ms);
+      trace.push(ran(b.job));
       traced = `${b.curves} curves (${JSON.stringify(b.kinds)})`;
       console.error(`run ${i + 1}: drawn at ${fmt(drawn.at(-1))} ms, trace ${fmt(trace.at(-1))} ms, load average ${loadavg()}`);
       await page.close();
@@ -278,7 +284,7 @@ try {
       await watchMainThread(page);
       const s = await waitStatus(page, (s) => s.map.finished_ms, 900000, 'regime map');
       const beat = await stopWatch(page);
-      total.push(s.map.finished_ms - s.map.started_ms);
+      total.push(ran(s.map));
       longest.push(beat.long);
       cpu.push(beat.longCpu);
       await page.close();

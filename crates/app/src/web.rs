@@ -103,9 +103,12 @@ pub fn start_app() {
         return;
     };
     let number = |v: JsValue| v.as_f64();
+    // The workers index.html started: their count is the pool's.
+    let early = early_workers(&window);
     let browser = Browser {
         query: window.location().search().unwrap_or_default(),
         now_ms: now(&window),
+        early_workers: early.len(),
         cores: Some(window.navigator().hardware_concurrency()),
         forced_workers: js_sys::Reflect::get(&window, &"gearshockWorkers".into())
             .ok()
@@ -122,7 +125,7 @@ pub fn start_app() {
     }));
     // The workers first: the jobs on screen are posted as soon as a worker
     // is ready, while the page builds its elements.
-    start_workers(&page);
+    start_workers(&page, early);
     run_effects(&page, effects);
     panel::build(&page);
     paint(&page.borrow(), page.borrow().core.first_writes());
@@ -164,7 +167,8 @@ struct Early {
 
 /// Takes the workers `index.html` started (`window.gearshockEarlyWorkers`):
 /// their queueing handlers are removed, so every later message reaches
-/// the page's listener; this runs in one task, so none is lost between.
+/// the page's listener ([`start_workers`]); [`start_app`] does both in
+/// one task, so none is lost between.
 fn early_workers(window: &Window) -> Vec<Early> {
     let key = JsValue::from_str("gearshockEarlyWorkers");
     let list = js_sys::Reflect::get(window, &key).unwrap_or(JsValue::UNDEFINED);
@@ -192,12 +196,13 @@ fn early_workers(window: &Window) -> Vec<Early> {
         .collect()
 }
 
-/// Starts the pool: the workers `index.html` started, adopted with the
-/// messages they sent meanwhile, then any missing; extra ones end.
-fn start_workers(page: &Shared) {
+/// Starts the pool: the workers `index.html` started (`early`), adopted
+/// with the messages they sent meanwhile; where it started none, new ones.
+/// The pool's size is theirs ([`crate::page::boot::pool_size_of`]), so
+/// none is missing and none extra, unless it exceeds the pool's bounds.
+fn start_workers(page: &Shared, early: Vec<Early>) {
     let workers = page.borrow().core.ctl().workers();
-    let window = page.borrow().window.clone();
-    let mut early = early_workers(&window).into_iter();
+    let mut early = early.into_iter();
     for w in 0..workers {
         let (worker, messages, failed) = match early.next() {
             Some(e) => (e.worker, e.messages, e.failed),
@@ -226,7 +231,11 @@ fn start_workers(page: &Shared) {
         });
         let p2 = page.clone();
         listen(&worker, "error", move |_e: Event| {
-            let fx = p2.borrow_mut().core.worker_failed(w);
+            let fx = {
+                let p = &mut *p2.borrow_mut();
+                let t = now(&p.window);
+                p.core.worker_failed(w, t)
+            };
             run_effects(&p2, fx);
             request_frame(&p2);
         });
@@ -235,7 +244,11 @@ fn start_workers(page: &Shared) {
             said(text);
         }
         if failed {
-            let fx = page.borrow_mut().core.worker_failed(w);
+            let fx = {
+                let p = &mut *page.borrow_mut();
+                let t = now(&p.window);
+                p.core.worker_failed(w, t)
+            };
             run_effects(page, fx);
         }
     }

@@ -120,11 +120,13 @@ fn files(c: &mut Controller, cores: &mut [WorkerCore]) -> Vec<(String, String)> 
             out.push(file(c.export(view, format).unwrap()));
         }
     }
-    let sim = c.export_cli(ViewId::Time).unwrap();
+    let sim = c.export_cli(ViewId::Time, 2.0).unwrap();
     assert_eq!(sim.len(), 1);
     out.extend(sim.into_iter().map(file));
     out.push(file(c.export_params()));
-    let fx = c.export_cli(ViewId::Bif).expect("a bifurcation export");
+    let fx = c
+        .export_cli(ViewId::Bif, 2.0)
+        .expect("a bifurcation export");
     for d in settle(c, cores, fx) {
         if let Effect::Download { name, mime, text } = d {
             out.push((format!("{name} ({mime})"), text));

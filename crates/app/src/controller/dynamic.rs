@@ -209,7 +209,7 @@ mod tests {
             model: model.clone(),
         };
         c.main.omega = Some(omega_result(&job, None).unwrap());
-        let fx = c.export_cli(figures::views::ViewId::Time).unwrap();
+        let fx = c.export_cli(figures::views::ViewId::Time, 1.0).unwrap();
         let [Effect::Download { text, .. }] = &fx[..] else {
             panic!("{fx:?}")
         };

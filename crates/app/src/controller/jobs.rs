@@ -19,22 +19,72 @@ pub(super) struct Inputs {
     pub(super) params: Params,
 }
 
+/// A message on its way to a worker, with the job it runs noted when it
+/// is made: the page's start sorts the queued messages by it and dates
+/// the jobs it releases, without decoding the JSON again.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct Outgoing {
+    /// The message's JSON text.
+    pub(super) text: String,
+    /// The job it runs, if it runs one (not a cancel or an export).
+    pub(super) run: Option<RunOf>,
+}
+
+/// The job a [`ToWorker::Run`] message runs (one of its shards).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct RunOf {
+    pub(super) target: Target,
+    pub(super) kind: JobKind,
+    pub(super) id: JobId,
+}
+
+impl Outgoing {
+    pub(super) fn of(msg: &ToWorker) -> Self {
+        let run = match msg {
+            ToWorker::Run {
+                target, id, job, ..
+            } => Some(RunOf {
+                target: *target,
+                kind: job.kind(),
+                id: *id,
+            }),
+            _ => None,
+        };
+        Outgoing {
+            text: encode(msg),
+            run,
+        }
+    }
+
+    /// Whether it runs a job off the first screen ([`KindSet::FIRST_SCREEN`]):
+    /// one the page's start holds.
+    pub(super) fn off_screen(&self) -> bool {
+        self.run
+            .is_some_and(|r| !KindSet::FIRST_SCREEN.contains(r.kind))
+    }
+}
+
 impl Controller {
-    pub(super) fn post(&mut self, worker: usize, msg: &ToWorker) -> Vec<Effect> {
-        let text = encode(msg);
+    /// Posts `msg` to `worker` at `now_ms`, or queues it until the worker
+    /// is ready; at the page's start, holds it if it runs a job off the
+    /// first screen ([`Self::hold_off_screen`]).
+    pub(super) fn post(&mut self, worker: usize, msg: &ToWorker, now_ms: f64) -> Vec<Effect> {
+        let out = Outgoing::of(msg);
         let mut fx = Vec::new();
-        if let Some(held) = &mut self.held {
-            match msg {
-                ToWorker::Run { job, .. } if !KindSet::FIRST_SCREEN.contains(job.kind()) => {
-                    held.push((worker, text));
-                    return fx;
+        if self.held.is_some() {
+            if out.off_screen() {
+                self.date_post(out.run, None);
+                if let Some(held) = &mut self.held {
+                    held.push((worker, out));
                 }
-                ToWorker::Run { .. } => {}
-                // A cancel or an export speaks of the jobs held: they go first.
-                _ => fx = self.release(),
+                return fx;
+            }
+            // A cancel or an export speaks of the jobs held: they go first.
+            if out.run.is_none() {
+                fx = self.release(now_ms);
             }
         }
-        fx.extend(self.post_text(worker, text));
+        fx.extend(self.post_out(worker, out));
         fx
     }
 
@@ -44,59 +94,81 @@ impl Controller {
     /// Omega have the cores to themselves (on two cores the first worker
     /// would otherwise run the bifurcation sweep beside the branch). The
     /// jobs queued so far and those started meanwhile wait, in order; a
-    /// cancel or an export posts them first.
+    /// cancel or an export posts them first. A held job is not yet posted
+    /// ([`JobStatus::posted_ms`]): its release dates it.
     pub fn hold_off_screen(&mut self) {
         let mut held = self.held.take().unwrap_or_default();
         for (worker, slot) in self.workers.iter_mut().enumerate() {
-            let (keep, hold): (Vec<String>, Vec<String>) = std::mem::take(&mut slot.queue)
+            let (hold, keep): (Vec<Outgoing>, Vec<Outgoing>) = std::mem::take(&mut slot.queue)
                 .into_iter()
-                .partition(|text| match serde_json::from_str::<ToWorker>(text) {
-                    Ok(ToWorker::Run { job, .. }) => KindSet::FIRST_SCREEN.contains(job.kind()),
-                    _ => true,
-                });
+                .partition(Outgoing::off_screen);
             slot.queue = keep;
-            held.extend(hold.into_iter().map(|text| (worker, text)));
+            held.extend(hold.into_iter().map(|out| (worker, out)));
+        }
+        let runs: Vec<Option<RunOf>> = held.iter().map(|(_, out)| out.run).collect();
+        for run in runs {
+            self.date_post(run, None);
         }
         self.held = Some(held);
     }
 
     /// Posts the messages held back at the page's start ([`Self::hold_off_screen`]),
-    /// in their order, and holds no more.
-    pub(super) fn release(&mut self) -> Vec<Effect> {
+    /// in their order, at `now_ms` (their jobs' post time), and holds no more.
+    pub(super) fn release(&mut self, now_ms: f64) -> Vec<Effect> {
         let held = self.held.take().unwrap_or_default();
-        held.into_iter()
-            .flat_map(|(worker, text)| self.post_text(worker, text))
-            .collect()
+        let mut fx = Vec::new();
+        for (worker, out) in held {
+            self.date_post(out.run, Some(now_ms));
+            fx.extend(self.post_out(worker, out));
+        }
+        fx
     }
 
-    /// A worker failed to load or crashed: the jobs held at the page's
-    /// start ([`Self::hold_off_screen`]) go out now, so that the other
-    /// workers' jobs do not wait for a first screen that may never end.
-    pub fn stop_holding(&mut self) -> Vec<Effect> {
-        self.release()
+    /// Sets when the job `run` names was posted (`None`: not yet, it is
+    /// held), if it is still its kind's current job.
+    fn date_post(&mut self, run: Option<RunOf>, posted_ms: Option<f64>) {
+        let Some(run) = run else {
+            return;
+        };
+        if let Some(c) = self.computation_mut(run.target) {
+            let status = c.status_mut(run.kind);
+            if status.id == run.id {
+                status.posted_ms = posted_ms;
+            }
+        }
     }
 
-    /// Releases the held messages once none of the current state's
-    /// first-screen jobs runs.
-    pub(super) fn release_if_first_screen_ended(&mut self) -> Vec<Effect> {
+    /// A worker failed to load or crashed (at `now_ms`): the jobs held at
+    /// the page's start ([`Self::hold_off_screen`]) go out now, so that the
+    /// other workers' jobs do not wait for a first screen that may never end.
+    pub fn stop_holding(&mut self, now_ms: f64) -> Vec<Effect> {
+        self.release(now_ms)
+    }
+
+    /// Releases the held messages (at `now_ms`) once none of the current
+    /// state's first-screen jobs runs.
+    pub(super) fn release_if_first_screen_ended(&mut self, now_ms: f64) -> Vec<Effect> {
         let running = |c: &Self| {
             KindSet::FIRST_SCREEN
                 .iter()
                 .any(|k| c.main.status(k).running())
         };
         if self.held.is_some() && !running(self) {
-            self.release()
+            self.release(now_ms)
         } else {
             Vec::new()
         }
     }
 
-    /// Posts `text` to `worker`, or queues it until the worker is ready.
-    fn post_text(&mut self, worker: usize, text: String) -> Vec<Effect> {
+    /// Posts `out` to `worker`, or queues it until the worker is ready.
+    fn post_out(&mut self, worker: usize, out: Outgoing) -> Vec<Effect> {
         match self.workers.get_mut(worker) {
-            Some(slot) if slot.ready => vec![Effect::Post { worker, text }],
+            Some(slot) if slot.ready => vec![Effect::Post {
+                worker,
+                text: out.text,
+            }],
             Some(slot) => {
-                slot.queue.push(text);
+                slot.queue.push(out);
                 Vec::new()
             }
             None => Vec::new(),
@@ -184,10 +256,15 @@ impl Controller {
         t
     }
 
-    /// Cancels `target`'s jobs of `kind` (`None`: all) on every worker.
-    pub(super) fn cancel(&mut self, target: Target, kind: Option<JobKind>) -> Vec<Effect> {
+    /// Cancels `target`'s jobs of `kind` (`None`: all) on every worker, at `now_ms`.
+    pub(super) fn cancel(
+        &mut self,
+        target: Target,
+        kind: Option<JobKind>,
+        now_ms: f64,
+    ) -> Vec<Effect> {
         (0..self.workers.len())
-            .flat_map(|w| self.post(w, &ToWorker::Cancel { target, kind }))
+            .flat_map(|w| self.post(w, &ToWorker::Cancel { target, kind }, now_ms))
             .collect()
     }
 
@@ -197,6 +274,7 @@ impl Controller {
         (target, id, params): (Target, JobId, &Params),
         (chains, pool): (u32, Pool),
         job: impl Fn(u32) -> JobSpec,
+        now_ms: f64,
     ) -> Vec<Effect> {
         let mut fx = Vec::new();
         for shard in 0..chains {
@@ -208,7 +286,7 @@ impl Controller {
                 params: params.clone(),
                 job,
             };
-            fx.extend(self.post(worker, &msg));
+            fx.extend(self.post(worker, &msg, now_ms));
         }
         fx
     }
@@ -327,7 +405,7 @@ impl Controller {
             return Vec::new();
         }
         let Some(chains) = k.shards(&cx) else {
-            return self.switch_off(target, kind);
+            return self.switch_off(target, kind, now_ms);
         };
         let total = k.total(&cx);
         let id = self.next_job();
@@ -350,9 +428,12 @@ impl Controller {
             self.dirty.data(kind);
             self.dirty.data(k.also_shown_as());
         }
-        let fx = self.post_shards((target, id, &input.params), (chains, cx.pool), |shard| {
-            k.spec(&cx, chains, shard)
-        });
+        let fx = self.post_shards(
+            (target, id, &input.params),
+            (chains, cx.pool),
+            |shard| k.spec(&cx, chains, shard),
+            now_ms,
+        );
         if main && k.previews() {
             self.preview_omega(&input.model, kind, id, now_ms);
         }
@@ -360,8 +441,8 @@ impl Controller {
     }
 
     /// A kind switched off (no overlay, no Lyapunov curve): its store and
-    /// status cleared, its running job dropped.
-    fn switch_off(&mut self, target: Target, kind: JobKind) -> Vec<Effect> {
+    /// status cleared, its running job dropped (at `now_ms`).
+    fn switch_off(&mut self, target: Target, kind: JobKind, now_ms: f64) -> Vec<Effect> {
         let Some(c) = self.computation_mut(target) else {
             return Vec::new();
         };
@@ -374,7 +455,7 @@ impl Controller {
         }
         self.dirty.data(kind);
         if running {
-            self.cancel(target, Some(kind))
+            self.cancel(target, Some(kind), now_ms)
         } else {
             Vec::new()
         }
@@ -389,10 +470,10 @@ impl Controller {
             let e = e.to_string();
             self.main.fail_all(kinds, &e);
             for kind in JobKind::ALL {
-                fx.extend(self.cancel(Target::Main, Some(kind)));
+                fx.extend(self.cancel(Target::Main, Some(kind), now_ms));
             }
             self.main.map.signature.clear();
-            fx.extend(self.cancel_members());
+            fx.extend(self.cancel_members(now_ms));
             self.dirty.data(KindSet::ALL);
             return fx;
         }

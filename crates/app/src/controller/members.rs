@@ -38,7 +38,7 @@ impl Controller {
     pub fn set_family(&mut self, spec: FamilySpec, now_ms: f64) -> Result<Vec<Effect>, InputError> {
         let first = spec.member_params(&self.settings.params, 0)?;
         Model::new(&first)?;
-        let mut fx = self.cancel_members();
+        let mut fx = self.cancel_members(now_ms);
         let changed = first != self.settings.params;
         self.family = Some(Family {
             members: Vec::new(),
@@ -69,23 +69,23 @@ impl Controller {
         self.set_family(spec, now_ms)
     }
 
-    /// Ends the family: the current state alone again.
-    pub fn clear_family(&mut self) -> Vec<Effect> {
+    /// Ends the family at `now_ms`: the current state alone again.
+    pub fn clear_family(&mut self, now_ms: f64) -> Vec<Effect> {
         if self.family.is_none() {
             return Vec::new();
         }
-        let fx = self.cancel_members();
+        let fx = self.cancel_members(now_ms);
         self.family = None;
         self.dirty.data(KindSet::MEMBER);
         self.dirty.url = true;
         fx
     }
 
-    /// Cancels every job of the members shown.
-    pub(super) fn cancel_members(&mut self) -> Vec<Effect> {
+    /// Cancels every job of the members shown, at `now_ms`.
+    pub(super) fn cancel_members(&mut self, now_ms: f64) -> Vec<Effect> {
         let n = self.family.as_ref().map_or(0, |f| f.members.len());
         (1..=n as u32)
-            .flat_map(|m| self.cancel(Target::Member(m), None))
+            .flat_map(|m| self.cancel(Target::Member(m), None, now_ms))
             .collect()
     }
 
@@ -109,11 +109,11 @@ impl Controller {
         // The members' running jobs of those kinds (all of them, if the
         // members change) are dropped first.
         if rebuild {
-            fx.extend(self.cancel_members());
+            fx.extend(self.cancel_members(now_ms));
         } else {
             for m in 1..=n as u32 {
                 for kind in kinds.iter() {
-                    fx.extend(self.cancel(Target::Member(m), Some(kind)));
+                    fx.extend(self.cancel(Target::Member(m), Some(kind), now_ms));
                 }
             }
         }

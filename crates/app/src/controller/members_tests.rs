@@ -236,7 +236,7 @@ fn a_figure_preset_loads_its_whole_family_and_bad_input_keeps_the_last_state() {
     c.set_key("backlash_um", "60", 4.0).unwrap();
     assert_eq!(c.family.as_ref().unwrap().spec.values, vec![60.0, 100.0]);
     // One value only: the members' jobs are cancelled.
-    let fx = c.clear_family();
+    let fx = c.clear_family(5.0);
     assert!(posts(&fx).iter().all(|(_, m)| matches!(
         m,
         ToWorker::Cancel {

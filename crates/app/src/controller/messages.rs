@@ -24,10 +24,13 @@ impl Controller {
                 slot.ready = true;
                 std::mem::take(&mut slot.queue)
                     .into_iter()
-                    .map(|text| Effect::Post { worker, text })
+                    .map(|out| Effect::Post {
+                        worker,
+                        text: out.text,
+                    })
                     .collect()
             }
-            FromWorker::Export { id, text } => self.export_reply(worker, id, text),
+            FromWorker::Export { id, text } => self.export_reply(worker, id, text, now_ms),
             msg => {
                 let current = self.feed(&msg, now_ms);
                 if let FromWorker::Failed { id, message } = msg {
@@ -43,7 +46,7 @@ impl Controller {
                 Vec::new()
             }
         };
-        fx.extend(self.release_if_first_screen_ended());
+        fx.extend(self.release_if_first_screen_ended(now_ms));
         fx
     }
 

@@ -75,7 +75,7 @@ pub enum Effect {
 #[derive(Debug, Clone, Default)]
 struct WorkerSlot {
     ready: bool,
-    queue: Vec<String>,
+    queue: Vec<jobs::Outgoing>,
 }
 
 /// A bifurcation export being assembled from the shards.
@@ -115,7 +115,7 @@ pub struct Controller {
     /// of the jobs off the first screen ([`KindSet::FIRST_SCREEN`]), held
     /// back with their workers until the first screen's jobs have ended;
     /// `None` when nothing is held.
-    held: Option<Vec<(usize, String)>>,
+    held: Option<Vec<(usize, jobs::Outgoing)>>,
     next_id: JobId,
     export: Option<PendingExport>,
     /// The "Start here" tour's step (0-based), if it is running.
@@ -359,8 +359,8 @@ impl Controller {
         self.preset_note = None;
         self.rebuild_model();
         self.main.hbm_previous = None;
-        let mut fx = self.clear_a();
-        fx.extend(self.clear_family());
+        let mut fx = self.clear_a(now_ms);
+        fx.extend(self.clear_family(now_ms));
         self.family = d.family.map(|spec| Family {
             spec,
             members: Vec::new(),

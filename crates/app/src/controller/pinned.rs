@@ -28,7 +28,7 @@ impl Controller {
     /// changes draw as B over it. Results still computing are computed again
     /// for A (B's next change would cancel them).
     pub fn pin_a(&mut self, now_ms: f64) -> Vec<Effect> {
-        let mut fx = self.cancel_pinned();
+        let mut fx = self.cancel_pinned(now_ms);
         let complete = (KindSet::PINNED.iter()).all(|k| self.main.status(k).finished_ms.is_some());
         if complete {
             let mut comp = Computation::default();
@@ -49,22 +49,22 @@ impl Controller {
         fx
     }
 
-    /// "Clear A": ends the comparison.
-    pub fn clear_a(&mut self) -> Vec<Effect> {
-        let fx = self.cancel_pinned();
+    /// "Clear A": ends the comparison (at `now_ms`).
+    pub fn clear_a(&mut self, now_ms: f64) -> Vec<Effect> {
+        let fx = self.cancel_pinned(now_ms);
         self.pinned = None;
         self.dirty.data(KindSet::PINNED);
         self.dirty.url = true;
         fx
     }
 
-    fn cancel_pinned(&mut self) -> Vec<Effect> {
+    fn cancel_pinned(&mut self, now_ms: f64) -> Vec<Effect> {
         let running = self
             .pinned
             .as_ref()
             .is_some_and(|p| p.comp.running(KindSet::PINNED));
         if running {
-            self.cancel(Target::A, None)
+            self.cancel(Target::A, None, now_ms)
         } else {
             Vec::new()
         }

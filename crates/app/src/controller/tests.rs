@@ -623,7 +623,7 @@ fn a_link_with_a_pinned_state_computes_both_and_pinning_keeps_a() {
     );
     assert_eq!(link::decode(&c.query()).pinned.unwrap().view.omega, 0.5);
     // Clear A: the link loses it, and A's jobs are cancelled on every worker.
-    let fx = posts(&c.clear_a());
+    let fx = posts(&c.clear_a(6.0));
     assert!(fx.iter().all(|(_, m)| matches!(
         m,
         ToWorker::Cancel {

@@ -75,7 +75,7 @@ impl Page {
             Action::LoadPreset(id) => ctl.apply_preset(id, now_ms),
             Action::Reset => ctl.load_query("", now_ms),
             Action::PinA => ctl.pin_a(now_ms),
-            Action::ClearA => ctl.clear_a(),
+            Action::ClearA => ctl.clear_a(now_ms),
             Action::ClearMessages => {
                 ctl.clear_issues();
                 Vec::new()
@@ -89,7 +89,7 @@ impl Page {
                 self.offer(r)
             }
             Action::Cli(v) => {
-                let r = self.ctl.export_cli(v);
+                let r = self.ctl.export_cli(v, now_ms);
                 self.offer(r)
             }
             Action::Params => vec![ctl.export_params()],
@@ -148,7 +148,7 @@ impl Page {
             }
             Action::FamilyClear => {
                 out.writes.push(Write::text("family-error", ""));
-                ctl.clear_family()
+                ctl.clear_family(now_ms)
             }
             Action::AnimPlay => {
                 self.anim_play();

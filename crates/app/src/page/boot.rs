@@ -28,6 +28,9 @@ pub struct Browser {
     pub query: String,
     /// The page's clock (ms).
     pub now_ms: f64,
+    /// How many Web Workers `index.html`'s script started (0 where it
+    /// started none): the page runs exactly these ([`pool_size_of`]).
+    pub early_workers: usize,
     /// `navigator.hardwareConcurrency`, where it is a number.
     pub cores: Option<f64>,
     /// `window.gearshockWorkers` (the benchmark's override), where it is a
@@ -39,9 +42,22 @@ pub struct Browser {
     pub reduced_motion: bool,
 }
 
-/// The workers to start: the benchmark's count where it set a whole
-/// number of at least 1, else one per logical core but one (the page's)
-/// within the pool's bounds ([`pool_size`]).
+/// The page's workers: exactly those `index.html`'s inline script started
+/// before the page's WebAssembly loaded (the script decides their count;
+/// the page adopts them), or, where it started none (it did not run, or
+/// the browser refused a worker), [`worker_count`]'s.
+pub fn pool_size_of(b: &Browser) -> usize {
+    if b.early_workers > 0 {
+        b.early_workers
+    } else {
+        worker_count(b.cores, b.forced_workers)
+    }
+}
+
+/// The workers to start where `index.html`'s script started none
+/// ([`pool_size_of`]), by the script's rule: the benchmark's count where
+/// it set a whole number of at least 1, else one per logical core but one
+/// (the page's) within the pool's bounds ([`pool_size`]).
 pub fn worker_count(cores: Option<f64>, forced: Option<f64>) -> usize {
     let whole = |n: f64| n.is_finite() && n >= 1.0;
     forced
@@ -72,7 +88,7 @@ impl Page {
     /// The page for what the window says, and the controller's first
     /// effects (the workers' first jobs).
     pub fn boot(b: &Browser) -> (Page, Vec<Effect>) {
-        let workers = worker_count(b.cores, b.forced_workers);
+        let workers = pool_size_of(b);
         let (shown, query, issue) = super::present::split_present(&b.query);
         let (mut ctl, effects) = Controller::with_workers(&query, b.now_ms, workers);
         ctl.hold_off_screen();
@@ -136,11 +152,12 @@ impl Page {
         self.issue("could not start a Web Worker; the views cannot be computed".into());
     }
 
-    /// Web Worker `w` failed to load or crashed: said in the messages, and
-    /// the jobs held for the first screen are posted (the messages to post).
-    pub fn worker_failed(&mut self, w: usize) -> Vec<Effect> {
+    /// Web Worker `w` failed to load or crashed (at `now_ms`): said in the
+    /// messages, and the jobs held for the first screen are posted (the
+    /// messages to post).
+    pub fn worker_failed(&mut self, w: usize, now_ms: f64) -> Vec<Effect> {
         self.issue(format!("Web Worker {w} failed to load or crashed"));
-        self.ctl.stop_holding()
+        self.ctl.stop_holding(now_ms)
     }
 
     /// The clipboard took the link (`copied`) or refused it: the
@@ -177,6 +194,24 @@ mod tests {
         assert_eq!(worker_count(Some(4.0), Some(12.0)), 12);
         assert_eq!(worker_count(Some(4.0), Some(0.0)), 3);
         assert_eq!(worker_count(Some(4.0), Some(f64::INFINITY)), 3);
+    }
+
+    #[test]
+    fn the_page_runs_exactly_the_workers_the_inline_script_started() {
+        // The script's count wins over the cores and the benchmark's,
+        // which it has applied already.
+        let b = |early_workers, forced| Browser {
+            early_workers,
+            cores: Some(4.0),
+            forced_workers: forced,
+            ..Browser::default()
+        };
+        assert_eq!(pool_size_of(&b(5, None)), 5);
+        assert_eq!(pool_size_of(&b(1, Some(1.0))), 1);
+        assert_eq!(Page::boot(&b(5, None)).0.ctl().workers(), 5);
+        // None started: 4 cores give 3, or the benchmark's 1.
+        assert_eq!(pool_size_of(&b(0, None)), 3);
+        assert_eq!(pool_size_of(&b(0, Some(1.0))), 1);
     }
 
     #[test]
@@ -224,7 +259,7 @@ mod tests {
     fn worker_failures_and_the_copy_outcome_are_said_to_the_user() {
         let (mut p, _) = Page::boot(&Browser::default());
         p.worker_missing();
-        p.worker_failed(2);
+        p.worker_failed(2, 1.0);
         let issues = &p.ctl().issues;
         assert!(issues
             .iter()

@@ -14,6 +14,10 @@ pub struct JobStatus {
     pub id: JobId,
     /// When it was started (ms, the page's clock).
     pub started_ms: f64,
+    /// When its messages were posted: at its start, or, for a job held at
+    /// the page's start (`Controller::hold_off_screen`), at its release;
+    /// `None` while it is held. What "from job start" counts from.
+    pub posted_ms: Option<f64>,
     /// When its first data arrived.
     pub first_data_ms: Option<f64>,
     /// When it finished.
@@ -50,6 +54,7 @@ impl JobStatus {
         JobStatus {
             id,
             started_ms: now_ms,
+            posted_ms: Some(now_ms),
             total,
             ..JobStatus::default()
         }

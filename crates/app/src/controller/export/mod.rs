@@ -193,10 +193,10 @@ impl Controller {
     /// The data behind `view` in the CLI's JSON format: the selected-Omega
     /// run as `gearshock simulate` writes it (a download at once), or the
     /// bifurcation sweep, assembled from the workers' shards (messages to
-    /// post; the download follows their replies).
-    pub fn export_cli(&mut self, view: ViewId) -> Result<Vec<Effect>, ExportError> {
+    /// post at `now_ms`; the download follows their replies).
+    pub fn export_cli(&mut self, view: ViewId, now_ms: f64) -> Result<Vec<Effect>, ExportError> {
         match view {
-            ViewId::Bif => self.request_bif_export(),
+            ViewId::Bif => self.request_bif_export(now_ms),
             _ if view.at_selected_omega() => {
                 let mut r = self.exportable_omega()?.clone();
                 // K_v at the page's grade and face width, as `gearshock
@@ -227,7 +227,7 @@ impl Controller {
     /// Starts assembling the bifurcation JSON in the CLI's format: every
     /// worker but the first sends its shards, then worker 0 (which holds
     /// chain 0) merges them with its own.
-    fn request_bif_export(&mut self) -> Result<Vec<Effect>, ExportError> {
+    fn request_bif_export(&mut self, now_ms: f64) -> Result<Vec<Effect>, ExportError> {
         if self.main.bif_status().finished_ms.is_none() {
             return Err(ExportError::SweepRunning);
         }
@@ -249,15 +249,21 @@ impl Controller {
             other: Vec::new(),
         };
         if holders.is_empty() {
-            return Ok(self.post(0, &msg));
+            return Ok(self.post(0, &msg, now_ms));
         }
         Ok(holders
             .into_iter()
-            .flat_map(|w| self.post(w, &msg))
+            .flat_map(|w| self.post(w, &msg, now_ms))
             .collect())
     }
 
-    pub(super) fn export_reply(&mut self, worker: usize, id: JobId, text: String) -> Vec<Effect> {
+    pub(super) fn export_reply(
+        &mut self,
+        worker: usize,
+        id: JobId,
+        text: String,
+        now_ms: f64,
+    ) -> Vec<Effect> {
         let Some(pending) = self.export.as_mut().filter(|e| e.id == id) else {
             return Vec::new();
         };
@@ -284,7 +290,7 @@ impl Controller {
             mesh: pending.mesh,
             other: std::mem::take(&mut pending.collected),
         };
-        self.post(0, &msg)
+        self.post(0, &msg, now_ms)
     }
 
     /// An export's file name: the view, what the file holds if the view
