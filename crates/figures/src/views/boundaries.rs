@@ -11,10 +11,17 @@
 //! periods. A cell that contradicts its side is where the periodic branch
 //! the curves follow is not what the gears do (a coexisting motion, chaos,
 //! a branch beyond a jump). Only the cells next to a curve are judged:
-//! within [`BAND`] cells of it, not on it ([`MARGIN`]), and not beyond its
-//! ends.
+//! within [`BAND`] cells of it, not on it ([`MARGIN`]), not beyond its
+//! ends, and with no other shown curve between the cell and its nearest
+//! point on the curve: beyond a second period doubling, a jump or another
+//! contact change the first curve's side no longer says what the branch
+//! does (on the default compound map the narrow instability windows at
+//! Omega 0.28-0.30 and 0.43-0.47, two period doublings a cell or less
+//! apart, had each doubling judge the cells beyond the other: 89 of the
+//! 152 cells marked).
 //! Folds make no claim: between the two folds of a jump both branches
-//! exist.
+//! exist. Nor do cells without backlash on the back flanks (they always
+//! touch) or on the drive flanks parting.
 
 use super::map::{MapGrid, MapStore};
 use crate::protocol::{BoundaryCurve, BoundaryKind, MapSample, Regime};
@@ -93,7 +100,10 @@ pub fn agrees(
             Regime::NoImpact => Some(unchanged),
             Regime::SingleSided | Regime::DoubleSided => Some(!unchanged),
         },
-        BoundaryKind::BackFlanksTouch => Some((r == Regime::DoubleSided) != unchanged),
+        BoundaryKind::BackFlanksTouch => match r {
+            Regime::NoGap => None,
+            _ => Some((r == Regime::DoubleSided) != unchanged),
+        },
         BoundaryKind::DriveFlanksTouch => match r {
             Regime::NoContact => Some(unchanged),
             Regime::NoImpact | Regime::SingleSided => Some(!unchanged),
@@ -101,6 +111,9 @@ pub fn agrees(
         },
     }
 }
+
+/// A segment between two points in cell coordinates.
+type Segment = ((f64, f64), (f64, f64));
 
 /// The nearest point of a curve to a cell, in units of the box.
 #[derive(Debug, Clone, Copy)]
@@ -111,6 +124,8 @@ struct Nearest {
     /// The projection falls beyond the curve's first or last point.
     beyond_end: bool,
     others_stable: Option<bool>,
+    /// The nearest point of the curve (cell coordinates).
+    foot: (f64, f64),
 }
 
 /// The cells `(row, column)` whose regime disagrees with the side of a
@@ -144,7 +159,17 @@ pub fn disagreements(
     };
     let mut bad = vec![false; cols * rows];
     let mut judged = vec![false; cols * rows];
-    for curve in curves {
+    // Every curve's segments in cell coordinates, with the curve's place.
+    let segments: Vec<(usize, Segment)> = curves
+        .iter()
+        .enumerate()
+        .flat_map(|(i, c)| {
+            c.points
+                .windows(2)
+                .map(move |w| (i, (at(w[0].omega, w[0].value), at(w[1].omega, w[1].value))))
+        })
+        .collect();
+    for (index, curve) in curves.iter().enumerate() {
         let mut best: Vec<Option<Nearest>> = vec![None; cols * rows];
         let pts: Vec<(f64, f64)> = curve.points.iter().map(|p| at(p.omega, p.value)).collect();
         let last = pts.len().saturating_sub(2);
@@ -186,6 +211,7 @@ pub fn disagreements(
                         (na.1 + t * (nb.1 - na.1)) * ch / vr,
                     );
                     best[k] = Some(Nearest {
+                        foot: q,
                         distance,
                         unchanged: (p.0 - q.0) * n.0 + (p.1 - q.1) * n.1 > 0.0,
                         beyond_end,
@@ -201,6 +227,13 @@ pub fn disagreements(
         for (k, near) in best.iter().enumerate() {
             let Some(n) = near else { continue };
             if n.beyond_end || n.distance < MARGIN || n.distance > BAND {
+                continue;
+            }
+            let centre = ((k % cols) as f64, (k / cols) as f64);
+            if segments
+                .iter()
+                .any(|&(i, seg)| i != index && crosses((centre, n.foot), seg))
+            {
                 continue;
             }
             let Some(cell) = map.cell((k / cols) as u32, (k % cols) as u32) else {
@@ -219,6 +252,21 @@ pub fn disagreements(
         .map(|(k, _)| ((k / cols) as u32, (k % cols) as u32))
         .collect();
     (marks, judged.iter().filter(|j| **j).count())
+}
+
+/// Whether the segment `p` (a cell's centre to its nearest point on a
+/// curve) crosses the segment `q` of another curve: its ends lie strictly
+/// on either side of `q`'s line, and `q` meets `p`'s line (a vertex of the
+/// other curve on `p` counts).
+fn crosses((p0, p1): Segment, (q0, q1): Segment) -> bool {
+    let apart = |a: f64, b: f64, c: f64, d: f64| a.max(b) < c.min(d) || c.max(d) < a.min(b);
+    if apart(p0.0, p1.0, q0.0, q1.0) || apart(p0.1, p1.1, q0.1, q1.1) {
+        return false;
+    }
+    let side = |a: (f64, f64), b: (f64, f64), c: (f64, f64)| {
+        (b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0)
+    };
+    side(q0, q1, p0) * side(q0, q1, p1) < 0.0 && side(p0, p1, q0) * side(p0, p1, q1) <= 0.0
 }
 
 /// A point of a curve picked by a click.

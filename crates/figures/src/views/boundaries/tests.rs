@@ -129,3 +129,43 @@ fn the_map_of_one_mesh_shows_that_meshs_contact_curves_and_every_jump() {
     assert_eq!(s.shown(Some(3)).len(), 2);
     assert_eq!(s.shown(None).len(), 3);
 }
+
+#[test]
+fn a_cell_beyond_another_curve_is_not_judged_by_the_farther_one() {
+    let g = grid();
+    // Single-sided up to Omega 1.0 (column 9), double-sided beyond, and
+    // one planted double-sided cell at row 3, column 8 (Omega 0.9).
+    let s = store(&g, &[(3, 8)]);
+    // The curve at Omega 1.0 agrees with every cell: alone it marks only
+    // the planted one.
+    let far = vertical(BoundaryKind::BackFlanksTouch, 0.0, 100.0);
+    assert_eq!(disagreements(&g, &s, &[&far]).0, vec![(3, 8)]);
+    // A second curve at Omega 0.95 (column 8.5) that says the back flanks
+    // touch on its lower-Omega side, where the cells are single-sided.
+    let mut near = far.clone();
+    near.points.iter_mut().for_each(|p| {
+        p.omega = 0.95;
+        p.normal = (1.0, 0.0);
+    });
+    let (marks, _) = disagreements(&g, &s, &[&near, &far]);
+    // Columns 7 and 8 lie on its changed side: every single-sided cell
+    // there disagrees with it. Column 8 is no longer judged by the curve at
+    // 1.0, beyond the nearer one, so its planted cell agrees (the back
+    // flanks touch there). Column 10 (Omega 1.1, double-sided) is within
+    // the band of the curve at 0.95, on its unchanged side, but the curve
+    // at 1.0 lies between: it is not marked.
+    let mut expected: Vec<(u32, u32)> = (0..11)
+        .flat_map(|r| [(r, 7), (r, 8)])
+        .filter(|&cell| cell != (3, 8))
+        .collect();
+    expected.sort_unstable();
+    assert_eq!(marks, expected);
+}
+
+#[test]
+fn cells_without_backlash_make_no_claim_about_the_back_flanks() {
+    let k = BoundaryKind::BackFlanksTouch;
+    let no_gap = map_cell(0, 0, Regime::NoGap, Some(1));
+    assert_eq!(agrees(k, None, true, &no_gap), None);
+    assert_eq!(agrees(k, None, false, &no_gap), None);
+}
