@@ -80,15 +80,22 @@ pub(crate) fn residual_at(
     Ok((r, j))
 }
 
-/// The residual's derivative in `p` at `(x, omega)`, by central differences
-/// between the family's neighbours of `p`.
-pub(crate) fn residual_p(fam: &mut Family, x: &[f64], omega: f64, p: f64) -> Result<Vec<f64>> {
+/// The residual's derivative in `p` at `(x, omega)`, differenced between
+/// the family's neighbours of `p` ([`Family::neighbours`]); `r` is the
+/// residual at `p` itself.
+pub(crate) fn residual_p(
+    fam: &mut Family,
+    x: &[f64],
+    omega: f64,
+    p: f64,
+    r: &[f64],
+) -> Result<Vec<f64>> {
     let nx = x.len();
     let (lo, hi) = fam.neighbours(p);
-    let (mut rp, mut rm) = (vec![0.0; nx], vec![0.0; nx]);
-    fam.evaluate(x, omega, hi, &mut rp, None)?;
-    fam.evaluate(x, omega, lo, &mut rm, None)?;
-    Ok((0..nx).map(|i| (rp[i] - rm[i]) / (hi - lo)).collect())
+    let (other, sign) = if hi == p { (lo, -1.0) } else { (hi, 1.0) };
+    let mut ro = vec![0.0; nx];
+    fam.evaluate(x, omega, other, &mut ro, None)?;
+    Ok((0..nx).map(|i| sign * (ro[i] - r[i]) / (hi - lo)).collect())
 }
 
 /// The residual and Jacobian of a system in `z = (X, Omega, p)` with one

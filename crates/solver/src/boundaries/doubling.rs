@@ -171,7 +171,7 @@ pub(crate) fn eval(
     let nx = z.len() - 2;
     let (x, omega, p) = (&z[..nx], z[nx], z[nx + 1]);
     let (r, j) = residual_at(fam, x, omega, p)?;
-    let r_p = residual_p(fam, x, omega, p)?;
+    let r_p = residual_p(fam, x, omega, p, &r)?;
     // One monodromy at `z` gives the test function, its orientation's
     // first multiplier and the other multipliers' stability.
     let mono = monodromies(fam, x, omega, p)?;

@@ -13,12 +13,12 @@
 //! curve's point budget): a model with more modes in the range has more
 //! curves, and longer ones, as they wind past more resonances. A point
 //! costs some three corrector iterations, each an evaluation with its
-//! Jacobian, two residuals and three assemblies (the point and its two
-//! neighbours in the key), a fold's two more Jacobians either side and a
-//! period doubling's four monodromies (the test and its three directional
-//! differences); six points in ten lie on contact curves, three on folds,
-//! one on a period doubling. The seeding branches add `levels` branches
-//! of `points + 60 R` points.
+//! Jacobian, a residual and two assemblies (the point and its neighbour
+//! in the key), a fold's three more Jacobians (two along its null vector,
+//! one in the key) and a period doubling's four monodromies (the test and
+//! its three directional differences); six points in ten lie on contact
+//! curves, three on folds, one on a period doubling. The seeding branches
+//! add `levels` branches of `points + 60 R` points.
 //!
 //! Measured (`gearshock boundaries`, `stats.work_units`), the estimate was
 //! within a factor of 2.5 of the work on both models, from the gear pair's
@@ -59,11 +59,9 @@ impl BoundarySpec {
             * branch_points
             * (BRANCH_ITERATIONS * cost.newton_iteration() + monodromy);
         let n = cost.unknowns();
-        let contact = cost.jacobian()
-            + 2.0 * cost.residual()
-            + 3.0 * cost.assembly()
-            + HbmCost::factor(n + 3);
-        let fold = contact + 4.0 * cost.jacobian() + 2.0 * HbmCost::factor(n + 1);
+        let contact =
+            cost.jacobian() + cost.residual() + 2.0 * cost.assembly() + HbmCost::factor(n + 3);
+        let fold = contact + 3.0 * cost.jacobian() + 2.0 * HbmCost::factor(n + 1);
         let doubling = contact + 4.0 * monodromy;
         // A map's trace of one mesh keeps that mesh's contact curves only.
         let contact_share = match self.contact_mesh {

@@ -183,11 +183,17 @@ fn fold_eval(
     // w^T (d/dv J): the gradient of w^T J v in X, and its Omega derivative.
     let wdv = w.transpose() * &dv;
     // Derivatives in p.
+    // One side is `p` itself (`Family::neighbours`): its residual and
+    // Jacobian are `r` and `j`.
     let (lo, hi) = fam.neighbours(p);
-    let (mut rp, mut rm) = (vec![0.0; nx], vec![0.0; nx]);
+    let (mut rp, mut rm) = (r.clone(), r.clone());
     let (mut jhi, mut jlo) = (j.clone(), j.clone());
-    fam.evaluate(x, omega, hi, &mut rp, Some(&mut jhi))?;
-    fam.evaluate(x, omega, lo, &mut rm, Some(&mut jlo))?;
+    if hi != p {
+        fam.evaluate(x, omega, hi, &mut rp, Some(&mut jhi))?;
+    }
+    if lo != p {
+        fam.evaluate(x, omega, lo, &mut rm, Some(&mut jlo))?;
+    }
     let h = hi - lo;
     let r_p: Vec<f64> = (0..nx).map(|i| (rp[i] - rm[i]) / h).collect();
     let jv_p = (jhi.columns(0, nx) - jlo.columns(0, nx)) * &v / h;
@@ -291,7 +297,7 @@ fn contact_eval(
     let h = hi - lo;
     let c1_p = (dot(&chi, &f) - s * bhi - dot(&clo, &f) + s * blo) / h;
     let c2_p = (dot(&chi, &d1) - dot(&clo, &d1)) / h;
-    let r_p = residual_p(fam, x, omega, p)?;
+    let r_p = residual_p(fam, x, omega, p, &r)?;
     let asm = fam.assembly(p)?;
     let m = asm.model.m;
     let d = asm.model.channels[channel].d.clone();
