@@ -1,11 +1,13 @@
 //! The harmonic-balance residual as a function of the orbit, Omega and a
 //! second parameter `p` (any numeric key that leaves the modal basis
 //! unchanged): one [`Assembly`] per value of `p`, built from the parameter
-//! set through the key table, and the derivatives in `p` by central
-//! differences.
+//! set through the key table (for `backlash_um`, which sets every mesh's
+//! backlash and nothing else, by setting the laws' backlash on one built
+//! model), and the derivatives in `p` by one-sided differences.
 
 use crate::error::{Result, SolverError};
 use crate::hbm::harmonic::Grid;
+use crate::hbm::model::Law;
 use crate::hbm::{Assembly, HbmCost, HbmModel, Method};
 use crate::keys::{self, KeyType, Value};
 use crate::model::Model;
@@ -37,6 +39,9 @@ pub(crate) struct Family {
     /// Work units spent so far ([`HbmCost`]): every evaluation, assembly,
     /// monodromy and factorization the curves made.
     pub(crate) work: f64,
+    /// For the key `backlash_um`: the model built at one value, whose laws'
+    /// backlash [`with_backlash`] sets for the others.
+    backlash_model: Option<HbmModel>,
 }
 
 impl Family {
@@ -69,6 +74,7 @@ impl Family {
         Ok(Family {
             cost: HbmCost::of(&hbm, Assembly::harmonics(h, method)),
             work: 0.0,
+            backlash_model: None,
             base: base.clone(),
             key: key.into(),
             method,
@@ -105,6 +111,26 @@ impl Family {
         )
     }
 
+    /// [`Self::hbm_at`], for `backlash_um` from the model built at its
+    /// first value: a corrector iteration needs two new values, and
+    /// building the mesh system and its harmonic-balance problem for each
+    /// was a sixth of the page's trace.
+    fn built_at(&mut self, p: f64) -> Result<HbmModel> {
+        if self.key != "backlash_um" {
+            return self.hbm_at(p);
+        }
+        // The key's value is checked as `hbm_at` checks it.
+        self.params_at(p)?;
+        match &self.backlash_model {
+            Some(base) => Ok(with_backlash(base, p)),
+            None => {
+                let hbm = self.hbm_at(p)?;
+                self.backlash_model = Some(hbm.clone());
+                Ok(hbm)
+            }
+        }
+    }
+
     /// The evaluator at `p`, built once per value.
     pub(crate) fn assembly(&mut self, p: f64) -> Result<&mut Assembly> {
         let bits = p.to_bits();
@@ -112,7 +138,7 @@ impl Family {
             Some(i) => i,
             None => {
                 self.work += self.cost.assembly();
-                let hbm = self.hbm_at(p)?;
+                let hbm = self.built_at(p)?;
                 // The evicted assembly's grid is the family's: moved, not
                 // copied again (a copy per new value of the key was a
                 // twentieth of the trace).
@@ -205,5 +231,40 @@ impl Family {
                 .iter()
                 .zip(&hb.channels)
                 .all(|(x, y)| x.d == y.d))
+    }
+}
+
+/// `base` with every mesh's backlash `backlash_um` (as the mesh system
+/// holds it, in metres, and the laws again in um: the same bits as a
+/// model built at that value).
+fn with_backlash(base: &HbmModel, backlash_um: f64) -> HbmModel {
+    let b_um = (backlash_um * 1e-6) * 1e6;
+    let mut hbm = base.clone();
+    for ch in &mut hbm.channels {
+        if let Law::Mesh { backlash_um, .. } = &mut ch.law {
+            *backlash_um = b_um;
+        }
+    }
+    hbm.mesh_backlash_um.iter_mut().for_each(|b| *b = b_um);
+    hbm
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::params::ModelKind;
+
+    #[test]
+    fn a_models_backlash_set_in_place_is_the_model_built_at_that_value() {
+        for base in [ModelKind::Ravigneaux, ModelKind::GearPair].map(ModelParams::defaults) {
+            for symmetric in [true, false] {
+                let fam =
+                    Family::new(&base, "backlash_um", 5, Method::Exact, symmetric, 200.0).unwrap();
+                let first = fam.hbm_at(37.5).unwrap();
+                for p in [0.0, 1e-3, 12.345678, 100.0, 199.99] {
+                    assert_eq!(with_backlash(&first, p), fam.hbm_at(p).unwrap(), "p = {p}");
+                }
+            }
+        }
     }
 }
