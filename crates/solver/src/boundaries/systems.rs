@@ -13,7 +13,7 @@
 //! singular. Its gradient is `g_z = -w^T J_z v` with `w` from the
 //! transposed system; `w^T J_X v` is the gradient of `w^T J v`, the
 //! directional derivative of the Jacobian along `v` (central differences
-//! of two Jacobians), and `J_p` a central difference in `p`. The cusp test
+//! of two Jacobians), and `J_p` a one-sided difference in `p`. The cusp test
 //! `kappa = w^T R_XX[v, v]`, the fold's quadratic coefficient, changes sign
 //! where two folds meet; the branch exists on the side of the fold where
 //! `kappa (w^T R_Omega dOmega + w^T R_p dp) < 0` (the fold's normal form).
