@@ -125,12 +125,46 @@ pub(crate) fn branch_rows(
 /// `j` and the `p` derivative `r_p`; zero where `J` is singular.
 pub(crate) fn branch_motion(j: &DMatrix<f64>, r_p: &[f64]) -> (DVector<f64>, DVector<f64>) {
     let nx = j.nrows();
-    let lu = crate::dense::Lu::new(j.columns(0, nx).into_owned());
-    match (
-        lu.solve(&j.column(nx).into_owned()),
-        lu.solve(&DVector::from_column_slice(r_p)),
-    ) {
-        (Some(a), Some(b)) => (-a, -b),
-        _ => (DVector::zeros(nx), DVector::zeros(nx)),
-    }
+    motion(&factor(j), j, r_p).unwrap_or_else(|| (DVector::zeros(nx), DVector::zeros(nx)))
+}
+
+/// The directions in `X` that the branch rows leave open at an iterate:
+/// the Newton step's part at fixed `(Omega, p)` (`J^-1 R`) and how `X`
+/// moves along the branch per unit `Omega` and per unit `p`
+/// ([`branch_motion`]).
+pub(crate) struct Directions {
+    pub(crate) newton: DVector<f64>,
+    pub(crate) omega: DVector<f64>,
+    pub(crate) p: DVector<f64>,
+}
+
+/// [`Directions`] from one factorization of `dR/dX`; `None` where it is
+/// singular.
+pub(crate) fn branch_directions(j: &DMatrix<f64>, r: &[f64], r_p: &[f64]) -> Option<Directions> {
+    let lu = factor(j);
+    let (omega, p) = motion(&lu, j, r_p)?;
+    Some(Directions {
+        newton: lu.solve(&DVector::from_column_slice(r))?,
+        omega,
+        p,
+    })
+}
+
+/// The factorization of `dR/dX`, the first `nx` columns of `j`.
+fn factor(j: &DMatrix<f64>) -> crate::dense::Lu {
+    let nx = j.nrows();
+    crate::dense::Lu::new(j.columns(0, nx).into_owned())
+}
+
+/// `-J^-1 R_Omega` and `-J^-1 R_p` from the factorization `lu` of `J`.
+fn motion(
+    lu: &crate::dense::Lu,
+    j: &DMatrix<f64>,
+    r_p: &[f64],
+) -> Option<(DVector<f64>, DVector<f64>)> {
+    let nx = j.nrows();
+    Some((
+        -lu.solve(&j.column(nx).into_owned())?,
+        -lu.solve(&DVector::from_column_slice(r_p))?,
+    ))
 }

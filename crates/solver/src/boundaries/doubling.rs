@@ -13,7 +13,10 @@
 //! circle (`lambda > -1`), read from how `g` and `lambda + 1` move together
 //! along the branch.
 
-use super::bordered::{bordered_solve, branch_rows, inf_norm, residual_at, residual_p, Eval};
+use super::bordered::{
+    bordered_solve, branch_directions, branch_rows, inf_norm, residual_at, residual_p, Directions,
+    Eval,
+};
 use super::family::Family;
 use crate::dense::eigenvalues;
 use crate::error::{Result, SolverError};
@@ -217,27 +220,6 @@ pub(crate) fn eval(
         } else {
             None
         },
-    })
-}
-
-/// The directions in `X` that the branch rows leave open at an iterate:
-/// the Newton step's part at fixed `(Omega, p)` (`J^-1 R`) and how `X`
-/// moves along the branch per unit `Omega` and per unit `p`.
-struct Directions {
-    newton: DVector<f64>,
-    omega: DVector<f64>,
-    p: DVector<f64>,
-}
-
-/// [`Directions`] from one factorization of `dR/dX`; `None` where it is
-/// singular.
-fn branch_directions(j: &DMatrix<f64>, r: &[f64], r_p: &[f64]) -> Option<Directions> {
-    let nx = j.nrows();
-    let lu = crate::dense::Lu::new(j.columns(0, nx).into_owned());
-    Some(Directions {
-        newton: lu.solve(&DVector::from_column_slice(r))?,
-        omega: -lu.solve(&j.column(nx).into_owned())?,
-        p: -lu.solve(&DVector::from_column_slice(r_p))?,
     })
 }
 
