@@ -70,6 +70,15 @@ impl Lu {
     /// reports the matrix singular. A non-square `a` is factored as the
     /// empty matrix, whose solves fail.
     pub fn new(a: DMatrix<f64>) -> Self {
+        crate::simd::dispatch(
+            #[inline(always)]
+            || Self::factor(a),
+        )
+    }
+
+    /// [`Lu::new`]'s body, inlined into the vector unit's dispatch.
+    #[inline(always)]
+    fn factor(a: DMatrix<f64>) -> Self {
         let (n, cols) = a.shape();
         if n != cols {
             return Lu {

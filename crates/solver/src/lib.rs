@@ -54,6 +54,7 @@ pub mod rpm;
 pub(crate) mod separation;
 pub mod sharing;
 pub mod shooting;
+pub(crate) mod simd;
 pub mod steady;
 pub mod sweep;
 pub mod system;

@@ -73,6 +73,8 @@ pub struct Assembly {
     force: Vec<f64>,
     slope: Vec<Complex<f64>>,
     op: Vec<f64>,
+    /// A Jacobian block's factors `coef d_a`, one per coordinate.
+    block_factors: Vec<f64>,
     /// Channel displacement coefficients of the last evaluation, channel after channel.
     pub channel_coef: Vec<f64>,
 }
@@ -179,6 +181,7 @@ impl Assembly {
             force: vec![0.0; nc],
             slope: vec![Complex::new(0.0, 0.0); 2 * h + 1],
             op: vec![0.0; nc * nc],
+            block_factors: Vec::new(),
             channel_coef: vec![0.0; model.channels.len() * nc],
             grid,
             model,
@@ -194,6 +197,22 @@ impl Assembly {
     /// `n_x` columns and `dR/dOmega` into column `n_x` (the matrix must be at
     /// least `n_x x (n_x + 1)`; every other entry is set to zero).
     pub fn evaluate(
+        &mut self,
+        x: &[f64],
+        omega: f64,
+        r: &mut [f64],
+        jac: Option<&mut DMatrix<f64>>,
+    ) {
+        // With the widest vector instructions (the same bits, `crate::simd`).
+        crate::simd::dispatch(
+            #[inline(always)]
+            || self.evaluate_here(x, omega, r, jac),
+        )
+    }
+
+    /// [`Assembly::evaluate`]'s body, inlined into the vector unit's dispatch.
+    #[inline(always)]
+    fn evaluate_here(
         &mut self,
         x: &[f64],
         omega: f64,
@@ -303,22 +322,30 @@ impl Assembly {
             }
             if let Some(j) = jac.as_deref_mut() {
                 mult_operator(&self.slope, self.h, &mut self.op);
-                // Column by column: the matrix is column-major.
+                // Block (p, q) gains `coef d d^T`, entry (a, b) the product
+                // `(coef d_a) d_b`. Column by column on the column-major
+                // storage, each column's `m` rows one contiguous slice, the
+                // factors `coef d_a` formed once per block.
+                let rows_total = j.nrows();
+                let storage = j.as_mut_slice();
+                let d = &ch.d;
+                let ca = &mut self.block_factors;
+                ca.resize(m, 0.0);
                 for q in 0..nc {
                     for p in 0..nc {
                         let coef = w * self.op[p * nc + q];
                         if coef == 0.0 {
                             continue;
                         }
-                        for b in 0..m {
-                            let db = ch.d[b];
-                            let mut col = j.column_mut(q * m + b);
-                            let rows = &mut col.as_mut_slice()[p * m..(p + 1) * m];
-                            for (entry, &da) in rows.iter_mut().zip(&ch.d) {
-                                let ca = coef * da;
-                                if ca != 0.0 {
-                                    *entry += ca * db;
-                                }
+                        for (c, &da) in ca.iter_mut().zip(d) {
+                            *c = coef * da;
+                        }
+                        for (b, &db) in d.iter().enumerate() {
+                            let start = (q * m + b) * rows_total + p * m;
+                            for (entry, &c) in storage[start..start + m].iter_mut().zip(ca.iter()) {
+                                // A zero factor adds nothing (not even a
+                                // signed zero), as before.
+                                *entry = if c != 0.0 { *entry + c * db } else { *entry };
                             }
                         }
                     }
