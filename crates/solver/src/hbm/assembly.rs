@@ -223,7 +223,7 @@ impl Assembly {
         let nc = n_coef(self.h);
         let nx = m * nc;
         if let Some(j) = jac.as_deref_mut() {
-            j.fill(0.0);
+            j.as_mut_slice().fill(0.0);
         }
         // Linear part.
         let k = &self.model.stiffness;

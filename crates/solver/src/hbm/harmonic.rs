@@ -94,6 +94,7 @@ impl Grid {
 
     /// Samples of the function with coefficients `coef` into `out`,
     /// coefficient by coefficient (vectorized over the samples).
+    #[inline(always)]
     pub fn synthesize(&self, coef: &[f64], out: &mut [f64]) {
         let n = self.n;
         out.fill(coef[0]);

@@ -165,6 +165,7 @@ impl LtpBlock {
 
     /// `K_eff` at theta into slot `slot` from [`Self::trig`], given
     /// `(cos(n theta), sin(n theta))` for `n = 1, 2, ...`.
+    #[inline(always)]
     fn set_stiffness_trig(&mut self, slot: usize, cos_sin: &[(f64, f64)]) {
         let k_eff = &mut self.k_eff[slot];
         k_eff.copy_from_slice(&self.trig[0]);
@@ -176,6 +177,7 @@ impl LtpBlock {
     }
 
     /// `K_eff = K0 + sum_j w_j s_j v_j v_j^T` for the channel slopes `s` into slot `slot`.
+    #[inline(always)]
     fn set_stiffness(&mut self, slot: usize, slopes: &[f64]) {
         let m = self.m;
         let k_eff = &mut self.k_eff[slot];
@@ -595,64 +597,64 @@ fn integrate_blocks(
         };
         let steps = ((b - a) / h_theta_max).ceil().max(1.0) as usize;
         let ht = (b - a) / steps as f64;
-        for step in 0..steps {
-            let t0 = a + step as f64 * ht;
-            // The end of a step is the start of the next (up to the
-            // rounding of theta): its stiffness is kept.
-            let first = if step == 0 {
-                0
-            } else {
-                main.k_eff.swap(0, 2);
-                if let Some(pb) = planet.as_mut() {
-                    pb.k_eff.swap(0, 2);
-                }
-                1
-            };
-            for (slot, theta) in [t0, t0 + 0.5 * ht, t0 + ht]
-                .into_iter()
-                .enumerate()
-                .skip(first)
-            {
-                if terms.is_some() {
-                    // cos(n theta) and sin(n theta) by the angle-sum formula.
-                    let (s1, c1) = theta.sin_cos();
-                    let (mut c, mut s) = (1.0, 0.0);
-                    for cs in cos_sin.iter_mut() {
-                        (c, s) = (c * c1 - s * s1, s * c1 + c * s1);
-                        *cs = (c, s);
+        // The piece's steps with the widest vector instructions (the same
+        // bits, `crate::simd`).
+        crate::simd::dispatch(
+            #[inline(always)]
+            || {
+                for step in 0..steps {
+                    let t0 = a + step as f64 * ht;
+                    // The end of a step is the start of the next (up to the
+                    // rounding of theta): its stiffness is kept.
+                    let first = if step == 0 {
+                        0
+                    } else {
+                        main.k_eff.swap(0, 2);
+                        if let Some(pb) = planet.as_mut() {
+                            pb.k_eff.swap(0, 2);
+                        }
+                        1
+                    };
+                    for (slot, theta) in [t0, t0 + 0.5 * ht, t0 + ht]
+                        .into_iter()
+                        .enumerate()
+                        .skip(first)
+                    {
+                        if terms.is_some() {
+                            // cos(n theta) and sin(n theta) by the angle-sum formula.
+                            let (s1, c1) = theta.sin_cos();
+                            let (mut c, mut s) = (1.0, 0.0);
+                            for cs in cos_sin.iter_mut() {
+                                (c, s) = (c * c1 - s * s1, s * c1 + c * s1);
+                                *cs = (c, s);
+                            }
+                            if blocks[0] {
+                                main.set_stiffness_trig(slot, &cos_sin);
+                            }
+                            if let Some(pb) = planet.as_mut() {
+                                pb.set_stiffness_trig(slot, &cos_sin);
+                            }
+                        } else {
+                            slopes_at(theta, &mut slopes);
+                            if blocks[0] {
+                                main.set_stiffness(slot, &slopes);
+                            }
+                            if let Some(pb) = planet.as_mut() {
+                                pb.set_stiffness(slot, &slopes);
+                            }
+                        }
                     }
-                    if blocks[0] {
-                        main.set_stiffness_trig(slot, &cos_sin);
-                    }
-                    if let Some(pb) = planet.as_mut() {
-                        pb.set_stiffness_trig(slot, &cos_sin);
-                    }
-                } else {
-                    slopes_at(theta, &mut slopes);
-                    if blocks[0] {
-                        main.set_stiffness(slot, &slopes);
-                    }
-                    if let Some(pb) = planet.as_mut() {
-                        pb.set_stiffness(slot, &slopes);
-                    }
-                }
-            }
-            // The step in tau.
-            let h_tau = ht / omega;
-            // Both blocks' steps with the widest vector instructions
-            // (the same bits, `crate::simd`).
-            crate::simd::dispatch(
-                #[inline(always)]
-                || {
+                    // The step in tau.
+                    let h_tau = ht / omega;
                     if blocks[0] {
                         main.rk4(h_tau);
                     }
                     if let Some(pb) = planet.as_mut() {
                         pb.rk4(h_tau);
                     }
-                },
-            );
-        }
+                }
+            },
+        );
     }
     Some((main, planet))
 }

@@ -117,6 +117,9 @@ pub struct FrfContinuation {
     queue: Vec<BranchPoint>,
     /// A failure to report once the points before it are returned.
     pending_error: Option<SolverError>,
+    /// The corrector's spent Jacobians and factors, their storage reused
+    /// by the next correction (two `n x n` matrices a point).
+    matrix_pool: Vec<DMatrix<f64>>,
 }
 
 /// Where the continuation stands: the last point `y` (harmonic
@@ -326,6 +329,7 @@ impl FrfContinuation {
             stats: FrfStats::default(),
             queue: Vec::new(),
             pending_error: None,
+            matrix_pool: Vec::new(),
             spec,
         })
     }

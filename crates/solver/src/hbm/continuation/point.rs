@@ -114,7 +114,11 @@ pub(super) fn extremes(grid: &harmonic::Grid, coef: &[f64], h: usize) -> (f64, f
     let n = grid.n;
     let dt = 2.0 * PI / n as f64;
     let mut vals = vec![0.0; n];
-    grid.synthesize(coef, &mut vals);
+    // With the widest vector instructions (the same bits, `crate::simd`).
+    crate::simd::dispatch(
+        #[inline(always)]
+        || grid.synthesize(coef, &mut vals),
+    );
     let refine = |i: usize| -> f64 {
         let (a, b, c) = (vals[(i + n - 1) % n], vals[i], vals[(i + 1) % n]);
         let den = a - 2.0 * b + c;
@@ -124,11 +128,16 @@ pub(super) fn extremes(grid: &harmonic::Grid, coef: &[f64], h: usize) -> (f64, f
         let off = (0.5 * (a - c) / den).clamp(-1.0, 1.0);
         eval_coef(coef, h, (i as f64 + off) * dt)
     };
-    let imax = (0..n)
-        .max_by(|&a, &b| vals[a].total_cmp(&vals[b]))
-        .unwrap_or(0);
-    let imin = (0..n)
-        .min_by(|&a, &b| vals[a].total_cmp(&vals[b]))
-        .unwrap_or(0);
+    // One pass, in the total order, with `max_by`'s and `min_by`'s ties:
+    // the last of equal largest samples, the first of equal smallest.
+    let (mut imin, mut imax) = (0, 0);
+    for (i, v) in vals.iter().enumerate().skip(1) {
+        if v.total_cmp(&vals[imax]).is_ge() {
+            imax = i;
+        }
+        if v.total_cmp(&vals[imin]).is_lt() {
+            imin = i;
+        }
+    }
     (refine(imin).min(vals[imin]), refine(imax).max(vals[imax]))
 }

@@ -262,6 +262,15 @@ impl FrfContinuation {
         c.iter().all(|v| v.is_finite()).then_some(c)
     }
 
+    /// An `n x n` matrix (its entries unspecified) from the corrector's
+    /// pool, or a new one.
+    fn pooled_matrix(&mut self, n: usize) -> DMatrix<f64> {
+        match self.matrix_pool.pop() {
+            Some(m) if m.shape() == (n, n) => m,
+            _ => DMatrix::zeros(n, n),
+        }
+    }
+
     /// Newton on the bordered system whose arclength row keeps the solution
     /// on the hyperplane through the predictor `pred` normal to the
     /// tangent, started at `guess`; returns the solution, its tangent and
@@ -278,7 +287,7 @@ impl FrfContinuation {
         // The bordered Jacobian: the residual's rows from `evaluate`, the
         // arclength row below them. A factorization takes it over, and the
         // one it replaces gives its storage back for the next.
-        let mut jac = DMatrix::zeros(n, n);
+        let mut jac = self.pooled_matrix(n);
         let weighted_t: Vec<f64> = (0..n)
             .map(|i| self.metric(i) * self.cursor.tangent[i])
             .collect();
@@ -323,7 +332,7 @@ impl FrfContinuation {
                 }
                 let spare = match lu.take() {
                     Some(old) => old.into_matrix(),
-                    None => DMatrix::zeros(n, n),
+                    None => self.pooled_matrix(n),
                 };
                 lu = Some(crate::dense::Lu::new(std::mem::replace(&mut jac, spare)));
             }
@@ -389,6 +398,10 @@ impl FrfContinuation {
                 } else {
                     iteration
                 };
+                self.matrix_pool.push(jac);
+                if let Some(spent) = lu.take() {
+                    self.matrix_pool.push(spent.into_matrix());
+                }
                 return Ok((y, t, effort));
             }
         }

@@ -234,6 +234,16 @@ impl SwitchTable {
     /// The samples of the functions with coefficients `a` and `b` into
     /// `out_a` and `out_b`, in one pass over the table.
     fn sample_pair(&self, a: &[f64], b: &[f64], out_a: &mut [f64], out_b: &mut [f64]) {
+        // With the widest vector instructions (the same bits, `crate::simd`).
+        crate::simd::dispatch(
+            #[inline(always)]
+            || self.sample_pair_here(a, b, out_a, out_b),
+        )
+    }
+
+    /// [`SwitchTable::sample_pair`]'s body, inlined into the dispatch.
+    #[inline(always)]
+    fn sample_pair_here(&self, a: &[f64], b: &[f64], out_a: &mut [f64], out_b: &mut [f64]) {
         let n = self.samples;
         out_a.fill(0.0);
         out_b.fill(0.0);
