@@ -77,7 +77,7 @@ impl Lu {
     }
 
     /// [`Lu::new`]'s body, inlined into the vector unit's dispatch.
-    #[inline(always)]
+    #[cfg_attr(target_arch = "x86_64", inline(always))]
     fn factor(a: DMatrix<f64>) -> Self {
         let (n, cols) = a.shape();
         if n != cols {
@@ -207,6 +207,15 @@ impl Lu {
     /// The solution of `A x = b`; `None` if `U` has a zero on its diagonal
     /// or `b`'s length is not `A`'s order.
     pub fn solve(&self, b: &DVector<f64>) -> Option<DVector<f64>> {
+        crate::simd::dispatch(
+            #[inline(always)]
+            || self.solve_here(b),
+        )
+    }
+
+    /// [`Lu::solve`]'s body, inlined into the vector unit's dispatch.
+    #[cfg_attr(target_arch = "x86_64", inline(always))]
+    fn solve_here(&self, b: &DVector<f64>) -> Option<DVector<f64>> {
         let n = self.n;
         if b.len() != n || n == 0 {
             return None;

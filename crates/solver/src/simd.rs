@@ -10,7 +10,16 @@
 
 /// Runs `kernel` with the processor's widest vector instructions enabled;
 /// the kernel's body and what it inlines are compiled for them.
+#[cfg(target_arch = "x86_64")]
 #[inline(always)]
 pub(crate) fn dispatch<R>(kernel: impl FnOnce() -> R) -> R {
     pulp::Arch::new().dispatch(kernel)
+}
+
+/// Elsewhere (WebAssembly) the kernel runs as compiled: one copy of it,
+/// not one per instruction set, in the page's bundles.
+#[cfg(not(target_arch = "x86_64"))]
+#[inline(always)]
+pub(crate) fn dispatch<R>(kernel: impl FnOnce() -> R) -> R {
+    kernel()
 }

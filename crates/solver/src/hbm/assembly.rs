@@ -211,7 +211,7 @@ impl Assembly {
     }
 
     /// [`Assembly::evaluate`]'s body, inlined into the vector unit's dispatch.
-    #[inline(always)]
+    #[cfg_attr(target_arch = "x86_64", inline(always))]
     fn evaluate_here(
         &mut self,
         x: &[f64],

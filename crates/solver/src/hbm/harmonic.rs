@@ -94,8 +94,14 @@ impl Grid {
 
     /// Samples of the function with coefficients `coef` into `out`,
     /// coefficient by coefficient (vectorized over the samples).
-    #[inline(always)]
     pub fn synthesize(&self, coef: &[f64], out: &mut [f64]) {
+        self.synthesize_here(coef, out);
+    }
+
+    /// [`Grid::synthesize`]'s body, for callers that inline it into the
+    /// vector unit's dispatch (`crate::simd`).
+    #[cfg_attr(target_arch = "x86_64", inline(always))]
+    pub(crate) fn synthesize_here(&self, coef: &[f64], out: &mut [f64]) {
         let n = self.n;
         out.fill(coef[0]);
         for k in 1..=self.h {

@@ -165,7 +165,7 @@ impl LtpBlock {
 
     /// `K_eff` at theta into slot `slot` from [`Self::trig`], given
     /// `(cos(n theta), sin(n theta))` for `n = 1, 2, ...`.
-    #[inline(always)]
+    #[cfg_attr(target_arch = "x86_64", inline(always))]
     fn set_stiffness_trig(&mut self, slot: usize, cos_sin: &[(f64, f64)]) {
         let k_eff = &mut self.k_eff[slot];
         k_eff.copy_from_slice(&self.trig[0]);
@@ -177,7 +177,7 @@ impl LtpBlock {
     }
 
     /// `K_eff = K0 + sum_j w_j s_j v_j v_j^T` for the channel slopes `s` into slot `slot`.
-    #[inline(always)]
+    #[cfg_attr(target_arch = "x86_64", inline(always))]
     fn set_stiffness(&mut self, slot: usize, slopes: &[f64]) {
         let m = self.m;
         let k_eff = &mut self.k_eff[slot];
@@ -201,7 +201,7 @@ impl LtpBlock {
 
     /// `stage = A(theta) z` (the derivative in tau) with `K_eff` from
     /// `slot`; `z` is the monodromy or the stage point `tmp`.
-    #[inline(always)]
+    #[cfg_attr(target_arch = "x86_64", inline(always))]
     fn deriv(&mut self, slot: usize, z_is_tmp: bool) {
         let z = if z_is_tmp { &self.tmp } else { &self.phi };
         let (k_eff, c, out) = (&self.k_eff[slot], &self.c, &mut self.stage);
@@ -217,7 +217,7 @@ impl LtpBlock {
 
     /// One classical Runge–Kutta step of size `ht` in tau (`theta / omega`)
     /// with the stiffness slots 0, 1 and 2 set for its start, middle and end.
-    #[inline(always)]
+    #[cfg_attr(target_arch = "x86_64", inline(always))]
     fn rk4(&mut self, ht: f64) {
         self.deriv(0, false);
         self.acc.copy_from_slice(&self.stage);
@@ -300,7 +300,7 @@ fn add_outer(mat: &mut [f64], coef: f64, v: &[f64]) {
 
 /// `out = A z` for `A = [[0, I], [-K_eff, -C]]` (`m x m` blocks,
 /// row-major `2m x 2m` matrices), any `m`.
-#[inline(always)]
+#[cfg_attr(target_arch = "x86_64", inline(always))]
 fn deriv_any(m: usize, k_eff: &[f64], c: &[f64], z: &[f64], out: &mut [f64]) {
     let n2 = 2 * m;
     // Position rows: the velocity rows.
@@ -326,7 +326,7 @@ fn deriv_any(m: usize, k_eff: &[f64], c: &[f64], z: &[f64], out: &mut [f64]) {
 }
 
 /// [`deriv_any`] for `m = M`, `2m = N2` (the same operations in the same order).
-#[inline(always)]
+#[cfg_attr(target_arch = "x86_64", inline(always))]
 fn deriv_fixed<const M: usize, const N2: usize>(
     k_eff: &[f64],
     c: &[f64],

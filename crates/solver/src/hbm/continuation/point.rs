@@ -117,7 +117,7 @@ pub(super) fn extremes(grid: &harmonic::Grid, coef: &[f64], h: usize) -> (f64, f
     // With the widest vector instructions (the same bits, `crate::simd`).
     crate::simd::dispatch(
         #[inline(always)]
-        || grid.synthesize(coef, &mut vals),
+        || grid.synthesize_here(coef, &mut vals),
     );
     let refine = |i: usize| -> f64 {
         let (a, b, c) = (vals[(i + n - 1) % n], vals[i], vals[(i + 1) % n]);

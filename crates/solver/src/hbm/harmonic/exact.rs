@@ -242,7 +242,7 @@ impl SwitchTable {
     }
 
     /// [`SwitchTable::sample_pair`]'s body, inlined into the dispatch.
-    #[inline(always)]
+    #[cfg_attr(target_arch = "x86_64", inline(always))]
     fn sample_pair_here(&self, a: &[f64], b: &[f64], out_a: &mut [f64], out_b: &mut [f64]) {
         let n = self.samples;
         out_a.fill(0.0);
