@@ -219,23 +219,39 @@ impl LtpBlock {
     /// with the stiffness slots 0, 1 and 2 set for its start, middle and end.
     #[cfg_attr(target_arch = "x86_64", inline(always))]
     fn rk4(&mut self, ht: f64) {
+        // Each stage's two updates in one pass (the same operations on
+        // each entry as one pass each).
         self.deriv(0, false);
-        self.acc.copy_from_slice(&self.stage);
-        for (t, (p, k)) in self.tmp.iter_mut().zip(self.phi.iter().zip(&self.stage)) {
+        let (phi, stage) = (&self.phi, &self.stage);
+        for ((a, t), (p, k)) in self
+            .acc
+            .iter_mut()
+            .zip(&mut self.tmp)
+            .zip(phi.iter().zip(stage))
+        {
+            *a = *k;
             *t = p + 0.5 * ht * k;
         }
         self.deriv(1, true);
-        for (a, k) in self.acc.iter_mut().zip(&self.stage) {
+        let (phi, stage) = (&self.phi, &self.stage);
+        for ((a, t), (p, k)) in self
+            .acc
+            .iter_mut()
+            .zip(&mut self.tmp)
+            .zip(phi.iter().zip(stage))
+        {
             *a += 2.0 * k;
-        }
-        for (t, (p, k)) in self.tmp.iter_mut().zip(self.phi.iter().zip(&self.stage)) {
             *t = p + 0.5 * ht * k;
         }
         self.deriv(1, true);
-        for (a, k) in self.acc.iter_mut().zip(&self.stage) {
+        let (phi, stage) = (&self.phi, &self.stage);
+        for ((a, t), (p, k)) in self
+            .acc
+            .iter_mut()
+            .zip(&mut self.tmp)
+            .zip(phi.iter().zip(stage))
+        {
             *a += 2.0 * k;
-        }
-        for (t, (p, k)) in self.tmp.iter_mut().zip(self.phi.iter().zip(&self.stage)) {
             *t = p + ht * k;
         }
         self.deriv(2, true);
@@ -325,7 +341,8 @@ fn deriv_any(m: usize, k_eff: &[f64], c: &[f64], z: &[f64], out: &mut [f64]) {
     }
 }
 
-/// [`deriv_any`] for `m = M`, `2m = N2` (the same operations in the same order).
+/// [`deriv_any`] for `m = M`, `2m = N2` (the same operations in the same
+/// order), on fixed-size rows: no bounds checks in the loops.
 #[cfg_attr(target_arch = "x86_64", inline(always))]
 fn deriv_fixed<const M: usize, const N2: usize>(
     k_eff: &[f64],
@@ -335,23 +352,25 @@ fn deriv_fixed<const M: usize, const N2: usize>(
 ) {
     let (z, _) = z.as_chunks::<N2>();
     let (out, _) = out.as_chunks_mut::<N2>();
-    out[..M].copy_from_slice(&z[M..]);
-    for r in 0..M {
+    let (k_rows, _) = k_eff.as_chunks::<M>();
+    let (c_rows, _) = c.as_chunks::<M>();
+    let (z, out) = (&z[..N2], &mut out[..N2]);
+    let (z_x, z_v) = z.split_at(M);
+    out[..M].copy_from_slice(z_v);
+    for ((k_row, c_row), out_row) in k_rows[..M].iter().zip(&c_rows[..M]).zip(&mut out[M..]) {
         let mut row = [0.0; N2];
-        for l in 0..M {
-            let (kl, cl) = (k_eff[r * M + l], c[r * M + l]);
-            if kl != 0.0 {
-                for (o, &v) in row.iter_mut().zip(&z[l]) {
-                    *o -= kl * v;
-                }
+        // No test for a zero factor (as `deriv_any` has): subtracting its
+        // zero product leaves every finite entry's bits as they were, since
+        // a row that starts at +0 never holds -0.
+        for (((&kl, &cl), zx), zv) in k_row.iter().zip(c_row).zip(z_x).zip(z_v) {
+            for (o, &v) in row.iter_mut().zip(zx) {
+                *o -= kl * v;
             }
-            if cl != 0.0 {
-                for (o, &v) in row.iter_mut().zip(&z[M + l]) {
-                    *o -= cl * v;
-                }
+            for (o, &v) in row.iter_mut().zip(zv) {
+                *o -= cl * v;
             }
         }
-        out[M + r] = row;
+        *out_row = row;
     }
 }
 
