@@ -189,8 +189,11 @@ impl Controller {
     }
 
     /// The selected-Omega small multiples (phase portraits or Poincaré
-    /// sections), one per member.
-    pub fn omega_panels(&self, offset: usize) -> Vec<Panel<OmegaResult>> {
+    /// sections), one per member, borrowing each member's result: the
+    /// page draws them and the status reads their titles at every
+    /// animation frame, and a result of 1000 recorded periods is
+    /// megabytes (cloning six of them was most of a family's redraw).
+    pub fn omega_panels(&self, offset: usize) -> Vec<Panel<&OmegaResult>> {
         let Some(f) = &self.family else {
             return Vec::new();
         };
@@ -200,16 +203,18 @@ impl Controller {
                 self.settings.view.omega,
             ))
         };
-        let panel = |c: &Computation, title: String| Panel {
-            title,
-            data: match (&c.omega, &c.omega_status().error) {
-                (_, Some(e)) => Err(format!("Not computed: {e}")),
-                (Some(r), None) => Ok(r.clone()),
-                (None, None) => waiting(),
-            },
-        };
         let comps = std::iter::once(&self.main).chain(f.members.iter().map(|m| &m.comp));
-        comps.zip(titles).map(|(c, t)| panel(c, t)).collect()
+        comps
+            .zip(titles)
+            .map(|(c, title)| Panel {
+                title,
+                data: match (&c.omega, &c.omega_status().error) {
+                    (_, Some(e)) => Err(format!("Not computed: {e}")),
+                    (Some(r), None) => Ok(r),
+                    (None, None) => waiting(),
+                },
+            })
+            .collect()
     }
 
     /// Whether a family member's job of `kind` (its branch, sweep or

@@ -6,6 +6,10 @@ use super::{Page, Write};
 use figures::views::fr::FrView;
 use figures::views::{ViewId, VIEWS};
 
+/// The most lines of the mesh force by order the status lists (the
+/// browser tests' runs of 40 recorded periods have 320).
+const STATUS_ORDER_LINES: usize = 4096;
+
 /// How long the Copy link's confirmation shows (ms).
 pub(crate) const TOAST_MS: f64 = 2000.0;
 
@@ -388,10 +392,23 @@ impl Page {
             o.insert("present".into(), self.present_status());
             o.insert("campbell".into(), self.campbell_status());
             // The mesh force by order as its export says it, with its text.
+            // Its lines only while they are few: the status is read at
+            // every animation frame while a test waits, and 1000 recorded
+            // periods give 8 000 lines (400 kB of JSON a frame).
             let orders = self.ctl.orders_view().ok().map(|v| {
                 let mut j = figures::views::orders::orders_json(&v);
                 j["label"] = serde_json::json!(v.label());
                 j["preview"] = serde_json::json!(v.preview);
+                j["lines"] = serde_json::json!(v.lines.len());
+                if v.lines.len() > STATUS_ORDER_LINES {
+                    if let Some(o) = j.as_object_mut() {
+                        o.remove("order");
+                        o.remove("amplitude_n");
+                    }
+                    if let Some(sum) = j["planet_sum"].as_object_mut() {
+                        sum.remove("per_planet_n");
+                    }
+                }
                 j
             });
             o.insert("orders".into(), serde_json::json!(orders));

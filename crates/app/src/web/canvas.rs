@@ -15,12 +15,29 @@ use web_sys::{CanvasRenderingContext2d, HtmlCanvasElement, Path2d};
 
 type Error = DrawingErrorKind<<CanvasBackend as DrawingBackend>::ErrorType>;
 
+/// The most text sizes [`MEASURED`] keeps before it starts again.
+const MEASURED_MAX: usize = 4096;
+
+thread_local! {
+    /// Text sizes measured, by CSS font and text: a redraw asks again for
+    /// the same tick labels and titles, and each measurement set the
+    /// canvas's font twice (a font string parsed each time). The page's
+    /// fonts are the system's generic families, whose metrics do not
+    /// change while the page is open.
+    static MEASURED: std::cell::RefCell<std::collections::HashMap<(String, String), (u32, u32)>> =
+        std::cell::RefCell::new(std::collections::HashMap::new());
+}
+
 /// A canvas backend whose text sizes come from `measureText`.
 pub(super) struct Canvas {
     inner: CanvasBackend,
     ctx: CanvasRenderingContext2d,
     /// The drawing's size, where it is not the canvas's (present mode).
     size: Option<(u32, u32)>,
+    /// Filled opaque circles waiting to be filled as one path, and their
+    /// colour ([`Canvas::flush`]).
+    dots: Vec<(BackendCoord, u32)>,
+    dots_color: Option<BackendColor>,
 }
 
 impl Canvas {
@@ -41,7 +58,62 @@ impl Canvas {
         let ctx = super::ctx2d(canvas)?;
         super::check(ctx.set_transform(scale, 0.0, 0.0, scale, 0.0, 0.0));
         let inner = CanvasBackend::with_canvas_object(canvas.clone())?;
-        Some(Self { inner, ctx, size })
+        Some(Self {
+            inner,
+            ctx,
+            size,
+            dots: Vec::new(),
+            dots_color: None,
+        })
+    }
+
+    /// Fills the waiting circles: one path of all of them and one fill.
+    /// plotters-canvas sets the colour, begins a path, draws an arc and
+    /// fills per circle (four calls into JavaScript): a family's six
+    /// Poincaré sections of 1000 periods were 6 000 fills. Opaque circles
+    /// filled together cover the same pixels as one by one. Every other
+    /// drawing call flushes first, so the order of what is drawn is kept.
+    fn flush(&mut self) -> Result<(), Error> {
+        let Some(color) = self.dots_color else {
+            return Ok(());
+        };
+        if self.dots.is_empty() {
+            return Ok(());
+        }
+        self.ctx.set_fill_style_str(&css::color(color));
+        let dots = std::mem::take(&mut self.dots);
+        // One path string of the circles, two arcs each, parsed once.
+        let mut d = String::with_capacity(40 * dots.len());
+        for &((x, y), r) in &dots {
+            use std::fmt::Write;
+            let (x, y, r) = (i64::from(x), i64::from(y), i64::from(r));
+            let _ = write!(
+                d,
+                "M{} {}a{r} {r} 0 1 0 {} 0a{r} {r} 0 1 0 {} 0z",
+                x + r,
+                y,
+                -2 * r,
+                2 * r
+            );
+        }
+        if let Ok(p2d) = Path2d::new_with_path_string(&d) {
+            self.ctx.fill_with_path_2d(&p2d);
+            return Ok(());
+        }
+        // The browser refused the path: each circle the plotters-canvas
+        // way, which reports why it fails.
+        for &(center, r) in &dots {
+            self.inner.draw_circle(center, r, &color, true)?;
+        }
+        Ok(())
+    }
+}
+
+/// Circles still waiting when a drawing ends without `present` are filled.
+impl Drop for Canvas {
+    fn drop(&mut self) {
+        // Nothing is left to report a failure to.
+        let _ = self.flush();
     }
 }
 
@@ -53,14 +125,17 @@ impl DrawingBackend for Canvas {
     }
 
     fn ensure_prepared(&mut self) -> Result<(), Error> {
+        self.flush()?;
         self.inner.ensure_prepared()
     }
 
     fn present(&mut self) -> Result<(), Error> {
+        self.flush()?;
         self.inner.present()
     }
 
     fn draw_pixel(&mut self, point: BackendCoord, color: BackendColor) -> Result<(), Error> {
+        self.flush()?;
         self.inner.draw_pixel(point, color)
     }
 
@@ -70,6 +145,7 @@ impl DrawingBackend for Canvas {
         to: BackendCoord,
         style: &S,
     ) -> Result<(), Error> {
+        self.flush()?;
         self.inner.draw_line(from, to, style)
     }
 
@@ -80,6 +156,7 @@ impl DrawingBackend for Canvas {
         style: &S,
         fill: bool,
     ) -> Result<(), Error> {
+        self.flush()?;
         self.inner.draw_rect(upper_left, bottom_right, style, fill)
     }
 
@@ -96,6 +173,7 @@ impl DrawingBackend for Canvas {
         if style.color().alpha == 0.0 {
             return Ok(());
         }
+        self.flush()?;
         let pts: Vec<BackendCoord> = path.into_iter().collect();
         let Some(Ok(p2d)) = long_path(&pts).map(|d| Path2d::new_with_path_string(&d)) else {
             return self.inner.draw_path(pts, style);
@@ -113,7 +191,24 @@ impl DrawingBackend for Canvas {
         style: &S,
         fill: bool,
     ) -> Result<(), Error> {
-        self.inner.draw_circle(center, radius, style, fill)
+        let color = style.color();
+        if color.alpha == 0.0 {
+            return Ok(());
+        }
+        // Translucent circles overlap visibly: drawn one by one.
+        if !fill || color.alpha < 1.0 {
+            self.flush()?;
+            return self.inner.draw_circle(center, radius, style, fill);
+        }
+        let same = self
+            .dots_color
+            .is_some_and(|c| c.rgb == color.rgb && c.alpha == color.alpha);
+        if !same {
+            self.flush()?;
+            self.dots_color = Some(color);
+        }
+        self.dots.push((center, radius));
+        Ok(())
     }
 
     fn fill_polygon<S: BackendStyle, I: IntoIterator<Item = BackendCoord>>(
@@ -121,6 +216,7 @@ impl DrawingBackend for Canvas {
         vert: I,
         style: &S,
     ) -> Result<(), Error> {
+        self.flush()?;
         self.inner.fill_polygon(vert, style)
     }
 
@@ -130,6 +226,7 @@ impl DrawingBackend for Canvas {
         style: &S,
         pos: BackendCoord,
     ) -> Result<(), Error> {
+        self.flush()?;
         self.inner.draw_text(text, style, pos)
     }
 
@@ -140,14 +237,26 @@ impl DrawingBackend for Canvas {
         text: &str,
         style: &S,
     ) -> Result<(u32, u32), Error> {
+        let font = css::font(style);
+        let key = (font, text.to_string());
+        if let Some(size) = MEASURED.with_borrow(|m| m.get(&key).copied()) {
+            return Ok(size);
+        }
         let saved = self.ctx.font();
-        self.ctx.set_font(&css::font(style));
+        self.ctx.set_font(&key.0);
         let m = self.ctx.measure_text(text);
         self.ctx.set_font(&saved);
         let m = m.map_err(|e| {
             DrawingErrorKind::FontError(Box::new(std::io::Error::other(format!("{e:?}"))))
         })?;
         let height = m.font_bounding_box_ascent() + m.font_bounding_box_descent();
-        Ok((m.width().round() as u32, height.round() as u32))
+        let size = (m.width().round() as u32, height.round() as u32);
+        MEASURED.with_borrow_mut(|cache| {
+            if cache.len() >= MEASURED_MAX {
+                cache.clear();
+            }
+            cache.insert(key, size);
+        });
+        Ok(size)
     }
 }

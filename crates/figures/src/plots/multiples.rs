@@ -72,8 +72,8 @@ pub fn bif_ranges(panels: &[Panel<BifView>]) -> ((f64, f64), (f64, f64)) {
 
 /// The shared axes of phase-plane panels: one x range holding every
 /// orbit, one velocity range holding every orbit.
-pub fn phase_ranges(panels: &[Panel<OmegaResult>]) -> ((f64, f64), (f64, f64)) {
-    let ok = || panels.iter().filter_map(|p| p.data.as_ref().ok());
+pub fn phase_ranges(panels: &[Panel<&OmegaResult>]) -> ((f64, f64), (f64, f64)) {
+    let ok = || panels.iter().filter_map(|p| p.data.as_ref().ok().copied());
     // The axes fit the orbits, as every plot's do (the ±b lines are drawn
     // where they fall in range): at b = 200 µm an orbit near +b would
     // otherwise fill a sliver of a panel that spans the whole clearance.
@@ -355,7 +355,7 @@ pub fn phase_panel_title(title: &str, r: &OmegaResult) -> String {
 /// in its member's colour.
 pub fn draw_phase_panels<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
-    panels: &[Panel<OmegaResult>],
+    panels: &[Panel<&OmegaResult>],
     poincare: bool,
     status: &str,
 ) -> Res<()> {
@@ -414,7 +414,10 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
             if no_backlash { "x = 0 (no backlash)" } else { "±b, in the panel's colour" }
         );
     }
-    if panels.iter().any(|p| p.data.as_ref().is_ok_and(unsettled)) {
+    if panels
+        .iter()
+        .any(|p| p.data.as_ref().is_ok_and(|r| unsettled(r)))
+    {
         key.push_str("; ");
         key.push_str(crate::story::STILL_SETTLING_KEY);
     }

@@ -234,14 +234,15 @@ fn small_multiples_draw_every_panel_with_its_title() {
     other.x_um.iter_mut().for_each(|x| *x -= 400.0);
     other.period = None;
     other.motion = crate::protocol::Motion::NotPeriodic;
+    let first = result();
     let panels = vec![
         Panel {
             title: "(a) TE 0 µm".into(),
-            data: Ok(result()),
+            data: Ok(&first),
         },
         Panel {
             title: "(b) TE 20 µm".into(),
-            data: Ok(other),
+            data: Ok(&other),
         },
         Panel {
             title: "(c) TE 30 µm".into(),
@@ -572,10 +573,13 @@ fn family_phase_panels_draw_the_last_periods_within_a_budget() {
         (64_000 - 250 * 64, 250)
     );
     assert_eq!(multiples::panel_orbit_tail(&long(0), 1), (0, 1000));
-    let panels: Vec<Panel<OmegaResult>> = (0..6)
-        .map(|k| Panel {
+    let orbits: Vec<OmegaResult> = (0..6).map(long).collect();
+    let panels: Vec<Panel<&OmegaResult>> = orbits
+        .iter()
+        .enumerate()
+        .map(|(k, r)| Panel {
             title: format!("({k})"),
-            data: Ok(long(k)),
+            data: Ok(r),
         })
         .collect();
     let size = multiples::family_panels_size(6);
@@ -593,10 +597,11 @@ fn family_phase_panels_draw_the_last_periods_within_a_budget() {
         multiples::draw_phase_panels(root, &panels, true, "")
     });
     assert!(!s.contains("recorded periods"));
-    let short: Vec<Panel<OmegaResult>> = (0..6)
+    let short_orbit = result();
+    let short: Vec<Panel<&OmegaResult>> = (0..6)
         .map(|k| Panel {
             title: format!("({k})"),
-            data: Ok(result()),
+            data: Ok(&short_orbit),
         })
         .collect();
     assert_eq!(multiples::panel_orbit_tail(&result(), 6), (0, 20));
