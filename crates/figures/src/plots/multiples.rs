@@ -410,7 +410,7 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
         .max_by_key(|&(shown, _)| shown);
     if let (false, Some((shown, recorded))) = (poincare, cut) {
         key = format!(
-            "Line: the orbit's last {shown} of {recorded} recorded periods; red dots: the Poincaré points of all of them; dashed: {}",
+            "Line: the orbit's last {shown} of {recorded} recorded periods; red dots: the Poincaré points of all of them; dotted: {}",
             if no_backlash { "x = 0 (no backlash)" } else { "±b, in the panel's colour" }
         );
     }
