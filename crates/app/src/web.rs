@@ -317,8 +317,8 @@ fn frame(page: &Shared, ts: f64) {
 fn paint(p: &Shell, writes: Vec<Write>) {
     for w in writes {
         let Some(e) = w.id().and_then(|id| p.doc.get_element_by_id(id)) else {
-            if let (Write::Url(q), Ok(h)) = (&w, p.window.history()) {
-                check(h.replace_state_with_url(&JsValue::NULL, "", Some(&format!("?{q}"))));
+            if let Write::Url(q) = &w {
+                write_url(&p.window, q);
             }
             continue;
         };
@@ -357,6 +357,21 @@ fn paint(p: &Shell, writes: Vec<Write>) {
             Write::Url(_) => {}
         }
     }
+}
+
+/// Writes `query` into the address bar, in a task of its own after this
+/// one: the browser's history call takes 15-70 ms of the main thread on a
+/// busy machine (measured), which would otherwise lengthen the frame that
+/// drew the views.
+fn write_url(window: &Window, query: &str) {
+    let url = format!("?{query}");
+    let w = window.clone();
+    let cb = Closure::once_into_js(move || {
+        if let Ok(h) = w.history() {
+            check(h.replace_state_with_url(&JsValue::NULL, "", Some(&url)));
+        }
+    });
+    check(window.set_timeout_with_callback(cb.unchecked_ref()));
 }
 
 /// Places `card` clear of the elements `keep_clear` (its target first)

@@ -6,7 +6,7 @@
 //! the main thread.
 
 use figures::plots::css;
-use figures::plots::decimate::long_path;
+use figures::plots::decimate::{crisp_line, long_path, polylines_path};
 use plotters_backend::{
     BackendColor, BackendCoord, BackendStyle, BackendTextStyle, DrawingBackend, DrawingErrorKind,
 };
@@ -28,16 +28,32 @@ thread_local! {
         std::cell::RefCell::new(std::collections::HashMap::new());
 }
 
+/// Drawing calls waiting to be made as one ([`Canvas::flush`]).
+enum Batch {
+    /// Nothing waits.
+    Empty,
+    /// Filled opaque circles of one colour: centres and radii.
+    Dots {
+        color: BackendColor,
+        dots: Vec<(BackendCoord, u32)>,
+    },
+    /// Opaque lines and short paths of one colour and width, as polylines
+    /// in canvas coordinates.
+    Strokes {
+        color: BackendColor,
+        width: u32,
+        paths: Vec<Vec<(f64, f64)>>,
+    },
+}
+
 /// A canvas backend whose text sizes come from `measureText`.
 pub(super) struct Canvas {
     inner: CanvasBackend,
     ctx: CanvasRenderingContext2d,
     /// The drawing's size, where it is not the canvas's (present mode).
     size: Option<(u32, u32)>,
-    /// Filled opaque circles waiting to be filled as one path, and their
-    /// colour ([`Canvas::flush`]).
-    dots: Vec<(BackendCoord, u32)>,
-    dots_color: Option<BackendColor>,
+    /// What waits to be drawn in one call.
+    batch: Batch,
 }
 
 impl Canvas {
@@ -62,29 +78,43 @@ impl Canvas {
             inner,
             ctx,
             size,
-            dots: Vec::new(),
-            dots_color: None,
+            batch: Batch::Empty,
         })
     }
 
-    /// Fills the waiting circles: one path of all of them and one fill.
-    /// plotters-canvas sets the colour, begins a path, draws an arc and
-    /// fills per circle (four calls into JavaScript): a family's six
-    /// Poincaré sections of 1000 periods were 6 000 fills. Opaque circles
-    /// filled together cover the same pixels as one by one. Every other
-    /// drawing call flushes first, so the order of what is drawn is kept.
+    /// Makes the waiting calls as one. plotters-canvas sets the colour,
+    /// begins a path, draws and fills or strokes per circle, line and
+    /// path (four or more calls into JavaScript, the colour formatted as
+    /// text each time): a family's six Poincaré sections of 1000 periods
+    /// were 6 000 fills, a dotted line across a plot 140 strokes.
+    /// Opaque shapes of one colour drawn together cover the same pixels
+    /// as one by one. Every other drawing call flushes first, so the
+    /// order of what is drawn is kept.
     fn flush(&mut self) -> Result<(), Error> {
-        let Some(color) = self.dots_color else {
-            return Ok(());
-        };
-        if self.dots.is_empty() {
-            return Ok(());
+        match std::mem::replace(&mut self.batch, Batch::Empty) {
+            Batch::Empty => Ok(()),
+            Batch::Dots { color, dots } => self.fill_dots(color, &dots),
+            Batch::Strokes {
+                color,
+                width,
+                paths,
+            } => {
+                self.stroke_paths(color, width, &paths);
+                Ok(())
+            }
         }
+    }
+
+    /// Fills `dots` in `color`: one path string of the circles, two arcs
+    /// each, parsed once, and one fill.
+    fn fill_dots(
+        &mut self,
+        color: BackendColor,
+        dots: &[(BackendCoord, u32)],
+    ) -> Result<(), Error> {
         self.ctx.set_fill_style_str(&css::color(color));
-        let dots = std::mem::take(&mut self.dots);
-        // One path string of the circles, two arcs each, parsed once.
         let mut d = String::with_capacity(40 * dots.len());
-        for &((x, y), r) in &dots {
+        for &((x, y), r) in dots {
             use std::fmt::Write;
             let (x, y, r) = (i64::from(x), i64::from(y), i64::from(r));
             let _ = write!(
@@ -102,14 +132,64 @@ impl Canvas {
         }
         // The browser refused the path: each circle the plotters-canvas
         // way, which reports why it fails.
-        for &(center, r) in &dots {
+        for &(center, r) in dots {
             self.inner.draw_circle(center, r, &color, true)?;
         }
         Ok(())
     }
+
+    /// Strokes `paths` in `color` and `width`: one path string, one stroke.
+    fn stroke_paths(&mut self, color: BackendColor, width: u32, paths: &[Vec<(f64, f64)>]) {
+        self.ctx.set_stroke_style_str(&css::color(color));
+        self.ctx.set_line_width(f64::from(width));
+        if let Ok(p2d) = Path2d::new_with_path_string(&polylines_path(paths)) {
+            self.ctx.stroke_with_path(&p2d);
+            return;
+        }
+        // The browser refused the path string: one path of calls.
+        self.ctx.begin_path();
+        for path in paths {
+            let mut pts = path.iter();
+            if let Some(&(x, y)) = pts.next() {
+                self.ctx.move_to(x, y);
+            }
+            for &(x, y) in pts {
+                self.ctx.line_to(x, y);
+            }
+        }
+        self.ctx.stroke();
+    }
+
+    /// Adds an opaque polyline of `style` to the strokes waiting, or
+    /// flushes what waits and starts a new batch with it.
+    fn stroke_later<S: BackendStyle>(
+        &mut self,
+        path: Vec<(f64, f64)>,
+        style: &S,
+    ) -> Result<(), Error> {
+        let (color, width) = (style.color(), style.stroke_width());
+        if let Batch::Strokes {
+            color: c,
+            width: w,
+            paths,
+        } = &mut self.batch
+        {
+            if c.rgb == color.rgb && *w == width {
+                paths.push(path);
+                return Ok(());
+            }
+        }
+        self.flush()?;
+        self.batch = Batch::Strokes {
+            color,
+            width,
+            paths: vec![path],
+        };
+        Ok(())
+    }
 }
 
-/// Circles still waiting when a drawing ends without `present` are filled.
+/// Shapes still waiting when a drawing ends without `present` are drawn.
 impl Drop for Canvas {
     fn drop(&mut self) {
         // Nothing is left to report a failure to.
@@ -145,8 +225,15 @@ impl DrawingBackend for Canvas {
         to: BackendCoord,
         style: &S,
     ) -> Result<(), Error> {
-        self.flush()?;
-        self.inner.draw_line(from, to, style)
+        let color = style.color();
+        if color.alpha == 0.0 {
+            return Ok(());
+        }
+        if color.alpha < 1.0 {
+            self.flush()?;
+            return self.inner.draw_line(from, to, style);
+        }
+        self.stroke_later(crisp_line(from, to), style)
     }
 
     fn draw_rect<S: BackendStyle>(
@@ -173,9 +260,17 @@ impl DrawingBackend for Canvas {
         if style.color().alpha == 0.0 {
             return Ok(());
         }
-        self.flush()?;
         let pts: Vec<BackendCoord> = path.into_iter().collect();
-        let Some(Ok(p2d)) = long_path(&pts).map(|d| Path2d::new_with_path_string(&d)) else {
+        let long = long_path(&pts);
+        if long.is_none() && style.color().alpha >= 1.0 {
+            let path = pts
+                .iter()
+                .map(|&(x, y)| (f64::from(x), f64::from(y)))
+                .collect();
+            return self.stroke_later(path, style);
+        }
+        self.flush()?;
+        let Some(Ok(p2d)) = long.map(|d| Path2d::new_with_path_string(&d)) else {
             return self.inner.draw_path(pts, style);
         };
         self.ctx.set_stroke_style_str(&css::color(style.color()));
@@ -200,14 +295,17 @@ impl DrawingBackend for Canvas {
             self.flush()?;
             return self.inner.draw_circle(center, radius, style, fill);
         }
-        let same = self
-            .dots_color
-            .is_some_and(|c| c.rgb == color.rgb && c.alpha == color.alpha);
-        if !same {
-            self.flush()?;
-            self.dots_color = Some(color);
+        if let Batch::Dots { color: c, dots } = &mut self.batch {
+            if c.rgb == color.rgb {
+                dots.push((center, radius));
+                return Ok(());
+            }
         }
-        self.dots.push((center, radius));
+        self.flush()?;
+        self.batch = Batch::Dots {
+            color,
+            dots: vec![(center, radius)],
+        };
         Ok(())
     }
 

@@ -119,6 +119,38 @@ pub fn svg_path(pts: &[Px]) -> String {
     d
 }
 
+/// SVG path data of polylines in canvas coordinates, "M1 2L3 4.5M...":
+/// half pixels kept, one path for many strokes.
+pub fn polylines_path(paths: &[Vec<(f64, f64)>]) -> String {
+    use std::fmt::Write;
+    let mut d = String::with_capacity(paths.iter().map(|p| 12 * p.len()).sum());
+    for path in paths {
+        for (k, &(x, y)) in path.iter().enumerate() {
+            let _ = write!(d, "{}{x} {y}", if k == 0 { 'M' } else { 'L' });
+        }
+    }
+    d
+}
+
+/// A line's ends as plotters-canvas strokes them: a horizontal or vertical
+/// line half a pixel up or left, on the pixels' centres, so that one pixel
+/// wide is sharp.
+pub fn crisp_line(from: Px, to: Px) -> Vec<(f64, f64)> {
+    let (mut a, mut b) = (
+        (f64::from(from.0), f64::from(from.1)),
+        (f64::from(to.0), f64::from(to.1)),
+    );
+    if from.0 == to.0 {
+        a.0 -= 0.5;
+        b.0 -= 0.5;
+    }
+    if from.1 == to.1 {
+        a.1 -= 0.5;
+        b.1 -= 0.5;
+    }
+    vec![a, b]
+}
+
 /// Appends the decimal digits of `v` (no allocation per number).
 fn push_int(s: &mut String, v: i32) {
     if v < 0 {
@@ -248,5 +280,19 @@ mod tests {
         let d = long_path(&pts[..32]).expect("a long path");
         assert_eq!((d.matches('M').count(), d.matches('L').count()), (1, 31));
         assert!(d.ends_with("L31 62"));
+    }
+
+    #[test]
+    fn strokes_batched_as_one_path_keep_their_half_pixels() {
+        let h = crisp_line((1, 5), (9, 5));
+        let v = crisp_line((3, 0), (3, 7));
+        let d = crisp_line((0, 0), (4, 3));
+        assert_eq!(h, vec![(1.0, 4.5), (9.0, 4.5)]);
+        assert_eq!(v, vec![(2.5, 0.0), (2.5, 7.0)]);
+        assert_eq!(d, vec![(0.0, 0.0), (4.0, 3.0)]);
+        assert_eq!(
+            polylines_path(&[h, v, vec![(1.0, 2.0), (3.0, 4.0), (5.0, -6.0)]]),
+            "M1 4.5L9 4.5M2.5 0L2.5 7M1 2L3 4L5 -6"
+        );
     }
 }

@@ -203,7 +203,12 @@ fn omega_options(job: &OmegaJob, preview: bool) -> Result<SteadyOptions, OmegaEr
     opts.record_periods = spec.run.record_periods;
     opts.samples_per_period = spec.samples_per_period.clamp(8, 256);
     if preview {
+        // Integration only: shooting's Newton steps on the variational
+        // equations tripled the preview's time on the main thread (36 ms
+        // a slider change in the browser, measured); the worker's full
+        // run finds the exact orbit.
         opts.max_steps_per_period = PREVIEW_STEPS_PER_PERIOD;
+        opts.shooting = false;
     }
     // Every mesh's history: the animated gear set colours every mesh.
     opts.history_meshes = (0..n_mesh).collect();
