@@ -58,10 +58,12 @@ export async function start(context = {}) {
 
 /**
  * Opens a page at `query`, recording console errors and page errors;
- * `workers` (optional) sets the page's worker pool (window.gearshockWorkers).
+ * `workers` (optional) sets the page's worker pool (window.gearshockWorkers);
+ * `init` (optional) is a function run in the page before its own scripts.
  */
-export async function open(browser, url, query = '', workers = undefined) {
+export async function open(browser, url, query = '', workers = undefined, init = undefined) {
   const page = await browser.newPage();
+  if (init !== undefined) await page.addInitScript(init);
   const errors = [];
   page.on('console', (m) => {
     if (m.type() === 'error') errors.push(m.text());

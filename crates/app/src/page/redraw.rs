@@ -45,6 +45,9 @@ pub struct Redraw {
     pub max_draw_ms: [f64; N],
     /// When each view was first drawn (ms, 0 before).
     pub first_draw_ms: [f64; N],
+    /// Draws per progressive view while its job ran with some of its
+    /// points in: the partial pictures a user saw.
+    pub partial_draws: [u32; N],
 }
 
 impl Redraw {
@@ -99,6 +102,9 @@ impl Redraw {
             return Decision::Skip;
         }
         self.need[k] = false;
+        if running && status.is_some_and(|s| s.done > 0) {
+            self.partial_draws[k] += 1;
+        }
         Decision::Draw
     }
 
@@ -253,6 +259,7 @@ mod tests {
         assert!(r.needs(ViewId::Bif));
         // The first data arrive: drawn at once.
         st.first_data_ms = Some(115.0);
+        st.done = 3;
         let s1 = status(&st);
         let drawn = plan(&mut r, 120.0, 1.0, |v| (v == ViewId::Bif).then_some(&s1));
         assert_eq!(drawn, vec![ViewId::Bif]);
@@ -271,6 +278,10 @@ mod tests {
         assert!(
             plan(&mut r, 400.0, 1.0, |v| (v == ViewId::Bif).then_some(&s2)).contains(&ViewId::Bif)
         );
+        // Partial pictures: the two drawn with points in while it ran (not
+        // the empty start, not the finished diagram).
+        assert_eq!(r.partial_draws[ViewId::Bif.slot()], 2);
+        assert_eq!(r.draws[ViewId::Bif.slot()], 4);
     }
 
     /// One drawer per frame, whichever callback runs first, and neither

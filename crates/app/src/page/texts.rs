@@ -329,6 +329,7 @@ impl Page {
         if let Some(o) = v.as_object_mut() {
             let r = &self.redraw;
             o.insert("draws".into(), serde_json::json!(r.draws));
+            o.insert("partial_draws".into(), serde_json::json!(r.partial_draws));
             o.insert("te_file".into(), self.te_status());
             o.insert("last_draw_ms".into(), serde_json::json!(r.last_draw_ms));
             o.insert("max_draw_ms".into(), serde_json::json!(r.max_draw_ms));
