@@ -35,10 +35,6 @@ after(async () => {
   await h?.close();
 });
 
-/** The limit on one main-thread task's CPU time while a family of six
- * draws 1000-period orbits (see that test). */
-const FAMILY_LIMIT_MS = 250;
-
 /** Whether view `slot` was drawn after time `t` (ms, page clock). */
 const drawnAfter = (s, slot, t) => Boolean(t) && s.last_draw_ms[slot] > t;
 
@@ -71,7 +67,7 @@ test('at the largest allowed settings no main-thread task blocks the page', asyn
   await page.close();
 });
 
-test('a family of six at 1000 recorded periods draws its small multiples without a main-thread task of 250 ms', async () => {
+test('a family of six at 1000 recorded periods draws its small multiples a panel a frame, no main-thread task over its limit', async () => {
   // Fig. 6's Omega 0.84, TE 0 to 50 µm: most of the six orbits chaotic, so
   // hardly any two samples share a pixel segment of a small panel.
   const q = 'record_periods=1000&backlash_um=200&te_meshes=s1a&omega=0.84&family=te_um:0,10,20,30,40,50';
@@ -83,14 +79,11 @@ test('a family of six at 1000 recorded periods draws its small multiples without
   const s = await waitStatus(page, (s) => arrived(s) && omegaDrawn(s, last(s)), 900000, 'the six 1000-period orbits, drawn');
   const beat = await stopWatch(page);
   console.log(`# family of six at 1000 periods: ${watchReport(beat)}`);
-  // Six phase portraits redrawn in one frame, each member's orbit and its
-  // 1000 Poincaré dots, are the page's largest main-thread task: 50 to
-  // 180 ms of CPU on this 2-core machine from run to run with both workers
-  // busy (the browser's own raster and commit inside it). Held here to
-  // FAMILY_LIMIT_MS, not TASK_LIMIT_MS, until the small multiples draw
-  // across frames.
-  const over = beat.longs.filter(([, cpu]) => cpu >= FAMILY_LIMIT_MS);
-  assert.deepEqual(over, [], `main-thread tasks over ${FAMILY_LIMIT_MS} ms of CPU: ${watchReport(beat)}`);
+  // Six phase portraits, each member's orbit and its 1000 Poincaré dots,
+  // drawn in one frame were the page's largest main-thread task (50 to
+  // 180 ms of CPU with both workers busy, the browser's raster and commit
+  // inside it): the page draws them a panel a frame.
+  assert.deepEqual(beat.over, [], `main-thread tasks over their limit: ${watchReport(beat)}`);
   const st = await canvasStats(page, 'canvas-phase');
   assert.ok(st.ink > st.total * 0.02, 'the phase panels look empty');
   await shot(page.locator('#view-phase'), '32-family-six-1000-periods');

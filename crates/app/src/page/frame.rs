@@ -56,9 +56,11 @@ impl Page {
         let size = b.get_size();
         let boxes = Rc::new(RefCell::new(Vec::new()));
         let root = Boxed::new(b, boxes.clone()).into_drawing_area();
+        // A later part adds to the canvas, and its texts to the first's.
+        let later = self.part_now(view).is_some_and(|k| k > 0);
         let drawn = self.draw_view(view, &root, fr);
         drop(root);
-        self.set_text_boxes(view, size, boxes.take());
+        self.set_text_boxes(view, size, boxes.take(), later);
         drawn
     }
 }

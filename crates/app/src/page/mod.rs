@@ -513,12 +513,29 @@ impl Page {
 
     /// Records that `view` was drawn from `start_ms` to `end_ms` in frame `ts`.
     pub fn drawn(&mut self, view: ViewId, (start_ms, end_ms): (f64, f64), ts: f64) {
-        self.redraw.drawn(view, start_ms, end_ms);
+        let parts = self.parts(view);
+        self.redraw.drawn(view, start_ms, end_ms, parts);
         self.turn.views_drew(ts);
         let preview = self.ctl.main().omega.as_ref().is_some_and(|r| r.preview);
         if view == ViewId::Phase && preview && self.ctl.family().is_none() {
             self.telemetry.preview_drawn = Some((end_ms, self.ctl.summary_text()));
         }
+    }
+
+    /// The parts `view` is drawn in, one an animation frame
+    /// ([`crate::controller::Controller::parts`]); whole (1) on the stage
+    /// of present mode.
+    pub fn parts(&self, view: ViewId) -> usize {
+        if self.presented_view() == Some(view) {
+            1
+        } else {
+            self.ctl.parts(view)
+        }
+    }
+
+    /// The part of `view` to draw now, if it is drawn in parts.
+    pub fn part_now(&self, view: ViewId) -> Option<usize> {
+        (self.parts(view) > 1).then(|| self.redraw.part(view))
     }
 
     /// Whether views still wait to be drawn (another frame is needed).
@@ -542,14 +559,21 @@ impl Page {
     }
 
     /// Records the text boxes of `view`'s last drawing on its canvas of
-    /// `size` pixels.
+    /// `size` pixels; with `add`, those of a later part of it, beside the
+    /// earlier parts'.
     pub fn set_text_boxes(
         &mut self,
         view: ViewId,
         size: (u32, u32),
         boxes: Vec<figures::plots::TextBox>,
+        add: bool,
     ) {
-        self.telemetry.text_boxes[view.slot()] = (size, boxes);
+        let slot = &mut self.telemetry.text_boxes[view.slot()];
+        if add && slot.0 == size {
+            slot.1.extend(boxes);
+        } else {
+            *slot = (size, boxes);
+        }
     }
 
     /// Records the plot frame `view` was drawn in (`None`: nothing to click).

@@ -70,7 +70,10 @@ impl Page {
                     .map(|()| None)
                     .map_err(SvgError::from)
             }
-            None => self.ctl.plot(view, root, &suffix, fr).map(Some),
+            None => self
+                .ctl
+                .plot(view, root, &suffix, fr, self.part_now(view))
+                .map(Some),
         };
         if view == ViewId::Time {
             self.anim_touch();

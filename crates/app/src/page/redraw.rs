@@ -48,19 +48,31 @@ pub struct Redraw {
     /// Draws per progressive view while its job ran with some of its
     /// points in: the partial pictures a user saw.
     pub partial_draws: [u32; N],
+    /// The next part of a view drawn in parts, one a frame (0: it starts
+    /// over, clearing its canvas).
+    part: [usize; N],
 }
 
 impl Redraw {
     /// Marks the views that show a kind whose data `dirty` says changed.
     pub fn mark(&mut self, dirty: &Dirty) {
         for spec in VIEWS {
-            self.need[spec.id.slot()] |= !spec.shows.and(dirty.jobs).is_empty();
+            if !spec.shows.and(dirty.jobs).is_empty() {
+                self.mark_view(spec.id);
+            }
         }
     }
 
-    /// Marks `view` for drawing (its canvas changed size: present mode).
+    /// Marks `view` for drawing from its first part (its data changed, or
+    /// its canvas changed size: present mode).
     pub fn mark_view(&mut self, view: ViewId) {
         self.need[view.slot()] = true;
+        self.part[view.slot()] = 0;
+    }
+
+    /// The part of `view` to draw next, when it draws in parts.
+    pub fn part(&self, view: ViewId) -> usize {
+        self.part[view.slot()]
     }
 
     /// Whether a view still waits for a frame.
@@ -108,12 +120,20 @@ impl Redraw {
         Decision::Draw
     }
 
-    /// Records that `view` was drawn from `start_ms` to `end_ms`.
-    pub fn drawn(&mut self, view: ViewId, start_ms: f64, end_ms: f64) {
+    /// Records that `view`, drawn in `parts` (1: whole), had its next part
+    /// drawn from `start_ms` to `end_ms`: the view waits for the next
+    /// frame until its last part is drawn, and only then counts as drawn.
+    pub fn drawn(&mut self, view: ViewId, start_ms: f64, end_ms: f64, parts: usize) {
         let k = view.slot();
+        self.max_draw_ms[k] = self.max_draw_ms[k].max(end_ms - start_ms);
+        self.part[k] += 1;
+        if self.part[k] < parts {
+            self.need[k] = true;
+            return;
+        }
+        self.part[k] = 0;
         self.draws[k] += 1;
         self.last_draw_ms[k] = end_ms;
-        self.max_draw_ms[k] = self.max_draw_ms[k].max(end_ms - start_ms);
         if self.first_draw_ms[k] == 0.0 {
             self.first_draw_ms[k] = end_ms;
         }
@@ -188,7 +208,7 @@ mod tests {
                 Decision::Stop => break,
                 Decision::Skip => {}
                 Decision::Draw => {
-                    r.drawn(v, now, now + draw_ms);
+                    r.drawn(v, now, now + draw_ms, 1);
                     now += draw_ms;
                     out.push(v);
                 }
@@ -202,6 +222,43 @@ mod tests {
             jobs: KindSet::ALL,
             ..Dirty::default()
         }
+    }
+
+    /// A view drawn in parts (a family's six phase portraits) waits for
+    /// another frame after each part, counts as drawn once, after its last
+    /// part, and starts over from its first when its data change on the
+    /// way.
+    #[test]
+    fn a_view_in_parts_draws_a_part_a_frame_and_counts_once() {
+        let mut r = Redraw::default();
+        let phase = Dirty {
+            jobs: ViewId::Phase.spec().shows,
+            ..Dirty::default()
+        };
+        let k = ViewId::Phase.slot();
+        let draw_parts = |r: &mut Redraw, count: usize, parts: usize| {
+            for _ in 0..count {
+                assert!(r.decide(ViewId::Phase, 0.0, 0.0, None) == Decision::Draw);
+                let part = r.part(ViewId::Phase);
+                r.drawn(ViewId::Phase, 0.0, 1.0, parts);
+                assert!(part < parts);
+            }
+        };
+        r.mark(&phase);
+        draw_parts(&mut r, 2, 6);
+        assert_eq!((r.part(ViewId::Phase), r.draws[k]), (2, 0));
+        assert!(r.needs(ViewId::Phase));
+        // New data after two of six parts: from the first part again.
+        r.mark(&phase);
+        assert_eq!(r.part(ViewId::Phase), 0);
+        draw_parts(&mut r, 6, 6);
+        assert_eq!((r.part(ViewId::Phase), r.draws[k]), (0, 1));
+        assert!(!r.needs(ViewId::Phase));
+        // Whole (one part): counted at once, as before.
+        r.mark(&phase);
+        draw_parts(&mut r, 1, 1);
+        assert_eq!((r.part(ViewId::Phase), r.draws[k]), (0, 2));
+        assert!(!r.needs(ViewId::Phase));
     }
 
     /// A full refresh draws the slider's views first and spreads over

@@ -344,6 +344,26 @@ pub(crate) fn draw_caption<DB: DrawingBackend>(
     align: Align,
     font_px: u32,
 ) -> Res<i32> {
+    caption(area, text, align, font_px, true)
+}
+
+/// The height [`draw_caption`] takes on `area`, without drawing it.
+pub(crate) fn caption_height<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    text: &str,
+    font_px: u32,
+) -> Res<i32> {
+    caption(area, text, Align::Left, font_px, false)
+}
+
+/// [`draw_caption`], drawn if `draw`; its height either way.
+fn caption<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    text: &str,
+    align: Align,
+    font_px: u32,
+    draw: bool,
+) -> Res<i32> {
     let (w, _) = area.dim_in_pixel();
     let (left, top) = (10i32, 6i32);
     let avail = w.saturating_sub(2 * left as u32).max(40);
@@ -359,7 +379,7 @@ pub(crate) fn draw_caption<DB: DrawingBackend>(
     }
     let font = font_of(px);
     let line_h = px as i32 + 5;
-    for (k, line) in lines.iter().enumerate() {
+    for (k, line) in lines.iter().enumerate().filter(|_| draw) {
         let y = top + line_h * k as i32;
         let t = match align {
             Align::Centre => Text::new(

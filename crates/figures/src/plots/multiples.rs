@@ -94,14 +94,19 @@ pub fn phase_ranges(panels: &[Panel<&OmegaResult>]) -> ((f64, f64), (f64, f64)) 
 
 /// The panel areas of `n` panels side by side under a title and over a key
 /// (two a row on a phone's narrow canvas, else up to [`FAMILY_COLS`]), and
-/// the panels a row.
+/// the panels a row. With `chrome` the canvas is cleared and the title and
+/// key drawn; without, the same areas are only measured (a drawing in
+/// parts adds its later panels to the first's).
 fn layout<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     title: &str,
     key: &str,
     n: usize,
+    chrome: bool,
 ) -> Res<(Vec<DrawingArea<DB, Shift>>, usize)> {
-    root.fill(&WHITE).map_err(err)?;
+    if chrome {
+        root.fill(&WHITE).map_err(err)?;
+    }
     let (w, h) = root.dim_in_pixel();
     let cols = if w < super::NARROW {
         n.clamp(1, 2)
@@ -109,11 +114,16 @@ fn layout<DB: DrawingBackend>(
         n.clamp(1, FAMILY_COLS)
     };
     let rows = n.max(1).div_ceil(cols);
-    let top = TOP.max(super::draw_caption(root, title, super::Align::Left, 17)? as u32 + 4);
+    let caption = if chrome {
+        super::draw_caption(root, title, super::Align::Left, 17)?
+    } else {
+        super::caption_height(root, title, 17)?
+    };
+    let top = TOP.max(caption as u32 + 4);
     // The key in lines under the panels (two on a wide canvas).
     let lines = wrap(key, super::line_chars(w + 64));
     let bottom = BOTTOM.max(8 + 16 * lines.len() as u32);
-    for (k, line) in lines.iter().enumerate() {
+    for (k, line) in lines.iter().enumerate().filter(|_| chrome) {
         root.draw(&Text::new(
             line.clone(),
             (10, h as i32 - bottom as i32 + 4 + 16 * k as i32),
@@ -300,7 +310,7 @@ pub fn draw_bif_panels<DB: DrawingBackend>(
         "Dots: Poincaré samples coloured by regime ({}); filled: upward sweep, open: downward. Dotted: ±b, in the panel's colour; dashed red: selected speed.",
         if regimes.is_empty() { "none yet".to_string() } else { regimes.join(", ") }
     );
-    let (areas, cols) = layout(root, &title, &key, panels.len())?;
+    let (areas, cols) = layout(root, &title, &key, panels.len(), true)?;
     let mut frames = Vec::new();
     let mut groups: Vec<PointGroup> = Vec::new();
     for (k, (area, p)) in areas.iter().zip(panels).enumerate() {
@@ -352,12 +362,15 @@ pub fn phase_panel_title(title: &str, r: &OmegaResult) -> String {
 /// family side by side: each panel's x axis fits its own orbit and its ±b
 /// (a shared one squeezed each orbit into a sliver: Fig. 9's backlashes
 /// 50 to 200 µm), the velocity axis is shared; each panel's ±b lines are
-/// in its member's colour.
+/// in its member's colour. With `part` `Some(k)` only panel k is drawn,
+/// and the canvas cleared, the title and key drawn, only with the first:
+/// the page draws six panels of long orbits over six frames.
 pub fn draw_phase_panels<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     panels: &[Panel<&OmegaResult>],
     poincare: bool,
     status: &str,
+    part: Option<usize>,
 ) -> Res<()> {
     let (_, y) = phase_ranges(panels);
     let first = panels.iter().find_map(|p| p.data.as_ref().ok());
@@ -421,8 +434,15 @@ pub fn draw_phase_panels<DB: DrawingBackend>(
         key.push_str("; ");
         key.push_str(crate::story::STILL_SETTLING_KEY);
     }
-    let (areas, cols) = layout(root, &title, &key, panels.len())?;
-    for (k, (area, p)) in areas.iter().zip(panels).enumerate() {
+    let chrome = part.is_none_or(|k| k == 0);
+    let (areas, cols) = layout(root, &title, &key, panels.len(), chrome)?;
+    let drawn = |k: usize| part.is_none_or(|only| only == k);
+    for (k, (area, p)) in areas
+        .iter()
+        .zip(panels)
+        .enumerate()
+        .filter(|(k, _)| drawn(*k))
+    {
         let Some(r) = panel_data(area, p)? else {
             continue;
         };

@@ -5,6 +5,7 @@ use super::*;
 use crate::protocol::OmegaResult;
 use crate::views::fr::FrView;
 use crate::views::fr::{FrBranch, FrCurvePoint, FrMarker, FrMarkerKind, FrSource};
+use crate::views::multiples::Panel;
 
 fn svg<F: FnOnce(&DrawingArea<SVGBackend, Shift>) -> Res<()>>(f: F) -> String {
     svg_sized((WIDTH, HEIGHT), f)
@@ -229,7 +230,6 @@ fn a_family_overlays_one_colour_per_value_named_in_words() {
 
 #[test]
 fn small_multiples_draw_every_panel_with_its_title() {
-    use crate::views::multiples::Panel;
     let mut other = result();
     other.x_um.iter_mut().for_each(|x| *x -= 400.0);
     other.period = None;
@@ -253,7 +253,7 @@ fn small_multiples_draw_every_panel_with_its_title() {
     let (x, _) = multiples::phase_ranges(&panels);
     assert!(x.0 < -320.0 && x.1 > 140.0, "{x:?}");
     for poincare in [false, true] {
-        let s = svg(|root| multiples::draw_phase_panels(root, &panels, poincare, ""));
+        let s = svg(|root| multiples::draw_phase_panels(root, &panels, poincare, "", None));
         for text in [
             "(a) TE 0 µm: period 1 (exact)",
             "(b) TE 20 µm: not periodic",
@@ -552,7 +552,6 @@ fn polyline_points(svg: &str) -> usize {
 /// a short record is drawn whole and the key says nothing of a cut.
 #[test]
 fn family_phase_panels_draw_the_last_periods_within_a_budget() {
-    use crate::views::multiples::Panel;
     use std::f64::consts::TAU;
     // Quasi-periodic: no period retraces another's pixels.
     let long = |k: usize| {
@@ -574,17 +573,10 @@ fn family_phase_panels_draw_the_last_periods_within_a_budget() {
     );
     assert_eq!(multiples::panel_orbit_tail(&long(0), 1), (0, 1000));
     let orbits: Vec<OmegaResult> = (0..6).map(long).collect();
-    let panels: Vec<Panel<&OmegaResult>> = orbits
-        .iter()
-        .enumerate()
-        .map(|(k, r)| Panel {
-            title: format!("({k})"),
-            data: Ok(r),
-        })
-        .collect();
+    let panels = titled_panels(&orbits);
     let size = multiples::family_panels_size(6);
     let s = svg_sized(size, |root| {
-        multiples::draw_phase_panels(root, &panels, false, "")
+        multiples::draw_phase_panels(root, &panels, false, "", None)
     });
     assert!(s.contains("last 250 of 1000 recorded periods"), "key");
     let drawn = polyline_points(&s);
@@ -594,7 +586,7 @@ fn family_phase_panels_draw_the_last_periods_within_a_budget() {
     );
     // The Poincaré sections draw every period's dot and cut nothing.
     let s = svg_sized(size, |root| {
-        multiples::draw_phase_panels(root, &panels, true, "")
+        multiples::draw_phase_panels(root, &panels, true, "", None)
     });
     assert!(!s.contains("recorded periods"));
     let short_orbit = result();
@@ -606,9 +598,69 @@ fn family_phase_panels_draw_the_last_periods_within_a_budget() {
         .collect();
     assert_eq!(multiples::panel_orbit_tail(&result(), 6), (0, 20));
     let s = svg_sized(size, |root| {
-        multiples::draw_phase_panels(root, &short, false, "")
+        multiples::draw_phase_panels(root, &short, false, "", None)
     });
     assert!(!s.contains("recorded periods"), "no cut, no words on one");
+}
+
+/// Panels "(0)", "(1)", ... of `orbits`.
+fn titled_panels(orbits: &[OmegaResult]) -> Vec<Panel<&OmegaResult>> {
+    orbits
+        .iter()
+        .enumerate()
+        .map(|(k, r)| Panel {
+            title: format!("({k})"),
+            data: Ok(r),
+        })
+        .collect()
+}
+
+/// Drawn in parts, one panel a frame as the page does, the small multiples
+/// are the whole drawing's elements: the first part clears the canvas and
+/// draws the title and key, each later part its own panel, nothing twice.
+#[test]
+fn small_multiples_drawn_in_parts_are_the_whole_drawing() {
+    let orbits: Vec<OmegaResult> = (0..6)
+        .map(|k| {
+            let mut r = result();
+            r.backlash_um = 50.0 + 10.0 * k as f64;
+            r
+        })
+        .collect();
+    let mut panels = titled_panels(&orbits);
+    panels[4].data = Err("computing…".into());
+    let size = multiples::family_panels_size(6);
+    // An SVG document's elements, one a line, without its header.
+    let body = |s: &str| -> Vec<String> {
+        s.lines()
+            .filter(|l| !l.starts_with("<svg") && !l.starts_with("</svg"))
+            .map(str::to_string)
+            .collect()
+    };
+    for poincare in [false, true] {
+        let whole = svg_sized(size, |root| {
+            multiples::draw_phase_panels(root, &panels, poincare, "", None)
+        });
+        let mut parts = Vec::new();
+        for k in 0..panels.len() {
+            let s = svg_sized(size, |root| {
+                multiples::draw_phase_panels(root, &panels, poincare, "", Some(k))
+            });
+            let lines = body(&s);
+            // Only the first part clears the canvas (a white rectangle
+            // over all of it) and holds the title.
+            assert_eq!(
+                s.contains("Phase portraits") || s.contains("Poincaré sections"),
+                k == 0
+            );
+            assert!(!lines.is_empty(), "part {k} drew nothing");
+            parts.extend(lines);
+        }
+        let mut whole = body(&whole);
+        whole.sort();
+        parts.sort();
+        assert_eq!(whole, parts, "poincare {poincare}");
+    }
 }
 
 /// The plotting area's height of the frequency response drawn at `size`.
@@ -697,7 +749,6 @@ fn the_drawn_key_is_short_and_the_full_key_complete() {
 /// colour, and never the dashes of an unstable branch.
 #[test]
 fn fr_panels_draw_their_contact_lines_dotted_and_grey() {
-    use crate::views::multiples::Panel;
     let fr = |b: f64| fr_view(b, vec![]);
     let panels: Vec<Panel<FrView>> = [50.0, 100.0, 200.0]
         .iter()

@@ -71,18 +71,31 @@ impl Controller {
         }
     }
 
+    /// The parts the page draws `view` in, one an animation frame: a
+    /// family's phase portraits and Poincaré sections a panel each (six
+    /// long orbits drawn at once were the page's longest main-thread
+    /// task), every other view whole (1).
+    pub fn parts(&self, view: ViewId) -> usize {
+        match (view, &self.family) {
+            (ViewId::Phase | ViewId::Poincare, Some(f)) => f.spec.values.len().max(1),
+            _ => 1,
+        }
+    }
+
     /// Draws `view` on any plotters backend, as the page and the SVG
     /// export both do, with `status` after its title (the page's progress
     /// caption; empty for a file) and, for the frequency response, its
     /// view model `fr` if the caller built it already. What the backend
     /// draws faster itself is returned, not drawn: the bifurcation dots and
-    /// the map's cells ([`Drawn`]).
+    /// the map's cells ([`Drawn`]). `part` draws one of a view's parts
+    /// ([`Self::parts`]); `None` draws it whole.
     pub fn plot<DB: DrawingBackend>(
         &self,
         view: ViewId,
         root: &DrawingArea<DB, Shift>,
         status: &str,
         fr: Option<&FrView>,
+        part: Option<usize>,
     ) -> Result<Drawn, SvgError> {
         let natural = self.view_context().natural;
         let v = &self.settings.view;
@@ -157,7 +170,7 @@ impl Controller {
                 let poincare = view == ViewId::Poincare;
                 let n = self.family.as_ref().map_or(0, |f| f.spec.values.len());
                 let panels = self.omega_panels(if poincare { n } else { 0 });
-                plots::multiples::draw_phase_panels(root, &panels, poincare, status)?;
+                plots::multiples::draw_phase_panels(root, &panels, poincare, status, part)?;
             }
             ViewId::Phase | ViewId::Poincare | ViewId::Time | ViewId::Spectrum => {
                 let r = self.main.omega.as_ref().ok_or(ExportError::NotComputed)?;
@@ -179,7 +192,7 @@ impl Controller {
         let mut s = String::new();
         let d = {
             let root = SVGBackend::with_string(&mut s, size).into_drawing_area();
-            let d = self.plot(view, &root, "", None)?;
+            let d = self.plot(view, &root, "", None, None)?;
             root.present().map_err(plots::err)?;
             d
         };
