@@ -710,4 +710,6 @@ fn regime_strip<'a, DB: DrawingBackend + 'a>(
 }
 
 #[cfg(test)]
+mod multiples_tests;
+#[cfg(test)]
 mod tests;
