@@ -4,7 +4,7 @@
 // docs/browser-bench.md. Needs a release build in dist/:
 //
 //   scripts/setup.sh && source scripts/env.sh && trunk build --release --offline
-//   node tests/browser/bench.mjs [--repeats N] [--quick] [--map] [--pool-only] [--family-only] [--branches-only] [--boundaries-only]
+//   node tests/browser/bench.mjs [--repeats N] [--quick] [--map] [--pool-only] [--family-only] [--branches-only] [--boundaries-only] [--slider-task-only]
 import fs from 'node:fs';
 import path from 'node:path';
 import zlib from 'node:zlib';
@@ -28,7 +28,10 @@ const BRANCHES_ONLY = args.includes('--branches-only');
 // --boundaries-only measures only the page at its defaults until the
 // map's traced boundaries are drawn (on by default).
 const BOUNDARIES_ONLY = args.includes('--boundaries-only');
-const ONLY = MAP_ONLY || POOL_ONLY || FAMILY_ONLY || BRANCHES_ONLY || BOUNDARIES_ONLY;
+// --slider-task-only measures only the largest main-thread task after a TE
+// change (the preview and every view's redraw, both workers busy).
+const SLIDER_TASK_ONLY = args.includes('--slider-task-only');
+const ONLY = MAP_ONLY || POOL_ONLY || FAMILY_ONLY || BRANCHES_ONLY || BOUNDARIES_ONLY || SLIDER_TASK_ONLY;
 
 // The views' slots in the status's per-view arrays (`last_draw_ms`, ...):
 // their order in figures::views::VIEWS.
@@ -271,6 +274,26 @@ try {
     row('family of six at 1000 periods: longest main-thread task (wall clock)', longest, 'ms', 'from the first paint until the six orbits are drawn');
     row('family of six at 1000 periods: most main-thread CPU time in one task', cpu, 'ms', 'the limit the tests assert is 100 ms (harness.mjs)');
     row('family of six at 1000 periods: longest frame (drawing)', frame, 'ms', '');
+  }
+
+  // The largest main-thread task after a TE change, eight changes on one
+  // page whose other jobs are small, each watched until every job ended.
+  if (SLIDER_TASK_ONLY) {
+    const q = 'bif_points=60&fr_points=12&fr_record_periods=10&omega_from=0.3&omega_to=1.8&branches=off&boundaries=off&map_omega_points=8&map_value_points=4&lyap_points=4';
+    const { page } = await open(h.browser, h.url, q);
+    const done = (s) => ['fr', 'omega_job', 'bif', 'map', 'lyap'].every((k) => s[k].finished_ms);
+    let s0 = await waitStatus(page, done, 240000, 'the first jobs');
+    const cpu = [];
+    for (let i = 0; i < (QUICK ? 3 : Math.max(REPEATS, 8)); i++) {
+      await watchMainThread(page);
+      await page.fill('#num-te_um', String(12 + 2 * i));
+      await page.press('#num-te_um', 'Enter');
+      const s = await waitStatus(page, (x) => x.bif.id > s0.bif.id && done(x), 240000, 'the jobs after the change');
+      cpu.push((await stopWatch(page)).longCpu);
+      s0 = s;
+    }
+    row('largest main-thread task after a TE change (CPU)', cpu, 'ms', 'both workers busy; tasks over 50 ms by the clock, else 0');
+    await page.close();
   }
 
   // Regime map: 100 x 40 cells x (300 + 100) periods, two workers (opt-in).

@@ -203,10 +203,10 @@ fn omega_options(job: &OmegaJob, preview: bool) -> Result<SteadyOptions, OmegaEr
     opts.record_periods = spec.run.record_periods;
     opts.samples_per_period = spec.samples_per_period.clamp(8, 256);
     if preview {
-        // Integration only: shooting's Newton steps on the variational
-        // equations tripled the preview's time on the main thread (36 ms
-        // a slider change in the browser, measured); the worker's full
-        // run finds the exact orbit.
+        // Integration only: with shooting's Newton steps on the
+        // variational equations the preview took about 36 ms of the main
+        // thread a slider change, 20 without (a sampling profile of the
+        // page); the worker's full run finds the exact orbit.
         opts.max_steps_per_period = PREVIEW_STEPS_PER_PERIOD;
         opts.shooting = false;
     }
